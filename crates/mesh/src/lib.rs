@@ -1,1 +1,37 @@
-//! placeholder
+//! `subdiv-mesh`: the polygon mesh every other subdiv crate works on.
+//!
+//! A [`Mesh`] is a validated, manifold, consistently oriented half-edge mesh with faces of any
+//! size, plus what subdivision needs beyond connectivity: edge and vertex sharpness (creases and
+//! corners), holes, face groups and the scheme options (boundary interpolation, crease method).
+//! Properties are plain arrays indexed by typed handles ([`VertexId`], [`HalfedgeId`],
+//! [`EdgeId`], [`FaceId`]).
+//!
+//! Meshes are built from a [`PolygonSoup`] — usually read from an OBJ file with OpenSubdiv's
+//! crease/corner/hole tags by [`read_obj`] — and every defect of the input is a [`MeshError`]
+//! naming the face, vertex or tag and its line.
+//!
+//! ```
+//! use subdiv_mesh::{parse_obj, Mesh, VertexId};
+//! let soup = parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nt crease 2/1/0 0 1 3\n")?;
+//! let mesh = Mesh::from_soup(&soup)?;
+//! assert_eq!(mesh.num_edges(), 4);
+//! assert!(mesh.is_boundary_vertex(VertexId(0)));
+//! assert_eq!(mesh.valence(VertexId(0)), 2);
+//! # Ok::<(), subdiv_mesh::MeshError>(())
+//! ```
+
+mod error;
+mod handle;
+mod mesh;
+mod obj;
+mod options;
+mod soup;
+
+pub use error::{MeshError, ObjError};
+pub use handle::{EdgeId, FaceId, HalfedgeId, VertexId};
+pub use mesh::{Mesh, Outgoing};
+pub use obj::{ObjData, format_mesh_obj, format_obj, parse_obj, read_obj, read_obj_soup, write_mesh_obj, write_obj};
+pub use options::{BoundaryInterpolation, CreaseMethod, SHARPNESS_INFINITE, SchemeOptions};
+pub use soup::{CornerTag, CreaseTag, HoleTag, PolygonSoup};
+
+pub use glam;

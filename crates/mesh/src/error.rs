@@ -1,0 +1,193 @@
+//! Typed errors for building and reading meshes. Every variant names the offending element and,
+//! when the input came from a file, its 1-based source line.
+
+use thiserror::Error;
+
+/// A problem found while building a mesh from a polygon soup or reading an OBJ file.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum MeshError {
+    /// A syntax error in an OBJ line.
+    #[error("{msg}")]
+    Parse {
+        /// 1-based line.
+        line: u32,
+        /// What is wrong.
+        msg: String,
+    },
+    /// The mesh has no faces.
+    #[error("the mesh has no faces")]
+    Empty,
+    /// A face refers to a vertex that does not exist.
+    #[error("face {face}: vertex index {index} is out of range (the mesh has {count} vertices)")]
+    IndexOutOfRange {
+        /// Face index (0-based).
+        face: u32,
+        /// The bad index as written (0-based after OBJ conversion; negative OBJ indices are resolved).
+        index: i64,
+        /// Number of vertices.
+        count: u32,
+        /// 1-based line, if known.
+        line: Option<u32>,
+    },
+    /// A face with fewer than three vertices.
+    #[error("face {face} has {len} vertices; a face needs at least 3")]
+    FaceTooSmall {
+        /// Face index.
+        face: u32,
+        /// Its vertex count.
+        len: u32,
+        /// 1-based line, if known.
+        line: Option<u32>,
+    },
+    /// A face that lists a vertex twice (degenerate).
+    #[error("face {face} uses vertex {vertex} more than once (degenerate face)")]
+    RepeatedVertex {
+        /// Face index.
+        face: u32,
+        /// The repeated vertex.
+        vertex: u32,
+        /// 1-based line, if known.
+        line: Option<u32>,
+    },
+    /// A vertex coordinate that is NaN or infinite.
+    #[error("vertex {vertex} has a non-finite coordinate ({x}, {y}, {z})")]
+    NonFinite {
+        /// Vertex index.
+        vertex: u32,
+        /// Coordinates as read.
+        x: f32,
+        /// Coordinates as read.
+        y: f32,
+        /// Coordinates as read.
+        z: f32,
+        /// 1-based line, if known.
+        line: Option<u32>,
+    },
+    /// An edge used by more than two faces.
+    #[error("edge {a}-{b} is shared by more than two faces (faces {faces:?}); non-manifold meshes are refused")]
+    NonManifoldEdge {
+        /// Edge endpoint.
+        a: u32,
+        /// Edge endpoint.
+        b: u32,
+        /// The faces using it.
+        faces: Vec<u32>,
+        /// Line of the first face beyond the second, if known.
+        line: Option<u32>,
+    },
+    /// A vertex whose incident faces do not form a single fan (e.g. two cones touching at a tip).
+    #[error("vertex {vertex} is non-manifold: its faces form {fans} separate fans; non-manifold meshes are refused")]
+    NonManifoldVertex {
+        /// The vertex.
+        vertex: u32,
+        /// Number of separate face fans around it.
+        fans: u32,
+        /// 1-based line of the vertex, if known.
+        line: Option<u32>,
+    },
+    /// Two faces traverse their shared edge in the same direction.
+    #[error("faces {face} and {other} traverse edge {a}->{b} in the same direction (inconsistent orientation)")]
+    InconsistentOrientation {
+        /// Edge start.
+        a: u32,
+        /// Edge end.
+        b: u32,
+        /// The later face.
+        face: u32,
+        /// The earlier face.
+        other: u32,
+        /// Line of the later face, if known.
+        line: Option<u32>,
+    },
+    /// A crease tag naming two vertices that share no edge.
+    #[error("crease tag names edge {a}-{b}, which is not an edge of the mesh")]
+    TagMissingEdge {
+        /// Endpoint.
+        a: u32,
+        /// Endpoint.
+        b: u32,
+        /// 1-based line of the tag, if known.
+        line: Option<u32>,
+    },
+    /// A tag naming a vertex that does not exist.
+    #[error("{tag} tag names vertex {vertex}, but the mesh has {count} vertices")]
+    TagMissingVertex {
+        /// Tag name.
+        tag: &'static str,
+        /// The vertex.
+        vertex: i64,
+        /// Number of vertices.
+        count: u32,
+        /// 1-based line of the tag, if known.
+        line: Option<u32>,
+    },
+    /// A hole tag naming a face that does not exist.
+    #[error("hole tag names face {face}, but the mesh has {count} faces")]
+    TagMissingFace {
+        /// The face.
+        face: i64,
+        /// Number of faces.
+        count: u32,
+        /// 1-based line of the tag, if known.
+        line: Option<u32>,
+    },
+    /// A sharpness value that is NaN, infinite or negative.
+    #[error("{tag} tag has invalid sharpness {value} (must be a finite number >= 0)")]
+    BadSharpness {
+        /// Tag name.
+        tag: &'static str,
+        /// The value.
+        value: f32,
+        /// 1-based line of the tag, if known.
+        line: Option<u32>,
+    },
+    /// Too many elements for 32-bit handles.
+    #[error("the mesh is too large: {what}")]
+    TooLarge {
+        /// What overflowed.
+        what: String,
+    },
+}
+
+impl MeshError {
+    /// The 1-based source line the error refers to, when the input came from a file.
+    pub fn line(&self) -> Option<u32> {
+        match self {
+            MeshError::Parse { line, .. } => Some(*line),
+            MeshError::Empty | MeshError::TooLarge { .. } => None,
+            MeshError::IndexOutOfRange { line, .. }
+            | MeshError::FaceTooSmall { line, .. }
+            | MeshError::RepeatedVertex { line, .. }
+            | MeshError::NonFinite { line, .. }
+            | MeshError::NonManifoldEdge { line, .. }
+            | MeshError::NonManifoldVertex { line, .. }
+            | MeshError::InconsistentOrientation { line, .. }
+            | MeshError::TagMissingEdge { line, .. }
+            | MeshError::TagMissingVertex { line, .. }
+            | MeshError::TagMissingFace { line, .. }
+            | MeshError::BadSharpness { line, .. } => *line,
+        }
+    }
+}
+
+/// An error reading or writing a mesh file: I/O, or a [`MeshError`] located in the file.
+#[derive(Debug, Error)]
+pub enum ObjError {
+    /// The file could not be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The I/O error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The file's content is invalid.
+    #[error("{path}:{}{err}", .err.line().map(|l| format!("{l}: ")).unwrap_or_else(|| " ".into()))]
+    Invalid {
+        /// The file.
+        path: String,
+        /// What is wrong, with its line.
+        err: MeshError,
+    },
+}

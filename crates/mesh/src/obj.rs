@@ -1,0 +1,396 @@
+//! Wavefront OBJ input and output, with OpenSubdiv's `t` tag lines.
+//!
+//! The reader keeps vertices in file order (a cage's vertex `i` stays vertex `i`, which the
+//! OpenSubdiv reference data relies on) and remembers the line of every vertex, face and tag so
+//! that every error names its line. It reads `v`, `f` (any of `i`, `i/t`, `i//n`, `i/t/n`,
+//! negative indices), `g`/`o` (face groups), and the tags
+//!
+//! ```text
+//! t crease n/1/0 v0 .. v(n-1) s        t crease n/(n-1)/0 v0 .. v(n-1) s0 .. s(n-2)
+//! t corner n/1/0 v0 .. s               t corner n/n/0 v0 .. s0 ..
+//! t hole n/0/0 f0 ..                   t interpolateboundary 1/0/0 k  (0 none, 1 edge-and-corner, 2 edge-only)
+//! t creasemethod 0/0/1 chaikin|uniform
+//! ```
+//!
+//! Other statements (`vt`, `vn`, `s`, `usemtl`, ...) and unknown tags are ignored.
+//! (`tobj` is not used for reading: it renumbers vertices per object in order of first use and
+//! reports errors without line numbers.)
+//!
+//! The writer prints `f32` coordinates with Rust's shortest round-trip formatting, so a written
+//! file reads back bit-identical.
+
+use std::fmt::Write as _;
+use std::io::Write;
+use std::path::Path;
+
+use glam::Vec3;
+
+use crate::error::{MeshError, ObjError};
+use crate::mesh::Mesh;
+use crate::options::{BoundaryInterpolation, CreaseMethod, SHARPNESS_INFINITE};
+use crate::soup::{CornerTag, CreaseTag, HoleTag, PolygonSoup};
+
+/// Parses OBJ text into a polygon soup (no topology validation yet).
+pub fn parse_obj(text: &str) -> Result<PolygonSoup, MeshError> {
+    let mut soup = PolygonSoup::default();
+    let mut current_group = u32::MAX;
+    for (ln, raw) in text.lines().enumerate() {
+        let line = (ln + 1) as u32;
+        let content = raw.split('#').next().unwrap_or("").trim();
+        if content.is_empty() {
+            continue;
+        }
+        let mut toks = content.split_whitespace();
+        let Some(kw) = toks.next() else { continue };
+        let perr = |msg: String| MeshError::Parse { line, msg };
+        match kw {
+            "v" => {
+                let mut c = [0.0f32; 3];
+                for (k, slot) in c.iter_mut().enumerate() {
+                    let t = toks
+                        .next()
+                        .ok_or_else(|| perr(format!("vertex needs 3 coordinates, found {k}")))?;
+                    *slot = t.parse::<f32>().map_err(|_| perr(format!("invalid coordinate '{t}'")))?;
+                }
+                soup.positions.push(Vec3::from(c));
+                soup.vertex_lines.push(line);
+            }
+            "f" => {
+                let nv = soup.positions.len() as i64;
+                let mut idx = Vec::new();
+                for t in toks {
+                    let first = t.split('/').next().unwrap_or("");
+                    let i: i64 = first.parse().map_err(|_| perr(format!("invalid face index '{t}'")))?;
+                    let i = match i {
+                        0 => return Err(perr("face index 0 is invalid (OBJ indices start at 1)".into())),
+                        i if i > 0 => i - 1,
+                        i => nv + i,
+                    };
+                    idx.push(i);
+                }
+                soup.push_face(idx);
+                soup.face_lines.push(line);
+                soup.face_groups.push(current_group);
+            }
+            "g" | "o" => {
+                let name: Vec<&str> = toks.collect();
+                let name = if name.is_empty() { "default".to_string() } else { name.join(" ") };
+                current_group = match soup.groups.iter().position(|g| *g == name) {
+                    Some(i) => i as u32,
+                    None => {
+                        soup.groups.push(name);
+                        (soup.groups.len() - 1) as u32
+                    }
+                };
+            }
+            "t" => parse_tag(&mut soup, toks.collect(), line)?,
+            _ => {}
+        }
+    }
+    if soup.groups.is_empty() {
+        soup.face_groups.clear();
+    }
+    Ok(soup)
+}
+
+fn parse_tag(soup: &mut PolygonSoup, toks: Vec<&str>, line: u32) -> Result<(), MeshError> {
+    let perr = |msg: String| MeshError::Parse { line, msg };
+    let name = *toks.first().ok_or_else(|| perr("tag without a name".into()))?;
+    let counts = toks.get(1).ok_or_else(|| perr(format!("tag '{name}' without counts n/n/n")))?;
+    let c: Vec<usize> = counts
+        .split('/')
+        .map(|x| x.parse::<usize>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| perr(format!("tag '{name}': invalid counts '{counts}'")))?;
+    if c.len() != 3 {
+        return Err(perr(format!("tag '{name}': counts must be ints/floats/strings, got '{counts}'")));
+    }
+    let args = &toks[2..];
+    if args.len() != c[0] + c[1] + c[2] {
+        return Err(perr(format!(
+            "tag '{name}': counts {counts} announce {} arguments, found {}",
+            c[0] + c[1] + c[2],
+            args.len()
+        )));
+    }
+    let ints: Vec<i64> = args[..c[0]]
+        .iter()
+        .map(|t| t.parse::<i64>().map_err(|_| perr(format!("tag '{name}': invalid integer '{t}'"))))
+        .collect::<Result<_, _>>()?;
+    let floats: Vec<f32> = args[c[0]..c[0] + c[1]]
+        .iter()
+        .map(|t| t.parse::<f32>().map_err(|_| perr(format!("tag '{name}': invalid number '{t}'"))))
+        .collect::<Result<_, _>>()?;
+    let strings = &args[c[0] + c[1]..];
+    let line = Some(line);
+    match name {
+        "crease" => {
+            if ints.len() < 2 {
+                return Err(perr("crease tag needs at least two vertices".into()));
+            }
+            let edges = ints.len() - 1;
+            if floats.len() != 1 && floats.len() != edges {
+                return Err(perr(format!(
+                    "crease tag over {edges} edges needs 1 or {edges} sharpness values, found {}",
+                    floats.len()
+                )));
+            }
+            for k in 0..edges {
+                let s = if floats.len() == 1 { floats[0] } else { floats[k] };
+                soup.creases.push(CreaseTag { a: ints[k], b: ints[k + 1], sharpness: s, line });
+            }
+        }
+        "corner" => {
+            if floats.len() != 1 && floats.len() != ints.len() {
+                return Err(perr(format!(
+                    "corner tag over {} vertices needs 1 or {} sharpness values, found {}",
+                    ints.len(),
+                    ints.len(),
+                    floats.len()
+                )));
+            }
+            for (k, &v) in ints.iter().enumerate() {
+                let s = if floats.len() == 1 { floats[0] } else { floats[k] };
+                soup.corners.push(CornerTag { v, sharpness: s, line });
+            }
+        }
+        "hole" => soup.holes.extend(ints.iter().map(|&f| HoleTag { f, line })),
+        "interpolateboundary" => {
+            soup.options.boundary = match ints.first() {
+                Some(0) => BoundaryInterpolation::None,
+                Some(1) => BoundaryInterpolation::EdgeAndCorner,
+                Some(2) => BoundaryInterpolation::EdgeOnly,
+                other => return Err(perr(format!("interpolateboundary: expected 0, 1 or 2, got {other:?}"))),
+            }
+        }
+        "creasemethod" => {
+            soup.options.crease = match strings.first().copied() {
+                Some("chaikin") => CreaseMethod::Chaikin,
+                Some("uniform") | Some("normal") => CreaseMethod::Uniform,
+                other => return Err(perr(format!("creasemethod: expected chaikin or uniform, got {other:?}"))),
+            }
+        }
+        _ => {}
+    }
+    Ok(())
+}
+
+/// Reads an OBJ file and builds a validated mesh.
+///
+/// ```no_run
+/// let mesh = subdiv_mesh::read_obj("cage.obj").unwrap();
+/// println!("{} faces", mesh.num_faces());
+/// ```
+pub fn read_obj(path: impl AsRef<Path>) -> Result<Mesh, ObjError> {
+    let path = path.as_ref();
+    let soup = read_obj_soup(path)?;
+    Mesh::from_soup(&soup).map_err(|err| ObjError::Invalid { path: path.display().to_string(), err })
+}
+
+/// Reads an OBJ file into a polygon soup, without topology validation.
+pub fn read_obj_soup(path: impl AsRef<Path>) -> Result<PolygonSoup, ObjError> {
+    let path = path.as_ref();
+    let p = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|source| ObjError::Io { path: p.clone(), source })?;
+    let text = String::from_utf8_lossy(&bytes);
+    parse_obj(&text).map_err(|err| ObjError::Invalid { path: p, err })
+}
+
+/// Surface data to write as OBJ: positions, optional normals (one per position) and polygons.
+#[derive(Clone, Copy, Debug)]
+pub struct ObjData<'a> {
+    /// Vertex positions.
+    pub positions: &'a [[f32; 3]],
+    /// Optional per-vertex normals.
+    pub normals: Option<&'a [[f32; 3]]>,
+    /// Face start offsets into `face_indices`, one per face plus a final end.
+    pub face_offsets: &'a [u32],
+    /// 0-based vertex indices.
+    pub face_indices: &'a [u32],
+}
+
+/// Formats surface data as OBJ text.
+pub fn format_obj(data: &ObjData<'_>) -> String {
+    let mut s = String::with_capacity(data.positions.len() * 40 + data.face_indices.len() * 8);
+    for p in data.positions {
+        let _ = writeln!(s, "v {} {} {}", p[0], p[1], p[2]);
+    }
+    if let Some(ns) = data.normals {
+        for n in ns {
+            let _ = writeln!(s, "vn {} {} {}", n[0], n[1], n[2]);
+        }
+    }
+    for w in data.face_offsets.windows(2) {
+        s.push('f');
+        for &i in &data.face_indices[w[0] as usize..w[1] as usize] {
+            if data.normals.is_some() {
+                let _ = write!(s, " {}//{}", i + 1, i + 1);
+            } else {
+                let _ = write!(s, " {}", i + 1);
+            }
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// Writes surface data to an OBJ file.
+pub fn write_obj(path: impl AsRef<Path>, data: &ObjData<'_>) -> Result<(), ObjError> {
+    write_text(path.as_ref(), &format_obj(data))
+}
+
+fn write_text(path: &Path, text: &str) -> Result<(), ObjError> {
+    let io = |source| ObjError::Io { path: path.display().to_string(), source };
+    let mut f = std::io::BufWriter::new(std::fs::File::create(path).map_err(io)?);
+    f.write_all(text.as_bytes()).map_err(io)?;
+    f.flush().map_err(io)
+}
+
+/// Formats a mesh as an OBJ cage, with groups and OpenSubdiv tags, so that reading it back gives
+/// the same mesh.
+pub fn format_mesh_obj(mesh: &Mesh) -> String {
+    let mut s = String::new();
+    for p in mesh.positions() {
+        let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);
+    }
+    let mut group = u32::MAX;
+    for f in mesh.faces() {
+        let g = mesh.face_group(f);
+        if g != group && (g as usize) < mesh.groups().len() {
+            let _ = writeln!(s, "g {}", mesh.groups()[g as usize]);
+            group = g;
+        }
+        s.push('f');
+        for v in mesh.face_vertices(f) {
+            let _ = write!(s, " {}", v.0 + 1);
+        }
+        s.push('\n');
+    }
+    let opts = mesh.options();
+    let ib = match opts.boundary {
+        BoundaryInterpolation::None => 0,
+        BoundaryInterpolation::EdgeAndCorner => 1,
+        BoundaryInterpolation::EdgeOnly => 2,
+    };
+    let _ = writeln!(s, "t interpolateboundary 1/0/0 {ib}");
+    if opts.crease == CreaseMethod::Chaikin {
+        let _ = writeln!(s, "t creasemethod 0/0/1 chaikin");
+    }
+    for e in mesh.edges() {
+        let sh = mesh.edge_sharpness(e);
+        if sh > 0.0 && !mesh.is_boundary_edge(e) {
+            let [a, b] = mesh.edge_vertices(e);
+            let _ = writeln!(s, "t crease 2/1/0 {} {} {}", a.0, b.0, sh);
+        }
+    }
+    for v in mesh.vertices() {
+        let sh = mesh.vertex_sharpness(v);
+        let implied = opts.boundary == BoundaryInterpolation::EdgeAndCorner
+            && sh >= SHARPNESS_INFINITE
+            && mesh.is_boundary_vertex(v)
+            && mesh.valence(v) == 2;
+        if sh > 0.0 && !implied {
+            let _ = writeln!(s, "t corner 1/1/0 {} {}", v.0, sh);
+        }
+    }
+    for f in mesh.faces() {
+        if mesh.is_hole(f) {
+            let _ = writeln!(s, "t hole 1/0/0 {}", f.0);
+        }
+    }
+    s
+}
+
+/// Writes a mesh as an OBJ cage with its tags (see [`format_mesh_obj`]).
+pub fn write_mesh_obj(path: impl AsRef<Path>, mesh: &Mesh) -> Result<(), ObjError> {
+    write_text(path.as_ref(), &format_mesh_obj(mesh))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::handle::{FaceId, VertexId};
+
+    const CUBE: &str = "# cube\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
+g lid\nf 1 3 4 2\nf 5/1 6/2 8/3 7/4\ng sides\nf 1//1 2//1 6//1 5//1\nf 3 7 8 4\nf 1 5 7 3\nf -7 -5 -1 -3\n\
+t crease 3/1/0 0 2 3 2.5\nt corner 1/1/0 7 4\nt hole 1/0/0 1\nt creasemethod 0/0/1 chaikin\n";
+
+    #[test]
+    fn parses_cube_with_tags() {
+        let soup = parse_obj(CUBE).unwrap();
+        assert_eq!(soup.positions.len(), 8);
+        assert_eq!(soup.num_faces(), 6);
+        assert_eq!(soup.face(5), &[1, 3, 7, 5]);
+        assert_eq!(soup.groups, vec!["lid".to_string(), "sides".to_string()]);
+        assert_eq!(soup.face_groups, vec![0, 0, 1, 1, 1, 1]);
+        assert_eq!(soup.face_lines[0], 11);
+        let m = Mesh::from_soup(&soup).unwrap();
+        assert_eq!(m.options().crease, CreaseMethod::Chaikin);
+        let e = m.find_halfedge(VertexId(2), VertexId(3)).unwrap().edge();
+        assert_eq!(m.edge_sharpness(e), 2.5);
+        assert_eq!(m.vertex_sharpness(VertexId(7)), 4.0);
+        assert!(m.is_hole(FaceId(1)));
+    }
+
+    #[test]
+    fn cage_round_trip_is_exact() {
+        let m = Mesh::from_soup(&parse_obj(CUBE).unwrap()).unwrap();
+        let text = format_mesh_obj(&m);
+        let m2 = Mesh::from_soup(&parse_obj(&text).unwrap()).unwrap();
+        assert_eq!(m.positions(), m2.positions());
+        assert_eq!(m.edge_sharpnesses(), m2.edge_sharpnesses());
+        assert_eq!(m.vertex_sharpnesses(), m2.vertex_sharpnesses());
+        assert_eq!(m.holes(), m2.holes());
+        assert_eq!(m.groups(), m2.groups());
+        assert_eq!(m.face_groups(), m2.face_groups());
+    }
+
+    #[test]
+    fn written_floats_reread_bit_identical() {
+        let vals = [0.1f32, 1.0 / 3.0, -7.654321e-12, 3.4028235e38, 1.0e-45, 123456.79];
+        let pos: Vec<[f32; 3]> = vals.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
+        let text = format_obj(&ObjData {
+            positions: &pos,
+            normals: Some(&pos),
+            face_offsets: &[0, 2],
+            face_indices: &[0, 1],
+        });
+        let soup = parse_obj(&text).unwrap();
+        for (a, b) in pos.iter().zip(&soup.positions) {
+            assert_eq!(a.map(f32::to_bits), b.to_array().map(f32::to_bits));
+        }
+        assert!(text.contains("f 1//1 2//2"));
+    }
+
+    #[test]
+    fn parse_errors_name_lines() {
+        let e = parse_obj("v 0 0 0\nv 1 x 0\n").unwrap_err();
+        assert_eq!(e.line(), Some(2));
+        let e = parse_obj("v 0 0\n").unwrap_err();
+        assert_eq!(e.line(), Some(1));
+        let e = parse_obj("v 0 0 0\nf 1 0 1\n").unwrap_err();
+        assert!(matches!(e, MeshError::Parse { line: 2, .. }));
+        let e = parse_obj("t crease 2/1/0 0 1\n").unwrap_err();
+        assert!(matches!(e, MeshError::Parse { line: 1, .. }));
+        let e = parse_obj("t crease 3/2/0 0 1 2 1\n").unwrap_err();
+        assert!(matches!(e, MeshError::Parse { line: 1, .. }), "{e:?}");
+        // Validation errors carry the face's line.
+        let soup = parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 4\n").unwrap();
+        let e = Mesh::from_soup(&soup).unwrap_err();
+        assert_eq!(e.line(), Some(5));
+        assert!(matches!(e, MeshError::IndexOutOfRange { index: 3, .. }));
+    }
+
+    #[test]
+    fn obj_error_display_has_file_and_line() {
+        let dir = std::env::temp_dir().join(format!("subdiv-mesh-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("bad.obj");
+        std::fs::write(&p, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2\n").unwrap();
+        let e = read_obj(&p).unwrap_err().to_string();
+        assert!(e.ends_with("bad.obj:4: face 0 uses vertex 1 more than once (degenerate face)"), "{e}");
+        let e = read_obj(dir.join("missing.obj")).unwrap_err();
+        assert!(matches!(e, ObjError::Io { .. }));
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}
