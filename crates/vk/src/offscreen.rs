@@ -1,0 +1,246 @@
+//! The headless renderer: draws a [`RenderMesh`] into offscreen targets and
+//! reads the pixels back.
+
+use ash::vk;
+use image::RgbaImage;
+
+use crate::context::{Context, ContextOptions, ValidationLog};
+use crate::error::{Result, VkResultExt};
+use crate::frame::{self, FrameInputs, MeshBuffer, Readback, Target};
+use crate::pipeline::Pipelines;
+use crate::scene::{self, RenderMesh, RenderOptions, View};
+
+/// Per-pixel data besides colour, read back from the auxiliary targets.
+///
+/// Pixels are row-major from the top-left corner. Background pixels have
+/// `depth = +inf`, `coverage = 0`, zero normal and zero scalar.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct AuxImage {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Linear view depth: distance from the eye along the viewing direction.
+    pub depth: Vec<f32>,
+    /// Unit world-space normal of the visible surface (as interpolated, not flipped).
+    pub normals: Vec<[f32; 3]>,
+    /// The interpolated per-vertex scalar ([`RenderMesh::scalars`]).
+    pub scalars: Vec<f32>,
+    /// 1 where a surface covers the pixel, else 0.
+    pub coverage: Vec<f32>,
+}
+
+impl AuxImage {
+    /// Index of pixel (`x`, `y`), `None` outside the image.
+    pub fn index(&self, x: u32, y: u32) -> Option<usize> {
+        (x < self.width && y < self.height).then(|| y as usize * self.width as usize + x as usize)
+    }
+}
+
+/// A headless Vulkan renderer with its own instance and device.
+///
+/// ```no_run
+/// use subdiv_vk::{OrbitCamera, RenderMesh, RenderOptions, Renderer, Shading};
+///
+/// # fn main() -> Result<(), subdiv_vk::VkError> {
+/// let positions = [[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 1.0, 0.0]];
+/// let normals = [[0.0, 0.0, 1.0]; 3];
+/// let mesh = RenderMesh {
+///     positions: &positions,
+///     normals: &normals,
+///     triangles: &[0, 1, 2],
+///     ..Default::default()
+/// };
+/// let (width, height) = (640, 480);
+/// let view = OrbitCamera::framing_mesh(&mesh).view(width as f32 / height as f32);
+/// let options = RenderOptions { shading: Shading::Smooth, wire_overlay: true, ..Default::default() };
+///
+/// let mut renderer = Renderer::new()?; // fails with a clear error if no Vulkan driver is installed
+/// let (image, aux) = renderer.render_with_aux(&mesh, &view, [width, height], &options)?;
+/// subdiv_vk::write_png("out.png", &image)?;
+/// subdiv_vk::write_exr("out.exr", &aux)?;
+/// # Ok(())
+/// # }
+/// ```
+pub struct Renderer {
+    // Field order matters only for `Drop` below, which tears down explicitly.
+    ctx: Context,
+    pipelines: Pipelines,
+    pool: vk::CommandPool,
+    cmd: vk::CommandBuffer,
+    fence: vk::Fence,
+    target: Option<Target>,
+    mesh: MeshBuffer,
+}
+
+impl Renderer {
+    /// A renderer with default options: system Vulkan loader, validation layer
+    /// when `SUBDIV_VK_VALIDATION=1`.
+    pub fn new() -> Result<Self> {
+        Self::with_options(&ContextOptions::default())
+    }
+
+    /// A renderer with explicit loader / validation options.
+    pub fn with_options(options: &ContextOptions) -> Result<Self> {
+        let ctx = Context::new(options, &[], None)?;
+        let pipelines = Pipelines::new(&ctx)?;
+        let mut renderer = Renderer {
+            ctx,
+            pipelines,
+            pool: vk::CommandPool::null(),
+            cmd: vk::CommandBuffer::null(),
+            fence: vk::Fence::null(),
+            target: None,
+            mesh: MeshBuffer::default(),
+        };
+        let pool_info = vk::CommandPoolCreateInfo::default()
+            .queue_family_index(renderer.ctx.queue_family)
+            .flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER);
+        let device = &renderer.ctx.device;
+        // SAFETY: valid device; on error `Drop` destroys what was made.
+        renderer.pool =
+            unsafe { device.create_command_pool(&pool_info, None) }.call("vkCreateCommandPool")?;
+        let alloc = vk::CommandBufferAllocateInfo::default()
+            .command_pool(renderer.pool)
+            .level(vk::CommandBufferLevel::PRIMARY)
+            .command_buffer_count(1);
+        // SAFETY: pool from this device.
+        let buffers = unsafe { device.allocate_command_buffers(&alloc) }.call("vkAllocateCommandBuffers")?;
+        renderer.cmd = buffers.first().copied().unwrap_or_default();
+        // SAFETY: valid device.
+        renderer.fence = unsafe { device.create_fence(&vk::FenceCreateInfo::default(), None) }
+            .call("vkCreateFence")?;
+        Ok(renderer)
+    }
+
+    /// Name of the Vulkan device in use.
+    pub fn device_name(&self) -> &str {
+        self.ctx.device_name()
+    }
+
+    /// Validation messages collected so far (always empty without the layer).
+    /// Clone it before dropping the renderer to see messages from teardown too.
+    pub fn validation_log(&self) -> ValidationLog {
+        self.ctx.validation_log()
+    }
+
+    /// Whether the Khronos validation layer is active.
+    pub fn validation_enabled(&self) -> bool {
+        self.ctx.validation_enabled()
+    }
+
+    /// Renders `mesh` seen through `view` at `size` = `[width, height]` and
+    /// returns the colour image.
+    pub fn render(
+        &mut self,
+        mesh: &RenderMesh<'_>,
+        view: &View,
+        size: [u32; 2],
+        options: &RenderOptions,
+    ) -> Result<RgbaImage> {
+        self.draw(mesh, view, size, options, Readback::Color)?;
+        self.target()?.read_color()
+    }
+
+    /// Like [`Renderer::render`], also returning depth, normals and scalars per pixel.
+    pub fn render_with_aux(
+        &mut self,
+        mesh: &RenderMesh<'_>,
+        view: &View,
+        size: [u32; 2],
+        options: &RenderOptions,
+    ) -> Result<(RgbaImage, AuxImage)> {
+        self.draw(mesh, view, size, options, Readback::All)?;
+        let target = self.target()?;
+        Ok((target.read_color()?, target.read_aux()?))
+    }
+
+    fn target(&self) -> Result<&Target> {
+        self.target.as_ref().ok_or(crate::VkError::Vulkan {
+            call: "render target",
+            result: vk::Result::ERROR_UNKNOWN,
+        })
+    }
+
+    fn draw(
+        &mut self,
+        mesh: &RenderMesh<'_>,
+        view: &View,
+        size: [u32; 2],
+        options: &RenderOptions,
+        readback: Readback,
+    ) -> Result<()> {
+        let (bytes, layout) = scene::pack(mesh, options)?;
+        let extent = vk::Extent2D { width: size[0], height: size[1] };
+        if self.target.as_ref().is_none_or(|t| t.extent != extent) {
+            if let Some(mut old) = self.target.take() {
+                old.destroy(&mut self.ctx);
+            }
+            self.target = Some(Target::new(&mut self.ctx, extent)?);
+        }
+        let mesh_buffer = self.mesh.upload(&mut self.ctx, &bytes)?;
+        let target = self.target()?;
+        let device = &self.ctx.device;
+        let cmd = self.cmd;
+        // SAFETY: the previous submission finished (we always wait on the fence),
+        // so the command buffer and all buffers are free to reuse.
+        unsafe {
+            device
+                .reset_command_buffer(cmd, vk::CommandBufferResetFlags::empty())
+                .call("vkResetCommandBuffer")?;
+            device
+                .begin_command_buffer(
+                    cmd,
+                    &vk::CommandBufferBeginInfo::default()
+                        .flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT),
+                )
+                .call("vkBeginCommandBuffer")?;
+        }
+        frame::record(
+            device,
+            cmd,
+            &FrameInputs {
+                pipelines: &self.pipelines,
+                target,
+                mesh_buffer,
+                layout: &layout,
+                view,
+                options,
+                readback,
+            },
+        );
+        let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
+        let submit = [vk::SubmitInfo2::default().command_buffer_infos(&cmds)];
+        // SAFETY: recorded command buffer, fence unsignalled.
+        unsafe {
+            device.end_command_buffer(cmd).call("vkEndCommandBuffer")?;
+            device.queue_submit2(self.ctx.queue, &submit, self.fence).call("vkQueueSubmit2")?;
+            let waited = device.wait_for_fences(&[self.fence], true, u64::MAX);
+            // Reset even after a failed wait would leave the fence unusable; report the wait error.
+            waited.call("vkWaitForFences")?;
+            device.reset_fences(&[self.fence]).call("vkResetFences")?;
+        }
+        Ok(())
+    }
+}
+
+impl Drop for Renderer {
+    fn drop(&mut self) {
+        // SAFETY: wait for the GPU, then destroy everything made from the device
+        // before `ctx` (dropped after this) destroys the device itself.
+        unsafe {
+            let _ = self.ctx.device.device_wait_idle();
+            if let Some(mut t) = self.target.take() {
+                t.destroy(&mut self.ctx);
+            }
+            self.mesh.destroy(&mut self.ctx);
+            self.pipelines.destroy(&self.ctx);
+            if self.fence != vk::Fence::null() {
+                self.ctx.device.destroy_fence(self.fence, None);
+            }
+            if self.pool != vk::CommandPool::null() {
+                self.ctx.device.destroy_command_pool(self.pool, None);
+            }
+        }
+    }
+}

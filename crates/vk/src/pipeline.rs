@@ -1,0 +1,237 @@
+//! Graphics pipelines (dynamic rendering) for triangles and lines.
+
+use ash::vk;
+
+use crate::context::Context;
+use crate::error::{Result, VkResultExt};
+use crate::scene::VERTEX_STRIDE;
+use crate::shaders;
+
+/// Format of the colour target.
+pub(crate) const COLOR_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
+/// Auxiliary target 1: normal xyz + scalar.
+pub(crate) const NORMAL_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
+/// Auxiliary target 2: linear view depth.
+pub(crate) const LINEAR_DEPTH_FORMAT: vk::Format = vk::Format::R32_SFLOAT;
+
+/// The pipelines every frame is drawn with, all sharing one layout.
+pub(crate) struct Pipelines {
+    pub layout: vk::PipelineLayout,
+    /// Shaded triangles into colour and auxiliary targets.
+    pub fill: vk::Pipeline,
+    /// Triangles into depth and auxiliary targets only (hidden-line wireframe).
+    pub fill_depth_only: vk::Pipeline,
+    /// Lines into colour only; depth test is dynamic state.
+    pub line: vk::Pipeline,
+    /// Line widths are dynamic state (the device has `wideLines`).
+    pub dynamic_line_width: bool,
+    /// Supported line width range.
+    pub line_width_range: [f32; 2],
+}
+
+struct Modules {
+    mesh_vert: vk::ShaderModule,
+    mesh_frag: vk::ShaderModule,
+    line_vert: vk::ShaderModule,
+    line_frag: vk::ShaderModule,
+}
+
+fn module(ctx: &Context, bytes: &[u8]) -> Result<vk::ShaderModule> {
+    let code = shaders::words(bytes)?;
+    let info = vk::ShaderModuleCreateInfo::default().code(&code);
+    // SAFETY: valid SPIR-V produced and validated by naga at build time.
+    unsafe { ctx.device.create_shader_module(&info, None) }.call("vkCreateShaderModule")
+}
+
+impl Pipelines {
+    pub fn new(ctx: &Context) -> Result<Self> {
+        let range = vk::PushConstantRange::default()
+            .stage_flags(vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT)
+            .offset(0)
+            .size(128);
+        let ranges = [range];
+        let layout_info = vk::PipelineLayoutCreateInfo::default().push_constant_ranges(&ranges);
+        // SAFETY: valid device.
+        let layout = unsafe { ctx.device.create_pipeline_layout(&layout_info, None) }
+            .call("vkCreatePipelineLayout")?;
+        let mut pipelines = Pipelines {
+            layout,
+            fill: vk::Pipeline::null(),
+            fill_depth_only: vk::Pipeline::null(),
+            line: vk::Pipeline::null(),
+            dynamic_line_width: ctx.wide_lines,
+            line_width_range: if ctx.wide_lines {
+                ctx.limits.line_width_range
+            } else {
+                [1.0, 1.0]
+            },
+        };
+        let mut modules = Modules {
+            mesh_vert: vk::ShaderModule::null(),
+            mesh_frag: vk::ShaderModule::null(),
+            line_vert: vk::ShaderModule::null(),
+            line_frag: vk::ShaderModule::null(),
+        };
+        let result = pipelines.build(ctx, &mut modules);
+        // SAFETY: modules are not needed once pipelines exist (or failed).
+        unsafe {
+            for m in [modules.mesh_vert, modules.mesh_frag, modules.line_vert, modules.line_frag] {
+                if m != vk::ShaderModule::null() {
+                    ctx.device.destroy_shader_module(m, None);
+                }
+            }
+        }
+        if let Err(e) = result {
+            pipelines.destroy(ctx);
+            return Err(e);
+        }
+        Ok(pipelines)
+    }
+
+    fn build(&mut self, ctx: &Context, modules: &mut Modules) -> Result<()> {
+        modules.mesh_vert = module(ctx, shaders::MESH_VERT)?;
+        modules.mesh_frag = module(ctx, shaders::MESH_FRAG)?;
+        modules.line_vert = module(ctx, shaders::LINE_VERT)?;
+        modules.line_frag = module(ctx, shaders::LINE_FRAG)?;
+        let all = vk::ColorComponentFlags::RGBA;
+        let none = vk::ColorComponentFlags::empty();
+        self.fill = self.create(ctx, modules.mesh_vert, modules.mesh_frag, Kind::Fill, [all, all, all])?;
+        self.fill_depth_only =
+            self.create(ctx, modules.mesh_vert, modules.mesh_frag, Kind::Fill, [none, all, all])?;
+        self.line = self.create(ctx, modules.line_vert, modules.line_frag, Kind::Line, [all, none, none])?;
+        Ok(())
+    }
+
+    fn create(
+        &self,
+        ctx: &Context,
+        vert: vk::ShaderModule,
+        frag: vk::ShaderModule,
+        kind: Kind,
+        write_masks: [vk::ColorComponentFlags; 3],
+    ) -> Result<vk::Pipeline> {
+        let stages = [
+            vk::PipelineShaderStageCreateInfo::default()
+                .stage(vk::ShaderStageFlags::VERTEX)
+                .module(vert)
+                .name(c"main"),
+            vk::PipelineShaderStageCreateInfo::default()
+                .stage(vk::ShaderStageFlags::FRAGMENT)
+                .module(frag)
+                .name(c"main"),
+        ];
+        let bindings = [vk::VertexInputBindingDescription {
+            binding: 0,
+            stride: VERTEX_STRIDE as u32,
+            input_rate: vk::VertexInputRate::VERTEX,
+        }];
+        let attr = |location, format, offset| vk::VertexInputAttributeDescription {
+            location,
+            binding: 0,
+            format,
+            offset,
+        };
+        let mesh_attrs = [
+            attr(0, vk::Format::R32G32B32_SFLOAT, 0),
+            attr(1, vk::Format::R32G32B32_SFLOAT, 12),
+            attr(2, vk::Format::R32_SFLOAT, 24),
+        ];
+        let attrs: &[vk::VertexInputAttributeDescription] = match kind {
+            Kind::Fill => &mesh_attrs,
+            Kind::Line => &mesh_attrs[..1],
+        };
+        let vertex_input = vk::PipelineVertexInputStateCreateInfo::default()
+            .vertex_binding_descriptions(&bindings)
+            .vertex_attribute_descriptions(attrs);
+        let topology = match kind {
+            Kind::Fill => vk::PrimitiveTopology::TRIANGLE_LIST,
+            Kind::Line => vk::PrimitiveTopology::LINE_LIST,
+        };
+        let input_assembly = vk::PipelineInputAssemblyStateCreateInfo::default().topology(topology);
+        let viewport = vk::PipelineViewportStateCreateInfo::default().viewport_count(1).scissor_count(1);
+        let mut raster = vk::PipelineRasterizationStateCreateInfo::default()
+            .polygon_mode(vk::PolygonMode::FILL)
+            .cull_mode(vk::CullModeFlags::NONE)
+            .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
+            .line_width(1.0);
+        if kind == Kind::Fill {
+            // Push surfaces back a little so edges drawn on them pass the depth test.
+            raster = raster
+                .depth_bias_enable(true)
+                .depth_bias_constant_factor(1.0)
+                .depth_bias_slope_factor(1.0);
+        }
+        let multisample = vk::PipelineMultisampleStateCreateInfo::default()
+            .rasterization_samples(vk::SampleCountFlags::TYPE_1);
+        let depth = vk::PipelineDepthStencilStateCreateInfo::default()
+            .depth_test_enable(true)
+            .depth_write_enable(kind == Kind::Fill)
+            .depth_compare_op(match kind {
+                Kind::Fill => vk::CompareOp::LESS,
+                Kind::Line => vk::CompareOp::LESS_OR_EQUAL,
+            });
+        let blend_attachments = write_masks.map(|mask| {
+            vk::PipelineColorBlendAttachmentState::default().blend_enable(false).color_write_mask(mask)
+        });
+        let blend = vk::PipelineColorBlendStateCreateInfo::default().attachments(&blend_attachments);
+        let mut dynamic = vec![vk::DynamicState::VIEWPORT, vk::DynamicState::SCISSOR];
+        if kind == Kind::Line {
+            dynamic.push(vk::DynamicState::DEPTH_TEST_ENABLE);
+            if self.dynamic_line_width {
+                dynamic.push(vk::DynamicState::LINE_WIDTH);
+            }
+        }
+        let dynamic_state = vk::PipelineDynamicStateCreateInfo::default().dynamic_states(&dynamic);
+        let formats = [COLOR_FORMAT, NORMAL_FORMAT, LINEAR_DEPTH_FORMAT];
+        let mut rendering = vk::PipelineRenderingCreateInfo::default()
+            .color_attachment_formats(&formats)
+            .depth_attachment_format(ctx.depth_format);
+        let info = vk::GraphicsPipelineCreateInfo::default()
+            .stages(&stages)
+            .vertex_input_state(&vertex_input)
+            .input_assembly_state(&input_assembly)
+            .viewport_state(&viewport)
+            .rasterization_state(&raster)
+            .multisample_state(&multisample)
+            .depth_stencil_state(&depth)
+            .color_blend_state(&blend)
+            .dynamic_state(&dynamic_state)
+            .layout(self.layout)
+            .push_next(&mut rendering);
+        // SAFETY: all referenced state lives through the call.
+        let pipelines = unsafe {
+            ctx.device.create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)
+        }
+        .map_err(|(_, result)| result)
+        .call("vkCreateGraphicsPipelines")?;
+        Ok(pipelines.first().copied().unwrap_or_default())
+    }
+
+    /// Clamps a requested line width to the device's range.
+    pub fn line_width(&self, requested: f32) -> f32 {
+        let [lo, hi] = self.line_width_range;
+        if requested.is_finite() { requested.clamp(lo, hi) } else { lo }
+    }
+
+    pub fn destroy(&mut self, ctx: &Context) {
+        // SAFETY: the owner waited for the device to be idle.
+        unsafe {
+            for p in [self.fill, self.fill_depth_only, self.line] {
+                if p != vk::Pipeline::null() {
+                    ctx.device.destroy_pipeline(p, None);
+                }
+            }
+            ctx.device.destroy_pipeline_layout(self.layout, None);
+        }
+        self.fill = vk::Pipeline::null();
+        self.fill_depth_only = vk::Pipeline::null();
+        self.line = vk::Pipeline::null();
+        self.layout = vk::PipelineLayout::null();
+    }
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Fill,
+    Line,
+}
