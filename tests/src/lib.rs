@@ -1,1 +1,132 @@
-//! End-to-end test helpers.
+//! Helpers for subdiv's end-to-end tests: fixture paths, OpenSubdiv reference files and point
+//! matching.
+
+use std::collections::HashMap;
+use std::path::PathBuf;
+
+use glam::DVec3;
+
+/// The repository's `fixtures/` directory.
+pub fn fixtures() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..").join("fixtures")
+}
+
+/// All files in `fixtures/<dir>` with extension `ext`, sorted.
+pub fn fixture_files(dir: &str, ext: &str) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(fixtures().join(dir))
+        .unwrap_or_else(|e| panic!("fixtures/{dir}: {e}"))
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == ext))
+        .collect();
+    v.sort();
+    v
+}
+
+/// An OpenSubdiv reference limit file (`fixtures/reference/limit/<shape>.L<n>.txt`).
+#[derive(Debug, Clone)]
+pub struct Reference {
+    /// Header key=value pairs.
+    pub header: HashMap<String, String>,
+    /// Limit positions.
+    pub positions: Vec<DVec3>,
+    /// Limit normals.
+    pub normals: Vec<DVec3>,
+    /// Faces (0-based indices into positions).
+    pub faces: Vec<Vec<usize>>,
+}
+
+impl Reference {
+    /// Parses a reference file.
+    pub fn read(path: &std::path::Path) -> Reference {
+        let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let mut lines = text.lines();
+        let head = lines.next().expect("empty reference file");
+        let mut header = HashMap::new();
+        let toks: Vec<&str> = head.split_whitespace().collect();
+        assert_eq!(toks[0], "osdref", "{}: not a reference file", path.display());
+        header.insert("V".into(), toks[1].into());
+        header.insert("F".into(), toks[2].into());
+        for t in &toks[3..] {
+            if let Some((k, v)) = t.split_once('=') {
+                header.insert(k.into(), v.into());
+            }
+        }
+        let mut positions = Vec::new();
+        let mut normals = Vec::new();
+        let mut faces = Vec::new();
+        for l in lines {
+            let mut it = l.split_whitespace();
+            match it.next() {
+                Some("p") => {
+                    let x: Vec<f64> = it.map(|t| t.parse().expect("bad number")).collect();
+                    positions.push(DVec3::new(x[0], x[1], x[2]));
+                    normals.push(DVec3::new(x[3], x[4], x[5]));
+                }
+                Some("f") => faces.push(it.map(|t| t.parse().expect("bad index")).collect()),
+                _ => {}
+            }
+        }
+        Reference { header, positions, normals, faces }
+    }
+
+    /// A header value parsed as a number.
+    pub fn num(&self, key: &str) -> usize {
+        self.header[key].parse().unwrap_or_else(|_| panic!("header {key}"))
+    }
+}
+
+/// A uniform-grid spatial hash for nearest-point queries within a small radius.
+pub struct PointGrid {
+    cell: f64,
+    map: HashMap<(i64, i64, i64), Vec<usize>>,
+    points: Vec<DVec3>,
+}
+
+impl PointGrid {
+    /// Indexes `points` with cells of size `cell`.
+    pub fn new(points: &[DVec3], cell: f64) -> PointGrid {
+        let mut map: HashMap<(i64, i64, i64), Vec<usize>> = HashMap::new();
+        for (i, p) in points.iter().enumerate() {
+            map.entry(Self::key(*p, cell)).or_default().push(i);
+        }
+        PointGrid { cell, map, points: points.to_vec() }
+    }
+    fn key(p: DVec3, cell: f64) -> (i64, i64, i64) {
+        ((p.x / cell).floor() as i64, (p.y / cell).floor() as i64, (p.z / cell).floor() as i64)
+    }
+    /// The nearest indexed point within one cell of `p` (index and distance), else the global
+    /// nearest by brute force.
+    pub fn nearest(&self, p: DVec3) -> (usize, f64) {
+        let (kx, ky, kz) = Self::key(p, self.cell);
+        let mut best = (usize::MAX, f64::INFINITY);
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    if let Some(ids) = self.map.get(&(kx + dx, ky + dy, kz + dz)) {
+                        for &i in ids {
+                            let d = (self.points[i] - p).length();
+                            if d < best.1 {
+                                best = (i, d);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        if best.0 == usize::MAX || best.1 > self.cell {
+            for (i, q) in self.points.iter().enumerate() {
+                let d = (*q - p).length();
+                if d < best.1 {
+                    best = (i, d);
+                }
+            }
+        }
+        best
+    }
+}
+
+/// A polygon as a canonical key: rotated so the smallest index comes first.
+pub fn canonical_face(f: &[usize]) -> Vec<usize> {
+    let k = (0..f.len()).min_by_key(|&i| f[i]).unwrap_or(0);
+    (0..f.len()).map(|i| f[(k + i) % f.len()]).collect()
+}

@@ -1,0 +1,262 @@
+//! Catmull-Clark rules: refinement points and limit masks.
+//!
+//! Refinement: E. Catmull and J. Clark, "Recursively generated B-spline surfaces on arbitrary
+//! topological meshes", Computer-Aided Design 10(6), 1978, in the form with face-point centroids
+//! used by OpenSubdiv (vertex point `((n-2)/n) v + (1/n^2) sum e_i + (1/n^2) sum f_i`), with the
+//! crease rules of Hoppe et al. 1994 and DeRose et al. 1998 (see [`crate::crease`]). Faces of any
+//! size are allowed; an n-gon yields n quads.
+//!
+//! Limit masks: position and tangents for smooth vertices from Halstead, Kass and DeRose,
+//! "Efficient, fair interpolation using Catmull-Clark surfaces", SIGGRAPH 1993; crease and
+//! boundary tangents from Biermann, Levin and Zorin, "Piecewise smooth subdivision surfaces with
+//! normal control", SIGGRAPH 2000. Limit masks need a ring of quads (any level >= 1).
+
+use std::f64::consts::PI;
+
+use crate::crease::{Rule, VertexRules};
+use crate::point::{centroid, Point};
+
+/// The face point: the centroid of the face's vertices.
+#[inline]
+pub fn face_point<P: Point>(face: &[P]) -> P {
+    centroid(face.iter().copied())
+}
+
+/// The edge point of edge `a`-`b` with adjacent face points `faces` (one for a boundary edge),
+/// and the crease weight from [`crate::crease::edge_crease_weight`].
+#[inline]
+pub fn edge_point<P: Point>(a: P, b: P, faces: &[P], crease_weight: f32) -> P {
+    let mid = a.add(b).scale(0.5);
+    if crease_weight >= 1.0 || faces.len() < 2 {
+        return mid;
+    }
+    let smooth = if faces.len() == 2 {
+        a.add(b).add(faces[0]).add(faces[1]).scale(0.25)
+    } else {
+        // Non-manifold edges never reach here (meshes are validated manifold); keep the
+        // OpenSubdiv convention for completeness: half on the edge, half spread over the faces.
+        mid.scale(0.5).add(centroid(faces.iter().copied()).scale(0.5))
+    };
+    if crease_weight <= 0.0 {
+        smooth
+    } else {
+        let w = crease_weight as f64;
+        mid.scale(w).add(smooth.scale(1.0 - w))
+    }
+}
+
+/// The vertex point of `v` with edge neighbours `edges` (ring order) and face points `faces`
+/// (face `i` between edges `i` and `i+1`), under `rules`.
+#[inline]
+pub fn vertex_point<P: Point>(v: P, edges: &[P], faces: &[P], rules: &VertexRules) -> P {
+    let p = apply_vertex_rule(v, edges, faces, rules.parent);
+    if rules.is_simple() {
+        return p;
+    }
+    let c = apply_vertex_rule(v, edges, faces, rules.child);
+    let w = rules.parent_weight;
+    p.scale(w).add(c.scale(1.0 - w))
+}
+
+#[inline]
+fn apply_vertex_rule<P: Point>(v: P, edges: &[P], faces: &[P], rule: Rule) -> P {
+    match rule {
+        Rule::Smooth | Rule::Dart => {
+            let n = edges.len();
+            if n == 4 && faces.len() == 4 {
+                // Regular: 1/2 v + 1/16 (sum e + sum f).
+                let s = edges[0].add(edges[1]).add(edges[2]).add(edges[3]);
+                let s = s.add(faces[0]).add(faces[1]).add(faces[2]).add(faces[3]);
+                return v.scale(0.5).add(s.scale(1.0 / 16.0));
+            }
+            let nf = n as f64;
+            let mut s = P::ZERO;
+            for e in edges {
+                s = s.add(*e);
+            }
+            for f in faces {
+                s = s.add(*f);
+            }
+            v.scale((nf - 2.0) / nf).add(s.scale(1.0 / (nf * nf)))
+        }
+        Rule::Crease([i, j]) => v.scale(0.75).add(edges[i].add(edges[j]).scale(0.125)),
+        Rule::Corner => v,
+    }
+}
+
+/// Limit position and two tangents of a vertex whose ring is made of quads.
+///
+/// `edges[i]` are the edge neighbours in counter-clockwise order and `diag[i]` the vertex of quad
+/// `i` (between edges `i` and `i+1`) opposite `v`. For a boundary vertex there is one edge more
+/// than quads, edge 0 and the last edge being the boundary. `rule` is the vertex's rule at this
+/// level (with no semi-sharp feature left, it is its rule at every finer level too).
+pub fn limit<P: Point>(v: P, edges: &[P], diag: &[P], rule: Rule) -> (P, P, P) {
+    let n = edges.len();
+    match rule {
+        Rule::Smooth | Rule::Dart if n >= 3 && diag.len() == n => {
+            let nf = n as f64;
+            let (wv, we, wf) = if n == 4 {
+                (4.0 / 9.0, 1.0 / 9.0, 1.0 / 36.0)
+            } else {
+                let wf = 1.0 / (nf * (nf + 5.0));
+                (1.0 - nf * 5.0 * wf, 4.0 * wf, wf)
+            };
+            let mut pos = v.scale(wv);
+            for i in 0..n {
+                pos = pos.madd(edges[i], we).madd(diag[i], wf);
+            }
+            // Tangents: sum A cos(2 pi i/n) e_i + (cos(2 pi i/n) + cos(2 pi (i+1)/n)) f_i, and
+            // the same with sines; A = 1 + cos(2pi/n) + cos(pi/n) sqrt(2 (9 + cos(2pi/n))).
+            let th = 2.0 * PI / nf;
+            let a = 1.0 + th.cos() + (th * 0.5).cos() * (2.0 * (9.0 + th.cos())).sqrt();
+            let mut t1 = P::ZERO;
+            let mut t2 = P::ZERO;
+            for i in 0..n {
+                let (s0, c0) = (th * i as f64).sin_cos();
+                let (s1, c1) = (th * (i + 1) as f64).sin_cos();
+                t1 = t1.madd(edges[i], a * c0).madd(diag[i], c0 + c1);
+                t2 = t2.madd(edges[i], a * s0).madd(diag[i], s0 + s1);
+            }
+            (pos, t1, t2)
+        }
+        Rule::Crease([c0, c1]) => {
+            let pos = v.scale(2.0 / 3.0).add(edges[c0].add(edges[c1]).scale(1.0 / 6.0));
+            let t1 = edges[c0].sub(edges[c1]).scale(0.5);
+            let t2 = crease_cross_tangent(v, edges, diag, c0, c1);
+            (pos, t1, t2)
+        }
+        _ => {
+            // Corner (or a degenerate smooth vertex of valence 2): the vertex itself; tangents
+            // along its first two edges.
+            let t1 = if n > 0 { edges[0].sub(v) } else { P::ZERO };
+            let t2 = if n > 1 { edges[1].sub(v) } else { P::ZERO };
+            (v, t1, t2)
+        }
+    }
+}
+
+/// Tangent across a crease, over the quads between crease edges `c0 < c1` (Biermann et al. 2000;
+/// the regular case is the uniform B-spline cross tangent).
+fn crease_cross_tangent<P: Point>(v: P, edges: &[P], diag: &[P], c0: usize, c1: usize) -> P {
+    let interior = c1 - c0 - 1;
+    match interior {
+        0 => edges[c0].add(edges[c1]).scale(3.0).sub(v.scale(6.0)),
+        1 => {
+            let mut t = v.scale(-4.0 / 6.0);
+            t = t.madd(edges[c0], -1.0 / 6.0).madd(edges[c0 + 1], 4.0 / 6.0).madd(edges[c1], -1.0 / 6.0);
+            t.madd(diag[c0], 1.0 / 6.0).madd(diag[c0 + 1], 1.0 / 6.0)
+        }
+        _ => {
+            let k = (interior + 1) as f64;
+            let th = PI / k;
+            let (s, c) = th.sin_cos();
+            let denom = 1.0 / (k * (3.0 + c));
+            let r = (c + 1.0) / s;
+            let mut t = v.scale(4.0 * r * (c - 1.0) * denom);
+            let wc = -r * (1.0 + 2.0 * c) * denom;
+            t = t.madd(edges[c0], wc).madd(edges[c1], wc);
+            t = t.madd(diag[c0], s * denom);
+            for i in 1..=interior {
+                let si = (i as f64 * th).sin();
+                let si1 = ((i + 1) as f64 * th).sin();
+                t = t.madd(edges[c0 + i], 4.0 * si * denom);
+                t = t.madd(diag[c0 + i], (si + si1) * denom);
+            }
+            t
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::crease::VertexRules;
+    use glam::DVec3;
+    use subdiv_mesh::CreaseMethod;
+
+    fn rules(vs: f32, es: &[f32]) -> VertexRules {
+        let mut c = vec![0.0; es.len()];
+        VertexRules::new(CreaseMethod::Uniform, vs, es, &mut c)
+    }
+
+    /// Regular grid z = f(x, y) sampled at integers around the origin.
+    fn regular_ring(f: impl Fn(f64, f64) -> f64) -> (DVec3, Vec<DVec3>, Vec<DVec3>) {
+        let p = |x: f64, y: f64| DVec3::new(x, y, f(x, y));
+        let e = vec![p(1., 0.), p(0., 1.), p(-1., 0.), p(0., -1.)];
+        let d = vec![p(1., 1.), p(-1., 1.), p(-1., -1.), p(1., -1.)];
+        (p(0., 0.), e, d)
+    }
+
+    #[test]
+    fn regular_limit_is_bicubic_bspline() {
+        // Uniform cubic B-spline at a knot: (1/6, 4/6, 1/6) tensor product. For z = x^2 the limit
+        // at the centre is (1 + 1)/6 = 1/3; for z = x*y it is 0.
+        let (v, e, d) = regular_ring(|x, _| x * x);
+        let (p, t1, t2) = limit(v, &e, &d, Rule::Smooth);
+        assert!((p.z - 1.0 / 3.0).abs() < 1e-12, "{p}");
+        // The tangent plane of a symmetric bump at its centre is horizontal.
+        let n = t1.cross(t2).normalize();
+        assert!((n.z.abs() - 1.0).abs() < 1e-12);
+        let (v, e, d) = regular_ring(|x, y| x * y + 2.0 * x);
+        let (p, t1, t2) = limit(v, &e, &d, Rule::Smooth);
+        assert!(p.z.abs() < 1e-12);
+        // dz/dx = 2 at the origin: normal ~ (-2, 0, 1).
+        let n = t1.cross(t2).normalize();
+        let want = DVec3::new(-2.0, 0.0, 1.0).normalize();
+        assert!((n - want).length() < 1e-12 || (n + want).length() < 1e-12, "{n}");
+    }
+
+    #[test]
+    fn smooth_vertex_point_regular() {
+        // Regular vertex: 1/2 v + 1/16 (sum e + sum f). Face points of the unit grid are the quad
+        // centres.
+        let v = DVec3::new(0.0, 0.0, 1.0);
+        let e = [DVec3::X, DVec3::Y, -DVec3::X, -DVec3::Y];
+        let f = [DVec3::new(0.5, 0.5, 0.0), DVec3::new(-0.5, 0.5, 0.0), DVec3::new(-0.5, -0.5, 0.0), DVec3::new(0.5, -0.5, 0.0)];
+        let p = vertex_point(v, &e, &f, &rules(0.0, &[0.0; 4]));
+        assert!((p - DVec3::new(0.0, 0.0, 0.5)).length() < 1e-15);
+        // Valence 3: (n-2)/n v + (sum e + sum f)/n^2.
+        let p = vertex_point(v, &e[..3], &f[..3], &rules(0.0, &[0.0; 3]));
+        let want = v / 3.0 + (e[0] + e[1] + e[2] + f[0] + f[1] + f[2]) / 9.0;
+        assert!((p - want).length() < 1e-15);
+    }
+
+    #[test]
+    fn crease_and_corner_vertex_points() {
+        let v = DVec3::new(0.0, 0.0, 1.0);
+        let e = [DVec3::X, DVec3::Y, -DVec3::X, -DVec3::Y];
+        let f = [DVec3::ZERO; 4];
+        let p = vertex_point(v, &e, &f, &rules(0.0, &[10.0, 0.0, 10.0, 0.0]));
+        assert!((p - DVec3::new(0.0, 0.0, 0.75)).length() < 1e-15);
+        let p = vertex_point(v, &e, &f, &rules(10.0, &[0.0; 4]));
+        assert_eq!(p, v);
+        // Half-sharp crease: average of crease and smooth point.
+        let smooth = vertex_point(v, &e, &f, &rules(0.0, &[0.0; 4]));
+        let p = vertex_point(v, &e, &f, &rules(0.0, &[0.5, 0.0, 0.5, 0.0]));
+        assert!((p - (0.5 * smooth + 0.5 * DVec3::new(0.0, 0.0, 0.75))).length() < 1e-15);
+    }
+
+    #[test]
+    fn edge_points() {
+        let (a, b) = (DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0));
+        let f = [DVec3::new(1.0, 1.0, 0.0), DVec3::new(1.0, -1.0, 4.0)];
+        assert_eq!(edge_point(a, b, &f, 0.0), DVec3::new(1.0, 0.0, 1.0));
+        assert_eq!(edge_point(a, b, &f, 1.0), DVec3::new(1.0, 0.0, 0.0));
+        assert_eq!(edge_point(a, b, &f, 0.5), DVec3::new(1.0, 0.0, 0.5));
+        assert_eq!(edge_point(a, b, &f[..1], 0.0), DVec3::new(1.0, 0.0, 0.0));
+        assert_eq!(face_point(&[a, b, f[0]]), DVec3::new(1.0, 1.0 / 3.0, 0.0));
+    }
+
+    #[test]
+    fn boundary_limit_is_cubic_bspline() {
+        // Boundary vertex of a regular half-plane grid: limit on the boundary curve
+        // (1/6, 4/6, 1/6); cross tangent points into the surface.
+        let v = DVec3::new(0.0, 0.0, 0.0);
+        let e = [DVec3::new(1.0, 0.0, 1.0), DVec3::new(0.0, 1.0, 0.0), DVec3::new(-1.0, 0.0, 1.0)];
+        let d = [DVec3::new(1.0, 1.0, 0.0), DVec3::new(-1.0, 1.0, 0.0)];
+        let (p, t1, t2) = limit(v, &e, &d, Rule::Crease([0, 2]));
+        assert!((p - DVec3::new(0.0, 0.0, 1.0 / 3.0)).length() < 1e-15);
+        assert!(t1.y.abs() < 1e-15 && t1.x > 0.0);
+        assert!(t2.y > 0.0);
+    }
+}

@@ -1,0 +1,270 @@
+//! Sharpness: how creases and corners decay per level and which vertex rule applies.
+//!
+//! Semi-sharp creases follow DeRose, Kass and Truong, "Subdivision Surfaces in Character
+//! Animation", SIGGRAPH 1998: an edge of sharpness `s` is subdivided with the sharp (midpoint)
+//! rule while `s >= 1`, its children get `s - 1`, and a fractional `0 < s < 1` blends the sharp
+//! and smooth rules linearly. The Chaikin variant (OpenSubdiv's `CREASE_CHAIKIN`) smooths the
+//! sharpness along a crease: each child gets `3/4` of its parent's sharpness plus `1/4` of the
+//! average of the other semi-sharp edges at that end, minus one. Vertex rules (smooth, dart,
+//! crease, corner) and their fractional transitions follow Hoppe et al. 1994 and the semantics
+//! of OpenSubdiv 3.5 (`Sdc::Crease`), so that limit surfaces agree with it.
+
+use subdiv_mesh::{CreaseMethod, SHARPNESS_INFINITE};
+
+/// `true` for sharpness 0 (or less).
+#[inline]
+pub fn is_smooth(s: f32) -> bool {
+    s <= 0.0
+}
+/// `true` for any positive sharpness.
+#[inline]
+pub fn is_sharp(s: f32) -> bool {
+    s > 0.0
+}
+/// `true` for infinite sharpness (>= 10).
+#[inline]
+pub fn is_infinite(s: f32) -> bool {
+    s >= SHARPNESS_INFINITE
+}
+/// `true` for finite positive sharpness.
+#[inline]
+pub fn is_semi_sharp(s: f32) -> bool {
+    s > 0.0 && s < SHARPNESS_INFINITE
+}
+
+/// Sharpness one level down under the uniform rule (also the vertex-sharpness rule of both
+/// methods): infinite stays infinite, anything `<= 1` becomes smooth.
+#[inline]
+pub fn decrement(s: f32) -> f32 {
+    if is_infinite(s) {
+        SHARPNESS_INFINITE
+    } else if s > 1.0 {
+        s - 1.0
+    } else {
+        0.0
+    }
+}
+
+/// Sharpness of the child of an edge of sharpness `s` at one of its ends, where `others` is the
+/// (sum, count) of the sharpness of the *other* semi-sharp edges at that end.
+#[inline]
+pub fn child_edge_sharpness(method: CreaseMethod, s: f32, others: (f32, u32)) -> f32 {
+    if method == CreaseMethod::Uniform || !is_semi_sharp(s) || others.1 == 0 {
+        return decrement(s);
+    }
+    let avg = others.0 / others.1 as f32;
+    let c = 0.75 * s + 0.25 * avg - 1.0;
+    if is_sharp(c) { c } else { 0.0 }
+}
+
+/// Child sharpness of every edge around a vertex, given the parent sharpness of those edges.
+pub fn child_edge_sharpness_around(method: CreaseMethod, parent: &[f32], child: &mut [f32]) {
+    debug_assert_eq!(parent.len(), child.len());
+    let (sum, count) = semi_sharp_sum(parent);
+    for (c, &p) in child.iter_mut().zip(parent) {
+        let others = if is_semi_sharp(p) { (sum - p, count - 1) } else { (sum, count) };
+        *c = child_edge_sharpness(method, p, others);
+    }
+}
+
+/// Sum and count of the semi-sharp values in `s`.
+#[inline]
+pub fn semi_sharp_sum(s: &[f32]) -> (f32, u32) {
+    s.iter().filter(|&&x| is_semi_sharp(x)).fold((0.0, 0), |(a, n), &x| (a + x, n + 1))
+}
+
+/// Weight of the sharp (midpoint) rule for the point inserted on an edge: 0 is the smooth rule,
+/// 1 the crease rule, anything between a linear blend. `child` holds the sharpness of the two
+/// child edges (only consulted by the Chaikin method).
+#[inline]
+pub fn edge_crease_weight(method: CreaseMethod, s: f32, child: [f32; 2]) -> f32 {
+    if is_smooth(s) {
+        0.0
+    } else if s >= 1.0 {
+        1.0
+    } else if method == CreaseMethod::Chaikin && child[0] > 0.0 && child[1] > 0.0 {
+        1.0
+    } else {
+        s
+    }
+}
+
+/// The rule that moves a vertex.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Rule {
+    /// No sharp edge: the scheme's smooth rule.
+    Smooth,
+    /// One sharp edge: still the smooth rule.
+    Dart,
+    /// Two sharp edges, at positions `[i, j]` (`i < j`) in the vertex's edge ring.
+    Crease([usize; 2]),
+    /// Three or more sharp edges, or a sharp vertex: the vertex stays put.
+    Corner,
+}
+
+impl Rule {
+    /// The rule for a vertex with the given sharpness and incident edge sharpness (in ring order).
+    pub fn determine(vertex_sharpness: f32, edge_sharpness: &[f32]) -> Rule {
+        if is_sharp(vertex_sharpness) {
+            return Rule::Corner;
+        }
+        let mut ends = [0usize; 2];
+        let mut n = 0usize;
+        for (i, &s) in edge_sharpness.iter().enumerate() {
+            if is_sharp(s) {
+                if n < 2 {
+                    ends[n] = i;
+                }
+                n += 1;
+            }
+        }
+        match n {
+            0 => Rule::Smooth,
+            1 => Rule::Dart,
+            2 => Rule::Crease(ends),
+            _ => Rule::Corner,
+        }
+    }
+
+    /// `true` for [`Rule::Smooth`] and [`Rule::Dart`], which use the smooth mask.
+    #[inline]
+    pub fn is_smooth(self) -> bool {
+        matches!(self, Rule::Smooth | Rule::Dart)
+    }
+
+    /// `true` if the two rules give different masks.
+    #[inline]
+    fn mask_differs(self, other: Rule) -> bool {
+        match (self, other) {
+            (a, b) if a.is_smooth() && b.is_smooth() => false,
+            (Rule::Crease(a), Rule::Crease(b)) => a != b,
+            (a, b) => a != b,
+        }
+    }
+}
+
+/// The rules that move one vertex in one refinement step: the parent rule, the child rule and the
+/// weight of the parent mask when they differ (a fractional sharpness transition).
+#[derive(Clone, Copy, PartialEq, Debug)]
+pub struct VertexRules {
+    /// Rule of the vertex at this level.
+    pub parent: Rule,
+    /// Rule of its child at the next level.
+    pub child: Rule,
+    /// Weight of the parent mask; the child mask gets `1 - parent_weight`.
+    pub parent_weight: f64,
+}
+
+impl VertexRules {
+    /// Determines the rules for a vertex from its sharpness and the sharpness of its edges (ring
+    /// order), and writes the child sharpness of those edges into `child_edges`.
+    pub fn new(
+        method: CreaseMethod,
+        vertex_sharpness: f32,
+        edge_sharpness: &[f32],
+        child_edges: &mut [f32],
+    ) -> VertexRules {
+        child_edge_sharpness_around(method, edge_sharpness, child_edges);
+        let parent = Rule::determine(vertex_sharpness, edge_sharpness);
+        if parent.is_smooth() {
+            return VertexRules { parent, child: parent, parent_weight: 1.0 };
+        }
+        let child_vs = decrement(vertex_sharpness);
+        let child = Rule::determine(child_vs, child_edges);
+        if !parent.mask_differs(child) {
+            return VertexRules { parent, child: parent, parent_weight: 1.0 };
+        }
+        // Fractional weight: the average parent sharpness of everything that became smooth.
+        let mut sum = 0.0f32;
+        let mut count = 0u32;
+        if is_sharp(vertex_sharpness) && is_smooth(child_vs) {
+            sum += vertex_sharpness;
+            count += 1;
+        }
+        for (&p, &c) in edge_sharpness.iter().zip(child_edges.iter()) {
+            let transition = match method {
+                CreaseMethod::Uniform => is_sharp(p) && p <= 1.0,
+                CreaseMethod::Chaikin => is_sharp(p) && is_smooth(c),
+            };
+            if transition {
+                sum += p;
+                count += 1;
+            }
+        }
+        let w = if count == 0 { 0.0 } else { (sum / count as f32).min(1.0) };
+        VertexRules { parent, child, parent_weight: w as f64 }
+    }
+
+    /// `true` when no blend is needed.
+    #[inline]
+    pub fn is_simple(&self) -> bool {
+        !self.parent.mask_differs(self.child)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decrement_rules() {
+        assert_eq!(decrement(0.0), 0.0);
+        assert_eq!(decrement(0.5), 0.0);
+        assert_eq!(decrement(1.0), 0.0);
+        assert_eq!(decrement(2.5), 1.5);
+        assert_eq!(decrement(10.0), 10.0);
+        assert_eq!(decrement(25.0), 10.0);
+    }
+
+    #[test]
+    fn chaikin_averages_along_crease() {
+        // Edge 3 next to edge 1: 0.75*3 + 0.25*1 - 1 = 1.5; edge 1 next to 3: 0.75 + 0.75 - 1 = 0.5.
+        let mut c = [0.0; 4];
+        child_edge_sharpness_around(CreaseMethod::Chaikin, &[3.0, 0.0, 1.0, 0.0], &mut c);
+        assert_eq!(c, [1.5, 0.0, 0.5, 0.0]);
+        // A lone semi-sharp edge and infinite edges decay uniformly.
+        child_edge_sharpness_around(CreaseMethod::Chaikin, &[3.0, 10.0, 0.0, 0.0], &mut c);
+        assert_eq!(c, [2.0, 10.0, 0.0, 0.0]);
+        child_edge_sharpness_around(CreaseMethod::Uniform, &[3.0, 0.0, 1.0, 0.0], &mut c);
+        assert_eq!(c, [2.0, 0.0, 0.0, 0.0]);
+    }
+
+    #[test]
+    fn rule_determination() {
+        assert_eq!(Rule::determine(0.0, &[0.0; 4]), Rule::Smooth);
+        assert_eq!(Rule::determine(0.0, &[0.0, 2.0, 0.0, 0.0]), Rule::Dart);
+        assert_eq!(Rule::determine(0.0, &[0.0, 2.0, 0.0, 1.0]), Rule::Crease([1, 3]));
+        assert_eq!(Rule::determine(0.0, &[1.0, 2.0, 0.0, 1.0]), Rule::Corner);
+        assert_eq!(Rule::determine(0.5, &[0.0; 4]), Rule::Corner);
+    }
+
+    #[test]
+    fn fractional_transitions() {
+        let mut c = [0.0; 4];
+        // A crease of sharpness 0.3 becomes smooth: 30 % crease mask, 70 % smooth mask.
+        let r = VertexRules::new(CreaseMethod::Uniform, 0.0, &[0.3, 0.0, 0.3, 0.0], &mut c);
+        assert_eq!(r.parent, Rule::Crease([0, 2]));
+        assert_eq!(r.child, Rule::Smooth);
+        assert!((r.parent_weight - 0.3).abs() < 1e-7);
+        // Sharpness 2 stays a crease for this step: no blend.
+        let r = VertexRules::new(CreaseMethod::Uniform, 0.0, &[2.0, 0.0, 2.0, 0.0], &mut c);
+        assert!(r.is_simple());
+        // Sharpness exactly 1: the child is smooth, weight 1 (full crease this step).
+        let r = VertexRules::new(CreaseMethod::Uniform, 0.0, &[1.0, 0.0, 1.0, 0.0], &mut c);
+        assert_eq!(r.child, Rule::Smooth);
+        assert_eq!(r.parent_weight, 1.0);
+        // A semi-sharp corner of 0.25 over a smooth vertex.
+        let r = VertexRules::new(CreaseMethod::Uniform, 0.25, &[0.0; 4], &mut c);
+        assert_eq!((r.parent, r.child), (Rule::Corner, Rule::Smooth));
+        assert!((r.parent_weight - 0.25).abs() < 1e-7);
+    }
+
+    #[test]
+    fn edge_weights() {
+        assert_eq!(edge_crease_weight(CreaseMethod::Uniform, 0.0, [0.0; 2]), 0.0);
+        assert_eq!(edge_crease_weight(CreaseMethod::Uniform, 0.4, [0.0; 2]), 0.4);
+        assert_eq!(edge_crease_weight(CreaseMethod::Uniform, 1.0, [0.0; 2]), 1.0);
+        assert_eq!(edge_crease_weight(CreaseMethod::Chaikin, 0.9, [0.1, 0.2]), 1.0);
+        assert_eq!(edge_crease_weight(CreaseMethod::Chaikin, 0.9, [0.1, 0.0]), 0.9);
+    }
+}

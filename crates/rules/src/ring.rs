@@ -1,0 +1,262 @@
+//! Exact limit points and normals from a vertex's local neighbourhood.
+//!
+//! The limit of a vertex depends only on its *ring*: the vertex, its edge neighbours and the
+//! faces around it (for Loop, the triangles are spanned by the neighbours). One subdivision
+//! step maps the ring of `v` to the ring of its child, so the ring can be refined on its own,
+//! without refining the mesh. [`Ring::limit`] refines it until no semi-sharp feature is left
+//! (all sharpness 0 or infinite; for Catmull-Clark also all faces quads), where the rules stop
+//! changing and the closed-form limit masks apply. This gives the true limit surface for
+//! semi-sharp creases at any level, in `f64`.
+//!
+//! For the Chaikin crease method a child edge's sharpness depends on the other semi-sharp edges
+//! at *both* ends; the ring keeps, for each edge, the (sum, count) of the semi-sharp edges at its
+//! far end, which after one step is just the far half of the parent edge.
+
+use glam::{DVec3, Vec3};
+use subdiv_mesh::{CreaseMethod, Mesh, VertexId};
+
+use crate::crease::{child_edge_sharpness, edge_crease_weight, is_semi_sharp, Rule, VertexRules};
+use crate::{catmark, loop_scheme, Scheme};
+
+/// The neighbourhood of one vertex, refinable in isolation.
+#[derive(Clone, Debug, Default)]
+pub struct Ring {
+    scheme: Scheme,
+    method: CreaseMethod,
+    center: DVec3,
+    vertex_sharpness: f32,
+    boundary: bool,
+    edges: Vec<DVec3>,
+    sharp: Vec<f32>,
+    far: Vec<(f32, u32)>,
+    inner: Vec<DVec3>,
+    inner_off: Vec<u32>,
+    // scratch
+    fp: Vec<DVec3>,
+    cs: Vec<f32>,
+    tmp_edges: Vec<DVec3>,
+    tmp_far: Vec<(f32, u32)>,
+}
+
+impl Ring {
+    /// An empty ring; fill it with [`Ring::load`].
+    pub fn new() -> Ring {
+        Ring::default()
+    }
+
+    /// Loads the ring of vertex `v` of `mesh`. Returns `false` (and leaves the ring empty) for an
+    /// isolated vertex.
+    pub fn load(&mut self, mesh: &Mesh, v: VertexId, scheme: Scheme) -> bool {
+        self.scheme = scheme;
+        self.method = mesh.options().crease;
+        self.center = mesh.position(v).as_dvec3();
+        self.vertex_sharpness = mesh.vertex_sharpness(v);
+        self.boundary = mesh.is_boundary_vertex(v);
+        self.edges.clear();
+        self.sharp.clear();
+        self.far.clear();
+        self.inner.clear();
+        self.inner_off.clear();
+        self.inner_off.push(0);
+        if mesh.is_isolated(v) {
+            return false;
+        }
+        let chaikin = self.method == CreaseMethod::Chaikin;
+        for h in mesh.outgoing(v) {
+            let w = mesh.to(h);
+            self.edges.push(mesh.position(w).as_dvec3());
+            self.sharp.push(mesh.edge_sharpness(h.edge()));
+            let far = if chaikin {
+                let mut sum = 0.0f32;
+                let mut n = 0u32;
+                for g in mesh.outgoing(w) {
+                    let s = mesh.edge_sharpness(g.edge());
+                    if g.edge() != h.edge() && is_semi_sharp(s) {
+                        sum += s;
+                        n += 1;
+                    }
+                }
+                (sum, n)
+            } else {
+                (0.0, 0)
+            };
+            self.far.push(far);
+            if mesh.face(h).is_some() {
+                // Face vertices strictly between this edge's end and the next edge's end.
+                let stop = mesh.from(mesh.prev(h));
+                let mut g = mesh.next(h);
+                while mesh.to(g) != stop {
+                    self.inner.push(mesh.position(mesh.to(g)).as_dvec3());
+                    g = mesh.next(g);
+                }
+                self.inner_off.push(self.inner.len() as u32);
+            }
+        }
+        true
+    }
+
+    /// Number of edges around the vertex.
+    pub fn valence(&self) -> usize {
+        self.edges.len()
+    }
+
+    fn num_faces(&self) -> usize {
+        self.inner_off.len() - 1
+    }
+
+    fn face_inner(&self, i: usize) -> &[DVec3] {
+        &self.inner[self.inner_off[i] as usize..self.inner_off[i + 1] as usize]
+    }
+
+    /// `true` while a further step would change the rules (semi-sharp features left, or
+    /// non-quad faces for Catmull-Clark).
+    pub fn needs_refinement(&self) -> bool {
+        is_semi_sharp(self.vertex_sharpness)
+            || self.sharp.iter().any(|&s| is_semi_sharp(s))
+            || (self.scheme == Scheme::CatmullClark && (0..self.num_faces()).any(|i| self.face_inner(i).len() != 1))
+    }
+
+    /// One subdivision step: the ring becomes the ring of the vertex's child.
+    pub fn refine(&mut self) {
+        let n = self.edges.len();
+        let nf = self.num_faces();
+        self.cs.clear();
+        self.cs.resize(n, 0.0);
+        let rules = VertexRules::new(self.method, self.vertex_sharpness, &self.sharp, &mut self.cs);
+        self.tmp_edges.clear();
+        self.tmp_far.clear();
+        match self.scheme {
+            Scheme::CatmullClark => {
+                self.fp.clear();
+                for i in 0..nf {
+                    let inner = self.face_inner(i);
+                    let mut s = self.center + self.edges[i] + self.edges[(i + 1) % n];
+                    for p in inner {
+                        s += *p;
+                    }
+                    self.fp.push(s / (inner.len() + 3) as f64);
+                }
+                let new_center = catmark::vertex_point(self.center, &self.edges, &self.fp, &rules);
+                for i in 0..n {
+                    let (far_child, w) = self.edge_weights(i);
+                    let before = if i > 0 { Some(i - 1) } else if !self.boundary { Some(nf - 1) } else { None };
+                    let after = if i < nf { Some(i) } else { None };
+                    let mut faces = [DVec3::ZERO; 2];
+                    let mut k = 0;
+                    for f in before.into_iter().chain(after) {
+                        faces[k] = self.fp[f];
+                        k += 1;
+                    }
+                    self.tmp_edges.push(catmark::edge_point(self.center, self.edges[i], &faces[..k], w));
+                    self.tmp_far.push(if is_semi_sharp(far_child) { (far_child, 1) } else { (0.0, 0) });
+                }
+                self.center = new_center;
+                self.inner.clear();
+                self.inner.extend_from_slice(&self.fp);
+                self.inner_off.clear();
+                self.inner_off.extend(0..=nf as u32);
+            }
+            Scheme::Loop => {
+                let new_center = loop_scheme::vertex_point(self.center, &self.edges, &rules);
+                for i in 0..n {
+                    let (far_child, w) = self.edge_weights(i);
+                    let mut opp = [DVec3::ZERO; 2];
+                    let mut k = 0;
+                    if i > 0 || !self.boundary {
+                        opp[k] = self.edges[(i + n - 1) % n];
+                        k += 1;
+                    }
+                    if i < nf {
+                        opp[k] = self.edges[(i + 1) % n];
+                        k += 1;
+                    }
+                    self.tmp_edges.push(loop_scheme::edge_point(self.center, self.edges[i], &opp[..k], w));
+                    self.tmp_far.push(if is_semi_sharp(far_child) { (far_child, 1) } else { (0.0, 0) });
+                }
+                self.center = new_center;
+                self.inner_off.clear();
+                self.inner_off.resize(nf + 1, 0);
+            }
+        }
+        std::mem::swap(&mut self.edges, &mut self.tmp_edges);
+        std::mem::swap(&mut self.far, &mut self.tmp_far);
+        std::mem::swap(&mut self.sharp, &mut self.cs);
+        self.vertex_sharpness = crate::crease::decrement(self.vertex_sharpness);
+    }
+
+    /// Child sharpness at the far end and crease weight of edge `i`.
+    fn edge_weights(&self, i: usize) -> (f32, f32) {
+        let s = self.sharp[i];
+        let far_child = child_edge_sharpness(self.method, s, self.far[i]);
+        (far_child, edge_crease_weight(self.method, s, [self.cs[i], far_child]))
+    }
+
+    /// The exact limit position and unit limit normal of the ring's vertex. Refines the ring
+    /// (in place) as far as needed. The normal is oriented like the faces; it is zero only for a
+    /// fully degenerate neighbourhood.
+    pub fn limit(&mut self) -> (DVec3, DVec3) {
+        let mut guard = 0;
+        while self.needs_refinement() && guard < 64 {
+            self.refine();
+            guard += 1;
+        }
+        let rule = Rule::determine(self.vertex_sharpness, &self.sharp);
+        let (pos, t1, t2) = match self.scheme {
+            Scheme::CatmullClark => {
+                let diag: Vec<DVec3> = (0..self.num_faces()).map(|i| self.face_inner(i)[0]).collect();
+                catmark::limit(self.center, &self.edges, &diag, rule)
+            }
+            Scheme::Loop => loop_scheme::limit(self.center, &self.edges, rule, self.boundary),
+        };
+        (pos, self.orient(t1.cross(t2)))
+    }
+
+    /// Orients a normal like the ring's faces, falling back to the ring's area vector when the
+    /// tangents are degenerate.
+    fn orient(&self, n: DVec3) -> DVec3 {
+        let n_edges = self.edges.len();
+        let mut area = DVec3::ZERO;
+        for i in 0..self.num_faces() {
+            let a = self.edges[i] - self.center;
+            let b = self.edges[(i + 1) % n_edges] - self.center;
+            area += a.cross(b);
+        }
+        let len = n.length();
+        let scale = self.edges.iter().map(|e| (*e - self.center).length_squared()).fold(0.0, f64::max);
+        if len > 1e-12 * scale.max(f64::MIN_POSITIVE) && len.is_finite() {
+            let n = n / len;
+            if n.dot(area) < 0.0 { -n } else { n }
+        } else {
+            area.normalize_or_zero()
+        }
+    }
+}
+
+/// The exact limit position and normal of vertex `v` (for an isolated vertex: its position and
+/// a zero normal).
+///
+/// ```
+/// use subdiv_mesh::{parse_obj, Mesh, VertexId};
+/// use subdiv_rules::{limit_point, Scheme};
+/// // A cube: by symmetry each corner's limit lies on the diagonal through the centre.
+/// let cube = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
+///             f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+/// let mesh = Mesh::from_soup(&parse_obj(cube)?)?;
+/// let (p, n) = limit_point(&mesh, VertexId(0), Scheme::CatmullClark);
+/// assert!((p.x - p.y).abs() < 1e-6 && (p.y - p.z).abs() < 1e-6 && p.x > 0.0 && p.x < 0.5);
+/// assert!(n.x < 0.0 && n.dot(glam::Vec3::splat(-1.0).normalize()) > 0.999);
+/// # Ok::<(), subdiv_mesh::MeshError>(())
+/// ```
+pub fn limit_point(mesh: &Mesh, v: VertexId, scheme: Scheme) -> (Vec3, Vec3) {
+    let mut ring = Ring::new();
+    limit_point_with(&mut ring, mesh, v, scheme)
+}
+
+/// [`limit_point`] reusing a ring's buffers.
+pub fn limit_point_with(ring: &mut Ring, mesh: &Mesh, v: VertexId, scheme: Scheme) -> (Vec3, Vec3) {
+    if !ring.load(mesh, v, scheme) {
+        return (mesh.position(v), Vec3::ZERO);
+    }
+    let (p, n) = ring.limit();
+    (p.as_vec3(), n.as_vec3())
+}
