@@ -44,7 +44,9 @@ fn compile(
     let source = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
     let mut options = glsl::Options::from(stage);
     for define in defines {
-        options.defines.insert((*define).to_string(), "1".to_string());
+        options
+            .defines
+            .insert((*define).to_string(), "1".to_string());
     }
     let module = glsl::Frontend::default()
         .parse(&options, &source)
@@ -58,9 +60,12 @@ fn compile(
         flags: spv::WriterFlags::LABEL_VARYINGS | spv::WriterFlags::CLAMP_FRAG_DEPTH,
         ..spv::Options::default()
     };
-    let pipeline = spv::PipelineOptions { shader_stage: stage, entry_point: "main".to_string() };
-    let words = spv::write_vec(&module, &info, &spv_options, Some(&pipeline))
-        .map_err(|e| e.to_string())?;
+    let pipeline = spv::PipelineOptions {
+        shader_stage: stage,
+        entry_point: "main".to_string(),
+    };
+    let words =
+        spv::write_vec(&module, &info, &spv_options, Some(&pipeline)).map_err(|e| e.to_string())?;
     let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
     std::fs::write(out, bytes).map_err(|e| e.to_string())
 }

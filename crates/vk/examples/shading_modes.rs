@@ -35,20 +35,31 @@ fn torus(segments: u32, rings: u32) -> Torus {
                 let u = (i + di) as f32 / segments as f32 * TAU;
                 let v = (j + dj) as f32 / rings as f32 * TAU;
                 let n = [v.cos() * u.cos(), v.sin(), v.cos() * u.sin()];
-                let p = [(big + small * v.cos()) * u.cos(), small * v.sin(), (big + small * v.cos()) * u.sin()];
+                let p = [
+                    (big + small * v.cos()) * u.cos(),
+                    small * v.sin(),
+                    (big + small * v.cos()) * u.sin(),
+                ];
                 t.positions.push(p);
                 t.normals.push(n);
                 t.scalars.push(depth);
             }
-            t.triangles.extend([base, base + 1, base + 2, base, base + 2, base + 3]);
-            t.edges.extend([[base, base + 1], [base + 1, base + 2], [base + 2, base + 3], [base + 3, base]]);
+            t.triangles
+                .extend([base, base + 1, base + 2, base, base + 2, base + 3]);
+            t.edges.extend([
+                [base, base + 1],
+                [base + 1, base + 2],
+                [base + 2, base + 3],
+                [base + 3, base],
+            ]);
         }
     }
     // The outer equator as a stand-in silhouette polyline.
     for i in 0..64 {
         for k in [i, i + 1] {
             let u = k as f32 / 64.0 * TAU;
-            t.silhouette.push([(big + small) * u.cos(), 0.0, (big + small) * u.sin()]);
+            t.silhouette
+                .push([(big + small) * u.cos(), 0.0, (big + small) * u.sin()]);
         }
     }
     t
@@ -70,13 +81,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut renderer = Renderer::new()?;
     println!("device: {}", renderer.device_name());
     for (shading, name) in Shading::ALL {
-        let options = RenderOptions { shading, show_lines: false, ..Default::default() };
+        let options = RenderOptions {
+            shading,
+            show_lines: false,
+            ..Default::default()
+        };
         let start = std::time::Instant::now();
         let image = renderer.render(&mesh, &view, size, &options)?;
         println!("{name}: {:?}", start.elapsed());
         subdiv_vk::write_png(out.join(format!("{name}.png")), &image)?;
     }
-    let options = RenderOptions { shading: Shading::Depth, wire_overlay: true, ..Default::default() };
+    let options = RenderOptions {
+        shading: Shading::Depth,
+        wire_overlay: true,
+        ..Default::default()
+    };
     let (image, aux) = renderer.render_with_aux(&mesh, &view, size, &options)?;
     subdiv_vk::write_png(out.join("depth-wire-lines.png"), &image)?;
     subdiv_vk::write_exr(out.join("depth-wire-lines.exr"), &aux)?;

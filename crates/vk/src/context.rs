@@ -83,7 +83,9 @@ unsafe extern "system" fn debug_callback(
         let message = if (*data).p_message.is_null() {
             String::from("(no message)")
         } else {
-            CStr::from_ptr((*data).p_message).to_string_lossy().into_owned()
+            CStr::from_ptr((*data).p_message)
+                .to_string_lossy()
+                .into_owned()
         };
         (log, message)
     };
@@ -97,7 +99,8 @@ unsafe extern "system" fn debug_callback(
 }
 
 /// A surface to present to, created from the instance (viewer only).
-pub(crate) type SurfaceFactory<'a> = &'a dyn Fn(&ash::Entry, &ash::Instance) -> Result<vk::SurfaceKHR>;
+pub(crate) type SurfaceFactory<'a> =
+    &'a dyn Fn(&ash::Entry, &ash::Instance) -> Result<vk::SurfaceKHR>;
 
 /// Instance + device + queue + allocator. Destroyed in the right order on drop.
 pub struct Context {
@@ -121,7 +124,9 @@ fn layer_available(entry: &ash::Entry, name: &CStr) -> Result<bool> {
     // SAFETY: plain enumeration call on a loaded entry.
     let layers = unsafe { entry.enumerate_instance_layer_properties() }
         .call("vkEnumerateInstanceLayerProperties")?;
-    Ok(layers.iter().any(|l| l.layer_name_as_c_str().is_ok_and(|n| n == name)))
+    Ok(layers
+        .iter()
+        .any(|l| l.layer_name_as_c_str().is_ok_and(|n| n == name)))
 }
 
 impl Context {
@@ -142,7 +147,9 @@ impl Context {
                 None => ash::Entry::load(),
             }
         }
-        .map_err(|e| VkError::LoaderMissing { detail: e.to_string() })?;
+        .map_err(|e| VkError::LoaderMissing {
+            detail: e.to_string(),
+        })?;
 
         let want_validation = match options.validation {
             Validation::Off => false,
@@ -197,14 +204,19 @@ impl Context {
             create_info = create_info.push_next(&mut messenger_info);
         }
         // SAFETY: all pointers in create_info live until the call returns.
-        let instance = unsafe { entry.create_instance(&create_info, None) }.map_err(|result| {
-            match result {
-                vk::Result::ERROR_INCOMPATIBLE_DRIVER | vk::Result::ERROR_INITIALIZATION_FAILED => {
-                    VkError::NoDriver { detail: format!("vkCreateInstance: {result}") }
-                }
-                result => VkError::Vulkan { call: "vkCreateInstance", result },
-            }
-        })?;
+        let instance =
+            unsafe { entry.create_instance(&create_info, None) }.map_err(
+                |result| match result {
+                    vk::Result::ERROR_INCOMPATIBLE_DRIVER
+                    | vk::Result::ERROR_INITIALIZATION_FAILED => VkError::NoDriver {
+                        detail: format!("vkCreateInstance: {result}"),
+                    },
+                    result => VkError::Vulkan {
+                        call: "vkCreateInstance",
+                        result,
+                    },
+                },
+            )?;
 
         // From here on, a partially built context is cleaned up by `Partial`.
         let mut partial = Partial::default();
@@ -229,8 +241,9 @@ impl Context {
         let features = vk::PhysicalDeviceFeatures::default()
             .wide_lines(chosen.wide_lines)
             .independent_blend(true);
-        let mut features13 =
-            vk::PhysicalDeviceVulkan13Features::default().dynamic_rendering(true).synchronization2(true);
+        let mut features13 = vk::PhysicalDeviceVulkan13Features::default()
+            .dynamic_rendering(true)
+            .synchronization2(true);
         let mut device_extensions: Vec<*const c_char> = Vec::new();
         if partial.surface.is_some() {
             device_extensions.push(khr::swapchain::NAME.as_ptr());
@@ -364,14 +377,20 @@ fn pick_device(
     surface: Option<&(khr::surface::Instance, vk::SurfaceKHR)>,
 ) -> Result<Chosen> {
     // SAFETY: valid instance.
-    let devices = unsafe { instance.enumerate_physical_devices() }.map_err(|result| match result {
-        vk::Result::ERROR_INITIALIZATION_FAILED => {
-            VkError::NoDriver { detail: format!("vkEnumeratePhysicalDevices: {result}") }
-        }
-        result => VkError::Vulkan { call: "vkEnumeratePhysicalDevices", result },
-    })?;
+    let devices =
+        unsafe { instance.enumerate_physical_devices() }.map_err(|result| match result {
+            vk::Result::ERROR_INITIALIZATION_FAILED => VkError::NoDriver {
+                detail: format!("vkEnumeratePhysicalDevices: {result}"),
+            },
+            result => VkError::Vulkan {
+                call: "vkEnumeratePhysicalDevices",
+                result,
+            },
+        })?;
     if devices.is_empty() {
-        return Err(VkError::NoDriver { detail: "no physical devices".into() });
+        return Err(VkError::NoDriver {
+            detail: "no physical devices".into(),
+        });
     }
     let preferred = std::env::var(DEVICE_ENV).ok().filter(|s| !s.is_empty());
     let mut found = Vec::new();
@@ -401,7 +420,9 @@ fn pick_device(
         unsafe { instance.get_physical_device_features2(physical, &mut f2) };
         let wide_lines = f2.features.wide_lines == vk::TRUE;
         let independent_blend = f2.features.independent_blend == vk::TRUE;
-        if f13.dynamic_rendering != vk::TRUE || f13.synchronization2 != vk::TRUE || !independent_blend
+        if f13.dynamic_rendering != vk::TRUE
+            || f13.synchronization2 != vk::TRUE
+            || !independent_blend
         {
             continue;
         }
@@ -437,11 +458,20 @@ fn pick_device(
         if best.as_ref().is_none_or(|(s, _)| score > *s) {
             best = Some((
                 score,
-                Chosen { physical, queue_family, name, limits: props.limits, wide_lines },
+                Chosen {
+                    physical,
+                    queue_family,
+                    name,
+                    limits: props.limits,
+                    wide_lines,
+                },
             ));
         }
     }
-    best.map(|(_, c)| c).ok_or_else(|| VkError::NoSuitableDevice { found: found.join(", ") })
+    best.map(|(_, c)| c)
+        .ok_or_else(|| VkError::NoSuitableDevice {
+            found: found.join(", "),
+        })
 }
 
 fn pick_depth_format(instance: &ash::Instance, physical: vk::PhysicalDevice) -> vk::Format {

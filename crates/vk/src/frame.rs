@@ -38,7 +38,11 @@ impl Target {
     pub fn new(ctx: &mut Context, extent: vk::Extent2D) -> Result<Self> {
         let max = ctx.limits.max_image_dimension2_d;
         if extent.width == 0 || extent.height == 0 || extent.width > max || extent.height > max {
-            return Err(VkError::InvalidSize { width: extent.width, height: extent.height, max });
+            return Err(VkError::InvalidSize {
+                width: extent.width,
+                height: extent.height,
+                max,
+            });
         }
         let color_usage = vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC;
         let color_aspect = vk::ImageAspectFlags::COLOR;
@@ -46,7 +50,12 @@ impl Target {
         let specs = [
             (COLOR_FORMAT, color_usage, color_aspect, "colour target"),
             (NORMAL_FORMAT, color_usage, color_aspect, "normal target"),
-            (LINEAR_DEPTH_FORMAT, color_usage, color_aspect, "linear depth target"),
+            (
+                LINEAR_DEPTH_FORMAT,
+                color_usage,
+                color_aspect,
+                "linear depth target",
+            ),
             (
                 ctx.depth_format,
                 vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT,
@@ -83,10 +92,18 @@ impl Target {
         };
         let mut it = made.into_iter();
         match (it.next(), it.next(), it.next(), it.next()) {
-            (Some(color), Some(normal), Some(linear_depth), Some(depth)) => {
-                Ok(Target { extent, color, normal, linear_depth, depth, readback })
-            }
-            _ => Err(VkError::Vulkan { call: "create targets", result: vk::Result::ERROR_UNKNOWN }),
+            (Some(color), Some(normal), Some(linear_depth), Some(depth)) => Ok(Target {
+                extent,
+                color,
+                normal,
+                linear_depth,
+                depth,
+                readback,
+            }),
+            _ => Err(VkError::Vulkan {
+                call: "create targets",
+                result: vk::Result::ERROR_UNKNOWN,
+            }),
         }
     }
 
@@ -105,9 +122,17 @@ impl Target {
     /// The colour image read back (valid after a frame with [`Readback::Color`] or `All` completed).
     pub fn read_color(&self) -> Result<image::RgbaImage> {
         let n = (self.pixels() * COLOR_BYTES) as usize;
-        let bytes = self.readback.mapped()?.get(..n).map(<[u8]>::to_vec).unwrap_or_default();
+        let bytes = self
+            .readback
+            .mapped()?
+            .get(..n)
+            .map(<[u8]>::to_vec)
+            .unwrap_or_default();
         image::RgbaImage::from_raw(self.extent.width, self.extent.height, bytes).ok_or(
-            VkError::Vulkan { call: "read back colour", result: vk::Result::ERROR_UNKNOWN },
+            VkError::Vulkan {
+                call: "read back colour",
+                result: vk::Result::ERROR_UNKNOWN,
+            },
         )
     }
 
@@ -119,8 +144,9 @@ impl Target {
         let depth_start = normal_start + pixels * NORMAL_BYTES as usize;
         let f = |bytes: &[u8]| f32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]);
         let normal_bytes = mapped.get(normal_start..depth_start).unwrap_or_default();
-        let depth_bytes =
-            mapped.get(depth_start..depth_start + pixels * LINEAR_DEPTH_BYTES as usize).unwrap_or_default();
+        let depth_bytes = mapped
+            .get(depth_start..depth_start + pixels * LINEAR_DEPTH_BYTES as usize)
+            .unwrap_or_default();
         let mut aux = crate::AuxImage {
             width: self.extent.width,
             height: self.extent.height,
@@ -129,7 +155,10 @@ impl Target {
             scalars: Vec::with_capacity(pixels),
             coverage: Vec::with_capacity(pixels),
         };
-        for (n, d) in normal_bytes.chunks_exact(16).zip(depth_bytes.chunks_exact(4)) {
+        for (n, d) in normal_bytes
+            .chunks_exact(16)
+            .zip(depth_bytes.chunks_exact(4))
+        {
             let depth = f(d);
             let covered = depth > 0.0;
             aux.coverage.push(if covered { 1.0 } else { 0.0 });
@@ -178,14 +207,18 @@ pub(crate) fn record(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInpu
     let t = f.target;
     let color_aspect = vk::ImageAspectFlags::COLOR;
     let attach_stage = vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT;
-    let tests = vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS;
+    let tests = vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS
+        | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS;
     let before = (
         vk::PipelineStageFlags2::ALL_TRANSFER | attach_stage,
         vk::AccessFlags2::NONE,
         vk::ImageLayout::UNDEFINED,
     );
-    let to_attachment =
-        (attach_stage, vk::AccessFlags2::COLOR_ATTACHMENT_WRITE, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL);
+    let to_attachment = (
+        attach_stage,
+        vk::AccessFlags2::COLOR_ATTACHMENT_WRITE,
+        vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+    );
     let barriers = [
         image_barrier(t.color.raw, color_aspect, before, to_attachment),
         image_barrier(t.normal.raw, color_aspect, before, to_attachment),
@@ -208,7 +241,9 @@ pub(crate) fn record(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInpu
             .image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
             .load_op(vk::AttachmentLoadOp::CLEAR)
             .store_op(vk::AttachmentStoreOp::STORE)
-            .clear_value(vk::ClearValue { color: vk::ClearColorValue { float32: clear } })
+            .clear_value(vk::ClearValue {
+                color: vk::ClearColorValue { float32: clear },
+            })
     };
     let colors = [
         color_attachment(t.color.view, f.options.background),
@@ -221,9 +256,15 @@ pub(crate) fn record(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInpu
         .load_op(vk::AttachmentLoadOp::CLEAR)
         .store_op(vk::AttachmentStoreOp::DONT_CARE)
         .clear_value(vk::ClearValue {
-            depth_stencil: vk::ClearDepthStencilValue { depth: 1.0, stencil: 0 },
+            depth_stencil: vk::ClearDepthStencilValue {
+                depth: 1.0,
+                stencil: 0,
+            },
         });
-    let area = vk::Rect2D { offset: vk::Offset2D::default(), extent: t.extent };
+    let area = vk::Rect2D {
+        offset: vk::Offset2D::default(),
+        extent: t.extent,
+    };
     let rendering = vk::RenderingInfo::default()
         .render_area(area)
         .layer_count(1)
@@ -243,7 +284,10 @@ pub(crate) fn record(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInpu
     // SAFETY: `cmd` is in the recording state; all handles belong to `device`
     // and outlive the submission (guaranteed by the callers' fences).
     unsafe {
-        device.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().image_memory_barriers(&barriers));
+        device.cmd_pipeline_barrier2(
+            cmd,
+            &vk::DependencyInfo::default().image_memory_barriers(&barriers),
+        );
         device.cmd_begin_rendering(cmd, &rendering);
         device.cmd_set_viewport(cmd, 0, &[viewport]);
         device.cmd_set_scissor(cmd, 0, &[area]);
@@ -258,7 +302,12 @@ pub(crate) fn record(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInpu
             device.cmd_push_constants(cmd, p.layout, stages, 0, &push);
             device.cmd_bind_vertex_buffers(cmd, 0, &[f.mesh_buffer], &[l.tri_vertices]);
             if l.tri_indexed {
-                device.cmd_bind_index_buffer(cmd, f.mesh_buffer, l.tri_indices, vk::IndexType::UINT32);
+                device.cmd_bind_index_buffer(
+                    cmd,
+                    f.mesh_buffer,
+                    l.tri_indices,
+                    vk::IndexType::UINT32,
+                );
                 device.cmd_draw_indexed(cmd, l.tri_count * 3, 1, 0, 0, 0);
             } else {
                 device.cmd_draw(cmd, l.tri_count * 3, 1, 0, 0);
@@ -290,19 +339,40 @@ pub(crate) fn record(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInpu
         }
         device.cmd_end_rendering(cmd);
 
-        let from_attachment =
-            (attach_stage, vk::AccessFlags2::COLOR_ATTACHMENT_WRITE, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL);
+        let from_attachment = (
+            attach_stage,
+            vk::AccessFlags2::COLOR_ATTACHMENT_WRITE,
+            vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+        );
         let to_transfer = (
             vk::PipelineStageFlags2::ALL_TRANSFER,
             vk::AccessFlags2::TRANSFER_READ,
             vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
         );
-        let mut barriers = vec![image_barrier(t.color.raw, color_aspect, from_attachment, to_transfer)];
+        let mut barriers = vec![image_barrier(
+            t.color.raw,
+            color_aspect,
+            from_attachment,
+            to_transfer,
+        )];
         if f.readback == Readback::All {
-            barriers.push(image_barrier(t.normal.raw, color_aspect, from_attachment, to_transfer));
-            barriers.push(image_barrier(t.linear_depth.raw, color_aspect, from_attachment, to_transfer));
+            barriers.push(image_barrier(
+                t.normal.raw,
+                color_aspect,
+                from_attachment,
+                to_transfer,
+            ));
+            barriers.push(image_barrier(
+                t.linear_depth.raw,
+                color_aspect,
+                from_attachment,
+                to_transfer,
+            ));
         }
-        device.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().image_memory_barriers(&barriers));
+        device.cmd_pipeline_barrier2(
+            cmd,
+            &vk::DependencyInfo::default().image_memory_barriers(&barriers),
+        );
 
         if f.readback != Readback::None {
             let pixels = u64::from(t.extent.width) * u64::from(t.extent.height);
@@ -317,15 +387,31 @@ pub(crate) fn record(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInpu
                     layer_count: 1,
                 },
                 image_offset: vk::Offset3D::default(),
-                image_extent: vk::Extent3D { width: t.extent.width, height: t.extent.height, depth: 1 },
+                image_extent: vk::Extent3D {
+                    width: t.extent.width,
+                    height: t.extent.height,
+                    depth: 1,
+                },
             };
             let src = vk::ImageLayout::TRANSFER_SRC_OPTIMAL;
             device.cmd_copy_image_to_buffer(cmd, t.color.raw, src, t.readback.raw, &[copy(0)]);
             if f.readback == Readback::All {
                 let normal_at = pixels * COLOR_BYTES;
                 let depth_at = normal_at + pixels * NORMAL_BYTES;
-                device.cmd_copy_image_to_buffer(cmd, t.normal.raw, src, t.readback.raw, &[copy(normal_at)]);
-                device.cmd_copy_image_to_buffer(cmd, t.linear_depth.raw, src, t.readback.raw, &[copy(depth_at)]);
+                device.cmd_copy_image_to_buffer(
+                    cmd,
+                    t.normal.raw,
+                    src,
+                    t.readback.raw,
+                    &[copy(normal_at)],
+                );
+                device.cmd_copy_image_to_buffer(
+                    cmd,
+                    t.linear_depth.raw,
+                    src,
+                    t.readback.raw,
+                    &[copy(depth_at)],
+                );
             }
             let to_host = [vk::BufferMemoryBarrier2::default()
                 .src_stage_mask(vk::PipelineStageFlags2::ALL_TRANSFER)
@@ -337,7 +423,10 @@ pub(crate) fn record(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInpu
                 .buffer(t.readback.raw)
                 .offset(0)
                 .size(vk::WHOLE_SIZE)];
-            device.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().buffer_memory_barriers(&to_host));
+            device.cmd_pipeline_barrier2(
+                cmd,
+                &vk::DependencyInfo::default().buffer_memory_barriers(&to_host),
+            );
         }
     }
 }

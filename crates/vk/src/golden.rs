@@ -26,7 +26,10 @@ pub struct Tolerance {
 
 impl Default for Tolerance {
     fn default() -> Self {
-        Tolerance { mean: 0.5, p99: 8.0 }
+        Tolerance {
+            mean: 0.5,
+            p99: 8.0,
+        }
     }
 }
 
@@ -115,7 +118,9 @@ pub fn compare_in(
     let actual_path = output_dir.join(format!("{stem}.actual.png"));
     if !expected_path.exists() {
         write_png(&actual_path, actual)?;
-        return Ok(Verdict::MissingExpected { actual: actual_path });
+        return Ok(Verdict::MissingExpected {
+            actual: actual_path,
+        });
     }
     let expected = read_png(expected_path)?;
     if expected.dimensions() != actual.dimensions() {
@@ -156,7 +161,12 @@ pub fn compare_in(
             stats.mean, t.mean, stats.p99, t.p99
         ),
     };
-    Ok(Verdict::Mismatch { stats, reason, actual: actual_path, diff: Some(diff_path) })
+    Ok(Verdict::Mismatch {
+        stats,
+        reason,
+        actual: actual_path,
+        diff: Some(diff_path),
+    })
 }
 
 /// Overwrites the golden image at `expected_path` with `actual` ("bless").
@@ -195,7 +205,11 @@ pub fn statistics(a: &RgbaImage, b: &RgbaImage) -> Stats {
         }
     }
     Stats {
-        mean: if channels == 0 { 0.0 } else { sum as f64 / channels as f64 },
+        mean: if channels == 0 {
+            0.0
+        } else {
+            sum as f64 / channels as f64
+        },
         p99,
         max,
         differing_pixels: differing,
@@ -207,7 +221,12 @@ pub fn statistics(a: &RgbaImage, b: &RgbaImage) -> Stats {
 pub fn difference_image(actual: &RgbaImage, expected: &RgbaImage) -> RgbaImage {
     let mut out = RgbaImage::new(expected.width(), expected.height());
     for ((o, pa), pe) in out.pixels_mut().zip(actual.pixels()).zip(expected.pixels()) {
-        let err = pa.0.iter().zip(pe.0.iter()).map(|(a, e)| a.abs_diff(*e)).max().unwrap_or(0);
+        let err =
+            pa.0.iter()
+                .zip(pe.0.iter())
+                .map(|(a, e)| a.abs_diff(*e))
+                .max()
+                .unwrap_or(0);
         *o = if err > 0 {
             Rgba([128u8.saturating_add(err / 2).max(128), 0, 0, 255])
         } else {
@@ -236,12 +255,21 @@ mod tests {
         let missing = compare_in(&a, &expected, None, &out).unwrap();
         assert!(matches!(missing, Verdict::MissingExpected { .. }));
         bless(&a, &expected).unwrap();
-        assert_eq!(compare_in(&a, &expected, None, &out).unwrap(), Verdict::Identical);
+        assert_eq!(
+            compare_in(&a, &expected, None, &out).unwrap(),
+            Verdict::Identical
+        );
 
         let mut b = a.clone();
         b.put_pixel(3, 4, Rgba([12, 10, 10, 255]));
         let verdict = compare_in(&b, &expected, None, &out).unwrap();
-        let Verdict::Mismatch { stats, diff: Some(diff), actual, .. } = verdict else {
+        let Verdict::Mismatch {
+            stats,
+            diff: Some(diff),
+            actual,
+            ..
+        } = verdict
+        else {
             panic!("expected a mismatch, got {verdict:?}");
         };
         assert_eq!(stats.differing_pixels, 1);
@@ -250,8 +278,15 @@ mod tests {
         // One pixel in a hundred: the 99th percentile is still zero.
         let within = compare_in(&b, &expected, Some(Tolerance::default()), &out).unwrap();
         assert!(matches!(within, Verdict::WithinTolerance(_)));
-        let strict = Tolerance { mean: 0.0, p99: 0.0 };
-        assert!(!compare_in(&b, &expected, Some(strict), &out).unwrap().passed());
+        let strict = Tolerance {
+            mean: 0.0,
+            p99: 0.0,
+        };
+        assert!(
+            !compare_in(&b, &expected, Some(strict), &out)
+                .unwrap()
+                .passed()
+        );
 
         let small = RgbaImage::new(3, 3);
         assert!(!compare_in(&small, &expected, None, &out).unwrap().passed());

@@ -15,7 +15,10 @@ use crate::offscreen::AuxImage;
 pub const EXR_CHANNELS: [&str; 6] = ["Z", "N.X", "N.Y", "N.Z", "S", "A"];
 
 fn io_error(path: &Path, source: std::io::Error) -> VkError {
-    VkError::Io { path: path.to_path_buf(), source }
+    VkError::Io {
+        path: path.to_path_buf(),
+        source,
+    }
 }
 
 fn create_parent(path: &Path) -> Result<()> {
@@ -33,7 +36,10 @@ pub fn write_png(path: impl AsRef<Path>, image: &RgbaImage) -> Result<()> {
     create_parent(path)?;
     image
         .save_with_format(path, image::ImageFormat::Png)
-        .map_err(|source| VkError::Image { path: path.to_path_buf(), source })
+        .map_err(|source| VkError::Image {
+            path: path.to_path_buf(),
+            source,
+        })
 }
 
 /// Reads a PNG (any colour type) as RGBA.
@@ -45,7 +51,10 @@ pub fn read_png(path: impl AsRef<Path>) -> Result<RgbaImage> {
     reader
         .decode()
         .map(|img| img.into_rgba8())
-        .map_err(|source| VkError::Image { path: path.to_path_buf(), source })
+        .map_err(|source| VkError::Image {
+            path: path.to_path_buf(),
+            source,
+        })
 }
 
 /// Writes the auxiliary images as a single-layer float EXR with channels
@@ -55,7 +64,12 @@ pub fn read_png(path: impl AsRef<Path>) -> Result<RgbaImage> {
 pub fn write_exr(path: impl AsRef<Path>, aux: &AuxImage) -> Result<()> {
     let path = path.as_ref();
     let pixels = aux.width as usize * aux.height as usize;
-    let lengths = [aux.depth.len(), aux.normals.len(), aux.scalars.len(), aux.coverage.len()];
+    let lengths = [
+        aux.depth.len(),
+        aux.normals.len(),
+        aux.scalars.len(),
+        aux.coverage.len(),
+    ];
     if pixels == 0 || lengths.iter().any(|&n| n != pixels) {
         return Err(VkError::InvalidMesh(format!(
             "auxiliary image {}x{} has inconsistent channel lengths {lengths:?}",
@@ -81,7 +95,10 @@ pub fn write_exr(path: impl AsRef<Path>, aux: &AuxImage) -> Result<()> {
     Image::from_layer(layer)
         .write()
         .to_file(path)
-        .map_err(|source| VkError::Exr { path: path.to_path_buf(), source })
+        .map_err(|source| VkError::Exr {
+            path: path.to_path_buf(),
+            source,
+        })
 }
 
 /// One EXR channel read back as f32 samples (row-major from the top-left).
@@ -103,7 +120,10 @@ pub fn read_exr(path: impl AsRef<Path>) -> Result<(u32, u32, Vec<ExrChannel>)> {
         .first_valid_layer()
         .all_attributes()
         .from_file(path)
-        .map_err(|source| VkError::Exr { path: path.to_path_buf(), source })?;
+        .map_err(|source| VkError::Exr {
+            path: path.to_path_buf(),
+            source,
+        })?;
     let layer = image.layer_data;
     let size = layer.size;
     let channels = layer

@@ -49,30 +49,44 @@ impl Buffer {
         };
         // SAFETY: fresh allocation satisfying the buffer's requirements.
         let bound = unsafe {
-            ctx.device.bind_buffer_memory(raw, allocation.memory(), allocation.offset())
+            ctx.device
+                .bind_buffer_memory(raw, allocation.memory(), allocation.offset())
         };
-        let mut buffer = Buffer { raw, size: size.max(4), allocation: Some(allocation) };
+        let mut buffer = Buffer {
+            raw,
+            size: size.max(4),
+            allocation: Some(allocation),
+        };
         if let Err(result) = bound {
             buffer.destroy(ctx);
-            return Err(VkError::Vulkan { call: "vkBindBufferMemory", result });
+            return Err(VkError::Vulkan {
+                call: "vkBindBufferMemory",
+                result,
+            });
         }
         Ok(buffer)
     }
 
     /// The mapped bytes of a host-visible buffer.
     pub fn mapped(&self) -> Result<&[u8]> {
-        self.allocation.as_ref().and_then(|a| a.mapped_slice()).ok_or(VkError::Vulkan {
-            call: "map buffer memory",
-            result: vk::Result::ERROR_MEMORY_MAP_FAILED,
-        })
+        self.allocation
+            .as_ref()
+            .and_then(|a| a.mapped_slice())
+            .ok_or(VkError::Vulkan {
+                call: "map buffer memory",
+                result: vk::Result::ERROR_MEMORY_MAP_FAILED,
+            })
     }
 
     /// The mapped bytes of a host-visible buffer, writable.
     pub fn mapped_mut(&mut self) -> Result<&mut [u8]> {
-        self.allocation.as_mut().and_then(|a| a.mapped_slice_mut()).ok_or(VkError::Vulkan {
-            call: "map buffer memory",
-            result: vk::Result::ERROR_MEMORY_MAP_FAILED,
-        })
+        self.allocation
+            .as_mut()
+            .and_then(|a| a.mapped_slice_mut())
+            .ok_or(VkError::Vulkan {
+                call: "map buffer memory",
+                result: vk::Result::ERROR_MEMORY_MAP_FAILED,
+            })
     }
 
     pub fn destroy(&mut self, ctx: &mut Context) {
@@ -104,7 +118,11 @@ impl Image {
         let info = vk::ImageCreateInfo::default()
             .image_type(vk::ImageType::TYPE_2D)
             .format(format)
-            .extent(vk::Extent3D { width: extent.width, height: extent.height, depth: 1 })
+            .extent(vk::Extent3D {
+                width: extent.width,
+                height: extent.height,
+                depth: 1,
+            })
             .mip_levels(1)
             .array_layers(1)
             .samples(vk::SampleCountFlags::TYPE_1)
@@ -130,15 +148,24 @@ impl Image {
                 return Err(e.into());
             }
         };
-        let mut image =
-            Image { raw, view: vk::ImageView::null(), allocation: Some(allocation) };
+        let mut image = Image {
+            raw,
+            view: vk::ImageView::null(),
+            allocation: Some(allocation),
+        };
         // SAFETY: the memory handle is only used to bind this image.
-        let memory = image.allocation.as_ref().map(|a| (unsafe { a.memory() }, a.offset()));
+        let memory = image
+            .allocation
+            .as_ref()
+            .map(|a| (unsafe { a.memory() }, a.offset()));
         if let Some((memory, offset)) = memory {
             // SAFETY: fresh allocation satisfying the image's requirements.
             if let Err(result) = unsafe { ctx.device.bind_image_memory(raw, memory, offset) } {
                 image.destroy(ctx);
-                return Err(VkError::Vulkan { call: "vkBindImageMemory", result });
+                return Err(VkError::Vulkan {
+                    call: "vkBindImageMemory",
+                    result,
+                });
             }
         }
         let view_info = vk::ImageViewCreateInfo::default()
@@ -151,7 +178,10 @@ impl Image {
             Ok(view) => image.view = view,
             Err(result) => {
                 image.destroy(ctx);
-                return Err(VkError::Vulkan { call: "vkCreateImageView", result });
+                return Err(VkError::Vulkan {
+                    call: "vkCreateImageView",
+                    result,
+                });
             }
         }
         Ok(image)

@@ -105,7 +105,8 @@ impl Renderer {
             .level(vk::CommandBufferLevel::PRIMARY)
             .command_buffer_count(1);
         // SAFETY: pool from this device.
-        let buffers = unsafe { device.allocate_command_buffers(&alloc) }.call("vkAllocateCommandBuffers")?;
+        let buffers =
+            unsafe { device.allocate_command_buffers(&alloc) }.call("vkAllocateCommandBuffers")?;
         renderer.cmd = buffers.first().copied().unwrap_or_default();
         // SAFETY: valid device.
         renderer.fence = unsafe { device.create_fence(&vk::FenceCreateInfo::default(), None) }
@@ -171,7 +172,10 @@ impl Renderer {
         readback: Readback,
     ) -> Result<()> {
         let (bytes, layout) = scene::pack(mesh, options)?;
-        let extent = vk::Extent2D { width: size[0], height: size[1] };
+        let extent = vk::Extent2D {
+            width: size[0],
+            height: size[1],
+        };
         if self.target.as_ref().is_none_or(|t| t.extent != extent) {
             if let Some(mut old) = self.target.take() {
                 old.destroy(&mut self.ctx);
@@ -214,7 +218,9 @@ impl Renderer {
         // SAFETY: recorded command buffer, fence unsignalled.
         unsafe {
             device.end_command_buffer(cmd).call("vkEndCommandBuffer")?;
-            device.queue_submit2(self.ctx.queue, &submit, self.fence).call("vkQueueSubmit2")?;
+            device
+                .queue_submit2(self.ctx.queue, &submit, self.fence)
+                .call("vkQueueSubmit2")?;
             let waited = device.wait_for_fences(&[self.fence], true, u64::MAX);
             // Reset even after a failed wait would leave the fence unusable; report the wait error.
             waited.call("vkWaitForFences")?;

@@ -75,7 +75,12 @@ impl Pipelines {
         let result = pipelines.build(ctx, &mut modules);
         // SAFETY: modules are not needed once pipelines exist (or failed).
         unsafe {
-            for m in [modules.mesh_vert, modules.mesh_frag, modules.line_vert, modules.line_frag] {
+            for m in [
+                modules.mesh_vert,
+                modules.mesh_frag,
+                modules.line_vert,
+                modules.line_frag,
+            ] {
                 if m != vk::ShaderModule::null() {
                     ctx.device.destroy_shader_module(m, None);
                 }
@@ -95,10 +100,27 @@ impl Pipelines {
         modules.line_frag = module(ctx, shaders::LINE_FRAG)?;
         let all = vk::ColorComponentFlags::RGBA;
         let none = vk::ColorComponentFlags::empty();
-        self.fill = self.create(ctx, modules.mesh_vert, modules.mesh_frag, Kind::Fill, [all, all, all])?;
-        self.fill_depth_only =
-            self.create(ctx, modules.mesh_vert, modules.mesh_frag, Kind::Fill, [none, all, all])?;
-        self.line = self.create(ctx, modules.line_vert, modules.line_frag, Kind::Line, [all, none, none])?;
+        self.fill = self.create(
+            ctx,
+            modules.mesh_vert,
+            modules.mesh_frag,
+            Kind::Fill,
+            [all, all, all],
+        )?;
+        self.fill_depth_only = self.create(
+            ctx,
+            modules.mesh_vert,
+            modules.mesh_frag,
+            Kind::Fill,
+            [none, all, all],
+        )?;
+        self.line = self.create(
+            ctx,
+            modules.line_vert,
+            modules.line_frag,
+            Kind::Line,
+            [all, none, none],
+        )?;
         Ok(())
     }
 
@@ -148,7 +170,9 @@ impl Pipelines {
             Kind::Line => vk::PrimitiveTopology::LINE_LIST,
         };
         let input_assembly = vk::PipelineInputAssemblyStateCreateInfo::default().topology(topology);
-        let viewport = vk::PipelineViewportStateCreateInfo::default().viewport_count(1).scissor_count(1);
+        let viewport = vk::PipelineViewportStateCreateInfo::default()
+            .viewport_count(1)
+            .scissor_count(1);
         let mut raster = vk::PipelineRasterizationStateCreateInfo::default()
             .polygon_mode(vk::PolygonMode::FILL)
             .cull_mode(vk::CullModeFlags::NONE)
@@ -171,9 +195,12 @@ impl Pipelines {
                 Kind::Line => vk::CompareOp::LESS_OR_EQUAL,
             });
         let blend_attachments = write_masks.map(|mask| {
-            vk::PipelineColorBlendAttachmentState::default().blend_enable(false).color_write_mask(mask)
+            vk::PipelineColorBlendAttachmentState::default()
+                .blend_enable(false)
+                .color_write_mask(mask)
         });
-        let blend = vk::PipelineColorBlendStateCreateInfo::default().attachments(&blend_attachments);
+        let blend =
+            vk::PipelineColorBlendStateCreateInfo::default().attachments(&blend_attachments);
         let mut dynamic = vec![vk::DynamicState::VIEWPORT, vk::DynamicState::SCISSOR];
         if kind == Kind::Line {
             dynamic.push(vk::DynamicState::DEPTH_TEST_ENABLE);
@@ -200,7 +227,8 @@ impl Pipelines {
             .push_next(&mut rendering);
         // SAFETY: all referenced state lives through the call.
         let pipelines = unsafe {
-            ctx.device.create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)
+            ctx.device
+                .create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)
         }
         .map_err(|(_, result)| result)
         .call("vkCreateGraphicsPipelines")?;
@@ -210,7 +238,11 @@ impl Pipelines {
     /// Clamps a requested line width to the device's range.
     pub fn line_width(&self, requested: f32) -> f32 {
         let [lo, hi] = self.line_width_range;
-        if requested.is_finite() { requested.clamp(lo, hi) } else { lo }
+        if requested.is_finite() {
+            requested.clamp(lo, hi)
+        } else {
+            lo
+        }
     }
 
     pub fn destroy(&mut self, ctx: &Context) {

@@ -38,7 +38,9 @@ impl RenderMesh<'_> {
             )));
         }
         if n > u32::MAX as usize {
-            return Err(VkError::InvalidMesh(format!("{n} vertices exceed the u32 index range")));
+            return Err(VkError::InvalidMesh(format!(
+                "{n} vertices exceed the u32 index range"
+            )));
         }
         if self.triangles.len() % 3 != 0 {
             return Err(VkError::InvalidMesh(format!(
@@ -61,7 +63,10 @@ impl RenderMesh<'_> {
         if let Some(s) = self.scalars
             && s.len() != n
         {
-            return Err(VkError::InvalidMesh(format!("{} scalars for {n} positions", s.len())));
+            return Err(VkError::InvalidMesh(format!(
+                "{} scalars for {n} positions",
+                s.len()
+            )));
         }
         if let Some(lines) = self.lines
             && lines.len() % 2 != 0
@@ -87,6 +92,39 @@ impl RenderMesh<'_> {
     }
 }
 
+/// An owned mesh, for callers that build geometry on the fly (see
+/// [`OwnedMesh::as_render_mesh`]); it is also a [`crate::viewer::FrameSource`]
+/// that shows the same geometry every frame.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct OwnedMesh {
+    /// See [`RenderMesh::positions`].
+    pub positions: Vec<[f32; 3]>,
+    /// See [`RenderMesh::normals`].
+    pub normals: Vec<[f32; 3]>,
+    /// See [`RenderMesh::triangles`].
+    pub triangles: Vec<u32>,
+    /// See [`RenderMesh::edges`].
+    pub edges: Option<Vec<[u32; 2]>>,
+    /// See [`RenderMesh::scalars`].
+    pub scalars: Option<Vec<f32>>,
+    /// See [`RenderMesh::lines`].
+    pub lines: Option<Vec<[f32; 3]>>,
+}
+
+impl OwnedMesh {
+    /// Borrows the mesh for rendering.
+    pub fn as_render_mesh(&self) -> RenderMesh<'_> {
+        RenderMesh {
+            positions: &self.positions,
+            normals: &self.normals,
+            triangles: &self.triangles,
+            edges: self.edges.as_deref(),
+            scalars: self.scalars.as_deref(),
+            lines: self.lines.as_deref(),
+        }
+    }
+}
+
 /// Camera matrices with Vulkan clip conventions: NDC y points down, depth 0..1.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct View {
@@ -108,9 +146,21 @@ impl View {
         } else {
             1.0
         };
-        let aspect = if aspect.is_finite() && aspect > 0.0 { aspect } else { 1.0 };
-        let near = if near.is_finite() && near > 0.0 { near } else { 1e-3 };
-        let far = if far.is_finite() && far > near { far } else { near * 1e3 };
+        let aspect = if aspect.is_finite() && aspect > 0.0 {
+            aspect
+        } else {
+            1.0
+        };
+        let near = if near.is_finite() && near > 0.0 {
+            near
+        } else {
+            1e-3
+        };
+        let far = if far.is_finite() && far > near {
+            far
+        } else {
+            near * 1e3
+        };
         glam::camera::rh::proj::vulkan::perspective(fov, aspect, near, far)
     }
 
@@ -145,7 +195,8 @@ impl View {
     /// World-space direction towards the key light: up-left and behind the viewer.
     pub fn key_light(&self) -> Vec3 {
         let inv = self.view.inverse();
-        inv.transform_vector3(Vec3::new(-0.45, 0.6, 0.65)).normalize_or(Vec3::Z)
+        inv.transform_vector3(Vec3::new(-0.45, 0.6, 0.65))
+            .normalize_or(Vec3::Z)
     }
 
     /// The 12 edges of this view's frustum as 24 line endpoints (for drawing a
@@ -163,7 +214,20 @@ impl View {
             corner(1.0, 1.0, 1.0),
             corner(-1.0, 1.0, 1.0),
         ];
-        let edges = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)];
+        let edges = [
+            (0, 1),
+            (1, 2),
+            (2, 3),
+            (3, 0),
+            (4, 5),
+            (5, 6),
+            (6, 7),
+            (7, 4),
+            (0, 4),
+            (1, 5),
+            (2, 6),
+            (3, 7),
+        ];
         edges.iter().flat_map(|&(a, b)| [c[a], c[b]]).collect()
     }
 }
@@ -195,12 +259,21 @@ impl OrbitCamera {
         let radius = ((hi - lo).length() * 0.5).max(1e-6);
         let fov_y = 35f32.to_radians();
         let distance = radius / (fov_y * 0.5).sin() * 1.05;
-        OrbitCamera { target, distance, yaw: 0.6, pitch: 0.45, fov_y, radius }
+        OrbitCamera {
+            target,
+            distance,
+            yaw: 0.6,
+            pitch: 0.45,
+            fov_y,
+            radius,
+        }
     }
 
     /// [`OrbitCamera::framing`] for the bounds of `mesh`; a unit box if it is empty.
     pub fn framing_mesh(mesh: &RenderMesh<'_>) -> Self {
-        let (lo, hi) = mesh.bounds().unwrap_or((Vec3::splat(-1.0), Vec3::splat(1.0)));
+        let (lo, hi) = mesh
+            .bounds()
+            .unwrap_or((Vec3::splat(-1.0), Vec3::splat(1.0)));
         Self::framing(lo, hi)
     }
 
@@ -213,10 +286,24 @@ impl OrbitCamera {
 
     /// The view for an image of the given aspect ratio (width / height).
     pub fn view(&self, aspect: f32) -> View {
-        let near = (self.distance - 2.0 * self.radius).max(self.distance * 1e-3).max(1e-6);
+        let near = (self.distance - 2.0 * self.radius)
+            .max(self.distance * 1e-3)
+            .max(1e-6);
         let far = (self.distance + 2.0 * self.radius).max(near * 2.0);
-        let aspect = if aspect.is_finite() && aspect > 0.0 { aspect } else { 1.0 };
-        View::look_at(self.eye(), self.target, Vec3::Y, self.fov_y, aspect, near, far)
+        let aspect = if aspect.is_finite() && aspect > 0.0 {
+            aspect
+        } else {
+            1.0
+        };
+        View::look_at(
+            self.eye(),
+            self.target,
+            Vec3::Y,
+            self.fov_y,
+            aspect,
+            near,
+            far,
+        )
     }
 
     /// Rotates by a mouse drag of (`dx`, `dy`) radians.
@@ -262,7 +349,10 @@ impl Shading {
 
     /// The command-line name (`smooth`, `flat`, `wire`, `depth`, `doi`).
     pub fn name(self) -> &'static str {
-        Self::ALL.iter().find(|(s, _)| *s == self).map_or("smooth", |(_, n)| n)
+        Self::ALL
+            .iter()
+            .find(|(s, _)| *s == self)
+            .map_or("smooth", |(_, n)| n)
     }
 
     /// Parses a command-line name.
@@ -369,7 +459,10 @@ pub(crate) fn pack(mesh: &RenderMesh<'_>, options: &RenderOptions) -> Result<(Ve
     mesh.validate()?;
     let scalar = |i: usize| mesh.scalars.map_or(0.0, |s| s[i]);
     let mut out = Vec::new();
-    let mut layout = Layout { vertices: 0, ..Layout::default() };
+    let mut layout = Layout {
+        vertices: 0,
+        ..Layout::default()
+    };
     for (i, (p, n)) in mesh.positions.iter().zip(mesh.normals).enumerate() {
         push_vertex(&mut out, *p, *n, scalar(i));
     }
@@ -386,7 +479,10 @@ pub(crate) fn pack(mesh: &RenderMesh<'_>, options: &RenderOptions) -> Result<(Ve
             let mut normal = (pb - pa).cross(pc - pa).normalize_or_zero();
             // Keep the face normal on the side of the vertex normals, so faces of
             // inconsistently wound input still light like the smooth mode.
-            let avg = [a, b, c].iter().map(|&i| Vec3::from_array(mesh.normals[i])).sum::<Vec3>();
+            let avg = [a, b, c]
+                .iter()
+                .map(|&i| Vec3::from_array(mesh.normals[i]))
+                .sum::<Vec3>();
             if normal.dot(avg) < 0.0 {
                 normal = -normal;
             }
@@ -450,9 +546,11 @@ pub(crate) fn pack(mesh: &RenderMesh<'_>, options: &RenderOptions) -> Result<(Ve
     let (lo, hi) = options.scalar_range.unwrap_or_else(|| {
         mesh.scalars
             .map(|s| {
-                s.iter().filter(|v| v.is_finite()).fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
-                    (lo.min(v), hi.max(v))
-                })
+                s.iter()
+                    .filter(|v| v.is_finite())
+                    .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
+                        (lo.min(v), hi.max(v))
+                    })
             })
             .filter(|(lo, hi)| lo <= hi)
             .unwrap_or((0.0, 1.0))
@@ -464,7 +562,11 @@ pub(crate) fn pack(mesh: &RenderMesh<'_>, options: &RenderOptions) -> Result<(Ve
 }
 
 /// The 128-byte push-constant block of the triangle shaders.
-pub(crate) fn mesh_push_constants(view: &View, options: &RenderOptions, layout: &Layout) -> [u8; 128] {
+pub(crate) fn mesh_push_constants(
+    view: &View,
+    options: &RenderOptions,
+    layout: &Layout,
+) -> [u8; 128] {
     let mut floats = [0f32; 32];
     floats[..16].copy_from_slice(&view.view_proj().to_cols_array());
     floats[16..19].copy_from_slice(&view.eye.to_array());
@@ -501,25 +603,53 @@ mod tests {
 
     #[test]
     fn validate_rejects_bad_meshes() {
-        let good = RenderMesh { positions: &P, normals: &N, triangles: &[0, 1, 2], ..Default::default() };
+        let good = RenderMesh {
+            positions: &P,
+            normals: &N,
+            triangles: &[0, 1, 2],
+            ..Default::default()
+        };
         assert!(good.validate().is_ok());
-        let bad_index = RenderMesh { triangles: &[0, 1, 3], ..good };
+        let bad_index = RenderMesh {
+            triangles: &[0, 1, 3],
+            ..good
+        };
         assert!(matches!(bad_index.validate(), Err(VkError::InvalidMesh(_))));
-        let bad_count = RenderMesh { triangles: &[0, 1], ..good };
+        let bad_count = RenderMesh {
+            triangles: &[0, 1],
+            ..good
+        };
         assert!(bad_count.validate().is_err());
-        let bad_normals = RenderMesh { normals: &N[..2], ..good };
+        let bad_normals = RenderMesh {
+            normals: &N[..2],
+            ..good
+        };
         assert!(bad_normals.validate().is_err());
-        let bad_scalars = RenderMesh { scalars: Some(&[1.0]), ..good };
+        let bad_scalars = RenderMesh {
+            scalars: Some(&[1.0]),
+            ..good
+        };
         assert!(bad_scalars.validate().is_err());
-        let bad_edges = RenderMesh { edges: Some(&[[0, 7]]), ..good };
+        let bad_edges = RenderMesh {
+            edges: Some(&[[0, 7]]),
+            ..good
+        };
         assert!(bad_edges.validate().is_err());
-        let bad_lines = RenderMesh { lines: Some(&P), ..good };
+        let bad_lines = RenderMesh {
+            lines: Some(&P),
+            ..good
+        };
         assert!(bad_lines.validate().is_err());
     }
 
     #[test]
     fn pack_derives_unique_triangle_edges() {
-        let quad_p = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+        let quad_p = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
         let quad_n = [[0.0, 0.0, 1.0]; 4];
         let mesh = RenderMesh {
             positions: &quad_p,
@@ -527,12 +657,18 @@ mod tests {
             triangles: &[0, 1, 2, 0, 2, 3],
             ..Default::default()
         };
-        let options = RenderOptions { wire_overlay: true, ..Default::default() };
+        let options = RenderOptions {
+            wire_overlay: true,
+            ..Default::default()
+        };
         let (bytes, layout) = pack(&mesh, &options).unwrap();
         assert_eq!(layout.edge_count, 5);
         assert_eq!(layout.tri_count, 2);
         assert!(layout.total as usize == bytes.len() && bytes.len() % 16 == 0);
-        let with_edges = RenderMesh { edges: Some(&[[0, 1], [1, 2], [2, 3], [3, 0]]), ..mesh };
+        let with_edges = RenderMesh {
+            edges: Some(&[[0, 1], [1, 2], [2, 3], [3, 0]]),
+            ..mesh
+        };
         assert_eq!(pack(&with_edges, &options).unwrap().1.edge_count, 4);
     }
 

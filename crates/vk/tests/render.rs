@@ -14,9 +14,18 @@ use subdiv_vk::{
 
 /// A renderer with validation when available; `None` (test skipped) without a driver.
 fn renderer() -> Option<Renderer> {
-    let options = ContextOptions { validation: Validation::IfAvailable, ..Default::default() };
+    let options = ContextOptions {
+        validation: Validation::IfAvailable,
+        ..Default::default()
+    };
     match Renderer::with_options(&options) {
-        Ok(r) => Some(r),
+        Ok(r) => {
+            let layer = "/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json";
+            if std::path::Path::new(layer).exists() {
+                assert!(r.validation_enabled(), "validation layer installed but not enabled");
+            }
+            Some(r)
+        }
         Err(e @ (VkError::LoaderMissing { .. } | VkError::NoDriver { .. }))
             if std::env::var("SUBDIV_VK_REQUIRE_DRIVER").as_deref() != Ok("1") =>
         {
@@ -32,7 +41,11 @@ fn finish(renderer: Renderer) {
     let log = renderer.validation_log();
     drop(renderer);
     let messages = log.take();
-    assert!(messages.is_empty(), "validation messages:\n{}", messages.join("\n"));
+    assert!(
+        messages.is_empty(),
+        "validation messages:\n{}",
+        messages.join("\n")
+    );
 }
 
 /// A 2x2 square in the z = 0 plane, as two triangles, with its 4 outline edges.
@@ -46,7 +59,12 @@ struct Square {
 
 fn square(scalar: f32) -> Square {
     Square {
-        positions: vec![[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0], [-1.0, 1.0, 0.0]],
+        positions: vec![
+            [-1.0, -1.0, 0.0],
+            [1.0, -1.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [-1.0, 1.0, 0.0],
+        ],
         normals: vec![[0.0, 0.0, 1.0]; 4],
         triangles: vec![0, 1, 2, 0, 2, 3],
         edges: vec![[0, 1], [1, 2], [2, 3], [3, 0]],
@@ -69,7 +87,15 @@ impl Square {
 
 /// Looking straight at the square from z = 4; it fills the middle of the image.
 fn front_view(aspect: f32) -> View {
-    View::look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y, 0.6, aspect, 0.1, 100.0)
+    View::look_at(
+        Vec3::new(0.0, 0.0, 4.0),
+        Vec3::ZERO,
+        Vec3::Y,
+        0.6,
+        aspect,
+        0.1,
+        100.0,
+    )
 }
 
 const SIZE: [u32; 2] = [64, 48];
@@ -83,14 +109,25 @@ fn px(image: &subdiv_vk::image::RgbaImage, x: u32, y: u32) -> [u8; 4] {
 fn smooth_square_centre_is_shaded_corners_are_background() {
     let Some(mut r) = renderer() else { return };
     let sq = square(0.0);
-    let img = r.render(&sq.mesh(), &front_view(64.0 / 48.0), SIZE, &RenderOptions::default()).unwrap();
+    let img = r
+        .render(
+            &sq.mesh(),
+            &front_view(64.0 / 48.0),
+            SIZE,
+            &RenderOptions::default(),
+        )
+        .unwrap();
     assert_eq!(img.dimensions(), (64, 48));
     let c = px(&img, 32, 24);
     assert_ne!(c, WHITE, "centre should be shaded");
     assert!(c[0] == c[1] && c[1] == c[2], "grey material, got {c:?}");
     assert!(c[0] > 100 && c[0] < 250, "lit grey, got {c:?}");
     for (x, y) in [(0, 0), (63, 0), (0, 47), (63, 47)] {
-        assert_eq!(px(&img, x, y), WHITE, "corner ({x}, {y}) should be background");
+        assert_eq!(
+            px(&img, x, y),
+            WHITE,
+            "corner ({x}, {y}) should be background"
+        );
     }
     finish(r);
 }
@@ -101,8 +138,15 @@ fn image_is_not_upside_down() {
     // A triangle in the upper half of the view only.
     let positions = [[-1.0, 0.2, 0.0], [1.0, 0.2, 0.0], [0.0, 1.0, 0.0]];
     let normals = [[0.0, 0.0, 1.0]; 3];
-    let mesh = RenderMesh { positions: &positions, normals: &normals, triangles: &[0, 1, 2], ..Default::default() };
-    let img = r.render(&mesh, &front_view(1.0), [64, 64], &RenderOptions::default()).unwrap();
+    let mesh = RenderMesh {
+        positions: &positions,
+        normals: &normals,
+        triangles: &[0, 1, 2],
+        ..Default::default()
+    };
+    let img = r
+        .render(&mesh, &front_view(1.0), [64, 64], &RenderOptions::default())
+        .unwrap();
     assert_ne!(px(&img, 32, 20), WHITE, "upper half covered");
     assert_eq!(px(&img, 32, 44), WHITE, "lower half empty");
     finish(r);
@@ -115,7 +159,11 @@ fn every_shading_mode_renders_cleanly() {
     let view = front_view(64.0 / 48.0);
     for (shading, name) in Shading::ALL {
         for wire_overlay in [false, true] {
-            let options = RenderOptions { shading, wire_overlay, ..Default::default() };
+            let options = RenderOptions {
+                shading,
+                wire_overlay,
+                ..Default::default()
+            };
             let img = r.render(&sq.mesh(), &view, SIZE, &options).unwrap();
             let centre = px(&img, 32, 24);
             if shading == Shading::Wire {
@@ -134,15 +182,45 @@ fn depth_mode_uses_the_palette_and_doi_the_heat_map() {
     let view = front_view(64.0 / 48.0);
     // Depth 2 is green in the palette.
     let sq = square(2.0);
-    let options = RenderOptions { shading: Shading::Depth, ..Default::default() };
-    let c = px(&r.render(&sq.mesh(), &view, SIZE, &options).unwrap(), 32, 24);
-    assert!(c[1] > c[0] && c[1] > c[2], "depth 2 should be green, got {c:?}");
+    let options = RenderOptions {
+        shading: Shading::Depth,
+        ..Default::default()
+    };
+    let c = px(
+        &r.render(&sq.mesh(), &view, SIZE, &options).unwrap(),
+        32,
+        24,
+    );
+    assert!(
+        c[1] > c[0] && c[1] > c[2],
+        "depth 2 should be green, got {c:?}"
+    );
     // Heat map: the top of the range is red, the bottom blue.
-    let options = RenderOptions { shading: Shading::Doi, scalar_range: Some((0.0, 1.0)), ..Default::default() };
-    let hot = px(&r.render(&square(1.0).mesh(), &view, SIZE, &options).unwrap(), 32, 24);
-    assert!(hot[0] > hot[1] && hot[0] > hot[2], "hot should be red, got {hot:?}");
-    let cold = px(&r.render(&square(0.0).mesh(), &view, SIZE, &options).unwrap(), 32, 24);
-    assert!(cold[2] > cold[0] && cold[2] > cold[1], "cold should be blue, got {cold:?}");
+    let options = RenderOptions {
+        shading: Shading::Doi,
+        scalar_range: Some((0.0, 1.0)),
+        ..Default::default()
+    };
+    let hot = px(
+        &r.render(&square(1.0).mesh(), &view, SIZE, &options)
+            .unwrap(),
+        32,
+        24,
+    );
+    assert!(
+        hot[0] > hot[1] && hot[0] > hot[2],
+        "hot should be red, got {hot:?}"
+    );
+    let cold = px(
+        &r.render(&square(0.0).mesh(), &view, SIZE, &options)
+            .unwrap(),
+        32,
+        24,
+    );
+    assert!(
+        cold[2] > cold[0] && cold[2] > cold[1],
+        "cold should be blue, got {cold:?}"
+    );
     finish(r);
 }
 
@@ -151,20 +229,36 @@ fn wire_overlay_and_lines_are_drawn() {
     let Some(mut r) = renderer() else { return };
     let sq = square(0.0);
     let view = front_view(1.0);
-    let plain = r.render(&sq.mesh(), &view, [64, 64], &RenderOptions::default()).unwrap();
+    let plain = r
+        .render(&sq.mesh(), &view, [64, 64], &RenderOptions::default())
+        .unwrap();
     // A horizontal red segment through the centre, in front of nothing in particular.
     let lines = [[-0.5, 0.0, 0.0], [0.5, 0.0, 0.0]];
-    let with_lines = RenderMesh { lines: Some(&lines), ..sq.mesh() };
-    let img = r.render(&with_lines, &view, [64, 64], &RenderOptions::default()).unwrap();
+    let with_lines = RenderMesh {
+        lines: Some(&lines),
+        ..sq.mesh()
+    };
+    let img = r
+        .render(&with_lines, &view, [64, 64], &RenderOptions::default())
+        .unwrap();
     let column: Vec<[u8; 4]> = (28..36).map(|y| px(&img, 32, y)).collect();
     assert!(
         column.iter().any(|c| c[0] > 150 && c[1] < 80 && c[2] < 80),
         "a red line crosses the centre column: {column:?}"
     );
-    let hidden = RenderOptions { show_lines: false, ..Default::default() };
-    assert_eq!(r.render(&with_lines, &view, [64, 64], &hidden).unwrap(), plain);
+    let hidden = RenderOptions {
+        show_lines: false,
+        ..Default::default()
+    };
+    assert_eq!(
+        r.render(&with_lines, &view, [64, 64], &hidden).unwrap(),
+        plain
+    );
     // The overlay darkens the square's outline.
-    let overlay = RenderOptions { wire_overlay: true, ..Default::default() };
+    let overlay = RenderOptions {
+        wire_overlay: true,
+        ..Default::default()
+    };
     let img = r.render(&sq.mesh(), &view, [64, 64], &overlay).unwrap();
     let dark = img.pixels().filter(|p| p.0[0] < 40).count();
     assert!(dark > 40, "outline pixels drawn: {dark}");
@@ -175,13 +269,25 @@ fn wire_overlay_and_lines_are_drawn() {
 fn aux_images_and_exr_have_sane_values() {
     let Some(mut r) = renderer() else { return };
     let sq = square(3.0);
-    let options = RenderOptions { shading: Shading::Depth, ..Default::default() };
-    let (_, aux) = r.render_with_aux(&sq.mesh(), &front_view(64.0 / 48.0), SIZE, &options).unwrap();
+    let options = RenderOptions {
+        shading: Shading::Depth,
+        ..Default::default()
+    };
+    let (_, aux) = r
+        .render_with_aux(&sq.mesh(), &front_view(64.0 / 48.0), SIZE, &options)
+        .unwrap();
     let centre = aux.index(32, 24).unwrap();
-    assert!((aux.depth[centre] - 4.0).abs() < 1e-3, "depth {}", aux.depth[centre]);
+    assert!(
+        (aux.depth[centre] - 4.0).abs() < 1e-3,
+        "depth {}",
+        aux.depth[centre]
+    );
     assert_eq!(aux.coverage[centre], 1.0);
     let n = aux.normals[centre];
-    assert!((n[2] - 1.0).abs() < 1e-5 && n[0].abs() < 1e-5 && n[1].abs() < 1e-5, "normal {n:?}");
+    assert!(
+        (n[2] - 1.0).abs() < 1e-5 && n[0].abs() < 1e-5 && n[1].abs() < 1e-5,
+        "normal {n:?}"
+    );
     assert!((aux.scalars[centre] - 3.0).abs() < 1e-5);
     let corner = aux.index(0, 0).unwrap();
     assert!(aux.depth[corner].is_infinite() && aux.coverage[corner] == 0.0);
@@ -199,7 +305,9 @@ fn aux_images_and_exr_have_sane_values() {
         assert!(channels.iter().any(|c| c.name == name), "channel {name}");
     }
     let png = dir.join("colour.png");
-    let img = r.render(&sq.mesh(), &front_view(64.0 / 48.0), SIZE, &options).unwrap();
+    let img = r
+        .render(&sq.mesh(), &front_view(64.0 / 48.0), SIZE, &options)
+        .unwrap();
     subdiv_vk::write_png(&png, &img).unwrap();
     assert_eq!(subdiv_vk::read_png(&png).unwrap(), img);
     let _ = std::fs::remove_dir_all(&dir);
@@ -211,15 +319,29 @@ fn rendering_is_deterministic_and_resizes() {
     let Some(mut r) = renderer() else { return };
     let sq = square(1.0);
     let cam = OrbitCamera::framing_mesh(&sq.mesh());
-    let options = RenderOptions { shading: Shading::Smooth, wire_overlay: true, ..Default::default() };
-    let a = r.render(&sq.mesh(), &cam.view(1.5), [96, 64], &options).unwrap();
-    let b = r.render(&sq.mesh(), &cam.view(1.0), [32, 32], &options).unwrap();
-    let c = r.render(&sq.mesh(), &cam.view(1.5), [96, 64], &options).unwrap();
+    let options = RenderOptions {
+        shading: Shading::Smooth,
+        wire_overlay: true,
+        ..Default::default()
+    };
+    let a = r
+        .render(&sq.mesh(), &cam.view(1.5), [96, 64], &options)
+        .unwrap();
+    let b = r
+        .render(&sq.mesh(), &cam.view(1.0), [32, 32], &options)
+        .unwrap();
+    let c = r
+        .render(&sq.mesh(), &cam.view(1.5), [96, 64], &options)
+        .unwrap();
     assert_eq!(b.dimensions(), (32, 32));
     assert_eq!(a, c);
     // A second renderer (own instance and device) gives the same bytes.
     let Some(mut r2) = renderer() else { return };
-    assert_eq!(r2.render(&sq.mesh(), &cam.view(1.5), [96, 64], &options).unwrap(), a);
+    assert_eq!(
+        r2.render(&sq.mesh(), &cam.view(1.5), [96, 64], &options)
+            .unwrap(),
+        a
+    );
     finish(r2);
     finish(r);
 }
@@ -234,10 +356,15 @@ fn parallel_renderers_in_threads() {
             std::thread::spawn(move || {
                 let mut r = renderer().expect("driver present");
                 let sq = square(i as f32);
-                let options = RenderOptions { shading: Shading::Depth, ..Default::default() };
+                let options = RenderOptions {
+                    shading: Shading::Depth,
+                    ..Default::default()
+                };
                 let mut last = None;
                 for _ in 0..3 {
-                    let img = r.render(&sq.mesh(), &front_view(1.0), [48, 48], &options).unwrap();
+                    let img = r
+                        .render(&sq.mesh(), &front_view(1.0), [48, 48], &options)
+                        .unwrap();
                     if let Some(prev) = &last {
                         assert_eq!(prev, &img);
                     }
@@ -257,7 +384,10 @@ fn bad_input_is_an_error_not_a_panic() {
     let Some(mut r) = renderer() else { return };
     let sq = square(0.0);
     let view = front_view(1.0);
-    let bad = RenderMesh { triangles: &[0, 1, 9], ..sq.mesh() };
+    let bad = RenderMesh {
+        triangles: &[0, 1, 9],
+        ..sq.mesh()
+    };
     assert!(matches!(
         r.render(&bad, &view, [16, 16], &RenderOptions::default()),
         Err(VkError::InvalidMesh(_))
@@ -271,9 +401,19 @@ fn bad_input_is_an_error_not_a_panic() {
         Err(VkError::InvalidSize { .. })
     ));
     // An empty mesh is just background, and the renderer still works afterwards.
-    let empty = r.render(&RenderMesh::default(), &view, [16, 16], &RenderOptions::default()).unwrap();
+    let empty = r
+        .render(
+            &RenderMesh::default(),
+            &view,
+            [16, 16],
+            &RenderOptions::default(),
+        )
+        .unwrap();
     assert!(empty.pixels().all(|p| p.0 == WHITE));
-    assert!(r.render(&sq.mesh(), &view, [16, 16], &RenderOptions::default()).is_ok());
+    assert!(
+        r.render(&sq.mesh(), &view, [16, 16], &RenderOptions::default())
+            .is_ok()
+    );
     finish(r);
 }
 
@@ -293,16 +433,30 @@ fn missing_loader_library_names_the_package() {
 fn missing_driver_names_the_package() {
     const CHILD: &str = "SUBDIV_VK_TEST_NO_DRIVER_CHILD";
     if std::env::var_os(CHILD).is_some() {
-        let err = Renderer::with_options(&ContextOptions { validation: Validation::Off, ..Default::default() })
-            .err()
-            .expect("no driver: must fail");
-        assert!(matches!(err, VkError::NoDriver { .. } | VkError::LoaderMissing { .. }), "{err:?}");
+        let err = Renderer::with_options(&ContextOptions {
+            validation: Validation::Off,
+            ..Default::default()
+        })
+        .err()
+        .expect("no driver: must fail");
+        assert!(
+            matches!(
+                err,
+                VkError::NoDriver { .. } | VkError::LoaderMissing { .. }
+            ),
+            "{err:?}"
+        );
         assert!(err.to_string().contains("mesa-vulkan-drivers"), "{err}");
         return;
     }
     let exe = std::env::current_exe().unwrap();
     let out = Command::new(exe)
-        .args(["--exact", "missing_driver_names_the_package", "--nocapture", "--test-threads=1"])
+        .args([
+            "--exact",
+            "missing_driver_names_the_package",
+            "--nocapture",
+            "--test-threads=1",
+        ])
         .env(CHILD, "1")
         .env("VK_DRIVER_FILES", "/nonexistent/icd.json")
         .env("VK_ICD_FILENAMES", "/nonexistent/icd.json")

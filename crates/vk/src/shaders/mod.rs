@@ -15,6 +15,8 @@ pub(crate) const LINE_FRAG: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/li
 
 /// The SPIR-V words of an embedded shader.
 pub(crate) fn words(bytes: &[u8]) -> Result<Vec<u32>> {
-    ash::util::read_spv(&mut Cursor::new(bytes))
-        .map_err(|e| VkError::Io { path: "embedded SPIR-V".into(), source: e })
+    ash::util::read_spv(&mut Cursor::new(bytes)).map_err(|e| VkError::Io {
+        path: "embedded SPIR-V".into(),
+        source: e,
+    })
 }
