@@ -8,7 +8,9 @@ use glam::DVec3;
 
 /// The repository's `fixtures/` directory.
 pub fn fixtures() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..").join("fixtures")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .join("fixtures")
 }
 
 /// All files in `fixtures/<dir>` with extension `ext`, sorted.
@@ -38,12 +40,18 @@ pub struct Reference {
 impl Reference {
     /// Parses a reference file.
     pub fn read(path: &std::path::Path) -> Reference {
-        let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let text =
+            std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let mut lines = text.lines();
         let head = lines.next().expect("empty reference file");
         let mut header = HashMap::new();
         let toks: Vec<&str> = head.split_whitespace().collect();
-        assert_eq!(toks[0], "osdref", "{}: not a reference file", path.display());
+        assert_eq!(
+            toks[0],
+            "osdref",
+            "{}: not a reference file",
+            path.display()
+        );
         header.insert("V".into(), toks[1].into());
         header.insert("F".into(), toks[2].into());
         for t in &toks[3..] {
@@ -66,12 +74,19 @@ impl Reference {
                 _ => {}
             }
         }
-        Reference { header, positions, normals, faces }
+        Reference {
+            header,
+            positions,
+            normals,
+            faces,
+        }
     }
 
     /// A header value parsed as a number.
     pub fn num(&self, key: &str) -> usize {
-        self.header[key].parse().unwrap_or_else(|_| panic!("header {key}"))
+        self.header[key]
+            .parse()
+            .unwrap_or_else(|_| panic!("header {key}"))
     }
 }
 
@@ -89,10 +104,18 @@ impl PointGrid {
         for (i, p) in points.iter().enumerate() {
             map.entry(Self::key(*p, cell)).or_default().push(i);
         }
-        PointGrid { cell, map, points: points.to_vec() }
+        PointGrid {
+            cell,
+            map,
+            points: points.to_vec(),
+        }
     }
     fn key(p: DVec3, cell: f64) -> (i64, i64, i64) {
-        ((p.x / cell).floor() as i64, (p.y / cell).floor() as i64, (p.z / cell).floor() as i64)
+        (
+            (p.x / cell).floor() as i64,
+            (p.y / cell).floor() as i64,
+            (p.z / cell).floor() as i64,
+        )
     }
     /// The nearest indexed point within one cell of `p` (index and distance), else the global
     /// nearest by brute force.

@@ -6,9 +6,9 @@
 use std::collections::HashSet;
 
 use glam::DVec3;
-use subdiv_mesh::{read_obj, Mesh, VertexId};
-use subdiv_rules::{refine_uniform_levels, tessellate_uniform, Scheme};
-use subdiv_tests::{canonical_face, fixture_files, fixtures, PointGrid, Reference};
+use subdiv_mesh::{Mesh, VertexId, read_obj};
+use subdiv_rules::{Scheme, refine_uniform_levels, tessellate_uniform};
+use subdiv_tests::{PointGrid, Reference, canonical_face, fixture_files, fixtures};
 
 struct Outcome {
     max_pos_err: f64,
@@ -17,10 +17,17 @@ struct Outcome {
 }
 
 fn check(shape: &str, level: u32) -> Result<Outcome, String> {
-    let cage_path = fixtures().join("reference/shapes").join(format!("{shape}.obj"));
-    let reference = Reference::read(&fixtures().join(format!("reference/limit/{shape}.L{level}.txt")));
+    let cage_path = fixtures()
+        .join("reference/shapes")
+        .join(format!("{shape}.obj"));
+    let reference =
+        Reference::read(&fixtures().join(format!("reference/limit/{shape}.L{level}.txt")));
     let mesh = read_obj(&cage_path).map_err(|e| e.to_string())?;
-    let scheme = if reference.header["scheme"] == "loop" { Scheme::Loop } else { Scheme::CatmullClark };
+    let scheme = if reference.header["scheme"] == "loop" {
+        Scheme::Loop
+    } else {
+        Scheme::CatmullClark
+    };
     let t = tessellate_uniform(&mesh, scheme, level).map_err(|e| e.to_string())?;
     let (lo, hi) = mesh.bounds();
     let diag = (hi - lo).length() as f64;
@@ -35,7 +42,11 @@ fn check(shape: &str, level: u32) -> Result<Outcome, String> {
             reference.num("F")
         ));
     }
-    let ours: Vec<DVec3> = t.positions.iter().map(|p| glam::Vec3::from(*p).as_dvec3()).collect();
+    let ours: Vec<DVec3> = t
+        .positions
+        .iter()
+        .map(|p| glam::Vec3::from(*p).as_dvec3())
+        .collect();
     let base = reference.num("base_verts");
     let grid = PointGrid::new(&ours, (tol * 100.0).max(1e-9));
 
@@ -44,7 +55,11 @@ fn check(shape: &str, level: u32) -> Result<Outcome, String> {
     let mut max_err = 0.0f64;
     let mut worst = 0;
     for (i, p) in reference.positions.iter().enumerate() {
-        let (j, d) = if i < base { (i, (ours[i] - *p).length()) } else { grid.nearest(*p) };
+        let (j, d) = if i < base {
+            (i, (ours[i] - *p).length())
+        } else {
+            grid.nearest(*p)
+        };
         map[i] = j;
         if d > max_err {
             max_err = d;
@@ -63,12 +78,15 @@ fn check(shape: &str, level: u32) -> Result<Outcome, String> {
     }
 
     // Same faces, same orientation.
-    let our_faces: HashSet<Vec<usize>> =
-        (0..t.num_faces()).map(|i| canonical_face(&t.face(i).iter().map(|&x| x as usize).collect::<Vec<_>>())).collect();
+    let our_faces: HashSet<Vec<usize>> = (0..t.num_faces())
+        .map(|i| canonical_face(&t.face(i).iter().map(|&x| x as usize).collect::<Vec<_>>()))
+        .collect();
     for f in &reference.faces {
         let mapped: Vec<usize> = f.iter().map(|&i| map[i]).collect();
         if !our_faces.contains(&canonical_face(&mapped)) {
-            return Err(format!("reference face {f:?} (ours {mapped:?}) is missing or flipped"));
+            return Err(format!(
+                "reference face {f:?} (ours {mapped:?}) is missing or flipped"
+            ));
         }
     }
 
@@ -88,16 +106,23 @@ fn check(shape: &str, level: u32) -> Result<Outcome, String> {
             max_deg = deg;
         }
         if deg > 0.5 {
-            return Err(format!("normal at reference vertex {i} off by {deg:.3} degrees: ours {on:?}, reference {rn:?}"));
+            return Err(format!(
+                "normal at reference vertex {i} off by {deg:.3} degrees: ours {on:?}, reference {rn:?}"
+            ));
         }
     }
-    Ok(Outcome { max_pos_err: max_err / diag, max_normal_deg: max_deg, smooth_normals: n_smooth })
+    Ok(Outcome {
+        max_pos_err: max_err / diag,
+        max_normal_deg: max_deg,
+        smooth_normals: n_smooth,
+    })
 }
 
 fn is_smooth_point(m: &Mesh, v: VertexId) -> bool {
     m.vertex_sharpness(v) < subdiv_mesh::SHARPNESS_INFINITE
         && !m.is_isolated(v)
-        && m.outgoing(v).all(|h| m.edge_sharpness(h.edge()) < subdiv_mesh::SHARPNESS_INFINITE)
+        && m.outgoing(v)
+            .all(|h| m.edge_sharpness(h.edge()) < subdiv_mesh::SHARPNESS_INFINITE)
 }
 
 #[test]
@@ -119,6 +144,12 @@ fn every_reference_shape_matches_opensubdiv() {
             Err(e) => failures.push(format!("{name}: {e}")),
         }
     }
-    assert!(failures.is_empty(), "{} of {} reference checks failed:\n{}", failures.len(), checked + failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} of {} reference checks failed:\n{}",
+        failures.len(),
+        checked + failures.len(),
+        failures.join("\n")
+    );
     assert!(checked >= 90, "only {checked} reference files checked");
 }

@@ -1,1 +1,47 @@
-fn main() {}
+//! `subdiv`: the command-line front end. It parses arguments and wires the library crates
+//! together; all geometry lives in the libraries.
+
+mod info;
+mod load;
+mod tessellate;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// Adaptive, crack-free tessellation of subdivision surfaces.
+#[derive(Parser, Debug)]
+#[command(name = "subdiv", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Counts, face sizes, valences, boundaries, creases and genus of a cage, and whether (and
+    /// why) it would be refused.
+    Info(info::InfoArgs),
+    /// Tessellate the limit surface and write it as OBJ (limit points and limit normals).
+    Tessellate(tessellate::TessellateArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Info(a) => info::run(&a),
+        Command::Tessellate(a) => tessellate::run(&a),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e}");
+            let mut src = e.source();
+            while let Some(s) = src {
+                eprintln!("  caused by: {s}");
+                src = s.source();
+            }
+            ExitCode::FAILURE
+        }
+    }
+}

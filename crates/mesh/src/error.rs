@@ -64,7 +64,9 @@ pub enum MeshError {
         line: Option<u32>,
     },
     /// An edge used by more than two faces.
-    #[error("edge {a}-{b} is shared by more than two faces (faces {faces:?}); non-manifold meshes are refused")]
+    #[error(
+        "edge {a}-{b} is shared by more than two faces (faces {faces:?}); non-manifold meshes are refused"
+    )]
     NonManifoldEdge {
         /// Edge endpoint.
         a: u32,
@@ -76,7 +78,9 @@ pub enum MeshError {
         line: Option<u32>,
     },
     /// A vertex whose incident faces do not form a single fan (e.g. two cones touching at a tip).
-    #[error("vertex {vertex} is non-manifold: its faces form {fans} separate fans; non-manifold meshes are refused")]
+    #[error(
+        "vertex {vertex} is non-manifold: its faces form {fans} separate fans; non-manifold meshes are refused (split such vertices with --split-nonmanifold)"
+    )]
     NonManifoldVertex {
         /// The vertex.
         vertex: u32,
@@ -86,7 +90,9 @@ pub enum MeshError {
         line: Option<u32>,
     },
     /// Two faces traverse their shared edge in the same direction.
-    #[error("faces {face} and {other} traverse edge {a}->{b} in the same direction (inconsistent orientation)")]
+    #[error(
+        "faces {face} and {other} traverse edge {a}->{b} in the same direction (inconsistent orientation)"
+    )]
     InconsistentOrientation {
         /// Edge start.
         a: u32,

@@ -26,12 +26,17 @@ mod mesh;
 mod obj;
 mod options;
 mod soup;
+mod stats;
 
 pub use error::{MeshError, ObjError};
 pub use handle::{EdgeId, FaceId, HalfedgeId, VertexId};
 pub use mesh::{Mesh, Outgoing};
-pub use obj::{ObjData, format_mesh_obj, format_obj, parse_obj, read_obj, read_obj_soup, write_mesh_obj, write_obj};
+pub use obj::{
+    ObjData, ReadOptions, format_mesh_obj, format_obj, parse_obj, read_obj, read_obj_soup,
+    read_obj_with, write_mesh_obj, write_obj,
+};
 pub use options::{BoundaryInterpolation, CreaseMethod, SHARPNESS_INFINITE, SchemeOptions};
 pub use soup::{CornerTag, CreaseTag, HoleTag, PolygonSoup};
+pub use stats::MeshStats;
 
 pub use glam;

@@ -6,7 +6,7 @@ use glam::Vec3;
 
 use crate::error::MeshError;
 use crate::handle::{EdgeId, FaceId, HalfedgeId, VertexId};
-use crate::options::{BoundaryInterpolation, SchemeOptions, SHARPNESS_INFINITE};
+use crate::options::{BoundaryInterpolation, SHARPNESS_INFINITE, SchemeOptions};
 use crate::soup::PolygonSoup;
 
 /// A manifold, consistently oriented polygon mesh with faces of any size.
@@ -281,7 +281,12 @@ impl Mesh {
     #[inline]
     pub fn outgoing(&self, v: VertexId) -> Outgoing<'_> {
         let h = self.vertex_out[v.idx()];
-        Outgoing { mesh: self, start: h, cur: h, done: !h.is_some() }
+        Outgoing {
+            mesh: self,
+            start: h,
+            cur: h,
+            done: !h.is_some(),
+        }
     }
     /// Number of edges incident to `v`.
     pub fn valence(&self, v: VertexId) -> usize {
@@ -349,14 +354,20 @@ fn to_u32(n: usize, what: &str) -> Result<u32, MeshError> {
     u32::try_from(n)
         .ok()
         .filter(|&x| x != u32::MAX)
-        .ok_or_else(|| MeshError::TooLarge { what: format!("{n} {what}") })
+        .ok_or_else(|| MeshError::TooLarge {
+            what: format!("{n} {what}"),
+        })
 }
 
 fn valid_sharpness(tag: &'static str, s: f32, line: Option<u32>) -> Result<f32, MeshError> {
     if s.is_finite() && s >= 0.0 {
         Ok(s.min(SHARPNESS_INFINITE))
     } else {
-        Err(MeshError::BadSharpness { tag, value: s, line })
+        Err(MeshError::BadSharpness {
+            tag,
+            value: s,
+            line,
+        })
     }
 }
 
@@ -388,18 +399,31 @@ fn build(soup: &PolygonSoup) -> Result<Mesh, MeshError> {
         let f = soup.face(fi);
         let line = soup.face_line(fi);
         if f.len() < 3 {
-            return Err(MeshError::FaceTooSmall { face: fi as u32, len: f.len() as u32, line });
+            return Err(MeshError::FaceTooSmall {
+                face: fi as u32,
+                len: f.len() as u32,
+                line,
+            });
         }
         for &i in f {
             if i < 0 || i >= nv as i64 {
-                return Err(MeshError::IndexOutOfRange { face: fi as u32, index: i, count: nv, line });
+                return Err(MeshError::IndexOutOfRange {
+                    face: fi as u32,
+                    index: i,
+                    count: nv,
+                    line,
+                });
             }
         }
         scratch.clear();
         scratch.extend(f.iter().map(|&i| i as u32));
         scratch.sort_unstable();
         if let Some(w) = scratch.windows(2).find(|w| w[0] == w[1]) {
-            return Err(MeshError::RepeatedVertex { face: fi as u32, vertex: w[0], line });
+            return Err(MeshError::RepeatedVertex {
+                face: fi as u32,
+                vertex: w[0],
+                line,
+            });
         }
         face_verts.extend(f.iter().map(|&i| VertexId(i as u32)));
         face_offsets.push(to_u32(face_verts.len(), "face corners")?);
@@ -550,7 +574,11 @@ fn build(soup: &PolygonSoup) -> Result<Mesh, MeshError> {
         face_verts,
         face_he,
         face_hole: vec![false; nf],
-        face_group: if soup.face_groups.len() == nf { soup.face_groups.clone() } else { vec![u32::MAX; nf] },
+        face_group: if soup.face_groups.len() == nf {
+            soup.face_groups.clone()
+        } else {
+            vec![u32::MAX; nf]
+        },
         groups: soup.groups.clone(),
         options: soup.options,
     };
@@ -574,8 +602,16 @@ fn build(soup: &PolygonSoup) -> Result<Mesh, MeshError> {
             }
         }
         if faces_seen != corner_count[v as usize] {
-            let fans = if faces_seen == 0 { 2 } else { corner_count[v as usize].div_ceil(faces_seen.max(1)).max(2) };
-            return Err(MeshError::NonManifoldVertex { vertex: v, fans, line: soup.vertex_line(v as usize) });
+            let fans = if faces_seen == 0 {
+                2
+            } else {
+                corner_count[v as usize].div_ceil(faces_seen.max(1)).max(2)
+            };
+            return Err(MeshError::NonManifoldVertex {
+                vertex: v,
+                fans,
+                line: soup.vertex_line(v as usize),
+            });
         }
     }
 
@@ -584,7 +620,12 @@ fn build(soup: &PolygonSoup) -> Result<Mesh, MeshError> {
         let s = valid_sharpness("crease", t.sharpness, t.line)?;
         for &x in &[t.a, t.b] {
             if x < 0 || x >= nv as i64 {
-                return Err(MeshError::TagMissingVertex { tag: "crease", vertex: x, count: nv, line: t.line });
+                return Err(MeshError::TagMissingVertex {
+                    tag: "crease",
+                    vertex: x,
+                    count: nv,
+                    line: t.line,
+                });
             }
         }
         let (a, b) = (t.a as u32, t.b as u32);
@@ -596,13 +637,22 @@ fn build(soup: &PolygonSoup) -> Result<Mesh, MeshError> {
     for t in &soup.corners {
         let s = valid_sharpness("corner", t.sharpness, t.line)?;
         if t.v < 0 || t.v >= nv as i64 {
-            return Err(MeshError::TagMissingVertex { tag: "corner", vertex: t.v, count: nv, line: t.line });
+            return Err(MeshError::TagMissingVertex {
+                tag: "corner",
+                vertex: t.v,
+                count: nv,
+                line: t.line,
+            });
         }
         mesh.vertex_sharpness[t.v as usize] = s;
     }
     for t in &soup.holes {
         if t.f < 0 || t.f >= nf as i64 {
-            return Err(MeshError::TagMissingFace { face: t.f, count: nf as u32, line: t.line });
+            return Err(MeshError::TagMissingFace {
+                face: t.f,
+                count: nf as u32,
+                line: t.line,
+            });
         }
         mesh.face_hole[t.f as usize] = true;
     }
@@ -701,7 +751,11 @@ mod tests {
         let boundary = m.edges().filter(|&e| m.is_boundary_edge(e)).count();
         assert_eq!(boundary, 8);
         for e in m.edges() {
-            let want = if m.is_boundary_edge(e) { SHARPNESS_INFINITE } else { 0.0 };
+            let want = if m.is_boundary_edge(e) {
+                SHARPNESS_INFINITE
+            } else {
+                0.0
+            };
             assert_eq!(m.edge_sharpness(e), want);
         }
         // Boundary loop closes.
@@ -733,8 +787,17 @@ mod tests {
     #[test]
     fn tags_apply() {
         let mut s = cube();
-        s.creases.push(CreaseTag { a: 0, b: 2, sharpness: 2.5, line: Some(3) });
-        s.corners.push(CornerTag { v: 7, sharpness: 1.0, line: None });
+        s.creases.push(CreaseTag {
+            a: 0,
+            b: 2,
+            sharpness: 2.5,
+            line: Some(3),
+        });
+        s.corners.push(CornerTag {
+            v: 7,
+            sharpness: 1.0,
+            line: None,
+        });
         s.holes.push(HoleTag { f: 1, line: None });
         let m = Mesh::from_soup(&s).unwrap();
         let h = m.find_halfedge(VertexId(2), VertexId(0)).unwrap();
@@ -750,22 +813,50 @@ mod tests {
     #[test]
     fn error_index_out_of_range() {
         let s = PolygonSoup::from_faces(vec![Vec3::ZERO; 3], &[vec![0, 1, 3]]);
-        assert!(matches!(err(&s), MeshError::IndexOutOfRange { face: 0, index: 3, count: 3, .. }));
-        let mut s = PolygonSoup { positions: vec![Vec3::ZERO; 3], ..Default::default() };
+        assert!(matches!(
+            err(&s),
+            MeshError::IndexOutOfRange {
+                face: 0,
+                index: 3,
+                count: 3,
+                ..
+            }
+        ));
+        let mut s = PolygonSoup {
+            positions: vec![Vec3::ZERO; 3],
+            ..Default::default()
+        };
         s.push_face([0, 1, -1]);
-        assert!(matches!(err(&s), MeshError::IndexOutOfRange { index: -1, .. }));
+        assert!(matches!(
+            err(&s),
+            MeshError::IndexOutOfRange { index: -1, .. }
+        ));
     }
 
     #[test]
     fn error_small_face() {
         let s = PolygonSoup::from_faces(vec![Vec3::ZERO; 3], &[vec![0, 1]]);
-        assert!(matches!(err(&s), MeshError::FaceTooSmall { face: 0, len: 2, .. }));
+        assert!(matches!(
+            err(&s),
+            MeshError::FaceTooSmall {
+                face: 0,
+                len: 2,
+                ..
+            }
+        ));
     }
 
     #[test]
     fn error_repeated_vertex() {
         let s = PolygonSoup::from_faces(vec![Vec3::ZERO; 3], &[vec![0, 1, 2, 1]]);
-        assert!(matches!(err(&s), MeshError::RepeatedVertex { face: 0, vertex: 1, .. }));
+        assert!(matches!(
+            err(&s),
+            MeshError::RepeatedVertex {
+                face: 0,
+                vertex: 1,
+                ..
+            }
+        ));
     }
 
     #[test]
@@ -774,7 +865,17 @@ mod tests {
         s.positions[5].y = f32::NAN;
         s.vertex_lines = (1..=8).collect();
         let e = err(&s);
-        assert!(matches!(e, MeshError::NonFinite { vertex: 5, line: Some(6), .. }), "{e:?}");
+        assert!(
+            matches!(
+                e,
+                MeshError::NonFinite {
+                    vertex: 5,
+                    line: Some(6),
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
         s.positions[5].y = f32::INFINITY;
         assert!(matches!(err(&s), MeshError::NonFinite { vertex: 5, .. }));
     }
@@ -784,7 +885,10 @@ mod tests {
         let p = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z, Vec3::ONE];
         let s = PolygonSoup::from_faces(p, &[vec![0, 1, 2], vec![1, 0, 3], vec![0, 1, 4]]);
         let e = err(&s);
-        assert!(matches!(e, MeshError::NonManifoldEdge { a: 0, b: 1, .. }), "{e:?}");
+        assert!(
+            matches!(e, MeshError::NonManifoldEdge { a: 0, b: 1, .. }),
+            "{e:?}"
+        );
     }
 
     #[test]
@@ -792,7 +896,10 @@ mod tests {
         // Two triangles touching only at vertex 0 (a bow-tie).
         let p = vec![Vec3::ZERO, Vec3::X, Vec3::Y, -Vec3::X, -Vec3::Y];
         let s = PolygonSoup::from_faces(p, &[vec![0, 1, 2], vec![0, 3, 4]]);
-        assert!(matches!(err(&s), MeshError::NonManifoldVertex { vertex: 0, .. }));
+        assert!(matches!(
+            err(&s),
+            MeshError::NonManifoldVertex { vertex: 0, .. }
+        ));
         // Two closed cones sharing their apex: no boundary at the apex, two fans.
         let mut p = vec![Vec3::ZERO];
         let mut faces = Vec::new();
@@ -808,41 +915,96 @@ mod tests {
             faces.push(vec![base, base + 2, base + 1]);
         }
         let s = PolygonSoup::from_faces(p, &faces);
-        assert!(matches!(err(&s), MeshError::NonManifoldVertex { vertex: 0, .. }));
+        assert!(matches!(
+            err(&s),
+            MeshError::NonManifoldVertex { vertex: 0, .. }
+        ));
     }
 
     #[test]
     fn error_orientation() {
         let p = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::ONE];
         let s = PolygonSoup::from_faces(p, &[vec![0, 1, 2], vec![0, 1, 3]]);
-        assert!(matches!(err(&s), MeshError::InconsistentOrientation { a: 0, b: 1, face: 1, other: 0, .. }));
+        assert!(matches!(
+            err(&s),
+            MeshError::InconsistentOrientation {
+                a: 0,
+                b: 1,
+                face: 1,
+                other: 0,
+                ..
+            }
+        ));
     }
 
     #[test]
     fn error_tags() {
         let mut s = cube();
-        s.creases.push(CreaseTag { a: 0, b: 7, sharpness: 1.0, line: Some(20) });
-        assert!(matches!(err(&s), MeshError::TagMissingEdge { a: 0, b: 7, line: Some(20) }));
+        s.creases.push(CreaseTag {
+            a: 0,
+            b: 7,
+            sharpness: 1.0,
+            line: Some(20),
+        });
+        assert!(matches!(
+            err(&s),
+            MeshError::TagMissingEdge {
+                a: 0,
+                b: 7,
+                line: Some(20)
+            }
+        ));
         let mut s = cube();
-        s.creases.push(CreaseTag { a: 0, b: 70, sharpness: 1.0, line: None });
-        assert!(matches!(err(&s), MeshError::TagMissingVertex { vertex: 70, .. }));
+        s.creases.push(CreaseTag {
+            a: 0,
+            b: 70,
+            sharpness: 1.0,
+            line: None,
+        });
+        assert!(matches!(
+            err(&s),
+            MeshError::TagMissingVertex { vertex: 70, .. }
+        ));
         let mut s = cube();
-        s.corners.push(CornerTag { v: 9, sharpness: 1.0, line: None });
-        assert!(matches!(err(&s), MeshError::TagMissingVertex { tag: "corner", vertex: 9, .. }));
+        s.corners.push(CornerTag {
+            v: 9,
+            sharpness: 1.0,
+            line: None,
+        });
+        assert!(matches!(
+            err(&s),
+            MeshError::TagMissingVertex {
+                tag: "corner",
+                vertex: 9,
+                ..
+            }
+        ));
         let mut s = cube();
         s.holes.push(HoleTag { f: 6, line: None });
         assert!(matches!(err(&s), MeshError::TagMissingFace { face: 6, .. }));
         let mut s = cube();
-        s.creases.push(CreaseTag { a: 0, b: 2, sharpness: f32::NAN, line: None });
+        s.creases.push(CreaseTag {
+            a: 0,
+            b: 2,
+            sharpness: f32::NAN,
+            line: None,
+        });
         assert!(matches!(err(&s), MeshError::BadSharpness { .. }));
         let mut s = cube();
-        s.corners.push(CornerTag { v: 0, sharpness: -1.0, line: None });
+        s.corners.push(CornerTag {
+            v: 0,
+            sharpness: -1.0,
+            line: None,
+        });
         assert!(matches!(err(&s), MeshError::BadSharpness { .. }));
     }
 
     #[test]
     fn error_empty() {
-        let s = PolygonSoup { positions: vec![Vec3::ZERO], ..Default::default() };
+        let s = PolygonSoup {
+            positions: vec![Vec3::ZERO],
+            ..Default::default()
+        };
         assert_eq!(err(&s), MeshError::Empty);
     }
 
@@ -859,5 +1021,31 @@ mod tests {
         let m = Mesh::from_soup(&PolygonSoup::from_faces(p, &faces)).unwrap();
         assert_eq!(m.valence(VertexId(0)), 360);
         assert_eq!(m.max_valence(), 360);
+    }
+}
+
+#[cfg(test)]
+mod split_tests {
+    use super::*;
+
+    #[test]
+    fn split_bowtie_and_cones() {
+        let p = vec![Vec3::ZERO, Vec3::X, Vec3::Y, -Vec3::X, -Vec3::Y];
+        let mut s = PolygonSoup::from_faces(p, &[vec![0, 1, 2], vec![0, 3, 4]]);
+        s.corners.push(crate::soup::CornerTag {
+            v: 0,
+            sharpness: 2.0,
+            line: None,
+        });
+        let created = s.split_nonmanifold_vertices();
+        assert_eq!(created, vec![(0, 5)]);
+        let m = Mesh::from_soup(&s).unwrap();
+        assert_eq!(m.num_vertices(), 6);
+        assert_eq!(m.position(VertexId(5)), Vec3::ZERO);
+        assert_eq!(m.vertex_sharpness(VertexId(5)), 2.0);
+        assert_eq!(m.face_vertices(FaceId(1))[0], VertexId(5));
+        // A manifold soup is left alone.
+        let mut s = PolygonSoup::from_faces(vec![Vec3::ZERO, Vec3::X, Vec3::Y], &[vec![0, 1, 2]]);
+        assert!(s.split_nonmanifold_vertices().is_empty());
     }
 }

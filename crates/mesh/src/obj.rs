@@ -50,7 +50,9 @@ pub fn parse_obj(text: &str) -> Result<PolygonSoup, MeshError> {
                     let t = toks
                         .next()
                         .ok_or_else(|| perr(format!("vertex needs 3 coordinates, found {k}")))?;
-                    *slot = t.parse::<f32>().map_err(|_| perr(format!("invalid coordinate '{t}'")))?;
+                    *slot = t
+                        .parse::<f32>()
+                        .map_err(|_| perr(format!("invalid coordinate '{t}'")))?;
                 }
                 soup.positions.push(Vec3::from(c));
                 soup.vertex_lines.push(line);
@@ -60,9 +62,15 @@ pub fn parse_obj(text: &str) -> Result<PolygonSoup, MeshError> {
                 let mut idx = Vec::new();
                 for t in toks {
                     let first = t.split('/').next().unwrap_or("");
-                    let i: i64 = first.parse().map_err(|_| perr(format!("invalid face index '{t}'")))?;
+                    let i: i64 = first
+                        .parse()
+                        .map_err(|_| perr(format!("invalid face index '{t}'")))?;
                     let i = match i {
-                        0 => return Err(perr("face index 0 is invalid (OBJ indices start at 1)".into())),
+                        0 => {
+                            return Err(perr(
+                                "face index 0 is invalid (OBJ indices start at 1)".into(),
+                            ));
+                        }
                         i if i > 0 => i - 1,
                         i => nv + i,
                     };
@@ -74,7 +82,11 @@ pub fn parse_obj(text: &str) -> Result<PolygonSoup, MeshError> {
             }
             "g" | "o" => {
                 let name: Vec<&str> = toks.collect();
-                let name = if name.is_empty() { "default".to_string() } else { name.join(" ") };
+                let name = if name.is_empty() {
+                    "default".to_string()
+                } else {
+                    name.join(" ")
+                };
                 current_group = match soup.groups.iter().position(|g| *g == name) {
                     Some(i) => i as u32,
                     None => {
@@ -95,15 +107,21 @@ pub fn parse_obj(text: &str) -> Result<PolygonSoup, MeshError> {
 
 fn parse_tag(soup: &mut PolygonSoup, toks: Vec<&str>, line: u32) -> Result<(), MeshError> {
     let perr = |msg: String| MeshError::Parse { line, msg };
-    let name = *toks.first().ok_or_else(|| perr("tag without a name".into()))?;
-    let counts = toks.get(1).ok_or_else(|| perr(format!("tag '{name}' without counts n/n/n")))?;
+    let name = *toks
+        .first()
+        .ok_or_else(|| perr("tag without a name".into()))?;
+    let counts = toks
+        .get(1)
+        .ok_or_else(|| perr(format!("tag '{name}' without counts n/n/n")))?;
     let c: Vec<usize> = counts
         .split('/')
         .map(|x| x.parse::<usize>())
         .collect::<Result<_, _>>()
         .map_err(|_| perr(format!("tag '{name}': invalid counts '{counts}'")))?;
     if c.len() != 3 {
-        return Err(perr(format!("tag '{name}': counts must be ints/floats/strings, got '{counts}'")));
+        return Err(perr(format!(
+            "tag '{name}': counts must be ints/floats/strings, got '{counts}'"
+        )));
     }
     let args = &toks[2..];
     if args.len() != c[0] + c[1] + c[2] {
@@ -115,11 +133,17 @@ fn parse_tag(soup: &mut PolygonSoup, toks: Vec<&str>, line: u32) -> Result<(), M
     }
     let ints: Vec<i64> = args[..c[0]]
         .iter()
-        .map(|t| t.parse::<i64>().map_err(|_| perr(format!("tag '{name}': invalid integer '{t}'"))))
+        .map(|t| {
+            t.parse::<i64>()
+                .map_err(|_| perr(format!("tag '{name}': invalid integer '{t}'")))
+        })
         .collect::<Result<_, _>>()?;
     let floats: Vec<f32> = args[c[0]..c[0] + c[1]]
         .iter()
-        .map(|t| t.parse::<f32>().map_err(|_| perr(format!("tag '{name}': invalid number '{t}'"))))
+        .map(|t| {
+            t.parse::<f32>()
+                .map_err(|_| perr(format!("tag '{name}': invalid number '{t}'")))
+        })
         .collect::<Result<_, _>>()?;
     let strings = &args[c[0] + c[1]..];
     let line = Some(line);
@@ -136,8 +160,17 @@ fn parse_tag(soup: &mut PolygonSoup, toks: Vec<&str>, line: u32) -> Result<(), M
                 )));
             }
             for k in 0..edges {
-                let s = if floats.len() == 1 { floats[0] } else { floats[k] };
-                soup.creases.push(CreaseTag { a: ints[k], b: ints[k + 1], sharpness: s, line });
+                let s = if floats.len() == 1 {
+                    floats[0]
+                } else {
+                    floats[k]
+                };
+                soup.creases.push(CreaseTag {
+                    a: ints[k],
+                    b: ints[k + 1],
+                    sharpness: s,
+                    line,
+                });
             }
         }
         "corner" => {
@@ -150,8 +183,16 @@ fn parse_tag(soup: &mut PolygonSoup, toks: Vec<&str>, line: u32) -> Result<(), M
                 )));
             }
             for (k, &v) in ints.iter().enumerate() {
-                let s = if floats.len() == 1 { floats[0] } else { floats[k] };
-                soup.corners.push(CornerTag { v, sharpness: s, line });
+                let s = if floats.len() == 1 {
+                    floats[0]
+                } else {
+                    floats[k]
+                };
+                soup.corners.push(CornerTag {
+                    v,
+                    sharpness: s,
+                    line,
+                });
             }
         }
         "hole" => soup.holes.extend(ints.iter().map(|&f| HoleTag { f, line })),
@@ -160,14 +201,22 @@ fn parse_tag(soup: &mut PolygonSoup, toks: Vec<&str>, line: u32) -> Result<(), M
                 Some(0) => BoundaryInterpolation::None,
                 Some(1) => BoundaryInterpolation::EdgeAndCorner,
                 Some(2) => BoundaryInterpolation::EdgeOnly,
-                other => return Err(perr(format!("interpolateboundary: expected 0, 1 or 2, got {other:?}"))),
+                other => {
+                    return Err(perr(format!(
+                        "interpolateboundary: expected 0, 1 or 2, got {other:?}"
+                    )));
+                }
             }
         }
         "creasemethod" => {
             soup.options.crease = match strings.first().copied() {
                 Some("chaikin") => CreaseMethod::Chaikin,
                 Some("uniform") | Some("normal") => CreaseMethod::Uniform,
-                other => return Err(perr(format!("creasemethod: expected chaikin or uniform, got {other:?}"))),
+                other => {
+                    return Err(perr(format!(
+                        "creasemethod: expected chaikin or uniform, got {other:?}"
+                    )));
+                }
             }
         }
         _ => {}
@@ -182,16 +231,38 @@ fn parse_tag(soup: &mut PolygonSoup, toks: Vec<&str>, line: u32) -> Result<(), M
 /// println!("{} faces", mesh.num_faces());
 /// ```
 pub fn read_obj(path: impl AsRef<Path>) -> Result<Mesh, ObjError> {
+    read_obj_with(path, ReadOptions::default())
+}
+
+/// Options of [`read_obj_with`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ReadOptions {
+    /// Repair vertices where several fans of faces meet by giving each fan its own copy (see
+    /// [`PolygonSoup::split_nonmanifold_vertices`]) instead of refusing the mesh.
+    pub split_nonmanifold_vertices: bool,
+}
+
+/// Reads an OBJ file with options and builds a validated mesh.
+pub fn read_obj_with(path: impl AsRef<Path>, opts: ReadOptions) -> Result<Mesh, ObjError> {
     let path = path.as_ref();
-    let soup = read_obj_soup(path)?;
-    Mesh::from_soup(&soup).map_err(|err| ObjError::Invalid { path: path.display().to_string(), err })
+    let mut soup = read_obj_soup(path)?;
+    if opts.split_nonmanifold_vertices {
+        soup.split_nonmanifold_vertices();
+    }
+    Mesh::from_soup(&soup).map_err(|err| ObjError::Invalid {
+        path: path.display().to_string(),
+        err,
+    })
 }
 
 /// Reads an OBJ file into a polygon soup, without topology validation.
 pub fn read_obj_soup(path: impl AsRef<Path>) -> Result<PolygonSoup, ObjError> {
     let path = path.as_ref();
     let p = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|source| ObjError::Io { path: p.clone(), source })?;
+    let bytes = std::fs::read(path).map_err(|source| ObjError::Io {
+        path: p.clone(),
+        source,
+    })?;
     let text = String::from_utf8_lossy(&bytes);
     parse_obj(&text).map_err(|err| ObjError::Invalid { path: p, err })
 }
@@ -240,7 +311,10 @@ pub fn write_obj(path: impl AsRef<Path>, data: &ObjData<'_>) -> Result<(), ObjEr
 }
 
 fn write_text(path: &Path, text: &str) -> Result<(), ObjError> {
-    let io = |source| ObjError::Io { path: path.display().to_string(), source };
+    let io = |source| ObjError::Io {
+        path: path.display().to_string(),
+        source,
+    };
     let mut f = std::io::BufWriter::new(std::fs::File::create(path).map_err(io)?);
     f.write_all(text.as_bytes()).map_err(io)?;
     f.flush().map_err(io)
@@ -347,7 +421,14 @@ t crease 3/1/0 0 2 3 2.5\nt corner 1/1/0 7 4\nt hole 1/0/0 1\nt creasemethod 0/0
 
     #[test]
     fn written_floats_reread_bit_identical() {
-        let vals = [0.1f32, 1.0 / 3.0, -7.654321e-12, 3.4028235e38, 1.0e-45, 123456.79];
+        let vals = [
+            0.1f32,
+            1.0 / 3.0,
+            -7.654321e-12,
+            3.4028235e38,
+            1.0e-45,
+            123456.79,
+        ];
         let pos: Vec<[f32; 3]> = vals.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
         let text = format_obj(&ObjData {
             positions: &pos,
@@ -388,7 +469,10 @@ t crease 3/1/0 0 2 3 2.5\nt corner 1/1/0 7 4\nt hole 1/0/0 1\nt creasemethod 0/0
         let p = dir.join("bad.obj");
         std::fs::write(&p, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2\n").unwrap();
         let e = read_obj(&p).unwrap_err().to_string();
-        assert!(e.ends_with("bad.obj:4: face 0 uses vertex 1 more than once (degenerate face)"), "{e}");
+        assert!(
+            e.ends_with("bad.obj:4: face 0 uses vertex 1 more than once (degenerate face)"),
+            "{e}"
+        );
         let e = read_obj(dir.join("missing.obj")).unwrap_err();
         assert!(matches!(e, ObjError::Io { .. }));
         std::fs::remove_dir_all(&dir).ok();

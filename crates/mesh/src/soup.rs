@@ -82,7 +82,10 @@ impl PolygonSoup {
     /// assert_eq!(mesh.num_faces(), 1);
     /// ```
     pub fn from_faces<F: AsRef<[u32]>>(positions: Vec<Vec3>, faces: &[F]) -> Self {
-        let mut soup = PolygonSoup { positions, ..Default::default() };
+        let mut soup = PolygonSoup {
+            positions,
+            ..Default::default()
+        };
         for f in faces {
             soup.push_face(f.as_ref().iter().map(|&i| i as i64));
         }
@@ -116,5 +119,115 @@ impl PolygonSoup {
     /// Source line of vertex `i`, if known.
     pub fn vertex_line(&self, i: usize) -> Option<u32> {
         self.vertex_lines.get(i).copied()
+    }
+}
+
+impl PolygonSoup {
+    /// Makes an edge-manifold soup vertex-manifold by giving every extra fan of faces around a
+    /// vertex its own copy of that vertex (appended after the existing vertices, so existing
+    /// indices keep their meaning). Crease tags follow their edge to the right copy; corner tags
+    /// apply to every copy. Returns `(original, copy)` for every vertex created.
+    ///
+    /// Faces meeting only at a vertex (a bow-tie, two cones touching at their tips) are otherwise
+    /// refused by [`Mesh::from_soup`](crate::Mesh::from_soup); after this repair the surface is
+    /// open at that point. Out-of-range indices are left for validation to report.
+    pub fn split_nonmanifold_vertices(&mut self) -> Vec<(u32, u32)> {
+        use std::collections::HashMap;
+        let nv = self.positions.len() as i64;
+        let nc = self.face_indices.len();
+        if self.face_offsets.len() < 2 {
+            return Vec::new();
+        }
+        // Union-find over face corners: two corners at the same vertex are in one fan when their
+        // faces share an edge at that vertex.
+        let mut parent: Vec<usize> = (0..nc).collect();
+        fn find(p: &mut [usize], mut x: usize) -> usize {
+            while p[x] != x {
+                p[x] = p[p[x]];
+                x = p[x];
+            }
+            x
+        }
+        let mut seen: HashMap<(i64, i64), usize> = HashMap::with_capacity(nc * 2);
+        for f in 0..self.num_faces() {
+            let s = self.face_offsets[f] as usize;
+            let n = self.face_offsets[f + 1] as usize - s;
+            for k in 0..n {
+                let c = s + k;
+                let v = self.face_indices[c];
+                for w in [
+                    self.face_indices[s + (k + n - 1) % n],
+                    self.face_indices[s + (k + 1) % n],
+                ] {
+                    match seen.get(&(v, w)) {
+                        Some(&o) => {
+                            let (a, b) = (find(&mut parent, o), find(&mut parent, c));
+                            parent[a.max(b)] = a.min(b);
+                        }
+                        None => {
+                            seen.insert((v, w), c);
+                        }
+                    }
+                }
+            }
+        }
+        // The fan holding a vertex's first corner keeps the vertex; other fans get copies.
+        let mut owner: HashMap<i64, usize> = HashMap::new();
+        let mut copy_of_root: HashMap<usize, i64> = HashMap::new();
+        let mut created = Vec::new();
+        let mut remap: Vec<i64> = self.face_indices.clone();
+        for c in 0..nc {
+            let v = self.face_indices[c];
+            if v < 0 || v >= nv {
+                continue;
+            }
+            let r = find(&mut parent, c);
+            let first = *owner.entry(v).or_insert(r);
+            if first == r {
+                continue;
+            }
+            let nvid = *copy_of_root.entry(r).or_insert_with(|| {
+                let id = self.positions.len() as i64;
+                self.positions.push(self.positions[v as usize]);
+                if let Some(&l) = self.vertex_lines.get(v as usize) {
+                    self.vertex_lines.push(l);
+                }
+                created.push((v as u32, id as u32));
+                id
+            });
+            remap[c] = nvid;
+        }
+        if created.is_empty() {
+            return created;
+        }
+        // Crease tags: find the copies that now carry each tagged edge.
+        let mut edge_map: HashMap<(i64, i64), (i64, i64)> = HashMap::new();
+        for f in 0..self.num_faces() {
+            let s = self.face_offsets[f] as usize;
+            let n = self.face_offsets[f + 1] as usize - s;
+            for k in 0..n {
+                let (a, b) = (self.face_indices[s + k], self.face_indices[s + (k + 1) % n]);
+                let (na, nb) = (remap[s + k], remap[s + (k + 1) % n]);
+                edge_map.insert((a, b), (na, nb));
+                edge_map.insert((b, a), (nb, na));
+            }
+        }
+        for t in &mut self.creases {
+            if let Some(&(a, b)) = edge_map.get(&(t.a, t.b)) {
+                t.a = a;
+                t.b = b;
+            }
+        }
+        let mut extra = Vec::new();
+        for t in &self.corners {
+            for &(o, n) in &created {
+                if t.v == o as i64 {
+                    extra.push(CornerTag { v: n as i64, ..*t });
+                }
+            }
+        }
+        self.corners.extend(extra);
+        self.face_indices = remap;
+        created
     }
 }

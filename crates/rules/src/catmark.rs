@@ -14,7 +14,7 @@
 use std::f64::consts::PI;
 
 use crate::crease::{Rule, VertexRules};
-use crate::point::{centroid, Point};
+use crate::point::{Point, centroid};
 
 /// The face point: the centroid of the face's vertices.
 #[inline]
@@ -35,7 +35,8 @@ pub fn edge_point<P: Point>(a: P, b: P, faces: &[P], crease_weight: f32) -> P {
     } else {
         // Non-manifold edges never reach here (meshes are validated manifold); keep the
         // OpenSubdiv convention for completeness: half on the edge, half spread over the faces.
-        mid.scale(0.5).add(centroid(faces.iter().copied()).scale(0.5))
+        mid.scale(0.5)
+            .add(centroid(faces.iter().copied()).scale(0.5))
     };
     if crease_weight <= 0.0 {
         smooth
@@ -120,7 +121,9 @@ pub fn limit<P: Point>(v: P, edges: &[P], diag: &[P], rule: Rule) -> (P, P, P) {
             (pos, t1, t2)
         }
         Rule::Crease([c0, c1]) => {
-            let pos = v.scale(2.0 / 3.0).add(edges[c0].add(edges[c1]).scale(1.0 / 6.0));
+            let pos = v
+                .scale(2.0 / 3.0)
+                .add(edges[c0].add(edges[c1]).scale(1.0 / 6.0));
             let t1 = edges[c0].sub(edges[c1]).scale(0.5);
             let t2 = crease_cross_tangent(v, edges, diag, c0, c1);
             (pos, t1, t2)
@@ -143,7 +146,10 @@ fn crease_cross_tangent<P: Point>(v: P, edges: &[P], diag: &[P], c0: usize, c1: 
         0 => edges[c0].add(edges[c1]).scale(3.0).sub(v.scale(6.0)),
         1 => {
             let mut t = v.scale(-4.0 / 6.0);
-            t = t.madd(edges[c0], -1.0 / 6.0).madd(edges[c0 + 1], 4.0 / 6.0).madd(edges[c1], -1.0 / 6.0);
+            t = t
+                .madd(edges[c0], -1.0 / 6.0)
+                .madd(edges[c0 + 1], 4.0 / 6.0)
+                .madd(edges[c1], -1.0 / 6.0);
             t.madd(diag[c0], 1.0 / 6.0).madd(diag[c0 + 1], 1.0 / 6.0)
         }
         _ => {
@@ -203,7 +209,10 @@ mod tests {
         // dz/dx = 2 at the origin: normal ~ (-2, 0, 1).
         let n = t1.cross(t2).normalize();
         let want = DVec3::new(-2.0, 0.0, 1.0).normalize();
-        assert!((n - want).length() < 1e-12 || (n + want).length() < 1e-12, "{n}");
+        assert!(
+            (n - want).length() < 1e-12 || (n + want).length() < 1e-12,
+            "{n}"
+        );
     }
 
     #[test]
@@ -212,7 +221,12 @@ mod tests {
         // centres.
         let v = DVec3::new(0.0, 0.0, 1.0);
         let e = [DVec3::X, DVec3::Y, -DVec3::X, -DVec3::Y];
-        let f = [DVec3::new(0.5, 0.5, 0.0), DVec3::new(-0.5, 0.5, 0.0), DVec3::new(-0.5, -0.5, 0.0), DVec3::new(0.5, -0.5, 0.0)];
+        let f = [
+            DVec3::new(0.5, 0.5, 0.0),
+            DVec3::new(-0.5, 0.5, 0.0),
+            DVec3::new(-0.5, -0.5, 0.0),
+            DVec3::new(0.5, -0.5, 0.0),
+        ];
         let p = vertex_point(v, &e, &f, &rules(0.0, &[0.0; 4]));
         assert!((p - DVec3::new(0.0, 0.0, 0.5)).length() < 1e-15);
         // Valence 3: (n-2)/n v + (sum e + sum f)/n^2.
@@ -252,7 +266,11 @@ mod tests {
         // Boundary vertex of a regular half-plane grid: limit on the boundary curve
         // (1/6, 4/6, 1/6); cross tangent points into the surface.
         let v = DVec3::new(0.0, 0.0, 0.0);
-        let e = [DVec3::new(1.0, 0.0, 1.0), DVec3::new(0.0, 1.0, 0.0), DVec3::new(-1.0, 0.0, 1.0)];
+        let e = [
+            DVec3::new(1.0, 0.0, 1.0),
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(-1.0, 0.0, 1.0),
+        ];
         let d = [DVec3::new(1.0, 1.0, 0.0), DVec3::new(-1.0, 1.0, 0.0)];
         let (p, t1, t2) = limit(v, &e, &d, Rule::Crease([0, 2]));
         assert!((p - DVec3::new(0.0, 0.0, 1.0 / 3.0)).length() < 1e-15);

@@ -62,7 +62,11 @@ pub fn child_edge_sharpness_around(method: CreaseMethod, parent: &[f32], child: 
     debug_assert_eq!(parent.len(), child.len());
     let (sum, count) = semi_sharp_sum(parent);
     for (c, &p) in child.iter_mut().zip(parent) {
-        let others = if is_semi_sharp(p) { (sum - p, count - 1) } else { (sum, count) };
+        let others = if is_semi_sharp(p) {
+            (sum - p, count - 1)
+        } else {
+            (sum, count)
+        };
         *c = child_edge_sharpness(method, p, others);
     }
 }
@@ -70,7 +74,9 @@ pub fn child_edge_sharpness_around(method: CreaseMethod, parent: &[f32], child: 
 /// Sum and count of the semi-sharp values in `s`.
 #[inline]
 pub fn semi_sharp_sum(s: &[f32]) -> (f32, u32) {
-    s.iter().filter(|&&x| is_semi_sharp(x)).fold((0.0, 0), |(a, n), &x| (a + x, n + 1))
+    s.iter()
+        .filter(|&&x| is_semi_sharp(x))
+        .fold((0.0, 0), |(a, n), &x| (a + x, n + 1))
 }
 
 /// Weight of the sharp (midpoint) rule for the point inserted on an edge: 0 is the smooth rule,
@@ -167,12 +173,20 @@ impl VertexRules {
         child_edge_sharpness_around(method, edge_sharpness, child_edges);
         let parent = Rule::determine(vertex_sharpness, edge_sharpness);
         if parent.is_smooth() {
-            return VertexRules { parent, child: parent, parent_weight: 1.0 };
+            return VertexRules {
+                parent,
+                child: parent,
+                parent_weight: 1.0,
+            };
         }
         let child_vs = decrement(vertex_sharpness);
         let child = Rule::determine(child_vs, child_edges);
         if !parent.mask_differs(child) {
-            return VertexRules { parent, child: parent, parent_weight: 1.0 };
+            return VertexRules {
+                parent,
+                child: parent,
+                parent_weight: 1.0,
+            };
         }
         // Fractional weight: the average parent sharpness of everything that became smooth.
         let mut sum = 0.0f32;
@@ -191,8 +205,16 @@ impl VertexRules {
                 count += 1;
             }
         }
-        let w = if count == 0 { 0.0 } else { (sum / count as f32).min(1.0) };
-        VertexRules { parent, child, parent_weight: w as f64 }
+        let w = if count == 0 {
+            0.0
+        } else {
+            (sum / count as f32).min(1.0)
+        };
+        VertexRules {
+            parent,
+            child,
+            parent_weight: w as f64,
+        }
     }
 
     /// `true` when no blend is needed.
@@ -233,7 +255,10 @@ mod tests {
     fn rule_determination() {
         assert_eq!(Rule::determine(0.0, &[0.0; 4]), Rule::Smooth);
         assert_eq!(Rule::determine(0.0, &[0.0, 2.0, 0.0, 0.0]), Rule::Dart);
-        assert_eq!(Rule::determine(0.0, &[0.0, 2.0, 0.0, 1.0]), Rule::Crease([1, 3]));
+        assert_eq!(
+            Rule::determine(0.0, &[0.0, 2.0, 0.0, 1.0]),
+            Rule::Crease([1, 3])
+        );
         assert_eq!(Rule::determine(0.0, &[1.0, 2.0, 0.0, 1.0]), Rule::Corner);
         assert_eq!(Rule::determine(0.5, &[0.0; 4]), Rule::Corner);
     }
@@ -261,10 +286,25 @@ mod tests {
 
     #[test]
     fn edge_weights() {
-        assert_eq!(edge_crease_weight(CreaseMethod::Uniform, 0.0, [0.0; 2]), 0.0);
-        assert_eq!(edge_crease_weight(CreaseMethod::Uniform, 0.4, [0.0; 2]), 0.4);
-        assert_eq!(edge_crease_weight(CreaseMethod::Uniform, 1.0, [0.0; 2]), 1.0);
-        assert_eq!(edge_crease_weight(CreaseMethod::Chaikin, 0.9, [0.1, 0.2]), 1.0);
-        assert_eq!(edge_crease_weight(CreaseMethod::Chaikin, 0.9, [0.1, 0.0]), 0.9);
+        assert_eq!(
+            edge_crease_weight(CreaseMethod::Uniform, 0.0, [0.0; 2]),
+            0.0
+        );
+        assert_eq!(
+            edge_crease_weight(CreaseMethod::Uniform, 0.4, [0.0; 2]),
+            0.4
+        );
+        assert_eq!(
+            edge_crease_weight(CreaseMethod::Uniform, 1.0, [0.0; 2]),
+            1.0
+        );
+        assert_eq!(
+            edge_crease_weight(CreaseMethod::Chaikin, 0.9, [0.1, 0.2]),
+            1.0
+        );
+        assert_eq!(
+            edge_crease_weight(CreaseMethod::Chaikin, 0.9, [0.1, 0.0]),
+            0.9
+        );
     }
 }

@@ -30,10 +30,12 @@ mod point;
 mod refine;
 mod ring;
 
-pub use limit::{limit_surface, tessellate_uniform, LimitMesh};
-pub use point::{centroid, Point};
-pub use refine::{check_triangles, refine_uniform, refine_uniform_levels, refined_face_count, MAX_REFINED_FACES};
-pub use ring::{limit_point, limit_point_with, Ring};
+pub use limit::{LimitMesh, limit_surface, tessellate_uniform};
+pub use point::{Point, centroid};
+pub use refine::{
+    MAX_REFINED_FACES, check_triangles, refine_uniform, refine_uniform_levels, refined_face_count,
+};
+pub use ring::{Ring, limit_point, limit_point_with};
 
 use thiserror::Error;
 
@@ -53,7 +55,9 @@ impl std::str::FromStr for Scheme {
         match s {
             "catmull-clark" | "catmark" | "cc" => Ok(Scheme::CatmullClark),
             "loop" => Ok(Scheme::Loop),
-            _ => Err(format!("unknown scheme '{s}' (expected catmull-clark or loop)")),
+            _ => Err(format!(
+                "unknown scheme '{s}' (expected catmull-clark or loop)"
+            )),
         }
     }
 }
@@ -62,7 +66,9 @@ impl std::str::FromStr for Scheme {
 #[derive(Debug, Error)]
 pub enum RulesError {
     /// Loop subdivision needs triangles.
-    #[error("face {face} has {size} vertices; Loop subdivision needs a triangle mesh (triangulate it first)")]
+    #[error(
+        "face {face} has {size} vertices; Loop subdivision needs a triangle mesh (triangulate it first)"
+    )]
     NotTriangles {
         /// The first non-triangular face.
         face: u32,

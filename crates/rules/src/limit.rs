@@ -5,7 +5,7 @@ use rayon::prelude::*;
 use subdiv_mesh::{BoundaryInterpolation, Mesh, ObjData, VertexId};
 
 use crate::refine::refine_uniform_levels;
-use crate::ring::{limit_point_with, Ring};
+use crate::ring::{Ring, limit_point_with};
 use crate::{RulesError, Scheme};
 
 /// A tessellated limit surface: one limit point and unit normal per vertex, and polygons.
@@ -57,10 +57,13 @@ impl LimitMesh {
     }
     /// Axis-aligned bounds `(min, max)`.
     pub fn bounds(&self) -> (Vec3, Vec3) {
-        self.positions.iter().fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(lo, hi), p| {
-            let p = Vec3::from(*p);
-            (lo.min(p), hi.max(p))
-        })
+        self.positions.iter().fold(
+            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+            |(lo, hi), p| {
+                let p = Vec3::from(*p);
+                (lo.min(p), hi.max(p))
+            },
+        )
     }
     /// A view for [`subdiv_mesh::write_obj`].
     pub fn obj_data(&self) -> ObjData<'_> {
@@ -101,7 +104,12 @@ pub fn limit_surface(mesh: &Mesh, scheme: Scheme) -> LimitMesh {
         face_indices.extend(mesh.face_vertices(f).iter().map(|v| v.0));
         face_offsets.push(face_indices.len() as u32);
     }
-    LimitMesh { positions, normals, face_offsets, face_indices }
+    LimitMesh {
+        positions,
+        normals,
+        face_offsets,
+        face_indices,
+    }
 }
 
 /// The uniform depth-`depth` tessellation of the limit surface: the faces of the level-`depth`
@@ -121,7 +129,11 @@ pub fn limit_surface(mesh: &Mesh, scheme: Scheme) -> LimitMesh {
 /// assert_eq!(t.positions.len(), 4 + 6 + 24); // V - E + F = 2 at level 2
 /// # Ok::<(), subdiv_mesh::MeshError>(())
 /// ```
-pub fn tessellate_uniform(mesh: &Mesh, scheme: Scheme, depth: u32) -> Result<LimitMesh, RulesError> {
+pub fn tessellate_uniform(
+    mesh: &Mesh,
+    scheme: Scheme,
+    depth: u32,
+) -> Result<LimitMesh, RulesError> {
     if scheme == Scheme::Loop {
         crate::refine::check_triangles(mesh)?;
     }

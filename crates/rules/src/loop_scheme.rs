@@ -33,7 +33,10 @@ pub fn edge_point<P: Point>(a: P, b: P, opposite: &[P], crease_weight: f32) -> P
     if crease_weight >= 1.0 || opposite.len() < 2 {
         return mid;
     }
-    let smooth = a.add(b).scale(0.375).add(opposite[0].add(opposite[1]).scale(0.125));
+    let smooth = a
+        .add(b)
+        .scale(0.375)
+        .add(opposite[0].add(opposite[1]).scale(0.125));
     if crease_weight <= 0.0 {
         smooth
     } else {
@@ -91,7 +94,9 @@ pub fn limit<P: Point>(v: P, edges: &[P], rule: Rule, boundary: bool) -> (P, P, 
             (pos, t1, t2)
         }
         Rule::Crease([c0, c1]) => {
-            let pos = v.scale(2.0 / 3.0).add(edges[c0].add(edges[c1]).scale(1.0 / 6.0));
+            let pos = v
+                .scale(2.0 / 3.0)
+                .add(edges[c0].add(edges[c1]).scale(1.0 / 6.0));
             let t1 = edges[c0].sub(edges[c1]).scale(1.5);
             let interior = c1 - c0 - 1;
             let t2 = match interior {
@@ -179,7 +184,12 @@ mod tests {
     #[test]
     fn boundary_limit() {
         let v = DVec3::ZERO;
-        let e = [DVec3::new(1.0, 0.0, 1.0), DVec3::new(0.5, 0.8, 0.0), DVec3::new(-0.5, 0.8, 0.0), DVec3::new(-1.0, 0.0, 1.0)];
+        let e = [
+            DVec3::new(1.0, 0.0, 1.0),
+            DVec3::new(0.5, 0.8, 0.0),
+            DVec3::new(-0.5, 0.8, 0.0),
+            DVec3::new(-1.0, 0.0, 1.0),
+        ];
         let (p, t1, t2) = limit(v, &e, Rule::Crease([0, 3]), true);
         assert!((p - DVec3::new(0.0, 0.0, 1.0 / 3.0)).length() < 1e-15);
         assert!(t1.x > 0.0 && t2.y > 0.0);

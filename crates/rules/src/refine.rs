@@ -9,8 +9,8 @@
 use glam::Vec3;
 use subdiv_mesh::{Mesh, PolygonSoup, VertexId};
 
-use crate::crease::{decrement, edge_crease_weight, is_sharp, VertexRules};
-use crate::{catmark, loop_scheme, RulesError, Scheme};
+use crate::crease::{VertexRules, decrement, edge_crease_weight, is_sharp};
+use crate::{RulesError, Scheme, catmark, loop_scheme};
 
 /// One uniform refinement step of the whole mesh.
 ///
@@ -107,7 +107,11 @@ pub fn refine_uniform(mesh: &Mesh, scheme: Scheme) -> Result<Mesh, RulesError> {
     }
 
     // Child faces.
-    let mut soup = PolygonSoup { positions, options: mesh.options(), ..Default::default() };
+    let mut soup = PolygonSoup {
+        positions,
+        options: mesh.options(),
+        ..Default::default()
+    };
     let mut holes = Vec::new();
     let mut groups = Vec::new();
     let ep = |h: subdiv_mesh::HalfedgeId| (edge_base + h.edge().0) as i64;
@@ -129,7 +133,11 @@ pub fn refine_uniform(mesh: &Mesh, scheme: Scheme) -> Result<Mesh, RulesError> {
             }
             Scheme::Loop => {
                 let (ha, hb, hc) = (h0, mesh.next(h0), mesh.prev(h0));
-                let (a, b, c) = (mesh.from(ha).0 as i64, mesh.from(hb).0 as i64, mesh.from(hc).0 as i64);
+                let (a, b, c) = (
+                    mesh.from(ha).0 as i64,
+                    mesh.from(hb).0 as i64,
+                    mesh.from(hc).0 as i64,
+                );
                 soup.push_face([a, ep(ha), ep(hc)]);
                 soup.push_face([b, ep(hb), ep(ha)]);
                 soup.push_face([c, ep(hc), ep(hb)]);
@@ -182,7 +190,10 @@ pub fn refine_uniform_levels(mesh: &Mesh, scheme: Scheme, depth: u32) -> Result<
 /// Refuses Loop subdivision of a mesh with non-triangular faces.
 pub fn check_triangles(mesh: &Mesh) -> Result<(), RulesError> {
     match mesh.faces().find(|&f| mesh.face_size(f) != 3) {
-        Some(f) => Err(RulesError::NotTriangles { face: f.0, size: mesh.face_size(f) as u32 }),
+        Some(f) => Err(RulesError::NotTriangles {
+            face: f.0,
+            size: mesh.face_size(f) as u32,
+        }),
         None => Ok(()),
     }
 }

@@ -15,8 +15,8 @@
 use glam::{DVec3, Vec3};
 use subdiv_mesh::{CreaseMethod, Mesh, VertexId};
 
-use crate::crease::{child_edge_sharpness, edge_crease_weight, is_semi_sharp, Rule, VertexRules};
-use crate::{catmark, loop_scheme, Scheme};
+use crate::crease::{Rule, VertexRules, child_edge_sharpness, edge_crease_weight, is_semi_sharp};
+use crate::{Scheme, catmark, loop_scheme};
 
 /// The neighbourhood of one vertex, refinable in isolation.
 #[derive(Clone, Debug, Default)]
@@ -113,7 +113,8 @@ impl Ring {
     pub fn needs_refinement(&self) -> bool {
         is_semi_sharp(self.vertex_sharpness)
             || self.sharp.iter().any(|&s| is_semi_sharp(s))
-            || (self.scheme == Scheme::CatmullClark && (0..self.num_faces()).any(|i| self.face_inner(i).len() != 1))
+            || (self.scheme == Scheme::CatmullClark
+                && (0..self.num_faces()).any(|i| self.face_inner(i).len() != 1))
     }
 
     /// One subdivision step: the ring becomes the ring of the vertex's child.
@@ -122,7 +123,12 @@ impl Ring {
         let nf = self.num_faces();
         self.cs.clear();
         self.cs.resize(n, 0.0);
-        let rules = VertexRules::new(self.method, self.vertex_sharpness, &self.sharp, &mut self.cs);
+        let rules = VertexRules::new(
+            self.method,
+            self.vertex_sharpness,
+            &self.sharp,
+            &mut self.cs,
+        );
         self.tmp_edges.clear();
         self.tmp_far.clear();
         match self.scheme {
@@ -139,7 +145,13 @@ impl Ring {
                 let new_center = catmark::vertex_point(self.center, &self.edges, &self.fp, &rules);
                 for i in 0..n {
                     let (far_child, w) = self.edge_weights(i);
-                    let before = if i > 0 { Some(i - 1) } else if !self.boundary { Some(nf - 1) } else { None };
+                    let before = if i > 0 {
+                        Some(i - 1)
+                    } else if !self.boundary {
+                        Some(nf - 1)
+                    } else {
+                        None
+                    };
                     let after = if i < nf { Some(i) } else { None };
                     let mut faces = [DVec3::ZERO; 2];
                     let mut k = 0;
@@ -147,8 +159,17 @@ impl Ring {
                         faces[k] = self.fp[f];
                         k += 1;
                     }
-                    self.tmp_edges.push(catmark::edge_point(self.center, self.edges[i], &faces[..k], w));
-                    self.tmp_far.push(if is_semi_sharp(far_child) { (far_child, 1) } else { (0.0, 0) });
+                    self.tmp_edges.push(catmark::edge_point(
+                        self.center,
+                        self.edges[i],
+                        &faces[..k],
+                        w,
+                    ));
+                    self.tmp_far.push(if is_semi_sharp(far_child) {
+                        (far_child, 1)
+                    } else {
+                        (0.0, 0)
+                    });
                 }
                 self.center = new_center;
                 self.inner.clear();
@@ -170,8 +191,17 @@ impl Ring {
                         opp[k] = self.edges[(i + 1) % n];
                         k += 1;
                     }
-                    self.tmp_edges.push(loop_scheme::edge_point(self.center, self.edges[i], &opp[..k], w));
-                    self.tmp_far.push(if is_semi_sharp(far_child) { (far_child, 1) } else { (0.0, 0) });
+                    self.tmp_edges.push(loop_scheme::edge_point(
+                        self.center,
+                        self.edges[i],
+                        &opp[..k],
+                        w,
+                    ));
+                    self.tmp_far.push(if is_semi_sharp(far_child) {
+                        (far_child, 1)
+                    } else {
+                        (0.0, 0)
+                    });
                 }
                 self.center = new_center;
                 self.inner_off.clear();
@@ -188,7 +218,10 @@ impl Ring {
     fn edge_weights(&self, i: usize) -> (f32, f32) {
         let s = self.sharp[i];
         let far_child = child_edge_sharpness(self.method, s, self.far[i]);
-        (far_child, edge_crease_weight(self.method, s, [self.cs[i], far_child]))
+        (
+            far_child,
+            edge_crease_weight(self.method, s, [self.cs[i], far_child]),
+        )
     }
 
     /// The exact limit position and unit limit normal of the ring's vertex. Refines the ring
@@ -203,7 +236,9 @@ impl Ring {
         let rule = Rule::determine(self.vertex_sharpness, &self.sharp);
         let (pos, t1, t2) = match self.scheme {
             Scheme::CatmullClark => {
-                let diag: Vec<DVec3> = (0..self.num_faces()).map(|i| self.face_inner(i)[0]).collect();
+                let diag: Vec<DVec3> = (0..self.num_faces())
+                    .map(|i| self.face_inner(i)[0])
+                    .collect();
                 catmark::limit(self.center, &self.edges, &diag, rule)
             }
             Scheme::Loop => loop_scheme::limit(self.center, &self.edges, rule, self.boundary),
@@ -222,7 +257,11 @@ impl Ring {
             area += a.cross(b);
         }
         let len = n.length();
-        let scale = self.edges.iter().map(|e| (*e - self.center).length_squared()).fold(0.0, f64::max);
+        let scale = self
+            .edges
+            .iter()
+            .map(|e| (*e - self.center).length_squared())
+            .fold(0.0, f64::max);
         if len > 1e-12 * scale.max(f64::MIN_POSITIVE) && len.is_finite() {
             let n = n / len;
             if n.dot(area) < 0.0 { -n } else { n }

@@ -156,6 +156,18 @@ impl Renderer {
         Ok((target.read_color()?, target.read_aux()?))
     }
 
+    /// Renders and waits for the GPU without reading pixels back (for
+    /// frame-rate benchmarks: the time of this call is the frame time).
+    pub fn render_discard(
+        &mut self,
+        mesh: &RenderMesh<'_>,
+        view: &View,
+        size: [u32; 2],
+        options: &RenderOptions,
+    ) -> Result<()> {
+        self.draw(mesh, view, size, options, Readback::None)
+    }
+
     fn target(&self) -> Result<&Target> {
         self.target.as_ref().ok_or(crate::VkError::Vulkan {
             call: "render target",

@@ -79,7 +79,10 @@ impl FrameSource for OwnedMesh {
         &mut self,
         _request: &FrameRequest,
     ) -> std::result::Result<SourceFrame<'_>, Box<dyn std::error::Error + Send + Sync>> {
-        Ok(SourceFrame { mesh: self.as_render_mesh(), status: "" })
+        Ok(SourceFrame {
+            mesh: self.as_render_mesh(),
+            status: "",
+        })
     }
 }
 
@@ -166,7 +169,9 @@ pub fn run(source: &mut dyn FrameSource, options: ViewerOptions) -> Result<Viewe
         use winit::platform::x11::EventLoopBuilderExtX11;
         builder.with_any_thread(true);
     }
-    let event_loop = builder.build().map_err(|e| VkError::Window(e.to_string()))?;
+    let event_loop = builder
+        .build()
+        .map_err(|e| VkError::Window(e.to_string()))?;
     event_loop.set_control_flow(ControlFlow::Poll);
     let mut app = App {
         gpu: None,
@@ -240,8 +245,11 @@ impl App<'_> {
         let attributes = Window::default_attributes()
             .with_title(self.options.title.clone())
             .with_inner_size(PhysicalSize::new(w.max(1), h.max(1)));
-        let window =
-            Arc::new(event_loop.create_window(attributes).map_err(|e| VkError::Window(e.to_string()))?);
+        let window = Arc::new(
+            event_loop
+                .create_window(attributes)
+                .map_err(|e| VkError::Window(e.to_string()))?,
+        );
         let gpu = Gpu::new(&window, &self.options.context)?;
         self.window = Some(window);
         self.gpu = Some(gpu);
@@ -253,8 +261,20 @@ impl App<'_> {
         match key.as_ref() {
             Key::Character(c) => match c.to_ascii_lowercase().as_str() {
                 "w" => self.render.wire_overlay = !self.render.wire_overlay,
-                "d" => *shading = if *shading == Shading::Depth { Shading::Smooth } else { Shading::Depth },
-                "h" => *shading = if *shading == Shading::Doi { Shading::Smooth } else { Shading::Doi },
+                "d" => {
+                    *shading = if *shading == Shading::Depth {
+                        Shading::Smooth
+                    } else {
+                        Shading::Depth
+                    }
+                }
+                "h" => {
+                    *shading = if *shading == Shading::Doi {
+                        Shading::Smooth
+                    } else {
+                        Shading::Doi
+                    }
+                }
                 "s" => self.silhouettes = !self.silhouettes,
                 "f" => {
                     self.frozen = match self.frozen {
@@ -279,8 +299,12 @@ impl App<'_> {
     }
 
     fn redraw(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
-        let Some(gpu) = self.gpu.as_mut() else { return Ok(()) };
-        let Some(window) = self.window.as_ref() else { return Ok(()) };
+        let Some(gpu) = self.gpu.as_mut() else {
+            return Ok(());
+        };
+        let Some(window) = self.window.as_ref() else {
+            return Ok(());
+        };
         let size = window.inner_size();
         if size.width == 0 || size.height == 0 {
             return Ok(()); // minimised
@@ -291,14 +315,20 @@ impl App<'_> {
         if let Some(last) = self.last_frame {
             self.last_frame_time = now - last;
             let instant = 1.0 / self.last_frame_time.as_secs_f32().max(1e-6);
-            self.fps = if self.fps == 0.0 { instant } else { 0.9 * self.fps + 0.1 * instant };
+            self.fps = if self.fps == 0.0 {
+                instant
+            } else {
+                0.9 * self.fps + 0.1 * instant
+            };
         }
         self.last_frame = Some(now);
 
         // The first frame is asked for with a provisional camera if none was
         // given; the camera is then fitted to the geometry and used from then on.
         let provisional = self.camera.is_none();
-        let camera = self.camera.unwrap_or_else(|| OrbitCamera::framing(glam::Vec3::splat(-1.0), glam::Vec3::splat(1.0)));
+        let camera = self.camera.unwrap_or_else(|| {
+            OrbitCamera::framing(glam::Vec3::splat(-1.0), glam::Vec3::splat(1.0))
+        });
         let view = camera.view(aspect);
         let mut request = FrameRequest {
             view,
@@ -313,14 +343,20 @@ impl App<'_> {
         };
         if provisional {
             let fitted = {
-                let frame = self.source.frame(&request).map_err(|e| VkError::FrameSource(e.to_string()))?;
+                let frame = self
+                    .source
+                    .frame(&request)
+                    .map_err(|e| VkError::FrameSource(e.to_string()))?;
                 OrbitCamera::framing_mesh(&frame.mesh)
             };
             self.camera = Some(fitted);
             request.view = fitted.view(aspect);
             request.cull_view = self.frozen.unwrap_or(request.view);
         }
-        let frame = self.source.frame(&request).map_err(|e| VkError::FrameSource(e.to_string()))?;
+        let frame = self
+            .source
+            .frame(&request)
+            .map_err(|e| VkError::FrameSource(e.to_string()))?;
 
         let mut options = self.render;
         options.show_lines = self.silhouettes || self.frozen.is_some();
@@ -334,7 +370,10 @@ impl App<'_> {
             extra_lines.extend(frozen.frustum_lines());
             mesh.lines = Some(&extra_lines);
         }
-        let at_limit = self.options.screenshot_after.is_some_and(|n| self.report.frames + 1 >= u64::from(n));
+        let at_limit = self
+            .options
+            .screenshot_after
+            .is_some_and(|n| self.report.frames + 1 >= u64::from(n));
         let shot = self.screenshot_requested || at_limit;
         let triangles = mesh.triangle_count();
         let status = frame.status.to_string();
@@ -345,7 +384,10 @@ impl App<'_> {
             let path = if at_limit {
                 self.options.screenshot_path.clone()
             } else {
-                numbered(&self.options.screenshot_path, self.report.screenshots.len() + 1)
+                numbered(
+                    &self.options.screenshot_path,
+                    self.report.screenshots.len() + 1,
+                )
             };
             write_png(&path, &image)?;
             eprintln!("screenshot: {}", path.display());
@@ -356,7 +398,10 @@ impl App<'_> {
                 return Ok(());
             }
         }
-        if self.last_title.is_none_or(|t| now.duration_since(t) > Duration::from_millis(250)) {
+        if self
+            .last_title
+            .is_none_or(|t| now.duration_since(t) > Duration::from_millis(250))
+        {
             self.last_title = Some(now);
             let mut title = format!(
                 "{} | {:.1} fps | {} triangles | {}",
@@ -391,8 +436,12 @@ impl App<'_> {
 
 /// `dir/name.png` → `dir/name-0003.png`.
 fn numbered(path: &std::path::Path, n: usize) -> PathBuf {
-    let stem = path.file_stem().map_or_else(|| "screenshot".into(), |s| s.to_string_lossy().into_owned());
-    let ext = path.extension().map_or_else(|| "png".into(), |s| s.to_string_lossy().into_owned());
+    let stem = path
+        .file_stem()
+        .map_or_else(|| "screenshot".into(), |s| s.to_string_lossy().into_owned());
+    let ext = path
+        .extension()
+        .map_or_else(|| "png".into(), |s| s.to_string_lossy().into_owned());
     path.with_file_name(format!("{stem}-{n:04}.{ext}"))
 }
 
@@ -427,14 +476,21 @@ impl ApplicationHandler for App<'_> {
                     self.key(&event.logical_key);
                 }
             }
-            WindowEvent::MouseInput { state, button: MouseButton::Left, .. } => {
+            WindowEvent::MouseInput {
+                state,
+                button: MouseButton::Left,
+                ..
+            } => {
                 self.dragging = state == ElementState::Pressed;
             }
             WindowEvent::CursorMoved { position, .. } => {
                 if self.dragging
                     && let (Some((x, y)), Some(camera)) = (self.cursor, self.camera.as_mut())
                 {
-                    camera.rotate(((position.x - x) * 0.01) as f32, ((position.y - y) * 0.01) as f32);
+                    camera.rotate(
+                        ((position.x - x) * 0.01) as f32,
+                        ((position.y - y) * 0.01) as f32,
+                    );
                 }
                 self.cursor = Some((position.x, position.y));
             }
@@ -493,12 +549,20 @@ struct Gpu {
 
 impl Gpu {
     fn new(window: &Window, options: &ContextOptions) -> Result<Self> {
-        let display = window.display_handle().map_err(|e| VkError::Window(e.to_string()))?.as_raw();
-        let handle = window.window_handle().map_err(|e| VkError::Window(e.to_string()))?.as_raw();
-        let extensions = ash_window::enumerate_required_extensions(display).call("enumerate surface extensions")?;
+        let display = window
+            .display_handle()
+            .map_err(|e| VkError::Window(e.to_string()))?
+            .as_raw();
+        let handle = window
+            .window_handle()
+            .map_err(|e| VkError::Window(e.to_string()))?
+            .as_raw();
+        let extensions = ash_window::enumerate_required_extensions(display)
+            .call("enumerate surface extensions")?;
         let factory = |entry: &ash::Entry, instance: &ash::Instance| {
             // SAFETY: the window outlives the context (the viewer drops the GPU state first).
-            unsafe { ash_window::create_surface(entry, instance, display, handle, None) }.call("vkCreate*SurfaceKHR")
+            unsafe { ash_window::create_surface(entry, instance, display, handle, None) }
+                .call("vkCreate*SurfaceKHR")
         };
         let ctx = Context::new(options, extensions, Some(&factory))?;
         let pipelines = Pipelines::new(&ctx)?;
@@ -516,8 +580,10 @@ impl Gpu {
         };
         let (surface_loader, surface) = gpu.surface()?;
         // SAFETY: valid handles.
-        let formats = unsafe { surface_loader.get_physical_device_surface_formats(gpu.ctx.physical, surface) }
-            .call("vkGetPhysicalDeviceSurfaceFormatsKHR")?;
+        let formats = unsafe {
+            surface_loader.get_physical_device_surface_formats(gpu.ctx.physical, surface)
+        }
+        .call("vkGetPhysicalDeviceSurfaceFormatsKHR")?;
         // UNORM formats keep the shader's values, so the window equals headless renders.
         gpu.format = [vk::Format::B8G8R8A8_UNORM, vk::Format::R8G8B8A8_UNORM]
             .iter()
@@ -529,7 +595,8 @@ impl Gpu {
             .flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER);
         let device = &gpu.ctx.device;
         // SAFETY: valid device; `Drop` cleans up on any later error.
-        gpu.pool = unsafe { device.create_command_pool(&pool_info, None) }.call("vkCreateCommandPool")?;
+        gpu.pool =
+            unsafe { device.create_command_pool(&pool_info, None) }.call("vkCreateCommandPool")?;
         for _ in 0..FRAMES_IN_FLIGHT {
             let alloc = vk::CommandBufferAllocateInfo::default()
                 .command_pool(gpu.pool)
@@ -537,17 +604,26 @@ impl Gpu {
                 .command_buffer_count(1);
             // SAFETY: as above.
             unsafe {
-                let cmd = device.allocate_command_buffers(&alloc).call("vkAllocateCommandBuffers")?;
+                let cmd = device
+                    .allocate_command_buffers(&alloc)
+                    .call("vkAllocateCommandBuffers")?;
                 let fence = device
-                    .create_fence(&vk::FenceCreateInfo::default().flags(vk::FenceCreateFlags::SIGNALED), None)
+                    .create_fence(
+                        &vk::FenceCreateInfo::default().flags(vk::FenceCreateFlags::SIGNALED),
+                        None,
+                    )
                     .call("vkCreateFence")?;
-                let acquired = match device.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) {
-                    Ok(s) => s,
-                    Err(result) => {
-                        device.destroy_fence(fence, None);
-                        return Err(VkError::Vulkan { call: "vkCreateSemaphore", result });
-                    }
-                };
+                let acquired =
+                    match device.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) {
+                        Ok(s) => s,
+                        Err(result) => {
+                            device.destroy_fence(fence, None);
+                            return Err(VkError::Vulkan {
+                                call: "vkCreateSemaphore",
+                                result,
+                            });
+                        }
+                    };
                 gpu.slots.push(Slot {
                     cmd: cmd.first().copied().unwrap_or_default(),
                     fence,
@@ -577,17 +653,25 @@ impl Gpu {
         }
         let (surface_loader, surface) = self.surface()?;
         // SAFETY: valid handles.
-        let caps = unsafe { surface_loader.get_physical_device_surface_capabilities(self.ctx.physical, surface) }
-            .call("vkGetPhysicalDeviceSurfaceCapabilitiesKHR")?;
+        let caps = unsafe {
+            surface_loader.get_physical_device_surface_capabilities(self.ctx.physical, surface)
+        }
+        .call("vkGetPhysicalDeviceSurfaceCapabilitiesKHR")?;
         // SAFETY: valid handles.
-        let modes = unsafe { surface_loader.get_physical_device_surface_present_modes(self.ctx.physical, surface) }
-            .call("vkGetPhysicalDeviceSurfacePresentModesKHR")?;
+        let modes = unsafe {
+            surface_loader.get_physical_device_surface_present_modes(self.ctx.physical, surface)
+        }
+        .call("vkGetPhysicalDeviceSurfacePresentModesKHR")?;
         let extent = if caps.current_extent.width != u32::MAX {
             caps.current_extent
         } else {
             vk::Extent2D {
-                width: size.width.clamp(caps.min_image_extent.width, caps.max_image_extent.width),
-                height: size.height.clamp(caps.min_image_extent.height, caps.max_image_extent.height),
+                width: size
+                    .width
+                    .clamp(caps.min_image_extent.width, caps.max_image_extent.width),
+                height: size
+                    .height
+                    .clamp(caps.min_image_extent.height, caps.max_image_extent.height),
             }
         };
         if extent.width == 0 || extent.height == 0 {
@@ -625,23 +709,38 @@ impl Gpu {
             self.destroy_swapchain(old);
         }
         let raw = created.call("vkCreateSwapchainKHR")?;
-        let mut swapchain = Swapchain { raw, images: Vec::new(), extent, rendered: Vec::new() };
+        let mut swapchain = Swapchain {
+            raw,
+            images: Vec::new(),
+            extent,
+            rendered: Vec::new(),
+        };
         // SAFETY: swapchain just created.
         let images = unsafe { self.loader.get_swapchain_images(raw) };
         match images {
             Ok(images) => swapchain.images = images,
             Err(result) => {
                 self.destroy_swapchain(swapchain);
-                return Err(VkError::Vulkan { call: "vkGetSwapchainImagesKHR", result });
+                return Err(VkError::Vulkan {
+                    call: "vkGetSwapchainImagesKHR",
+                    result,
+                });
             }
         }
         for _ in 0..swapchain.images.len() {
             // SAFETY: valid device.
-            match unsafe { self.ctx.device.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) } {
+            match unsafe {
+                self.ctx
+                    .device
+                    .create_semaphore(&vk::SemaphoreCreateInfo::default(), None)
+            } {
                 Ok(s) => swapchain.rendered.push(s),
                 Err(result) => {
                     self.destroy_swapchain(swapchain);
-                    return Err(VkError::Vulkan { call: "vkCreateSemaphore", result });
+                    return Err(VkError::Vulkan {
+                        call: "vkCreateSemaphore",
+                        result,
+                    });
                 }
             }
         }
@@ -669,7 +768,9 @@ impl Gpu {
         screenshot: bool,
     ) -> Result<Option<image::RgbaImage>> {
         let (bytes, layout) = scene::pack(mesh, options)?;
-        let Some(extent) = self.swapchain.as_ref().map(|s| s.extent) else { return Ok(None) };
+        let Some(extent) = self.swapchain.as_ref().map(|s| s.extent) else {
+            return Ok(None);
+        };
         let index = self.next;
         self.next = (self.next + 1) % FRAMES_IN_FLIGHT;
         let (fence, acquired, cmd) = {
@@ -677,12 +778,19 @@ impl Gpu {
             (slot.fence, slot.acquired, slot.cmd)
         };
         // SAFETY: the fence belongs to this device.
-        unsafe { self.ctx.device.wait_for_fences(&[fence], true, u64::MAX) }.call("vkWaitForFences")?;
+        unsafe { self.ctx.device.wait_for_fences(&[fence], true, u64::MAX) }
+            .call("vkWaitForFences")?;
 
         // Acquire before touching the fence, so an out-of-date swapchain leaves it signalled.
-        let swapchain_raw = self.swapchain.as_ref().map_or(vk::SwapchainKHR::null(), |s| s.raw);
+        let swapchain_raw = self
+            .swapchain
+            .as_ref()
+            .map_or(vk::SwapchainKHR::null(), |s| s.raw);
         // SAFETY: valid swapchain and unsignalled semaphore (its last wait completed with the fence).
-        let acquire = unsafe { self.loader.acquire_next_image(swapchain_raw, u64::MAX, acquired, vk::Fence::null()) };
+        let acquire = unsafe {
+            self.loader
+                .acquire_next_image(swapchain_raw, u64::MAX, acquired, vk::Fence::null())
+        };
         let image_index = match acquire {
             Ok((i, suboptimal)) => {
                 self.swapchain_dirty |= suboptimal;
@@ -692,7 +800,12 @@ impl Gpu {
                 self.swapchain_dirty = true;
                 return Ok(None);
             }
-            Err(result) => return Err(VkError::Vulkan { call: "vkAcquireNextImageKHR", result }),
+            Err(result) => {
+                return Err(VkError::Vulkan {
+                    call: "vkAcquireNextImageKHR",
+                    result,
+                });
+            }
         };
 
         let slot = &mut self.slots[index];
@@ -703,21 +816,33 @@ impl Gpu {
             slot.target = Some(Target::new(&mut self.ctx, extent)?);
         }
         let mesh_buffer = slot.mesh.upload(&mut self.ctx, &bytes)?;
-        let (Some(target), Some(swapchain)) = (slot.target.as_ref(), self.swapchain.as_ref()) else {
+        let (Some(target), Some(swapchain)) = (slot.target.as_ref(), self.swapchain.as_ref())
+        else {
             return Ok(None);
         };
-        let swap_image = swapchain.images.get(image_index as usize).copied().unwrap_or_default();
-        let rendered = swapchain.rendered.get(image_index as usize).copied().unwrap_or_default();
+        let swap_image = swapchain
+            .images
+            .get(image_index as usize)
+            .copied()
+            .unwrap_or_default();
+        let rendered = swapchain
+            .rendered
+            .get(image_index as usize)
+            .copied()
+            .unwrap_or_default();
         let device = &self.ctx.device;
         // SAFETY: the slot's previous submission completed (fence waited), so its
         // command buffer, target and mesh buffer are free.
         unsafe {
             device.reset_fences(&[fence]).call("vkResetFences")?;
-            device.reset_command_buffer(cmd, vk::CommandBufferResetFlags::empty()).call("vkResetCommandBuffer")?;
+            device
+                .reset_command_buffer(cmd, vk::CommandBufferResetFlags::empty())
+                .call("vkResetCommandBuffer")?;
             device
                 .begin_command_buffer(
                     cmd,
-                    &vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT),
+                    &vk::CommandBufferBeginInfo::default()
+                        .flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT),
                 )
                 .call("vkBeginCommandBuffer")?;
         }
@@ -731,7 +856,11 @@ impl Gpu {
                 layout: &layout,
                 view,
                 options,
-                readback: if screenshot { Readback::Color } else { Readback::None },
+                readback: if screenshot {
+                    Readback::Color
+                } else {
+                    Readback::None
+                },
             },
         );
         let range = crate::memory::subresource_range(vk::ImageAspectFlags::COLOR);
@@ -800,17 +929,30 @@ impl Gpu {
             .image_indices(&indices);
         // SAFETY: recorded with valid handles; semaphores/fence as documented above.
         let presented = unsafe {
-            device.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().image_memory_barriers(&to_dst));
+            device.cmd_pipeline_barrier2(
+                cmd,
+                &vk::DependencyInfo::default().image_memory_barriers(&to_dst),
+            );
             device.cmd_blit_image2(cmd, &blit);
-            device.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().image_memory_barriers(&to_present));
+            device.cmd_pipeline_barrier2(
+                cmd,
+                &vk::DependencyInfo::default().image_memory_barriers(&to_present),
+            );
             device.end_command_buffer(cmd).call("vkEndCommandBuffer")?;
-            device.queue_submit2(self.ctx.queue, &submit, fence).call("vkQueueSubmit2")?;
+            device
+                .queue_submit2(self.ctx.queue, &submit, fence)
+                .call("vkQueueSubmit2")?;
             self.loader.queue_present(self.ctx.queue, &present)
         };
         match presented {
             Ok(suboptimal) => self.swapchain_dirty |= suboptimal,
             Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => self.swapchain_dirty = true,
-            Err(result) => return Err(VkError::Vulkan { call: "vkQueuePresentKHR", result }),
+            Err(result) => {
+                return Err(VkError::Vulkan {
+                    call: "vkQueuePresentKHR",
+                    result,
+                });
+            }
         }
         if !screenshot {
             return Ok(None);

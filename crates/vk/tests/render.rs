@@ -22,7 +22,10 @@ fn renderer() -> Option<Renderer> {
         Ok(r) => {
             let layer = "/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json";
             if std::path::Path::new(layer).exists() {
-                assert!(r.validation_enabled(), "validation layer installed but not enabled");
+                assert!(
+                    r.validation_enabled(),
+                    "validation layer installed but not enabled"
+                );
             }
             Some(r)
         }

@@ -6,7 +6,9 @@
 
 use subdiv_vk::glam::Vec3;
 use subdiv_vk::viewer::{self, FrameRequest, FrameSource, SourceFrame, ViewerOptions};
-use subdiv_vk::{ContextOptions, OrbitCamera, OwnedMesh, RenderOptions, Renderer, Shading, Validation};
+use subdiv_vk::{
+    ContextOptions, OrbitCamera, OwnedMesh, RenderOptions, Renderer, Shading, Validation,
+};
 
 /// An octahedron-ish test shape with per-vertex depth scalars and a line.
 fn shape() -> OwnedMesh {
@@ -19,7 +21,9 @@ fn shape() -> OwnedMesh {
         [0.0, 0.0, -1.0],
     ];
     let normals = positions.clone();
-    let triangles = vec![0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5];
+    let triangles = vec![
+        0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5,
+    ];
     OwnedMesh {
         positions,
         normals,
@@ -46,7 +50,10 @@ impl FrameSource for Counting {
         assert_eq!(request.view, request.cull_view);
         assert_eq!(request.shading, Shading::Depth);
         self.frames += 1;
-        Ok(SourceFrame { mesh: self.mesh.as_render_mesh(), status: "test" })
+        Ok(SourceFrame {
+            mesh: self.mesh.as_render_mesh(),
+            status: "test",
+        })
     }
 }
 
@@ -57,17 +64,27 @@ fn screenshot_after_n_frames_equals_headless_render() {
         eprintln!("skipping: no DISPLAY (run under xvfb-run)");
         return;
     }
-    let context = ContextOptions { validation: Validation::IfAvailable, ..Default::default() };
+    let context = ContextOptions {
+        validation: Validation::IfAvailable,
+        ..Default::default()
+    };
     let Ok(mut headless) = Renderer::with_options(&context) else {
         assert!(!require, "no Vulkan driver");
         eprintln!("skipping: no Vulkan driver");
         return;
     };
     let camera = OrbitCamera::framing(Vec3::splat(-1.0), Vec3::splat(1.0));
-    let render = RenderOptions { shading: Shading::Depth, wire_overlay: true, ..Default::default() };
+    let render = RenderOptions {
+        shading: Shading::Depth,
+        wire_overlay: true,
+        ..Default::default()
+    };
     let dir = std::env::temp_dir().join(format!("subdiv-vk-viewer-{}", std::process::id()));
     let path = dir.join("shot.png");
-    let mut source = Counting { mesh: shape(), frames: 0 };
+    let mut source = Counting {
+        mesh: shape(),
+        frames: 0,
+    };
     let report = viewer::run(
         &mut source,
         ViewerOptions {
@@ -85,12 +102,26 @@ fn screenshot_after_n_frames_equals_headless_render() {
     assert_eq!(source.frames, 5);
     assert_eq!(report.screenshots, vec![path.clone()]);
     assert_eq!(report.validation_enabled, headless.validation_enabled());
-    assert!(report.validation_messages.is_empty(), "{:#?}", report.validation_messages);
+    assert!(
+        report.validation_messages.is_empty(),
+        "{:#?}",
+        report.validation_messages
+    );
 
     let shot = subdiv_vk::read_png(&path).unwrap();
     let mesh = shape();
-    let expected = headless.render(&mesh.as_render_mesh(), &camera.view(160.0 / 120.0), [160, 120], &render).unwrap();
-    assert!(shot == expected, "viewer screenshot differs from the headless render");
+    let expected = headless
+        .render(
+            &mesh.as_render_mesh(),
+            &camera.view(160.0 / 120.0),
+            [160, 120],
+            &render,
+        )
+        .unwrap();
+    assert!(
+        shot == expected,
+        "viewer screenshot differs from the headless render"
+    );
     let log = headless.validation_log();
     drop(headless);
     assert!(log.take().is_empty());

@@ -1,0 +1,93 @@
+//! `subdiv info`.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use subdiv_mesh::{read_obj_soup, BoundaryInterpolation, CreaseMethod, Mesh, MeshStats, ObjError};
+
+#[derive(clap::Args, Debug)]
+pub struct InfoArgs {
+    /// Input cage (OBJ with optional OpenSubdiv tags).
+    pub input: PathBuf,
+    /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
+    #[arg(long)]
+    pub split_nonmanifold: bool,
+}
+
+fn histogram(h: &std::collections::BTreeMap<usize, usize>) -> String {
+    h.iter().map(|(k, n)| format!("{k}:{n}")).collect::<Vec<_>>().join(" ")
+}
+
+/// Prints the report; exits 1 (after the report) when the mesh would be refused.
+pub fn run(a: &InfoArgs) -> anyhow::Result<ExitCode> {
+    let path = a.input.display().to_string();
+    let mut soup = read_obj_soup(&a.input)?;
+    let mut out = String::new();
+    writeln!(out, "file: {path}")?;
+    if a.split_nonmanifold {
+        let split = soup.split_nonmanifold_vertices();
+        if !split.is_empty() {
+            writeln!(out, "split non-manifold vertices: {}", split.len())?;
+        }
+    }
+    let mesh = match Mesh::from_soup(&soup) {
+        Ok(m) => m,
+        Err(err) => {
+            let mut sizes = std::collections::BTreeMap::new();
+            for f in 0..soup.num_faces() {
+                *sizes.entry(soup.face(f).len()).or_insert(0usize) += 1;
+            }
+            writeln!(out, "vertices: {}", soup.positions.len())?;
+            writeln!(out, "faces: {}", soup.num_faces())?;
+            writeln!(out, "face sizes: {}", histogram(&sizes))?;
+            writeln!(out, "status: refused")?;
+            print!("{out}");
+            let e = ObjError::Invalid { path, err };
+            eprintln!("error: {e}");
+            return Ok(ExitCode::FAILURE);
+        }
+    };
+    let s = MeshStats::of(&mesh);
+    let opts = mesh.options();
+    writeln!(out, "vertices: {}", s.vertices)?;
+    writeln!(out, "edges: {}", s.edges)?;
+    writeln!(out, "faces: {}", s.faces)?;
+    writeln!(out, "face sizes: {}", histogram(&s.face_sizes))?;
+    writeln!(out, "valences: {}", histogram(&s.valences))?;
+    writeln!(out, "max valence: {}", s.valences.keys().max().copied().unwrap_or(0))?;
+    writeln!(out, "boundary loops: {} ({} edges)", s.boundary_loops, s.boundary_edges)?;
+    writeln!(
+        out,
+        "creases: {} semi-sharp edges (max sharpness {}), {} infinitely sharp edges",
+        s.semi_sharp_edges, s.max_edge_sharpness, s.infinite_edges
+    )?;
+    writeln!(out, "sharp vertices: {}", s.sharp_vertices)?;
+    writeln!(out, "holes: {}", s.holes)?;
+    writeln!(out, "isolated vertices: {}", s.isolated_vertices)?;
+    writeln!(out, "components: {}", s.components)?;
+    writeln!(out, "euler characteristic: {}", s.euler)?;
+    writeln!(out, "genus: {}", s.genus)?;
+    let b = match opts.boundary {
+        BoundaryInterpolation::None => "none",
+        BoundaryInterpolation::EdgeOnly => "edge-only",
+        BoundaryInterpolation::EdgeAndCorner => "edge-and-corner",
+    };
+    let c = match opts.crease {
+        CreaseMethod::Uniform => "uniform",
+        CreaseMethod::Chaikin => "chaikin",
+    };
+    writeln!(out, "options: boundary={b} crease={c}")?;
+    if !mesh.groups().is_empty() {
+        writeln!(out, "groups: {}", mesh.groups().join(", "))?;
+    }
+    let loop_ok = s.face_sizes.keys().all(|&k| k == 3);
+    writeln!(
+        out,
+        "schemes: catmull-clark yes, loop {}",
+        if loop_ok { "yes" } else { "no (faces other than triangles; use --triangulate)" }
+    )?;
+    writeln!(out, "status: ok")?;
+    print!("{out}");
+    Ok(ExitCode::SUCCESS)
+}
