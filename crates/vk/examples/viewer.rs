@@ -41,16 +41,24 @@ impl FrameSource for Adaptive {
             self.mesh.scalars = Some(vec![self.level as f32; self.mesh.positions.len()]);
         }
         self.status = format!("level {}", self.level);
-        Ok(SourceFrame { mesh: self.mesh.as_render_mesh(), status: &self.status })
+        Ok(SourceFrame {
+            mesh: self.mesh.as_render_mesh(),
+            status: &self.status,
+        })
     }
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let mut options = ViewerOptions { title: "subdiv-vk viewer example".into(), ..Default::default() };
+    let mut options = ViewerOptions {
+        title: "subdiv-vk viewer example".into(),
+        ..Default::default()
+    };
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
         match arg.as_str() {
-            "--screenshot-after" => options.screenshot_after = args.next().map(|n| n.parse()).transpose()?,
+            "--screenshot-after" => {
+                options.screenshot_after = args.next().map(|n| n.parse()).transpose()?
+            }
             "-o" => options.screenshot_path = args.next().ok_or("-o needs a path")?.into(),
             "--size" => {
                 let s = args.next().ok_or("--size needs WxH")?;
@@ -60,8 +68,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             other => return Err(format!("unknown argument {other}").into()),
         }
     }
-    let mut source = Adaptive { level: 2, mesh: OwnedMesh::default(), status: String::new() };
+    let mut source = Adaptive {
+        level: 2,
+        mesh: OwnedMesh::default(),
+        status: String::new(),
+    };
     let report = viewer::run(&mut source, options)?;
-    println!("{} frames, screenshots: {:?}", report.frames, report.screenshots);
+    println!(
+        "{} frames, screenshots: {:?}",
+        report.frames, report.screenshots
+    );
     Ok(())
 }

@@ -257,37 +257,31 @@ impl App<'_> {
     }
 
     fn key(&mut self, key: &Key) {
-        let shading = &mut self.render.shading;
-        match key.as_ref() {
-            Key::Character(c) => match c.to_ascii_lowercase().as_str() {
-                "w" => self.render.wire_overlay = !self.render.wire_overlay,
-                "d" => {
-                    *shading = if *shading == Shading::Depth {
-                        Shading::Smooth
-                    } else {
-                        Shading::Depth
-                    }
+        let Key::Character(c) = key.as_ref() else {
+            return;
+        };
+        let toggle = |current: Shading, mode: Shading| {
+            if current == mode {
+                Shading::Smooth
+            } else {
+                mode
+            }
+        };
+        match c.to_ascii_lowercase().as_str() {
+            "w" => self.render.wire_overlay = !self.render.wire_overlay,
+            "d" => self.render.shading = toggle(self.render.shading, Shading::Depth),
+            "h" => self.render.shading = toggle(self.render.shading, Shading::Doi),
+            "s" => self.silhouettes = !self.silhouettes,
+            "f" => {
+                self.frozen = match self.frozen {
+                    Some(_) => None,
+                    None => self.current_view(),
                 }
-                "h" => {
-                    *shading = if *shading == Shading::Doi {
-                        Shading::Smooth
-                    } else {
-                        Shading::Doi
-                    }
-                }
-                "s" => self.silhouettes = !self.silhouettes,
-                "f" => {
-                    self.frozen = match self.frozen {
-                        Some(_) => None,
-                        None => self.current_view(),
-                    }
-                }
-                "+" | "=" => self.target_fps = (self.target_fps * 1.25).min(1000.0),
-                "-" | "_" => self.target_fps = (self.target_fps / 1.25).max(1.0),
-                "c" => self.frame_rate_control = !self.frame_rate_control,
-                "p" => self.screenshot_requested = true,
-                _ => {}
-            },
+            }
+            "+" | "=" => self.target_fps = (self.target_fps * 1.25).min(1000.0),
+            "-" | "_" => self.target_fps = (self.target_fps / 1.25).max(1.0),
+            "c" => self.frame_rate_control = !self.frame_rate_control,
+            "p" => self.screenshot_requested = true,
             _ => {}
         }
     }
