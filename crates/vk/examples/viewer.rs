@@ -44,6 +44,7 @@ impl FrameSource for Adaptive {
         Ok(SourceFrame {
             mesh: self.mesh.as_render_mesh(),
             status: &self.status,
+            vertex_version: None,
         })
     }
 }

@@ -465,6 +465,31 @@ impl MeshBuffer {
         Ok(buffer.raw)
     }
 
+    /// Copies `bytes` to `offset`, keeping what lies before it, if the buffer
+    /// already holds at least `total` bytes; `None` (nothing written) otherwise.
+    pub fn upload_at(
+        &mut self,
+        bytes: &[u8],
+        offset: u64,
+        total: u64,
+    ) -> Result<Option<vk::Buffer>> {
+        let Some(buffer) = self.buffer.as_mut().filter(|b| b.size >= total) else {
+            return Ok(None);
+        };
+        let start = usize::try_from(offset).unwrap_or(usize::MAX);
+        let mapped = buffer.mapped_mut()?;
+        match start
+            .checked_add(bytes.len())
+            .and_then(|end| mapped.get_mut(start..end))
+        {
+            Some(dst) => {
+                dst.copy_from_slice(bytes);
+                Ok(Some(buffer.raw))
+            }
+            None => Ok(None),
+        }
+    }
+
     pub fn destroy(&mut self, ctx: &mut Context) {
         if let Some(mut b) = self.buffer.take() {
             b.destroy(ctx);

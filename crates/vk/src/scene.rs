@@ -456,6 +456,17 @@ fn count_u32(n: usize, what: &str) -> Result<u32> {
 /// Packs `mesh` for drawing with `options` into one byte array (vertices and
 /// u32 indices, 16-byte aligned sections).
 pub(crate) fn pack(mesh: &RenderMesh<'_>, options: &RenderOptions) -> Result<(Vec<u8>, Layout)> {
+    pack_from(mesh, options, true).map(|(bytes, layout, _)| (bytes, layout))
+}
+
+/// [`pack`], optionally leaving out the shared-vertex section at the start
+/// (when the destination buffer still holds it): the returned bytes then
+/// belong at the returned offset, and the layout is the same as with vertices.
+pub(crate) fn pack_from(
+    mesh: &RenderMesh<'_>,
+    options: &RenderOptions,
+    with_vertices: bool,
+) -> Result<(Vec<u8>, Layout, u64)> {
     mesh.validate()?;
     let scalar = |i: usize| mesh.scalars.map_or(0.0, |s| s[i]);
     let mut out = Vec::new();
@@ -463,14 +474,20 @@ pub(crate) fn pack(mesh: &RenderMesh<'_>, options: &RenderOptions) -> Result<(Ve
         vertices: 0,
         ..Layout::default()
     };
-    for (i, (p, n)) in mesh.positions.iter().zip(mesh.normals).enumerate() {
-        push_vertex(&mut out, *p, *n, scalar(i));
-    }
-    pad(&mut out);
+    let base = if with_vertices {
+        for (i, (p, n)) in mesh.positions.iter().zip(mesh.normals).enumerate() {
+            push_vertex(&mut out, *p, *n, scalar(i));
+        }
+        pad(&mut out);
+        0
+    } else {
+        align(mesh.positions.len() as u64 * VERTEX_STRIDE)
+    };
+    let at = |out: &Vec<u8>| base + out.len() as u64;
 
     layout.tri_count = count_u32(mesh.triangle_count(), "triangles")?;
     if options.shading == Shading::Flat {
-        layout.tri_vertices = out.len() as u64;
+        layout.tri_vertices = at(&out);
         layout.tri_indexed = false;
         for t in mesh.triangles.chunks_exact(3) {
             let [a, b, c] = [t[0] as usize, t[1] as usize, t[2] as usize];
@@ -494,7 +511,7 @@ pub(crate) fn pack(mesh: &RenderMesh<'_>, options: &RenderOptions) -> Result<(Ve
     } else {
         layout.tri_vertices = layout.vertices;
         layout.tri_indexed = true;
-        layout.tri_indices = out.len() as u64;
+        layout.tri_indices = at(&out);
         for i in mesh.triangles {
             out.extend_from_slice(&i.to_le_bytes());
         }
@@ -502,7 +519,7 @@ pub(crate) fn pack(mesh: &RenderMesh<'_>, options: &RenderOptions) -> Result<(Ve
     }
 
     if options.wire_overlay || options.shading == Shading::Wire {
-        layout.edge_indices = out.len() as u64;
+        layout.edge_indices = at(&out);
         let mut count = 0usize;
         match mesh.edges {
             Some(edges) => {
@@ -535,7 +552,7 @@ pub(crate) fn pack(mesh: &RenderMesh<'_>, options: &RenderOptions) -> Result<(Ve
     if options.show_lines
         && let Some(lines) = mesh.lines
     {
-        layout.line_vertices = out.len() as u64;
+        layout.line_vertices = at(&out);
         for p in lines {
             push_vertex(&mut out, *p, [0.0; 3], 0.0);
         }
@@ -557,8 +574,8 @@ pub(crate) fn pack(mesh: &RenderMesh<'_>, options: &RenderOptions) -> Result<(Ve
     });
     layout.scalar_min = lo;
     layout.scalar_inv_range = if hi > lo { 1.0 / (hi - lo) } else { 0.0 };
-    layout.total = out.len() as u64;
-    Ok((out, layout))
+    layout.total = at(&out);
+    Ok((out, layout, base))
 }
 
 /// The 128-byte push-constant block of the triangle shaders.
@@ -670,6 +687,30 @@ mod tests {
             ..mesh
         };
         assert_eq!(pack(&with_edges, &options).unwrap().1.edge_count, 4);
+    }
+
+    #[test]
+    fn pack_without_vertices_is_the_tail_of_the_full_pack() {
+        let mesh = RenderMesh {
+            positions: &P,
+            normals: &N,
+            triangles: &[0, 1, 2],
+            lines: Some(&P[..2]),
+            ..Default::default()
+        };
+        for shading in [Shading::Smooth, Shading::Flat] {
+            let options = RenderOptions {
+                shading,
+                wire_overlay: true,
+                ..Default::default()
+            };
+            let (full, layout, zero) = pack_from(&mesh, &options, true).unwrap();
+            let (tail, tail_layout, offset) = pack_from(&mesh, &options, false).unwrap();
+            assert_eq!(zero, 0);
+            assert_eq!(offset, 96); // 3 vertices * 28 bytes, aligned to 16
+            assert_eq!(&full[offset as usize..], &tail[..]);
+            assert_eq!(format!("{layout:?}"), format!("{tail_layout:?}"));
+        }
     }
 
     #[test]

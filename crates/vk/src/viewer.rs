@@ -63,6 +63,11 @@ pub struct SourceFrame<'a> {
     pub mesh: RenderMesh<'a>,
     /// Extra text for the window title, e.g. patches per depth.
     pub status: &'a str,
+    /// Identifies the vertex data (positions, normals, scalars). When it equals
+    /// the previous frame's, the viewer keeps the vertices already in its
+    /// per-frame device buffers and uploads only indices and lines (e.g. limit
+    /// points stay while subdivision depths do not rise). `None`: always upload.
+    pub vertex_version: Option<u64>,
 }
 
 /// Produces the geometry of each frame (e.g. the adaptive tessellator).
@@ -79,9 +84,11 @@ impl FrameSource for OwnedMesh {
         &mut self,
         _request: &FrameRequest,
     ) -> std::result::Result<SourceFrame<'_>, Box<dyn std::error::Error + Send + Sync>> {
+        // The mesh cannot change while the viewer borrows it: one vertex version.
         Ok(SourceFrame {
             mesh: self.as_render_mesh(),
             status: "",
+            vertex_version: Some(0),
         })
     }
 }
@@ -371,7 +378,7 @@ impl App<'_> {
         let shot = self.screenshot_requested || at_limit;
         let triangles = mesh.triangle_count();
         let status = frame.status.to_string();
-        let image = gpu.draw(&mesh, &request.view, &options, shot)?;
+        let image = gpu.draw(&mesh, &request.view, &options, frame.vertex_version, shot)?;
         self.report.frames += 1;
 
         if let Some(image) = image {
@@ -516,9 +523,12 @@ struct Slot {
     fence: vk::Fence,
     acquired: vk::Semaphore,
     target: Option<Target>,
-    /// Vertex + index buffer of this slot: rebuilt per frame, double-buffered
-    /// across slots so the CPU never overwrites what the GPU still reads.
+    /// Vertex + index buffer of this slot: indices rebuilt per frame,
+    /// double-buffered across slots so the CPU never overwrites what the GPU
+    /// still reads.
     mesh: MeshBuffer,
+    /// [`SourceFrame::vertex_version`] of the vertices in `mesh`.
+    vertex_version: Option<u64>,
 }
 
 struct Swapchain {
@@ -624,6 +634,7 @@ impl Gpu {
                     acquired,
                     target: None,
                     mesh: MeshBuffer::default(),
+                    vertex_version: None,
                 });
             }
         }
@@ -759,13 +770,17 @@ impl Gpu {
         mesh: &RenderMesh<'_>,
         view: &View,
         options: &RenderOptions,
+        vertex_version: Option<u64>,
         screenshot: bool,
     ) -> Result<Option<image::RgbaImage>> {
-        let (bytes, layout) = scene::pack(mesh, options)?;
         let Some(extent) = self.swapchain.as_ref().map(|s| s.extent) else {
             return Ok(None);
         };
         let index = self.next;
+        // CPU work first (overlaps the GPU's previous frame): pack the mesh,
+        // without the vertices if this slot's buffer already holds them.
+        let reuse = vertex_version.is_some() && self.slots[index].vertex_version == vertex_version;
+        let (bytes, layout, offset) = scene::pack_from(mesh, options, !reuse)?;
         self.next = (self.next + 1) % FRAMES_IN_FLIGHT;
         let (fence, acquired, cmd) = {
             let slot = &self.slots[index];
@@ -809,7 +824,21 @@ impl Gpu {
             }
             slot.target = Some(Target::new(&mut self.ctx, extent)?);
         }
-        let mesh_buffer = slot.mesh.upload(&mut self.ctx, &bytes)?;
+        slot.vertex_version = None;
+        let kept = if reuse {
+            slot.mesh.upload_at(&bytes, offset, layout.total)?
+        } else {
+            None
+        };
+        let mesh_buffer = match kept {
+            Some(buffer) => buffer,
+            None if reuse => {
+                let (all, _) = scene::pack(mesh, options)?;
+                slot.mesh.upload(&mut self.ctx, &all)?
+            }
+            None => slot.mesh.upload(&mut self.ctx, &bytes)?,
+        };
+        slot.vertex_version = vertex_version;
         let (Some(target), Some(swapchain)) = (slot.target.as_ref(), self.swapchain.as_ref())
         else {
             return Ok(None);

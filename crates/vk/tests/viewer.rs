@@ -50,9 +50,12 @@ impl FrameSource for Counting {
         assert_eq!(request.view, request.cull_view);
         assert_eq!(request.shading, Shading::Depth);
         self.frames += 1;
+        // Same vertices every frame: from the third frame on, both per-frame
+        // buffers keep them and only indices and lines are uploaded.
         Ok(SourceFrame {
             mesh: self.mesh.as_render_mesh(),
             status: "test",
+            vertex_version: Some(7),
         })
     }
 }
