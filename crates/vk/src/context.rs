@@ -34,7 +34,7 @@ pub enum Validation {
     Required,
 }
 
-/// How to create a [`Context`].
+/// How to set up Vulkan for a [`crate::Renderer`] or the [`crate::viewer`].
 #[derive(Clone, Debug, Default)]
 pub struct ContextOptions {
     /// Validation layer policy.
@@ -103,7 +103,7 @@ pub(crate) type SurfaceFactory<'a> =
     &'a dyn Fn(&ash::Entry, &ash::Instance) -> Result<vk::SurfaceKHR>;
 
 /// Instance + device + queue + allocator. Destroyed in the right order on drop.
-pub struct Context {
+pub(crate) struct Context {
     pub(crate) entry: ash::Entry,
     pub(crate) instance: ash::Instance,
     debug: Option<(ext::debug_utils::Instance, vk::DebugUtilsMessengerEXT)>,
