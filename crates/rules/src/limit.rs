@@ -153,3 +153,127 @@ pub fn tessellate_uniform(
     let refined = refine_uniform_levels(base, scheme, depth)?;
     Ok(limit_surface(&refined, scheme))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+    use subdiv_mesh::PolygonSoup;
+
+    /// A regular (n+1)^2 quad grid with heights from `f`.
+    fn quad_grid(n: i32, f: impl Fn(f32, f32) -> f32) -> Mesh {
+        let mut p = Vec::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                let (x, y) = ((i - n / 2) as f32, (j - n / 2) as f32);
+                p.push(Vec3::new(x, y, f(x, y)));
+            }
+        }
+        let w = (n + 1) as u32;
+        let mut faces = Vec::new();
+        for j in 0..n as u32 {
+            for i in 0..n as u32 {
+                let a = j * w + i;
+                faces.push(vec![a, a + 1, a + w + 1, a + w]);
+            }
+        }
+        Mesh::from_soup(&PolygonSoup::from_faces(p, &faces)).unwrap()
+    }
+
+    /// A regular triangle lattice (unit spacing) with heights from `f`.
+    fn tri_grid(n: i32, f: impl Fn(f32, f32) -> f32) -> Mesh {
+        let mut p = Vec::new();
+        let h = 3f32.sqrt() / 2.0;
+        for j in 0..=n {
+            for i in 0..=n {
+                let x = (i - n / 2) as f32 + 0.5 * (j - n / 2) as f32;
+                let y = (j - n / 2) as f32 * h;
+                p.push(Vec3::new(x, y, f(x, y)));
+            }
+        }
+        let w = (n + 1) as u32;
+        let mut faces = Vec::new();
+        for j in 0..n as u32 {
+            for i in 0..n as u32 {
+                let a = j * w + i;
+                faces.push(vec![a, a + 1, a + w]);
+                faces.push(vec![a + 1, a + w + 1, a + w]);
+            }
+        }
+        Mesh::from_soup(&PolygonSoup::from_faces(p, &faces)).unwrap()
+    }
+
+    #[test]
+    fn regular_quad_grid_is_bicubic_bspline() {
+        // The uniform bicubic B-spline reproduces quadratics up to the offset of its knot mask
+        // (1/6, 4/6, 1/6): z = x^2 + 2y^2 has limit z + 1/3 + 2/3 at every interior vertex, at
+        // every level, and its normal is that of the paraboloid shifted by the same offset.
+        let f = |x: f32, y: f32| x * x + 2.0 * y * y;
+        let m = quad_grid(8, f);
+        for depth in 0..=2u32 {
+            let t = tessellate_uniform(&m, Scheme::CatmullClark, depth).unwrap();
+            let scale = (1u32 << depth) as f32;
+            let mut checked = 0;
+            for p in &t.positions {
+                let (x, y) = (p[0], p[1]);
+                // Interior region only (two cage rings away from the boundary).
+                if x.abs() <= 2.0 && y.abs() <= 2.0 {
+                    let want = f(x, y) + 1.0;
+                    assert!((p[2] - want).abs() < 1e-4, "depth {depth}: z({x},{y}) = {} want {want}", p[2]);
+                    checked += 1;
+                }
+            }
+            assert!(checked as f32 >= (4.0 * scale + 1.0).powi(2));
+        }
+        // Limit normals are the surface normal (-2x, -4y, 1).
+        let t = tessellate_uniform(&m, Scheme::CatmullClark, 1).unwrap();
+        for (p, n) in t.positions.iter().zip(&t.normals) {
+            if p[0].abs() <= 2.0 && p[1].abs() <= 2.0 {
+                let want = Vec3::new(-2.0 * p[0], -4.0 * p[1], 1.0).normalize();
+                assert!(Vec3::from(*n).dot(want) > 0.99999, "normal at {p:?}: {n:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn regular_triangle_grid_is_quartic_box_spline() {
+        // The three-direction quartic box spline at a lattice point: 1/2 centre + 1/12 per
+        // neighbour, so z = x^2 + y^2 has limit z + 1/2 on a unit lattice. Quadratics are
+        // reproduced, so every point of the limit surface (level-1 vertices too) has that offset.
+        let m = tri_grid(10, |x, y| x * x + y * y);
+        for (depth, offset) in [(0u32, 0.5f32), (1, 0.5)] {
+            let t = tessellate_uniform(&m, Scheme::Loop, depth).unwrap();
+            let mut checked = 0;
+            for p in t.positions.iter() {
+                if p[0].abs() <= 1.5 && p[1].abs() <= 1.5 {
+                    let want = p[0] * p[0] + p[1] * p[1] + offset;
+                    assert!((p[2] - want).abs() < 1e-4, "depth {depth}: z = {} want {want}", p[2]);
+                    checked += 1;
+                }
+            }
+            assert!(checked >= 9);
+        }
+    }
+
+    #[test]
+    fn sharp_crease_on_grid_is_a_bspline_curve() {
+        // An infinitely sharp crease along y = 0 on z = x^2 + y^2: points on the crease follow
+        // the cubic B-spline of the crease polygon (limit z = x^2 + 1/3), ignoring the y
+        // curvature across it.
+        let mut m = quad_grid(8, |x, y| x * x + y * y);
+        let on_line: Vec<_> = m.vertices().filter(|&v| m.position(v).y == 0.0).collect();
+        for &a in &on_line {
+            for h in m.outgoing(a).collect::<Vec<_>>() {
+                if m.position(m.to(h)).y == 0.0 {
+                    m.set_edge_sharpness(h.edge(), 10.0);
+                }
+            }
+        }
+        let t = tessellate_uniform(&m, Scheme::CatmullClark, 2).unwrap();
+        for p in &t.positions {
+            if p[1] == 0.0 && p[0].abs() <= 2.0 {
+                assert!((p[2] - (p[0] * p[0] + 1.0 / 3.0)).abs() < 1e-4, "{p:?}");
+            }
+        }
+    }
+}
