@@ -1,6 +1,7 @@
 //! `subdiv`: the command-line front end. It parses arguments and wires the library crates
 //! together; all geometry lives in the libraries.
 
+mod camera_args;
 mod info;
 mod load;
 mod tessellate;

@@ -20,6 +20,7 @@
 //! # Ok::<(), subdiv_mesh::MeshError>(())
 //! ```
 
+mod camera;
 mod error;
 mod handle;
 mod mesh;
@@ -28,6 +29,7 @@ mod options;
 mod soup;
 mod stats;
 
+pub use camera::Camera;
 pub use error::{MeshError, ObjError};
 pub use handle::{EdgeId, FaceId, HalfedgeId, VertexId};
 pub use mesh::{Mesh, Outgoing};
