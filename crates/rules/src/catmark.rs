@@ -106,6 +106,18 @@ pub fn limit<P: Point>(v: P, edges: &[P], diag: &[P], rule: Rule) -> (P, P, P) {
             for i in 0..n {
                 pos = pos.madd(edges[i], we).madd(diag[i], wf);
             }
+            if n == 4 {
+                // Regular: A = 4, cosines (1, 0, -1, 0).
+                let t1 = edges[0]
+                    .sub(edges[2])
+                    .scale(4.0)
+                    .add(diag[0].sub(diag[1]).sub(diag[2]).add(diag[3]));
+                let t2 = edges[1]
+                    .sub(edges[3])
+                    .scale(4.0)
+                    .add(diag[0].add(diag[1]).sub(diag[2]).sub(diag[3]));
+                return (pos, t1, t2);
+            }
             // Tangents: sum A cos(2 pi i/n) e_i + (cos(2 pi i/n) + cos(2 pi (i+1)/n)) f_i, and
             // the same with sines; A = 1 + cos(2pi/n) + cos(pi/n) sqrt(2 (9 + cos(2pi/n))).
             let th = 2.0 * PI / nf;

@@ -219,7 +219,11 @@ mod tests {
                 // Interior region only (two cage rings away from the boundary).
                 if x.abs() <= 2.0 && y.abs() <= 2.0 {
                     let want = f(x, y) + 1.0;
-                    assert!((p[2] - want).abs() < 1e-4, "depth {depth}: z({x},{y}) = {} want {want}", p[2]);
+                    assert!(
+                        (p[2] - want).abs() < 1e-4,
+                        "depth {depth}: z({x},{y}) = {} want {want}",
+                        p[2]
+                    );
                     checked += 1;
                 }
             }
@@ -247,7 +251,11 @@ mod tests {
             for p in t.positions.iter() {
                 if p[0].abs() <= 1.5 && p[1].abs() <= 1.5 {
                     let want = p[0] * p[0] + p[1] * p[1] + offset;
-                    assert!((p[2] - want).abs() < 1e-4, "depth {depth}: z = {} want {want}", p[2]);
+                    assert!(
+                        (p[2] - want).abs() < 1e-4,
+                        "depth {depth}: z = {} want {want}",
+                        p[2]
+                    );
                     checked += 1;
                 }
             }

@@ -95,6 +95,93 @@ impl Ring {
         true
     }
 
+    /// Loads the ring of vertex `v` like [`Ring::load`], and writes the outgoing half-edges in
+    /// ring order into `halfedges` (ring edge `i` is `halfedges[i]`).
+    pub fn load_with_halfedges(
+        &mut self,
+        mesh: &Mesh,
+        v: VertexId,
+        scheme: Scheme,
+        halfedges: &mut Vec<subdiv_mesh::HalfedgeId>,
+    ) -> bool {
+        halfedges.clear();
+        halfedges.extend(mesh.outgoing(v));
+        self.load(mesh, v, scheme)
+    }
+
+    /// Loads a Catmull-Clark ring of quads from parts: edge neighbours `edges` (counter-clockwise;
+    /// for a boundary vertex edge 0 and the last edge are the boundary), their sharpness and far-end
+    /// semi-sharp (sum, count) for the Chaikin rule, and the vertex of each quad opposite the centre
+    /// (`diag[i]` between edges `i` and `i+1`; one fewer than edges on a boundary).
+    #[allow(clippy::too_many_arguments)]
+    pub fn load_quads(
+        &mut self,
+        method: CreaseMethod,
+        center: DVec3,
+        vertex_sharpness: f32,
+        boundary: bool,
+        edges: &[DVec3],
+        sharp: &[f32],
+        far: &[(f32, u32)],
+        diag: &[DVec3],
+    ) {
+        self.scheme = Scheme::CatmullClark;
+        self.method = method;
+        self.center = center;
+        self.vertex_sharpness = vertex_sharpness;
+        self.boundary = boundary;
+        self.edges.clear();
+        self.edges.extend_from_slice(edges);
+        self.sharp.clear();
+        self.sharp.extend_from_slice(sharp);
+        self.far.clear();
+        self.far.extend_from_slice(far);
+        self.inner.clear();
+        self.inner.extend_from_slice(diag);
+        self.inner_off.clear();
+        self.inner_off.extend(0..=diag.len() as u32);
+    }
+
+    /// The centre point.
+    #[inline]
+    pub fn center(&self) -> DVec3 {
+        self.center
+    }
+    /// Edge neighbour `i`.
+    #[inline]
+    pub fn edge(&self, i: usize) -> DVec3 {
+        self.edges[i]
+    }
+    /// Sharpness of edge `i` (after [`Ring::refine`]: of its child at the centre).
+    #[inline]
+    pub fn edge_sharpness(&self, i: usize) -> f32 {
+        self.sharp[i]
+    }
+    /// The vertex of quad `i` opposite the centre (Catmull-Clark rings of quads only).
+    #[inline]
+    pub fn diag(&self, i: usize) -> DVec3 {
+        self.face_inner(i)[0]
+    }
+    /// Number of faces around the vertex.
+    #[inline]
+    pub fn face_count(&self) -> usize {
+        self.num_faces()
+    }
+    /// `true` for a boundary vertex.
+    #[inline]
+    pub fn is_boundary(&self) -> bool {
+        self.boundary
+    }
+    /// Vertex sharpness.
+    #[inline]
+    pub fn vertex_sharpness(&self) -> f32 {
+        self.vertex_sharpness
+    }
+    /// `true` if all faces are quads.
+    pub fn all_quads(&self) -> bool {
+        (0..self.num_faces()).all(|i| self.face_inner(i).len() == 1)
+    }
+
     /// Number of edges around the vertex.
     pub fn valence(&self) -> usize {
         self.edges.len()
@@ -234,16 +321,38 @@ impl Ring {
             guard += 1;
         }
         let rule = Rule::determine(self.vertex_sharpness, &self.sharp);
-        let (pos, t1, t2) = match self.scheme {
-            Scheme::CatmullClark => {
-                let diag: Vec<DVec3> = (0..self.num_faces())
-                    .map(|i| self.face_inner(i)[0])
-                    .collect();
-                catmark::limit(self.center, &self.edges, &diag, rule)
-            }
-            Scheme::Loop => loop_scheme::limit(self.center, &self.edges, rule, self.boundary),
+        let diag: Vec<DVec3> = match self.scheme {
+            Scheme::CatmullClark => (0..self.num_faces())
+                .map(|i| self.face_inner(i)[0])
+                .collect(),
+            Scheme::Loop => Vec::new(),
         };
-        (pos, self.orient(t1.cross(t2)))
+        let eval = |edges: &[DVec3], diag: &[DVec3], rule: Rule| match self.scheme {
+            Scheme::CatmullClark => catmark::limit(self.center, edges, diag, rule),
+            Scheme::Loop => loop_scheme::limit(self.center, edges, rule, self.boundary),
+        };
+        let (pos, t1, t2) = eval(&self.edges, &diag, rule);
+        let mut normal = self.orient(t1.cross(t2));
+        if let (Rule::Crease([c0, c1]), false) = (rule, self.boundary) {
+            // An interior crease has a tangent plane on each side; the masks give the side
+            // between the crease edges in ring order. Average it with the other side (the ring
+            // rotated to start at the second crease edge) so the normal does not depend on where
+            // the ring starts.
+            let n = self.edges.len();
+            let edges: Vec<DVec3> = (0..n).map(|k| self.edges[(c1 + k) % n]).collect();
+            let diag2: Vec<DVec3> = if diag.is_empty() {
+                Vec::new()
+            } else {
+                (0..n).map(|k| diag[(c1 + k) % n]).collect()
+            };
+            let (_, u1, u2) = eval(&edges, &diag2, Rule::Crease([0, (c0 + n - c1) % n]));
+            let other = self.orient(u1.cross(u2));
+            let sum = normal + other;
+            if sum.length_squared() > 1e-12 {
+                normal = sum.normalize();
+            }
+        }
+        (pos, normal)
     }
 
     /// Orients a normal like the ring's faces, falling back to the ring's area vector when the

@@ -1,0 +1,858 @@
+//! The slates: a patch's control points at one level, and the step to the next.
+//!
+//! A slate's *table* holds the `(n + 3)^2` control points of a patch at level `l` (`n = 2^l`):
+//! the patch's own `(n + 1)^2` grid and one ring of neighbours, at table coordinates
+//! `(i, j)` with `-1 <= i, j <= n + 1` (Settgast et al., "Adaptive Tessellation of Subdivision
+//! Surfaces", Section 3.2, Fig. 2). Alongside go the sharpness of every table edge and, for the
+//! Chaikin rule, what is known of the crease beyond the outer ring.
+//!
+//! A corner whose vertex is not a smooth interior valence-4 vertex keeps its whole neighbourhood
+//! in a *corner array*: a [`Ring`] from `subdiv-rules`, holding all of its `valence` edge
+//! neighbours and quads, creases and boundary included. The table covers what a valence-4 corner
+//! would; the corner array provides the points the table cannot (the corner itself and its
+//! neighbours beyond the table's quadrant).
+//!
+//! One step ([`Worker::step`]) subdivides the table of slate `i` into the table of slate
+//! `1 - i` with the rules of `subdiv-rules` (face, edge and vertex points, with creases and
+//! boundaries where the patch has them, and a branch-free path for smooth regular tables), and
+//! refines the corner arrays. Limit points and normals of the final grid use the rules' limit
+//! masks, or for points still next to a semi-sharp crease the exact local refinement of
+//! [`Ring::limit`].
+
+use glam::{DVec3, Vec3A};
+use subdiv_mesh::{CreaseMethod, FaceId, HalfedgeId, Mesh, VertexId};
+use subdiv_rules::catmark;
+use subdiv_rules::crease::{self, Rule, VertexRules, edge_crease_weight, is_semi_sharp};
+use subdiv_rules::{Ring, Scheme};
+
+/// Direction index: 0 = +i (E), 1 = +j (N), 2 = -i (W), 3 = -j (S) — counter-clockwise.
+const DI: [i32; 4] = [1, 0, -1, 0];
+const DJ: [i32; 4] = [0, 1, 0, -1];
+
+/// One slate's table.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Table {
+    /// Patch grid size `n` (`2^level`).
+    pub n: usize,
+    /// Row stride `n + 3`.
+    pub s: usize,
+    pub p: Vec<Vec3A>,
+    pub ex: Vec<bool>,
+    /// Sharpness of edge `(i,j)-(i+1,j)`, stored at `(i,j)`.
+    pub hs: Vec<f32>,
+    /// Sharpness of edge `(i,j)-(i,j+1)`, stored at `(i,j)`.
+    pub vs: Vec<f32>,
+    /// For each side, (sum, count) of the semi-sharp edges beyond the outer end of each crossing
+    /// edge (Chaikin rule only), indexed by position along the side `0..=n`.
+    pub far: [Vec<(f32, u32)>; 4],
+}
+
+impl Table {
+    fn with_capacity(maxn: usize) -> Table {
+        let cap = (maxn + 3) * (maxn + 3);
+        Table {
+            n: 0,
+            s: 0,
+            p: Vec::with_capacity(cap),
+            ex: Vec::with_capacity(cap),
+            hs: Vec::with_capacity(cap),
+            vs: Vec::with_capacity(cap),
+            far: std::array::from_fn(|_| Vec::with_capacity(maxn + 1)),
+        }
+    }
+
+    fn reset(&mut self, n: usize) {
+        self.n = n;
+        self.s = n + 3;
+        let len = self.s * self.s;
+        self.p.clear();
+        self.p.resize(len, Vec3A::ZERO);
+        self.ex.clear();
+        self.ex.resize(len, false);
+        self.hs.clear();
+        self.hs.resize(len, 0.0);
+        self.vs.clear();
+        self.vs.resize(len, 0.0);
+        for f in &mut self.far {
+            f.clear();
+            f.resize(n + 1, (0.0, 0));
+        }
+    }
+
+    #[inline(always)]
+    pub fn at(&self, i: i32, j: i32) -> usize {
+        (j + 1) as usize * self.s + (i + 1) as usize
+    }
+
+    #[inline]
+    fn inside(&self, i: i32, j: i32) -> bool {
+        let n = self.n as i32;
+        (-1..=n + 1).contains(&i) && (-1..=n + 1).contains(&j)
+    }
+
+    /// Sharpness of the edge from `(i,j)` in direction `d`.
+    #[inline]
+    fn edge_sharp(&self, i: i32, j: i32, d: usize) -> f32 {
+        match d {
+            0 => self.hs[self.at(i, j)],
+            1 => self.vs[self.at(i, j)],
+            2 => self.hs[self.at(i - 1, j)],
+            _ => self.vs[self.at(i, j - 1)],
+        }
+    }
+
+    #[inline]
+    fn set_edge_sharp(&mut self, i: i32, j: i32, d: usize, s: f32) {
+        let k = match d {
+            0 => self.at(i, j),
+            1 => self.at(i, j),
+            2 => self.at(i - 1, j),
+            _ => self.at(i, j - 1),
+        };
+        if d % 2 == 0 {
+            self.hs[k] = s
+        } else {
+            self.vs[k] = s
+        }
+    }
+
+    /// `true` if the edge from `(i,j)` in direction `d` exists (both ends inside and existing).
+    #[inline]
+    fn edge_exists(&self, i: i32, j: i32, d: usize) -> bool {
+        let (a, b) = (i + DI[d], j + DJ[d]);
+        self.inside(a, b) && self.ex[self.at(i, j)] && self.ex[self.at(a, b)]
+    }
+
+    /// `true` if the quad with lower-left corner `(i,j)` exists.
+    #[inline]
+    fn face_exists(&self, i: i32, j: i32) -> bool {
+        self.inside(i, j)
+            && self.inside(i + 1, j + 1)
+            && self.ex[self.at(i, j)]
+            && self.ex[self.at(i + 1, j)]
+            && self.ex[self.at(i, j + 1)]
+            && self.ex[self.at(i + 1, j + 1)]
+    }
+}
+
+/// A patch corner kept as a full ring (the slate's corner array).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Corner {
+    pub active: bool,
+    pub ring: Ring,
+    /// Ring index of the edge along the patch side leaving this corner.
+    pub ih: usize,
+    pub valence: usize,
+    pub boundary: bool,
+}
+
+/// Table position and the two patch directions of corner `k` (grid size `n`): the side leaving
+/// the corner (`d`) and the side arriving at it, reversed (`d2`, counter-clockwise from `d`).
+#[inline]
+fn corner_frame(k: usize, n: i32) -> ((i32, i32), usize, usize) {
+    match k {
+        0 => ((0, 0), 0, 1),
+        1 => ((n, 0), 1, 2),
+        2 => ((n, n), 2, 3),
+        _ => ((0, n), 3, 0),
+    }
+}
+
+/// Per-thread tessellation state: two slates and four corner arrays, allocated once.
+#[derive(Debug)]
+pub struct Worker {
+    pub(crate) t: [Table; 2],
+    pub(crate) corners: [Corner; 4],
+    pub(crate) cur: usize,
+    pub(crate) regular: bool,
+    pub(crate) method: CreaseMethod,
+    hes: Vec<HalfedgeId>,
+    ring_tmp: Ring,
+    // scratch for general rules
+    e_pts: Vec<Vec3A>,
+    f_pts: Vec<Vec3A>,
+    e_sh: Vec<f32>,
+    c_sh: Vec<f32>,
+    dirs: Vec<usize>,
+    r_edges: Vec<DVec3>,
+    r_sharp: Vec<f32>,
+    r_far: Vec<(f32, u32)>,
+    r_diag: Vec<DVec3>,
+    maxn: usize,
+}
+
+impl Worker {
+    /// A worker whose slates hold patches up to depth `maxsd`.
+    pub fn new(maxsd: u32) -> Worker {
+        let maxn = 1usize << maxsd;
+        Worker {
+            t: [Table::with_capacity(maxn), Table::with_capacity(maxn)],
+            corners: Default::default(),
+            cur: 0,
+            regular: true,
+            method: CreaseMethod::Uniform,
+            hes: Vec::with_capacity(16),
+            ring_tmp: Ring::new(),
+            e_pts: Vec::with_capacity(4),
+            f_pts: Vec::with_capacity(4),
+            e_sh: Vec::with_capacity(4),
+            c_sh: Vec::with_capacity(4),
+            dirs: Vec::with_capacity(4),
+            r_edges: Vec::with_capacity(4),
+            r_sharp: Vec::with_capacity(4),
+            r_far: Vec::with_capacity(4),
+            r_diag: Vec::with_capacity(4),
+            maxn,
+        }
+    }
+
+    /// Bytes held by the two tables (capacity for `maxsd`).
+    pub fn table_bytes(&self) -> usize {
+        let cap = (self.maxn + 3) * (self.maxn + 3);
+        2 * cap * (std::mem::size_of::<Vec3A>() + 1 + 2 * std::mem::size_of::<f32>())
+    }
+
+    /// Gathers the 1-neighbourhood of quad `f` of `mesh` (whose neighbourhood is all quads) into
+    /// slate 0 (paper Fig. 2).
+    pub(crate) fn gather(&mut self, mesh: &Mesh, f: FaceId) {
+        self.cur = 0;
+        self.method = mesh.options().crease;
+        let t = &mut self.t[0];
+        t.reset(1);
+        let mut vid = [[VertexId::NONE; 4]; 4]; // [j+1][i+1]
+        let h0 = mesh.face_halfedge(f);
+        let hs = [h0, mesh.next(h0), mesh.next(mesh.next(h0)), mesh.prev(h0)];
+        let cpos = [(0, 0), (1, 0), (1, 1), (0, 1)];
+        // Outward direction of side k.
+        let out = [(0, -1), (1, 0), (0, 1), (-1, 0)];
+        for k in 0..4 {
+            let (ci, cj) = cpos[k];
+            vid[(cj + 1) as usize][(ci + 1) as usize] = mesh.from(hs[k]);
+        }
+        for k in 0..4 {
+            let tw = hs[k].twin();
+            if mesh.face(tw).is_some() {
+                let x = mesh.to(mesh.next(tw));
+                let y = mesh.to(mesh.next(mesh.next(tw)));
+                let (ai, aj) = cpos[k];
+                let (bi, bj) = cpos[(k + 1) % 4];
+                let (oi, oj) = out[k];
+                vid[(aj + oj + 1) as usize][(ai + oi + 1) as usize] = x;
+                vid[(bj + oj + 1) as usize][(bi + oi + 1) as usize] = y;
+            }
+        }
+        self.regular = true;
+        // Corners.
+        for k in 0..4 {
+            let v = mesh.from(hs[k]);
+            let c = &mut self.corners[k];
+            c.ring
+                .load_with_halfedges(mesh, v, Scheme::CatmullClark, &mut self.hes);
+            c.valence = self.hes.len();
+            c.boundary = mesh.is_boundary_vertex(v);
+            c.ih = self.hes.iter().position(|&h| h == hs[k]).unwrap_or(0);
+            let sharp = mesh.vertex_sharpness(v) > 0.0
+                || self.hes.iter().any(|h| mesh.edge_sharpness(h.edge()) > 0.0);
+            c.active = c.valence != 4 || c.boundary || sharp;
+            if !c.active {
+                // Regular corner: the diagonal vertex completes the table.
+                let g = mesh.prev(mesh.prev(hs[k]).twin()).twin();
+                let d = mesh.to(mesh.next(g));
+                let (ci, cj) = cpos[k];
+                let (o1i, o1j) = out[k];
+                let (o2i, o2j) = out[(k + 3) % 4];
+                vid[(cj + o1j + o2j + 1) as usize][(ci + o1i + o2i + 1) as usize] = d;
+            }
+        }
+        for j in -1..=2i32 {
+            for i in -1..=2i32 {
+                let v = vid[(j + 1) as usize][(i + 1) as usize];
+                let k = t.at(i, j);
+                if v.is_some() {
+                    t.p[k] = Vec3A::from(mesh.position(v));
+                    t.ex[k] = true;
+                } else {
+                    t.p[k] = Vec3A::from(mesh.position(mesh.from(hs[0])));
+                }
+            }
+        }
+        // Edge sharpness between adjacent table vertices.
+        for j in -1..=2i32 {
+            for i in -1..=2i32 {
+                let a = vid[(j + 1) as usize][(i + 1) as usize];
+                if !a.is_some() {
+                    continue;
+                }
+                for d in 0..2 {
+                    let (bi, bj) = (i + DI[d], j + DJ[d]);
+                    if bi > 2 || bj > 2 {
+                        continue;
+                    }
+                    let b = vid[(bj + 1) as usize][(bi + 1) as usize];
+                    if !b.is_some() {
+                        continue;
+                    }
+                    let s = mesh
+                        .find_halfedge(a, b)
+                        .map(|h| mesh.edge_sharpness(h.edge()))
+                        .unwrap_or(0.0);
+                    if s > 0.0 {
+                        self.regular = false;
+                    }
+                    t.set_edge_sharp(i, j, d, s);
+                }
+            }
+        }
+        // Missing points anywhere except the diagonal spots of irregular corners mean boundary.
+        for j in -1..=2i32 {
+            for i in -1..=2i32 {
+                let diag_spot = (i == -1 || i == 2) && (j == -1 || j == 2);
+                if !t.ex[t.at(i, j)] && !diag_spot {
+                    self.regular = false;
+                }
+            }
+        }
+        if self
+            .corners
+            .iter()
+            .any(|c| c.active && (c.boundary || c.ring.vertex_sharpness() > 0.0))
+        {
+            self.regular = false;
+        }
+        // Far ends of the crossing edges, for the Chaikin rule.
+        if self.method == CreaseMethod::Chaikin {
+            self.regular = false;
+            for side in 0..4 {
+                for s in 0..=1i32 {
+                    let (ii, jj, oi, oj) = side_crossing(side, s, 1);
+                    let a = vid[(jj + 1) as usize][(ii + 1) as usize];
+                    let b = vid[(oj + 1) as usize][(oi + 1) as usize];
+                    if !(a.is_some() && b.is_some()) {
+                        continue;
+                    }
+                    let Some(h) = mesh.find_halfedge(a, b) else {
+                        continue;
+                    };
+                    let mut sum = 0.0;
+                    let mut cnt = 0;
+                    for g in mesh.outgoing(b) {
+                        let sh = mesh.edge_sharpness(g.edge());
+                        if g.edge() != h.edge() && is_semi_sharp(sh) {
+                            sum += sh;
+                            cnt += 1;
+                        }
+                    }
+                    t.far[side][s as usize] = (sum, cnt);
+                }
+            }
+        }
+    }
+
+    /// One subdivision step: slate `cur` to slate `1 - cur`, corner arrays refined in place.
+    pub(crate) fn step(&mut self) {
+        let (a, b) = self.t.split_at_mut(1);
+        let (src, dst) = if self.cur == 0 {
+            (&a[0], &mut b[0])
+        } else {
+            (&b[0], &mut a[0])
+        };
+        let n = src.n as i32;
+        dst.reset(src.n * 2);
+        for c in self.corners.iter_mut() {
+            if c.active {
+                c.ring.refine();
+            }
+        }
+        if self.regular {
+            step_regular(src, dst, &self.corners);
+        } else {
+            let scratch = Scratch {
+                e_pts: &mut self.e_pts,
+                f_pts: &mut self.f_pts,
+                e_sh: &mut self.e_sh,
+                c_sh: &mut self.c_sh,
+                dirs: &mut self.dirs,
+            };
+            step_general(src, dst, &self.corners, self.method, scratch);
+        }
+        // Corner arrays fill the table where it cannot be computed.
+        for k in 0..4 {
+            let c = &self.corners[k];
+            if !c.active {
+                continue;
+            }
+            let ((ci, cj), d, d2) = corner_frame(k, 2 * n);
+            write_corner(dst, c, ci, cj, d, d2);
+        }
+        self.cur = 1 - self.cur;
+    }
+
+    /// Limit position and normal of grid point `(i, j)` of the current slate.
+    #[inline]
+    pub(crate) fn limit(&mut self, i: i32, j: i32) -> (Vec3A, Vec3A) {
+        let t = &self.t[self.cur];
+        let n = t.n as i32;
+        // Corner arrays.
+        for k in 0..4 {
+            let ((ci, cj), _, _) = corner_frame(k, n);
+            if ci == i && cj == j && self.corners[k].active {
+                self.ring_tmp.clone_from(&self.corners[k].ring);
+                let (p, nrm) = self.ring_tmp.limit();
+                return (Vec3A::from(p.as_vec3()), Vec3A::from(nrm.as_vec3()));
+            }
+        }
+        if self.regular {
+            let c = t.p[t.at(i, j)];
+            let e = [
+                t.p[t.at(i + 1, j)],
+                t.p[t.at(i, j + 1)],
+                t.p[t.at(i - 1, j)],
+                t.p[t.at(i, j - 1)],
+            ];
+            let dg = [
+                t.p[t.at(i + 1, j + 1)],
+                t.p[t.at(i - 1, j + 1)],
+                t.p[t.at(i - 1, j - 1)],
+                t.p[t.at(i + 1, j - 1)],
+            ];
+            let (p, t1, t2) = catmark::limit(c, &e, &dg, Rule::Smooth);
+            let nrm = t1.cross(t2);
+            let len = nrm.length();
+            if len > 0.0 && len.is_finite() {
+                return (p, nrm / len);
+            }
+        }
+        self.limit_general(i, j)
+    }
+
+    /// Limit through a ring built from the table (creases, boundaries, degenerate tangents).
+    fn limit_general(&mut self, i: i32, j: i32) -> (Vec3A, Vec3A) {
+        let t = &self.t[self.cur];
+        // Counter-clockwise directions, starting after a missing one (boundary).
+        self.dirs.clear();
+        let present: [bool; 4] = std::array::from_fn(|d| t.edge_exists(i, j, d));
+        let start = (0..4)
+            .find(|&d| !present[(d + 3) % 4] && present[d])
+            .unwrap_or(0);
+        for k in 0..4 {
+            let d = (start + k) % 4;
+            if present[d] {
+                self.dirs.push(d);
+            }
+        }
+        let boundary = self.dirs.len() < 4;
+        self.r_edges.clear();
+        self.r_sharp.clear();
+        self.r_far.clear();
+        self.r_diag.clear();
+        for (k, &d) in self.dirs.iter().enumerate() {
+            let (ni, nj) = (i + DI[d], j + DJ[d]);
+            self.r_edges.push(t.p[t.at(ni, nj)].as_dvec3());
+            self.r_sharp.push(t.edge_sharp(i, j, d));
+            self.r_far
+                .push(far_info(t, &self.corners, ni, nj, (d + 2) % 4));
+            if !boundary || k + 1 < self.dirs.len() {
+                let d2 = (d + 1) % 4;
+                self.r_diag
+                    .push(t.p[t.at(i + DI[d] + DI[d2], j + DJ[d] + DJ[d2])].as_dvec3());
+            }
+        }
+        let center = t.p[t.at(i, j)].as_dvec3();
+        self.ring_tmp.load_quads(
+            self.method,
+            center,
+            0.0,
+            boundary,
+            &self.r_edges,
+            &self.r_sharp,
+            &self.r_far,
+            &self.r_diag,
+        );
+        let (p, nrm) = self.ring_tmp.limit();
+        (Vec3A::from(p.as_vec3()), Vec3A::from(nrm.as_vec3()))
+    }
+}
+
+/// Table coordinates of the crossing edge at position `s` along side `side` (grid `n`): the
+/// inner end `(i, j)` and the outer end `(oi, oj)`.
+#[inline]
+fn side_crossing(side: usize, s: i32, n: i32) -> (i32, i32, i32, i32) {
+    match side {
+        0 => (s, 0, s, -1),
+        1 => (n, s, n + 1, s),
+        2 => (s, n, s, n + 1),
+        _ => (0, s, -1, s),
+    }
+}
+
+/// Semi-sharp (sum, count) at table vertex `(i, j)` excluding its edge in direction `excl`.
+fn far_info(t: &Table, corners: &[Corner; 4], i: i32, j: i32, excl: usize) -> (f32, u32) {
+    let n = t.n as i32;
+    for k in 0..4 {
+        let ((ci, cj), d, d2) = corner_frame(k, n);
+        if ci == i && cj == j && corners[k].active {
+            let c = &corners[k];
+            let m = c.valence;
+            let excl_idx = ring_index_of_dir(c, d, d2, excl).unwrap_or(usize::MAX);
+            let mut sum = 0.0;
+            let mut cnt = 0;
+            for r in 0..m {
+                let s = c.ring.edge_sharpness(r);
+                if r != excl_idx && is_semi_sharp(s) {
+                    sum += s;
+                    cnt += 1;
+                }
+            }
+            return (sum, cnt);
+        }
+    }
+    if (0..=n).contains(&i) && (0..=n).contains(&j) {
+        let mut sum = 0.0;
+        let mut cnt = 0;
+        for d in 0..4 {
+            if d != excl && t.edge_exists(i, j, d) {
+                let s = t.edge_sharp(i, j, d);
+                if is_semi_sharp(s) {
+                    sum += s;
+                    cnt += 1;
+                }
+            }
+        }
+        return (sum, cnt);
+    }
+    // Outer ring: only the crossing edge's far half lies beyond the table.
+    let (side, pos) = if j == -1 {
+        (0, i)
+    } else if i == n + 1 {
+        (1, j)
+    } else if j == n + 1 {
+        (2, i)
+    } else {
+        (3, j)
+    };
+    if (0..=n).contains(&pos) {
+        t.far[side][pos as usize]
+    } else {
+        (0.0, 0)
+    }
+}
+
+/// Ring index of the corner's edge in table direction `dir` (None if the ring has no such edge).
+#[inline]
+fn ring_index_of_dir(c: &Corner, d: usize, d2: usize, dir: usize) -> Option<usize> {
+    let m = c.valence;
+    let off = if dir == d {
+        0isize
+    } else if dir == d2 {
+        1
+    } else if dir == (d + 2) % 4 {
+        2
+    } else {
+        -1
+    };
+    let idx = c.ih as isize + off;
+    if c.boundary {
+        if idx < 0 || idx >= m as isize {
+            None
+        } else {
+            Some(idx as usize)
+        }
+    } else {
+        if off == 2 && m < 4 {
+            // valence 3: the edge opposite d is the one before d (shared slot)
+            return Some((c.ih + m - 1) % m);
+        }
+        Some(((idx + m as isize) % m as isize) as usize)
+    }
+}
+
+/// Copies a refined corner array into the table around its corner `(ci, cj)`.
+fn write_corner(t: &mut Table, c: &Corner, ci: i32, cj: i32, d: usize, d2: usize) {
+    let r = &c.ring;
+    let m = c.valence;
+    let put = |t: &mut Table, i: i32, j: i32, p: Option<DVec3>| {
+        let k = t.at(i, j);
+        match p {
+            Some(p) => {
+                t.p[k] = Vec3A::from(p.as_vec3());
+                t.ex[k] = true;
+            }
+            None => {
+                t.p[k] = Vec3A::from(r.center().as_vec3());
+                t.ex[k] = false;
+            }
+        }
+    };
+    put(t, ci, cj, Some(r.center()));
+    let back = (d + 2) % 4; // -d
+    let down = (d2 + 2) % 4; // -d2
+    let e_back = ring_index_of_dir(c, d, d2, back);
+    let e_down = ring_index_of_dir(c, d, d2, down);
+    put(t, ci + DI[back], cj + DJ[back], e_back.map(|x| r.edge(x)));
+    put(t, ci + DI[down], cj + DJ[down], e_down.map(|x| r.edge(x)));
+    // The diagonal behind the corner exists only for an interior valence-4 vertex.
+    let diag = if !c.boundary && m == 4 {
+        Some(r.diag((c.ih + 2) % 4))
+    } else {
+        None
+    };
+    put(t, ci + DI[back] + DI[down], cj + DJ[back] + DJ[down], diag);
+    // Child sharpness of the corner's edges.
+    for dir in [d, d2, back, down] {
+        let (ni, nj) = (ci + DI[dir], cj + DJ[dir]);
+        if !t.inside(ni, nj) {
+            continue;
+        }
+        let s = ring_index_of_dir(c, d, d2, dir)
+            .map(|x| r.edge_sharpness(x))
+            .unwrap_or(0.0);
+        t.set_edge_sharp(ci, cj, dir, s);
+    }
+}
+
+/// Smooth regular step: no sharpness, no boundary. Face, edge and vertex points by the
+/// Catmull-Clark rules of `subdiv-rules`.
+fn step_regular(src: &Table, dst: &mut Table, corners: &[Corner; 4]) {
+    let n = src.n as i32;
+    let smooth = VertexRules {
+        parent: Rule::Smooth,
+        child: Rule::Smooth,
+        parent_weight: 1.0,
+    };
+    // Face points.
+    for j in -1..=n {
+        for i in -1..=n {
+            let f = catmark::face_point(&[
+                src.p[src.at(i, j)],
+                src.p[src.at(i + 1, j)],
+                src.p[src.at(i + 1, j + 1)],
+                src.p[src.at(i, j + 1)],
+            ]);
+            let k = dst.at(2 * i + 1, 2 * j + 1);
+            dst.p[k] = f;
+        }
+    }
+    // Edge points (faces below/above or left/right are the new face points).
+    for j in 0..=n {
+        for i in -1..=n {
+            let fb = dst.p[dst.at(2 * i + 1, 2 * j - 1)];
+            let fa = dst.p[dst.at(2 * i + 1, 2 * j + 1)];
+            let e =
+                catmark::edge_point(src.p[src.at(i, j)], src.p[src.at(i + 1, j)], &[fb, fa], 0.0);
+            let k = dst.at(2 * i + 1, 2 * j);
+            dst.p[k] = e;
+        }
+    }
+    for j in -1..=n {
+        for i in 0..=n {
+            let fl = dst.p[dst.at(2 * i - 1, 2 * j + 1)];
+            let fr = dst.p[dst.at(2 * i + 1, 2 * j + 1)];
+            let e =
+                catmark::edge_point(src.p[src.at(i, j)], src.p[src.at(i, j + 1)], &[fl, fr], 0.0);
+            let k = dst.at(2 * i, 2 * j + 1);
+            dst.p[k] = e;
+        }
+    }
+    // Vertex points.
+    let corner_at = |i: i32, j: i32| {
+        (0..4).any(|k| {
+            let ((ci, cj), _, _) = corner_frame(k, n);
+            ci == i && cj == j && corners[k].active
+        })
+    };
+    for j in 0..=n {
+        for i in 0..=n {
+            if (i == 0 || i == n) && (j == 0 || j == n) && corner_at(i, j) {
+                continue;
+            }
+            let v = src.p[src.at(i, j)];
+            let e = [
+                src.p[src.at(i + 1, j)],
+                src.p[src.at(i, j + 1)],
+                src.p[src.at(i - 1, j)],
+                src.p[src.at(i, j - 1)],
+            ];
+            let f = [
+                dst.p[dst.at(2 * i + 1, 2 * j + 1)],
+                dst.p[dst.at(2 * i - 1, 2 * j + 1)],
+                dst.p[dst.at(2 * i - 1, 2 * j - 1)],
+                dst.p[dst.at(2 * i + 1, 2 * j - 1)],
+            ];
+            let k = dst.at(2 * i, 2 * j);
+            dst.p[k] = catmark::vertex_point(v, &e, &f, &smooth);
+        }
+    }
+    dst.ex.iter_mut().for_each(|x| *x = true);
+}
+
+struct Scratch<'a> {
+    e_pts: &'a mut Vec<Vec3A>,
+    f_pts: &'a mut Vec<Vec3A>,
+    e_sh: &'a mut Vec<f32>,
+    c_sh: &'a mut Vec<f32>,
+    dirs: &'a mut Vec<usize>,
+}
+
+/// General step: creases, boundaries, fractional sharpness, Chaikin.
+fn step_general(
+    src: &Table,
+    dst: &mut Table,
+    corners: &[Corner; 4],
+    method: CreaseMethod,
+    sc: Scratch<'_>,
+) {
+    let n = src.n as i32;
+    let is_corner = |i: i32, j: i32| -> Option<usize> {
+        (0..4).find(|&k| {
+            let ((ci, cj), _, _) = corner_frame(k, n);
+            ci == i && cj == j && corners[k].active
+        })
+    };
+    // Face points.
+    for j in -1..=n {
+        for i in -1..=n {
+            if src.face_exists(i, j) {
+                let f = catmark::face_point(&[
+                    src.p[src.at(i, j)],
+                    src.p[src.at(i + 1, j)],
+                    src.p[src.at(i + 1, j + 1)],
+                    src.p[src.at(i, j + 1)],
+                ]);
+                let k = dst.at(2 * i + 1, 2 * j + 1);
+                dst.p[k] = f;
+                dst.ex[k] = true;
+            }
+        }
+    }
+    // Vertex points and the child sharpness of every edge at its inner ends.
+    for j in 0..=n {
+        for i in 0..=n {
+            if let Some(k) = is_corner(i, j) {
+                // Child sharpness comes from the (already refined) corner array.
+                let ((ci, cj), d, d2) = corner_frame(k, n);
+                let c = &corners[k];
+                for dir in 0..4 {
+                    if let Some(x) = ring_index_of_dir(c, d, d2, dir) {
+                        dst.set_edge_sharp(2 * ci, 2 * cj, dir, c.ring.edge_sharpness(x));
+                    }
+                }
+                continue;
+            }
+            if !src.ex[src.at(i, j)] {
+                continue;
+            }
+            sc.dirs.clear();
+            sc.e_pts.clear();
+            sc.e_sh.clear();
+            sc.f_pts.clear();
+            for d in 0..4 {
+                if src.edge_exists(i, j, d) {
+                    sc.dirs.push(d);
+                    sc.e_pts.push(src.p[src.at(i + DI[d], j + DJ[d])]);
+                    sc.e_sh.push(src.edge_sharp(i, j, d));
+                }
+            }
+            for d in 0..4 {
+                let d2 = (d + 1) % 4;
+                let (fi, fj) = (i + (DI[d] + DI[d2] - 1) / 2, j + (DJ[d] + DJ[d2] - 1) / 2);
+                if src.face_exists(fi, fj) {
+                    sc.f_pts.push(dst.p[dst.at(2 * fi + 1, 2 * fj + 1)]);
+                }
+            }
+            sc.c_sh.clear();
+            sc.c_sh.resize(sc.e_sh.len(), 0.0);
+            let rules = VertexRules::new(method, 0.0, sc.e_sh, sc.c_sh);
+            let v = src.p[src.at(i, j)];
+            let k = dst.at(2 * i, 2 * j);
+            dst.p[k] = catmark::vertex_point(v, sc.e_pts, sc.f_pts, &rules);
+            dst.ex[k] = true;
+            for (x, &d) in sc.dirs.iter().enumerate() {
+                dst.set_edge_sharp(2 * i, 2 * j, d, sc.c_sh[x]);
+            }
+        }
+    }
+    // Edge points. Horizontal edges (i,j)-(i+1,j) and vertical (i,j)-(i,j+1).
+    for dir in 0..2usize {
+        let (ri, rj) = if dir == 0 {
+            (-1..=n, 0..=n)
+        } else {
+            (0..=n, -1..=n)
+        };
+        for j in rj.clone() {
+            for i in ri.clone() {
+                if !src.edge_exists(i, j, dir) {
+                    continue;
+                }
+                let (bi, bj) = (i + DI[dir], j + DJ[dir]);
+                let s = src.edge_sharp(i, j, dir);
+                // Child sharpness at each end: from the vertex rules (inner ends) or the far info.
+                let child_at = |vi: i32, vj: i32, toward: usize| -> f32 {
+                    if (0..=n).contains(&vi) && (0..=n).contains(&vj) {
+                        dst.edge_sharp(2 * vi, 2 * vj, toward)
+                    } else {
+                        crease::child_edge_sharpness(
+                            method,
+                            s,
+                            far_info(src, corners, vi, vj, (toward + 2) % 4),
+                        )
+                    }
+                };
+                let c0 = child_at(i, j, dir);
+                let c1 = child_at(bi, bj, (dir + 2) % 4);
+                let w = edge_crease_weight(method, s, [c0, c1]);
+                let mut faces = [Vec3A::ZERO; 2];
+                let mut nf = 0;
+                // Faces on either side of the edge.
+                let sides: [(i32, i32); 2] = if dir == 0 {
+                    [(i, j - 1), (i, j)]
+                } else {
+                    [(i - 1, j), (i, j)]
+                };
+                for (fi, fj) in sides {
+                    if src.face_exists(fi, fj) {
+                        faces[nf] = dst.p[dst.at(2 * fi + 1, 2 * fj + 1)];
+                        nf += 1;
+                    }
+                }
+                let e = catmark::edge_point(
+                    src.p[src.at(i, j)],
+                    src.p[src.at(bi, bj)],
+                    &faces[..nf],
+                    w,
+                );
+                let k = dst.at(i + bi, j + bj);
+                dst.p[k] = e;
+                dst.ex[k] = true;
+                // New far info for crossing edges leaving the table.
+                let outer = |vi: i32, vj: i32| !((0..=n).contains(&vi) && (0..=n).contains(&vj));
+                if outer(i, j) || outer(bi, bj) {
+                    let (oi, oj, toward) = if outer(i, j) {
+                        (i, j, dir)
+                    } else {
+                        (bi, bj, (dir + 2) % 4)
+                    };
+                    let cf = crease::child_edge_sharpness(
+                        method,
+                        s,
+                        far_info(src, corners, oi, oj, toward),
+                    );
+                    let info = if is_semi_sharp(cf) { (cf, 1) } else { (0.0, 0) };
+                    let (side, pos) = if oj == -1 {
+                        (0, 2 * i)
+                    } else if oi == n + 1 {
+                        (1, 2 * j)
+                    } else if oj == n + 1 {
+                        (2, 2 * i)
+                    } else {
+                        (3, 2 * j)
+                    };
+                    if (0..=2 * n).contains(&pos) {
+                        dst.far[side][pos as usize] = info;
+                    }
+                }
+            }
+        }
+    }
+    // The outer ends of crossing edges exist as edge points; new outer-ring vertices beyond
+    // (odd positions) are face points (already marked).
+}

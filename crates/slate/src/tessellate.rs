@@ -1,0 +1,249 @@
+//! The parallel driver: every patch on its own worker's slates, results placed by the layout.
+
+use glam::Vec3A;
+use rayon::prelude::*;
+use subdiv_mesh::Mesh;
+use subdiv_rules::{LimitMesh, RulesError, Scheme, limit_surface};
+
+use crate::layout::{Patch, PatchLayout};
+use crate::slate::Worker;
+
+/// Errors of the slate tessellator.
+#[derive(Debug, thiserror::Error)]
+pub enum SlateError {
+    /// The requested depth exceeds what the slates support.
+    #[error("depth {depth} exceeds the maximum slate depth {max}")]
+    TooDeep {
+        /// Requested depth.
+        depth: u32,
+        /// Supported maximum.
+        max: u32,
+    },
+    /// Set-up failed (local level-1 refinement).
+    #[error(transparent)]
+    Rules(#[from] RulesError),
+}
+
+/// Deepest supported subdivision depth (table side `2^12 + 3`).
+pub const MAX_DEPTH: u32 = 12;
+
+/// Default `maxsd` of the paper: slates are sized for at least this depth.
+pub const DEFAULT_MAXSD: u32 = 5;
+
+/// Output pointers shared by the patch tasks. Each output point has exactly one owner patch
+/// (see [`PatchLayout`]), so no two tasks ever write the same element.
+struct SharedOut {
+    pos: *mut [f32; 3],
+    nrm: *mut [f32; 3],
+    len: usize,
+}
+// SAFETY: tasks write disjoint indices (ownership partition of the layout), checked < len.
+unsafe impl Sync for SharedOut {}
+unsafe impl Send for SharedOut {}
+
+impl SharedOut {
+    #[inline]
+    fn write(&self, id: u32, p: Vec3A, n: Vec3A) {
+        let i = id as usize;
+        assert!(i < self.len, "output index out of range");
+        // SAFETY: in bounds (asserted); no other task writes index `i` (single owner).
+        unsafe {
+            *self.pos.add(i) = p.to_array();
+            *self.nrm.add(i) = n.to_array();
+        }
+    }
+}
+
+/// Tessellates the Catmull-Clark limit surface of `mesh` uniformly at `depth` with the slate
+/// tessellator: every quad of the level-`depth` refinement, with the exact limit points and limit
+/// normals as vertices. Runs on the current rayon pool.
+///
+/// ```
+/// use subdiv_mesh::{parse_obj, Mesh};
+/// let cube = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
+///             f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+/// let mesh = Mesh::from_soup(&parse_obj(cube)?)?;
+/// let t = subdiv_slate::tessellate(&mesh, 3).unwrap();
+/// assert_eq!(t.num_faces(), 6 * 64);
+/// assert_eq!(t.positions.len(), 6 * 64 + 2);
+/// # Ok::<(), subdiv_mesh::MeshError>(())
+/// ```
+pub fn tessellate(mesh: &Mesh, depth: u32) -> Result<LimitMesh, SlateError> {
+    if depth == 0 {
+        return Ok(limit_surface(mesh, Scheme::CatmullClark));
+    }
+    let layout = PatchLayout::new(mesh, depth)?;
+    tessellate_layout(mesh, &layout)
+}
+
+/// [`tessellate`] with a precomputed layout (for repeated tessellation of the same mesh).
+pub fn tessellate_layout(mesh: &Mesh, layout: &PatchLayout) -> Result<LimitMesh, SlateError> {
+    let depth = layout.depth;
+    if depth > MAX_DEPTH {
+        return Err(SlateError::TooDeep {
+            depth,
+            max: MAX_DEPTH,
+        });
+    }
+    let maxsd = depth.max(DEFAULT_MAXSD);
+    let np = layout.num_points();
+    let mut positions = vec![[0.0f32; 3]; np];
+    let mut normals = vec![[0.0f32; 3]; np];
+    for &v in &layout.isolated {
+        positions[v.idx()] = mesh.position(v).to_array();
+    }
+    // Face ranges by prefix sum over visible patches.
+    let quads_of = |p: &Patch| {
+        if p.visible {
+            1usize << (2 * (depth - p.level as u32))
+        } else {
+            0
+        }
+    };
+    let mut first_quad = Vec::with_capacity(layout.patches.len() + 1);
+    let mut acc = 0usize;
+    for p in &layout.patches {
+        first_quad.push(acc);
+        acc += quads_of(p);
+    }
+    let mut face_indices = vec![0u32; acc * 4];
+    {
+        let out = SharedOut {
+            pos: positions.as_mut_ptr(),
+            nrm: normals.as_mut_ptr(),
+            len: np,
+        };
+        // Split the index buffer into one chunk per patch.
+        let mut chunks: Vec<&mut [u32]> = Vec::with_capacity(layout.patches.len());
+        let mut rest: &mut [u32] = &mut face_indices;
+        for p in &layout.patches {
+            let (a, b) = rest.split_at_mut(quads_of(p) * 4);
+            chunks.push(a);
+            rest = b;
+        }
+        let level1 = layout.level1.as_ref();
+        layout
+            .patches
+            .par_iter()
+            .zip(chunks.into_par_iter())
+            .with_min_len(8)
+            .for_each_init(
+                || Worker::new(maxsd),
+                |w, (p, quads)| {
+                    let src = if p.level == 0 {
+                        mesh
+                    } else {
+                        level1.expect("level-1 mesh for level-1 patches")
+                    };
+                    run_patch(w, src, p, depth - p.level as u32, &out, quads);
+                },
+            );
+    }
+    let face_offsets = (0..=acc as u32).map(|i| i * 4).collect();
+    Ok(LimitMesh {
+        positions,
+        normals,
+        face_offsets,
+        face_indices,
+    })
+}
+
+/// Gathers, subdivides and evaluates one patch; writes the points it owns and its quads.
+fn run_patch(w: &mut Worker, src: &Mesh, p: &Patch, e: u32, out: &SharedOut, quads: &mut [u32]) {
+    w.gather(src, p.face);
+    for _ in 0..e {
+        w.step();
+    }
+    let n = 1u32 << e;
+    let id = |i: u32, j: u32| -> (u32, bool) { point_id(p, n, i, j) };
+    for j in 0..=n {
+        for i in 0..=n {
+            let (gid, owned) = id(i, j);
+            if owned {
+                let (pos, nrm) = w.limit(i as i32, j as i32);
+                out.write(gid, pos, nrm);
+            }
+        }
+    }
+    if !quads.is_empty() {
+        let mut k = 0;
+        for j in 0..n {
+            for i in 0..n {
+                quads[k] = id(i, j).0;
+                quads[k + 1] = id(i + 1, j).0;
+                quads[k + 2] = id(i + 1, j + 1).0;
+                quads[k + 3] = id(i, j + 1).0;
+                k += 4;
+            }
+        }
+    }
+}
+
+/// Output id of grid point `(i, j)` of a patch with grid size `n`, and whether the patch owns it.
+#[inline]
+fn point_id(p: &Patch, n: u32, i: u32, j: u32) -> (u32, bool) {
+    let last = n;
+    match (i, j) {
+        (0, 0) => (p.corners[0], p.corner_owned[0]),
+        (i, 0) if i == last => (p.corners[1], p.corner_owned[1]),
+        (i, j) if i == last && j == last => (p.corners[2], p.corner_owned[2]),
+        (0, j) if j == last => (p.corners[3], p.corner_owned[3]),
+        (i, 0) => (p.sides[0].id(i), p.sides[0].owned),
+        (i, j) if i == last => (p.sides[1].id(j), p.sides[1].owned),
+        (i, j) if j == last => (p.sides[2].id(n - i), p.sides[2].owned),
+        (0, j) => (p.sides[3].id(n - j), p.sides[3].owned),
+        (i, j) => (p.interior + (j - 1) * (n - 1) + (i - 1), true),
+    }
+}
+
+/// Bytes of slate memory one worker uses for depth `depth` (two tables; the corner arrays grow
+/// with the largest valence: `2 * 2 * valence` points per corner).
+pub fn slate_bytes_per_thread(depth: u32, max_valence: usize) -> usize {
+    let w = Worker::new(depth.max(DEFAULT_MAXSD));
+    w.table_bytes()
+        + 4 * (4 * max_valence * std::mem::size_of::<glam::DVec3>() + 2 * max_valence * 4)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ownership_is_a_partition() {
+        // Every output point is owned by exactly one patch (or is an isolated vertex).
+        for (name, text) in [
+            (
+                "cube",
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\nf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n",
+            ),
+            (
+                "tri+quad",
+                "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 9 9 9\nf 1 2 3 4\nf 2 5 3\n",
+            ),
+        ] {
+            let mesh = Mesh::from_soup(&subdiv_mesh::parse_obj(text).unwrap()).unwrap();
+            for depth in 1..=3 {
+                let layout = PatchLayout::new(&mesh, depth).unwrap();
+                let mut count = vec![0u32; layout.num_points()];
+                for v in &layout.isolated {
+                    count[v.idx()] += 1;
+                }
+                for p in &layout.patches {
+                    let n = 1u32 << (depth - p.level as u32);
+                    for j in 0..=n {
+                        for i in 0..=n {
+                            let (id, owned) = point_id(p, n, i, j);
+                            if owned {
+                                count[id as usize] += 1;
+                            }
+                        }
+                    }
+                }
+                assert!(
+                    count.iter().all(|&c| c == 1),
+                    "{name} depth {depth}: {count:?}"
+                );
+            }
+        }
+    }
+}
