@@ -1,0 +1,28 @@
+//! `subdiv-stitch`: gap-free assembly of adaptively refined meshes.
+//!
+//! Adaptive refinement leaves neighbouring regions at different levels; this crate turns them
+//! back into one conforming (crack-free) mesh.
+//!
+//! - [`red_green`]: the red-green closure of adaptive Loop subdivision (Amresh & Farin 2002, as
+//!   used by Isenberg, Hartmann & König, "Interest Value Driven Adaptive Subdivision", 2003,
+//!   §3 and Fig. 1): triangles next to refined ("red") triangles are split in 2, 3 or 4
+//!   ("green"), and a green triangle that must be refined later is first merged back into its
+//!   parent, which is then refined regularly.
+//!
+//! The fan stitching of Catmull-Clark slate patches at depth transitions will be added as another
+//! module of this crate.
+//!
+//! ```
+//! use subdiv_mesh::{Mesh, PolygonSoup, glam::Vec3};
+//! use subdiv_stitch::red_green::{close, GreenState};
+//! // Two triangles sharing an edge; refining the first splits the shared edge, so the second
+//! // needs a green closure (one split edge: bisected into two triangles).
+//! let p = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 0.0)];
+//! let mesh = Mesh::from_soup(&PolygonSoup::from_faces(p, &[[0u32, 1, 2], [1, 3, 2]]))?;
+//! let closure = close(&mesh, &GreenState::new(2), &[true, false])?;
+//! assert_eq!(closure.red_face, vec![true, false]);
+//! assert_eq!(closure.split_edge.iter().filter(|&&s| s).count(), 3);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+pub mod red_green;
