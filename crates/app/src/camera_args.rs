@@ -41,7 +41,12 @@ impl CameraArgs {
             return Camera::new(eye, target, self.up, self.fov, w, h);
         }
         let rel = self.eye_relative.unwrap_or(Vec3::new(0.8, 0.5, 2.2));
-        Camera::eye_relative(lo, hi, rel, self.fov, w, h)
+        let mut camera = Camera::eye_relative(lo, hi, rel, self.fov, w, h);
+        // A given --up (e.g. 0,0,1 for Z-up models) wins unless it is parallel to the view.
+        if self.up != Vec3::Y && camera.forward().cross(self.up).length_squared() > 1e-6 {
+            camera.up = self.up;
+        }
+        camera
     }
 }
 

@@ -4,7 +4,9 @@
 mod camera_args;
 mod info;
 mod load;
+mod render;
 mod tessellate;
+mod view;
 
 use std::process::ExitCode;
 
@@ -25,6 +27,10 @@ enum Command {
     Info(info::InfoArgs),
     /// Tessellate the limit surface and write it as OBJ (limit points and limit normals).
     Tessellate(tessellate::TessellateArgs),
+    /// Render the limit surface headless with Vulkan to PNG (and EXR).
+    Render(render::RenderArgs),
+    /// Open the interactive Vulkan viewer on the limit surface.
+    View(view::ViewArgs),
 }
 
 fn main() -> ExitCode {
@@ -32,6 +38,8 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Info(a) => info::run(&a),
         Command::Tessellate(a) => tessellate::run(&a),
+        Command::Render(a) => render::run(&a),
+        Command::View(a) => view::run(&a),
     };
     match result {
         Ok(code) => code,

@@ -1,0 +1,511 @@
+//! `subdiv render`: a headless Vulkan render of the limit surface to PNG (and EXR).
+//!
+//! Also the pieces `subdiv view` shares: surface and style flags, the tessellated scene with its
+//! per-vertex scalars, silhouette extraction, and the camera conversion.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::{Context, bail};
+use glam::Vec3;
+use subdiv_mesh::Camera;
+use subdiv_rules::{LimitMesh, Scheme, tessellate_uniform};
+use subdiv_vk::{OrbitCamera, OwnedMesh, RenderOptions, Renderer, Shading, View};
+
+use crate::camera_args::CameraArgs;
+
+/// Which surface to tessellate: the flags `render` and `view` share.
+#[derive(clap::Args, Debug, Clone)]
+pub struct SurfaceArgs {
+    /// Input cage (OBJ with optional OpenSubdiv tags).
+    pub input: PathBuf,
+    /// Subdivision scheme.
+    #[arg(long, default_value = "catmull-clark", value_parser = ["catmull-clark", "loop"])]
+    pub scheme: String,
+    /// Uniform subdivision depth.
+    #[arg(long, default_value_t = 3)]
+    pub depth: u32,
+    /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
+    #[arg(long)]
+    pub split_nonmanifold: bool,
+}
+
+/// How to draw it: the flags `render` and `view` share.
+#[derive(clap::Args, Debug, Clone)]
+pub struct StyleArgs {
+    /// Surface shading: smooth (limit normals), flat (face normals), wire (hidden-line
+    /// wireframe), depth (subdivision depth colours), doi (degree-of-interest heat map).
+    #[arg(long, default_value = "smooth", value_parser = ["smooth", "flat", "wire", "depth", "doi"])]
+    pub shading: String,
+    /// Draw the tessellation's edges over the shaded surface.
+    #[arg(long)]
+    pub wire_overlay: bool,
+    /// Draw the silhouette edges (between front- and back-facing faces) as lines.
+    #[arg(long)]
+    pub silhouettes: bool,
+}
+
+impl StyleArgs {
+    /// The renderer options these flags describe.
+    pub fn render_options(&self) -> anyhow::Result<RenderOptions> {
+        let shading = Shading::from_name(&self.shading)
+            .with_context(|| format!("unknown shading '{}'", self.shading))?;
+        if shading == Shading::Doi {
+            // Degree-of-interest values come from the DoI crate, which has no input flag yet.
+            bail!(
+                "--shading doi needs --doi (degree-of-interest values), which this build does not have yet"
+            );
+        }
+        Ok(RenderOptions {
+            shading,
+            wire_overlay: self.wire_overlay,
+            show_lines: self.silhouettes,
+            // Depth-tested like the wireframe (surfaces are drawn with a depth bias), so
+            // silhouettes behind the surface stay hidden.
+            lines_on_top: false,
+            ..RenderOptions::default()
+        })
+    }
+}
+
+/// `subdiv render` arguments.
+#[derive(clap::Args, Debug)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub surface: SurfaceArgs,
+    #[command(flatten)]
+    pub camera: CameraArgs,
+    #[command(flatten)]
+    pub style: StyleArgs,
+    /// Output PNG.
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
+    /// Also write linear depth, normals and the per-vertex scalar (subdivision depth) as EXR.
+    #[arg(long)]
+    pub exr: Option<PathBuf>,
+}
+
+/// A tessellated surface ready to draw: the render mesh (with per-vertex scalars) and what
+/// silhouette extraction needs.
+pub struct Scene {
+    /// Positions, limit normals, triangles, polygon edges and scalars (no lines).
+    pub mesh: OwnedMesh,
+    /// Faces per edge, face normals and centres, for silhouettes.
+    pub silhouettes: Silhouettes,
+    /// Polygons of the tessellation.
+    pub faces: usize,
+}
+
+impl Scene {
+    /// Loads, tessellates uniformly and packs the surface `args` names.
+    pub fn load(args: &SurfaceArgs) -> anyhow::Result<Scene> {
+        let scheme: Scheme = args.scheme.parse().map_err(anyhow::Error::msg)?;
+        let cage = crate::load::load_mesh(&args.input, args.split_nonmanifold)?;
+        let limit = tessellate_uniform(&cage, scheme, args.depth)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", args.input.display()))?;
+        if limit.num_faces() == 0 {
+            bail!(
+                "{}: the limit surface has no faces to draw",
+                args.input.display()
+            );
+        }
+        // Uniform tessellation: every vertex sits at the same subdivision depth. The adaptive
+        // tessellator will hand per-vertex depths of its patches to `from_limit` instead.
+        let depths = vec![args.depth as f32; limit.positions.len()];
+        Ok(Scene::from_limit(limit, depths))
+    }
+
+    /// A scene from a tessellation and one subdivision depth per vertex (the scalar that
+    /// `--shading depth` colours).
+    pub fn from_limit(limit: LimitMesh, vertex_depths: Vec<f32>) -> Scene {
+        let silhouettes = Silhouettes::new(&limit);
+        let faces = limit.num_faces();
+        let mut mesh = OwnedMesh {
+            triangles: Vec::new(),
+            edges: Some(limit.edges()),
+            scalars: Some(vertex_depths),
+            lines: None,
+            positions: limit.positions.clone(),
+            normals: limit.normals.clone(),
+        };
+        split_crease_normals(&limit, &mut mesh);
+        Scene {
+            mesh,
+            silhouettes,
+            faces,
+        }
+    }
+
+    /// Axis-aligned bounds of the tessellation.
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        self.mesh.positions.iter().fold(
+            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+            |(lo, hi), p| (lo.min(Vec3::from(*p)), hi.max(Vec3::from(*p))),
+        )
+    }
+}
+
+/// Corners whose limit normal is further than this from their face's normal (cosine) get the
+/// face normal instead: 45°.
+const CREASE_NORMAL_COS: f32 = std::f32::consts::FRAC_1_SQRT_2;
+
+/// Triangulates `limit` into `mesh` (a fan per polygon) with split normals along creases.
+///
+/// A vertex on a sharp crease has one limit normal but two one-sided surface normals; shading
+/// the faces on both sides with that one normal smears the crease. A face corner whose limit
+/// normal deviates by more than 45° from the face's normal gets its own vertex with the face
+/// normal (position and scalar copied; edges and silhouettes keep the shared vertices).
+fn split_crease_normals(limit: &LimitMesh, mesh: &mut OwnedMesh) {
+    let p = |i: u32| Vec3::from(limit.positions[i as usize]);
+    let mut corner = Vec::new();
+    for f in 0..limit.num_faces() {
+        let vs = limit.face(f);
+        let n: Vec3 = (0..vs.len())
+            .map(|k| p(vs[k]).cross(p(vs[(k + 1) % vs.len()])))
+            .sum();
+        let n = n.normalize_or_zero();
+        corner.clear();
+        for &v in vs {
+            let limit_normal = Vec3::from(limit.normals[v as usize]);
+            if n == Vec3::ZERO || limit_normal.dot(n) >= CREASE_NORMAL_COS {
+                corner.push(v);
+            } else {
+                corner.push(mesh.positions.len() as u32);
+                mesh.positions.push(limit.positions[v as usize]);
+                mesh.normals.push(n.to_array());
+                if let Some(s) = mesh.scalars.as_mut() {
+                    s.push(s[v as usize]);
+                }
+            }
+        }
+        for k in 1..corner.len() - 1 {
+            mesh.triangles
+                .extend_from_slice(&[corner[0], corner[k], corner[k + 1]]);
+        }
+    }
+}
+
+/// Silhouette extraction: an interior edge is a silhouette edge when one of its two faces faces
+/// the eye and the other faces away. A face's normal is the mean of its vertices' limit normals
+/// (the geometric normal where those cancel).
+pub struct Silhouettes {
+    /// Interior edges (vertex pairs) and their two faces.
+    edges: Vec<([u32; 2], [u32; 2])>,
+    face_normal: Vec<Vec3>,
+    face_centre: Vec<Vec3>,
+}
+
+impl Silhouettes {
+    /// Face adjacency and face normals of `limit`.
+    pub fn new(limit: &LimitMesh) -> Silhouettes {
+        let p = |i: u32| Vec3::from(limit.positions[i as usize]);
+        let mut keyed: Vec<([u32; 2], u32)> = Vec::with_capacity(limit.face_indices.len());
+        let mut face_normal = Vec::with_capacity(limit.num_faces());
+        let mut face_centre = Vec::with_capacity(limit.num_faces());
+        for f in 0..limit.num_faces() {
+            let vs = limit.face(f);
+            let centre = vs.iter().map(|&v| p(v)).sum::<Vec3>() / vs.len() as f32;
+            let mut n: Vec3 = vs
+                .iter()
+                .map(|&v| Vec3::from(limit.normals[v as usize]))
+                .sum();
+            if n.length_squared() < 1e-12 {
+                // Newell's normal of the polygon.
+                n = (0..vs.len())
+                    .map(|k| p(vs[k]).cross(p(vs[(k + 1) % vs.len()])))
+                    .sum();
+            }
+            face_normal.push(n.normalize_or_zero());
+            face_centre.push(centre);
+            for k in 0..vs.len() {
+                let (a, b) = (vs[k], vs[(k + 1) % vs.len()]);
+                keyed.push(([a.min(b), a.max(b)], f as u32));
+            }
+        }
+        keyed.sort_unstable();
+        let mut edges = Vec::with_capacity(keyed.len() / 2);
+        let mut i = 0;
+        while i < keyed.len() {
+            let mut j = i + 1;
+            while j < keyed.len() && keyed[j].0 == keyed[i].0 {
+                j += 1;
+            }
+            if j - i == 2 {
+                edges.push((keyed[i].0, [keyed[i].1, keyed[i + 1].1]));
+            }
+            i = j;
+        }
+        Silhouettes {
+            edges,
+            face_normal,
+            face_centre,
+        }
+    }
+
+    /// The silhouette edges seen from `eye` as line segments (pairs of endpoints), into `out`.
+    pub fn lines_into(&self, positions: &[[f32; 3]], eye: Vec3, out: &mut Vec<[f32; 3]>) {
+        out.clear();
+        let front =
+            |f: u32| self.face_normal[f as usize].dot(eye - self.face_centre[f as usize]) > 0.0;
+        for &([a, b], [f, g]) in &self.edges {
+            if front(f) != front(g) {
+                out.push(positions[a as usize]);
+                out.push(positions[b as usize]);
+            }
+        }
+    }
+}
+
+/// Half the diagonal of the box `lo..hi` as seen from `target`: the largest distance from
+/// `target` to a corner.
+fn radius_about(lo: Vec3, hi: Vec3, target: Vec3) -> f32 {
+    (0..8)
+        .map(|i| {
+            let c = Vec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            );
+            (c - target).length()
+        })
+        .fold(0.0, f32::max)
+        .max(1e-6)
+}
+
+/// The viewer's orbit camera for `camera` (it orbits about +Y), and whether it reproduces the
+/// camera exactly (an up vector along +Y and a view direction that is not vertical). Near and far
+/// planes enclose the box `lo..hi`.
+pub fn orbit_camera(camera: &Camera, lo: Vec3, hi: Vec3) -> (OrbitCamera, bool) {
+    let offset = camera.eye - camera.target;
+    let distance = offset.length().max(1e-6);
+    let dir = offset / distance;
+    let limit = 89f32.to_radians();
+    let pitch = dir.y.clamp(-1.0, 1.0).asin();
+    let orbit = OrbitCamera {
+        target: camera.target,
+        distance,
+        yaw: dir.x.atan2(dir.z),
+        pitch: pitch.clamp(-limit, limit),
+        fov_y: camera.fov_y_deg.to_radians(),
+        radius: radius_about(lo, hi, camera.target),
+    };
+    let up = camera.up.normalize_or_zero();
+    let exact = up.cross(Vec3::Y).length() < 1e-6 && up.y > 0.0 && pitch.abs() <= limit;
+    (orbit, exact)
+}
+
+/// The renderer's view for `camera` with near and far planes around the box `lo..hi`. Cameras the
+/// viewer can orbit go through [`OrbitCamera`], so `subdiv view` shows exactly what `subdiv
+/// render` draws.
+pub fn view_for(camera: &Camera, lo: Vec3, hi: Vec3) -> View {
+    let (orbit, exact) = orbit_camera(camera, lo, hi);
+    if exact {
+        return orbit.view(camera.aspect());
+    }
+    let distance = orbit.distance;
+    let near = (distance - 2.0 * orbit.radius)
+        .max(distance * 1e-3)
+        .max(1e-6);
+    let far = (distance + 2.0 * orbit.radius).max(near * 2.0);
+    View {
+        view: camera.view_matrix(),
+        proj: View::perspective(camera.fov_y_deg.to_radians(), camera.aspect(), near, far),
+        eye: camera.eye,
+    }
+}
+
+pub fn run(a: &RenderArgs) -> anyhow::Result<ExitCode> {
+    let options = a.style.render_options()?;
+    let t0 = Instant::now();
+    let mut scene = Scene::load(&a.surface)?;
+    let tessellate_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let (lo, hi) = scene.bounds();
+    let camera = a.camera.camera(lo, hi);
+    let view = view_for(&camera, lo, hi);
+    if a.style.silhouettes {
+        let mut lines = Vec::new();
+        scene
+            .silhouettes
+            .lines_into(&scene.mesh.positions, view.eye, &mut lines);
+        scene.mesh.lines = Some(lines);
+    }
+    let size = [camera.width, camera.height];
+
+    let t1 = Instant::now();
+    let mut renderer = Renderer::new()?;
+    let mesh = scene.mesh.as_render_mesh();
+    let image = if let Some(exr) = &a.exr {
+        let (image, aux) = renderer.render_with_aux(&mesh, &view, size, &options)?;
+        subdiv_vk::write_exr(exr, &aux)?;
+        image
+    } else {
+        renderer.render(&mesh, &view, size, &options)?
+    };
+    subdiv_vk::write_png(&a.output, &image)?;
+    let render_ms = t1.elapsed().as_secs_f64() * 1e3;
+    let silhouette_note = match &scene.mesh.lines {
+        Some(l) => format!(", {} silhouette edges", l.len() / 2),
+        None => String::new(),
+    };
+    println!(
+        "rendered {}: {} faces, {} triangles{} ({}, depth {}, {} shading) at {}x{} on {}: \
+         tessellated in {:.1} ms, rendered in {:.1} ms -> {}{}",
+        a.surface.input.display(),
+        scene.faces,
+        mesh.triangle_count(),
+        silhouette_note,
+        a.surface.scheme,
+        a.surface.depth,
+        options.shading.name(),
+        size[0],
+        size[1],
+        renderer.device_name(),
+        tessellate_ms,
+        render_ms,
+        a.output.display(),
+        a.exr
+            .as_ref()
+            .map(|p| format!(" and {}", p.display()))
+            .unwrap_or_default(),
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A unit cube as six quads (CCW seen from outside) with outward face normals at the corners.
+    fn cube() -> LimitMesh {
+        let positions: Vec<[f32; 3]> = (0..8)
+            .map(|i| {
+                [
+                    (i & 1) as f32 * 2.0 - 1.0,
+                    ((i >> 1) & 1) as f32 * 2.0 - 1.0,
+                    ((i >> 2) & 1) as f32 * 2.0 - 1.0,
+                ]
+            })
+            .collect();
+        let normals = positions
+            .iter()
+            .map(|p| (Vec3::from(*p).normalize()).to_array())
+            .collect();
+        let faces: [[u32; 4]; 6] = [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ];
+        LimitMesh {
+            positions,
+            normals,
+            face_offsets: (0..=6).map(|i| i * 4).collect(),
+            face_indices: faces.iter().flatten().copied().collect(),
+        }
+    }
+
+    #[test]
+    fn cube_silhouette_seen_along_an_axis_is_its_outline() {
+        let limit = cube();
+        let s = Silhouettes::new(&limit);
+        assert_eq!(s.edges.len(), 12);
+        let mut lines = Vec::new();
+        // Looking down -z: the +z face faces the eye; in perspective the four side faces face
+        // away, so the silhouette is the outline of the +z face.
+        s.lines_into(&limit.positions, Vec3::new(0.0, 0.0, 100.0), &mut lines);
+        assert_eq!(lines.len(), 8, "{lines:?}");
+        assert!(lines.iter().all(|p| p[2] == 1.0));
+        // Seen from a corner direction, three faces face the eye: six silhouette edges.
+        s.lines_into(&limit.positions, Vec3::new(10.0, 11.0, 12.0), &mut lines);
+        assert_eq!(lines.len(), 12);
+    }
+
+    #[test]
+    fn crease_corners_get_face_normals() {
+        // The cube's corner normals are 54.7° off every face: all 24 corners are split.
+        let limit = cube();
+        let scene = Scene::from_limit(limit.clone(), vec![1.0; 8]);
+        let m = &scene.mesh;
+        assert_eq!(m.positions.len(), 8 + 24);
+        assert_eq!(m.triangles.len(), 6 * 2 * 3);
+        assert!(m.triangles.iter().all(|&i| i >= 8));
+        for t in m.triangles.chunks(3) {
+            let n: Vec<Vec3> = t
+                .iter()
+                .map(|&i| Vec3::from(m.normals[i as usize]))
+                .collect();
+            assert!(
+                n[0] == n[1] && n[1] == n[2] && n[0].abs().max_element() == 1.0,
+                "{n:?}"
+            );
+        }
+        assert_eq!(m.scalars.as_ref().unwrap().len(), m.positions.len());
+        assert_eq!(m.edges.as_ref().unwrap().len(), 12);
+        // Normals within 45° of the face normal stay shared: a tilted-normal quad is not split.
+        let quad = LimitMesh {
+            positions: vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+            ],
+            normals: vec![
+                [0.0, 0.6, 0.8],
+                [0.0, 0.0, 1.0],
+                [0.6, 0.0, 0.8],
+                [0.0, 0.0, 1.0],
+            ],
+            face_offsets: vec![0, 4],
+            face_indices: vec![0, 1, 2, 3],
+        };
+        let scene = Scene::from_limit(quad, vec![0.0; 4]);
+        assert_eq!(scene.mesh.positions.len(), 4);
+        assert_eq!(scene.mesh.triangles, [0, 1, 2, 0, 2, 3]);
+    }
+
+    #[test]
+    fn default_camera_goes_through_the_orbit_camera() {
+        let (lo, hi) = (Vec3::splat(-1.0), Vec3::splat(1.0));
+        let cam = Camera::eye_relative(lo, hi, Vec3::new(0.8, 0.5, 2.2), 45.0, 320, 240);
+        let (orbit, exact) = orbit_camera(&cam, lo, hi);
+        assert!(exact);
+        assert!((orbit.eye() - cam.eye).length() < 1e-5);
+        let view = view_for(&cam, lo, hi);
+        assert_eq!(view, orbit.view(320.0 / 240.0));
+        // The same view as the camera's own matrix, and the box lies between near and far.
+        let m = cam.view_matrix();
+        for (a, b) in view.view.to_cols_array().iter().zip(m.to_cols_array()) {
+            assert!((a - b).abs() < 1e-5);
+        }
+        for corner in [lo, hi, Vec3::new(-1.0, 1.0, -1.0)] {
+            let ndc = view.view_proj().project_point3(corner);
+            assert!(ndc.z > 0.0 && ndc.z < 1.0, "{ndc}");
+        }
+        // Looking straight down with +Z up is not an orbit view; the camera's matrix is used.
+        let top = Camera::eye_relative(lo, hi, Vec3::new(0.0, 3.0, 0.0), 45.0, 320, 240);
+        assert!(!orbit_camera(&top, lo, hi).1);
+        assert_eq!(view_for(&top, lo, hi).view, top.view_matrix());
+    }
+
+    #[test]
+    fn doi_shading_is_refused_without_doi_values() {
+        let style = StyleArgs {
+            shading: "doi".into(),
+            wire_overlay: false,
+            silhouettes: false,
+        };
+        let e = style.render_options().unwrap_err().to_string();
+        assert!(e.contains("--shading doi needs --doi"), "{e}");
+        let style = StyleArgs {
+            shading: "depth".into(),
+            wire_overlay: true,
+            silhouettes: true,
+        };
+        let o = style.render_options().unwrap();
+        assert_eq!(o.shading, Shading::Depth);
+        assert!(o.wire_overlay && o.show_lines);
+    }
+}

@@ -1,0 +1,352 @@
+//! `subdiv render` and `subdiv view` end to end: images, EXR, errors without panics, no driver.
+//!
+//! With the Khronos validation layer installed, every render runs with it and fails on any
+//! validation message. Without a Vulkan driver the render tests print a note and pass, unless
+//! `SUBDIV_VK_REQUIRE_DRIVER=1` (set by `cargo xtask test`). The window test runs under the
+//! X server in `DISPLAY`, or starts one with `xvfb-run`; without either it prints a note and
+//! passes, unless `SUBDIV_VK_REQUIRE_DISPLAY=1`.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use subdiv_vk::{read_exr, read_png};
+
+const LAVAPIPE_ICD: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+const VALIDATION_LAYER: &str = "/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json";
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn box_obj() -> PathBuf {
+    root().join("fixtures/scenes/box_8_sharp_edges.obj")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("subdiv-render-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d.join(name)
+}
+
+/// The `subdiv` binary with the Vulkan environment of the tests: lavapipe when installed and
+/// nothing else was chosen, the shader cache under `target/`, validation when installed.
+fn subdiv() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_subdiv"));
+    if std::env::var_os("VK_DRIVER_FILES").is_none() && Path::new(LAVAPIPE_ICD).exists() {
+        c.env("VK_DRIVER_FILES", LAVAPIPE_ICD);
+    }
+    if std::env::var_os("MESA_SHADER_CACHE_DIR").is_none() {
+        c.env(
+            "MESA_SHADER_CACHE_DIR",
+            root().join("target/mesa-shader-cache"),
+        );
+    }
+    if Path::new(VALIDATION_LAYER).exists() {
+        c.env("SUBDIV_VK_VALIDATION", "1");
+    }
+    c
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn assert_clean_failure(o: &Output, want: &str) {
+    let err = stderr(o);
+    assert!(
+        !o.status.success(),
+        "expected failure, got success; stderr:\n{err}"
+    );
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.starts_with("error: "), "no `error:` line:\n{err}");
+    assert!(err.contains(want), "expected '{want}' in:\n{err}");
+    assert!(!err.contains("panicked"), "panic:\n{err}");
+}
+
+/// Runs `subdiv ARGS`; `None` (test skipped, note printed) when there is no Vulkan driver and
+/// none is required. Fails on a validation message.
+fn render(args: &[&str]) -> Option<Output> {
+    let o = subdiv().args(args).output().unwrap();
+    let err = stderr(&o);
+    let no_driver =
+        err.contains("no Vulkan driver found") || err.contains("cannot load the Vulkan loader");
+    if !o.status.success()
+        && no_driver
+        && std::env::var("SUBDIV_VK_REQUIRE_DRIVER").as_deref() != Ok("1")
+    {
+        eprintln!("skipping: {err}");
+        return None;
+    }
+    assert!(o.status.success(), "subdiv {args:?} failed:\n{err}");
+    assert!(
+        !err.contains("subdiv-vk validation:"),
+        "validation messages:\n{err}"
+    );
+    Some(o)
+}
+
+fn pixel(img: &subdiv_vk::image::RgbaImage, x: u32, y: u32) -> [u8; 4] {
+    img.get_pixel(x, y).0
+}
+
+#[test]
+fn render_writes_a_png_of_the_requested_size_with_the_surface_in_the_centre() {
+    let out = tmp("box.png");
+    let input = box_obj();
+    let Some(o) = render(&[
+        "render",
+        input.to_str().unwrap(),
+        "--size",
+        "160x120",
+        "-o",
+        out.to_str().unwrap(),
+    ]) else {
+        return;
+    };
+    assert!(String::from_utf8_lossy(&o.stdout).contains("rendered"));
+    let img = read_png(&out).unwrap();
+    assert_eq!(img.dimensions(), (160, 120));
+    assert_eq!(
+        pixel(&img, 0, 0),
+        [255, 255, 255, 255],
+        "corner is background"
+    );
+    let c = pixel(&img, 80, 60);
+    assert!(
+        c[..3] != [255, 255, 255] && c[0] == c[1] && c[1] == c[2],
+        "centre {c:?} is not the grey surface"
+    );
+}
+
+#[test]
+fn exr_holds_depth_normals_and_the_subdivision_depth() {
+    let (png, exr) = (tmp("exr.png"), tmp("exr.exr"));
+    let input = box_obj();
+    let args = [
+        "render",
+        input.to_str().unwrap(),
+        "--depth",
+        "2",
+        "--size",
+        "64x48",
+        "-o",
+        png.to_str().unwrap(),
+    ];
+    let Some(_) = render(&[&args[..], &["--exr", exr.to_str().unwrap()]].concat()) else {
+        return;
+    };
+    let (w, h, channels) = read_exr(&exr).unwrap();
+    assert_eq!((w, h), (64, 48));
+    let centre = (24 * 64 + 32) as usize;
+    let channel = |n: &str| {
+        &channels
+            .iter()
+            .find(|c| c.name == n)
+            .unwrap_or_else(|| panic!("no channel {n}"))
+            .samples
+    };
+    assert_eq!(
+        channel("S")[centre],
+        2.0,
+        "per-vertex scalar is the subdivision depth"
+    );
+    let z = channel("Z")[centre];
+    assert!(z.is_finite() && z > 0.0, "linear depth {z}");
+    let n = [
+        channel("N.X")[centre],
+        channel("N.Y")[centre],
+        channel("N.Z")[centre],
+    ];
+    let len = n.iter().map(|v| v * v).sum::<f32>().sqrt();
+    assert!((len - 1.0).abs() < 0.05, "normal {n:?}");
+}
+
+#[test]
+fn shadings_and_silhouettes_change_the_image() {
+    let input = box_obj();
+    let base = [
+        "render",
+        input.to_str().unwrap(),
+        "--depth",
+        "2",
+        "--size",
+        "96x72",
+    ];
+    let mut images = Vec::new();
+    for (name, extra) in [
+        ("smooth", &[][..]),
+        ("flat", &["--shading", "flat"][..]),
+        ("wire", &["--shading", "wire"][..]),
+        ("depth", &["--shading", "depth"][..]),
+        ("silhouettes", &["--silhouettes"][..]),
+        ("overlay", &["--wire-overlay"][..]),
+    ] {
+        let out = tmp(&format!("shading-{name}.png"));
+        if render(&[&base[..], extra, &["-o", out.to_str().unwrap()]].concat()).is_none() {
+            return;
+        }
+        images.push((name, read_png(&out).unwrap()));
+    }
+    for i in 0..images.len() {
+        for j in i + 1..images.len() {
+            assert!(
+                images[i].1 != images[j].1,
+                "{} and {} render the same image",
+                images[i].0,
+                images[j].0
+            );
+        }
+    }
+    let has = |img: &subdiv_vk::image::RgbaImage, f: &dyn Fn([u8; 4]) -> bool| {
+        img.pixels().any(|p| f(p.0))
+    };
+    let red = |p: [u8; 4]| p[0] > 150 && p[1] < 80 && p[2] < 80;
+    assert!(has(&images[4].1, &red), "silhouette lines are red");
+    assert!(!has(&images[0].1, &red));
+    let coloured = |p: [u8; 4]| p[0].abs_diff(p[1]) > 30 || p[1].abs_diff(p[2]) > 30;
+    assert!(has(&images[3].1, &coloured), "depth shading is coloured");
+    assert!(!has(&images[0].1, &coloured), "smooth shading is grey");
+}
+
+#[test]
+fn missing_and_invalid_inputs_fail_cleanly() {
+    let out = tmp("never.png");
+    let o = subdiv()
+        .args([
+            "render",
+            "/nonexistent/cage.obj",
+            "-o",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, "/nonexistent/cage.obj");
+    let bad = tmp("bad.obj");
+    std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n").unwrap();
+    for cmd in ["render", "view"] {
+        let o = subdiv()
+            .args([cmd, bad.to_str().unwrap(), "-o", out.to_str().unwrap()])
+            .output()
+            .unwrap();
+        assert_clean_failure(&o, &format!("{}:4:", bad.display()));
+    }
+    let o = subdiv()
+        .args([
+            "render",
+            box_obj().to_str().unwrap(),
+            "--shading",
+            "doi",
+            "-o",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, "--shading doi needs --doi");
+    let quads = box_obj();
+    let o = subdiv()
+        .args([
+            "render",
+            quads.to_str().unwrap(),
+            "--scheme",
+            "loop",
+            "-o",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, "box_8_sharp_edges.obj");
+    assert!(!out.exists());
+}
+
+#[test]
+fn no_vulkan_driver_names_the_package_to_install() {
+    let out = tmp("nodriver.png");
+    let o = subdiv()
+        .env("VK_DRIVER_FILES", "/nonexistent.json")
+        .env("VK_ICD_FILENAMES", "/nonexistent.json")
+        .env_remove("SUBDIV_VK_VALIDATION")
+        .args([
+            "render",
+            box_obj().to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, "mesa-vulkan-drivers");
+    assert!(!out.exists());
+}
+
+/// `subdiv view --screenshot-after 5` shows exactly what `subdiv render` draws, silhouettes,
+/// wireframe and depth colours included.
+#[test]
+fn view_screenshot_equals_render() {
+    let require = std::env::var("SUBDIV_VK_REQUIRE_DISPLAY").as_deref() == Ok("1");
+    let xvfb = std::env::var_os("PATH")
+        .is_some_and(|p| std::env::split_paths(&p).any(|d| d.join("xvfb-run").is_file()));
+    if std::env::var_os("DISPLAY").is_none() && !xvfb {
+        assert!(
+            !require,
+            "SUBDIV_VK_REQUIRE_DISPLAY=1 but no DISPLAY and no xvfb-run"
+        );
+        eprintln!("skipping: no DISPLAY and no xvfb-run (install xvfb, or run `cargo xtask test`)");
+        return;
+    }
+    let input = box_obj();
+    let flags = [
+        "--depth",
+        "2",
+        "--size",
+        "200x150",
+        "--shading",
+        "depth",
+        "--wire-overlay",
+        "--silhouettes",
+    ];
+    let rendered = tmp("view-render.png");
+    let Some(_) = render(
+        &[
+            &["render", input.to_str().unwrap()][..],
+            &flags,
+            &["-o", rendered.to_str().unwrap()],
+        ]
+        .concat(),
+    ) else {
+        return;
+    };
+    let shot = tmp("view-shot.png");
+    let mut view = if std::env::var_os("DISPLAY").is_some() {
+        subdiv()
+    } else {
+        let mut c = Command::new("xvfb-run");
+        c.args([
+            "-a",
+            "-s",
+            "-screen 0 640x480x24",
+            env!("CARGO_BIN_EXE_subdiv"),
+        ]);
+        let direct = subdiv();
+        for (k, v) in direct.get_envs() {
+            if let Some(v) = v {
+                c.env(k, v);
+            }
+        }
+        c
+    };
+    let o = view
+        .args(["view", input.to_str().unwrap()])
+        .args(flags)
+        .args(["--screenshot-after", "5", "-o", shot.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let err = stderr(&o);
+    assert!(o.status.success(), "subdiv view failed:\n{err}");
+    assert!(
+        !err.contains("subdiv-vk validation:"),
+        "validation messages:\n{err}"
+    );
+    assert!(String::from_utf8_lossy(&o.stdout).contains("5 frames"));
+    let (a, b) = (read_png(&shot).unwrap(), read_png(&rendered).unwrap());
+    assert_eq!(a.dimensions(), (200, 150));
+    assert!(a == b, "view screenshot differs from subdiv render");
+}
