@@ -2,7 +2,10 @@
 //!
 //! - `cargo xtask demo`: tessellates the embedded default cage and writes `out/`.
 //! - `cargo xtask test`: installs what the tests need (lavapipe) if missing, then runs every test.
+//! - `cargo xtask golden [--bless] [--tolerance MEAN,P99] [SCENE...]`: golden-image regression
+//!   (see `docs/golden.md`).
 
+mod golden;
 mod vulkan;
 
 use std::path::{Path, PathBuf};
@@ -55,16 +58,40 @@ fn demo() -> Result<()> {
         c.arg("tessellate").arg(&cage).args(["--depth", "4", "-o"]).arg(out.join("demo.obj"));
         c
     })?;
-    println!("demo: wrote {}", out.join("demo.obj").display());
+    vulkan::ensure_driver()?;
+    println!("== subdiv render --depth 3 ==");
+    run({
+        let mut c = Command::new(&exe);
+        c.arg("render").arg(&cage).args(["--depth", "3", "--up", "0,0,1", "--eye-relative", "1.5,-1.7,0.9"]);
+        c.args(["--size", "800x800", "-o"]).arg(out.join("demo.png"));
+        vulkan::configure(&mut c, &root());
+        c
+    })?;
+    println!("demo: wrote {} and {}", out.join("demo.obj").display(), out.join("demo.png").display());
     Ok(())
 }
 
 fn test() -> Result<()> {
     vulkan::ensure_driver()?;
-    let mut c = cargo();
-    c.args(["test", "--workspace"]);
+    // With the layer installed, the Vulkan tests run with validation and fail on any message.
+    vulkan::ensure_validation_layer();
+    let xvfb = vulkan::ensure_xvfb();
+    let cargo_exe = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    // Window tests (the vk viewer, `subdiv view`) need an X server: run everything under Xvfb.
+    let mut c = if xvfb {
+        let mut c = Command::new("xvfb-run");
+        c.args(["-a", "-s", "-screen 0 1280x1024x24", &cargo_exe]);
+        c.env("SUBDIV_VK_REQUIRE_DISPLAY", "1");
+        c
+    } else {
+        eprintln!("xtask: no xvfb-run; the window tests are skipped");
+        Command::new(&cargo_exe)
+    };
+    c.current_dir(root()).args(["test", "--workspace"]);
+    c.env("SUBDIV_VK_REQUIRE_DRIVER", "1");
     vulkan::configure(&mut c, &root());
-    run(c)
+    run(c)?;
+    golden::run(&root(), &golden::Options::default())
 }
 
 fn main() -> Result<()> {
@@ -72,8 +99,9 @@ fn main() -> Result<()> {
     match args.first().map(String::as_str) {
         Some("demo") => demo(),
         Some("test") => test(),
+        Some("golden") => golden::Options::parse(&args[1..]).and_then(|o| golden::run(&root(), &o)),
         _ => {
-            eprintln!("usage: cargo xtask <demo|test>");
+            eprintln!("usage: cargo xtask <demo|test|golden [--bless] [--tolerance MEAN,P99] [SCENE...]>");
             std::process::exit(2);
         }
     }

@@ -48,3 +48,64 @@ pub fn configure(cmd: &mut Command, root: &Path) {
         .env("VK_ICD_FILENAMES", LAVAPIPE_ICD)
         .env("MESA_SHADER_CACHE_DIR", root.join("target/mesa-shader-cache"));
 }
+
+/// The Khronos validation layer's manifest (Debian package `vulkan-validationlayers`).
+pub const VALIDATION_LAYER_MANIFEST: &str = "/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json";
+
+/// Xvfb and the X11 libraries winit loads at run time (for the window tests).
+pub const X11_PACKAGES: &[&str] = &["xvfb", "libx11-6", "libxcursor1", "libxrandr2", "libxi6", "libxkbcommon-x11-0"];
+
+/// Shared objects of [`X11_PACKAGES`] that winit opens with `dlopen`.
+const X11_LIBRARIES: &[&str] =
+    &["libX11.so.6", "libXcursor.so.1", "libXrandr.so.2", "libXi.so.6", "libxkbcommon-x11.so.0"];
+
+fn library_present(name: &str) -> bool {
+    ["/usr/lib/x86_64-linux-gnu", "/usr/lib/aarch64-linux-gnu", "/usr/lib", "/usr/lib64"]
+        .iter()
+        .any(|d| Path::new(d).join(name).exists())
+}
+
+/// `true` when `program` is on `PATH`.
+pub fn on_path(program: &str) -> bool {
+    std::env::var_os("PATH").is_some_and(|p| std::env::split_paths(&p).any(|d| d.join(program).is_file()))
+}
+
+/// Optional test dependencies: present already, installed now with apt (as root), or missing
+/// with a note (not root, or apt failed). Returns whether they are usable.
+fn ensure_optional(what: &str, packages: &[&str], present: &dyn Fn() -> bool) -> bool {
+    if present() {
+        return true;
+    }
+    let cmd = format!("apt-get update && apt-get install -y {}", packages.join(" "));
+    if !is_root() {
+        eprintln!("xtask: {what} missing; those checks are skipped. Install with:\n    sudo sh -c '{cmd}'");
+        return false;
+    }
+    eprintln!("xtask: {what} missing; installing: {cmd}");
+    let ok = Command::new("sh")
+        .args(["-c", &cmd])
+        .env("DEBIAN_FRONTEND", "noninteractive")
+        .status()
+        .is_ok_and(|s| s.success());
+    if !ok || !present() {
+        eprintln!("xtask: installing {} failed; those checks are skipped", packages.join(" "));
+        return false;
+    }
+    true
+}
+
+/// Makes sure the Khronos validation layer is installed (so Vulkan tests run with validation);
+/// returns whether it is.
+pub fn ensure_validation_layer() -> bool {
+    ensure_optional("the Vulkan validation layer", &["vulkan-validationlayers"], &|| {
+        Path::new(VALIDATION_LAYER_MANIFEST).exists()
+    })
+}
+
+/// Makes sure `xvfb-run` and the X11 libraries winit needs are installed (for the window
+/// tests); returns whether they are.
+pub fn ensure_xvfb() -> bool {
+    ensure_optional("Xvfb or the X11 libraries", X11_PACKAGES, &|| {
+        on_path("xvfb-run") && X11_LIBRARIES.iter().all(|l| library_present(l))
+    })
+}
