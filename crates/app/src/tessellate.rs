@@ -6,6 +6,7 @@ use std::time::Instant;
 
 use subdiv_mesh::write_obj;
 use subdiv_rules::{tessellate_uniform, Scheme};
+use subdiv_slate::tessellate as slate_tessellate;
 
 #[derive(clap::Args, Debug)]
 pub struct TessellateArgs {
@@ -29,7 +30,11 @@ pub fn run(a: &TessellateArgs) -> anyhow::Result<ExitCode> {
     let scheme: Scheme = a.scheme.parse().map_err(anyhow::Error::msg)?;
     let mesh = crate::load::load_mesh(&a.input, a.split_nonmanifold)?;
     let t0 = Instant::now();
-    let t = tessellate_uniform(&mesh, scheme, a.depth).map_err(|e| anyhow::anyhow!("{}: {e}", a.input.display()))?;
+    let t = match scheme {
+        // Catmull-Clark runs on the slate tessellator; Loop on the whole-mesh refinement.
+        Scheme::CatmullClark => slate_tessellate(&mesh, a.depth).map_err(|e| anyhow::anyhow!("{}: {e}", a.input.display()))?,
+        Scheme::Loop => tessellate_uniform(&mesh, scheme, a.depth).map_err(|e| anyhow::anyhow!("{}: {e}", a.input.display()))?,
+    };
     let ms = t0.elapsed().as_secs_f64() * 1e3;
     write_obj(&a.output, &t.obj_data())?;
     println!(

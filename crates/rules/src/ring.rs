@@ -33,6 +33,9 @@ pub struct Ring {
     inner_off: Vec<u32>,
     // scratch
     fp: Vec<DVec3>,
+    diag_buf: Vec<DVec3>,
+    rot_edges: Vec<DVec3>,
+    rot_diag: Vec<DVec3>,
     cs: Vec<f32>,
     tmp_edges: Vec<DVec3>,
     tmp_far: Vec<(f32, u32)>,
@@ -321,17 +324,12 @@ impl Ring {
             guard += 1;
         }
         let rule = Rule::determine(self.vertex_sharpness, &self.sharp);
-        let diag: Vec<DVec3> = match self.scheme {
-            Scheme::CatmullClark => (0..self.num_faces())
-                .map(|i| self.face_inner(i)[0])
-                .collect(),
-            Scheme::Loop => Vec::new(),
-        };
-        let eval = |edges: &[DVec3], diag: &[DVec3], rule: Rule| match self.scheme {
-            Scheme::CatmullClark => catmark::limit(self.center, edges, diag, rule),
-            Scheme::Loop => loop_scheme::limit(self.center, edges, rule, self.boundary),
-        };
-        let (pos, t1, t2) = eval(&self.edges, &diag, rule);
+        let mut diag = std::mem::take(&mut self.diag_buf);
+        diag.clear();
+        if self.scheme == Scheme::CatmullClark {
+            diag.extend((0..self.num_faces()).map(|i| self.face_inner(i)[0]));
+        }
+        let (pos, t1, t2) = self.eval_masks(&self.edges, &diag, rule);
         let mut normal = self.orient(t1.cross(t2));
         if let (Rule::Crease([c0, c1]), false) = (rule, self.boundary) {
             // An interior crease has a tangent plane on each side; the masks give the side
@@ -339,20 +337,32 @@ impl Ring {
             // rotated to start at the second crease edge) so the normal does not depend on where
             // the ring starts.
             let n = self.edges.len();
-            let edges: Vec<DVec3> = (0..n).map(|k| self.edges[(c1 + k) % n]).collect();
-            let diag2: Vec<DVec3> = if diag.is_empty() {
-                Vec::new()
-            } else {
-                (0..n).map(|k| diag[(c1 + k) % n]).collect()
-            };
-            let (_, u1, u2) = eval(&edges, &diag2, Rule::Crease([0, (c0 + n - c1) % n]));
+            let mut edges = std::mem::take(&mut self.rot_edges);
+            let mut diag2 = std::mem::take(&mut self.rot_diag);
+            edges.clear();
+            edges.extend((0..n).map(|k| self.edges[(c1 + k) % n]));
+            diag2.clear();
+            if !diag.is_empty() {
+                diag2.extend((0..n).map(|k| diag[(c1 + k) % n]));
+            }
+            let (_, u1, u2) = self.eval_masks(&edges, &diag2, Rule::Crease([0, (c0 + n - c1) % n]));
             let other = self.orient(u1.cross(u2));
             let sum = normal + other;
             if sum.length_squared() > 1e-12 {
                 normal = sum.normalize();
             }
+            self.rot_edges = edges;
+            self.rot_diag = diag2;
         }
+        self.diag_buf = diag;
         (pos, normal)
+    }
+
+    fn eval_masks(&self, edges: &[DVec3], diag: &[DVec3], rule: Rule) -> (DVec3, DVec3, DVec3) {
+        match self.scheme {
+            Scheme::CatmullClark => catmark::limit(self.center, edges, diag, rule),
+            Scheme::Loop => loop_scheme::limit(self.center, edges, rule, self.boundary),
+        }
     }
 
     /// Orients a normal like the ring's faces, falling back to the ring's area vector when the

@@ -123,6 +123,27 @@ impl Table {
         self.inside(a, b) && self.ex[self.at(i, j)] && self.ex[self.at(a, b)]
     }
 
+    /// `true` if `(i, j)` is an interior point whose 8 neighbours exist and whose 4 edges are
+    /// smooth: the regular rules and limit masks apply there exactly.
+    #[inline]
+    fn is_plain(&self, i: i32, j: i32) -> bool {
+        let k = self.at(i, j);
+        let s = self.s;
+        self.hs[k] == 0.0
+            && self.hs[k - 1] == 0.0
+            && self.vs[k] == 0.0
+            && self.vs[k - s] == 0.0
+            && self.ex[k]
+            && self.ex[k + 1]
+            && self.ex[k - 1]
+            && self.ex[k + s]
+            && self.ex[k - s]
+            && self.ex[k + s + 1]
+            && self.ex[k + s - 1]
+            && self.ex[k - s + 1]
+            && self.ex[k - s - 1]
+    }
+
     /// `true` if the quad with lower-left corner `(i,j)` exists.
     #[inline]
     fn face_exists(&self, i: i32, j: i32) -> bool {
@@ -166,6 +187,10 @@ pub struct Worker {
     pub(crate) cur: usize,
     pub(crate) regular: bool,
     pub(crate) method: CreaseMethod,
+    /// Patch-local origin: tables hold positions relative to it, so that rounding is relative
+    /// to the patch's size rather than to its distance from the world origin.
+    origin: DVec3,
+    origin32: Vec3A,
     hes: Vec<HalfedgeId>,
     ring_tmp: Ring,
     // scratch for general rules
@@ -191,6 +216,8 @@ impl Worker {
             cur: 0,
             regular: true,
             method: CreaseMethod::Uniform,
+            origin: DVec3::ZERO,
+            origin32: Vec3A::ZERO,
             hes: Vec::with_capacity(16),
             ring_tmp: Ring::new(),
             e_pts: Vec::with_capacity(4),
@@ -217,6 +244,9 @@ impl Worker {
     pub(crate) fn gather(&mut self, mesh: &Mesh, f: FaceId) {
         self.cur = 0;
         self.method = mesh.options().crease;
+        self.origin32 = Vec3A::from(mesh.position(mesh.from(mesh.face_halfedge(f))));
+        self.origin = self.origin32.as_dvec3();
+        let origin32 = self.origin32;
         let t = &mut self.t[0];
         t.reset(1);
         let mut vid = [[VertexId::NONE; 4]; 4]; // [j+1][i+1]
@@ -269,10 +299,10 @@ impl Worker {
                 let v = vid[(j + 1) as usize][(i + 1) as usize];
                 let k = t.at(i, j);
                 if v.is_some() {
-                    t.p[k] = Vec3A::from(mesh.position(v));
+                    t.p[k] = Vec3A::from(mesh.position(v)) - origin32;
                     t.ex[k] = true;
                 } else {
-                    t.p[k] = Vec3A::from(mesh.position(mesh.from(hs[0])));
+                    t.p[k] = Vec3A::ZERO;
                 }
             }
         }
@@ -382,44 +412,41 @@ impl Worker {
                 continue;
             }
             let ((ci, cj), d, d2) = corner_frame(k, 2 * n);
-            write_corner(dst, c, ci, cj, d, d2);
+            write_corner(dst, c, ci, cj, d, d2, self.origin);
         }
         self.cur = 1 - self.cur;
     }
 
-    /// Limit position and normal of grid point `(i, j)` of the current slate.
+    /// Limit position and normal of grid point `(i, j)` of the current slate. Each point is
+    /// evaluated once per patch (corner arrays are consumed by their evaluation).
     #[inline]
     pub(crate) fn limit(&mut self, i: i32, j: i32) -> (Vec3A, Vec3A) {
-        let t = &self.t[self.cur];
-        let n = t.n as i32;
-        // Corner arrays.
-        for k in 0..4 {
-            let ((ci, cj), _, _) = corner_frame(k, n);
-            if ci == i && cj == j && self.corners[k].active {
-                self.ring_tmp.clone_from(&self.corners[k].ring);
-                let (p, nrm) = self.ring_tmp.limit();
+        let n = self.t[self.cur].n as i32;
+        if (i == 0 || i == n) && (j == 0 || j == n) {
+            let k = match (i == 0, j == 0) {
+                (true, true) => 0,
+                (false, true) => 1,
+                (false, false) => 2,
+                (true, false) => 3,
+            };
+            if self.corners[k].active {
+                // Corner arrays hold world positions (in f64).
+                let (p, nrm) = self.corners[k].ring.limit();
                 return (Vec3A::from(p.as_vec3()), Vec3A::from(nrm.as_vec3()));
             }
         }
-        if self.regular {
-            let c = t.p[t.at(i, j)];
-            let e = [
-                t.p[t.at(i + 1, j)],
-                t.p[t.at(i, j + 1)],
-                t.p[t.at(i - 1, j)],
-                t.p[t.at(i, j - 1)],
-            ];
-            let dg = [
-                t.p[t.at(i + 1, j + 1)],
-                t.p[t.at(i - 1, j + 1)],
-                t.p[t.at(i - 1, j - 1)],
-                t.p[t.at(i + 1, j - 1)],
-            ];
-            let (p, t1, t2) = catmark::limit(c, &e, &dg, Rule::Smooth);
+        let t = &self.t[self.cur];
+        if self.regular || t.is_plain(i, j) {
+            let k = t.at(i, j);
+            let s = t.s;
+            let p = &t.p;
+            let e = [p[k + 1], p[k + s], p[k - 1], p[k - s]];
+            let dg = [p[k + s + 1], p[k + s - 1], p[k - s - 1], p[k - s + 1]];
+            let (pos, t1, t2) = catmark::limit(p[k], &e, &dg, Rule::Smooth);
             let nrm = t1.cross(t2);
             let len = nrm.length();
             if len > 0.0 && len.is_finite() {
-                return (p, nrm / len);
+                return (pos + self.origin32, nrm / len);
             }
         }
         self.limit_general(i, j)
@@ -469,7 +496,7 @@ impl Worker {
             &self.r_diag,
         );
         let (p, nrm) = self.ring_tmp.limit();
-        (Vec3A::from(p.as_vec3()), Vec3A::from(nrm.as_vec3()))
+        (Vec3A::from((p + self.origin).as_vec3()), Vec3A::from(nrm.as_vec3()))
     }
 }
 
@@ -567,18 +594,18 @@ fn ring_index_of_dir(c: &Corner, d: usize, d2: usize, dir: usize) -> Option<usiz
 }
 
 /// Copies a refined corner array into the table around its corner `(ci, cj)`.
-fn write_corner(t: &mut Table, c: &Corner, ci: i32, cj: i32, d: usize, d2: usize) {
+fn write_corner(t: &mut Table, c: &Corner, ci: i32, cj: i32, d: usize, d2: usize, origin: DVec3) {
     let r = &c.ring;
     let m = c.valence;
     let put = |t: &mut Table, i: i32, j: i32, p: Option<DVec3>| {
         let k = t.at(i, j);
         match p {
             Some(p) => {
-                t.p[k] = Vec3A::from(p.as_vec3());
+                t.p[k] = Vec3A::from((p - origin).as_vec3());
                 t.ex[k] = true;
             }
             None => {
-                t.p[k] = Vec3A::from(r.center().as_vec3());
+                t.p[k] = Vec3A::from((r.center() - origin).as_vec3());
                 t.ex[k] = false;
             }
         }
@@ -612,6 +639,8 @@ fn write_corner(t: &mut Table, c: &Corner, ci: i32, cj: i32, d: usize, d2: usize
 
 /// Smooth regular step: no sharpness, no boundary. Face, edge and vertex points by the
 /// Catmull-Clark rules of `subdiv-rules`.
+const SMOOTH: VertexRules = VertexRules { parent: Rule::Smooth, child: Rule::Smooth, parent_weight: 1.0 };
+
 fn step_regular(src: &Table, dst: &mut Table, corners: &[Corner; 4]) {
     let n = src.n as i32;
     let smooth = VertexRules {
@@ -741,6 +770,20 @@ fn step_general(
             if !src.ex[src.at(i, j)] {
                 continue;
             }
+            if src.is_plain(i, j) {
+                let v = src.p[src.at(i, j)];
+                let e = [src.p[src.at(i + 1, j)], src.p[src.at(i, j + 1)], src.p[src.at(i - 1, j)], src.p[src.at(i, j - 1)]];
+                let f = [
+                    dst.p[dst.at(2 * i + 1, 2 * j + 1)],
+                    dst.p[dst.at(2 * i - 1, 2 * j + 1)],
+                    dst.p[dst.at(2 * i - 1, 2 * j - 1)],
+                    dst.p[dst.at(2 * i + 1, 2 * j - 1)],
+                ];
+                let k = dst.at(2 * i, 2 * j);
+                dst.p[k] = catmark::vertex_point(v, &e, &f, &SMOOTH);
+                dst.ex[k] = true;
+                continue;
+            }
             sc.dirs.clear();
             sc.e_pts.clear();
             sc.e_sh.clear();
@@ -785,6 +828,15 @@ fn step_general(
                 }
                 let (bi, bj) = (i + DI[dir], j + DJ[dir]);
                 let s = src.edge_sharp(i, j, dir);
+                let sides: [(i32, i32); 2] = if dir == 0 { [(i, j - 1), (i, j)] } else { [(i - 1, j), (i, j)] };
+                if s == 0.0 && src.face_exists(sides[0].0, sides[0].1) && src.face_exists(sides[1].0, sides[1].1) {
+                    let f0 = dst.p[dst.at(2 * sides[0].0 + 1, 2 * sides[0].1 + 1)];
+                    let f1 = dst.p[dst.at(2 * sides[1].0 + 1, 2 * sides[1].1 + 1)];
+                    let k = dst.at(i + bi, j + bj);
+                    dst.p[k] = catmark::edge_point(src.p[src.at(i, j)], src.p[src.at(bi, bj)], &[f0, f1], 0.0);
+                    dst.ex[k] = true;
+                    continue;
+                }
                 // Child sharpness at each end: from the vertex rules (inner ends) or the far info.
                 let child_at = |vi: i32, vj: i32, toward: usize| -> f32 {
                     if (0..=n).contains(&vi) && (0..=n).contains(&vj) {

@@ -1,0 +1,91 @@
+//! `subdiv bench`: throughput measurements (medians of repeated runs).
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use subdiv_slate::{slate_bytes_per_thread, tessellate_layout, PatchLayout};
+
+#[derive(clap::Args, Debug)]
+pub struct BenchArgs {
+    #[command(subcommand)]
+    pub what: BenchWhat,
+}
+
+#[derive(clap::Subcommand, Debug)]
+pub enum BenchWhat {
+    /// Slate tessellation throughput. Last line:
+    /// `limit_points_per_s=<f> patches_per_s=<f> slate_bytes_per_thread=<n>`.
+    Tessellate(BenchTessellateArgs),
+}
+
+#[derive(clap::Args, Debug)]
+pub struct BenchTessellateArgs {
+    /// Input cage.
+    pub input: PathBuf,
+    /// Uniform depth.
+    #[arg(long, default_value_t = 5)]
+    pub depth: u32,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Timed runs (the median is reported).
+    #[arg(long, default_value_t = 15)]
+    pub runs: usize,
+    /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
+    #[arg(long)]
+    pub split_nonmanifold: bool,
+}
+
+pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
+    match &a.what {
+        BenchWhat::Tessellate(t) => bench_tessellate(t),
+    }
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(|a, b| a.total_cmp(b));
+    v[v.len() / 2]
+}
+
+fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
+    let mesh = crate::load::load_mesh(&a.input, a.split_nonmanifold)?;
+    anyhow::ensure!(a.depth >= 1, "--depth must be at least 1");
+    anyhow::ensure!(a.runs >= 1, "--runs must be at least 1");
+    let threads = a.threads.unwrap_or_else(rayon::current_num_threads);
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
+    let t0 = Instant::now();
+    let layout = PatchLayout::new(&mesh, a.depth).map_err(|e| anyhow::anyhow!("{}: {e}", a.input.display()))?;
+    let setup = t0.elapsed().as_secs_f64();
+    // Warm-up, then timed runs.
+    let out = pool.install(|| tessellate_layout(&mesh, &layout))?;
+    let mut times = Vec::with_capacity(a.runs);
+    for _ in 0..a.runs {
+        let t = Instant::now();
+        let r = pool.install(|| tessellate_layout(&mesh, &layout))?;
+        times.push(t.elapsed().as_secs_f64());
+        std::hint::black_box(r);
+    }
+    let med = median(times.clone());
+    let points = out.positions.len() as f64;
+    let patches = layout.num_patches() as f64;
+    println!(
+        "input={} depth={} threads={} patches={} limit_points={} quads={} setup_ms={:.3} median_ms={:.3} min_ms={:.3}",
+        a.input.display(),
+        a.depth,
+        threads,
+        layout.num_patches(),
+        out.positions.len(),
+        out.num_faces(),
+        setup * 1e3,
+        med * 1e3,
+        times.iter().copied().fold(f64::INFINITY, f64::min) * 1e3
+    );
+    println!(
+        "limit_points_per_s={:.0} patches_per_s={:.0} slate_bytes_per_thread={}",
+        points / med,
+        patches / med,
+        slate_bytes_per_thread(a.depth, layout.max_valence())
+    );
+    Ok(ExitCode::SUCCESS)
+}
