@@ -1,0 +1,115 @@
+//! Errors of the DoI functions and the adaptive step.
+
+use thiserror::Error;
+
+/// What can go wrong evaluating a DoI or refining adaptively. Every variant names the face,
+/// vertex, group, file or line at fault.
+#[derive(Debug, Error)]
+pub enum DoiError {
+    /// Loop subdivision needs a triangle mesh.
+    #[error(
+        "face {face} has {size} vertices; adaptive Loop subdivision needs a triangle mesh (triangulate it first)"
+    )]
+    NotTriangles {
+        /// The first non-triangular face.
+        face: u32,
+        /// Its size.
+        size: u32,
+    },
+    /// A view-dependent DoI was evaluated without a camera.
+    #[error("the {doi} DoI is view-dependent and needs a camera")]
+    NeedsCamera {
+        /// The DoI's name.
+        doi: &'static str,
+    },
+    /// The haptic interaction point DoI was evaluated without a haptic interaction point.
+    #[error("the {doi} DoI needs a haptic interaction point")]
+    NeedsHip {
+        /// The DoI's name.
+        doi: &'static str,
+    },
+    /// A focus object name that is no group or object of the mesh.
+    #[error("no group or object named '{name}' in the mesh; available: {}", list_or_none(.available))]
+    UnknownFocus {
+        /// The name asked for.
+        name: String,
+        /// The mesh's groups.
+        available: Vec<String>,
+    },
+    /// The focus DoI got neither objects nor a skeleton.
+    #[error("the focus DoI needs at least one focus object (group name) or a skeleton polyline")]
+    NoFocus,
+    /// A named focus group has no faces.
+    #[error("focus group '{name}' has no faces")]
+    EmptyFocus {
+        /// The group.
+        name: String,
+    },
+    /// A skeleton file line that is not a point.
+    #[error("{file}:{line}: {msg}")]
+    Skeleton {
+        /// The file.
+        file: String,
+        /// 1-based line (0 for the whole file).
+        line: u32,
+        /// What is wrong.
+        msg: String,
+    },
+    /// A DoI returned the wrong number of values.
+    #[error("the {doi} DoI returned {got} values for {want} {domain}")]
+    ValueCount {
+        /// The DoI's name.
+        doi: &'static str,
+        /// Values returned.
+        got: usize,
+        /// Elements in the domain.
+        want: usize,
+        /// "faces", "edges" or "vertices".
+        domain: &'static str,
+    },
+    /// A DoI value that is NaN.
+    #[error("the {doi} DoI gave NaN for {domain} {index}")]
+    NanValue {
+        /// The DoI's name.
+        doi: &'static str,
+        /// "face", "edge" or "vertex".
+        domain: &'static str,
+        /// The element.
+        index: u32,
+    },
+    /// A non-finite threshold, context point or parameter.
+    #[error("{what} must be finite (got {value})")]
+    NonFinite {
+        /// Which parameter.
+        what: &'static str,
+        /// Its value.
+        value: f32,
+    },
+    /// Too many triangles.
+    #[error("step {step} would produce {faces} triangles (limit {limit})")]
+    TooLarge {
+        /// 1-based step.
+        step: u32,
+        /// Triangles it would produce.
+        faces: u64,
+        /// The limit.
+        limit: u64,
+    },
+    /// The red-green closure refused its input.
+    #[error(transparent)]
+    Stitch(#[from] subdiv_stitch::red_green::StitchError),
+    /// A refined mesh failed validation (a bug: the closure keeps the mesh valid).
+    #[error("internal error: the refined mesh is invalid: {0}")]
+    Internal(subdiv_mesh::MeshError),
+    /// Building a mesh (triangulation) failed.
+    #[error(transparent)]
+    Mesh(#[from] subdiv_mesh::MeshError),
+}
+
+fn list_or_none(v: &[String]) -> String {
+    if v.is_empty() {
+        "(the mesh has no groups or objects)".to_string()
+    } else {
+        v.join(", ")
+    }
+}
