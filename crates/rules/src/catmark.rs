@@ -91,6 +91,7 @@ fn apply_vertex_rule<P: Point>(v: P, edges: &[P], faces: &[P], rule: Rule) -> P 
 /// `i` (between edges `i` and `i+1`) opposite `v`. For a boundary vertex there is one edge more
 /// than quads, edge 0 and the last edge being the boundary. `rule` is the vertex's rule at this
 /// level (with no semi-sharp feature left, it is its rule at every finer level too).
+#[inline]
 pub fn limit<P: Point>(v: P, edges: &[P], diag: &[P], rule: Rule) -> (P, P, P) {
     let n = edges.len();
     match rule {

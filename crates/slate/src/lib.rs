@@ -29,4 +29,5 @@ pub use layout::PatchLayout;
 pub use slate::Worker;
 pub use tessellate::{
     DEFAULT_MAXSD, MAX_DEPTH, SlateError, slate_bytes_per_thread, tessellate, tessellate_layout,
+    tessellate_layout_into,
 };

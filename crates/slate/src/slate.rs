@@ -45,6 +45,8 @@ pub(crate) struct Table {
     /// For each side, (sum, count) of the semi-sharp edges beyond the outer end of each crossing
     /// edge (Chaikin rule only), indexed by position along the side `0..=n`.
     pub far: [Vec<(f32, u32)>; 4],
+    /// Sharpness or existence flags may be non-default (set by a general step or gather).
+    pub dirty: bool,
 }
 
 impl Table {
@@ -53,30 +55,32 @@ impl Table {
         Table {
             n: 0,
             s: 0,
-            p: Vec::with_capacity(cap),
-            ex: Vec::with_capacity(cap),
-            hs: Vec::with_capacity(cap),
-            vs: Vec::with_capacity(cap),
-            far: std::array::from_fn(|_| Vec::with_capacity(maxn + 1)),
+            p: vec![Vec3A::ZERO; cap],
+            ex: vec![false; cap],
+            hs: vec![0.0; cap],
+            vs: vec![0.0; cap],
+            far: std::array::from_fn(|_| vec![(0.0, 0); maxn + 1]),
+            dirty: true,
         }
     }
 
-    fn reset(&mut self, n: usize) {
+    /// Prepares the table for grid size `n`. A table for the regular step needs no clearing
+    /// (it overwrites every point); sharpness is cleared only if a general step left some.
+    fn reset(&mut self, n: usize, regular: bool) {
         self.n = n;
         self.s = n + 3;
         let len = self.s * self.s;
-        self.p.clear();
-        self.p.resize(len, Vec3A::ZERO);
-        self.ex.clear();
-        self.ex.resize(len, false);
-        self.hs.clear();
-        self.hs.resize(len, 0.0);
-        self.vs.clear();
-        self.vs.resize(len, 0.0);
-        for f in &mut self.far {
-            f.clear();
-            f.resize(n + 1, (0.0, 0));
+        debug_assert!(len <= self.p.len(), "slate too small for grid {n}");
+        if regular && !self.dirty {
+            return;
         }
+        self.ex[..len].fill(false);
+        self.hs[..len].fill(0.0);
+        self.vs[..len].fill(0.0);
+        for f in &mut self.far {
+            f[..=n].fill((0.0, 0));
+        }
+        self.dirty = !regular;
     }
 
     #[inline(always)]
@@ -248,7 +252,8 @@ impl Worker {
         self.origin = self.origin32.as_dvec3();
         let origin32 = self.origin32;
         let t = &mut self.t[0];
-        t.reset(1);
+        t.dirty = true;
+        t.reset(1, false);
         let mut vid = [[VertexId::NONE; 4]; 4]; // [j+1][i+1]
         let h0 = mesh.face_halfedge(f);
         let hs = [h0, mesh.next(h0), mesh.next(mesh.next(h0)), mesh.prev(h0)];
@@ -387,7 +392,7 @@ impl Worker {
             (&b[0], &mut a[0])
         };
         let n = src.n as i32;
-        dst.reset(src.n * 2);
+        dst.reset(src.n * 2, self.regular);
         for c in self.corners.iter_mut() {
             if c.active {
                 c.ring.refine();
@@ -452,6 +457,51 @@ impl Worker {
         self.limit_general(i, j)
     }
 
+    /// Limits of the points `(i, j)` for `i` in `i0..=i1` of row `j` (none of them a corner),
+    /// passed to `emit(k, position, normal)` with `k = i - i0`.
+    #[inline]
+    pub(crate) fn limit_row(
+        &mut self,
+        j: i32,
+        i0: i32,
+        i1: i32,
+        mut emit: impl FnMut(usize, Vec3A, Vec3A),
+    ) {
+        if self.regular {
+            let t = &self.t[self.cur];
+            let s = t.s;
+            let o = self.origin32;
+            let p = &t.p[..];
+            let base = t.at(i0, j);
+            let mut bad = false;
+            for (x, k) in (base..=base + (i1 - i0) as usize).enumerate() {
+                let e = [p[k + 1], p[k + s], p[k - 1], p[k - s]];
+                let dg = [p[k + s + 1], p[k + s - 1], p[k - s - 1], p[k - s + 1]];
+                let (pos, t1, t2) = catmark::limit(p[k], &e, &dg, Rule::Smooth);
+                let nrm = t1.cross(t2);
+                let len2 = nrm.length_squared();
+                if len2 > 0.0 && len2.is_finite() {
+                    emit(x, pos + o, nrm * len2.sqrt().recip());
+                } else {
+                    bad = true;
+                }
+            }
+            if !bad {
+                return;
+            }
+            // Degenerate tangents somewhere on the row: redo those points exactly.
+            for i in i0..=i1 {
+                let (pos, nrm) = self.limit(i, j);
+                emit((i - i0) as usize, pos, nrm);
+            }
+            return;
+        }
+        for i in i0..=i1 {
+            let (pos, nrm) = self.limit(i, j);
+            emit((i - i0) as usize, pos, nrm);
+        }
+    }
+
     /// Limit through a ring built from the table (creases, boundaries, degenerate tangents).
     fn limit_general(&mut self, i: i32, j: i32) -> (Vec3A, Vec3A) {
         let t = &self.t[self.cur];
@@ -496,7 +546,10 @@ impl Worker {
             &self.r_diag,
         );
         let (p, nrm) = self.ring_tmp.limit();
-        (Vec3A::from((p + self.origin).as_vec3()), Vec3A::from(nrm.as_vec3()))
+        (
+            Vec3A::from((p + self.origin).as_vec3()),
+            Vec3A::from(nrm.as_vec3()),
+        )
     }
 }
 
@@ -639,7 +692,11 @@ fn write_corner(t: &mut Table, c: &Corner, ci: i32, cj: i32, d: usize, d2: usize
 
 /// Smooth regular step: no sharpness, no boundary. Face, edge and vertex points by the
 /// Catmull-Clark rules of `subdiv-rules`.
-const SMOOTH: VertexRules = VertexRules { parent: Rule::Smooth, child: Rule::Smooth, parent_weight: 1.0 };
+const SMOOTH: VertexRules = VertexRules {
+    parent: Rule::Smooth,
+    child: Rule::Smooth,
+    parent_weight: 1.0,
+};
 
 fn step_regular(src: &Table, dst: &mut Table, corners: &[Corner; 4]) {
     let n = src.n as i32;
@@ -711,7 +768,8 @@ fn step_regular(src: &Table, dst: &mut Table, corners: &[Corner; 4]) {
             dst.p[k] = catmark::vertex_point(v, &e, &f, &smooth);
         }
     }
-    dst.ex.iter_mut().for_each(|x| *x = true);
+    let len = dst.s * dst.s;
+    dst.ex[..len].fill(true);
 }
 
 struct Scratch<'a> {
@@ -772,7 +830,12 @@ fn step_general(
             }
             if src.is_plain(i, j) {
                 let v = src.p[src.at(i, j)];
-                let e = [src.p[src.at(i + 1, j)], src.p[src.at(i, j + 1)], src.p[src.at(i - 1, j)], src.p[src.at(i, j - 1)]];
+                let e = [
+                    src.p[src.at(i + 1, j)],
+                    src.p[src.at(i, j + 1)],
+                    src.p[src.at(i - 1, j)],
+                    src.p[src.at(i, j - 1)],
+                ];
                 let f = [
                     dst.p[dst.at(2 * i + 1, 2 * j + 1)],
                     dst.p[dst.at(2 * i - 1, 2 * j + 1)],
@@ -828,12 +891,24 @@ fn step_general(
                 }
                 let (bi, bj) = (i + DI[dir], j + DJ[dir]);
                 let s = src.edge_sharp(i, j, dir);
-                let sides: [(i32, i32); 2] = if dir == 0 { [(i, j - 1), (i, j)] } else { [(i - 1, j), (i, j)] };
-                if s == 0.0 && src.face_exists(sides[0].0, sides[0].1) && src.face_exists(sides[1].0, sides[1].1) {
+                let sides: [(i32, i32); 2] = if dir == 0 {
+                    [(i, j - 1), (i, j)]
+                } else {
+                    [(i - 1, j), (i, j)]
+                };
+                if s == 0.0
+                    && src.face_exists(sides[0].0, sides[0].1)
+                    && src.face_exists(sides[1].0, sides[1].1)
+                {
                     let f0 = dst.p[dst.at(2 * sides[0].0 + 1, 2 * sides[0].1 + 1)];
                     let f1 = dst.p[dst.at(2 * sides[1].0 + 1, 2 * sides[1].1 + 1)];
                     let k = dst.at(i + bi, j + bj);
-                    dst.p[k] = catmark::edge_point(src.p[src.at(i, j)], src.p[src.at(bi, bj)], &[f0, f1], 0.0);
+                    dst.p[k] = catmark::edge_point(
+                        src.p[src.at(i, j)],
+                        src.p[src.at(bi, bj)],
+                        &[f0, f1],
+                        0.0,
+                    );
                     dst.ex[k] = true;
                     continue;
                 }

@@ -47,6 +47,18 @@ impl SharedOut {
         let i = id as usize;
         assert!(i < self.len, "output index out of range");
         // SAFETY: in bounds (asserted); no other task writes index `i` (single owner).
+        unsafe { self.write_unchecked(i, p, n) }
+    }
+
+    #[inline]
+    fn check_range(&self, first: usize, count: usize) {
+        assert!(first + count <= self.len, "output range out of bounds");
+    }
+
+    /// # Safety
+    /// `i < len` (see [`SharedOut::check_range`]) and no other task writes index `i`.
+    #[inline(always)]
+    unsafe fn write_unchecked(&self, i: usize, p: Vec3A, n: Vec3A) {
         unsafe {
             *self.pos.add(i) = p.to_array();
             *self.nrm.add(i) = n.to_array();
@@ -78,6 +90,18 @@ pub fn tessellate(mesh: &Mesh, depth: u32) -> Result<LimitMesh, SlateError> {
 
 /// [`tessellate`] with a precomputed layout (for repeated tessellation of the same mesh).
 pub fn tessellate_layout(mesh: &Mesh, layout: &PatchLayout) -> Result<LimitMesh, SlateError> {
+    let mut out = LimitMesh::default();
+    tessellate_layout_into(mesh, layout, &mut out)?;
+    Ok(out)
+}
+
+/// [`tessellate_layout`] into a reused output (its buffers are resized, not reallocated, when
+/// the sizes match: the steady state of per-frame tessellation).
+pub fn tessellate_layout_into(
+    mesh: &Mesh,
+    layout: &PatchLayout,
+    result: &mut LimitMesh,
+) -> Result<(), SlateError> {
     let depth = layout.depth;
     if depth > MAX_DEPTH {
         return Err(SlateError::TooDeep {
@@ -87,10 +111,11 @@ pub fn tessellate_layout(mesh: &Mesh, layout: &PatchLayout) -> Result<LimitMesh,
     }
     let maxsd = depth.max(DEFAULT_MAXSD);
     let np = layout.num_points();
-    let mut positions = vec![[0.0f32; 3]; np];
-    let mut normals = vec![[0.0f32; 3]; np];
+    result.positions.resize(np, [0.0; 3]);
+    result.normals.resize(np, [0.0; 3]);
     for &v in &layout.isolated {
-        positions[v.idx()] = mesh.position(v).to_array();
+        result.positions[v.idx()] = mesh.position(v).to_array();
+        result.normals[v.idx()] = [0.0; 3];
     }
     // Face ranges by prefix sum over visible patches.
     let quads_of = |p: &Patch| {
@@ -100,52 +125,45 @@ pub fn tessellate_layout(mesh: &Mesh, layout: &PatchLayout) -> Result<LimitMesh,
             0
         }
     };
-    let mut first_quad = Vec::with_capacity(layout.patches.len() + 1);
-    let mut acc = 0usize;
+    let total: usize = layout.patches.iter().map(quads_of).sum();
+    result.face_indices.resize(total * 4, 0);
+    if result.face_offsets.len() != total + 1 {
+        result.face_offsets.clear();
+        result
+            .face_offsets
+            .extend((0..=total as u32).map(|i| i * 4));
+    }
+    let out = SharedOut {
+        pos: result.positions.as_mut_ptr(),
+        nrm: result.normals.as_mut_ptr(),
+        len: np,
+    };
+    // Split the index buffer into one chunk per patch.
+    let mut chunks: Vec<&mut [u32]> = Vec::with_capacity(layout.patches.len());
+    let mut rest: &mut [u32] = &mut result.face_indices;
     for p in &layout.patches {
-        first_quad.push(acc);
-        acc += quads_of(p);
+        let (a, b) = rest.split_at_mut(quads_of(p) * 4);
+        chunks.push(a);
+        rest = b;
     }
-    let mut face_indices = vec![0u32; acc * 4];
-    {
-        let out = SharedOut {
-            pos: positions.as_mut_ptr(),
-            nrm: normals.as_mut_ptr(),
-            len: np,
-        };
-        // Split the index buffer into one chunk per patch.
-        let mut chunks: Vec<&mut [u32]> = Vec::with_capacity(layout.patches.len());
-        let mut rest: &mut [u32] = &mut face_indices;
-        for p in &layout.patches {
-            let (a, b) = rest.split_at_mut(quads_of(p) * 4);
-            chunks.push(a);
-            rest = b;
-        }
-        let level1 = layout.level1.as_ref();
-        layout
-            .patches
-            .par_iter()
-            .zip(chunks.into_par_iter())
-            .with_min_len(8)
-            .for_each_init(
-                || Worker::new(maxsd),
-                |w, (p, quads)| {
-                    let src = if p.level == 0 {
-                        mesh
-                    } else {
-                        level1.expect("level-1 mesh for level-1 patches")
-                    };
-                    run_patch(w, src, p, depth - p.level as u32, &out, quads);
-                },
-            );
-    }
-    let face_offsets = (0..=acc as u32).map(|i| i * 4).collect();
-    Ok(LimitMesh {
-        positions,
-        normals,
-        face_offsets,
-        face_indices,
-    })
+    let level1 = layout.level1.as_ref();
+    layout
+        .patches
+        .par_iter()
+        .zip(chunks.into_par_iter())
+        .with_min_len(8)
+        .for_each_init(
+            || Worker::new(maxsd),
+            |w, (p, quads)| {
+                let src = if p.level == 0 {
+                    mesh
+                } else {
+                    level1.expect("level-1 mesh for level-1 patches")
+                };
+                run_patch(w, src, p, depth - p.level as u32, &out, quads);
+            },
+        );
+    Ok(())
 }
 
 /// Gathers, subdivides and evaluates one patch; writes the points it owns and its quads.
@@ -155,24 +173,51 @@ fn run_patch(w: &mut Worker, src: &Mesh, p: &Patch, e: u32, out: &SharedOut, qua
         w.step();
     }
     let n = 1u32 << e;
-    let id = |i: u32, j: u32| -> (u32, bool) { point_id(p, n, i, j) };
-    for j in 0..=n {
-        for i in 0..=n {
-            let (gid, owned) = id(i, j);
-            if owned {
-                let (pos, nrm) = w.limit(i as i32, j as i32);
-                out.write(gid, pos, nrm);
-            }
+    // Corners and sides: only where this patch is the owner.
+    for (k, (i, j)) in [(0, 0), (n, 0), (n, n), (0, n)].into_iter().enumerate() {
+        if p.corner_owned[k] {
+            let (pos, nrm) = w.limit(i as i32, j as i32);
+            out.write(p.corners[k], pos, nrm);
+        }
+    }
+    for (k, side) in p.sides.iter().enumerate() {
+        if !side.owned {
+            continue;
+        }
+        for s in 1..n {
+            let (i, j) = match k {
+                0 => (s, 0),
+                1 => (n, s),
+                2 => (n - s, n),
+                _ => (0, n - s),
+            };
+            let (pos, nrm) = w.limit(i as i32, j as i32);
+            out.write(side.id(s), pos, nrm);
+        }
+    }
+    // Interior: contiguous output rows.
+    if n > 1 {
+        let m = (n - 1) as usize;
+        let first = p.interior as usize;
+        out.check_range(first, m * m);
+        for j in 1..n {
+            let row = first + (j as usize - 1) * m;
+            w.limit_row(j as i32, 1, n as i32 - 1, |k, pos, nrm| {
+                // SAFETY: `row + k` lies in this patch's interior range, checked above, which
+                // only this patch writes.
+                unsafe { out.write_unchecked(row + k, pos, nrm) }
+            });
         }
     }
     if !quads.is_empty() {
+        let id = |i: u32, j: u32| -> u32 { point_id(p, n, i, j).0 };
         let mut k = 0;
         for j in 0..n {
             for i in 0..n {
-                quads[k] = id(i, j).0;
-                quads[k + 1] = id(i + 1, j).0;
-                quads[k + 2] = id(i + 1, j + 1).0;
-                quads[k + 3] = id(i, j + 1).0;
+                quads[k] = id(i, j);
+                quads[k + 1] = id(i + 1, j);
+                quads[k + 2] = id(i + 1, j + 1);
+                quads[k + 3] = id(i, j + 1);
                 k += 4;
             }
         }

@@ -1,0 +1,298 @@
+//! End-to-end checks of DoI-driven adaptive Loop subdivision (issue 5) over the fixture meshes:
+//! conforming output, fewer triangles than uniform Loop, exactly uniform Loop when the
+//! threshold is below every value, and the bad-input errors.
+
+use std::path::PathBuf;
+
+use glam::Vec3;
+use subdiv_doi::{
+    Aggregate, Dihedral, Doi, DoiContext, DoiError, Focus, HapticG1, HapticPoint, RefineOptions,
+    Silhouette, ViewAngle, refine_adaptive, silhouette_distance, silhouette_segments, triangulate,
+};
+use subdiv_mesh::{Camera, Mesh, ReadOptions, read_obj_with};
+use subdiv_rules::{Scheme, refine_uniform_levels};
+use subdiv_tests::fixtures;
+
+fn load(name: &str) -> Mesh {
+    let path: PathBuf = fixtures().join("meshes").join(name);
+    read_obj_with(
+        &path,
+        ReadOptions {
+            split_nonmanifold_vertices: true,
+        },
+    )
+    .unwrap()
+}
+
+fn camera(m: &Mesh) -> Camera {
+    let (lo, hi) = m.bounds();
+    Camera::eye_relative(lo, hi, Vec3::new(0.0, 0.0, 3.0), 45.0, 800, 600)
+}
+
+/// The five DoIs of the paper (haptic in both forms), set up for `m`.
+fn dois(m: &Mesh) -> Vec<Box<dyn Doi>> {
+    let (lo, hi) = m.bounds();
+    let skeleton = vec![
+        lo,
+        (lo + hi) * 0.5 + Vec3::new(0.0, 0.1, 0.0) * (hi - lo).length(),
+        hi,
+    ];
+    vec![
+        Box::new(ViewAngle),
+        Box::new(Silhouette),
+        Box::new(Dihedral),
+        Box::new(HapticG1),
+        Box::new(HapticPoint),
+        Box::new(
+            Focus::from_groups(m, &[], Some(skeleton), Focus::default_radius(m) * 0.5).unwrap(),
+        ),
+    ]
+}
+
+fn context(m: &Mesh) -> DoiContext {
+    let (lo, hi) = m.bounds();
+    DoiContext {
+        camera: Some(camera(m)),
+        hip: Some(lo + (hi - lo) * Vec3::new(0.9, 0.6, 0.5)),
+        ..Default::default()
+    }
+}
+
+/// Number of boundary loops (closed chains of boundary half-edges).
+fn boundary_loops(m: &Mesh) -> usize {
+    let mut seen = vec![false; m.num_halfedges()];
+    let mut loops = 0;
+    for e in m.edges() {
+        for side in 0..2 {
+            let h0 = e.halfedge(side);
+            if !m.is_boundary_halfedge(h0) || seen[h0.idx()] {
+                continue;
+            }
+            loops += 1;
+            let mut h = h0;
+            while !seen[h.idx()] {
+                seen[h.idx()] = true;
+                h = m.next(h);
+            }
+        }
+    }
+    loops
+}
+
+fn euler(m: &Mesh) -> i64 {
+    m.num_vertices() as i64 - m.num_edges() as i64 + m.num_faces() as i64
+}
+
+/// Conforming: every interior edge has two faces of opposite orientation (validated by
+/// `Mesh::from_soup`), and no crack opened: the boundary loops and the Euler characteristic are
+/// those of the input (a T-junction would add a boundary loop).
+fn assert_conforming(input: &Mesh, out: &Mesh, what: &str) {
+    assert_eq!(
+        boundary_loops(out),
+        boundary_loops(input),
+        "{what}: boundary loops"
+    );
+    assert_eq!(euler(out), euler(input), "{what}: Euler characteristic");
+    assert!(
+        out.faces().all(|f| out.face_size(f) == 3),
+        "{what}: triangles"
+    );
+    if boundary_loops(input) == 0 {
+        assert!(
+            out.edges().all(|e| !out.is_boundary_edge(e)),
+            "{what}: closed input stays closed"
+        );
+    }
+}
+
+#[test]
+fn every_doi_and_step_count_is_conforming_and_cheaper_than_uniform() {
+    for name in ["tri_teapot.obj", "tri_bunny_3k.obj"] {
+        let m = load(name);
+        let ctx = context(&m);
+        for doi in dois(&m) {
+            for steps in 1..=3u32 {
+                let opts = RefineOptions {
+                    threshold: doi.default_threshold(),
+                    steps,
+                    aggregate: Aggregate::Max,
+                };
+                let r = refine_adaptive(&m, doi.as_ref(), &ctx, &opts).unwrap();
+                let what = format!("{name} {} {steps} steps", doi.name());
+                assert_conforming(&m, &r.mesh.mesh, &what);
+                let uniform = m.num_faces() * 4usize.pow(steps);
+                let n = r.mesh.mesh.num_faces();
+                assert!(n < uniform, "{what}: {n} triangles, uniform {uniform}");
+                assert!(n > m.num_faces(), "{what}: something was refined");
+            }
+        }
+    }
+}
+
+#[test]
+fn aggregates_order_the_triangle_counts() {
+    let m = load("tri_bunny_3k.obj");
+    let ctx = context(&m);
+    let count = |agg| {
+        let opts = RefineOptions {
+            threshold: 30.0,
+            steps: 2,
+            aggregate: agg,
+        };
+        let r = refine_adaptive(&m, &Dihedral, &ctx, &opts).unwrap();
+        assert_conforming(&m, &r.mesh.mesh, "aggregate");
+        r.mesh.mesh.num_faces()
+    };
+    let (max, avg, min) = (
+        count(Aggregate::Max),
+        count(Aggregate::Avg),
+        count(Aggregate::Min),
+    );
+    assert!(max > avg && avg > min, "max {max} avg {avg} min {min}");
+}
+
+fn sorted_bits(p: &[Vec3]) -> Vec<[u32; 3]> {
+    let mut v: Vec<[u32; 3]> = p
+        .iter()
+        .map(|q| [q.x.to_bits(), q.y.to_bits(), q.z.to_bits()])
+        .collect();
+    v.sort_unstable();
+    v
+}
+
+#[test]
+fn threshold_below_every_value_is_uniform_loop_exactly() {
+    for name in ["tri_teapot.obj", "tri_bunny_3k.obj"] {
+        let m = load(name);
+        let ctx = context(&m);
+        let uniform: Vec<Mesh> = (1..=3)
+            .map(|d| refine_uniform_levels(&m, Scheme::Loop, d).unwrap())
+            .collect();
+        for doi in dois(&m) {
+            for steps in 1..=3u32 {
+                let opts = RefineOptions {
+                    threshold: f32::NEG_INFINITY,
+                    steps,
+                    aggregate: Aggregate::Min,
+                };
+                let r = refine_adaptive(&m, doi.as_ref(), &ctx, &opts).unwrap();
+                let u = &uniform[steps as usize - 1];
+                let what = format!("{name} {} {steps} steps", doi.name());
+                assert_eq!(r.mesh.mesh.num_faces(), u.num_faces(), "{what}");
+                assert_eq!(
+                    sorted_bits(r.mesh.mesh.positions()),
+                    sorted_bits(u.positions()),
+                    "{what}: the same point set, bit for bit"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn silhouette_of_the_adaptive_mesh_matches_the_uniform_one() {
+    let m = load("tri_bunny_3k.obj");
+    let ctx = context(&m);
+    let cam = ctx.camera.unwrap();
+    let opts = RefineOptions {
+        threshold: 0.5,
+        steps: 3,
+        aggregate: Aggregate::Max,
+    };
+    let r = refine_adaptive(&m, &Silhouette, &ctx, &opts).unwrap();
+    let u = refine_uniform_levels(&m, Scheme::Loop, 3).unwrap();
+    let (sa, su) = (
+        silhouette_segments(&r.mesh.mesh, &cam),
+        silhouette_segments(&u, &cam),
+    );
+    let (_, mean_au) = silhouette_distance(&sa, &su, 0.5);
+    let (_, mean_ua) = silhouette_distance(&su, &sa, 0.5);
+    // The silhouette region is refined all three steps, so the curves nearly coincide; the
+    // coarse mesh's does not.
+    let (_, mean_cu) = silhouette_distance(&silhouette_segments(&m, &cam), &su, 0.5);
+    assert!(mean_au < 0.5 && mean_ua < 0.5, "{mean_au} {mean_ua}");
+    assert!(
+        mean_cu > 2.0 * mean_au.max(mean_ua),
+        "coarse {mean_cu} vs adaptive {mean_au}"
+    );
+}
+
+#[test]
+fn quads_need_triangulation() {
+    let quads = read_obj_with(
+        fixtures().join("meshes/cc_3torus.obj"),
+        ReadOptions::default(),
+    )
+    .unwrap();
+    let opts = RefineOptions {
+        threshold: 30.0,
+        steps: 2,
+        aggregate: Aggregate::Max,
+    };
+    let e = refine_adaptive(&quads, &Dihedral, &DoiContext::default(), &opts).unwrap_err();
+    assert!(
+        matches!(e, DoiError::NotTriangles { face: 0, size: 4 }),
+        "{e}"
+    );
+    assert!(e.to_string().contains("needs a triangle mesh"));
+    let tri = triangulate(&quads).unwrap();
+    assert_eq!(tri.num_faces(), 2 * quads.num_faces());
+    let r = refine_adaptive(&tri, &Dihedral, &DoiContext::default(), &opts).unwrap();
+    assert_conforming(&tri, &r.mesh.mesh, "triangulated 3-torus");
+    assert_eq!(euler(&tri), -4, "genus 3");
+}
+
+#[test]
+fn unknown_focus_lists_the_groups() {
+    // The fixtures have no groups: the message says so.
+    let m = load("tri_teapot.obj");
+    let e = Focus::from_groups(&m, &["lid".to_string()], None, 1.0).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "no group or object named 'lid' in the mesh; available: (the mesh has no groups or objects)"
+    );
+    // The teapot split into named groups by height: the known names are listed.
+    let mut soup = subdiv_mesh::read_obj_soup(fixtures().join("meshes/tri_teapot.obj")).unwrap();
+    soup.split_nonmanifold_vertices();
+    soup.groups = vec!["body".into(), "lid".into()];
+    soup.face_groups = (0..soup.num_faces())
+        .map(|f| {
+            let y = soup
+                .face(f)
+                .iter()
+                .map(|&v| soup.positions[v as usize].y)
+                .fold(f32::MIN, f32::max);
+            u32::from(y > 6.0)
+        })
+        .collect();
+    let m = Mesh::from_soup(&soup).unwrap();
+    let e = Focus::from_groups(&m, &["bracelet".to_string()], None, 1.0).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "no group or object named 'bracelet' in the mesh; available: body, lid"
+    );
+    // And a known one drives the refinement: the lid's faces get all the steps.
+    let focus = Focus::from_groups(
+        &m,
+        &["lid".to_string()],
+        None,
+        Focus::default_radius(&m) * 0.5,
+    )
+    .unwrap();
+    let opts = RefineOptions {
+        threshold: 0.0,
+        steps: 2,
+        aggregate: Aggregate::Max,
+    };
+    let r = refine_adaptive(&m, &focus, &DoiContext::default(), &opts).unwrap();
+    assert_conforming(&m, &r.mesh.mesh, "teapot lid focus");
+    let lid_in = m.faces().filter(|&f| m.face_group(f) == 1).count();
+    assert!(lid_in > 0);
+    let out = &r.mesh.mesh;
+    let lid_out = out.faces().filter(|&f| out.face_group(f) == 1).count();
+    assert!(
+        lid_out >= lid_in * 16 && out.num_faces() < m.num_faces() * 16,
+        "{lid_in} -> {lid_out}, {}",
+        out.num_faces()
+    );
+}
