@@ -114,15 +114,13 @@ fn parse_tolerance(s: &str) -> Result<Tolerance> {
 }
 
 /// Builds `subdiv` (dev profile) and returns the path of the binary.
-fn build_subdiv(root: &Path) -> Result<PathBuf> {
+fn build_subdiv() -> Result<PathBuf> {
     crate::run({
         let mut c = crate::cargo();
         c.args(["build", "--quiet", "-p", "subdiv"]);
         c
     })?;
-    let target =
-        std::env::var_os("CARGO_TARGET_DIR").map_or_else(|| root.join("target"), |t| root.join(t));
-    Ok(target
+    Ok(crate::target_dir()
         .join("debug")
         .join(format!("subdiv{}", std::env::consts::EXE_SUFFIX)))
 }
@@ -131,7 +129,7 @@ fn build_subdiv(root: &Path) -> Result<PathBuf> {
 pub fn run(root: &Path, options: &Options) -> Result<()> {
     vulkan::ensure_driver()?;
     let validation = Path::new(vulkan::VALIDATION_LAYER_MANIFEST).exists();
-    let exe = build_subdiv(root)?;
+    let exe = build_subdiv()?;
     let expected_dir = root.join("fixtures/golden");
     let out_dir = root.join("target/golden");
     let rendered_dir = out_dir.join("rendered");

@@ -20,6 +20,11 @@ fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("xtask lives in the workspace").to_path_buf()
 }
 
+/// Cargo's target folder: `CARGO_TARGET_DIR` (relative to the workspace root) or `target/`.
+fn target_dir() -> PathBuf {
+    std::env::var_os("CARGO_TARGET_DIR").map_or_else(|| root().join("target"), |t| root().join(t))
+}
+
 fn cargo() -> Command {
     let mut c = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
     c.current_dir(root());
@@ -45,7 +50,7 @@ fn demo() -> Result<()> {
         c.args(["build", "--release", "--quiet", "-p", "subdiv"]);
         c
     })?;
-    let exe = root().join("target/release/subdiv");
+    let exe = target_dir().join("release").join(format!("subdiv{}", std::env::consts::EXE_SUFFIX));
     println!("== subdiv info (embedded cage: catmark_pawn) ==");
     run({
         let mut c = Command::new(&exe);
