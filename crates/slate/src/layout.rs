@@ -12,7 +12,9 @@
 //! by construction and the output independent of the number of threads.
 
 use subdiv_mesh::{FaceId, HalfedgeId, Mesh, VertexId};
-use subdiv_rules::{RulesError, Scheme, refine_uniform};
+use subdiv_rules::RulesError;
+
+use crate::patches::{irregular_faces, local_level1};
 
 /// Where the points along one side of a patch go: the point at parameter index `s`
 /// (`1..n`) along the side has id `first + (s - 1) * step`.
@@ -79,111 +81,6 @@ impl PatchLayout {
     pub fn max_valence(&self) -> usize {
         self.max_valence
     }
-}
-
-/// `true` for faces that are tessellated through their level-1 quads.
-fn irregular_faces(mesh: &Mesh) -> Vec<bool> {
-    let mut near_ngon = vec![false; mesh.num_vertices()];
-    for f in mesh.faces() {
-        if mesh.face_size(f) != 4 {
-            for v in mesh.face_vertices(f) {
-                near_ngon[v.idx()] = true;
-            }
-        }
-    }
-    mesh.faces()
-        .map(|f| mesh.face_size(f) != 4 || mesh.face_vertices(f).iter().any(|v| near_ngon[v.idx()]))
-        .collect()
-}
-
-/// The level-1 refinement of the faces within `rings` vertex-rings of the irregular faces, and for
-/// each cage face the index of its first child face in it (`u32::MAX` if not refined).
-fn local_level1(
-    mesh: &Mesh,
-    irregular: &[bool],
-    rings: usize,
-) -> Result<(Mesh, Vec<u32>), RulesError> {
-    let mut keep = irregular.to_vec();
-    for _ in 0..rings {
-        let mut vmark = vec![false; mesh.num_vertices()];
-        for f in mesh.faces().filter(|f| keep[f.idx()]) {
-            for v in mesh.face_vertices(f) {
-                vmark[v.idx()] = true;
-            }
-        }
-        for f in mesh.faces() {
-            if mesh.face_vertices(f).iter().any(|v| vmark[v.idx()]) {
-                keep[f.idx()] = true;
-            }
-        }
-    }
-    // Sub-mesh of the kept faces, with their sharpness.
-    let mut vmap = vec![u32::MAX; mesh.num_vertices()];
-    let mut soup = subdiv_mesh::PolygonSoup {
-        options: mesh.options(),
-        ..Default::default()
-    };
-    let mut first_child = vec![u32::MAX; mesh.num_faces()];
-    let mut child_count = 0u32;
-    for f in mesh.faces().filter(|f| keep[f.idx()]) {
-        let mut idx = Vec::with_capacity(mesh.face_size(f));
-        for v in mesh.face_vertices(f) {
-            if vmap[v.idx()] == u32::MAX {
-                vmap[v.idx()] = soup.positions.len() as u32;
-                soup.positions.push(mesh.position(*v));
-            }
-            idx.push(vmap[v.idx()] as i64);
-        }
-        soup.push_face(idx);
-        first_child[f.idx()] = child_count;
-        child_count += mesh.face_size(f) as u32;
-    }
-    for e in mesh.edges() {
-        let [a, b] = mesh.edge_vertices(e);
-        let s = mesh.edge_sharpness(e);
-        if s > 0.0
-            && vmap[a.idx()] != u32::MAX
-            && vmap[b.idx()] != u32::MAX
-            && !mesh.is_boundary_edge(e)
-        {
-            // Only edges of kept faces exist in the sub-mesh.
-            let kept = [e.halfedge(0), e.halfedge(1)].iter().any(|&h| {
-                let f = mesh.face(h);
-                f.is_some() && keep[f.idx()]
-            });
-            if kept {
-                soup.creases.push(subdiv_mesh::CreaseTag {
-                    a: vmap[a.idx()] as i64,
-                    b: vmap[b.idx()] as i64,
-                    sharpness: s,
-                    line: None,
-                });
-            }
-        }
-    }
-    for v in mesh.vertices() {
-        let s = mesh.vertex_sharpness(v);
-        if s > 0.0
-            && vmap[v.idx()] != u32::MAX
-            && !(mesh.is_boundary_vertex(v) && s >= subdiv_mesh::SHARPNESS_INFINITE)
-        {
-            soup.corners.push(subdiv_mesh::CornerTag {
-                v: vmap[v.idx()] as i64,
-                sharpness: s,
-                line: None,
-            });
-        }
-    }
-    let mut sub = Mesh::from_soup(&soup).map_err(RulesError::Internal)?;
-    // Boundary corners sharpened by EdgeAndCorner in the cage keep their sharpness; vertices that
-    // are boundary only in the sub-mesh must not be sharpened: restore cage values.
-    for v in mesh.vertices() {
-        if vmap[v.idx()] != u32::MAX {
-            sub.set_vertex_sharpness(VertexId(vmap[v.idx()]), mesh.vertex_sharpness(v));
-        }
-    }
-    let level1 = refine_uniform(&sub, Scheme::CatmullClark)?;
-    Ok((level1, first_child))
 }
 
 impl PatchLayout {

@@ -22,10 +22,12 @@
 //! ```
 
 mod layout;
+mod patches;
 mod slate;
 mod tessellate;
 
 pub use layout::PatchLayout;
+pub use patches::{PatchRef, PatchSet, Unit};
 pub use slate::Worker;
 pub use tessellate::{
     DEFAULT_MAXSD, MAX_DEPTH, SlateError, slate_bytes_per_thread, tessellate, tessellate_layout,

@@ -502,6 +502,53 @@ impl Worker {
         }
     }
 
+    /// Tessellates the quad `face` of `mesh` (whose 1-neighbourhood is all quads) at `depth` and
+    /// writes the limit points and normals of its `(2^depth + 1)^2` grid, row by row (`i` along
+    /// the face's first edge, `j` along its last edge reversed).
+    ///
+    /// ```
+    /// use subdiv_mesh::{parse_obj, FaceId, Mesh};
+    /// let cube = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
+    ///             f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+    /// let mesh = Mesh::from_soup(&parse_obj(cube)?)?;
+    /// let mut w = subdiv_slate::Worker::new(5);
+    /// let (mut p, mut n) = (vec![[0.0; 3]; 25], vec![[0.0; 3]; 25]);
+    /// w.patch_grid(&mesh, FaceId(0), 2, &mut p, &mut n);
+    /// assert!((p[12][2] - 0.0).abs() < 0.2); // the centre of face 0 (z = 0 side) lies near z = 0
+    /// # Ok::<(), subdiv_mesh::MeshError>(())
+    /// ```
+    pub fn patch_grid(&mut self, mesh: &Mesh, face: FaceId, depth: u32, pos: &mut [[f32; 3]], nrm: &mut [[f32; 3]]) {
+        let n = 1usize << depth;
+        let w = n + 1;
+        assert!(pos.len() >= w * w && nrm.len() >= w * w, "grid buffers too small");
+        assert!(n <= self.maxn, "depth exceeds the worker's slates");
+        self.gather(mesh, face);
+        for _ in 0..depth {
+            self.step();
+        }
+        let n = n as i32;
+        for j in 0..=n {
+            let row = j as usize * w;
+            if j == 0 || j == n || n == 1 {
+                for i in 0..=n {
+                    let (p, q) = self.limit(i, j);
+                    pos[row + i as usize] = p.to_array();
+                    nrm[row + i as usize] = q.to_array();
+                }
+            } else {
+                for i in [0, n] {
+                    let (p, q) = self.limit(i, j);
+                    pos[row + i as usize] = p.to_array();
+                    nrm[row + i as usize] = q.to_array();
+                }
+                self.limit_row(j, 1, n - 1, |k, p, q| {
+                    pos[row + 1 + k] = p.to_array();
+                    nrm[row + 1 + k] = q.to_array();
+                });
+            }
+        }
+    }
+
     /// Limit through a ring built from the table (creases, boundaries, degenerate tangents).
     fn limit_general(&mut self, i: i32, j: i32) -> (Vec3A, Vec3A) {
         let t = &self.t[self.cur];
