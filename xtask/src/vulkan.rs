@@ -44,9 +44,12 @@ pub fn ensure_driver() -> Result<()> {
 
 /// Pins the Vulkan loader to lavapipe and keeps Mesa's shader cache under `target/`.
 pub fn configure(cmd: &mut Command, root: &Path) {
+    let cache = root.join("target/mesa-shader-cache");
+    // Mesa does not create missing parents (e.g. no `target/` with CARGO_TARGET_DIR elsewhere).
+    let _ = std::fs::create_dir_all(&cache);
     cmd.env("VK_DRIVER_FILES", LAVAPIPE_ICD)
         .env("VK_ICD_FILENAMES", LAVAPIPE_ICD)
-        .env("MESA_SHADER_CACHE_DIR", root.join("target/mesa-shader-cache"));
+        .env("MESA_SHADER_CACHE_DIR", cache);
 }
 
 /// The Khronos validation layer's manifest (Debian package `vulkan-validationlayers`).
