@@ -9,8 +9,8 @@
 //!   ("green"), and a green triangle that must be refined later is first merged back into its
 //!   parent, which is then refined regularly.
 //!
-//! The fan stitching of Catmull-Clark slate patches at depth transitions will be added as another
-//! module of this crate.
+//! - [`fans`]: Catmull-Clark patches tessellated at different depths, closed by triangle fans
+//!   (Settgast et al. 2004, Section 3.3), with per-patch caching across frames ([`Assembler`]).
 //!
 //! ```
 //! use subdiv_mesh::{Mesh, PolygonSoup, glam::Vec3};
@@ -25,4 +25,33 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod fans;
 pub mod red_green;
+
+pub use fans::{Assembler, FanMethod, FrameGeometry};
+
+/// Errors of the Catmull-Clark assembly.
+#[derive(Debug, thiserror::Error)]
+pub enum StitchError {
+    /// Set-up of the patches failed.
+    #[error(transparent)]
+    Rules(#[from] subdiv_rules::RulesError),
+    /// The requested maximum depth exceeds what the slates support.
+    #[error("maximum depth {depth} exceeds {max}")]
+    TooDeep {
+        /// Requested.
+        depth: u32,
+        /// Supported.
+        max: u32,
+    },
+    /// A per-unit array has the wrong length.
+    #[error("{what} has {got} entries, the mesh has {want} faces")]
+    Length {
+        /// Which array.
+        what: &'static str,
+        /// Its length.
+        got: usize,
+        /// Expected.
+        want: usize,
+    },
+}

@@ -1,0 +1,144 @@
+//! Adaptive assembly: crack-free (bitwise) for random per-face depths, on every fixture cage.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+use subdiv_mesh::{read_obj_with, Mesh, MeshStats, ReadOptions};
+use subdiv_stitch::{Assembler, FanMethod, FrameGeometry};
+use subdiv_tests::{fixture_files, PointGrid};
+
+fn cages() -> Vec<(String, Mesh)> {
+    let mut v: Vec<_> = fixture_files("reference/shapes", "obj")
+        .into_iter()
+        .filter(|p| p.file_name().unwrap().to_string_lossy().starts_with("catmark_"))
+        .collect();
+    v.extend(fixture_files("meshes", "obj"));
+    v.into_iter()
+        .map(|p| {
+            let m = read_obj_with(&p, ReadOptions { split_nonmanifold_vertices: true }).unwrap();
+            (p.file_stem().unwrap().to_string_lossy().to_string(), m)
+        })
+        .collect()
+}
+
+/// A small deterministic generator (xorshift).
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+}
+
+/// Every edge of the triangle mesh has two triangles using it in opposite directions, except
+/// the cage's own boundary; returns the number of open edges.
+fn check_closed(name: &str, g: &FrameGeometry) -> usize {
+    let mut dir: HashMap<(u32, u32), u32> = HashMap::new();
+    for t in g.indices.chunks(3) {
+        assert!(t[0] != t[1] && t[1] != t[2] && t[0] != t[2], "{name}: degenerate triangle {t:?}");
+        for k in 0..3 {
+            *dir.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
+        }
+    }
+    let mut open = 0;
+    for (&(a, b), &c) in &dir {
+        assert_eq!(c, 1, "{name}: directed edge {a}->{b} used {c} times");
+        if !dir.contains_key(&(b, a)) {
+            open += 1;
+        }
+    }
+    open
+}
+
+#[test]
+fn random_depths_are_watertight() {
+    let mut rng = Rng(0x9e3779b97f4a7c15);
+    for (name, mesh) in cages() {
+        let stats = MeshStats::of(&mesh);
+        let maxd = if mesh.num_faces() > 500 { 3 } else { 4 };
+        let mut asm = Assembler::new(&mesh, maxd).unwrap();
+        let nu = mesh.num_faces();
+        let (lo, hi) = mesh.bounds();
+        let tol = 1e-5 * (hi - lo).length() as f64;
+        // Reference points: the uniform tessellation one level deeper than any patch.
+        let uni = subdiv_slate::tessellate(&mesh, maxd + 1).unwrap();
+        let pts: Vec<DVec3> = uni.positions.iter().map(|p| glam::Vec3::from(*p).as_dvec3()).collect();
+        let grid = PointGrid::new(&pts, tol * 10.0);
+        let mut g = FrameGeometry::default();
+        for round in 0..12 {
+            let depth: Vec<u8> = (0..nu).map(|_| (rng.next() % (maxd as u64 + 1)) as u8).collect();
+            let method = if round % 3 == 2 { FanMethod::Simple } else { FanMethod::Subdivided };
+            asm.set_method(method);
+            asm.frame(&mesh, &depth, &vec![true; nu], &mut g).unwrap();
+            let open = check_closed(&name, &g);
+            let holes = mesh.faces().filter(|&f| mesh.is_hole(f)).count();
+            if holes == 0 {
+                // Open edges only along the cage boundary: 2^d segments per boundary edge of a
+                // face at depth d (clamped to the face's minimum depth).
+                let want: usize = mesh
+                    .edges()
+                    .filter(|&e| mesh.is_boundary_edge(e))
+                    .map(|e| {
+                        let h = if mesh.face(e.halfedge(0)).is_some() { e.halfedge(0) } else { e.halfedge(1) };
+                        let f = mesh.face(h).idx();
+                        1usize << depth[f].max(asm.min_depth(f))
+                    })
+                    .sum();
+                assert_eq!(open, want, "{name} round {round}: open edges ({} cage boundary edges)", stats.boundary_edges);
+            }
+            // Every referenced vertex is a limit point of the surface.
+            for &i in g.indices.iter().step_by(7) {
+                let p = glam::Vec3::from(g.positions[i as usize]).as_dvec3();
+                let (_, d) = grid.nearest(p);
+                assert!(d <= tol, "{name} round {round}: vertex {i} at {p:?} is {d:.2e} off the limit surface");
+            }
+        }
+    }
+}
+
+#[test]
+fn uniform_depths_equal_uniform_tessellation() {
+    for (name, mesh) in cages().into_iter().take(8) {
+        let nu = mesh.num_faces();
+        let mut asm = Assembler::new(&mesh, 3).unwrap();
+        let mut g = FrameGeometry::default();
+        for d in 1..=3u8 {
+            asm.frame(&mesh, &vec![d; nu], &vec![true; nu], &mut g).unwrap();
+            let uni = subdiv_slate::tessellate(&mesh, d as u32).unwrap();
+            let quads = uni.num_faces() - 0;
+            let holes_q: usize = 0;
+            assert_eq!(g.num_triangles(), 2 * (quads - holes_q), "{name} depth {d}");
+            let (p, _, idx) = g.compact();
+            assert_eq!(p.len(), uni.positions.len(), "{name} depth {d}: vertex count");
+            assert_eq!(idx.len(), 6 * quads);
+        }
+    }
+}
+
+#[test]
+fn cache_reuses_blocks_while_depths_do_not_rise() {
+    let mesh = read_obj_with(fixtures_shape("catmark_helmet"), ReadOptions::default()).unwrap();
+    let nu = mesh.num_faces();
+    let mut asm = Assembler::new(&mesh, 4).unwrap();
+    let mut g = FrameGeometry::default();
+    asm.frame(&mesh, &vec![3; nu], &vec![true; nu], &mut g).unwrap();
+    assert_eq!(g.patches_recomputed, asm.patch_set().patches().len());
+    let v0 = g.vertex_version;
+    // Lower every depth: nothing recomputed, vertices unchanged.
+    asm.frame(&mesh, &vec![2; nu], &vec![true; nu], &mut g).unwrap();
+    assert_eq!(g.patches_recomputed, 0);
+    assert_eq!(g.vertex_version, v0);
+    // Raise one face: only the patches that need more detail are recomputed.
+    let mut d = vec![2u8; nu];
+    d[0] = 4;
+    asm.frame(&mesh, &d, &vec![true; nu], &mut g).unwrap();
+    assert!(g.patches_recomputed >= 1 && g.patches_recomputed < asm.patch_set().patches().len() / 2);
+    assert_ne!(g.vertex_version, v0);
+    assert_eq!(check_closed("helmet", &g) > 0, true); // the helmet is open
+}
+
+fn fixtures_shape(n: &str) -> std::path::PathBuf {
+    subdiv_tests::fixtures().join("reference/shapes").join(format!("{n}.obj"))
+}
