@@ -180,6 +180,24 @@ impl Ring {
     pub fn vertex_sharpness(&self) -> f32 {
         self.vertex_sharpness
     }
+    /// Unit normal of face `i` of the ring (Newell's method over the whole polygon; for Loop the
+    /// triangle spanned by the centre and edges `i`, `i+1`).
+    pub fn face_normal(&self, i: usize) -> DVec3 {
+        let n = self.edges.len();
+        let mut pts: Vec<DVec3> = Vec::with_capacity(4);
+        pts.push(self.center);
+        pts.push(self.edges[i]);
+        if self.scheme == Scheme::CatmullClark {
+            pts.extend_from_slice(self.face_inner(i));
+        }
+        pts.push(self.edges[(i + 1) % n]);
+        let mut nrm = DVec3::ZERO;
+        for k in 0..pts.len() {
+            nrm += pts[k].cross(pts[(k + 1) % pts.len()]);
+        }
+        nrm.normalize_or_zero()
+    }
+
     /// `true` if all faces are quads.
     pub fn all_quads(&self) -> bool {
         (0..self.num_faces()).all(|i| self.face_inner(i).len() == 1)

@@ -1,0 +1,123 @@
+//! Curvature depth per cage vertex with the cone of normals (Shirman and Abi-Ezzi 1993), as in
+//! Settgast et al. 2004, Section 3.1: the smallest depth `l` at which the normals of all faces
+//! around the vertex at level `l` lie within the cone of aperture `alpha` around its limit
+//! normal. Computed once per mesh by refining each vertex's ring locally.
+
+use glam::{DVec3, Vec3};
+use rayon::prelude::*;
+use subdiv_mesh::{Mesh, VertexId};
+use subdiv_rules::{Ring, Scheme};
+
+/// Limit point, limit normal and curvature depth of every cage vertex.
+#[derive(Clone, Debug, Default)]
+pub struct VertexData {
+    /// Limit positions.
+    pub limit: Vec<Vec3>,
+    /// Unit limit normals (zero for isolated vertices).
+    pub normal: Vec<Vec3>,
+    /// Curvature depth (`0..=max_depth`).
+    pub depth: Vec<u8>,
+}
+
+impl VertexData {
+    /// Computes limit points, normals and curvature depths of all cage vertices for cone aperture
+    /// `aperture_deg` (the paper's `NormalConeAperture`), capped at `max_depth`.
+    ///
+    /// ```
+    /// use subdiv_mesh::{parse_obj, Mesh};
+    /// use subdiv_depth::VertexData;
+    /// let cube = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
+    ///             f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+    /// let mesh = Mesh::from_soup(&parse_obj(cube)?)?;
+    /// let v = VertexData::compute(&mesh, 20.0, 5);
+    /// // A cube's corners are strongly curved: they need a few levels for a 20 degree cone.
+    /// assert!(v.depth.iter().all(|&d| d >= 2));
+    /// # Ok::<(), subdiv_mesh::MeshError>(())
+    /// ```
+    pub fn compute(mesh: &Mesh, aperture_deg: f32, max_depth: u8) -> VertexData {
+        let cos_a = (aperture_deg.to_radians() as f64).cos();
+        let per: Vec<(Vec3, Vec3, u8)> = (0..mesh.num_vertices() as u32)
+            .into_par_iter()
+            .map_init(Ring::new, |ring, v| {
+                let v = VertexId(v);
+                if !ring.load(mesh, v, Scheme::CatmullClark) {
+                    return (mesh.position(v), Vec3::ZERO, 0);
+                }
+                let mut probe = ring.clone();
+                let (p, ln) = probe.limit();
+                (
+                    p.as_vec3(),
+                    ln.as_vec3(),
+                    cone_depth(ring, ln, cos_a, max_depth),
+                )
+            })
+            .collect();
+        VertexData {
+            limit: per.iter().map(|x| x.0).collect(),
+            normal: per.iter().map(|x| x.1).collect(),
+            depth: per.iter().map(|x| x.2).collect(),
+        }
+    }
+}
+
+/// The smallest level at which all face normals around the ring's centre are within the cone.
+fn cone_depth(ring: &mut Ring, ln: DVec3, cos_a: f64, max_depth: u8) -> u8 {
+    if ln == DVec3::ZERO {
+        return 0;
+    }
+    for l in 0..=max_depth {
+        let inside = (0..ring.face_count()).all(|i| {
+            let n = ring.face_normal(i);
+            n == DVec3::ZERO || n.dot(ln) >= cos_a
+        });
+        if inside {
+            return l;
+        }
+        ring.refine();
+    }
+    max_depth
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use subdiv_mesh::PolygonSoup;
+
+    fn grid(n: i32, f: impl Fn(f32, f32) -> f32) -> Mesh {
+        let mut p = Vec::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                let (x, y) = ((i - n / 2) as f32, (j - n / 2) as f32);
+                p.push(Vec3::new(x, y, f(x, y)));
+            }
+        }
+        let w = (n + 1) as u32;
+        let faces: Vec<Vec<u32>> = (0..n as u32)
+            .flat_map(|j| (0..n as u32).map(move |i| (i, j)))
+            .map(|(i, j)| {
+                let a = j * w + i;
+                vec![a, a + 1, a + w + 1, a + w]
+            })
+            .collect();
+        Mesh::from_soup(&PolygonSoup::from_faces(p, &faces)).unwrap()
+    }
+
+    #[test]
+    fn curved_needs_more_depth_than_flat() {
+        let flat = VertexData::compute(&grid(6, |_, _| 0.0), 5.0, 6);
+        let bump = VertexData::compute(&grid(6, |x, y| 0.4 * (x * x + y * y)), 5.0, 6);
+        let centre = 3 * 7 + 3;
+        assert_eq!(flat.depth[centre], 0);
+        assert!(bump.depth[centre] == 0 || bump.depth.iter().max() > flat.depth.iter().max());
+        // Away from the centre the paraboloid is steep: more depth than the plane.
+        let edge_ring = 3 * 7 + 5;
+        assert!(
+            bump.depth[edge_ring] > flat.depth[edge_ring],
+            "{:?}",
+            bump.depth
+        );
+        // A wider cone never needs more depth.
+        let wide = VertexData::compute(&grid(6, |x, y| 0.4 * (x * x + y * y)), 30.0, 6);
+        assert!(wide.depth.iter().zip(&bump.depth).all(|(w, n)| w <= n));
+    }
+}

@@ -1,0 +1,35 @@
+//! `subdiv-depth`: how deep to subdivide each patch.
+//!
+//! Settgast, Müller, Fünfzig and Fellner, "Adaptive Tessellation of Subdivision Surfaces",
+//! Section 3.1: a curvature depth per cage vertex from the cone of normals, computed once per
+//! mesh ([`VertexData`]); per frame a back/front/silhouette classification and a projected-size
+//! adjustment ([`assign`]), or the least depth within a screen-space error ([`DepthParams::pixel_error`]);
+//! and frame-rate control by feedback ([`FrameRateController`]).
+//!
+//! ```
+//! use subdiv_depth::{assign, face_spheres, DepthParams, VertexData};
+//! use subdiv_mesh::{parse_obj, Camera, Mesh, glam::Vec3};
+//! let cube = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
+//!             f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+//! let mesh = Mesh::from_soup(&parse_obj(cube)?)?;
+//! let params = DepthParams::default();
+//! let vd = VertexData::compute(&mesh, params.cone_aperture_deg, params.max_depth);
+//! let spheres = face_spheres(&mesh, &vd);
+//! let cam = Camera::new(Vec3::new(0.5, 0.5, 5.0), Vec3::splat(0.5), Vec3::Y, 45.0, 800, 600);
+//! let a = assign(&mesh, &vd, &spheres, None, &cam, &params);
+//! assert_eq!(a.depth.len(), 6);
+//! // The face at z = 0 looks away from a camera at z = 5: it is not subdivided.
+//! assert_eq!(a.depth[0], 0);
+//! # Ok::<(), subdiv_mesh::MeshError>(())
+//! ```
+
+mod assign;
+mod controller;
+mod curvature;
+
+pub use assign::{
+    Assignment, Class, DepthParams, Sphere, adjust_projected, assign, classify_vertex,
+    face_spheres, pixel_error_depth, projected_radius,
+};
+pub use controller::FrameRateController;
+pub use curvature::VertexData;
