@@ -4,6 +4,7 @@
 mod camera_args;
 mod info;
 mod load;
+mod refine;
 mod render;
 mod tessellate;
 mod view;
@@ -27,6 +28,8 @@ enum Command {
     Info(info::InfoArgs),
     /// Tessellate the limit surface and write it as OBJ (limit points and limit normals).
     Tessellate(tessellate::TessellateArgs),
+    /// Adaptive Loop subdivision driven by a Degree-of-Interest function (Isenberg et al. 2003).
+    Refine(refine::RefineArgs),
     /// Render the limit surface headless with Vulkan to PNG (and EXR).
     Render(render::RenderArgs),
     /// Open the interactive Vulkan viewer on the limit surface.
@@ -38,6 +41,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Info(a) => info::run(&a),
         Command::Tessellate(a) => tessellate::run(&a),
+        Command::Refine(a) => refine::run(&a),
         Command::Render(a) => render::run(&a),
         Command::View(a) => view::run(&a),
     };
