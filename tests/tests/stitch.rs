@@ -142,3 +142,69 @@ fn cache_reuses_blocks_while_depths_do_not_rise() {
 fn fixtures_shape(n: &str) -> std::path::PathBuf {
     subdiv_tests::fixtures().join("reference/shapes").join(format!("{n}.obj"))
 }
+
+/// Welds identical coordinates, then checks every edge has two triangles in opposite
+/// directions; returns the number of open (boundary) edges.
+fn welded_open_edges(name: &str, g: &FrameGeometry) -> usize {
+    let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
+    let id: Vec<u32> = g
+        .positions
+        .iter()
+        .map(|p| {
+            let n = weld.len() as u32;
+            *weld.entry(p.map(f32::to_bits)).or_insert(n)
+        })
+        .collect();
+    let mut dir: HashMap<(u32, u32), u32> = HashMap::new();
+    for t in g.indices.chunks(3) {
+        let t = [id[t[0] as usize], id[t[1] as usize], id[t[2] as usize]];
+        assert!(t[0] != t[1] && t[1] != t[2] && t[0] != t[2], "{name}: degenerate triangle after welding");
+        for k in 0..3 {
+            *dir.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
+        }
+    }
+    let mut open = 0;
+    for (&(a, b), &c) in &dir {
+        assert_eq!(c, 1, "{name}: welded edge {a}->{b} used {c} times (T-junction or flip)");
+        if !dir.contains_key(&(b, a)) {
+            open += 1;
+        }
+    }
+    open
+}
+
+#[test]
+fn random_cameras_are_watertight() {
+    use subdiv_depth::DepthParams;
+    use subdiv_mesh::Camera;
+    use subdiv_stitch::DynamicSubdivision;
+    let mut rng = Rng(0x2545F4914F6CDD1D);
+    let mut unit = || (rng.next() % 2001) as f32 / 1000.0 - 1.0;
+    for (name, mesh) in cages() {
+        let stats = MeshStats::of(&mesh);
+        let holes = mesh.faces().filter(|&f| mesh.is_hole(f)).count();
+        let big = mesh.num_faces() > 200;
+        // At least 200 cameras for every closed cage (the property); fewer for big open ones.
+        let closed = stats.boundary_edges == 0 && holes == 0;
+        let cameras = if closed || !big { 200 } else { 40 };
+        for pixel_mode in [false, true] {
+            let params = DepthParams {
+                max_depth: if big { 2 } else { 3 },
+                pixel_error: pixel_mode.then_some(1.0),
+                ..DepthParams::default()
+            };
+            let mut node = DynamicSubdivision::new(mesh.clone(), params).unwrap();
+            let (lo, hi) = mesh.bounds();
+            for c in 0..cameras {
+                let dir = glam::Vec3::new(unit(), unit(), unit()).normalize_or_zero();
+                let dist = 1.2 + 4.0 * (unit() + 1.0);
+                let cam = Camera::eye_relative(lo, hi, dir * dist, 30.0 + 30.0 * (unit() + 1.0), 640, 480);
+                let g = node.update(&cam, None).unwrap();
+                let open = welded_open_edges(&name, g);
+                if stats.boundary_edges == 0 && holes == 0 {
+                    assert_eq!(open, 0, "{name} camera {c} (pixel mode {pixel_mode}): closed cage has open edges");
+                }
+            }
+        }
+    }
+}

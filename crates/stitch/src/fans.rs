@@ -16,9 +16,8 @@
 //! `c`; while the patch's depth does not rise above `c` the block is reused (sampled with
 //! stride `2^(c - d)`), and only the index buffer is rebuilt.
 
-use glam::Vec3;
 use rayon::prelude::*;
-use subdiv_mesh::{FaceId, HalfedgeId, Mesh, VertexId};
+use subdiv_mesh::{HalfedgeId, Mesh, VertexId};
 use subdiv_slate::{PatchRef, PatchSet, Worker};
 
 use crate::StitchError;
@@ -124,7 +123,6 @@ struct Frame<'a> {
     set: &'a PatchSet,
     units: &'a [UnitTopo],
     depth: &'a [u8],
-    active: &'a [bool],
     /// Per edge: resolution (max depth of its active units) and owner unit.
     edge_res: Vec<u8>,
     edge_owner: Vec<u32>,
@@ -373,7 +371,6 @@ impl<'a> Frame<'a> {
             set,
             units,
             depth,
-            active,
             edge_res,
             edge_owner,
             vertex_owner,
@@ -677,6 +674,3 @@ fn side_of_on(k: usize, i: u32, j: u32, n: u32) -> (usize, u32) {
         _ => (3, n - j),
     }
 }
-
-#[allow(dead_code)]
-fn _types(_: FaceId, _: Vec3) {}

@@ -9,6 +9,9 @@
 //!   ("green"), and a green triangle that must be refined later is first merged back into its
 //!   parent, which is then refined regularly.
 //!
+//! - [`DynamicSubdivision`]: the front door for view-dependent Catmull-Clark tessellation
+//!   (the paper's `DynamicSubdivisionCC` node): cage, curvature depths, cache, parameters, and
+//!   `update(&camera, last_frame_time)` per frame.
 //! - [`fans`]: Catmull-Clark patches tessellated at different depths, closed by triangle fans
 //!   (Settgast et al. 2004, Section 3.3), with per-patch caching across frames ([`Assembler`]).
 //!
@@ -25,9 +28,11 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod dynamic;
 pub mod fans;
 pub mod red_green;
 
+pub use dynamic::{DynamicSubdivision, chord_deviations};
 pub use fans::{Assembler, FanMethod, FrameGeometry};
 
 /// Errors of the Catmull-Clark assembly.

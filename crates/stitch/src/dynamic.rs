@@ -1,0 +1,286 @@
+//! The library's front door: view-dependent adaptive tessellation, frame by frame.
+//!
+//! [`DynamicSubdivision`] is the paper's `DynamicSubdivisionCC` scene-graph node (Settgast et
+//! al. 2004, Section 4): it owns the cage, its curvature depths (computed once), the per-patch
+//! tessellation cache and the user parameters, and turns a camera (and the last frame time,
+//! for frame-rate control) into the frame's geometry.
+
+use glam::Vec3;
+use rayon::prelude::*;
+use subdiv_depth::{
+    Assignment, DepthParams, FrameRateController, Sphere, VertexData, assign, face_spheres,
+};
+use subdiv_mesh::{Camera, Mesh};
+use subdiv_slate::Worker;
+
+use crate::StitchError;
+use crate::fans::{Assembler, FanMethod, FrameGeometry};
+
+/// View-dependent adaptive Catmull-Clark tessellation with crack-free stitching.
+///
+/// ```
+/// use subdiv_mesh::{read_obj, Camera, glam::Vec3};
+/// use subdiv_depth::DepthParams;
+/// use subdiv_stitch::DynamicSubdivision;
+/// # let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/reference/shapes/catmark_pawn.obj");
+/// let mesh = read_obj(path).unwrap();
+/// let mut node = DynamicSubdivision::new(mesh, DepthParams::default()).unwrap();
+/// let (lo, hi) = node.mesh().bounds();
+/// let camera = Camera::eye_relative(lo, hi, Vec3::new(0.0, 0.3, 2.5), 45.0, 800, 600);
+/// let frame = node.update(&camera, None).unwrap();
+/// println!("{} triangles", frame.num_triangles());
+/// assert!(frame.num_triangles() > 0);
+/// ```
+#[derive(Debug)]
+pub struct DynamicSubdivision {
+    mesh: Mesh,
+    params: DepthParams,
+    vertex: VertexData,
+    spheres: Vec<Sphere>,
+    deviation: Option<Vec<Vec<f32>>>,
+    assembler: Assembler,
+    controller: Option<FrameRateController>,
+    fixed_depths: Option<Vec<u8>>,
+    assignment: Assignment,
+    geometry: FrameGeometry,
+}
+
+impl DynamicSubdivision {
+    /// Sets up the node for `mesh`: curvature depths, bounding spheres and patches.
+    pub fn new(mesh: Mesh, params: DepthParams) -> Result<DynamicSubdivision, StitchError> {
+        let vertex = VertexData::compute(&mesh, params.cone_aperture_deg, params.max_depth);
+        let spheres = face_spheres(&mesh, &vertex);
+        let assembler = Assembler::new(&mesh, params.max_depth as u32)?;
+        Ok(DynamicSubdivision {
+            mesh,
+            params,
+            vertex,
+            spheres,
+            deviation: None,
+            assembler,
+            controller: None,
+            fixed_depths: None,
+            assignment: Assignment::default(),
+            geometry: FrameGeometry::default(),
+        })
+    }
+
+    /// The cage.
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+    /// The user parameters.
+    pub fn params(&self) -> &DepthParams {
+        &self.params
+    }
+    /// Changes the parameters (curvature depths are recomputed when the aperture or the maximum
+    /// depth changes).
+    pub fn set_params(&mut self, p: DepthParams) -> Result<(), StitchError> {
+        let recompute = p.cone_aperture_deg != self.params.cone_aperture_deg
+            || p.max_depth != self.params.max_depth;
+        if p.max_depth != self.params.max_depth {
+            self.assembler = Assembler::new(&self.mesh, p.max_depth as u32)?;
+            self.deviation = None;
+        }
+        self.params = p;
+        if recompute {
+            self.vertex = VertexData::compute(&self.mesh, p.cone_aperture_deg, p.max_depth);
+            self.spheres = face_spheres(&self.mesh, &self.vertex);
+        }
+        if let Some(c) = &mut self.controller {
+            let fps = c.target_fps();
+            *c = FrameRateController::new(fps, p.max_depth);
+        }
+        Ok(())
+    }
+    /// Turns frame-rate control on (with a target) or off.
+    pub fn set_frame_rate_control(&mut self, target_fps: Option<f32>) {
+        self.controller = target_fps.map(|f| FrameRateController::new(f, self.params.max_depth));
+    }
+    /// The frame-rate controller, when on.
+    pub fn controller(&self) -> Option<&FrameRateController> {
+        self.controller.as_ref()
+    }
+    /// Overrides the view-dependent depths with fixed per-face depths (uniform tessellation, or
+    /// depths from a Degree-of-Interest function); `None` returns to view-dependent depths.
+    pub fn set_face_depths(&mut self, depths: Option<Vec<u8>>) -> Result<(), StitchError> {
+        if let Some(d) = &depths {
+            if d.len() != self.mesh.num_faces() {
+                return Err(StitchError::Length {
+                    what: "face depths",
+                    got: d.len(),
+                    want: self.mesh.num_faces(),
+                });
+            }
+        }
+        self.fixed_depths = depths;
+        Ok(())
+    }
+    /// Chooses how quads next to deeper neighbours are closed.
+    pub fn set_fan_method(&mut self, m: FanMethod) {
+        self.assembler.set_method(m);
+    }
+    /// Limit points, normals and curvature depths of the cage vertices.
+    pub fn vertex_data(&self) -> &VertexData {
+        &self.vertex
+    }
+    /// The last frame's per-face depths and classes.
+    pub fn assignment(&self) -> &Assignment {
+        &self.assignment
+    }
+    /// The last frame's geometry.
+    pub fn geometry(&self) -> &FrameGeometry {
+        &self.geometry
+    }
+
+    /// Computes the frame for `camera`; `last_frame_time` (seconds) feeds the frame-rate
+    /// controller when it is on. Only classification, depths, the patches whose depth rose above
+    /// their cached depth, and the index buffer are recomputed.
+    pub fn update(
+        &mut self,
+        camera: &Camera,
+        last_frame_time: Option<f32>,
+    ) -> Result<&FrameGeometry, StitchError> {
+        if self.params.pixel_error.is_some() && self.deviation.is_none() {
+            self.deviation = Some(chord_deviations(
+                &self.mesh,
+                &self.assembler,
+                self.params.max_depth,
+            ));
+        }
+        let mut a = match &self.fixed_depths {
+            Some(d) => {
+                let mut a = assign(
+                    &self.mesh,
+                    &self.vertex,
+                    &self.spheres,
+                    None,
+                    camera,
+                    &self.params,
+                );
+                a.depth.clone_from(d);
+                a
+            }
+            None => assign(
+                &self.mesh,
+                &self.vertex,
+                &self.spheres,
+                self.deviation.as_deref(),
+                camera,
+                &self.params,
+            ),
+        };
+        if let Some(c) = &mut self.controller {
+            if let Some(t) = last_frame_time {
+                c.update(t);
+            }
+            c.apply(&mut a.depth);
+        }
+        for f in self.mesh.faces() {
+            if self.mesh.is_hole(f) {
+                a.active[f.idx()] = false;
+            }
+        }
+        self.assembler
+            .frame(&self.mesh, &a.depth, &a.active, &mut self.geometry)?;
+        self.assignment = a;
+        Ok(&self.geometry)
+    }
+
+    /// Number of triangles of the uniform tessellation at the maximum depth (for comparison).
+    pub fn uniform_triangles(&self) -> usize {
+        let d = self.params.max_depth as u32;
+        self.mesh
+            .faces()
+            .filter(|&f| !self.mesh.is_hole(f))
+            .map(|f| {
+                let n = self.mesh.face_size(f);
+                if n == 4 {
+                    2usize << (2 * d)
+                } else {
+                    n * (2usize << (2 * d.saturating_sub(1)))
+                }
+            })
+            .sum()
+    }
+
+    /// Chord deviation per face and depth (world units), computed on first use of the
+    /// pixel-error mode.
+    pub fn deviations(&mut self) -> &[Vec<f32>] {
+        if self.deviation.is_none() {
+            self.deviation = Some(chord_deviations(
+                &self.mesh,
+                &self.assembler,
+                self.params.max_depth,
+            ));
+        }
+        self.deviation.as_deref().unwrap_or(&[])
+    }
+}
+
+/// For each cage face and depth `l <= max_depth`: the largest distance between the limit surface
+/// and the bilinear chord quads of the depth-`l` tessellation, sampled on the depth-`max_depth+1`
+/// grid of every patch of the face.
+pub fn chord_deviations(mesh: &Mesh, asm: &Assembler, max_depth: u8) -> Vec<Vec<f32>> {
+    let set = asm.patch_set();
+    let fine = max_depth as u32 + 1;
+    let per_patch: Vec<Vec<f32>> = set
+        .patches()
+        .par_iter()
+        .map_init(
+            || (Worker::new(fine), Vec::new(), Vec::new()),
+            |(w, pos, nrm), p| {
+                // Level-1 patches are one level coarser than their face.
+                let l_fine = fine - p.level as u32;
+                let n = 1usize << l_fine;
+                pos.resize((n + 1) * (n + 1), [0.0f32; 3]);
+                nrm.resize((n + 1) * (n + 1), [0.0f32; 3]);
+                w.patch_grid(set.source(mesh, p), p.src_face, l_fine, pos, nrm);
+                let at = |i: usize, j: usize| Vec3::from(pos[j * (n + 1) + i]);
+                let mut dev = vec![f32::INFINITY; max_depth as usize + 1];
+                for ld in 0..=max_depth as usize {
+                    // Patch depth for face depth `ld`.
+                    let Some(l) = ld.checked_sub(p.level as usize) else {
+                        continue;
+                    };
+                    let step = n >> l;
+                    let mut worst = 0.0f32;
+                    for qj in 0..(1usize << l) {
+                        for qi in 0..(1usize << l) {
+                            let (i0, j0) = (qi * step, qj * step);
+                            let c = [
+                                at(i0, j0),
+                                at(i0 + step, j0),
+                                at(i0 + step, j0 + step),
+                                at(i0, j0 + step),
+                            ];
+                            for j in j0..=j0 + step {
+                                for i in i0..=i0 + step {
+                                    let (u, v) = (
+                                        (i - i0) as f32 / step as f32,
+                                        (j - j0) as f32 / step as f32,
+                                    );
+                                    let b = c[0] * (1.0 - u) * (1.0 - v)
+                                        + c[1] * u * (1.0 - v)
+                                        + c[2] * u * v
+                                        + c[3] * (1.0 - u) * v;
+                                    worst = worst.max((at(i, j) - b).length());
+                                }
+                            }
+                        }
+                    }
+                    dev[ld] = worst;
+                }
+                dev
+            },
+        )
+        .collect();
+    let mut out = vec![vec![0.0f32; max_depth as usize + 1]; mesh.num_faces()];
+    for (p, dev) in set.patches().iter().zip(per_patch) {
+        let f = set.units()[p.unit as usize].face.idx();
+        for (o, d) in out[f].iter_mut().zip(dev) {
+            *o = o.max(d);
+        }
+    }
+    out
+}
