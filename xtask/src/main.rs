@@ -2,9 +2,11 @@
 //!
 //! - `cargo xtask demo`: tessellates the embedded default cage and writes `out/`.
 //! - `cargo xtask test`: installs what the tests need (lavapipe) if missing, then runs every test.
+//! - `cargo xtask figures`: reproduces the papers' tables into `docs/figures.md`.
 //! - `cargo xtask golden [--bless] [--tolerance MEAN,P99] [SCENE...]`: golden-image regression
 //!   (see `docs/golden.md`).
 
+mod figures_doi;
 mod golden;
 mod vulkan;
 
@@ -104,9 +106,10 @@ fn main() -> Result<()> {
     match args.first().map(String::as_str) {
         Some("demo") => demo(),
         Some("test") => test(),
+        Some("figures") => figures_doi::run(&root()),
         Some("golden") => golden::Options::parse(&args[1..]).and_then(|o| golden::run(&root(), &o)),
         _ => {
-            eprintln!("usage: cargo xtask <demo|test|golden [--bless] [--tolerance MEAN,P99] [SCENE...]>");
+            eprintln!("usage: cargo xtask <demo|test|figures|golden [--bless] [--tolerance MEAN,P99] [SCENE...]>");
             std::process::exit(2);
         }
     }
