@@ -231,3 +231,33 @@ impl PolygonSoup {
         created
     }
 }
+
+impl PolygonSoup {
+    /// Copies of this soup translated by each offset, in one soup (tags, holes and groups carried
+    /// over per copy; source lines dropped). Used to build test scenes such as the paper's
+    /// 40-instance scene (Fig. 12).
+    ///
+    /// ```
+    /// use subdiv_mesh::{PolygonSoup, Mesh, glam::Vec3};
+    /// let quad = PolygonSoup::from_faces(vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y], &[vec![0, 1, 2, 3]]);
+    /// let two = quad.instanced(&[Vec3::ZERO, Vec3::new(5.0, 0.0, 0.0)]);
+    /// assert_eq!(Mesh::from_soup(&two).unwrap().num_faces(), 2);
+    /// ```
+    pub fn instanced(&self, offsets: &[glam::Vec3]) -> PolygonSoup {
+        let nv = self.positions.len() as i64;
+        let nf = self.num_faces() as i64;
+        let mut out = PolygonSoup { options: self.options, groups: self.groups.clone(), ..Default::default() };
+        for (k, off) in offsets.iter().enumerate() {
+            let (bv, bf) = (k as i64 * nv, k as i64 * nf);
+            out.positions.extend(self.positions.iter().map(|p| *p + *off));
+            for f in 0..self.num_faces() {
+                out.push_face(self.face(f).iter().map(|&i| i + bv));
+            }
+            out.face_groups.extend_from_slice(&self.face_groups);
+            out.creases.extend(self.creases.iter().map(|t| CreaseTag { a: t.a + bv, b: t.b + bv, line: None, ..*t }));
+            out.corners.extend(self.corners.iter().map(|t| CornerTag { v: t.v + bv, line: None, ..*t }));
+            out.holes.extend(self.holes.iter().map(|t| HoleTag { f: t.f + bf, line: None }));
+        }
+        out
+    }
+}
