@@ -296,3 +296,48 @@ fn unknown_focus_lists_the_groups() {
         out.num_faces()
     );
 }
+
+/// The smallest corner angle of a triangle mesh, in degrees.
+fn min_angle(m: &Mesh) -> f32 {
+    let mut worst = 180.0f32;
+    for f in m.faces() {
+        let v = m.face_vertices(f);
+        for k in 0..3 {
+            let a = m.position(v[k]);
+            let b = m.position(v[(k + 1) % 3]);
+            let c = m.position(v[(k + 2) % 3]);
+            worst = worst.min((b - a).angle_between(c - a).to_degrees());
+        }
+    }
+    worst
+}
+
+#[test]
+fn triangle_quality_does_not_decay_over_steps() {
+    // Green triangles are merged back before they are refined, so more steps do not make
+    // thinner triangles (nested green splits would roughly halve the worst angle every step).
+    let m = load("tri_bunny_3k.obj");
+    let ctx = context(&m);
+    for doi in [Box::new(Silhouette) as Box<dyn Doi>, Box::new(Dihedral)] {
+        let worst = |steps| {
+            let opts = RefineOptions {
+                threshold: doi.default_threshold(),
+                steps,
+                aggregate: Aggregate::Max,
+            };
+            min_angle(
+                &refine_adaptive(&m, doi.as_ref(), &ctx, &opts)
+                    .unwrap()
+                    .mesh
+                    .mesh,
+            )
+        };
+        let (w2, w5) = (worst(2), worst(5));
+        assert!(
+            w5 >= 0.9 * w2,
+            "{}: worst angle {w2}° after 2 steps, {w5}° after 5",
+            doi.name()
+        );
+        assert!(w5 > 0.25 * min_angle(&m), "{}: {w5}°", doi.name());
+    }
+}

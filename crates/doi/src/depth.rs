@@ -27,7 +27,7 @@ pub fn depths_from_face_values(values: &[f32], threshold: f32, max_depth: u8) ->
         .map(|&v| {
             if v.is_nan() || v <= threshold || max_depth == 0 {
                 0
-            } else if !v.is_finite() || !(span > 0.0) {
+            } else if !v.is_finite() || span.is_nan() || span <= 0.0 {
                 max_depth
             } else {
                 let d = (max_depth as f32 * ((v - threshold) / span)).ceil();

@@ -243,11 +243,10 @@ pub fn g1_error(ct_f: &CloughTocher, ka: usize, ct_g: &CloughTocher, kb: usize) 
             None => return 0.0,
         }
     }
-    let mut err = 0.0;
-    for i in 0..3 {
-        err += (v[0][i].abs() - v[1][i].abs()).abs() + (v[0][i].abs() - v[2][i].abs()).abs();
-    }
-    err
+    let [v1, v2, v3] = v;
+    (0..3)
+        .map(|i| (v1[i].abs() - v2[i].abs()).abs() + (v1[i].abs() - v3[i].abs()).abs())
+        .sum()
 }
 
 /// The haptic DoI of eqs. (4)–(6): per edge, the G¹ error between the Clough-Tocher patches on
