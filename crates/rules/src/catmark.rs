@@ -19,6 +19,9 @@ use crate::point::{Point, centroid};
 /// The face point: the centroid of the face's vertices.
 #[inline]
 pub fn face_point<P: Point>(face: &[P]) -> P {
+    if let [a, b, c, d] = face {
+        return a.add(*b).add(c.add(*d)).scale(0.25);
+    }
     centroid(face.iter().copied())
 }
 
@@ -108,16 +111,11 @@ pub fn limit<P: Point>(v: P, edges: &[P], diag: &[P], rule: Rule) -> (P, P, P) {
                 pos = pos.madd(edges[i], we).madd(diag[i], wf);
             }
             if n == 4 {
-                // Regular: A = 4, cosines (1, 0, -1, 0).
-                let t1 = edges[0]
-                    .sub(edges[2])
-                    .scale(4.0)
-                    .add(diag[0].sub(diag[1]).sub(diag[2]).add(diag[3]));
-                let t2 = edges[1]
-                    .sub(edges[3])
-                    .scale(4.0)
-                    .add(diag[0].add(diag[1]).sub(diag[2]).sub(diag[3]));
-                return (pos, t1, t2);
+                return limit_regular(
+                    v,
+                    [edges[0], edges[1], edges[2], edges[3]],
+                    [diag[0], diag[1], diag[2], diag[3]],
+                );
             }
             // Tangents: sum A cos(2 pi i/n) e_i + (cos(2 pi i/n) + cos(2 pi (i+1)/n)) f_i, and
             // the same with sines; A = 1 + cos(2pi/n) + cos(pi/n) sqrt(2 (9 + cos(2pi/n))).
@@ -149,6 +147,23 @@ pub fn limit<P: Point>(v: P, edges: &[P], diag: &[P], rule: Rule) -> (P, P, P) {
             (v, t1, t2)
         }
     }
+}
+
+/// [`limit`] for a smooth regular (valence-4, interior) vertex: the bicubic B-spline at a knot.
+/// Position `(16 v + 4 sum e + sum d) / 36`; tangents with `A = 4` and cosines `(1, 0, -1, 0)`.
+#[inline(always)]
+pub fn limit_regular<P: Point>(v: P, e: [P; 4], d: [P; 4]) -> (P, P, P) {
+    let es = e[0].add(e[1]).add(e[2].add(e[3]));
+    let ds = d[0].add(d[1]).add(d[2].add(d[3]));
+    let pos = v
+        .scale(4.0 / 9.0)
+        .add(es.scale(1.0 / 9.0))
+        .add(ds.scale(1.0 / 36.0));
+    let d02 = d[0].sub(d[2]);
+    let d13 = d[1].sub(d[3]);
+    let t1 = e[0].sub(e[2]).scale(4.0).add(d02.sub(d13));
+    let t2 = e[1].sub(e[3]).scale(4.0).add(d02.add(d13));
+    (pos, t1, t2)
 }
 
 /// Tangent across a crease, over the quads between crease edges `c0 < c1` (Biermann et al. 2000;

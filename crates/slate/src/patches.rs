@@ -3,7 +3,7 @@
 //! (gathered from a local level-1 refinement around such faces only).
 
 use subdiv_mesh::{FaceId, Mesh, VertexId};
-use subdiv_rules::{refine_uniform, RulesError, Scheme};
+use subdiv_rules::{RulesError, Scheme, refine_uniform};
 
 /// `true` for faces that are tessellated through their level-1 quads.
 pub(crate) fn irregular_faces(mesh: &Mesh) -> Vec<bool> {
@@ -110,7 +110,6 @@ pub(crate) fn local_level1(
     Ok((level1, first_child))
 }
 
-
 /// A cage face and the patches it is tessellated with.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Unit {
@@ -173,17 +172,42 @@ impl PatchSet {
             let u = units.len() as u32;
             if irregular[f.idx()] {
                 let n = mesh.face_size(f) as u32;
-                units.push(Unit { face: f, first_patch: patches.len() as u32, patch_count: n, irregular: true });
+                units.push(Unit {
+                    face: f,
+                    first_patch: patches.len() as u32,
+                    patch_count: n,
+                    irregular: true,
+                });
                 for k in 0..n {
-                    patches.push(PatchRef { unit: u, sub: k, level: 1, src_face: FaceId(first_child[f.idx()] + k) });
+                    patches.push(PatchRef {
+                        unit: u,
+                        sub: k,
+                        level: 1,
+                        src_face: FaceId(first_child[f.idx()] + k),
+                    });
                 }
             } else {
-                units.push(Unit { face: f, first_patch: patches.len() as u32, patch_count: 1, irregular: false });
-                patches.push(PatchRef { unit: u, sub: 0, level: 0, src_face: f });
+                units.push(Unit {
+                    face: f,
+                    first_patch: patches.len() as u32,
+                    patch_count: 1,
+                    irregular: false,
+                });
+                patches.push(PatchRef {
+                    unit: u,
+                    sub: 0,
+                    level: 0,
+                    src_face: f,
+                });
             }
         }
         let face_max = mesh.faces().map(|f| mesh.face_size(f)).max().unwrap_or(4);
-        Ok(PatchSet { level1, units, patches, max_valence: mesh.max_valence().max(face_max) })
+        Ok(PatchSet {
+            level1,
+            units,
+            patches,
+            max_valence: mesh.max_valence().max(face_max),
+        })
     }
 
     /// One unit per cage face, in face order.

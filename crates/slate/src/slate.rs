@@ -208,6 +208,8 @@ pub struct Worker {
     r_far: Vec<(f32, u32)>,
     r_diag: Vec<DVec3>,
     maxn: usize,
+    /// Scratch for output ids of a patch grid.
+    pub(crate) ids: Vec<u32>,
 }
 
 impl Worker {
@@ -234,6 +236,7 @@ impl Worker {
             r_far: Vec::with_capacity(4),
             r_diag: Vec::with_capacity(4),
             maxn,
+            ids: Vec::new(),
         }
     }
 
@@ -474,10 +477,16 @@ impl Worker {
             let p = &t.p[..];
             let base = t.at(i0, j);
             let mut bad = false;
-            for (x, k) in (base..=base + (i1 - i0) as usize).enumerate() {
-                let e = [p[k + 1], p[k + s], p[k - 1], p[k - s]];
-                let dg = [p[k + s + 1], p[k + s - 1], p[k - s - 1], p[k - s + 1]];
-                let (pos, t1, t2) = catmark::limit(p[k], &e, &dg, Rule::Smooth);
+            let cnt = (i1 - i0) as usize + 1;
+            // Three rows around the evaluated row, from one column left to one right.
+            let rs = &p[base - s - 1..base - s + cnt + 1];
+            let r0 = &p[base - 1..base + cnt + 1];
+            let rn = &p[base + s - 1..base + s + cnt + 1];
+            for x in 0..cnt {
+                let k = x + 1;
+                let e = [r0[k + 1], rn[k], r0[k - 1], rs[k]];
+                let dg = [rn[k + 1], rn[k - 1], rs[k - 1], rs[k + 1]];
+                let (pos, t1, t2) = catmark::limit_regular(r0[k], e, dg);
                 let nrm = t1.cross(t2);
                 let len2 = nrm.length_squared();
                 if len2 > 0.0 && len2.is_finite() {
@@ -517,10 +526,20 @@ impl Worker {
     /// assert!((p[12][2] - 0.0).abs() < 0.2); // the centre of face 0 (z = 0 side) lies near z = 0
     /// # Ok::<(), subdiv_mesh::MeshError>(())
     /// ```
-    pub fn patch_grid(&mut self, mesh: &Mesh, face: FaceId, depth: u32, pos: &mut [[f32; 3]], nrm: &mut [[f32; 3]]) {
+    pub fn patch_grid(
+        &mut self,
+        mesh: &Mesh,
+        face: FaceId,
+        depth: u32,
+        pos: &mut [[f32; 3]],
+        nrm: &mut [[f32; 3]],
+    ) {
         let n = 1usize << depth;
         let w = n + 1;
-        assert!(pos.len() >= w * w && nrm.len() >= w * w, "grid buffers too small");
+        assert!(
+            pos.len() >= w * w && nrm.len() >= w * w,
+            "grid buffers too small"
+        );
         assert!(n <= self.maxn, "depth exceeds the worker's slates");
         self.gather(mesh, face);
         for _ in 0..depth {
@@ -747,75 +766,74 @@ const SMOOTH: VertexRules = VertexRules {
 
 fn step_regular(src: &Table, dst: &mut Table, corners: &[Corner; 4]) {
     let n = src.n as i32;
-    let smooth = VertexRules {
-        parent: Rule::Smooth,
-        child: Rule::Smooth,
-        parent_weight: 1.0,
-    };
-    // Face points.
+    let ss = src.s;
+    let ds = dst.s;
+    let sp = &src.p[..ss * ss];
+    let row = |j: i32| &sp[(j + 1) as usize * ss..(j + 2) as usize * ss];
+    let dp = &mut dst.p[..ds * ds];
+    let w = n as usize + 2; // points per source row minus one
+    // Face points: dst row 2j+1 (storage row 2j+2), even storage columns.
     for j in -1..=n {
-        for i in -1..=n {
-            let f = catmark::face_point(&[
-                src.p[src.at(i, j)],
-                src.p[src.at(i + 1, j)],
-                src.p[src.at(i + 1, j + 1)],
-                src.p[src.at(i, j + 1)],
-            ]);
-            let k = dst.at(2 * i + 1, 2 * j + 1);
-            dst.p[k] = f;
+        let (r0, r1) = (row(j), row(j + 1));
+        let d = &mut dp[(2 * j + 2) as usize * ds..(2 * j + 3) as usize * ds];
+        for ((f, a), b) in d
+            .iter_mut()
+            .step_by(2)
+            .zip(r0.windows(2))
+            .zip(r1.windows(2))
+        {
+            *f = catmark::face_point(&[a[0], a[1], b[1], b[0]]);
         }
     }
-    // Edge points (faces below/above or left/right are the new face points).
-    for j in 0..=n {
-        for i in -1..=n {
-            let fb = dst.p[dst.at(2 * i + 1, 2 * j - 1)];
-            let fa = dst.p[dst.at(2 * i + 1, 2 * j + 1)];
-            let e =
-                catmark::edge_point(src.p[src.at(i, j)], src.p[src.at(i + 1, j)], &[fb, fa], 0.0);
-            let k = dst.at(2 * i + 1, 2 * j);
-            dst.p[k] = e;
-        }
-    }
-    for j in -1..=n {
-        for i in 0..=n {
-            let fl = dst.p[dst.at(2 * i - 1, 2 * j + 1)];
-            let fr = dst.p[dst.at(2 * i + 1, 2 * j + 1)];
-            let e =
-                catmark::edge_point(src.p[src.at(i, j)], src.p[src.at(i, j + 1)], &[fl, fr], 0.0);
-            let k = dst.at(2 * i, 2 * j + 1);
-            dst.p[k] = e;
-        }
-    }
-    // Vertex points.
-    let corner_at = |i: i32, j: i32| {
+    // Horizontal edge points (dst row 2j, storage 2j+1, even columns) and vertex points (same
+    // row, odd columns); faces in the storage rows below (2j) and above (2j+2).
+    let corner_active = |i: i32, j: i32| {
         (0..4).any(|k| {
             let ((ci, cj), _, _) = corner_frame(k, n);
             ci == i && cj == j && corners[k].active
         })
     };
     for j in 0..=n {
-        for i in 0..=n {
-            if (i == 0 || i == n) && (j == 0 || j == n) && corner_at(i, j) {
+        let (rs, r, rn) = (row(j - 1), row(j), row(j + 1));
+        let base = (2 * j + 1) as usize * ds;
+        let (lo, hi) = dp.split_at_mut(base);
+        let below = &lo[base - ds..];
+        let (mid, above) = hi.split_at_mut(ds);
+        for (((e, ab), fb), fa) in mid
+            .iter_mut()
+            .step_by(2)
+            .zip(r.windows(2))
+            .zip(below.iter().step_by(2))
+            .zip(above.iter().step_by(2))
+        {
+            *e = catmark::edge_point(ab[0], ab[1], &[*fb, *fa], 0.0);
+        }
+        for x in 1..w {
+            let i = x as i32 - 1;
+            if (i == 0 || i == n) && (j == 0 || j == n) && corner_active(i, j) {
                 continue;
             }
-            let v = src.p[src.at(i, j)];
-            let e = [
-                src.p[src.at(i + 1, j)],
-                src.p[src.at(i, j + 1)],
-                src.p[src.at(i - 1, j)],
-                src.p[src.at(i, j - 1)],
-            ];
+            let e = [r[x + 1], rn[x], r[x - 1], rs[x]];
             let f = [
-                dst.p[dst.at(2 * i + 1, 2 * j + 1)],
-                dst.p[dst.at(2 * i - 1, 2 * j + 1)],
-                dst.p[dst.at(2 * i - 1, 2 * j - 1)],
-                dst.p[dst.at(2 * i + 1, 2 * j - 1)],
+                above[2 * x],
+                above[2 * x - 2],
+                below[2 * x - 2],
+                below[2 * x],
             ];
-            let k = dst.at(2 * i, 2 * j);
-            dst.p[k] = catmark::vertex_point(v, &e, &f, &smooth);
+            mid[2 * x - 1] = catmark::vertex_point(r[x], &e, &f, &SMOOTH);
         }
     }
-    let len = dst.s * dst.s;
+    // Vertical edge points: dst row 2j+1 (storage 2j+2), odd columns, between the face points
+    // on either side in the same row.
+    for j in -1..=n {
+        let (r0, r1) = (row(j), row(j + 1));
+        let d = &mut dp[(2 * j + 2) as usize * ds..(2 * j + 3) as usize * ds];
+        for x in 1..w {
+            let (fl, fr) = (d[2 * x - 2], d[2 * x]);
+            d[2 * x - 1] = catmark::edge_point(r0[x], r1[x], &[fl, fr], 0.0);
+        }
+    }
+    let len = ds * ds;
     dst.ex[..len].fill(true);
 }
 

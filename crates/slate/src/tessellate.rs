@@ -167,7 +167,8 @@ pub fn tessellate_layout_into(
 }
 
 /// Gathers, subdivides and evaluates one patch; writes the points it owns and its quads.
-fn run_patch(w: &mut Worker, src: &Mesh, p: &Patch, e: u32, out: &SharedOut, quads: &mut [u32]) {
+fn run_patch(wk: &mut Worker, src: &Mesh, p: &Patch, e: u32, out: &SharedOut, quads: &mut [u32]) {
+    let w = &mut *wk;
     w.gather(src, p.face);
     for _ in 0..e {
         w.step();
@@ -210,17 +211,37 @@ fn run_patch(w: &mut Worker, src: &Mesh, p: &Patch, e: u32, out: &SharedOut, qua
         }
     }
     if !quads.is_empty() {
-        let id = |i: u32, j: u32| -> u32 { point_id(p, n, i, j).0 };
+        // Ids of the whole grid once (border through the layout, interior contiguous), then quads.
+        let w = (n + 1) as usize;
+        let mut ids = std::mem::take(&mut wk.ids);
+        ids.resize(w * w, 0);
+        for j in 0..=n {
+            if j == 0 || j == n {
+                for i in 0..=n {
+                    ids[j as usize * w + i as usize] = point_id(p, n, i, j).0;
+                }
+            } else {
+                let r = j as usize * w;
+                ids[r] = point_id(p, n, 0, j).0;
+                ids[r + w - 1] = point_id(p, n, n, j).0;
+                let first = p.interior + (j - 1) * (n - 1);
+                for (k, id) in ids[r + 1..r + w - 1].iter_mut().enumerate() {
+                    *id = first + k as u32;
+                }
+            }
+        }
         let mut k = 0;
-        for j in 0..n {
-            for i in 0..n {
-                quads[k] = id(i, j);
-                quads[k + 1] = id(i + 1, j);
-                quads[k + 2] = id(i + 1, j + 1);
-                quads[k + 3] = id(i, j + 1);
+        for j in 0..n as usize {
+            for i in 0..n as usize {
+                let a = j * w + i;
+                quads[k] = ids[a];
+                quads[k + 1] = ids[a + 1];
+                quads[k + 2] = ids[a + w + 1];
+                quads[k + 3] = ids[a + w];
                 k += 4;
             }
         }
+        wk.ids = ids;
     }
 }
 
