@@ -5,7 +5,10 @@
 //! - `cargo xtask figures`: reproduces the papers' tables into `docs/figures.md`.
 //! - `cargo xtask golden [--bless] [--tolerance MEAN,P99] [SCENE...]`: golden-image regression
 //!   (see `docs/golden.md`).
+//! - `cargo xtask bench-osd [--install]`: OpenSubdiv 3.5 (libosd-dev) timed beside the slate
+//!   tessellator (see `docs/performance.md`).
 
+mod bench_osd;
 mod figures_doi;
 mod golden;
 mod vulkan;
@@ -107,9 +110,10 @@ fn main() -> Result<()> {
         Some("demo") => demo(),
         Some("test") => test(),
         Some("figures") => figures_doi::run(&root()),
+        Some("bench-osd") => bench_osd::run(&root()),
         Some("golden") => golden::Options::parse(&args[1..]).and_then(|o| golden::run(&root(), &o)),
         _ => {
-            eprintln!("usage: cargo xtask <demo|test|figures|golden [--bless] [--tolerance MEAN,P99] [SCENE...]>");
+            eprintln!("usage: cargo xtask <demo|test|figures|golden [--bless] [--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]>");
             std::process::exit(2);
         }
     }
