@@ -54,6 +54,35 @@ pub struct RefineArgs {
     pub split_nonmanifold: bool,
 }
 
+/// The DoI named `name` for `mesh` (shared by `refine` and `tessellate --doi`).
+pub fn make_doi(
+    name: &str,
+    mesh: &subdiv_mesh::Mesh,
+    focus: &[String],
+    skeleton: Option<&std::path::Path>,
+    hip: bool,
+    input: &str,
+) -> anyhow::Result<Box<dyn Doi>> {
+    Ok(match name {
+        "view-angle" => Box::new(ViewAngle),
+        "silhouette" => Box::new(Silhouette),
+        "dihedral" => Box::new(Dihedral),
+        "haptic" if hip => Box::new(HapticPoint),
+        "haptic" => Box::new(HapticG1),
+        "focus" => {
+            let skeleton = match skeleton {
+                Some(p) => Some(read_skeleton(p)?),
+                None => None,
+            };
+            Box::new(
+                Focus::from_groups(mesh, focus, skeleton, Focus::default_radius(mesh))
+                    .with_context(|| format!("{input}: --focus"))?,
+            )
+        }
+        other => anyhow::bail!("unknown DoI '{other}'"),
+    })
+}
+
 pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
     let input = a.input.display().to_string();
     let mut mesh = crate::load::load_mesh(&a.input, a.split_nonmanifold)?;
@@ -66,24 +95,14 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
             mesh.face_size(f)
         );
     }
-    let doi: Box<dyn Doi> = match a.doi.as_str() {
-        "view-angle" => Box::new(ViewAngle),
-        "silhouette" => Box::new(Silhouette),
-        "dihedral" => Box::new(Dihedral),
-        "haptic" if a.hip.is_some() => Box::new(HapticPoint),
-        "haptic" => Box::new(HapticG1),
-        "focus" => {
-            let skeleton = match &a.skeleton {
-                Some(p) => Some(read_skeleton(p)?),
-                None => None,
-            };
-            Box::new(
-                Focus::from_groups(&mesh, &a.focus, skeleton, Focus::default_radius(&mesh))
-                    .with_context(|| format!("{input}: --focus"))?,
-            )
-        }
-        other => anyhow::bail!("unknown DoI '{other}'"),
-    };
+    let doi = make_doi(
+        &a.doi,
+        &mesh,
+        &a.focus,
+        a.skeleton.as_deref(),
+        a.hip.is_some(),
+        &input,
+    )?;
     if a.doi != "focus" && (!a.focus.is_empty() || a.skeleton.is_some()) {
         anyhow::bail!("--focus and --skeleton need --doi focus");
     }

@@ -4,10 +4,10 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use anyhow::{bail, Context};
+use anyhow::{Context, bail};
 use subdiv_depth::DepthParams;
-use subdiv_mesh::{write_obj, ObjData};
-use subdiv_rules::{tessellate_uniform, Scheme};
+use subdiv_mesh::{ObjData, write_obj};
+use subdiv_rules::{Scheme, tessellate_uniform};
 use subdiv_slate::tessellate as slate_tessellate;
 use subdiv_stitch::{DynamicSubdivision, FanMethod};
 
@@ -72,9 +72,17 @@ impl AdaptiveArgs {
 
 /// Parses `A,B`.
 pub fn parse_pair(s: &str) -> Result<(f32, f32), String> {
-    let (a, b) = s.split_once(',').ok_or_else(|| format!("'{s}' is not MIN,MAX"))?;
-    let a: f32 = a.trim().parse().map_err(|_| format!("'{s}' is not MIN,MAX"))?;
-    let b: f32 = b.trim().parse().map_err(|_| format!("'{s}' is not MIN,MAX"))?;
+    let (a, b) = s
+        .split_once(',')
+        .ok_or_else(|| format!("'{s}' is not MIN,MAX"))?;
+    let a: f32 = a
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{s}' is not MIN,MAX"))?;
+    let b: f32 = b
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{s}' is not MIN,MAX"))?;
     if !(a.is_finite() && b.is_finite() && a > 0.0 && b >= a) {
         return Err(format!("'{s}': need 0 < MIN <= MAX"));
     }
@@ -98,6 +106,16 @@ pub struct TessellateArgs {
     /// Print patches per depth, triangles and the uniform count at the maximum depth.
     #[arg(long)]
     pub stats: bool,
+    /// Drive the Catmull-Clark depths by a Degree-of-Interest function instead of the view
+    /// (face values above the threshold map linearly onto depths 1..max-depth).
+    #[arg(long, value_parser = ["view-angle", "silhouette", "dihedral", "focus"])]
+    pub doi: Option<String>,
+    /// DoI threshold (default: the DoI's figure value from the paper).
+    #[arg(long, allow_hyphen_values = true)]
+    pub threshold: Option<f32>,
+    /// Focus objects (OBJ groups) for --doi focus.
+    #[arg(long = "focus", value_name = "NAME")]
+    pub focus: Vec<String>,
     /// Output OBJ (limit positions, limit normals, faces).
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
@@ -114,8 +132,11 @@ pub fn run(a: &TessellateArgs) -> anyhow::Result<ExitCode> {
     if let Some(depth) = a.depth {
         let t = match scheme {
             // Catmull-Clark runs on the slate tessellator; Loop on the whole-mesh refinement.
-            Scheme::CatmullClark => slate_tessellate(&mesh, depth).map_err(|e| anyhow::anyhow!("{input}: {e}"))?,
-            Scheme::Loop => tessellate_uniform(&mesh, scheme, depth).map_err(|e| anyhow::anyhow!("{input}: {e}"))?,
+            Scheme::CatmullClark => {
+                slate_tessellate(&mesh, depth).map_err(|e| anyhow::anyhow!("{input}: {e}"))?
+            }
+            Scheme::Loop => tessellate_uniform(&mesh, scheme, depth)
+                .map_err(|e| anyhow::anyhow!("{input}: {e}"))?,
         };
         let ms = t0.elapsed().as_secs_f64() * 1e3;
         write_obj(&a.output, &t.obj_data())?;
@@ -132,20 +153,60 @@ pub fn run(a: &TessellateArgs) -> anyhow::Result<ExitCode> {
         }
         return Ok(ExitCode::SUCCESS);
     }
-    if !a.camera.has_camera() {
-        bail!("give --depth N for a uniform tessellation, or a camera (--eye X,Y,Z or --eye-relative X,Y,Z) for an adaptive one");
+    if !a.camera.has_camera() && a.doi.is_none() {
+        bail!(
+            "give --depth N for a uniform tessellation, or a camera (--eye X,Y,Z or --eye-relative X,Y,Z) for an adaptive one"
+        );
     }
     if scheme != Scheme::CatmullClark {
-        bail!("adaptive tessellation with a camera is for --scheme catmull-clark; use `subdiv refine` for adaptive Loop");
+        bail!(
+            "adaptive tessellation with a camera is for --scheme catmull-clark; use `subdiv refine` for adaptive Loop"
+        );
     }
     let (lo, hi) = mesh.bounds();
     let camera = a.camera.camera(lo, hi);
+    let doi_depths = match &a.doi {
+        Some(name) => {
+            let doi =
+                crate::refine::make_doi(name, &mesh, &a.focus, None, false, &input.to_string())?;
+            let ctx = subdiv_doi::DoiContext {
+                camera: Some(camera),
+                ..Default::default()
+            };
+            let (mut scratch, mut values) = (Vec::new(), Vec::new());
+            subdiv_doi::face_values(
+                doi.as_ref(),
+                &mesh,
+                &ctx,
+                subdiv_doi::Aggregate::Max,
+                &mut scratch,
+                &mut values,
+            )
+            .with_context(|| format!("{input}: evaluating the {name} DoI"))?;
+            let t = a.threshold.unwrap_or(doi.default_threshold());
+            Some(subdiv_doi::depths_from_face_values(
+                &values,
+                t,
+                a.adaptive.max_depth,
+            ))
+        }
+        None => None,
+    };
     let mut node = a.adaptive.node(mesh).with_context(|| format!("{input}"))?;
+    node.set_face_depths(doi_depths)?;
     let g = node.update(&camera, None)?;
     let ms = t0.elapsed().as_secs_f64() * 1e3;
     let (pos, nrm, idx) = g.compact();
     let offsets: Vec<u32> = (0..=idx.len() as u32 / 3).map(|i| i * 3).collect();
-    write_obj(&a.output, &ObjData { positions: &pos, normals: Some(&nrm), face_offsets: &offsets, face_indices: &idx })?;
+    write_obj(
+        &a.output,
+        &ObjData {
+            positions: &pos,
+            normals: Some(&nrm),
+            face_offsets: &offsets,
+            face_indices: &idx,
+        },
+    )?;
     println!(
         "tessellated {input}: {} vertices, {} triangles (adaptive, max depth {}) in {ms:.1} ms -> {}",
         pos.len(),
@@ -155,13 +216,29 @@ pub fn run(a: &TessellateArgs) -> anyhow::Result<ExitCode> {
     );
     if a.stats {
         let per = g.units_per_depth();
-        let per: Vec<String> = per.iter().enumerate().map(|(d, n)| format!("{d}:{n}")).collect();
+        let per: Vec<String> = per
+            .iter()
+            .enumerate()
+            .map(|(d, n)| format!("{d}:{n}"))
+            .collect();
         let culled = g.unit_depth.iter().filter(|&&d| d == u8::MAX).count();
-        println!("patches per depth: {}{}", per.join(" "), if culled > 0 { format!(" culled:{culled}") } else { String::new() });
+        println!(
+            "patches per depth: {}{}",
+            per.join(" "),
+            if culled > 0 {
+                format!(" culled:{culled}")
+            } else {
+                String::new()
+            }
+        );
         let tris = g.num_triangles();
         let uni = node.uniform_triangles();
         println!("triangles: {tris}");
-        println!("uniform triangles at max depth {}: {uni} (adaptive/uniform = {:.3})", a.adaptive.max_depth, tris as f64 / uni.max(1) as f64);
+        println!(
+            "uniform triangles at max depth {}: {uni} (adaptive/uniform = {:.3})",
+            a.adaptive.max_depth,
+            tris as f64 / uni.max(1) as f64
+        );
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -20,7 +20,11 @@ fn tmp(name: &str) -> PathBuf {
 
 fn run(args: &[&str]) -> (i32, String, String) {
     let o = bin().args(args).output().unwrap();
-    (o.status.code().unwrap_or(-1), String::from_utf8_lossy(&o.stdout).into(), String::from_utf8_lossy(&o.stderr).into())
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into(),
+        String::from_utf8_lossy(&o.stderr).into(),
+    )
 }
 
 const QUAD_HEAD: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
@@ -28,12 +32,42 @@ const QUAD_HEAD: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
 #[test]
 fn bad_inputs_give_located_errors() {
     let cases: &[(&str, String, &str, u32)] = &[
-        ("range", format!("{QUAD_HEAD}f 1 2 3 9\n"), "vertex index 8 is out of range", 5),
-        ("small", format!("{QUAD_HEAD}f 1 2\n"), "has 2 vertices; a face needs at least 3", 5),
-        ("repeat", format!("{QUAD_HEAD}f 1 2 2 3\n"), "more than once", 5),
-        ("nan", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n".into(), "non-finite coordinate", 2),
-        ("inf", "v 0 0 0\nv 1 0 inf\nv 0 1 0\nf 1 2 3\n".into(), "non-finite coordinate", 2),
-        ("syntax", "v 0 0 0\nv 1 zero 0\n".into(), "invalid coordinate 'zero'", 2),
+        (
+            "range",
+            format!("{QUAD_HEAD}f 1 2 3 9\n"),
+            "vertex index 8 is out of range",
+            5,
+        ),
+        (
+            "small",
+            format!("{QUAD_HEAD}f 1 2\n"),
+            "has 2 vertices; a face needs at least 3",
+            5,
+        ),
+        (
+            "repeat",
+            format!("{QUAD_HEAD}f 1 2 2 3\n"),
+            "more than once",
+            5,
+        ),
+        (
+            "nan",
+            "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n".into(),
+            "non-finite coordinate",
+            2,
+        ),
+        (
+            "inf",
+            "v 0 0 0\nv 1 0 inf\nv 0 1 0\nf 1 2 3\n".into(),
+            "non-finite coordinate",
+            2,
+        ),
+        (
+            "syntax",
+            "v 0 0 0\nv 1 zero 0\n".into(),
+            "invalid coordinate 'zero'",
+            2,
+        ),
         (
             "nonmanifold-edge",
             "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n".into(),
@@ -46,51 +80,129 @@ fn bad_inputs_give_located_errors() {
             "vertex 0 is non-manifold",
             1,
         ),
-        ("orientation", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 1 2 4\n".into(), "inconsistent orientation", 6),
-        ("crease-edge", format!("{QUAD_HEAD}f 1 2 3 4\nt crease 2/1/0 0 2 1\n"), "not an edge of the mesh", 6),
-        ("crease-vertex", format!("{QUAD_HEAD}f 1 2 3 4\nt crease 2/1/0 0 7 1\n"), "names vertex 7", 6),
-        ("corner-vertex", format!("{QUAD_HEAD}f 1 2 3 4\nt corner 1/1/0 9 1\n"), "names vertex 9", 6),
-        ("hole-face", format!("{QUAD_HEAD}f 1 2 3 4\nt hole 1/0/0 3\n"), "names face 3", 6),
-        ("sharpness", format!("{QUAD_HEAD}f 1 2 3 4\nt crease 2/1/0 0 1 -2\n"), "invalid sharpness", 6),
-        ("tag-count", format!("{QUAD_HEAD}f 1 2 3 4\nt crease 2/1/0 0 1\n"), "announce 3 arguments", 6),
-        ("index-zero", format!("{QUAD_HEAD}f 0 1 2\n"), "face index 0 is invalid", 5),
+        (
+            "orientation",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 1 2 4\n".into(),
+            "inconsistent orientation",
+            6,
+        ),
+        (
+            "crease-edge",
+            format!("{QUAD_HEAD}f 1 2 3 4\nt crease 2/1/0 0 2 1\n"),
+            "not an edge of the mesh",
+            6,
+        ),
+        (
+            "crease-vertex",
+            format!("{QUAD_HEAD}f 1 2 3 4\nt crease 2/1/0 0 7 1\n"),
+            "names vertex 7",
+            6,
+        ),
+        (
+            "corner-vertex",
+            format!("{QUAD_HEAD}f 1 2 3 4\nt corner 1/1/0 9 1\n"),
+            "names vertex 9",
+            6,
+        ),
+        (
+            "hole-face",
+            format!("{QUAD_HEAD}f 1 2 3 4\nt hole 1/0/0 3\n"),
+            "names face 3",
+            6,
+        ),
+        (
+            "sharpness",
+            format!("{QUAD_HEAD}f 1 2 3 4\nt crease 2/1/0 0 1 -2\n"),
+            "invalid sharpness",
+            6,
+        ),
+        (
+            "tag-count",
+            format!("{QUAD_HEAD}f 1 2 3 4\nt crease 2/1/0 0 1\n"),
+            "announce 3 arguments",
+            6,
+        ),
+        (
+            "index-zero",
+            format!("{QUAD_HEAD}f 0 1 2\n"),
+            "face index 0 is invalid",
+            5,
+        ),
     ];
     for (name, text, want, line) in cases {
         let p = tmp(&format!("{name}.obj"));
         std::fs::write(&p, text).unwrap();
         let out = tmp(&format!("{name}.out.obj"));
         for args in [
-            vec!["tessellate", p.to_str().unwrap(), "--depth", "1", "-o", out.to_str().unwrap()],
+            vec![
+                "tessellate",
+                p.to_str().unwrap(),
+                "--depth",
+                "1",
+                "-o",
+                out.to_str().unwrap(),
+            ],
             vec!["info", p.to_str().unwrap()],
         ] {
             let (code, _stdout, stderr) = run(&args);
             assert_ne!(code, 0, "{name}: {args:?} succeeded");
             assert!(!stderr.contains("panicked"), "{name}: panic: {stderr}");
             let prefix = format!("error: {}:{line}: ", p.display());
-            assert!(stderr.contains(&prefix), "{name}: expected '{prefix}' in: {stderr}");
-            assert!(stderr.contains(want), "{name}: expected '{want}' in: {stderr}");
+            assert!(
+                stderr.contains(&prefix),
+                "{name}: expected '{prefix}' in: {stderr}"
+            );
+            assert!(
+                stderr.contains(want),
+                "{name}: expected '{want}' in: {stderr}"
+            );
         }
     }
 }
 
 #[test]
 fn missing_file_and_loop_on_quads() {
-    let (code, _, err) = run(&["tessellate", "/nonexistent/x.obj", "--depth", "1", "-o", "/tmp/x.obj"]);
+    let (code, _, err) = run(&[
+        "tessellate",
+        "/nonexistent/x.obj",
+        "--depth",
+        "1",
+        "-o",
+        "/tmp/x.obj",
+    ]);
     assert_ne!(code, 0);
     assert!(err.starts_with("error: /nonexistent/x.obj: "), "{err}");
     let cube = fixtures().join("reference/shapes/catmark_cube.obj");
     let out = tmp("loopcube.obj");
-    let (code, _, err) =
-        run(&["tessellate", cube.to_str().unwrap(), "--scheme", "loop", "--depth", "1", "-o", out.to_str().unwrap()]);
+    let (code, _, err) = run(&[
+        "tessellate",
+        cube.to_str().unwrap(),
+        "--scheme",
+        "loop",
+        "--depth",
+        "1",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     assert_ne!(code, 0);
-    assert!(err.contains("Loop subdivision needs a triangle mesh"), "{err}");
+    assert!(
+        err.contains("Loop subdivision needs a triangle mesh"),
+        "{err}"
+    );
 }
 
 #[test]
 fn tessellate_writes_limit_obj() {
     let cube = fixtures().join("reference/shapes/catmark_cube.obj");
     let out = tmp("cube2.obj");
-    let (code, stdout, err) = run(&["tessellate", cube.to_str().unwrap(), "--depth", "2", "-o", out.to_str().unwrap()]);
+    let (code, stdout, err) = run(&[
+        "tessellate",
+        cube.to_str().unwrap(),
+        "--depth",
+        "2",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     assert_eq!(code, 0, "{err}");
     assert!(stdout.contains("98 vertices, 96 faces"), "{stdout}");
     let text = std::fs::read_to_string(&out).unwrap();
@@ -107,14 +219,81 @@ fn info_reports_topology() {
     let torus = fixtures().join("meshes/cc_3torus.obj");
     let (code, stdout, _) = run(&["info", torus.to_str().unwrap()]);
     assert_eq!(code, 0);
-    for want in ["vertices: 19", "faces: 23", "genus: 3", "boundary loops: 0", "status: ok"] {
+    for want in [
+        "vertices: 19",
+        "faces: 23",
+        "genus: 3",
+        "boundary loops: 0",
+        "status: ok",
+    ] {
         assert!(stdout.contains(want), "missing '{want}' in {stdout}");
     }
     let teapot = fixtures().join("meshes/tri_teapot.obj");
     let (code, stdout, err) = run(&["info", teapot.to_str().unwrap()]);
     assert_eq!(code, 1);
-    assert!(stdout.contains("status: refused") && err.contains("--split-nonmanifold"), "{stdout}{err}");
+    assert!(
+        stdout.contains("status: refused") && err.contains("--split-nonmanifold"),
+        "{stdout}{err}"
+    );
     let (code, stdout, _) = run(&["info", "--split-nonmanifold", teapot.to_str().unwrap()]);
     assert_eq!(code, 0);
-    assert!(stdout.contains("boundary loops: ") && stdout.contains("loop yes"), "{stdout}");
+    assert!(
+        stdout.contains("boundary loops: ") && stdout.contains("loop yes"),
+        "{stdout}"
+    );
+}
+
+#[test]
+fn adaptive_and_doi_tessellation() {
+    let pawn = fixtures().join("reference/shapes/catmark_pawn.obj");
+    let out = tmp("pawn_adaptive.obj");
+    let (code, stdout, err) = run(&[
+        "tessellate",
+        pawn.to_str().unwrap(),
+        "--eye-relative",
+        "0.3,0.4,2.5",
+        "--max-depth",
+        "3",
+        "--stats",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("patches per depth: 0:"), "{stdout}");
+    let tris: usize = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("triangles: "))
+        .unwrap()
+        .parse()
+        .unwrap();
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(text.lines().filter(|l| l.starts_with("f ")).count(), tris);
+    // The adaptive mesh is a valid, edge-manifold mesh (only the pawn's own boundary is open).
+    let m = subdiv_mesh::read_obj(&out).unwrap();
+    assert_eq!(subdiv_mesh::MeshStats::of(&m).boundary_loops, 1);
+    // DoI-driven depths for Catmull-Clark: the dihedral DoI needs no camera.
+    let (code, stdout, err) = run(&[
+        "tessellate",
+        pawn.to_str().unwrap(),
+        "--doi",
+        "dihedral",
+        "--stats",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("adaptive/uniform"), "{stdout}");
+    // Bad values are errors, not panics.
+    for bad in [
+        vec!["--pixel-error", "-1", "--eye-relative", "0,0,3"],
+        vec!["--projected-size", "8,2", "--eye-relative", "0,0,3"],
+        vec![],
+    ] {
+        let mut args = vec!["tessellate", pawn.to_str().unwrap(), "-o", "/tmp/never.obj"];
+        args.extend(bad.iter().copied());
+        let (code, _, err) = run(&args);
+        assert_ne!(code, 0);
+        assert!(err.starts_with("error"), "{err}");
+        assert!(!err.contains("panicked"));
+    }
 }
