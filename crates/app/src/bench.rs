@@ -4,7 +4,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use subdiv_slate::{slate_bytes_per_thread, tessellate_layout, tessellate_layout_into, PatchLayout};
+use subdiv_slate::{
+    PatchLayout, slate_bytes_per_thread, tessellate_layout, tessellate_layout_into,
+};
 
 #[derive(clap::Args, Debug)]
 pub struct BenchArgs {
@@ -53,9 +55,12 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
     anyhow::ensure!(a.depth >= 1, "--depth must be at least 1");
     anyhow::ensure!(a.runs >= 1, "--runs must be at least 1");
     let threads = a.threads.unwrap_or_else(rayon::current_num_threads);
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()?;
     let t0 = Instant::now();
-    let layout = PatchLayout::new(&mesh, a.depth).map_err(|e| anyhow::anyhow!("{}: {e}", a.input.display()))?;
+    let layout = PatchLayout::new(&mesh, a.depth)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", a.input.display()))?;
     let setup = t0.elapsed().as_secs_f64();
     // Warm-up, then timed runs into the same output buffers (per-frame steady state).
     let mut out = pool.install(|| tessellate_layout(&mesh, &layout))?;

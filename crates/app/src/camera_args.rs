@@ -54,7 +54,11 @@ impl CameraArgs {
 pub fn parse_vec3(s: &str) -> Result<Vec3, String> {
     let v: Vec<f32> = s
         .split(',')
-        .map(|t| t.trim().parse::<f32>().map_err(|_| format!("'{s}' is not X,Y,Z")))
+        .map(|t| {
+            t.trim()
+                .parse::<f32>()
+                .map_err(|_| format!("'{s}' is not X,Y,Z"))
+        })
         .collect::<Result<_, _>>()?;
     match v.as_slice() {
         [x, y, z] if x.is_finite() && y.is_finite() && z.is_finite() => Ok(Vec3::new(*x, *y, *z)),
@@ -64,7 +68,9 @@ pub fn parse_vec3(s: &str) -> Result<Vec3, String> {
 
 /// Parses `WxH`.
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("'{s}' is not WxH"))?;
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("'{s}' is not WxH"))?;
     let w: u32 = w.trim().parse().map_err(|_| format!("'{s}' is not WxH"))?;
     let h: u32 = h.trim().parse().map_err(|_| format!("'{s}' is not WxH"))?;
     if w == 0 || h == 0 || w > 16384 || h > 16384 {

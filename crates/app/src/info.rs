@@ -4,7 +4,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use subdiv_mesh::{read_obj_soup, BoundaryInterpolation, CreaseMethod, Mesh, MeshStats, ObjError};
+use subdiv_mesh::{BoundaryInterpolation, CreaseMethod, Mesh, MeshStats, ObjError, read_obj_soup};
 
 #[derive(clap::Args, Debug)]
 pub struct InfoArgs {
@@ -16,7 +16,10 @@ pub struct InfoArgs {
 }
 
 fn histogram(h: &std::collections::BTreeMap<usize, usize>) -> String {
-    h.iter().map(|(k, n)| format!("{k}:{n}")).collect::<Vec<_>>().join(" ")
+    h.iter()
+        .map(|(k, n)| format!("{k}:{n}"))
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 /// Prints the report; exits 1 (after the report) when the mesh would be refused.
@@ -55,8 +58,16 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<ExitCode> {
     writeln!(out, "faces: {}", s.faces)?;
     writeln!(out, "face sizes: {}", histogram(&s.face_sizes))?;
     writeln!(out, "valences: {}", histogram(&s.valences))?;
-    writeln!(out, "max valence: {}", s.valences.keys().max().copied().unwrap_or(0))?;
-    writeln!(out, "boundary loops: {} ({} edges)", s.boundary_loops, s.boundary_edges)?;
+    writeln!(
+        out,
+        "max valence: {}",
+        s.valences.keys().max().copied().unwrap_or(0)
+    )?;
+    writeln!(
+        out,
+        "boundary loops: {} ({} edges)",
+        s.boundary_loops, s.boundary_edges
+    )?;
     writeln!(
         out,
         "creases: {} semi-sharp edges (max sharpness {}), {} infinitely sharp edges",
@@ -85,7 +96,11 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<ExitCode> {
     writeln!(
         out,
         "schemes: catmull-clark yes, loop {}",
-        if loop_ok { "yes" } else { "no (faces other than triangles; use --triangulate)" }
+        if loop_ok {
+            "yes"
+        } else {
+            "no (faces other than triangles; use --triangulate)"
+        }
     )?;
     writeln!(out, "status: ok")?;
     print!("{out}");

@@ -1,6 +1,7 @@
 //! `subdiv`: the command-line front end. It parses arguments and wires the library crates
 //! together; all geometry lives in the libraries.
 
+mod bench;
 mod camera_args;
 mod info;
 mod load;
@@ -30,6 +31,8 @@ enum Command {
     Tessellate(tessellate::TessellateArgs),
     /// Adaptive Loop subdivision driven by a Degree-of-Interest function (Isenberg et al. 2003).
     Refine(refine::RefineArgs),
+    /// Benchmarks (median of repeated runs).
+    Bench(bench::BenchArgs),
     /// Render the limit surface headless with Vulkan to PNG (and EXR).
     Render(render::RenderArgs),
     /// Open the interactive Vulkan viewer on the limit surface.
@@ -42,6 +45,7 @@ fn main() -> ExitCode {
         Command::Info(a) => info::run(&a),
         Command::Tessellate(a) => tessellate::run(&a),
         Command::Refine(a) => refine::run(&a),
+        Command::Bench(a) => bench::run(&a),
         Command::Render(a) => render::run(&a),
         Command::View(a) => view::run(&a),
     };
