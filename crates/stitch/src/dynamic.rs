@@ -13,7 +13,7 @@ use subdiv_depth::{
 use subdiv_mesh::{Camera, Mesh};
 use subdiv_slate::Worker;
 
-use crate::StitchError;
+use crate::AssemblyError;
 use crate::fans::{Assembler, FanMethod, FrameGeometry};
 
 /// View-dependent adaptive Catmull-Clark tessellation with crack-free stitching.
@@ -47,7 +47,7 @@ pub struct DynamicSubdivision {
 
 impl DynamicSubdivision {
     /// Sets up the node for `mesh`: curvature depths, bounding spheres and patches.
-    pub fn new(mesh: Mesh, params: DepthParams) -> Result<DynamicSubdivision, StitchError> {
+    pub fn new(mesh: Mesh, params: DepthParams) -> Result<DynamicSubdivision, AssemblyError> {
         let vertex = VertexData::compute(&mesh, params.cone_aperture_deg, params.max_depth);
         let spheres = face_spheres(&mesh, &vertex);
         let assembler = Assembler::new(&mesh, params.max_depth as u32)?;
@@ -75,7 +75,7 @@ impl DynamicSubdivision {
     }
     /// Changes the parameters (curvature depths are recomputed when the aperture or the maximum
     /// depth changes).
-    pub fn set_params(&mut self, p: DepthParams) -> Result<(), StitchError> {
+    pub fn set_params(&mut self, p: DepthParams) -> Result<(), AssemblyError> {
         let recompute = p.cone_aperture_deg != self.params.cone_aperture_deg
             || p.max_depth != self.params.max_depth;
         if p.max_depth != self.params.max_depth {
@@ -103,10 +103,10 @@ impl DynamicSubdivision {
     }
     /// Overrides the view-dependent depths with fixed per-face depths (uniform tessellation, or
     /// depths from a Degree-of-Interest function); `None` returns to view-dependent depths.
-    pub fn set_face_depths(&mut self, depths: Option<Vec<u8>>) -> Result<(), StitchError> {
+    pub fn set_face_depths(&mut self, depths: Option<Vec<u8>>) -> Result<(), AssemblyError> {
         if let Some(d) = &depths {
             if d.len() != self.mesh.num_faces() {
-                return Err(StitchError::Length {
+                return Err(AssemblyError::Length {
                     what: "face depths",
                     got: d.len(),
                     want: self.mesh.num_faces(),
@@ -140,7 +140,7 @@ impl DynamicSubdivision {
         &mut self,
         camera: &Camera,
         last_frame_time: Option<f32>,
-    ) -> Result<&FrameGeometry, StitchError> {
+    ) -> Result<&FrameGeometry, AssemblyError> {
         if self.params.pixel_error.is_some() && self.deviation.is_none() {
             self.deviation = Some(chord_deviations(
                 &self.mesh,

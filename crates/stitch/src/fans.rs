@@ -20,7 +20,7 @@ use rayon::prelude::*;
 use subdiv_mesh::{HalfedgeId, Mesh, VertexId};
 use subdiv_slate::{PatchRef, PatchSet, Worker};
 
-use crate::StitchError;
+use crate::AssemblyError;
 
 /// How the quads next to a deeper neighbour are closed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -133,9 +133,9 @@ struct Frame<'a> {
 
 impl Assembler {
     /// Sets up the patches of `mesh`. `maxsd` is the deepest depth that will be requested.
-    pub fn new(mesh: &Mesh, maxsd: u32) -> Result<Assembler, StitchError> {
+    pub fn new(mesh: &Mesh, maxsd: u32) -> Result<Assembler, AssemblyError> {
         if maxsd > subdiv_slate::MAX_DEPTH - 1 {
-            return Err(StitchError::TooDeep {
+            return Err(AssemblyError::TooDeep {
                 depth: maxsd,
                 max: subdiv_slate::MAX_DEPTH - 1,
             });
@@ -203,10 +203,10 @@ impl Assembler {
         depth: &[u8],
         active: &[bool],
         out: &mut FrameGeometry,
-    ) -> Result<(), StitchError> {
+    ) -> Result<(), AssemblyError> {
         let nu = self.set.units().len();
         if depth.len() != nu || active.len() != nu {
-            return Err(StitchError::Length {
+            return Err(AssemblyError::Length {
                 what: "depth/active",
                 got: depth.len().min(active.len()),
                 want: nu,

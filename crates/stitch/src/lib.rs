@@ -35,9 +35,9 @@ pub mod red_green;
 pub use dynamic::{DynamicSubdivision, chord_deviations};
 pub use fans::{Assembler, FanMethod, FrameGeometry};
 
-/// Errors of the Catmull-Clark assembly.
+/// Errors of the Catmull-Clark assembly ([`Assembler`], [`DynamicSubdivision`]).
 #[derive(Debug, thiserror::Error)]
-pub enum StitchError {
+pub enum AssemblyError {
     /// Set-up of the patches failed.
     #[error(transparent)]
     Rules(#[from] subdiv_rules::RulesError),
