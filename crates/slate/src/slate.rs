@@ -148,6 +148,48 @@ impl Table {
             && self.ex[k - s - 1]
     }
 
+    /// Marks the points whose rules are not the smooth regular ones: the ends of sharp edges and
+    /// the neighbours of missing points. Returns `true` if any point is missing.
+    fn mark_dirty(&self, dirty: &mut Vec<bool>) -> bool {
+        let s = self.s;
+        let len = s * s;
+        dirty.clear();
+        dirty.resize(len, false);
+        let mut missing = false;
+        for k in 0..len {
+            if self.hs[k] != 0.0 {
+                dirty[k] = true;
+                if k + 1 < len {
+                    dirty[k + 1] = true;
+                }
+            }
+            if self.vs[k] != 0.0 {
+                dirty[k] = true;
+                if k + s < len {
+                    dirty[k + s] = true;
+                }
+            }
+            if !self.ex[k] {
+                missing = true;
+            }
+        }
+        if missing {
+            for k in 0..len {
+                if !self.ex[k] {
+                    let (i, j) = ((k % s) as i32 - 1, (k / s) as i32 - 1);
+                    for dj in -1..=1 {
+                        for di in -1..=1 {
+                            if self.inside(i + di, j + dj) {
+                                dirty[self.at(i + di, j + dj)] = true;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        missing
+    }
+
     /// `true` if the quad with lower-left corner `(i,j)` exists.
     #[inline]
     fn face_exists(&self, i: i32, j: i32) -> bool {
@@ -210,6 +252,10 @@ pub struct Worker {
     maxn: usize,
     /// Scratch for output ids of a patch grid.
     pub(crate) ids: Vec<u32>,
+    /// Per table point: near a sharp edge or a missing point (general rules needed).
+    dirty: Vec<bool>,
+    /// `dirty` describes the current slate.
+    dirty_ready: bool,
 }
 
 impl Worker {
@@ -237,6 +283,8 @@ impl Worker {
             r_diag: Vec::with_capacity(4),
             maxn,
             ids: Vec::new(),
+            dirty: Vec::new(),
+            dirty_ready: false,
         }
     }
 
@@ -249,6 +297,7 @@ impl Worker {
     /// Gathers the 1-neighbourhood of quad `f` of `mesh` (whose neighbourhood is all quads) into
     /// slate 0 (paper Fig. 2).
     pub(crate) fn gather(&mut self, mesh: &Mesh, f: FaceId) {
+        self.dirty_ready = false;
         self.cur = 0;
         self.method = mesh.options().crease;
         self.origin32 = Vec3A::from(mesh.position(mesh.from(mesh.face_halfedge(f))));
@@ -388,6 +437,7 @@ impl Worker {
 
     /// One subdivision step: slate `cur` to slate `1 - cur`, corner arrays refined in place.
     pub(crate) fn step(&mut self) {
+        self.dirty_ready = false;
         let (a, b) = self.t.split_at_mut(1);
         let (src, dst) = if self.cur == 0 {
             (&a[0], &mut b[0])
@@ -405,6 +455,7 @@ impl Worker {
             step_regular(src, dst, &self.corners);
         } else {
             let scratch = Scratch {
+                dirty: &mut self.dirty,
                 e_pts: &mut self.e_pts,
                 f_pts: &mut self.f_pts,
                 e_sh: &mut self.e_sh,
@@ -505,7 +556,26 @@ impl Worker {
             }
             return;
         }
+        // General table: the regular masks wherever the point is clean.
+        if !self.dirty_ready {
+            self.t[self.cur].mark_dirty(&mut self.dirty);
+            self.dirty_ready = true;
+        }
         for i in i0..=i1 {
+            let t = &self.t[self.cur];
+            let k = t.at(i, j);
+            if !self.dirty[k] {
+                let (s, p) = (t.s, &t.p);
+                let e = [p[k + 1], p[k + s], p[k - 1], p[k - s]];
+                let dg = [p[k + s + 1], p[k + s - 1], p[k - s - 1], p[k - s + 1]];
+                let (pos, t1, t2) = catmark::limit_regular(p[k], e, dg);
+                let nrm = t1.cross(t2);
+                let len2 = nrm.length_squared();
+                if len2 > 0.0 && len2.is_finite() {
+                    emit((i - i0) as usize, pos + self.origin32, nrm * len2.sqrt().recip());
+                    continue;
+                }
+            }
             let (pos, nrm) = self.limit(i, j);
             emit((i - i0) as usize, pos, nrm);
         }
@@ -838,6 +908,7 @@ fn step_regular(src: &Table, dst: &mut Table, corners: &[Corner; 4]) {
 }
 
 struct Scratch<'a> {
+    dirty: &'a mut Vec<bool>,
     e_pts: &'a mut Vec<Vec3A>,
     f_pts: &'a mut Vec<Vec3A>,
     e_sh: &'a mut Vec<f32>,
@@ -860,26 +931,24 @@ fn step_general(
             ci == i && cj == j && corners[k].active
         })
     };
-    // Face points.
-    for j in -1..=n {
-        for i in -1..=n {
-            if src.face_exists(i, j) {
-                let f = catmark::face_point(&[
-                    src.p[src.at(i, j)],
-                    src.p[src.at(i + 1, j)],
-                    src.p[src.at(i + 1, j + 1)],
-                    src.p[src.at(i, j + 1)],
-                ]);
-                let k = dst.at(2 * i + 1, 2 * j + 1);
-                dst.p[k] = f;
-                dst.ex[k] = true;
+    // The smooth regular rules everywhere first; then the general rules where they differ.
+    step_regular(src, dst, corners);
+    let missing = src.mark_dirty(sc.dirty);
+    if missing {
+        for j in -1..=n {
+            for i in -1..=n {
+                if !src.face_exists(i, j) {
+                    let k = dst.at(2 * i + 1, 2 * j + 1);
+                    dst.ex[k] = false;
+                }
             }
         }
     }
     // Vertex points and the child sharpness of every edge at its inner ends.
     for j in 0..=n {
         for i in 0..=n {
-            if let Some(k) = is_corner(i, j) {
+            let at_corner = (i == 0 || i == n) && (j == 0 || j == n);
+            if let Some(k) = at_corner.then(|| is_corner(i, j)).flatten() {
                 // Child sharpness comes from the (already refined) corner array.
                 let ((ci, cj), d, d2) = corner_frame(k, n);
                 let c = &corners[k];
@@ -893,23 +962,7 @@ fn step_general(
             if !src.ex[src.at(i, j)] {
                 continue;
             }
-            if src.is_plain(i, j) {
-                let v = src.p[src.at(i, j)];
-                let e = [
-                    src.p[src.at(i + 1, j)],
-                    src.p[src.at(i, j + 1)],
-                    src.p[src.at(i - 1, j)],
-                    src.p[src.at(i, j - 1)],
-                ];
-                let f = [
-                    dst.p[dst.at(2 * i + 1, 2 * j + 1)],
-                    dst.p[dst.at(2 * i - 1, 2 * j + 1)],
-                    dst.p[dst.at(2 * i - 1, 2 * j - 1)],
-                    dst.p[dst.at(2 * i + 1, 2 * j - 1)],
-                ];
-                let k = dst.at(2 * i, 2 * j);
-                dst.p[k] = catmark::vertex_point(v, &e, &f, &SMOOTH);
-                dst.ex[k] = true;
+            if !sc.dirty[src.at(i, j)] {
                 continue;
             }
             sc.dirs.clear();
@@ -951,10 +1004,16 @@ fn step_general(
         };
         for j in rj.clone() {
             for i in ri.clone() {
-                if !src.edge_exists(i, j, dir) {
+                let (bi, bj) = (i + DI[dir], j + DJ[dir]);
+                // A missing end marks both ends dirty, so clean edges exist.
+                if !(sc.dirty[src.at(i, j)] || sc.dirty[src.at(bi, bj)]) {
                     continue;
                 }
-                let (bi, bj) = (i + DI[dir], j + DJ[dir]);
+                if !src.edge_exists(i, j, dir) {
+                    let k = dst.at(i + bi, j + bj);
+                    dst.ex[k] = false;
+                    continue;
+                }
                 let s = src.edge_sharp(i, j, dir);
                 let sides: [(i32, i32); 2] = if dir == 0 {
                     [(i, j - 1), (i, j)]
