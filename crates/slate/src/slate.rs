@@ -329,26 +329,64 @@ impl Worker {
             }
         }
         self.regular = true;
-        // Corners.
+        // Table edges and their half-edges: the face's sides, the three other sides of each edge
+        // neighbour, and the two outer sides of each regular corner's diagonal face. Directions:
+        // 0 = +i, 1 = +j, 2 = -i, 3 = -j; `side_dir[k]` runs along side k, `out_dir[k]` away from it.
+        let side_dir = [0usize, 1, 2, 3];
+        let out_dir = [3usize, 0, 1, 2];
+        let mut edges: [((i32, i32), usize, HalfedgeId); 24] = [((0, 0), 0, HalfedgeId::NONE); 24];
+        let mut ne = 0;
+        for k in 0..4 {
+            edges[ne] = (cpos[k], side_dir[k], hs[k]);
+            ne += 1;
+            let tw = hs[k].twin();
+            if mesh.face(tw).is_some() {
+                let g1 = mesh.next(tw);
+                let g2 = mesh.next(g1);
+                let (ai, aj) = cpos[k];
+                let (oi, oj) = out[k];
+                edges[ne] = (cpos[k], out_dir[k], g1);
+                edges[ne + 1] = ((ai + oi, aj + oj), side_dir[k], g2);
+                edges[ne + 2] = (cpos[(k + 1) % 4], out_dir[k], mesh.next(g2));
+                ne += 3;
+            }
+        }
+        // Corners: a smooth interior valence-4 corner completes the table with its diagonal
+        // vertex; any other corner keeps its whole ring in a corner array.
         for k in 0..4 {
             let v = mesh.from(hs[k]);
+            let boundary = mesh.is_boundary_vertex(v);
+            let mut valence = 0usize;
+            let mut sharp = mesh.vertex_sharpness(v) > 0.0;
+            for h in mesh.outgoing(v) {
+                valence += 1;
+                sharp |= mesh.edge_sharpness(h.edge()) > 0.0;
+                if valence > 4 {
+                    break;
+                }
+            }
             let c = &mut self.corners[k];
-            c.ring
-                .load_with_halfedges(mesh, v, Scheme::CatmullClark, &mut self.hes);
-            c.valence = self.hes.len();
-            c.boundary = mesh.is_boundary_vertex(v);
-            c.ih = self.hes.iter().position(|&h| h == hs[k]).unwrap_or(0);
-            let sharp = mesh.vertex_sharpness(v) > 0.0
-                || self.hes.iter().any(|h| mesh.edge_sharpness(h.edge()) > 0.0);
-            c.active = c.valence != 4 || c.boundary || sharp;
-            if !c.active {
-                // Regular corner: the diagonal vertex completes the table.
-                let g = mesh.prev(mesh.prev(hs[k]).twin()).twin();
-                let d = mesh.to(mesh.next(g));
+            c.active = valence != 4 || boundary || sharp;
+            c.boundary = boundary;
+            if c.active {
+                c.ring.load_with_halfedges(mesh, v, Scheme::CatmullClark, &mut self.hes);
+                c.valence = self.hes.len();
+                c.ih = self.hes.iter().position(|&h| h == hs[k]).unwrap_or(0);
+                if boundary || c.ring.vertex_sharpness() > 0.0 {
+                    self.regular = false;
+                }
+            } else {
+                c.valence = 4;
+                let g = mesh.prev(mesh.prev(hs[k]).twin()).twin(); // corner -> behind
+                let gn = mesh.next(g);
+                let d = mesh.to(gn);
                 let (ci, cj) = cpos[k];
                 let (o1i, o1j) = out[k];
                 let (o2i, o2j) = out[(k + 3) % 4];
                 vid[(cj + o1j + o2j + 1) as usize][(ci + o1i + o2i + 1) as usize] = d;
+                edges[ne] = ((ci + o2i, cj + o2j), out_dir[k], gn);
+                edges[ne + 1] = ((ci + o1i, cj + o1j), out_dir[(k + 3) % 4], mesh.next(gn).twin());
+                ne += 2;
             }
         }
         for j in -1..=2i32 {
@@ -363,31 +401,11 @@ impl Worker {
                 }
             }
         }
-        // Edge sharpness between adjacent table vertices.
-        for j in -1..=2i32 {
-            for i in -1..=2i32 {
-                let a = vid[(j + 1) as usize][(i + 1) as usize];
-                if !a.is_some() {
-                    continue;
-                }
-                for d in 0..2 {
-                    let (bi, bj) = (i + DI[d], j + DJ[d]);
-                    if bi > 2 || bj > 2 {
-                        continue;
-                    }
-                    let b = vid[(bj + 1) as usize][(bi + 1) as usize];
-                    if !b.is_some() {
-                        continue;
-                    }
-                    let s = mesh
-                        .find_halfedge(a, b)
-                        .map(|h| mesh.edge_sharpness(h.edge()))
-                        .unwrap_or(0.0);
-                    if s > 0.0 {
-                        self.regular = false;
-                    }
-                    t.set_edge_sharp(i, j, d, s);
-                }
+        for &((i, j), d, h) in &edges[..ne] {
+            let s = mesh.edge_sharpness(h.edge());
+            if s > 0.0 {
+                self.regular = false;
+                t.set_edge_sharp(i, j, d, s);
             }
         }
         // Missing points anywhere except the diagonal spots of irregular corners mean boundary.
@@ -398,13 +416,6 @@ impl Worker {
                     self.regular = false;
                 }
             }
-        }
-        if self
-            .corners
-            .iter()
-            .any(|c| c.active && (c.boundary || c.ring.vertex_sharpness() > 0.0))
-        {
-            self.regular = false;
         }
         // Far ends of the crossing edges, for the Chaikin rule.
         if self.method == CreaseMethod::Chaikin {
