@@ -31,5 +31,5 @@ pub use patches::{PatchRef, PatchSet, Unit};
 pub use slate::Worker;
 pub use tessellate::{
     DEFAULT_MAXSD, MAX_DEPTH, SlateError, slate_bytes_per_thread, tessellate, tessellate_layout,
-    tessellate_layout_into,
+    tessellate_layout_into, MAX_POINTS,
 };

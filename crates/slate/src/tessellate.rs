@@ -19,6 +19,14 @@ pub enum SlateError {
         /// Supported maximum.
         max: u32,
     },
+    /// The tessellation would not fit in memory.
+    #[error("depth {depth} would produce {points} limit points (limit {MAX_POINTS})")]
+    TooLarge {
+        /// Requested depth.
+        depth: u32,
+        /// Points it would produce.
+        points: u64,
+    },
     /// Set-up failed (local level-1 refinement).
     #[error(transparent)]
     Rules(#[from] RulesError),
@@ -26,6 +34,9 @@ pub enum SlateError {
 
 /// Deepest supported subdivision depth (table side `2^12 + 3`).
 pub const MAX_DEPTH: u32 = 12;
+
+/// Most limit points one tessellation may produce (about 3 GiB of positions and normals).
+pub const MAX_POINTS: u64 = 1 << 27;
 
 /// Default `maxsd` of the paper: slates are sized for at least this depth.
 pub const DEFAULT_MAXSD: u32 = 5;
@@ -83,6 +94,15 @@ impl SharedOut {
 pub fn tessellate(mesh: &Mesh, depth: u32) -> Result<LimitMesh, SlateError> {
     if depth == 0 {
         return Ok(limit_surface(mesh, Scheme::CatmullClark));
+    }
+    if depth > MAX_DEPTH {
+        return Err(SlateError::TooDeep { depth, max: MAX_DEPTH });
+    }
+    // Refuse before allocating: about (2^depth)^2 points per quad of the cage.
+    let corners: u64 = mesh.faces().map(|f| mesh.face_size(f) as u64).sum();
+    let estimate = corners.saturating_mul(1u64 << (2 * depth)) / 4;
+    if estimate > MAX_POINTS {
+        return Err(SlateError::TooLarge { depth, points: estimate });
     }
     let layout = PatchLayout::new(mesh, depth)?;
     tessellate_layout(mesh, &layout)

@@ -238,6 +238,16 @@ impl Assembler {
             })
             .collect();
         let _ = fr;
+        // Refuse frames whose blocks would not fit in memory.
+        let total: u64 = (0..required.len())
+            .map(|i| {
+                let d = required[i].max(self.blocks[i].depth);
+                if d < 0 { 0 } else { ((1u64 << d) + 1).pow(2) }
+            })
+            .sum();
+        if total > subdiv_slate::MAX_POINTS {
+            return Err(AssemblyError::TooLarge { points: total });
+        }
         // Recompute the blocks that are too coarse.
         let todo: Vec<usize> = (0..required.len())
             .filter(|&i| required[i] > self.blocks[i].depth)

@@ -49,6 +49,12 @@ pub enum AssemblyError {
         /// Supported.
         max: u32,
     },
+    /// The frame's patch blocks would not fit in memory.
+    #[error("this frame needs {points} cached limit points (limit {})", subdiv_slate::MAX_POINTS)]
+    TooLarge {
+        /// Points needed.
+        points: u64,
+    },
     /// A per-unit array has the wrong length.
     #[error("{what} has {got} entries, the mesh has {want} faces")]
     Length {
