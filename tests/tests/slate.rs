@@ -3,33 +3,12 @@
 use std::collections::HashSet;
 
 use glam::DVec3;
-use subdiv_mesh::{Mesh, ReadOptions, read_obj_with};
+use subdiv_mesh::Mesh;
 use subdiv_rules::{LimitMesh, Scheme, tessellate_uniform};
-use subdiv_tests::{PointGrid, canonical_face, fixture_files};
+use subdiv_tests::{PointGrid, canonical_face};
 
 fn cc_cages() -> Vec<(String, Mesh)> {
-    let mut v: Vec<_> = fixture_files("reference/shapes", "obj")
-        .into_iter()
-        .filter(|p| {
-            p.file_name()
-                .unwrap()
-                .to_string_lossy()
-                .starts_with("catmark_")
-        })
-        .collect();
-    v.extend(fixture_files("meshes", "obj"));
-    v.into_iter()
-        .map(|p| {
-            let m = read_obj_with(
-                &p,
-                ReadOptions {
-                    split_nonmanifold_vertices: true,
-                },
-            )
-            .unwrap();
-            (p.file_stem().unwrap().to_string_lossy().to_string(), m)
-        })
-        .collect()
+    subdiv_tests::catmull_clark_cages()
 }
 
 fn dv(p: &[f32; 3]) -> DVec3 {

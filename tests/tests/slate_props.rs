@@ -4,33 +4,11 @@
 use std::collections::{HashMap, HashSet};
 
 use glam::Vec3;
-use subdiv_mesh::{Mesh, MeshStats, PolygonSoup, ReadOptions, read_obj_with};
+use subdiv_mesh::{Mesh, MeshStats, PolygonSoup};
 use subdiv_rules::LimitMesh;
-use subdiv_tests::fixture_files;
 
 fn cages() -> Vec<(String, Mesh)> {
-    let mut v: Vec<_> = fixture_files("reference/shapes", "obj")
-        .into_iter()
-        .filter(|p| {
-            p.file_name()
-                .unwrap()
-                .to_string_lossy()
-                .starts_with("catmark_")
-        })
-        .collect();
-    v.extend(fixture_files("meshes", "obj"));
-    v.into_iter()
-        .map(|p| {
-            let m = read_obj_with(
-                &p,
-                ReadOptions {
-                    split_nonmanifold_vertices: true,
-                },
-            )
-            .unwrap();
-            (p.file_stem().unwrap().to_string_lossy().to_string(), m)
-        })
-        .collect()
+    subdiv_tests::catmull_clark_cages()
 }
 
 fn run(mesh: &Mesh, depth: u32, threads: usize) -> LimitMesh {

@@ -5,20 +5,10 @@ use std::collections::HashMap;
 use glam::DVec3;
 use subdiv_mesh::{read_obj_with, Mesh, MeshStats, ReadOptions};
 use subdiv_stitch::{Assembler, FanMethod, FrameGeometry};
-use subdiv_tests::{fixture_files, PointGrid};
+use subdiv_tests::PointGrid;
 
 fn cages() -> Vec<(String, Mesh)> {
-    let mut v: Vec<_> = fixture_files("reference/shapes", "obj")
-        .into_iter()
-        .filter(|p| p.file_name().unwrap().to_string_lossy().starts_with("catmark_"))
-        .collect();
-    v.extend(fixture_files("meshes", "obj"));
-    v.into_iter()
-        .map(|p| {
-            let m = read_obj_with(&p, ReadOptions { split_nonmanifold_vertices: true }).unwrap();
-            (p.file_stem().unwrap().to_string_lossy().to_string(), m)
-        })
-        .collect()
+    subdiv_tests::catmull_clark_cages()
 }
 
 /// A small deterministic generator (xorshift).
