@@ -198,3 +198,25 @@ fn random_cameras_are_watertight() {
         }
     }
 }
+
+#[test]
+fn moving_the_cage_updates_the_surface() {
+    use subdiv_depth::DepthParams;
+    use subdiv_mesh::Camera;
+    use subdiv_stitch::DynamicSubdivision;
+    let mesh = read_obj_with(fixtures_shape("catmark_cube"), ReadOptions::default()).unwrap();
+    let (lo, hi) = mesh.bounds();
+    let cam = Camera::eye_relative(lo, hi, glam::Vec3::new(0.5, 0.7, 3.0), 45.0, 640, 480);
+    let mut node = DynamicSubdivision::new(mesh.clone(), DepthParams { max_depth: 3, ..Default::default() }).unwrap();
+    let before = node.update(&cam, None).unwrap().clone();
+    let moved: Vec<glam::Vec3> = mesh.positions().iter().map(|p| *p * 2.0).collect();
+    node.set_positions(&moved).unwrap();
+    let after = node.update(&cam, None).unwrap();
+    // Twice the cage, twice the limit surface (the same camera sees it bigger, depths may differ).
+    let max = |g: &FrameGeometry| g.indices.iter().map(|&i| glam::Vec3::from(g.positions[i as usize]).length()).fold(0.0f32, f32::max);
+    assert!((max(after) / max(&before) - 2.0).abs() < 1e-3);
+    assert!(node.set_positions(&moved[..3]).is_err());
+    let mut bad = moved.clone();
+    bad[2].x = f32::NAN;
+    assert!(node.set_positions(&bad).is_err());
+}

@@ -93,6 +93,23 @@ impl DynamicSubdivision {
         }
         Ok(())
     }
+    /// Moves the cage's vertices (animation, editing): curvature depths, bounding spheres and the
+    /// patch cache are recomputed; the topology and tags stay.
+    pub fn set_positions(&mut self, positions: &[glam::Vec3]) -> Result<(), AssemblyError> {
+        if positions.len() != self.mesh.num_vertices() {
+            return Err(AssemblyError::Length { what: "positions", got: positions.len(), want: self.mesh.num_vertices() });
+        }
+        if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
+            return Err(AssemblyError::NonFinite { vertex: v as u32 });
+        }
+        self.mesh.positions_mut().copy_from_slice(positions);
+        self.vertex = VertexData::compute(&self.mesh, self.params.cone_aperture_deg, self.params.max_depth);
+        self.spheres = face_spheres(&self.mesh, &self.vertex);
+        self.deviation = None;
+        self.assembler = Assembler::new(&self.mesh, self.params.max_depth as u32)?;
+        Ok(())
+    }
+
     /// Turns frame-rate control on (with a target) or off.
     pub fn set_frame_rate_control(&mut self, target_fps: Option<f32>) {
         self.controller = target_fps.map(|f| FrameRateController::new(f, self.params.max_depth));

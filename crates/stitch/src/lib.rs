@@ -55,6 +55,12 @@ pub enum AssemblyError {
         /// Points needed.
         points: u64,
     },
+    /// A new vertex position is NaN or infinite.
+    #[error("vertex {vertex} has a non-finite position")]
+    NonFinite {
+        /// The vertex.
+        vertex: u32,
+    },
     /// A per-unit array has the wrong length.
     #[error("{what} has {got} entries, the mesh has {want} faces")]
     Length {
