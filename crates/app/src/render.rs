@@ -9,26 +9,213 @@ use std::time::Instant;
 
 use anyhow::{Context, bail};
 use glam::Vec3;
-use subdiv_mesh::Camera;
+use subdiv_mesh::{Camera, Mesh, parse_obj};
 use subdiv_rules::{LimitMesh, Scheme, tessellate_uniform};
+use subdiv_stitch::{DynamicSubdivision, FrameGeometry};
 use subdiv_vk::{OrbitCamera, OwnedMesh, RenderOptions, Renderer, Shading, View};
 
-use crate::camera_args::CameraArgs;
+use crate::camera_args::{CameraArgs, parse_vec3};
+use crate::tessellate::AdaptiveArgs;
 
 /// Which surface to tessellate: the flags `render` and `view` share.
 #[derive(clap::Args, Debug, Clone)]
 pub struct SurfaceArgs {
     /// Input cage (OBJ with optional OpenSubdiv tags).
-    pub input: PathBuf,
+    #[arg(required_unless_present = "scene")]
+    pub input: Option<PathBuf>,
+    /// A built-in scene instead of an input file: helmet40 (paper Fig. 12: 40 instances of
+    /// catmark_helmet on an 8x5 grid).
+    #[arg(long, value_parser = ["helmet40"], conflicts_with = "input")]
+    pub scene: Option<String>,
     /// Subdivision scheme.
     #[arg(long, default_value = "catmull-clark", value_parser = ["catmull-clark", "loop"])]
     pub scheme: String,
-    /// Uniform subdivision depth.
-    #[arg(long, default_value_t = 3)]
-    pub depth: u32,
+    /// Uniform subdivision depth. Without it, a camera (--eye or --eye-relative) makes the
+    /// Catmull-Clark tessellation adaptive; otherwise the default is depth 3.
+    #[arg(long)]
+    pub depth: Option<u32>,
     /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
     #[arg(long)]
     pub split_nonmanifold: bool,
+    #[command(flatten)]
+    pub adaptive: AdaptiveArgs,
+    /// Choose the adaptive depths (and back-face culling) with a second camera at bbox centre +
+    /// (X,Y,Z) * bbox radius, while the image is seen from the first (paper Fig. 8); its frustum
+    /// is drawn as lines.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub cull_camera_eye_relative: Option<Vec3>,
+    /// Fixed per-face depths instead of view-dependent ones: a comma list (one per cage face)
+    /// or a file of such numbers (for figures of depth transitions).
+    #[arg(long, hide = true)]
+    pub face_depths: Option<String>,
+}
+
+/// Uniform depth when neither `--depth` nor an adaptive camera is given.
+pub const DEFAULT_DEPTH: u32 = 3;
+
+/// Cage file of the built-in `helmet40` scene's model.
+const HELMET_OBJ: &str = include_str!("../../../fixtures/reference/shapes/catmark_helmet.obj");
+
+/// The test scene of the paper's Fig. 12: 40 instances of `catmark_helmet` (58 faces each) on an
+/// 8 x 5 grid in the XZ plane, 1.25 model widths apart.
+pub fn helmet40() -> anyhow::Result<Mesh> {
+    let soup = parse_obj(HELMET_OBJ).context("embedded catmark_helmet")?;
+    let (lo, hi) = soup.positions.iter().fold(
+        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    let ext = hi - lo;
+    let step = 1.25 * ext.x.max(ext.z);
+    let offsets: Vec<Vec3> = (0..5)
+        .flat_map(|row| {
+            (0..8).map(move |col| {
+                Vec3::new((col as f32 - 3.5) * step, 0.0, (row as f32 - 2.0) * step)
+            })
+        })
+        .collect();
+    Ok(Mesh::from_soup(&soup.instanced(&offsets)).context("helmet40 scene")?)
+}
+
+impl SurfaceArgs {
+    /// The input's name for messages.
+    pub fn label(&self) -> String {
+        match (&self.scene, &self.input) {
+            (Some(s), _) => format!("scene {s}"),
+            (None, Some(p)) => p.display().to_string(),
+            (None, None) => String::from("(no input)"),
+        }
+    }
+
+    /// Reads the cage (or builds the built-in scene).
+    pub fn load_cage(&self) -> anyhow::Result<Mesh> {
+        match (&self.scene, &self.input) {
+            (Some(_), _) => helmet40(),
+            (None, Some(p)) => crate::load::load_mesh(p, self.split_nonmanifold),
+            (None, None) => bail!("give an input cage or --scene helmet40"),
+        }
+    }
+
+    /// Whether these flags ask for the adaptive tessellation: Catmull-Clark, no `--depth`, and a
+    /// camera. Adaptive-only flags without it are refused.
+    pub fn is_adaptive(&self, camera: &CameraArgs) -> anyhow::Result<bool> {
+        let adaptive =
+            self.depth.is_none() && camera.has_camera() && self.scheme == "catmull-clark";
+        if !adaptive && (self.cull_camera_eye_relative.is_some() || self.face_depths.is_some()) {
+            bail!(
+                "--cull-camera-eye-relative and --face-depths need the adaptive tessellation: \
+                 --scheme catmull-clark, a camera (--eye or --eye-relative) and no --depth"
+            );
+        }
+        Ok(adaptive)
+    }
+
+    /// The adaptive node for `mesh` with the adaptive flags (fan method, fixed face depths).
+    pub fn adaptive_node(&self, mesh: Mesh) -> anyhow::Result<DynamicSubdivision> {
+        let faces = mesh.num_faces();
+        let mut node = self.adaptive.node(mesh).with_context(|| self.label())?;
+        if let Some(spec) = &self.face_depths {
+            let depths = parse_face_depths(spec, self.adaptive.max_depth)?;
+            if depths.len() != faces {
+                bail!(
+                    "--face-depths has {} depths, the cage has {faces} faces",
+                    depths.len()
+                );
+            }
+            node.set_face_depths(Some(depths))?;
+        }
+        Ok(node)
+    }
+
+    /// The culling camera of `--cull-camera-eye-relative` (else `camera`).
+    pub fn cull_camera(
+        &self,
+        camera_args: &CameraArgs,
+        camera: &Camera,
+        lo: Vec3,
+        hi: Vec3,
+    ) -> Camera {
+        match self.cull_camera_eye_relative {
+            Some(rel) => CameraArgs {
+                eye: None,
+                target: None,
+                eye_relative: Some(rel),
+                ..camera_args.clone()
+            }
+            .camera(lo, hi),
+            None => *camera,
+        }
+    }
+}
+
+/// Parses `--face-depths`: a comma/whitespace list of depths, or a file holding one.
+fn parse_face_depths(spec: &str, max_depth: u8) -> anyhow::Result<Vec<u8>> {
+    let text = if spec
+        .chars()
+        .all(|c| c.is_ascii_digit() || c == ',' || c.is_whitespace())
+    {
+        spec.to_string()
+    } else {
+        std::fs::read_to_string(spec)
+            .with_context(|| format!("--face-depths: cannot read '{spec}'"))?
+    };
+    let mut out = Vec::new();
+    for t in text
+        .split(|c: char| c == ',' || c.is_whitespace())
+        .filter(|t| !t.is_empty())
+    {
+        let d: u8 = t
+            .parse()
+            .ok()
+            .filter(|&d| d <= max_depth)
+            .with_context(|| {
+                format!("--face-depths: '{t}' is not a depth between 0 and --max-depth {max_depth}")
+            })?;
+        out.push(d);
+    }
+    if out.is_empty() {
+        bail!("--face-depths: no depths given");
+    }
+    Ok(out)
+}
+
+/// The triangles of an adaptive frame as a [`LimitMesh`] (referenced vertices only) and the
+/// per-vertex depths of their patches.
+pub fn frame_limit(g: &FrameGeometry) -> (LimitMesh, Vec<f32>) {
+    let mut map = vec![u32::MAX; g.positions.len()];
+    let mut limit = LimitMesh {
+        positions: Vec::new(),
+        normals: Vec::new(),
+        face_offsets: (0..=g.indices.len() as u32 / 3).map(|i| i * 3).collect(),
+        face_indices: Vec::with_capacity(g.indices.len()),
+    };
+    let mut depths = Vec::new();
+    for &i in &g.indices {
+        let m = &mut map[i as usize];
+        if *m == u32::MAX {
+            *m = limit.positions.len() as u32;
+            limit.positions.push(g.positions[i as usize]);
+            limit.normals.push(g.normals[i as usize]);
+            depths.push(g.vertex_depth[i as usize]);
+        }
+        limit.face_indices.push(*m);
+    }
+    (limit, depths)
+}
+
+/// `0:a 1:b ...` patches (cage faces) per depth, with the culled count.
+pub fn depth_histogram(g: &FrameGeometry) -> String {
+    let per: Vec<String> = g
+        .units_per_depth()
+        .iter()
+        .enumerate()
+        .map(|(d, n)| format!("{d}:{n}"))
+        .collect();
+    let culled = g.unit_depth.iter().filter(|&&d| d == u8::MAX).count();
+    let mut s = per.join(" ");
+    if culled > 0 {
+        s.push_str(&format!(" culled:{culled}"));
+    }
+    s
 }
 
 /// How to draw it: the flags `render` and `view` share.
@@ -101,18 +288,16 @@ impl Scene {
     /// Loads, tessellates uniformly and packs the surface `args` names.
     pub fn load(args: &SurfaceArgs) -> anyhow::Result<Scene> {
         let scheme: Scheme = args.scheme.parse().map_err(anyhow::Error::msg)?;
-        let cage = crate::load::load_mesh(&args.input, args.split_nonmanifold)?;
-        let limit = tessellate_uniform(&cage, scheme, args.depth)
-            .map_err(|e| anyhow::anyhow!("{}: {e}", args.input.display()))?;
+        let cage = args.load_cage()?;
+        let depth = args.depth.unwrap_or(DEFAULT_DEPTH);
+        let limit = tessellate_uniform(&cage, scheme, depth)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", args.label()))?;
         if limit.num_faces() == 0 {
-            bail!(
-                "{}: the limit surface has no faces to draw",
-                args.input.display()
-            );
+            bail!("{}: the limit surface has no faces to draw", args.label());
         }
         // Uniform tessellation: every vertex sits at the same subdivision depth. The adaptive
         // tessellator will hand per-vertex depths of its patches to `from_limit` instead.
-        let depths = vec![args.depth as f32; limit.positions.len()];
+        let depths = vec![depth as f32; limit.positions.len()];
         Ok(Scene::from_limit(limit, depths))
     }
 
@@ -316,6 +501,9 @@ pub fn view_for(camera: &Camera, lo: Vec3, hi: Vec3) -> View {
 }
 
 pub fn run(a: &RenderArgs) -> anyhow::Result<ExitCode> {
+    if a.surface.is_adaptive(&a.camera)? {
+        return run_adaptive(a);
+    }
     let options = a.style.render_options()?;
     let t0 = Instant::now();
     let mut scene = Scene::load(&a.surface)?;
@@ -330,33 +518,103 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<ExitCode> {
             .lines_into(&scene.mesh.positions, view.eye, &mut lines);
         scene.mesh.lines = Some(lines);
     }
-    let size = [camera.width, camera.height];
+    let note = format!(
+        "{}, depth {}",
+        a.surface.scheme,
+        a.surface.depth.unwrap_or(DEFAULT_DEPTH)
+    );
+    draw_and_report(
+        a,
+        &scene,
+        &view,
+        [camera.width, camera.height],
+        &options,
+        &note,
+        tessellate_ms,
+    )
+}
 
+/// `subdiv render` of the adaptive tessellation: depths (and culling) from the camera, or from
+/// the `--cull-camera-eye-relative` camera while the image is seen from the first.
+fn run_adaptive(a: &RenderArgs) -> anyhow::Result<ExitCode> {
+    let mut options = a.style.render_options()?;
+    let t0 = Instant::now();
+    let cage = a.surface.load_cage()?;
+    let (lo, hi) = cage.bounds();
+    let camera = a.camera.camera(lo, hi);
+    let cull = a.surface.cull_camera(&a.camera, &camera, lo, hi);
+    let mut node = a.surface.adaptive_node(cage)?;
+    let g = node.update(&cull, None)?;
+    if g.num_triangles() == 0 {
+        bail!("{}: nothing to draw (every face culled)", a.surface.label());
+    }
+    let histogram = depth_histogram(g);
+    let (limit, depths) = frame_limit(g);
+    let mut scene = Scene::from_limit(limit, depths);
+    let tessellate_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let view = view_for(&camera, lo, hi);
+    let mut lines = Vec::new();
+    if a.style.silhouettes {
+        scene
+            .silhouettes
+            .lines_into(&scene.mesh.positions, cull.eye, &mut lines);
+    }
+    if a.surface.cull_camera_eye_relative.is_some() {
+        lines.extend(view_for(&cull, lo, hi).frustum_lines());
+        options.show_lines = true;
+    }
+    if !lines.is_empty() {
+        scene.mesh.lines = Some(lines);
+    }
+    let note = format!(
+        "adaptive, max depth {}, patches per depth {histogram}",
+        a.surface.adaptive.max_depth
+    );
+    draw_and_report(
+        a,
+        &scene,
+        &view,
+        [camera.width, camera.height],
+        &options,
+        &note,
+        tessellate_ms,
+    )
+}
+
+/// Renders `scene`, writes the PNG (and EXR) and prints the summary line.
+fn draw_and_report(
+    a: &RenderArgs,
+    scene: &Scene,
+    view: &View,
+    size: [u32; 2],
+    options: &RenderOptions,
+    note: &str,
+    tessellate_ms: f64,
+) -> anyhow::Result<ExitCode> {
     let t1 = Instant::now();
     let mut renderer = Renderer::new()?;
     let mesh = scene.mesh.as_render_mesh();
     let image = if let Some(exr) = &a.exr {
-        let (image, aux) = renderer.render_with_aux(&mesh, &view, size, &options)?;
+        let (image, aux) = renderer.render_with_aux(&mesh, view, size, options)?;
         subdiv_vk::write_exr(exr, &aux)?;
         image
     } else {
-        renderer.render(&mesh, &view, size, &options)?
+        renderer.render(&mesh, view, size, options)?
     };
     subdiv_vk::write_png(&a.output, &image)?;
     let render_ms = t1.elapsed().as_secs_f64() * 1e3;
-    let silhouette_note = match &scene.mesh.lines {
-        Some(l) => format!(", {} silhouette edges", l.len() / 2),
-        None => String::new(),
+    let line_note = match (&scene.mesh.lines, a.style.silhouettes) {
+        (Some(l), true) => format!(", {} line segments", l.len() / 2),
+        _ => String::new(),
     };
     println!(
-        "rendered {}: {} faces, {} triangles{} ({}, depth {}, {} shading) at {}x{} on {}: \
+        "rendered {}: {} faces, {} triangles{} ({}, {} shading) at {}x{} on {}: \
          tessellated in {:.1} ms, rendered in {:.1} ms -> {}{}",
-        a.surface.input.display(),
+        a.surface.label(),
         scene.faces,
         mesh.triangle_count(),
-        silhouette_note,
-        a.surface.scheme,
-        a.surface.depth,
+        line_note,
+        note,
         options.shading.name(),
         size[0],
         size[1],

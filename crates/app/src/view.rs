@@ -7,11 +7,17 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use glam::Vec3;
+use subdiv_mesh::Camera;
+use subdiv_rules::LimitMesh;
+use subdiv_stitch::DynamicSubdivision;
 use subdiv_vk::viewer::{self, FrameRequest, FrameSource, SourceFrame, ViewerOptions};
-use subdiv_vk::{OwnedMesh, RenderMesh, Shading};
+use subdiv_vk::{OwnedMesh, RenderMesh, Shading, View};
 
 use crate::camera_args::CameraArgs;
-use crate::render::{Scene, Silhouettes, StyleArgs, SurfaceArgs, orbit_camera};
+use crate::render::{
+    DEFAULT_DEPTH, Scene, Silhouettes, StyleArgs, SurfaceArgs, depth_histogram, orbit_camera,
+};
 
 /// `subdiv view` arguments.
 #[derive(clap::Args, Debug)]
@@ -71,7 +77,91 @@ impl FrameSource for UniformSource {
     }
 }
 
+/// The adaptive frame source: each frame, depths follow the culling camera (frozen with `F`),
+/// frame-rate control follows the viewer's `C` and `+`/`-` with the real frame times, and the
+/// vertices stay on the GPU while the tessellation's `vertex_version` is unchanged.
+struct AdaptiveSource {
+    node: DynamicSubdivision,
+    /// The target frame rate the node's controller was set up with (`None`: control off).
+    control: Option<f32>,
+    lines: Vec<[f32; 3]>,
+    status: String,
+}
+
+/// The `subdiv_mesh::Camera` of a renderer view at `size` pixels.
+pub fn camera_from_view(view: &View, size: [u32; 2]) -> Camera {
+    let inv = view.view.inverse();
+    let up = inv.y_axis.truncate().normalize_or(Vec3::Y);
+    let forward = view.forward();
+    // Vulkan projection: |proj[1][1]| = 1 / tan(fov_y / 2).
+    let fov = 2.0 * (1.0 / view.proj.y_axis.y.abs().max(1e-6)).atan();
+    Camera::new(
+        view.eye,
+        view.eye + forward,
+        up,
+        fov.to_degrees(),
+        size[0].max(1),
+        size[1].max(1),
+    )
+}
+
+impl FrameSource for AdaptiveSource {
+    fn frame(
+        &mut self,
+        request: &FrameRequest,
+    ) -> Result<SourceFrame<'_>, Box<dyn std::error::Error + Send + Sync>> {
+        let want = request.frame_rate_control.then_some(request.target_fps);
+        if want != self.control {
+            // The node has no access to its controller's target: a new target restarts it.
+            self.node.set_frame_rate_control(want);
+            self.control = want;
+        }
+        let camera = camera_from_view(&request.cull_view, request.size);
+        let t = request.last_frame_time.as_secs_f32();
+        self.node.update(&camera, (t > 0.0).then_some(t))?;
+        let g = self.node.geometry();
+        self.lines.clear();
+        if request.silhouettes {
+            let limit = LimitMesh {
+                positions: g.positions.clone(),
+                normals: g.normals.clone(),
+                face_offsets: (0..=g.indices.len() as u32 / 3).map(|i| i * 3).collect(),
+                face_indices: g.indices.clone(),
+            };
+            Silhouettes::new(&limit).lines_into(
+                &g.positions,
+                request.cull_view.eye,
+                &mut self.lines,
+            );
+        }
+        let cap = self
+            .node
+            .controller()
+            .map_or(self.node.params().max_depth, |c| c.cap());
+        self.status = format!(
+            "patches per depth {} | maxsd {cap} | {} patches recomputed",
+            depth_histogram(g),
+            g.patches_recomputed
+        );
+        Ok(SourceFrame {
+            mesh: RenderMesh {
+                positions: &g.positions,
+                normals: &g.normals,
+                triangles: &g.indices,
+                edges: None,
+                scalars: Some(&g.vertex_depth),
+                lines: Some(&self.lines),
+            },
+            status: &self.status,
+            vertex_version: Some(g.vertex_version),
+        })
+    }
+}
+
 pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
+    if a.surface.is_adaptive(&a.camera)? {
+        return run_adaptive(a);
+    }
     let render = a.style.render_options()?;
     let scene = Scene::load(&a.surface)?;
     let (lo, hi) = scene.bounds();
@@ -84,9 +174,9 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     }
     let title = format!(
         "subdiv view {} ({}, depth {})",
-        a.surface.input.display(),
+        a.surface.label(),
         a.surface.scheme,
-        a.surface.depth
+        a.surface.depth.unwrap_or(DEFAULT_DEPTH)
     );
     let mut source = UniformSource {
         faces: format!("{} faces", scene.faces),
@@ -111,10 +201,56 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     for shot in &report.screenshots {
         println!("screenshot -> {}", shot.display());
     }
-    println!(
-        "viewed {}: {} frames",
-        a.surface.input.display(),
-        report.frames
+    println!("viewed {}: {} frames", a.surface.label(), report.frames);
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `subdiv view` on the adaptive tessellation.
+fn run_adaptive(a: &ViewArgs) -> anyhow::Result<ExitCode> {
+    let render = a.style.render_options()?;
+    if a.surface.cull_camera_eye_relative.is_some() {
+        anyhow::bail!(
+            "subdiv view: freeze the culling camera with F instead of --cull-camera-eye-relative"
+        );
+    }
+    let cage = a.surface.load_cage()?;
+    let (lo, hi) = cage.bounds();
+    let camera = a.camera.camera(lo, hi);
+    let (orbit, exact) = orbit_camera(&camera, lo, hi);
+    if !exact {
+        eprintln!(
+            "note: the viewer orbits about +Y; the camera's --up and vertical views are approximated"
+        );
+    }
+    let title = format!(
+        "subdiv view {} (adaptive, max depth {})",
+        a.surface.label(),
+        a.surface.adaptive.max_depth
     );
+    let mut source = AdaptiveSource {
+        node: a.surface.adaptive_node(cage)?,
+        control: None,
+        lines: Vec::new(),
+        status: String::new(),
+    };
+    let options = ViewerOptions {
+        title,
+        size: [camera.width, camera.height],
+        camera: Some(orbit),
+        render,
+        // A scripted screenshot shows the view-dependent depths without frame-time feedback.
+        frame_rate_control: a.screenshot_after.is_none(),
+        screenshot_after: a.screenshot_after,
+        screenshot_path: a
+            .output
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("screenshot.png")),
+        ..ViewerOptions::default()
+    };
+    let report = viewer::run(&mut source, options)?;
+    for shot in &report.screenshots {
+        println!("screenshot -> {}", shot.display());
+    }
+    println!("viewed {}: {} frames", a.surface.label(), report.frames);
     Ok(ExitCode::SUCCESS)
 }
