@@ -19,6 +19,9 @@ pub enum BenchWhat {
     /// Slate tessellation throughput. Last line:
     /// `limit_points_per_s=<f> patches_per_s=<f> slate_bytes_per_thread=<n>`.
     Tessellate(BenchTessellateArgs),
+    /// Frame rate of the paper's Fig. 12 scene rendered headless, one line per frame:
+    /// `frame=<i> fps=<f> triangles=<n> maxsd=<cap> patches=<n0>,<n1>,..` (patches per depth).
+    Framerate(crate::bench_framerate::BenchFramerateArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -42,6 +45,7 @@ pub struct BenchTessellateArgs {
 pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
     match &a.what {
         BenchWhat::Tessellate(t) => bench_tessellate(t),
+        BenchWhat::Framerate(f) => crate::bench_framerate::run(f),
     }
 }
 

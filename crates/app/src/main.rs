@@ -2,6 +2,7 @@
 //! together; all geometry lives in the libraries.
 
 mod bench;
+mod bench_framerate;
 mod camera_args;
 mod info;
 mod load;

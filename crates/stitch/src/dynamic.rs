@@ -114,6 +114,14 @@ impl DynamicSubdivision {
     pub fn set_frame_rate_control(&mut self, target_fps: Option<f32>) {
         self.controller = target_fps.map(|f| FrameRateController::new(f, self.params.max_depth));
     }
+    /// Changes the target of the running frame-rate controller without resetting it (turns the
+    /// control on if it was off).
+    pub fn set_target_fps(&mut self, fps: f32) {
+        match &mut self.controller {
+            Some(c) => c.set_target_fps(fps),
+            None => self.set_frame_rate_control(Some(fps)),
+        }
+    }
     /// The frame-rate controller, when on.
     pub fn controller(&self) -> Option<&FrameRateController> {
         self.controller.as_ref()
