@@ -9,6 +9,7 @@
 //!   tessellator (see `docs/performance.md`).
 
 mod bench_osd;
+mod figures_cc;
 mod figures_doi;
 mod golden;
 mod vulkan;
@@ -43,6 +44,27 @@ fn run(mut cmd: Command) -> Result<()> {
         bail!("{shown} failed with {status}");
     }
     Ok(())
+}
+
+/// Builds the release `subdiv` binary and runs the Catmull-Clark figures with it.
+fn figures_cc_run() -> Result<()> {
+    vulkan::ensure_driver()?;
+    run({
+        let mut c = cargo();
+        c.args(["build", "--release", "--quiet", "-p", "subdiv"]);
+        c
+    })?;
+    let exe = target_dir().join("release").join(format!("subdiv{}", std::env::consts::EXE_SUFFIX));
+    // The Vulkan environment of the tests (lavapipe pinned), for the frame-rate runs.
+    let mut probe = Command::new("true");
+    vulkan::configure(&mut probe, &root());
+    for (k, v) in probe.get_envs() {
+        if let (Some(v), Some(k)) = (v, k.to_str()) {
+            // SAFETY: xtask is single-threaded at this point; nothing reads the environment concurrently.
+            unsafe { std::env::set_var(k, v) };
+        }
+    }
+    figures_cc::run(&root(), &exe)
 }
 
 fn demo() -> Result<()> {
@@ -109,7 +131,7 @@ fn main() -> Result<()> {
     match args.first().map(String::as_str) {
         Some("demo") => demo(),
         Some("test") => test(),
-        Some("figures") => figures_doi::run(&root()),
+        Some("figures") => figures_doi::run(&root()).and_then(|()| figures_cc_run()),
         Some("bench-osd") => bench_osd::run(&root()),
         Some("golden") => golden::Options::parse(&args[1..]).and_then(|o| golden::run(&root(), &o)),
         _ => {
