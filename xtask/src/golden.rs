@@ -52,6 +52,18 @@ pub const SCENES: &[Scene] = &[
     // Depth colours (uniform depth until adaptive depths land), and a creased torus.
     scene("helmet_depth", "fixtures/reference/shapes/catmark_helmet.obj", &["--eye-relative", "1.4,0.5,1.6", "--depth", "2", "--shading", "depth", "--wire-overlay"]),
     scene("torus_creases_silhouettes", "fixtures/reference/shapes/catmark_torus_creases0.obj", &["--eye-relative", "0.5,1.3,1.6", "--silhouettes"]),
+    // Adaptive tessellation (Settgast et al. 2004). Fig. 11: depth-coloured wireframe of the
+    // view-dependent depths.
+    scene("pawn_adaptive_depth_wire", "fixtures/reference/shapes/catmark_pawn.obj", &["--eye-relative", "1.5,-1.7,0.9", "--up", "0,0,1", "--max-depth", "4", "--shading", "depth", "--wire-overlay"]),
+    // Fig. 10: gap filling between depths, the simple fans against fans with the subdivided
+    // shared edge (close-up of depth transitions on the helmet).
+    scene("helmet_fans_simple", "fixtures/reference/shapes/catmark_helmet.obj", &["--eye-relative", "0.9,0.35,1.1", "--max-depth", "3", "--projected-size", "6,24", "--wire-overlay", "--simple-fans"]),
+    scene("helmet_fans_subdivided", "fixtures/reference/shapes/catmark_helmet.obj", &["--eye-relative", "0.9,0.35,1.1", "--max-depth", "3", "--projected-size", "6,24", "--wire-overlay"]),
+    // Fig. 8: the back-face heuristic seen from a second camera: depths (and culling) chosen for
+    // a camera below the pawn, the image taken from the side.
+    scene("pawn_backface_second_camera", "fixtures/reference/shapes/catmark_pawn.obj", &["--eye-relative", "1.5,-1.7,0.9", "--up", "0,0,1", "--max-depth", "4", "--shading", "depth", "--wire-overlay", "--cull-camera-eye-relative", "-2.5,0.5,0.3"]),
+    // Fig. 12: the 40-instance scene, adaptive.
+    scene("helmet40_adaptive", "", &["--scene", "helmet40", "--eye-relative", "0.2,0.6,1.4", "--max-depth", "3", "--shading", "depth"]),
 ];
 
 /// Parsed `cargo xtask golden` arguments.
@@ -148,9 +160,12 @@ pub fn run(root: &Path, options: &Options) -> Result<()> {
             let _ = std::fs::remove_file(out_dir.join(stale));
         }
         let mut cmd = Command::new(&exe);
-        cmd.arg("render")
-            .arg(root.join(scene.input))
-            .args(scene.args)
+        cmd.arg("render");
+        if !scene.input.is_empty() {
+            // An empty input means a built-in scene (`--scene` in the arguments).
+            cmd.arg(root.join(scene.input));
+        }
+        cmd.args(scene.args)
             .args(["--size", SIZE, "-o"])
             .arg(&png);
         vulkan::configure(&mut cmd, root);
@@ -252,7 +267,7 @@ mod tests {
         assert!(SCENES.len() >= 12);
         for s in SCENES {
             assert!(
-                root.join(s.input).is_file(),
+                (s.input.is_empty() && s.args.contains(&"--scene")) || root.join(s.input).is_file(),
                 "{}: missing input {}",
                 s.name,
                 s.input
