@@ -91,10 +91,17 @@ fn demo() -> Result<()> {
         c
     })?;
     vulkan::ensure_driver()?;
-    println!("== subdiv render --depth 3 ==");
+    println!("== subdiv tessellate (adaptive, view-dependent) --stats ==");
     run({
         let mut c = Command::new(&exe);
-        c.arg("render").arg(&cage).args(["--depth", "3", "--up", "0,0,1", "--eye-relative", "1.5,-1.7,0.9"]);
+        c.arg("tessellate").arg(&cage).args(["--up", "0,0,1", "--eye-relative", "1.5,-1.7,0.9", "--size", "800x800", "--stats", "-o"]);
+        c.arg(out.join("demo_adaptive.obj"));
+        c
+    })?;
+    println!("== subdiv render (adaptive, depth colours) ==");
+    run({
+        let mut c = Command::new(&exe);
+        c.arg("render").arg(&cage).args(["--up", "0,0,1", "--eye-relative", "1.5,-1.7,0.9", "--shading", "depth"]);
         c.args(["--size", "800x800", "-o"]).arg(out.join("demo.png"));
         vulkan::configure(&mut c, &root());
         c
