@@ -43,6 +43,9 @@ pub struct BenchFramerateArgs {
     /// Tessellate only (no Vulkan): frame times are the tessellation's.
     #[arg(long)]
     pub no_render: bool,
+    /// Drop the per-patch cache before every frame (everything is re-tessellated).
+    #[arg(long)]
+    pub no_cache: bool,
 }
 
 pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
@@ -92,6 +95,9 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
         let ang = (i as f32 * a.orbit_step).to_radians();
         let eye = centre + Vec3::new(ang.cos() * 1.1 * radius, 0.55 * radius, ang.sin() * 1.1 * radius);
         let camera = Camera::new(eye, centre, Vec3::Y, 45.0, w, h);
+        if a.no_cache {
+            node.clear_cache();
+        }
         let g = node.update(&camera, last)?;
         let mesh = RenderMesh {
             positions: &g.positions,

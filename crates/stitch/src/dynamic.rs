@@ -122,6 +122,23 @@ impl DynamicSubdivision {
             None => self.set_frame_rate_control(Some(fps)),
         }
     }
+    /// Drops the cached patch tessellations (the next frame recomputes every patch; for
+    /// measuring what the cache saves).
+    pub fn clear_cache(&mut self) {
+        self.assembler.invalidate();
+    }
+    /// Number of triangles of the uniform tessellation at `depth` (visible faces).
+    pub fn uniform_triangles_at(&self, depth: u8) -> usize {
+        let d = depth as u32;
+        self.mesh
+            .faces()
+            .filter(|&f| !self.mesh.is_hole(f))
+            .map(|f| {
+                let n = self.mesh.face_size(f);
+                if n == 4 { 2usize << (2 * d) } else { n * (2usize << (2 * d.saturating_sub(1))) }
+            })
+            .sum()
+    }
     /// The frame-rate controller, when on.
     pub fn controller(&self) -> Option<&FrameRateController> {
         self.controller.as_ref()
