@@ -62,6 +62,15 @@ pub const SCENES: &[Scene] = &[
     // Fig. 8: the back-face heuristic seen from a second camera: depths (and culling) chosen for
     // a camera below the pawn, the image taken from the side.
     scene("pawn_backface_second_camera", "fixtures/reference/shapes/catmark_pawn.obj", &["--eye-relative", "1.5,-1.7,0.9", "--up", "0,0,1", "--max-depth", "4", "--shading", "depth", "--wire-overlay", "--cull-camera-eye-relative", "-2.5,0.5,0.3"]),
+    // Isenberg et al. 2003: DoI-driven adaptive Loop meshes (3 steps) on the teapot.
+    // Fig. 3a (view angle), Fig. 3b (silhouette edges), Fig. 4 (static dihedral angle).
+    scene("doi_view_angle_teapot", "fixtures/meshes/tri_teapot.obj", &["--split-nonmanifold", "--scheme", "loop", "--doi", "view-angle", "--eye-relative", "0,0.3,2.2", "--shading", "flat", "--wire-overlay"]),
+    scene("doi_silhouette_teapot", "fixtures/meshes/tri_teapot.obj", &["--split-nonmanifold", "--scheme", "loop", "--doi", "silhouette", "--eye-relative", "0,0.3,2.2", "--shading", "flat", "--wire-overlay"]),
+    scene("doi_dihedral_teapot", "fixtures/meshes/tri_teapot.obj", &["--split-nonmanifold", "--scheme", "loop", "--doi", "dihedral", "--eye-relative", "0,0.3,2.2", "--shading", "doi"]),
+    // Fig. 9: the haptic Clough-Tocher G1-error DoI on the bunny.
+    scene("doi_haptic_bunny", "fixtures/meshes/tri_bunny_3k.obj", &["--scheme", "loop", "--doi", "haptic", "--steps", "2", "--eye-relative", "0.3,0.4,2.1", "--shading", "flat", "--wire-overlay"]),
+    // Fig. 10: the illustration focus DoI: the dominant object gets the most steps.
+    scene("doi_focus_objects", "fixtures/scenes/focus_three_icosahedra.obj", &["--scheme", "loop", "--doi", "focus", "--focus", "focus", "--eye-relative", "0,0.5,1.6", "--shading", "flat", "--wire-overlay"]),
     // Fig. 12: the 40-instance scene, adaptive.
     scene("helmet40_adaptive", "", &["--scene", "helmet40", "--eye-relative", "0.2,0.6,1.4", "--max-depth", "3", "--shading", "depth"]),
 ];

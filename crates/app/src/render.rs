@@ -48,6 +48,23 @@ pub struct SurfaceArgs {
     /// or a file of such numbers (for figures of depth transitions).
     #[arg(long, hide = true)]
     pub face_depths: Option<String>,
+    /// Render the DoI-driven adaptive Loop mesh of `subdiv refine` (Isenberg et al. 2003) for
+    /// this Degree-of-Interest function, seen from the camera (`--shading doi` colours it by the
+    /// DoI).
+    #[arg(long, value_parser = ["view-angle", "silhouette", "dihedral", "haptic", "focus"])]
+    pub doi: Option<String>,
+    /// DoI threshold (default: the paper's figure value).
+    #[arg(long, allow_hyphen_values = true)]
+    pub threshold: Option<f32>,
+    /// Adaptive Loop steps for --doi.
+    #[arg(long, default_value_t = 3)]
+    pub steps: u32,
+    /// Split quads and n-gons into triangles first (for --doi on a Catmull-Clark cage).
+    #[arg(long)]
+    pub triangulate: bool,
+    /// Focus objects (OBJ group names) for --doi focus.
+    #[arg(long = "focus", value_name = "NAME")]
+    pub focus: Vec<String>,
 }
 
 /// Uniform depth when neither `--depth` nor an adaptive camera is given.
@@ -231,6 +248,9 @@ pub struct StyleArgs {
     /// Draw the silhouette edges (between front- and back-facing faces) as lines.
     #[arg(long)]
     pub silhouettes: bool,
+    /// Set when DoI values are available (`--doi`); not a flag.
+    #[arg(skip)]
+    pub doi_values: bool,
 }
 
 impl StyleArgs {
@@ -238,11 +258,8 @@ impl StyleArgs {
     pub fn render_options(&self) -> anyhow::Result<RenderOptions> {
         let shading = Shading::from_name(&self.shading)
             .with_context(|| format!("unknown shading '{}'", self.shading))?;
-        if shading == Shading::Doi {
-            // Degree-of-interest values come from the DoI crate, which has no input flag yet.
-            bail!(
-                "--shading doi needs --doi (degree-of-interest values), which this build does not have yet"
-            );
+        if shading == Shading::Doi && !self.doi_values {
+            bail!("--shading doi needs --doi NAME (degree-of-interest values to colour by)");
         }
         Ok(RenderOptions {
             shading,
@@ -501,6 +518,9 @@ pub fn view_for(camera: &Camera, lo: Vec3, hi: Vec3) -> View {
 }
 
 pub fn run(a: &RenderArgs) -> anyhow::Result<ExitCode> {
+    if a.surface.doi.is_some() {
+        return run_doi(a);
+    }
     if a.surface.is_adaptive(&a.camera)? {
         return run_adaptive(a);
     }
@@ -532,6 +552,62 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<ExitCode> {
         &note,
         tessellate_ms,
     )
+}
+
+/// `subdiv render --doi`: the DoI-driven adaptive Loop mesh (the meshes of Isenberg et al.,
+/// Figs. 3, 4, 9, 10), drawn as refined (not pushed to the limit), with the DoI as the scalar.
+fn run_doi(a: &RenderArgs) -> anyhow::Result<ExitCode> {
+    let name = a.surface.doi.as_deref().unwrap_or_default();
+    let label = a.surface.label();
+    let mut style = a.style.clone();
+    style.doi_values = true;
+    let options = style.render_options()?;
+    let t0 = Instant::now();
+    let mut cage = a.surface.load_cage()?;
+    if a.surface.triangulate {
+        cage = subdiv_doi::triangulate(&cage).with_context(|| format!("{label}: triangulating"))?;
+    }
+    let doi = crate::refine::make_doi(name, &cage, &a.surface.focus, None, false, &label)?;
+    let (lo, hi) = cage.bounds();
+    let camera = a.camera.camera(lo, hi);
+    let ctx = subdiv_doi::DoiContext { camera: Some(camera), ..Default::default() };
+    let threshold = a.surface.threshold.unwrap_or(doi.default_threshold());
+    let opts = subdiv_doi::RefineOptions { threshold, steps: a.surface.steps, aggregate: subdiv_doi::Aggregate::Max };
+    let r = subdiv_doi::refine_adaptive(&cage, doi.as_ref(), &ctx, &opts).with_context(|| format!("{label}: refining"))?;
+    let m = &r.mesh.mesh;
+    // DoI per face of the result, spread to vertices by maximum (the heat-map scalar).
+    let (mut scratch, mut values) = (Vec::new(), Vec::new());
+    subdiv_doi::face_values(doi.as_ref(), m, &ctx, subdiv_doi::Aggregate::Max, &mut scratch, &mut values)?;
+    let mut scalar = vec![f32::NEG_INFINITY; m.num_vertices()];
+    for f in m.faces() {
+        let v = values[f.idx()];
+        for x in m.face_vertices(f) {
+            scalar[x.idx()] = scalar[x.idx()].max(if v.is_finite() { v } else { 0.0 });
+        }
+    }
+    for s in &mut scalar {
+        if !s.is_finite() {
+            *s = 0.0;
+        }
+    }
+    let normals = subdiv_doi::vertex_normals(m);
+    let (offsets, indices) = m.face_lists();
+    let limit = LimitMesh {
+        positions: m.positions().iter().map(|p| p.to_array()).collect(),
+        normals: normals.iter().map(|n| n.to_array()).collect(),
+        face_offsets: offsets.to_vec(),
+        face_indices: indices.iter().map(|v| v.0).collect(),
+    };
+    let mut scene = Scene::from_limit(limit, scalar);
+    let tessellate_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let view = view_for(&camera, lo, hi);
+    if a.style.silhouettes {
+        let mut lines = Vec::new();
+        scene.silhouettes.lines_into(&scene.mesh.positions, view.eye, &mut lines);
+        scene.mesh.lines = Some(lines);
+    }
+    let note = format!("{name} DoI, threshold {threshold}, {} steps: {} -> {} triangles", a.surface.steps, cage.num_faces(), m.num_faces());
+    draw_and_report(a, &scene, &view, [camera.width, camera.height], &options, &note, tessellate_ms)
 }
 
 /// `subdiv render` of the adaptive tessellation: depths (and culling) from the camera, or from

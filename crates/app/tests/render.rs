@@ -350,3 +350,38 @@ fn view_screenshot_equals_render() {
     assert_eq!(a.dimensions(), (200, 150));
     assert!(a == b, "view screenshot differs from subdiv render");
 }
+
+#[test]
+fn doi_meshes_render_with_doi_shading() {
+    let teapot = root().join("fixtures/meshes/tri_teapot.obj");
+    let out = tmp("doi.png");
+    let Some(o) = render(&[
+        "render",
+        teapot.to_str().unwrap(),
+        "--split-nonmanifold",
+        "--scheme",
+        "loop",
+        "--doi",
+        "silhouette",
+        "--eye-relative",
+        "0,0.3,2.2",
+        "--shading",
+        "doi",
+        "--size",
+        "160x120",
+        "-o",
+        out.to_str().unwrap(),
+    ]) else {
+        return;
+    };
+    let text = String::from_utf8_lossy(&o.stdout).to_string();
+    // Fewer triangles than three uniform Loop steps (992 * 64).
+    let after: usize = text.split("-> ").nth(1).and_then(|t| t.split(' ').next()).and_then(|n| n.parse().ok()).unwrap();
+    assert!(after > 992 && after < 992 * 64, "{text}");
+    let img = subdiv_vk::read_png(&out).unwrap();
+    let centre = pixel(&img, 80, 60);
+    assert_ne!(centre, pixel(&img, 0, 0), "the teapot is drawn");
+    // DoI shading without a DoI is a clear error.
+    let o = subdiv().args(["render", teapot.to_str().unwrap(), "--split-nonmanifold", "--scheme", "loop", "--shading", "doi", "-o", out.to_str().unwrap()]).output().unwrap();
+    assert_clean_failure(&o, "--shading doi needs --doi");
+}
