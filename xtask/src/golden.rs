@@ -35,13 +35,13 @@ pub const SIZE: &str = "320x240";
 #[rustfmt::skip]
 pub const SCENES: &[Scene] = &[
     // Paper Fig. 9: a box with 6 faces and 8 infinitely sharp edges (top and bottom rims).
-    scene("box_sharp_edges", "fixtures/scenes/box_8_sharp_edges.obj", &["--eye-relative", "1.1,1.0,1.6"]),
+    scene("box_sharp_edges", "fixtures/scenes/box_8_sharp_edges.obj", &["--eye-relative", "1.1,1.0,1.6", "--depth", "3"]),
     scene("box_sharp_edges_wire", "fixtures/scenes/box_8_sharp_edges.obj", &["--eye-relative", "1.1,1.0,1.6", "--depth", "2", "--shading", "wire"]),
     // Semi-sharp creases (sharpness 5 and 0.1) on a cube, and a row of crease variants.
     scene("cube_semisharp_creases", "fixtures/reference/shapes/catmark_cube_creases1.obj", &["--eye-relative", "1.2,1.5,1.2", "--up", "0,0,1", "--depth", "4"]),
     scene("single_crease_flat", "fixtures/reference/shapes/catmark_single_crease.obj", &["--eye-relative", "0.3,1.3,1.6", "--depth", "2", "--shading", "flat"]),
     // The embedded demo cage (Z up), smooth with silhouette lines.
-    scene("pawn_silhouettes", "fixtures/reference/shapes/catmark_pawn.obj", &["--eye-relative", "1.5,-1.7,0.9", "--up", "0,0,1", "--silhouettes"]),
+    scene("pawn_silhouettes", "fixtures/reference/shapes/catmark_pawn.obj", &["--eye-relative", "1.5,-1.7,0.9", "--up", "0,0,1", "--depth", "3", "--silhouettes"]),
     // Loop limit surfaces: a sphere-like icosahedron and the bunny.
     scene("loop_icosahedron", "fixtures/reference/shapes/loop_icosahedron.obj", &["--scheme", "loop", "--eye-relative", "0.8,0.6,1.8", "--wire-overlay", "--depth", "2"]),
     scene("loop_bunny", "fixtures/meshes/tri_bunny_3k.obj", &["--scheme", "loop", "--depth", "1", "--eye-relative", "0.3,0.4,2.1"]),
@@ -51,7 +51,7 @@ pub const SCENES: &[Scene] = &[
     scene("edgecorner_boundaries", "fixtures/reference/shapes/catmark_edgecorner.obj", &["--eye-relative", "0.4,1.4,1.4", "--depth", "2", "--wire-overlay"]),
     // Depth colours (uniform depth until adaptive depths land), and a creased torus.
     scene("helmet_depth", "fixtures/reference/shapes/catmark_helmet.obj", &["--eye-relative", "1.4,0.5,1.6", "--depth", "2", "--shading", "depth", "--wire-overlay"]),
-    scene("torus_creases_silhouettes", "fixtures/reference/shapes/catmark_torus_creases0.obj", &["--eye-relative", "0.5,1.3,1.6", "--silhouettes"]),
+    scene("torus_creases_silhouettes", "fixtures/reference/shapes/catmark_torus_creases0.obj", &["--eye-relative", "0.5,1.3,1.6", "--depth", "3", "--silhouettes"]),
     // Adaptive tessellation (Settgast et al. 2004). Fig. 11: depth-coloured wireframe of the
     // view-dependent depths.
     scene("pawn_adaptive_depth_wire", "fixtures/reference/shapes/catmark_pawn.obj", &["--eye-relative", "1.5,-1.7,0.9", "--up", "0,0,1", "--max-depth", "4", "--shading", "depth", "--wire-overlay"]),
