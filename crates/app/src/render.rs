@@ -826,17 +826,21 @@ mod tests {
 
     #[test]
     fn doi_shading_is_refused_without_doi_values() {
-        let style = StyleArgs {
+        let mut style = StyleArgs {
             shading: "doi".into(),
             wire_overlay: false,
             silhouettes: false,
+            doi_values: false,
         };
         let e = style.render_options().unwrap_err().to_string();
         assert!(e.contains("--shading doi needs --doi"), "{e}");
+        style.doi_values = true;
+        assert_eq!(style.render_options().unwrap().shading, Shading::Doi);
         let style = StyleArgs {
             shading: "depth".into(),
             wire_overlay: true,
             silhouettes: true,
+            doi_values: false,
         };
         let o = style.render_options().unwrap();
         assert_eq!(o.shading, Shading::Depth);
