@@ -1,0 +1,237 @@
+//! The adaptive paths of `subdiv render` and `subdiv bench framerate` end to end: images and
+//! per-frame lines are written, bad flag values give `error:` and a non-zero exit, never a panic.
+//!
+//! Without a Vulkan driver the tests that render print a note and pass, unless
+//! `SUBDIV_VK_REQUIRE_DRIVER=1` (set by `cargo xtask test`).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use subdiv_vk::read_png;
+
+const LAVAPIPE_ICD: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn pawn() -> PathBuf {
+    root().join("fixtures/reference/shapes/catmark_pawn.obj")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("subdiv-adaptive-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d.join(name)
+}
+
+fn subdiv() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_subdiv"));
+    if std::env::var_os("VK_DRIVER_FILES").is_none() && Path::new(LAVAPIPE_ICD).exists() {
+        c.env("VK_DRIVER_FILES", LAVAPIPE_ICD);
+    }
+    if std::env::var_os("MESA_SHADER_CACHE_DIR").is_none() {
+        c.env(
+            "MESA_SHADER_CACHE_DIR",
+            root().join("target/mesa-shader-cache"),
+        );
+    }
+    c
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Runs `subdiv ARGS` expecting success; `None` (skipped, with a note) without a Vulkan driver
+/// unless one is required.
+fn run_ok(args: &[&str]) -> Option<Output> {
+    let o = subdiv().args(args).output().unwrap();
+    let err = stderr(&o);
+    let no_driver =
+        err.contains("no Vulkan driver found") || err.contains("cannot load the Vulkan loader");
+    if !o.status.success()
+        && no_driver
+        && std::env::var("SUBDIV_VK_REQUIRE_DRIVER").as_deref() != Ok("1")
+    {
+        eprintln!("skipping: {err}");
+        return None;
+    }
+    assert!(o.status.success(), "subdiv {args:?} failed:\n{err}");
+    Some(o)
+}
+
+/// Runs `subdiv ARGS` expecting a clean failure whose message contains `want`.
+fn assert_fails(args: &[&str], want: &str) {
+    let o = subdiv().args(args).output().unwrap();
+    let err = stderr(&o);
+    assert!(!o.status.success(), "subdiv {args:?} succeeded");
+    assert!(err.contains("error"), "no error line:\n{err}");
+    assert!(err.contains(want), "expected '{want}' in:\n{err}");
+    assert!(!err.contains("panicked"), "panic:\n{err}");
+}
+
+#[test]
+fn adaptive_render_writes_a_depth_coloured_image() {
+    let out = tmp("pawn.png");
+    let input = pawn();
+    let Some(o) = run_ok(&[
+        "render",
+        input.to_str().unwrap(),
+        "--up",
+        "0,0,1",
+        "--eye-relative",
+        "1.5,-1.7,0.9",
+        "--max-depth",
+        "3",
+        "--shading",
+        "depth",
+        "--wire-overlay",
+        "--size",
+        "160x160",
+        "-o",
+        out.to_str().unwrap(),
+    ]) else {
+        return;
+    };
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("adaptive"), "{stdout}");
+    let img = read_png(&out).unwrap();
+    assert_eq!(img.dimensions(), (160, 160));
+    // Depth colours are not grey: some pixel has unequal channels.
+    assert!(
+        img.pixels().any(|p| p.0[0] != p.0[1] || p.0[1] != p.0[2]),
+        "no coloured pixel in a depth-shaded render"
+    );
+    // The culling camera from behind changes the depths, hence the image.
+    let behind = tmp("pawn-behind.png");
+    let Some(_) = run_ok(&[
+        "render",
+        input.to_str().unwrap(),
+        "--up",
+        "0,0,1",
+        "--eye-relative",
+        "1.5,-1.7,0.9",
+        "--cull-camera-eye-relative",
+        "-1.5,1.7,0.9",
+        "--max-depth",
+        "3",
+        "--shading",
+        "depth",
+        "--size",
+        "160x160",
+        "-o",
+        behind.to_str().unwrap(),
+    ]) else {
+        return;
+    };
+    assert!(read_png(&behind).unwrap() != img);
+}
+
+#[test]
+fn bench_framerate_prints_one_line_per_frame() {
+    let Some(o) = run_ok(&[
+        "bench",
+        "framerate",
+        "--frames",
+        "5",
+        "--size",
+        "96x64",
+        "--max-depth",
+        "2",
+    ]) else {
+        return;
+    };
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let lines: Vec<&str> = stdout.lines().filter(|l| l.starts_with("frame=")).collect();
+    assert_eq!(lines.len(), 5, "{stdout}");
+    for (i, l) in lines.iter().enumerate() {
+        let f: Vec<&str> = l.split_whitespace().collect();
+        assert_eq!(f[0], format!("frame={i}"), "{l}");
+        let fps: f64 = f[1].strip_prefix("fps=").unwrap().parse().unwrap();
+        assert!(fps.is_finite() && fps > 0.0, "{l}");
+        let tris: u64 = f[2].strip_prefix("triangles=").unwrap().parse().unwrap();
+        assert!(tris > 0, "{l}");
+        let cap: u8 = f[3].strip_prefix("maxsd=").unwrap().parse().unwrap();
+        assert!(cap <= 2, "{l}");
+    }
+}
+
+#[test]
+fn bad_adaptive_flag_values_fail_cleanly() {
+    let input = pawn();
+    let input = input.to_str().unwrap();
+    let out = tmp("never.png");
+    let out = out.to_str().unwrap();
+    assert_fails(
+        &[
+            "render",
+            input,
+            "--eye-relative",
+            "1,1,1",
+            "--pixel-error=-1",
+            "-o",
+            out,
+        ],
+        "--pixel-error",
+    );
+    assert_fails(
+        &[
+            "render",
+            input,
+            "--eye-relative",
+            "1,1,1",
+            "--projected-size",
+            "8,2",
+            "-o",
+            out,
+        ],
+        "MIN <= MAX",
+    );
+    assert_fails(
+        &[
+            "render",
+            input,
+            "--eye-relative",
+            "1,1,1",
+            "--max-depth",
+            "99",
+            "-o",
+            out,
+        ],
+        "max-depth",
+    );
+    assert_fails(
+        &[
+            "render",
+            input,
+            "--eye-relative",
+            "1,1,1",
+            "--cull-camera-eye-relative",
+            "1,2",
+            "-o",
+            out,
+        ],
+        "X,Y,Z",
+    );
+    assert_fails(
+        &[
+            "render",
+            input,
+            "--depth",
+            "2",
+            "--cull-camera-eye-relative",
+            "1,2,3",
+            "-o",
+            out,
+        ],
+        "cull-camera",
+    );
+    assert_fails(&["bench", "framerate", "--frames", "many"], "--frames");
+    assert_fails(&["bench", "framerate", "--scene", "teapot"], "teapot");
+    assert_fails(&["bench", "framerate", "--size", "0x10"], "size");
+    assert_fails(
+        &["bench", "framerate", "--target-fps=-3", "--frames", "1"],
+        "frame rates must be positive",
+    );
+}
