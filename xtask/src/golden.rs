@@ -37,6 +37,7 @@ pub const SCENES: &[Scene] = &[
     // Paper Fig. 9: a box with 6 faces and 8 infinitely sharp edges (top and bottom rims).
     scene("box_sharp_edges", "fixtures/scenes/box_8_sharp_edges.obj", &["--eye-relative", "1.1,1.0,1.6", "--depth", "3"]),
     scene("box_sharp_edges_wire", "fixtures/scenes/box_8_sharp_edges.obj", &["--eye-relative", "1.1,1.0,1.6", "--depth", "2", "--shading", "wire"]),
+    scene("box_sharp_edges_adaptive", "fixtures/scenes/box_8_sharp_edges.obj", &["--eye-relative", "1.1,1.0,1.6", "--max-depth", "4", "--shading", "depth", "--wire-overlay"]),
     // Semi-sharp creases (sharpness 5 and 0.1) on a cube, and a row of crease variants.
     scene("cube_semisharp_creases", "fixtures/reference/shapes/catmark_cube_creases1.obj", &["--eye-relative", "1.2,1.5,1.2", "--up", "0,0,1", "--depth", "4"]),
     scene("single_crease_flat", "fixtures/reference/shapes/catmark_single_crease.obj", &["--eye-relative", "0.3,1.3,1.6", "--depth", "2", "--shading", "flat"]),
