@@ -166,6 +166,46 @@ pub fn limit_regular<P: Point>(v: P, e: [P; 4], d: [P; 4]) -> (P, P, P) {
     (pos, t1, t2)
 }
 
+/// Row sums for the separable form of [`limit_regular`]: for each `k` in `1..row.len() - 1`,
+/// `b[k - 1] = row[k - 1] + 4 row[k] + row[k + 1]` and `a[k - 1] = row[k + 1] - row[k - 1]`.
+///
+/// The bicubic B-spline's knot masks are tensor products of `(1, 4, 1)` and `(-1, 0, 1)`, so a
+/// grid evaluates its rows' sums once and [`limit_regular_from_sums`] combines three rows of
+/// them per point: each row's sums serve the three output rows around it.
+///
+/// ```
+/// use glam::Vec3A;
+/// use subdiv_rules::catmark::{limit_regular, limit_regular_from_sums, limit_row_sums};
+/// let p = |i: usize, j: usize| Vec3A::new(i as f32, j as f32, ((i * 7 + j * 3) % 5) as f32);
+/// let rows: Vec<Vec<Vec3A>> = (0..3).map(|j| (0..3).map(|i| p(i, j)).collect()).collect();
+/// let (mut b, mut a) = ([[Vec3A::ZERO; 1]; 3], [[Vec3A::ZERO; 1]; 3]);
+/// for j in 0..3 {
+///     limit_row_sums(&rows[j], &mut b[j], &mut a[j]);
+/// }
+/// let (pos, t1, t2) = limit_regular_from_sums([b[0][0], b[1][0], b[2][0]], [a[0][0], a[1][0], a[2][0]]);
+/// let e = [p(2, 1), p(1, 2), p(0, 1), p(1, 0)];
+/// let d = [p(2, 2), p(0, 2), p(0, 0), p(2, 0)];
+/// let (pos2, u1, u2) = limit_regular(p(1, 1), e, d);
+/// assert!((pos - pos2).length() < 1e-6 && (t1 - u1).length() < 1e-5 && (t2 - u2).length() < 1e-5);
+/// ```
+#[inline]
+pub fn limit_row_sums<P: Point>(row: &[P], b: &mut [P], a: &mut [P]) {
+    for ((w, b), a) in row.windows(3).zip(b.iter_mut()).zip(a.iter_mut()) {
+        *b = w[0].add(w[2]).madd(w[1], 4.0);
+        *a = w[2].sub(w[0]);
+    }
+}
+
+/// [`limit_regular`] from the [`limit_row_sums`] of the rows below, at and above the point
+/// (`b[0]`, `b[1]`, `b[2]`, and likewise `a`): the same position and tangents (up to rounding).
+#[inline(always)]
+pub fn limit_regular_from_sums<P: Point>(b: [P; 3], a: [P; 3]) -> (P, P, P) {
+    let pos = b[0].add(b[2]).madd(b[1], 4.0).scale(1.0 / 36.0);
+    let t1 = a[0].add(a[2]).madd(a[1], 4.0);
+    let t2 = b[2].sub(b[0]);
+    (pos, t1, t2)
+}
+
 /// Tangent across a crease, over the quads between crease edges `c0 < c1` (Biermann et al. 2000;
 /// the regular case is the uniform B-spline cross tangent).
 fn crease_cross_tangent<P: Point>(v: P, edges: &[P], diag: &[P], c0: usize, c1: usize) -> P {

@@ -65,20 +65,31 @@ impl Table {
     }
 
     /// Prepares the table for grid size `n`. A table for the regular step needs no clearing
-    /// (it overwrites every point); sharpness is cleared only if a general step left some.
+    /// (it overwrites every point); sharpness is cleared only if a general step left some, and
+    /// then only on the band where it can be (see [`band`]).
     fn reset(&mut self, n: usize, regular: bool) {
+        debug_assert!((n + 3) * (n + 3) <= self.p.len(), "slate too small for grid {n}");
+        if self.dirty && self.s > 0 {
+            // Rows -1, 0, n, n + 1 whole; columns -1, 0, n, n + 1 of the rows between.
+            let (n, s) = (self.n, self.s);
+            for r in [0, 1, n + 1, n + 2] {
+                self.hs[r * s..(r + 1) * s].fill(0.0);
+                self.vs[r * s..(r + 1) * s].fill(0.0);
+            }
+            for r in 2..=n {
+                for c in [0, 1, n + 1, n + 2] {
+                    self.hs[r * s + c] = 0.0;
+                    self.vs[r * s + c] = 0.0;
+                }
+            }
+        }
+        let was_dirty = self.dirty;
         self.n = n;
         self.s = n + 3;
-        let len = self.s * self.s;
-        debug_assert!(len <= self.p.len(), "slate too small for grid {n}");
-        if regular && !self.dirty {
-            return;
-        }
-        self.ex[..len].fill(false);
-        self.hs[..len].fill(0.0);
-        self.vs[..len].fill(0.0);
-        for f in &mut self.far {
-            f[..=n].fill((0.0, 0));
+        if !regular || was_dirty {
+            for f in &mut self.far {
+                f[..=n].fill((0.0, 0));
+            }
         }
         self.dirty = !regular;
     }
@@ -150,44 +161,70 @@ impl Table {
 
     /// Marks the points whose rules are not the smooth regular ones: the ends of sharp edges and
     /// the neighbours of missing points. Returns `true` if any point is missing.
-    fn mark_dirty(&self, dirty: &mut Vec<bool>) -> bool {
+    ///
+    /// Only the band can hold such points (see [`band`]), so only the band is scanned; `list`
+    /// remembers what was marked so that the next call clears just that.
+    fn mark_dirty(&self, dirty: &mut Vec<bool>, list: &mut Vec<u32>) -> bool {
+        #[cfg(debug_assertions)]
+        self.check_band_invariant();
         let s = self.s;
         let len = s * s;
-        dirty.clear();
-        dirty.resize(len, false);
-        let mut missing = false;
-        for k in 0..len {
-            if self.hs[k] != 0.0 {
+        if dirty.len() < self.p.len() {
+            dirty.resize(self.p.len(), false);
+        }
+        for &k in list.iter() {
+            dirty[k as usize] = false;
+        }
+        list.clear();
+        let mut set = |k: usize| {
+            if !dirty[k] {
                 dirty[k] = true;
+                list.push(k as u32);
+            }
+        };
+        let mut missing = false;
+        for (i, j) in band(self.n) {
+            let k = self.at(i, j);
+            if self.hs[k] != 0.0 {
+                set(k);
                 if k + 1 < len {
-                    dirty[k + 1] = true;
+                    set(k + 1);
                 }
             }
             if self.vs[k] != 0.0 {
-                dirty[k] = true;
+                set(k);
                 if k + s < len {
-                    dirty[k + s] = true;
+                    set(k + s);
                 }
             }
             if !self.ex[k] {
                 missing = true;
-            }
-        }
-        if missing {
-            for k in 0..len {
-                if !self.ex[k] {
-                    let (i, j) = ((k % s) as i32 - 1, (k / s) as i32 - 1);
-                    for dj in -1..=1 {
-                        for di in -1..=1 {
-                            if self.inside(i + di, j + dj) {
-                                dirty[self.at(i + di, j + dj)] = true;
-                            }
+                for dj in -1..=1 {
+                    for di in -1..=1 {
+                        if self.inside(i + di, j + dj) {
+                            set(self.at(i + di, j + dj));
                         }
                     }
                 }
             }
         }
         missing
+    }
+
+    /// Checks what [`band`] relies on: every point off the band is plain (it exists, its eight
+    /// neighbours exist and its four edges are smooth), so sharpness and missing points can only
+    /// be found on the band.
+    #[cfg(debug_assertions)]
+    fn check_band_invariant(&self) {
+        let n = self.n as i32;
+        for j in 1..n {
+            for i in 1..n {
+                assert!(
+                    self.is_plain(i, j),
+                    "slate band invariant broken at ({i}, {j}) of grid {n}"
+                );
+            }
+        }
     }
 
     /// `true` if the quad with lower-left corner `(i,j)` exists.
@@ -225,6 +262,20 @@ fn corner_frame(k: usize, n: i32) -> ((i32, i32), usize, usize) {
     }
 }
 
+/// The table points where sharp edges and missing points can be: the rows and columns
+/// `-1, 0, n, n + 1` (the patch's sides and the outer ring). Gather fills a `4 x 4` table (all
+/// band); a step only makes the children of band edges sharp, and only face and edge points of
+/// the outer ring missing, so the band of level `l` refines into the band of level `l + 1`. Every
+/// general-table loop runs over the band alone; debug builds check the invariant.
+fn band(n: usize) -> impl Iterator<Item = (i32, i32)> {
+    let n = n as i32;
+    let lines = [-1, 0, n, n + 1];
+    lines
+        .into_iter()
+        .flat_map(move |j| (-1..=n + 1).map(move |i| (i, j)))
+        .chain((1..n).flat_map(move |j| lines.into_iter().map(move |i| (i, j))))
+}
+
 /// Per-thread tessellation state: two slates and four corner arrays, allocated once.
 #[derive(Debug)]
 pub struct Worker {
@@ -254,8 +305,13 @@ pub struct Worker {
     pub(crate) ids: Vec<u32>,
     /// Per table point: near a sharp edge or a missing point (general rules needed).
     dirty: Vec<bool>,
-    /// `dirty` describes the current slate.
-    dirty_ready: bool,
+    /// Indices set in `dirty` (cleared by the next marking).
+    dirty_list: Vec<u32>,
+    /// Row sums of the separable regular limit masks (`limit_interior`).
+    sum_b: Vec<Vec3A>,
+    sum_a: Vec<Vec3A>,
+    /// Interior points with degenerate regular tangents.
+    bad: Vec<(i32, i32)>,
 }
 
 impl Worker {
@@ -284,7 +340,10 @@ impl Worker {
             maxn,
             ids: Vec::new(),
             dirty: Vec::new(),
-            dirty_ready: false,
+            dirty_list: Vec::new(),
+            sum_b: Vec::new(),
+            sum_a: Vec::new(),
+            bad: Vec::new(),
         }
     }
 
@@ -297,7 +356,6 @@ impl Worker {
     /// Gathers the 1-neighbourhood of quad `f` of `mesh` (whose neighbourhood is all quads) into
     /// slate 0 (paper Fig. 2).
     pub(crate) fn gather(&mut self, mesh: &Mesh, f: FaceId) {
-        self.dirty_ready = false;
         self.cur = 0;
         self.method = mesh.options().crease;
         self.origin32 = Vec3A::from(mesh.position(mesh.from(mesh.face_halfedge(f))));
@@ -351,22 +409,22 @@ impl Worker {
                 ne += 3;
             }
         }
-        // Corners: a smooth interior valence-4 corner completes the table with its diagonal
-        // vertex; any other corner keeps its whole ring in a corner array.
+        // Corners: an interior valence-4 corner without a corner tag completes the table with its
+        // diagonal vertex; any other corner keeps its whole ring in a corner array.
         for k in 0..4 {
             let v = mesh.from(hs[k]);
             let boundary = mesh.is_boundary_vertex(v);
             let mut valence = 0usize;
-            let mut sharp = mesh.vertex_sharpness(v) > 0.0;
-            for h in mesh.outgoing(v) {
+            for _ in mesh.outgoing(v) {
                 valence += 1;
-                sharp |= mesh.edge_sharpness(h.edge()) > 0.0;
                 if valence > 4 {
                     break;
                 }
             }
+            // Sharp edges at an interior valence-4 corner are table edges like any other (the
+            // general step's rules handle them); a corner tag has no place in the table.
             let c = &mut self.corners[k];
-            c.active = valence != 4 || boundary || sharp;
+            c.active = valence != 4 || boundary || mesh.vertex_sharpness(v) > 0.0;
             c.boundary = boundary;
             if c.active {
                 c.ring.load_with_halfedges(mesh, v, Scheme::CatmullClark, &mut self.hes);
@@ -393,12 +451,12 @@ impl Worker {
             for i in -1..=2i32 {
                 let v = vid[(j + 1) as usize][(i + 1) as usize];
                 let k = t.at(i, j);
-                if v.is_some() {
-                    t.p[k] = Vec3A::from(mesh.position(v)) - origin32;
-                    t.ex[k] = true;
+                t.ex[k] = v.is_some();
+                t.p[k] = if v.is_some() {
+                    Vec3A::from(mesh.position(v)) - origin32
                 } else {
-                    t.p[k] = Vec3A::ZERO;
-                }
+                    Vec3A::ZERO
+                };
             }
         }
         for &((i, j), d, h) in &edges[..ne] {
@@ -448,7 +506,6 @@ impl Worker {
 
     /// One subdivision step: slate `cur` to slate `1 - cur`, corner arrays refined in place.
     pub(crate) fn step(&mut self) {
-        self.dirty_ready = false;
         let (a, b) = self.t.split_at_mut(1);
         let (src, dst) = if self.cur == 0 {
             (&a[0], &mut b[0])
@@ -463,10 +520,11 @@ impl Worker {
             }
         }
         if self.regular {
-            step_regular(src, dst, &self.corners);
+            step_regular(src, dst);
         } else {
             let scratch = Scratch {
                 dirty: &mut self.dirty,
+                dirty_list: &mut self.dirty_list,
                 e_pts: &mut self.e_pts,
                 f_pts: &mut self.f_pts,
                 e_sh: &mut self.e_sh,
@@ -522,74 +580,60 @@ impl Worker {
         self.limit_general(i, j)
     }
 
-    /// Limits of the points `(i, j)` for `i` in `i0..=i1` of row `j` (none of them a corner),
-    /// passed to `emit(k, position, normal)` with `k = i - i0`.
+    /// Limits of all interior grid points `(i, j)`, `1 <= i, j <= n - 1`, of the current slate,
+    /// passed row by row to `emit(i, j, position, normal)`.
+    ///
+    /// Off the band every point is plain (see [`band`]), general table or not, so the regular
+    /// limit masks apply to every interior point; they are evaluated in their separable form
+    /// (`catmark::limit_row_sums` once per table row, shared by the three output rows around it).
     #[inline]
-    pub(crate) fn limit_row(
-        &mut self,
-        j: i32,
-        i0: i32,
-        i1: i32,
-        mut emit: impl FnMut(usize, Vec3A, Vec3A),
-    ) {
-        if self.regular {
-            let t = &self.t[self.cur];
-            let s = t.s;
-            let o = self.origin32;
-            let p = &t.p[..];
-            let base = t.at(i0, j);
-            let mut bad = false;
-            let cnt = (i1 - i0) as usize + 1;
-            // Three rows around the evaluated row, from one column left to one right.
-            let rs = &p[base - s - 1..base - s + cnt + 1];
-            let r0 = &p[base - 1..base + cnt + 1];
-            let rn = &p[base + s - 1..base + s + cnt + 1];
-            for x in 0..cnt {
-                let k = x + 1;
-                let e = [r0[k + 1], rn[k], r0[k - 1], rs[k]];
-                let dg = [rn[k + 1], rn[k - 1], rs[k - 1], rs[k + 1]];
-                let (pos, t1, t2) = catmark::limit_regular(r0[k], e, dg);
-                let nrm = t1.cross(t2);
-                let len2 = nrm.length_squared();
-                if len2 > 0.0 && len2.is_finite() {
-                    emit(x, pos + o, nrm * len2.sqrt().recip());
-                } else {
-                    bad = true;
-                }
-            }
-            if !bad {
-                return;
-            }
-            // Degenerate tangents somewhere on the row: redo those points exactly.
-            for i in i0..=i1 {
-                let (pos, nrm) = self.limit(i, j);
-                emit((i - i0) as usize, pos, nrm);
-            }
+    pub(crate) fn limit_interior(&mut self, mut emit: impl FnMut(i32, i32, Vec3A, Vec3A)) {
+        let t = &self.t[self.cur];
+        let n = t.n as i32;
+        if n < 2 {
             return;
         }
-        // General table: the regular masks wherever the point is clean.
-        if !self.dirty_ready {
-            self.t[self.cur].mark_dirty(&mut self.dirty);
-            self.dirty_ready = true;
+        debug_assert!(
+            (1..n).all(|j| (1..n).all(|i| t.is_plain(i, j))),
+            "interior points of a slate must be plain"
+        );
+        let cnt = (n - 1) as usize;
+        let need = (n as usize + 1) * cnt;
+        if self.sum_b.len() < need {
+            self.sum_b.resize(need, Vec3A::ZERO);
+            self.sum_a.resize(need, Vec3A::ZERO);
         }
-        for i in i0..=i1 {
-            let t = &self.t[self.cur];
-            let k = t.at(i, j);
-            if !self.dirty[k] {
-                let (s, p) = (t.s, &t.p);
-                let e = [p[k + 1], p[k + s], p[k - 1], p[k - s]];
-                let dg = [p[k + s + 1], p[k + s - 1], p[k - s - 1], p[k - s + 1]];
-                let (pos, t1, t2) = catmark::limit_regular(p[k], e, dg);
+        let (sb, sa) = (&mut self.sum_b[..need], &mut self.sum_a[..need]);
+        for j in 0..=n {
+            let base = t.at(0, j);
+            let r = j as usize * cnt..(j as usize + 1) * cnt;
+            catmark::limit_row_sums(&t.p[base..base + cnt + 2], &mut sb[r.clone()], &mut sa[r]);
+        }
+        let o = self.origin32;
+        let mut bad = std::mem::take(&mut self.bad);
+        bad.clear();
+        for j in 1..n {
+            let r = |d: i32| (j + d) as usize * cnt..(j + d + 1) as usize * cnt;
+            let (bs, b0, bn) = (&sb[r(-1)], &sb[r(0)], &sb[r(1)]);
+            let (as_, a0, an) = (&sa[r(-1)], &sa[r(0)], &sa[r(1)]);
+            for x in 0..cnt {
+                let (pos, t1, t2) =
+                    catmark::limit_regular_from_sums([bs[x], b0[x], bn[x]], [as_[x], a0[x], an[x]]);
                 let nrm = t1.cross(t2);
                 let len2 = nrm.length_squared();
                 if len2 > 0.0 && len2.is_finite() {
-                    emit((i - i0) as usize, pos + self.origin32, nrm * len2.sqrt().recip());
-                    continue;
+                    emit(x as i32 + 1, j, pos + o, nrm * len2.sqrt().recip());
+                } else {
+                    bad.push((x as i32 + 1, j));
                 }
             }
-            let (pos, nrm) = self.limit(i, j);
-            emit((i - i0) as usize, pos, nrm);
         }
+        // Degenerate tangents: those points exactly, through a ring.
+        for &(i, j) in &bad {
+            let (pos, nrm) = self.limit(i, j);
+            emit(i, j, pos, nrm);
+        }
+        self.bad = bad;
     }
 
     /// Tessellates the quad `face` of `mesh` (whose 1-neighbourhood is all quads) at `depth` and
@@ -629,24 +673,19 @@ impl Worker {
         let n = n as i32;
         for j in 0..=n {
             let row = j as usize * w;
-            if j == 0 || j == n || n == 1 {
-                for i in 0..=n {
-                    let (p, q) = self.limit(i, j);
-                    pos[row + i as usize] = p.to_array();
-                    nrm[row + i as usize] = q.to_array();
-                }
-            } else {
-                for i in [0, n] {
-                    let (p, q) = self.limit(i, j);
-                    pos[row + i as usize] = p.to_array();
-                    nrm[row + i as usize] = q.to_array();
-                }
-                self.limit_row(j, 1, n - 1, |k, p, q| {
-                    pos[row + 1 + k] = p.to_array();
-                    nrm[row + 1 + k] = q.to_array();
-                });
+            // The border: whole first and last rows, the two ends of the others.
+            let step = if j == 0 || j == n { 1 } else { n.max(1) as usize };
+            for i in (0..=n).step_by(step) {
+                let (p, q) = self.limit(i, j);
+                pos[row + i as usize] = p.to_array();
+                nrm[row + i as usize] = q.to_array();
             }
         }
+        self.limit_interior(|i, j, p, q| {
+            let k = j as usize * w + i as usize;
+            pos[k] = p.to_array();
+            nrm[k] = q.to_array();
+        });
     }
 
     /// Limit through a ring built from the table (creases, boundaries, degenerate tangents).
@@ -845,7 +884,7 @@ const SMOOTH: VertexRules = VertexRules {
     parent_weight: 1.0,
 };
 
-fn step_regular(src: &Table, dst: &mut Table, corners: &[Corner; 4]) {
+fn step_regular(src: &Table, dst: &mut Table) {
     let n = src.n as i32;
     let ss = src.s;
     let ds = dst.s;
@@ -868,12 +907,6 @@ fn step_regular(src: &Table, dst: &mut Table, corners: &[Corner; 4]) {
     }
     // Horizontal edge points (dst row 2j, storage 2j+1, even columns) and vertex points (same
     // row, odd columns); faces in the storage rows below (2j) and above (2j+2).
-    let corner_active = |i: i32, j: i32| {
-        (0..4).any(|k| {
-            let ((ci, cj), _, _) = corner_frame(k, n);
-            ci == i && cj == j && corners[k].active
-        })
-    };
     for j in 0..=n {
         let (rs, r, rn) = (row(j - 1), row(j), row(j + 1));
         let base = (2 * j + 1) as usize * ds;
@@ -889,11 +922,8 @@ fn step_regular(src: &Table, dst: &mut Table, corners: &[Corner; 4]) {
         {
             *e = catmark::edge_point(ab[0], ab[1], &[*fb, *fa], 0.0);
         }
+        // Active corners get a (meaningless) vertex point too: `write_corner` replaces it.
         for x in 1..w {
-            let i = x as i32 - 1;
-            if (i == 0 || i == n) && (j == 0 || j == n) && corner_active(i, j) {
-                continue;
-            }
             let e = [r[x + 1], rn[x], r[x - 1], rs[x]];
             let f = [
                 above[2 * x],
@@ -920,6 +950,7 @@ fn step_regular(src: &Table, dst: &mut Table, corners: &[Corner; 4]) {
 
 struct Scratch<'a> {
     dirty: &'a mut Vec<bool>,
+    dirty_list: &'a mut Vec<u32>,
     e_pts: &'a mut Vec<Vec3A>,
     f_pts: &'a mut Vec<Vec3A>,
     e_sh: &'a mut Vec<f32>,
@@ -943,21 +974,28 @@ fn step_general(
         })
     };
     // The smooth regular rules everywhere first; then the general rules where they differ.
-    step_regular(src, dst, corners);
-    let missing = src.mark_dirty(sc.dirty);
+    step_regular(src, dst);
+    let missing = src.mark_dirty(sc.dirty, sc.dirty_list);
     if missing {
+        // Missing points lie on the outer ring, so only faces touching it can be missing.
         for j in -1..=n {
+            let all = j == -1 || j == n;
             for i in -1..=n {
-                if !src.face_exists(i, j) {
+                if (all || i == -1 || i == n) && !src.face_exists(i, j) {
                     let k = dst.at(2 * i + 1, 2 * j + 1);
                     dst.ex[k] = false;
                 }
             }
         }
     }
-    // Vertex points and the child sharpness of every edge at its inner ends.
+    // Vertex points and the child sharpness of every edge at its inner ends: dirty points are
+    // on the band (the patch's sides here).
     for j in 0..=n {
+        let all = j == 0 || j == n;
         for i in 0..=n {
+            if !(all || i == 0 || i == n) {
+                continue;
+            }
             let at_corner = (i == 0 || i == n) && (j == 0 || j == n);
             if let Some(k) = at_corner.then(|| is_corner(i, j)).flatten() {
                 // Child sharpness comes from the (already refined) corner array.
@@ -1006,112 +1044,117 @@ fn step_general(
             }
         }
     }
-    // Edge points. Horizontal edges (i,j)-(i+1,j) and vertical (i,j)-(i,j+1).
-    for dir in 0..2usize {
-        let (ri, rj) = if dir == 0 {
-            (-1..=n, 0..=n)
+    // Edge points of the edges with an end on the band (only those can have a dirty end):
+    // horizontal edges (i,j)-(i+1,j) (`dir` 0) and vertical ones (i,j)-(i,j+1) (`dir` 1).
+    let mut edge = |i: i32, j: i32, dir: usize| {
+        let (bi, bj) = (i + DI[dir], j + DJ[dir]);
+        // A missing end marks both ends dirty, so clean edges exist.
+        if !(sc.dirty[src.at(i, j)] || sc.dirty[src.at(bi, bj)]) {
+            return;
+        }
+        if !src.edge_exists(i, j, dir) {
+            let k = dst.at(i + bi, j + bj);
+            dst.ex[k] = false;
+            return;
+        }
+        let s = src.edge_sharp(i, j, dir);
+        let sides: [(i32, i32); 2] = if dir == 0 {
+            [(i, j - 1), (i, j)]
         } else {
-            (0..=n, -1..=n)
+            [(i - 1, j), (i, j)]
         };
-        for j in rj.clone() {
-            for i in ri.clone() {
-                let (bi, bj) = (i + DI[dir], j + DJ[dir]);
-                // A missing end marks both ends dirty, so clean edges exist.
-                if !(sc.dirty[src.at(i, j)] || sc.dirty[src.at(bi, bj)]) {
-                    continue;
-                }
-                if !src.edge_exists(i, j, dir) {
-                    let k = dst.at(i + bi, j + bj);
-                    dst.ex[k] = false;
-                    continue;
-                }
-                let s = src.edge_sharp(i, j, dir);
-                let sides: [(i32, i32); 2] = if dir == 0 {
-                    [(i, j - 1), (i, j)]
-                } else {
-                    [(i - 1, j), (i, j)]
-                };
-                if s == 0.0
-                    && src.face_exists(sides[0].0, sides[0].1)
-                    && src.face_exists(sides[1].0, sides[1].1)
-                {
-                    let f0 = dst.p[dst.at(2 * sides[0].0 + 1, 2 * sides[0].1 + 1)];
-                    let f1 = dst.p[dst.at(2 * sides[1].0 + 1, 2 * sides[1].1 + 1)];
-                    let k = dst.at(i + bi, j + bj);
-                    dst.p[k] = catmark::edge_point(
-                        src.p[src.at(i, j)],
-                        src.p[src.at(bi, bj)],
-                        &[f0, f1],
-                        0.0,
-                    );
-                    dst.ex[k] = true;
-                    continue;
-                }
-                // Child sharpness at each end: from the vertex rules (inner ends) or the far info.
-                let child_at = |vi: i32, vj: i32, toward: usize| -> f32 {
-                    if (0..=n).contains(&vi) && (0..=n).contains(&vj) {
-                        dst.edge_sharp(2 * vi, 2 * vj, toward)
-                    } else {
-                        crease::child_edge_sharpness(
-                            method,
-                            s,
-                            far_info(src, corners, vi, vj, (toward + 2) % 4),
-                        )
-                    }
-                };
-                let c0 = child_at(i, j, dir);
-                let c1 = child_at(bi, bj, (dir + 2) % 4);
-                let w = edge_crease_weight(method, s, [c0, c1]);
-                let mut faces = [Vec3A::ZERO; 2];
-                let mut nf = 0;
-                // Faces on either side of the edge.
-                let sides: [(i32, i32); 2] = if dir == 0 {
-                    [(i, j - 1), (i, j)]
-                } else {
-                    [(i - 1, j), (i, j)]
-                };
-                for (fi, fj) in sides {
-                    if src.face_exists(fi, fj) {
-                        faces[nf] = dst.p[dst.at(2 * fi + 1, 2 * fj + 1)];
-                        nf += 1;
-                    }
-                }
-                let e = catmark::edge_point(
-                    src.p[src.at(i, j)],
-                    src.p[src.at(bi, bj)],
-                    &faces[..nf],
-                    w,
-                );
-                let k = dst.at(i + bi, j + bj);
-                dst.p[k] = e;
-                dst.ex[k] = true;
-                // New far info for crossing edges leaving the table.
-                let outer = |vi: i32, vj: i32| !((0..=n).contains(&vi) && (0..=n).contains(&vj));
-                if outer(i, j) || outer(bi, bj) {
-                    let (oi, oj, toward) = if outer(i, j) {
-                        (i, j, dir)
-                    } else {
-                        (bi, bj, (dir + 2) % 4)
-                    };
-                    let cf = crease::child_edge_sharpness(
-                        method,
-                        s,
-                        far_info(src, corners, oi, oj, toward),
-                    );
-                    let info = if is_semi_sharp(cf) { (cf, 1) } else { (0.0, 0) };
-                    let (side, pos) = if oj == -1 {
-                        (0, 2 * i)
-                    } else if oi == n + 1 {
-                        (1, 2 * j)
-                    } else if oj == n + 1 {
-                        (2, 2 * i)
-                    } else {
-                        (3, 2 * j)
-                    };
-                    if (0..=2 * n).contains(&pos) {
-                        dst.far[side][pos as usize] = info;
-                    }
-                }
+        if s == 0.0
+            && src.face_exists(sides[0].0, sides[0].1)
+            && src.face_exists(sides[1].0, sides[1].1)
+        {
+            // A smooth edge between two faces: the regular pass computed it alike.
+            return;
+        }
+        // Child sharpness at each end: from the vertex rules (inner ends) or the far info.
+        let child_at = |vi: i32, vj: i32, toward: usize| -> f32 {
+            if (0..=n).contains(&vi) && (0..=n).contains(&vj) {
+                dst.edge_sharp(2 * vi, 2 * vj, toward)
+            } else {
+                crease::child_edge_sharpness(
+                    method,
+                    s,
+                    far_info(src, corners, vi, vj, (toward + 2) % 4),
+                )
+            }
+        };
+        let c0 = child_at(i, j, dir);
+        let c1 = child_at(bi, bj, (dir + 2) % 4);
+        let w = edge_crease_weight(method, s, [c0, c1]);
+        let mut faces = [Vec3A::ZERO; 2];
+        let mut nf = 0;
+        // Faces on either side of the edge.
+        let sides: [(i32, i32); 2] = if dir == 0 {
+            [(i, j - 1), (i, j)]
+        } else {
+            [(i - 1, j), (i, j)]
+        };
+        for (fi, fj) in sides {
+            if src.face_exists(fi, fj) {
+                faces[nf] = dst.p[dst.at(2 * fi + 1, 2 * fj + 1)];
+                nf += 1;
+            }
+        }
+        let e = catmark::edge_point(
+            src.p[src.at(i, j)],
+            src.p[src.at(bi, bj)],
+            &faces[..nf],
+            w,
+        );
+        let k = dst.at(i + bi, j + bj);
+        dst.p[k] = e;
+        dst.ex[k] = true;
+        // New far info for crossing edges leaving the table.
+        let outer = |vi: i32, vj: i32| !((0..=n).contains(&vi) && (0..=n).contains(&vj));
+        if outer(i, j) || outer(bi, bj) {
+            let (oi, oj, toward) = if outer(i, j) {
+                (i, j, dir)
+            } else {
+                (bi, bj, (dir + 2) % 4)
+            };
+            let cf = crease::child_edge_sharpness(
+                method,
+                s,
+                far_info(src, corners, oi, oj, toward),
+            );
+            let info = if is_semi_sharp(cf) { (cf, 1) } else { (0.0, 0) };
+            let (side, pos) = if oj == -1 {
+                (0, 2 * i)
+            } else if oi == n + 1 {
+                (1, 2 * j)
+            } else if oj == n + 1 {
+                (2, 2 * i)
+            } else {
+                (3, 2 * j)
+            };
+            if (0..=2 * n).contains(&pos) {
+                dst.far[side][pos as usize] = info;
+            }
+        }
+    };
+    for j in 0..=n {
+        if j == 0 || j == n {
+            for i in -1..=n {
+                edge(i, j, 0);
+            }
+        } else {
+            for i in [-1, 0, n - 1, n] {
+                edge(i, j, 0);
+            }
+        }
+    }
+    for i in 0..=n {
+        if i == 0 || i == n {
+            for j in -1..=n {
+                edge(i, j, 1);
+            }
+        } else {
+            for j in [-1, 0, n - 1, n] {
+                edge(i, j, 1);
             }
         }
     }

@@ -221,14 +221,12 @@ fn run_patch(wk: &mut Worker, src: &Mesh, p: &Patch, e: u32, out: &SharedOut, qu
         let m = (n - 1) as usize;
         let first = p.interior as usize;
         out.check_range(first, m * m);
-        for j in 1..n {
-            let row = first + (j as usize - 1) * m;
-            w.limit_row(j as i32, 1, n as i32 - 1, |k, pos, nrm| {
-                // SAFETY: `row + k` lies in this patch's interior range, checked above, which
-                // only this patch writes.
-                unsafe { out.write_unchecked(row + k, pos, nrm) }
-            });
-        }
+        w.limit_interior(|i, j, pos, nrm| {
+            let k = first + (j as usize - 1) * m + (i as usize - 1);
+            // SAFETY: `1 <= i, j <= n - 1`, so `k` lies in this patch's interior range, checked
+            // above, which only this patch writes.
+            unsafe { out.write_unchecked(k, pos, nrm) }
+        });
     }
     if !quads.is_empty() {
         // Ids of the whole grid once (border through the layout, interior contiguous), then quads.
@@ -250,15 +248,10 @@ fn run_patch(wk: &mut Worker, src: &Mesh, p: &Patch, e: u32, out: &SharedOut, qu
                 }
             }
         }
-        let mut k = 0;
-        for j in 0..n as usize {
-            for i in 0..n as usize {
-                let a = j * w + i;
-                quads[k] = ids[a];
-                quads[k + 1] = ids[a + 1];
-                quads[k + 2] = ids[a + w + 1];
-                quads[k + 3] = ids[a + w];
-                k += 4;
+        for (j, qrow) in quads.chunks_exact_mut(4 * n as usize).enumerate() {
+            let (lo, hi) = (&ids[j * w..(j + 1) * w], &ids[(j + 1) * w..(j + 2) * w]);
+            for ((q, a), b) in qrow.chunks_exact_mut(4).zip(lo.windows(2)).zip(hi.windows(2)) {
+                q.copy_from_slice(&[a[0], a[1], b[1], b[0]]);
             }
         }
         wk.ids = ids;
