@@ -88,6 +88,73 @@ fn apply_vertex_rule<P: Point>(v: P, edges: &[P], faces: &[P], rule: Rule) -> P 
     }
 }
 
+/// The smooth regular rules in separable form, first half: one row of a regular grid split
+/// along its length by the uniform cubic B-spline rules (Lane and Riesenfeld 1980): between each
+/// two points their midpoint, at each interior point `(p[k-1] + 6 p[k] + p[k+1]) / 8`.
+/// `out.len() == 2 * row.len() - 3` (from the first midpoint to the last).
+///
+/// On a regular quad grid Catmull-Clark's face, edge and vertex rules are the tensor products of
+/// these two (`1/4 (1,1) x (1,1)`, `1/16 (1,1) x (1,6,1)`, `1/64 (1,6,1) x (1,6,1)`), so a grid is
+/// refined by splitting its rows with this function, then combining the split rows with
+/// [`split_rows_mid`] and [`split_rows_even`]: fewer operations than the three rules point by
+/// point, the same points up to rounding.
+///
+/// ```
+/// use glam::Vec3A;
+/// use subdiv_rules::catmark::{edge_point, face_point, split_row, split_rows_even, split_rows_mid};
+/// use subdiv_rules::catmark::vertex_point;
+/// use subdiv_rules::crease::{Rule, VertexRules};
+/// let p = |i: usize, j: usize| Vec3A::new(i as f32, j as f32, ((i * 5 + j * 3) % 4) as f32);
+/// let rows: Vec<Vec<Vec3A>> = (0..3).map(|j| (0..3).map(|i| p(i, j)).collect()).collect();
+/// let mut h = vec![vec![Vec3A::ZERO; 3]; 3];
+/// for j in 0..3 {
+///     split_row(&rows[j], &mut h[j]);
+/// }
+/// let (mut even, mut mid) = (vec![Vec3A::ZERO; 3], vec![Vec3A::ZERO; 3]);
+/// split_rows_even(&h[0], &h[1], &h[2], &mut even);
+/// split_rows_mid(&h[1], &h[2], &mut mid);
+/// // mid[0]: face point of the quad (0,1)-(1,2); even[1]: vertex point of (1,1);
+/// // mid[1]: edge point of the edge (1,1)-(1,2).
+/// let f = |i: usize, j: usize| face_point(&[p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1)]);
+/// assert!((mid[0] - f(0, 1)).length() < 1e-6);
+/// assert!((mid[1] - edge_point(p(1, 1), p(1, 2), &[f(0, 1), f(1, 1)], 0.0)).length() < 1e-6);
+/// let smooth = VertexRules { parent: Rule::Smooth, child: Rule::Smooth, parent_weight: 1.0 };
+/// let v = vertex_point(p(1, 1), &[p(2, 1), p(1, 2), p(0, 1), p(1, 0)],
+///     &[f(1, 1), f(0, 1), f(0, 0), f(1, 0)], &smooth);
+/// assert!((even[1] - v).length() < 1e-6);
+/// ```
+#[inline]
+pub fn split_row<P: Point>(row: &[P], out: &mut [P]) {
+    let l = row.len();
+    assert!(
+        l >= 3 && out.len() + 3 == 2 * l,
+        "split_row: output must hold 2 * len - 3 points"
+    );
+    for (o, w) in out.chunks_exact_mut(2).zip(row.windows(3)) {
+        o[0] = w[0].add(w[1]).scale(0.5);
+        o[1] = w[0].add(w[2]).madd(w[1], 6.0).scale(0.125);
+    }
+    out[2 * l - 4] = row[l - 2].add(row[l - 1]).scale(0.5);
+}
+
+/// [`split_row`]'s second half, across rows: the new row between split rows `a` and `b`
+/// (their midpoints).
+#[inline]
+pub fn split_rows_mid<P: Point>(a: &[P], b: &[P], out: &mut [P]) {
+    for ((o, a), b) in out.iter_mut().zip(a).zip(b) {
+        *o = a.add(*b).scale(0.5);
+    }
+}
+
+/// [`split_row`]'s second half, across rows: the new row at split row `b`, between `a` and `c`
+/// (`(a + 6 b + c) / 8`).
+#[inline]
+pub fn split_rows_even<P: Point>(a: &[P], b: &[P], c: &[P], out: &mut [P]) {
+    for (((o, a), b), c) in out.iter_mut().zip(a).zip(b).zip(c) {
+        *o = a.add(*c).madd(*b, 6.0).scale(0.125);
+    }
+}
+
 /// Limit position and two tangents of a vertex whose ring is made of quads.
 ///
 /// `edges[i]` are the edge neighbours in counter-clockwise order and `diag[i]` the vertex of quad

@@ -35,7 +35,7 @@ pub use point::{Point, centroid};
 pub use refine::{
     MAX_REFINED_FACES, check_triangles, refine_uniform, refine_uniform_levels, refined_face_count,
 };
-pub use ring::{Ring, limit_point, limit_point_with};
+pub use ring::{QuadRingStencil, Ring, limit_point, limit_point_with};
 
 use thiserror::Error;
 

@@ -336,6 +336,13 @@ impl Ring {
     /// (in place) as far as needed. The normal is oriented like the faces; it is zero only for a
     /// fully degenerate neighbourhood.
     pub fn limit(&mut self) -> (DVec3, DVec3) {
+        let parts = self.limit_parts();
+        finish_limit(&parts, self.center, &self.edges, self.num_faces())
+    }
+
+    /// Refines as far as [`Ring::limit`] needs, then evaluates the limit masks: the linear part
+    /// of the limit (position and tangents), before the normal is formed.
+    fn limit_parts(&mut self) -> LimitParts {
         let mut guard = 0;
         while self.needs_refinement() && guard < 64 {
             self.refine();
@@ -348,12 +355,12 @@ impl Ring {
             diag.extend((0..self.num_faces()).map(|i| self.face_inner(i)[0]));
         }
         let (pos, t1, t2) = self.eval_masks(&self.edges, &diag, rule);
-        let mut normal = self.orient(t1.cross(t2));
+        let mut other = None;
         if let (Rule::Crease([c0, c1]), false) = (rule, self.boundary) {
             // An interior crease has a tangent plane on each side; the masks give the side
-            // between the crease edges in ring order. Average it with the other side (the ring
-            // rotated to start at the second crease edge) so the normal does not depend on where
-            // the ring starts.
+            // between the crease edges in ring order. The other side comes from the ring rotated
+            // to start at the second crease edge, so the normal does not depend on where the
+            // ring starts (see `finish_limit`).
             let n = self.edges.len();
             let mut edges = std::mem::take(&mut self.rot_edges);
             let mut diag2 = std::mem::take(&mut self.rot_diag);
@@ -364,16 +371,12 @@ impl Ring {
                 diag2.extend((0..n).map(|k| diag[(c1 + k) % n]));
             }
             let (_, u1, u2) = self.eval_masks(&edges, &diag2, Rule::Crease([0, (c0 + n - c1) % n]));
-            let other = self.orient(u1.cross(u2));
-            let sum = normal + other;
-            if sum.length_squared() > 1e-12 {
-                normal = sum.normalize();
-            }
+            other = Some((u1, u2));
             self.rot_edges = edges;
             self.rot_diag = diag2;
         }
         self.diag_buf = diag;
-        (pos, normal)
+        LimitParts { pos, t1, t2, other }
     }
 
     fn eval_masks(&self, edges: &[DVec3], diag: &[DVec3], rule: Rule) -> (DVec3, DVec3, DVec3) {
@@ -382,29 +385,200 @@ impl Ring {
             Scheme::Loop => loop_scheme::limit(self.center, edges, rule, self.boundary),
         }
     }
+}
 
-    /// Orients a normal like the ring's faces, falling back to the ring's area vector when the
-    /// tangents are degenerate.
-    fn orient(&self, n: DVec3) -> DVec3 {
-        let n_edges = self.edges.len();
-        let mut area = DVec3::ZERO;
-        for i in 0..self.num_faces() {
-            let a = self.edges[i] - self.center;
-            let b = self.edges[(i + 1) % n_edges] - self.center;
-            area += a.cross(b);
-        }
+/// The linear part of a ring's limit: position, the two tangents, and for an interior crease the
+/// tangents of the other side.
+#[derive(Clone, Copy, Debug)]
+struct LimitParts {
+    pos: DVec3,
+    t1: DVec3,
+    t2: DVec3,
+    other: Option<(DVec3, DVec3)>,
+}
+
+/// Forms the unit normal from the tangents of [`LimitParts`]: oriented like the faces of the
+/// (refined) ring `center`, `edges` with `num_faces` faces, falling back to the ring's area vector
+/// when the tangents are degenerate; an interior crease averages the normals of its two sides.
+fn finish_limit(
+    parts: &LimitParts,
+    center: DVec3,
+    edges: &[DVec3],
+    num_faces: usize,
+) -> (DVec3, DVec3) {
+    let n_edges = edges.len();
+    let mut area = DVec3::ZERO;
+    for i in 0..num_faces {
+        let a = edges[i] - center;
+        let b = edges[(i + 1) % n_edges] - center;
+        area += a.cross(b);
+    }
+    let scale = edges
+        .iter()
+        .map(|e| (*e - center).length_squared())
+        .fold(0.0, f64::max);
+    let orient = |n: DVec3| {
         let len = n.length();
-        let scale = self
-            .edges
-            .iter()
-            .map(|e| (*e - self.center).length_squared())
-            .fold(0.0, f64::max);
         if len > 1e-12 * scale.max(f64::MIN_POSITIVE) && len.is_finite() {
             let n = n / len;
             if n.dot(area) < 0.0 { -n } else { n }
         } else {
             area.normalize_or_zero()
         }
+    };
+    let mut normal = orient(parts.t1.cross(parts.t2));
+    if let Some((u1, u2)) = parts.other {
+        let sum = normal + orient(u1.cross(u2));
+        if sum.length_squared() > 1e-12 {
+            normal = sum.normalize();
+        }
+    }
+    (parts.pos, normal)
+}
+
+/// [`Ring::limit`] of a Catmull-Clark ring of quads, precomputed for one configuration (crease
+/// method, boundary, valence, edge sharpness and far-end information; vertex sharpness 0).
+///
+/// The ring's refinement and its limit masks are linear in the ring's points, with weights that
+/// depend only on the configuration. [`QuadRingStencil::new`] runs the ring once per three basis
+/// points (one per coordinate) and keeps, for every ring point, its weight in the limit position,
+/// the tangents, and the refined ring that orients the normal. [`QuadRingStencil::limit`] applies
+/// them and forms the normal with the same code as [`Ring::limit`]; the result agrees with it up
+/// to rounding. Tessellators keep one per configuration met (semi-sharp creases make few).
+///
+/// ```
+/// use glam::DVec3;
+/// use subdiv_mesh::CreaseMethod;
+/// use subdiv_rules::{QuadRingStencil, Ring};
+/// // A vertex on a crease of sharpness 1.5 (edges 0 and 2), valence 4.
+/// let sharp = [1.5, 0.0, 1.5, 0.0];
+/// let far = [(0.0, 0); 4];
+/// let c = DVec3::new(0.0, 0.0, 0.2);
+/// let e = [DVec3::X, DVec3::Y, -DVec3::X, -DVec3::Y];
+/// let d = [DVec3::new(1.0, 1.0, 0.1), DVec3::new(-1.0, 1.0, 0.0), DVec3::new(-1.0, -1.0, 0.3), DVec3::new(1.0, -1.0, 0.0)];
+/// let st = QuadRingStencil::new(CreaseMethod::Uniform, false, &sharp, &far, d.len());
+/// let mut ring = Ring::new();
+/// ring.load_quads(CreaseMethod::Uniform, c, 0.0, false, &e, &sharp, &far, &d);
+/// let (p0, n0) = ring.limit();
+/// let (p1, n1) = st.limit(c, &e, &d);
+/// assert!((p0 - p1).length() < 1e-12 && (n0 - n1).length() < 1e-12);
+/// ```
+#[derive(Clone, Debug)]
+pub struct QuadRingStencil {
+    /// Edges and diagonals of the rings it applies to.
+    m: usize,
+    nd: usize,
+    num_faces: usize,
+    crease_sides: bool,
+    /// Rows of `1 + m + nd` weights (centre, edges, diagonals): position, t1, t2, u1, u2 (other
+    /// crease side; zero rows otherwise), refined centre, refined edges `0..m`.
+    w: Vec<f64>,
+}
+
+impl QuadRingStencil {
+    const POS: usize = 0;
+    const FIXED_ROWS: usize = 6;
+
+    /// Precomputes the limit of quad rings with edge sharpness `sharp`, far-end semi-sharp
+    /// (sum, count) `far` (Chaikin only) and `num_diag` diagonals (`sharp.len()` for an interior
+    /// vertex, one fewer on a boundary), as [`Ring::load_quads`] takes them.
+    pub fn new(
+        method: CreaseMethod,
+        boundary: bool,
+        sharp: &[f32],
+        far: &[(f32, u32)],
+        num_diag: usize,
+    ) -> QuadRingStencil {
+        let m = sharp.len();
+        let nd = num_diag;
+        let np = 1 + m + nd;
+        let rows = Self::FIXED_ROWS + m;
+        let mut w = vec![0.0; rows * np];
+        let mut ring = Ring::new();
+        let mut edges = vec![DVec3::ZERO; m];
+        let mut diag = vec![DVec3::ZERO; nd];
+        let mut crease_sides = false;
+        let mut num_faces = 0;
+        // Points q, q+1, q+2 at the x, y and z unit vectors: each output coordinate is one weight.
+        for q in (0..np).step_by(3) {
+            let basis = |k: usize| match k.checked_sub(q) {
+                Some(0) => DVec3::X,
+                Some(1) => DVec3::Y,
+                Some(2) => DVec3::Z,
+                _ => DVec3::ZERO,
+            };
+            let center = basis(0);
+            for (i, e) in edges.iter_mut().enumerate() {
+                *e = basis(1 + i);
+            }
+            for (i, d) in diag.iter_mut().enumerate() {
+                *d = basis(1 + m + i);
+            }
+            ring.load_quads(method, center, 0.0, boundary, &edges, sharp, far, &diag);
+            let parts = ring.limit_parts();
+            crease_sides = parts.other.is_some();
+            num_faces = ring.num_faces();
+            let (u1, u2) = parts.other.unwrap_or((DVec3::ZERO, DVec3::ZERO));
+            let mut put = |row: usize, v: DVec3| {
+                for (c, x) in v.to_array().into_iter().enumerate() {
+                    if q + c < np {
+                        w[row * np + q + c] = x;
+                    }
+                }
+            };
+            put(Self::POS, parts.pos);
+            put(1, parts.t1);
+            put(2, parts.t2);
+            put(3, u1);
+            put(4, u2);
+            put(5, ring.center);
+            for i in 0..m {
+                put(Self::FIXED_ROWS + i, ring.edges[i]);
+            }
+        }
+        QuadRingStencil {
+            m,
+            nd,
+            num_faces,
+            crease_sides,
+            w,
+        }
+    }
+
+    /// Limit position and unit normal of the ring `center`, `edges`, `diag` (the configuration's
+    /// sizes), like [`Ring::limit`] on the same ring.
+    pub fn limit(&self, center: DVec3, edges: &[DVec3], diag: &[DVec3]) -> (DVec3, DVec3) {
+        assert!(
+            edges.len() == self.m && diag.len() == self.nd,
+            "ring does not match the stencil's configuration"
+        );
+        let np = 1 + self.m + self.nd;
+        let row = |r: usize| {
+            let w = &self.w[r * np..(r + 1) * np];
+            let mut acc = center * w[0];
+            for (p, &x) in edges.iter().chain(diag).zip(&w[1..]) {
+                acc += *p * x;
+            }
+            acc
+        };
+        let mut refined = [DVec3::ZERO; 16];
+        let mut refined_vec = Vec::new();
+        let refined: &mut [DVec3] = if self.m <= refined.len() {
+            &mut refined[..self.m]
+        } else {
+            refined_vec.resize(self.m, DVec3::ZERO);
+            &mut refined_vec
+        };
+        for (i, e) in refined.iter_mut().enumerate() {
+            *e = row(Self::FIXED_ROWS + i);
+        }
+        let parts = LimitParts {
+            pos: row(Self::POS),
+            t1: row(1),
+            t2: row(2),
+            other: self.crease_sides.then(|| (row(3), row(4))),
+        };
+        finish_limit(&parts, row(5), refined, self.num_faces)
     }
 }
 

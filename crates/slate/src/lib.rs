@@ -30,6 +30,6 @@ pub use layout::PatchLayout;
 pub use patches::{PatchRef, PatchSet, Unit};
 pub use slate::Worker;
 pub use tessellate::{
-    DEFAULT_MAXSD, MAX_DEPTH, SlateError, slate_bytes_per_thread, tessellate, tessellate_layout,
-    tessellate_layout_into, MAX_POINTS,
+    DEFAULT_MAXSD, MAX_DEPTH, MAX_POINTS, SlateError, slate_bytes_per_thread, tessellate,
+    tessellate_layout, tessellate_layout_into,
 };

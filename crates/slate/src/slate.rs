@@ -23,7 +23,7 @@ use glam::{DVec3, Vec3A};
 use subdiv_mesh::{CreaseMethod, FaceId, HalfedgeId, Mesh, VertexId};
 use subdiv_rules::catmark;
 use subdiv_rules::crease::{self, Rule, VertexRules, edge_crease_weight, is_semi_sharp};
-use subdiv_rules::{Ring, Scheme};
+use subdiv_rules::{QuadRingStencil, Ring, Scheme};
 
 /// Direction index: 0 = +i (E), 1 = +j (N), 2 = -i (W), 3 = -j (S) — counter-clockwise.
 const DI: [i32; 4] = [1, 0, -1, 0];
@@ -68,7 +68,10 @@ impl Table {
     /// (it overwrites every point); sharpness is cleared only if a general step left some, and
     /// then only on the band where it can be (see [`band`]).
     fn reset(&mut self, n: usize, regular: bool) {
-        debug_assert!((n + 3) * (n + 3) <= self.p.len(), "slate too small for grid {n}");
+        debug_assert!(
+            (n + 3) * (n + 3) <= self.p.len(),
+            "slate too small for grid {n}"
+        );
         if self.dirty && self.s > 0 {
             // Rows -1, 0, n, n + 1 whole; columns -1, 0, n, n + 1 of the rows between.
             let (n, s) = (self.n, self.s);
@@ -289,7 +292,6 @@ pub struct Worker {
     origin: DVec3,
     origin32: Vec3A,
     hes: Vec<HalfedgeId>,
-    ring_tmp: Ring,
     // scratch for general rules
     e_pts: Vec<Vec3A>,
     f_pts: Vec<Vec3A>,
@@ -307,11 +309,31 @@ pub struct Worker {
     dirty: Vec<bool>,
     /// Indices set in `dirty` (cleared by the next marking).
     dirty_list: Vec<u32>,
-    /// Row sums of the separable regular limit masks (`limit_interior`).
+    /// Three split rows of the separable regular step (`step_regular`).
+    split: Vec<Vec3A>,
+    /// Three rows of sums of the separable regular limit masks (`limit_interior`).
     sum_b: Vec<Vec3A>,
     sum_a: Vec<Vec3A>,
     /// Interior points with degenerate regular tangents.
     bad: Vec<(i32, i32)>,
+    /// Limit stencils of the crease and boundary configurations met by `limit_general`.
+    stencils: Vec<(StencilKey, QuadRingStencil)>,
+    /// Most recently used entry of `stencils`.
+    last_stencil: usize,
+}
+
+/// Most configurations a worker keeps stencils for (beyond, the oldest are replaced).
+const MAX_STENCILS: usize = 64;
+
+/// A table ring's configuration: what its limit stencil depends on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct StencilKey {
+    method: CreaseMethod,
+    boundary: bool,
+    valence: u8,
+    diag: u8,
+    sharp: [u32; 4],
+    far: [(u32, u32); 4],
 }
 
 impl Worker {
@@ -327,7 +349,6 @@ impl Worker {
             origin: DVec3::ZERO,
             origin32: Vec3A::ZERO,
             hes: Vec::with_capacity(16),
-            ring_tmp: Ring::new(),
             e_pts: Vec::with_capacity(4),
             f_pts: Vec::with_capacity(4),
             e_sh: Vec::with_capacity(4),
@@ -341,9 +362,12 @@ impl Worker {
             ids: Vec::new(),
             dirty: Vec::new(),
             dirty_list: Vec::new(),
+            split: Vec::new(),
             sum_b: Vec::new(),
             sum_a: Vec::new(),
             bad: Vec::new(),
+            stencils: Vec::new(),
+            last_stencil: 0,
         }
     }
 
@@ -427,7 +451,8 @@ impl Worker {
             c.active = valence != 4 || boundary || mesh.vertex_sharpness(v) > 0.0;
             c.boundary = boundary;
             if c.active {
-                c.ring.load_with_halfedges(mesh, v, Scheme::CatmullClark, &mut self.hes);
+                c.ring
+                    .load_with_halfedges(mesh, v, Scheme::CatmullClark, &mut self.hes);
                 c.valence = self.hes.len();
                 c.ih = self.hes.iter().position(|&h| h == hs[k]).unwrap_or(0);
                 if boundary || c.ring.vertex_sharpness() > 0.0 {
@@ -443,7 +468,11 @@ impl Worker {
                 let (o2i, o2j) = out[(k + 3) % 4];
                 vid[(cj + o1j + o2j + 1) as usize][(ci + o1i + o2i + 1) as usize] = d;
                 edges[ne] = ((ci + o2i, cj + o2j), out_dir[k], gn);
-                edges[ne + 1] = ((ci + o1i, cj + o1j), out_dir[(k + 3) % 4], mesh.next(gn).twin());
+                edges[ne + 1] = (
+                    (ci + o1i, cj + o1j),
+                    out_dir[(k + 3) % 4],
+                    mesh.next(gn).twin(),
+                );
                 ne += 2;
             }
         }
@@ -520,11 +549,12 @@ impl Worker {
             }
         }
         if self.regular {
-            step_regular(src, dst);
+            step_regular(src, dst, &mut self.split);
         } else {
             let scratch = Scratch {
                 dirty: &mut self.dirty,
                 dirty_list: &mut self.dirty_list,
+                split: &mut self.split,
                 e_pts: &mut self.e_pts,
                 f_pts: &mut self.f_pts,
                 e_sh: &mut self.e_sh,
@@ -598,24 +628,30 @@ impl Worker {
             "interior points of a slate must be plain"
         );
         let cnt = (n - 1) as usize;
-        let need = (n as usize + 1) * cnt;
-        if self.sum_b.len() < need {
-            self.sum_b.resize(need, Vec3A::ZERO);
-            self.sum_a.resize(need, Vec3A::ZERO);
+        // Row sums of table rows 0..=n in a three-row rolling buffer.
+        if self.sum_b.len() < 3 * cnt {
+            self.sum_b.resize(3 * cnt, Vec3A::ZERO);
+            self.sum_a.resize(3 * cnt, Vec3A::ZERO);
         }
-        let (sb, sa) = (&mut self.sum_b[..need], &mut self.sum_a[..need]);
-        for j in 0..=n {
+        let (sb, sa) = (&mut self.sum_b[..3 * cnt], &mut self.sum_a[..3 * cnt]);
+        let slot = |r: i32| (r % 3) as usize * cnt..((r % 3) as usize + 1) * cnt;
+        let sums = |j: i32, sb: &mut [Vec3A], sa: &mut [Vec3A]| {
             let base = t.at(0, j);
-            let r = j as usize * cnt..(j as usize + 1) * cnt;
-            catmark::limit_row_sums(&t.p[base..base + cnt + 2], &mut sb[r.clone()], &mut sa[r]);
-        }
+            catmark::limit_row_sums(
+                &t.p[base..base + cnt + 2],
+                &mut sb[slot(j)],
+                &mut sa[slot(j)],
+            );
+        };
+        sums(0, sb, sa);
+        sums(1, sb, sa);
         let o = self.origin32;
         let mut bad = std::mem::take(&mut self.bad);
         bad.clear();
         for j in 1..n {
-            let r = |d: i32| (j + d) as usize * cnt..(j + d + 1) as usize * cnt;
-            let (bs, b0, bn) = (&sb[r(-1)], &sb[r(0)], &sb[r(1)]);
-            let (as_, a0, an) = (&sa[r(-1)], &sa[r(0)], &sa[r(1)]);
+            sums(j + 1, sb, sa);
+            let (bs, b0, bn) = (&sb[slot(j - 1)], &sb[slot(j)], &sb[slot(j + 1)]);
+            let (as_, a0, an) = (&sa[slot(j - 1)], &sa[slot(j)], &sa[slot(j + 1)]);
             for x in 0..cnt {
                 let (pos, t1, t2) =
                     catmark::limit_regular_from_sums([bs[x], b0[x], bn[x]], [as_[x], a0[x], an[x]]);
@@ -674,7 +710,11 @@ impl Worker {
         for j in 0..=n {
             let row = j as usize * w;
             // The border: whole first and last rows, the two ends of the others.
-            let step = if j == 0 || j == n { 1 } else { n.max(1) as usize };
+            let step = if j == 0 || j == n {
+                1
+            } else {
+                n.max(1) as usize
+            };
             for i in (0..=n).step_by(step) {
                 let (p, q) = self.limit(i, j);
                 pos[row + i as usize] = p.to_array();
@@ -704,6 +744,7 @@ impl Worker {
             }
         }
         let boundary = self.dirs.len() < 4;
+        let chaikin = self.method == CreaseMethod::Chaikin;
         self.r_edges.clear();
         self.r_sharp.clear();
         self.r_far.clear();
@@ -712,8 +753,12 @@ impl Worker {
             let (ni, nj) = (i + DI[d], j + DJ[d]);
             self.r_edges.push(t.p[t.at(ni, nj)].as_dvec3());
             self.r_sharp.push(t.edge_sharp(i, j, d));
-            self.r_far
-                .push(far_info(t, &self.corners, ni, nj, (d + 2) % 4));
+            // Far-end information only matters to the Chaikin rule.
+            self.r_far.push(if chaikin {
+                far_info(t, &self.corners, ni, nj, (d + 2) % 4)
+            } else {
+                (0.0, 0)
+            });
             if !boundary || k + 1 < self.dirs.len() {
                 let d2 = (d + 1) % 4;
                 self.r_diag
@@ -721,17 +766,45 @@ impl Worker {
             }
         }
         let center = t.p[t.at(i, j)].as_dvec3();
-        self.ring_tmp.load_quads(
-            self.method,
-            center,
-            0.0,
+        // The ring's limit is linear in its points with weights fixed by its configuration:
+        // one stencil per configuration, computed by the ring's own refinement on first use.
+        let mut key = StencilKey {
+            method: self.method,
             boundary,
-            &self.r_edges,
-            &self.r_sharp,
-            &self.r_far,
-            &self.r_diag,
-        );
-        let (p, nrm) = self.ring_tmp.limit();
+            valence: self.r_edges.len() as u8,
+            diag: self.r_diag.len() as u8,
+            sharp: [0; 4],
+            far: [(0, 0); 4],
+        };
+        for (k, (&s, &(fs, fc))) in self.r_sharp.iter().zip(&self.r_far).enumerate() {
+            key.sharp[k] = s.to_bits();
+            key.far[k] = (fs.to_bits(), fc);
+        }
+        let hit = match self.stencils.get(self.last_stencil) {
+            Some((k, _)) if *k == key => Some(self.last_stencil),
+            _ => self.stencils.iter().position(|(k, _)| *k == key),
+        };
+        let idx = hit.unwrap_or_else(|| {
+            let st = QuadRingStencil::new(
+                self.method,
+                boundary,
+                &self.r_sharp,
+                &self.r_far,
+                self.r_diag.len(),
+            );
+            if self.stencils.len() < MAX_STENCILS {
+                self.stencils.push((key, st));
+                self.stencils.len() - 1
+            } else {
+                let slot = (self.last_stencil + 1) % MAX_STENCILS;
+                self.stencils[slot] = (key, st);
+                slot
+            }
+        });
+        self.last_stencil = idx;
+        let (p, nrm) = self.stencils[idx]
+            .1
+            .limit(center, &self.r_edges, &self.r_diag);
         (
             Vec3A::from((p + self.origin).as_vec3()),
             Vec3A::from(nrm.as_vec3()),
@@ -876,81 +949,43 @@ fn write_corner(t: &mut Table, c: &Corner, ci: i32, cj: i32, d: usize, d2: usize
     }
 }
 
-/// Smooth regular step: no sharpness, no boundary. Face, edge and vertex points by the
-/// Catmull-Clark rules of `subdiv-rules`.
-const SMOOTH: VertexRules = VertexRules {
-    parent: Rule::Smooth,
-    child: Rule::Smooth,
-    parent_weight: 1.0,
-};
-
-fn step_regular(src: &Table, dst: &mut Table) {
-    let n = src.n as i32;
+/// Smooth regular step: no sharpness, no boundary. The face, edge and vertex rules of a regular
+/// grid in their separable form (`catmark::split_row` and friends): each source row is split
+/// along its length, and neighbouring split rows combine into the rows of `dst`. Split rows live
+/// in a three-row rolling buffer `split`. Active corners get a (meaningless) vertex point too:
+/// `write_corner` replaces it.
+fn step_regular(src: &Table, dst: &mut Table, split: &mut Vec<Vec3A>) {
     let ss = src.s;
     let ds = dst.s;
-    let sp = &src.p[..ss * ss];
-    let row = |j: i32| &sp[(j + 1) as usize * ss..(j + 2) as usize * ss];
-    let dp = &mut dst.p[..ds * ds];
-    let w = n as usize + 2; // points per source row minus one
-    // Face points: dst row 2j+1 (storage row 2j+2), even storage columns.
-    for j in -1..=n {
-        let (r0, r1) = (row(j), row(j + 1));
-        let d = &mut dp[(2 * j + 2) as usize * ds..(2 * j + 3) as usize * ds];
-        for ((f, a), b) in d
-            .iter_mut()
-            .step_by(2)
-            .zip(r0.windows(2))
-            .zip(r1.windows(2))
-        {
-            *f = catmark::face_point(&[a[0], a[1], b[1], b[0]]);
-        }
+    debug_assert_eq!(ds, 2 * ss - 3);
+    if split.len() < 3 * ds {
+        split.resize(3 * ds, Vec3A::ZERO);
     }
-    // Horizontal edge points (dst row 2j, storage 2j+1, even columns) and vertex points (same
-    // row, odd columns); faces in the storage rows below (2j) and above (2j+2).
-    for j in 0..=n {
-        let (rs, r, rn) = (row(j - 1), row(j), row(j + 1));
-        let base = (2 * j + 1) as usize * ds;
-        let (lo, hi) = dp.split_at_mut(base);
-        let below = &lo[base - ds..];
-        let (mid, above) = hi.split_at_mut(ds);
-        for (((e, ab), fb), fa) in mid
-            .iter_mut()
-            .step_by(2)
-            .zip(r.windows(2))
-            .zip(below.iter().step_by(2))
-            .zip(above.iter().step_by(2))
-        {
-            *e = catmark::edge_point(ab[0], ab[1], &[*fb, *fa], 0.0);
+    // Storage row y of dst is level coordinate y - 1: odd coordinates (even y) lie between split
+    // rows y / 2 and y / 2 + 1, even ones (odd y) at split row (y + 1) / 2.
+    let slot = |r: usize| (r % 3) * ds..(r % 3 + 1) * ds;
+    for (r, row) in src.p[..ss * ss].chunks_exact(ss).enumerate() {
+        catmark::split_row(row, &mut split[slot(r)]);
+        if r == 0 {
+            continue;
         }
-        // Active corners get a (meaningless) vertex point too: `write_corner` replaces it.
-        for x in 1..w {
-            let e = [r[x + 1], rn[x], r[x - 1], rs[x]];
-            let f = [
-                above[2 * x],
-                above[2 * x - 2],
-                below[2 * x - 2],
-                below[2 * x],
-            ];
-            mid[2 * x - 1] = catmark::vertex_point(r[x], &e, &f, &SMOOTH);
+        let h = &split[..3 * ds];
+        if r >= 2 {
+            let y = 2 * r - 3;
+            let out = &mut dst.p[y * ds..(y + 1) * ds];
+            catmark::split_rows_even(&h[slot(r - 2)], &h[slot(r - 1)], &h[slot(r)], out);
         }
+        let y = 2 * r - 2;
+        let out = &mut dst.p[y * ds..(y + 1) * ds];
+        catmark::split_rows_mid(&h[slot(r - 1)], &h[slot(r)], out);
     }
-    // Vertical edge points: dst row 2j+1 (storage 2j+2), odd columns, between the face points
-    // on either side in the same row.
-    for j in -1..=n {
-        let (r0, r1) = (row(j), row(j + 1));
-        let d = &mut dp[(2 * j + 2) as usize * ds..(2 * j + 3) as usize * ds];
-        for x in 1..w {
-            let (fl, fr) = (d[2 * x - 2], d[2 * x]);
-            d[2 * x - 1] = catmark::edge_point(r0[x], r1[x], &[fl, fr], 0.0);
-        }
-    }
-    let len = ds * ds;
-    dst.ex[..len].fill(true);
+    dst.ex[..ds * ds].fill(true);
 }
 
 struct Scratch<'a> {
     dirty: &'a mut Vec<bool>,
     dirty_list: &'a mut Vec<u32>,
+    split: &'a mut Vec<Vec3A>,
     e_pts: &'a mut Vec<Vec3A>,
     f_pts: &'a mut Vec<Vec3A>,
     e_sh: &'a mut Vec<f32>,
@@ -974,7 +1009,7 @@ fn step_general(
         })
     };
     // The smooth regular rules everywhere first; then the general rules where they differ.
-    step_regular(src, dst);
+    step_regular(src, dst, sc.split);
     let missing = src.mark_dirty(sc.dirty, sc.dirty_list);
     if missing {
         // Missing points lie on the outer ring, so only faces touching it can be missing.
@@ -1099,12 +1134,7 @@ fn step_general(
                 nf += 1;
             }
         }
-        let e = catmark::edge_point(
-            src.p[src.at(i, j)],
-            src.p[src.at(bi, bj)],
-            &faces[..nf],
-            w,
-        );
+        let e = catmark::edge_point(src.p[src.at(i, j)], src.p[src.at(bi, bj)], &faces[..nf], w);
         let k = dst.at(i + bi, j + bj);
         dst.p[k] = e;
         dst.ex[k] = true;
@@ -1116,11 +1146,8 @@ fn step_general(
             } else {
                 (bi, bj, (dir + 2) % 4)
             };
-            let cf = crease::child_edge_sharpness(
-                method,
-                s,
-                far_info(src, corners, oi, oj, toward),
-            );
+            let cf =
+                crease::child_edge_sharpness(method, s, far_info(src, corners, oi, oj, toward));
             let info = if is_semi_sharp(cf) { (cf, 1) } else { (0.0, 0) };
             let (side, pos) = if oj == -1 {
                 (0, 2 * i)

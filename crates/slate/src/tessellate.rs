@@ -96,13 +96,19 @@ pub fn tessellate(mesh: &Mesh, depth: u32) -> Result<LimitMesh, SlateError> {
         return Ok(limit_surface(mesh, Scheme::CatmullClark));
     }
     if depth > MAX_DEPTH {
-        return Err(SlateError::TooDeep { depth, max: MAX_DEPTH });
+        return Err(SlateError::TooDeep {
+            depth,
+            max: MAX_DEPTH,
+        });
     }
     // Refuse before allocating: about (2^depth)^2 points per quad of the cage.
     let corners: u64 = mesh.faces().map(|f| mesh.face_size(f) as u64).sum();
     let estimate = corners.saturating_mul(1u64 << (2 * depth)) / 4;
     if estimate > MAX_POINTS {
-        return Err(SlateError::TooLarge { depth, points: estimate });
+        return Err(SlateError::TooLarge {
+            depth,
+            points: estimate,
+        });
     }
     let layout = PatchLayout::new(mesh, depth)?;
     tessellate_layout(mesh, &layout)
@@ -250,7 +256,11 @@ fn run_patch(wk: &mut Worker, src: &Mesh, p: &Patch, e: u32, out: &SharedOut, qu
         }
         for (j, qrow) in quads.chunks_exact_mut(4 * n as usize).enumerate() {
             let (lo, hi) = (&ids[j * w..(j + 1) * w], &ids[(j + 1) * w..(j + 2) * w]);
-            for ((q, a), b) in qrow.chunks_exact_mut(4).zip(lo.windows(2)).zip(hi.windows(2)) {
+            for ((q, a), b) in qrow
+                .chunks_exact_mut(4)
+                .zip(lo.windows(2))
+                .zip(hi.windows(2))
+            {
                 q.copy_from_slice(&[a[0], a[1], b[1], b[0]]);
             }
         }
