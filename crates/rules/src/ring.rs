@@ -610,3 +610,86 @@ pub fn limit_point_with(ring: &mut Ring, mesh: &Mesh, v: VertexId, scheme: Schem
     let (p, n) = ring.limit();
     (p.as_vec3(), n.as_vec3())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A small deterministic generator (xorshift) for test configurations.
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+        fn point(&mut self, scale: f64) -> DVec3 {
+            DVec3::new(self.next(), self.next(), self.next()) * scale
+        }
+    }
+
+    /// The stencil gives what the ring gives, for creases of every kind (integer, fractional,
+    /// infinite, Chaikin with far-end information), boundaries and valences 2 to 6.
+    #[test]
+    fn stencil_matches_ring_limit() {
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        let choices = [0.0f32, 0.0, 0.5, 1.0, 1.5, 2.0, 3.25, 10.0];
+        let mut checked = 0;
+        for case in 0..400 {
+            let method = if case % 2 == 0 {
+                CreaseMethod::Uniform
+            } else {
+                CreaseMethod::Chaikin
+            };
+            let boundary = case % 5 == 0;
+            let m = 2 + (rng.next() * 5.0) as usize;
+            if !boundary && m < 3 {
+                continue;
+            }
+            let nd = if boundary { m - 1 } else { m };
+            let sharp: Vec<f32> = (0..m)
+                .map(|_| choices[(rng.next() * choices.len() as f64) as usize])
+                .collect();
+            let far: Vec<(f32, u32)> = (0..m)
+                .map(|_| {
+                    let c = (rng.next() * 3.0) as u32;
+                    (c as f32 * (0.5 + rng.next() as f32 * 2.0), c)
+                })
+                .collect();
+            // A bumpy ring around the origin.
+            let center = rng.point(0.3);
+            let edges: Vec<DVec3> = (0..m)
+                .map(|i| {
+                    let a = std::f64::consts::TAU * i as f64 / m as f64;
+                    DVec3::new(a.cos(), a.sin(), 0.0) + rng.point(0.2)
+                })
+                .collect();
+            let diag: Vec<DVec3> = (0..nd)
+                .map(|i| {
+                    let a = std::f64::consts::TAU * (i as f64 + 0.5) / m as f64;
+                    DVec3::new(a.cos(), a.sin(), 0.0) * 1.4 + rng.point(0.2)
+                })
+                .collect();
+            let st = QuadRingStencil::new(method, boundary, &sharp, &far, nd);
+            let mut ring = Ring::new();
+            ring.load_quads(method, center, 0.0, boundary, &edges, &sharp, &far, &diag);
+            let (p0, n0) = ring.limit();
+            let (p1, n1) = st.limit(center, &edges, &diag);
+            assert!(
+                (p0 - p1).length() < 1e-12 && (n0 - n1).length() < 1e-9,
+                "case {case}: {method:?} boundary {boundary} sharp {sharp:?}: \
+                 ring ({p0}, {n0}) stencil ({p1}, {n1})"
+            );
+            checked += 1;
+        }
+        assert!(checked > 300);
+    }
+
+    #[test]
+    #[should_panic(expected = "configuration")]
+    fn stencil_refuses_a_ring_of_another_size() {
+        let st = QuadRingStencil::new(CreaseMethod::Uniform, false, &[0.0; 4], &[(0.0, 0); 4], 4);
+        st.limit(DVec3::ZERO, &[DVec3::X; 3], &[DVec3::Y; 3]);
+    }
+}
