@@ -322,8 +322,9 @@ pub struct Worker {
     last_stencil: usize,
 }
 
-/// Most configurations a worker keeps stencils for (beyond, the oldest are replaced).
-const MAX_STENCILS: usize = 64;
+/// Most configurations a worker keeps stencils for (beyond, the oldest are replaced). Real cages
+/// meet few: catmark_pawn 2, catmark_helmet 3 (one per crease direction and sharpness left).
+const MAX_STENCILS: usize = 16;
 
 /// A table ring's configuration: what its limit stencil depends on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -375,6 +376,21 @@ impl Worker {
     pub fn table_bytes(&self) -> usize {
         let cap = (self.maxn + 3) * (self.maxn + 3);
         2 * cap * (std::mem::size_of::<Vec3A>() + 1 + 2 * std::mem::size_of::<f32>())
+    }
+
+    /// Most bytes the worker's scratch can reach besides the tables and corner arrays (capacity
+    /// for `maxsd`): the dirty mask and its list, the rolling rows of the regular step and of the
+    /// limit sums, the Chaikin far information and a full stencil cache.
+    pub fn scratch_bytes(&self) -> usize {
+        let (side, cap) = (self.maxn + 3, (self.maxn + 3) * (self.maxn + 3));
+        let v = std::mem::size_of::<Vec3A>();
+        // A table ring has at most 4 edges and 4 diagonals: 6 + 4 rows of 9 weights.
+        let stencil = std::mem::size_of::<(StencilKey, QuadRingStencil)>() + 10 * 9 * 8;
+        cap + 8 * side * 4
+            + 3 * side * v
+            + 6 * self.maxn * v
+            + 2 * 4 * (self.maxn + 1) * std::mem::size_of::<(f32, u32)>()
+            + MAX_STENCILS * stencil
     }
 
     /// Gathers the 1-neighbourhood of quad `f` of `mesh` (whose neighbourhood is all quads) into

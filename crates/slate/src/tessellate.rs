@@ -285,11 +285,13 @@ fn point_id(p: &Patch, n: u32, i: u32, j: u32) -> (u32, bool) {
     }
 }
 
-/// Bytes of slate memory one worker uses for depth `depth` (two tables; the corner arrays grow
-/// with the largest valence: `2 * 2 * valence` points per corner).
+/// Bytes of slate memory one worker uses for depth `depth`, independent of the mesh size: two
+/// tables, the worker's bounded scratch (rolling rows, dirty mask, at most 16 limit stencils) and
+/// the four corner arrays, which grow with the largest valence (`2 * 2 * valence` points each).
 pub fn slate_bytes_per_thread(depth: u32, max_valence: usize) -> usize {
     let w = Worker::new(depth.max(DEFAULT_MAXSD));
     w.table_bytes()
+        + w.scratch_bytes()
         + 4 * (4 * max_valence * std::mem::size_of::<glam::DVec3>() + 2 * max_valence * 4)
 }
 
