@@ -1039,32 +1039,29 @@ fn step_general(
             }
         }
     }
-    // Vertex points and the child sharpness of every edge at its inner ends: dirty points are
-    // on the band (the patch's sides here).
-    for j in 0..=n {
-        let all = j == 0 || j == n;
-        for i in 0..=n {
-            if !(all || i == 0 || i == n) {
-                continue;
-            }
-            let at_corner = (i == 0 || i == n) && (j == 0 || j == n);
-            if let Some(k) = at_corner.then(|| is_corner(i, j)).flatten() {
-                // Child sharpness comes from the (already refined) corner array.
-                let ((ci, cj), d, d2) = corner_frame(k, n);
-                let c = &corners[k];
-                for dir in 0..4 {
-                    if let Some(x) = ring_index_of_dir(c, d, d2, dir) {
-                        dst.set_edge_sharp(2 * ci, 2 * cj, dir, c.ring.edge_sharpness(x));
-                    }
+    // Child sharpness at active corners comes from their (already refined) corner arrays.
+    for (k, c) in corners.iter().enumerate() {
+        if c.active {
+            let ((ci, cj), d, d2) = corner_frame(k, n);
+            for dir in 0..4 {
+                if let Some(x) = ring_index_of_dir(c, d, d2, dir) {
+                    dst.set_edge_sharp(2 * ci, 2 * cj, dir, c.ring.edge_sharpness(x));
                 }
-                continue;
             }
-            if !src.ex[src.at(i, j)] {
-                continue;
-            }
-            if !sc.dirty[src.at(i, j)] {
-                continue;
-            }
+        }
+    }
+    // Vertex points and the child sharpness of their edges, at the patch's dirty points.
+    let ss = src.s;
+    for &kk in sc.dirty_list.iter() {
+        let kk = kk as usize;
+        let (i, j) = ((kk % ss) as i32 - 1, (kk / ss) as i32 - 1);
+        if !((0..=n).contains(&i) && (0..=n).contains(&j)) || !src.ex[kk] {
+            continue;
+        }
+        if (i == 0 || i == n) && (j == 0 || j == n) && is_corner(i, j).is_some() {
+            continue;
+        }
+        {
             sc.dirs.clear();
             sc.e_pts.clear();
             sc.e_sh.clear();
@@ -1095,8 +1092,8 @@ fn step_general(
             }
         }
     }
-    // Edge points of the edges with an end on the band (only those can have a dirty end):
-    // horizontal edges (i,j)-(i+1,j) (`dir` 0) and vertical ones (i,j)-(i,j+1) (`dir` 1).
+    // Edge points of horizontal edges (i,j)-(i+1,j) (`dir` 0) and vertical ones (i,j)-(i,j+1)
+    // (`dir` 1) with a dirty end.
     let mut edge = |i: i32, j: i32, dir: usize| {
         let (bi, bj) = (i + DI[dir], j + DJ[dir]);
         // A missing end marks both ends dirty, so clean edges exist.
@@ -1179,25 +1176,25 @@ fn step_general(
             }
         }
     };
-    for j in 0..=n {
-        if j == 0 || j == n {
-            for i in -1..=n {
-                edge(i, j, 0);
+    // Every edge with a dirty end, once: from its dirty end with the lower index. Horizontal edges
+    // of rows 0..=n and vertical edges of columns 0..=n (the outer ring's own edges have no
+    // children in the next table).
+    for &kk in sc.dirty_list.iter() {
+        let kk = kk as usize;
+        let (i, j) = ((kk % ss) as i32 - 1, (kk / ss) as i32 - 1);
+        for d in 0..4 {
+            let (qi, qj) = (i + DI[d], j + DJ[d]);
+            if !src.inside(qi, qj) {
+                continue;
             }
-        } else {
-            for i in [-1, 0, n - 1, n] {
-                edge(i, j, 0);
+            let qk = src.at(qi, qj);
+            if sc.dirty[qk] && qk < kk {
+                continue;
             }
-        }
-    }
-    for i in 0..=n {
-        if i == 0 || i == n {
-            for j in -1..=n {
-                edge(i, j, 1);
-            }
-        } else {
-            for j in [-1, 0, n - 1, n] {
-                edge(i, j, 1);
+            let (ei, ej, dir) = if d < 2 { (i, j, d) } else { (qi, qj, d - 2) };
+            let row = if dir == 0 { ej } else { ei };
+            if (0..=n).contains(&row) {
+                edge(ei, ej, dir);
             }
         }
     }
