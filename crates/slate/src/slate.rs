@@ -6,18 +6,25 @@
 //! Surfaces", Section 3.2, Fig. 2). Alongside go the sharpness of every table edge and, for the
 //! Chaikin rule, what is known of the crease beyond the outer ring.
 //!
-//! A corner whose vertex is not a smooth interior valence-4 vertex keeps its whole neighbourhood
-//! in a *corner array*: a [`Ring`] from `subdiv-rules`, holding all of its `valence` edge
-//! neighbours and quads, creases and boundary included. The table covers what a valence-4 corner
-//! would; the corner array provides the points the table cannot (the corner itself and its
-//! neighbours beyond the table's quadrant).
+//! A corner whose vertex is not an interior valence-4 vertex (or carries a corner tag) keeps its
+//! whole neighbourhood in a *corner array*: a [`Ring`] from `subdiv-rules`, holding all of its
+//! `valence` edge neighbours and quads, creases and boundary included. The table covers what a
+//! valence-4 corner would; the corner array provides the points the table cannot (the corner
+//! itself and its neighbours beyond the table's quadrant).
 //!
 //! One step ([`Worker::step`]) subdivides the table of slate `i` into the table of slate
-//! `1 - i` with the rules of `subdiv-rules` (face, edge and vertex points, with creases and
-//! boundaries where the patch has them, and a branch-free path for smooth regular tables), and
-//! refines the corner arrays. Limit points and normals of the final grid use the rules' limit
-//! masks, or for points still next to a semi-sharp crease the exact local refinement of
-//! [`Ring::limit`].
+//! `1 - i` with the rules of `subdiv-rules`, and refines the corner arrays. Every table is first
+//! refined by the smooth regular rules in their separable form (rows split, then split rows
+//! combined); a table with creases or boundaries then redoes, with the general face, edge and
+//! vertex rules, only its *dirty* points: the ends of sharp edges and the neighbours of missing
+//! points. Those lie on the *band* (rows and columns `-1, 0, n, n + 1`, see [`band`]), so the
+//! general work grows with the patch's side, not its area.
+//!
+//! Limit points and normals of the final grid: interior points always take the regular limit
+//! masks (separable form); border points take them where their neighbourhood is plain, and
+//! otherwise (creases, boundaries) the exact limit of their ring, through a
+//! [`QuadRingStencil`] kept per sharpness configuration — [`Ring::limit`] precomputed, so a
+//! semi-sharp crease still gets its true limit at any depth.
 
 use glam::{DVec3, Vec3A};
 use subdiv_mesh::{CreaseMethod, FaceId, HalfedgeId, Mesh, VertexId};
