@@ -1,6 +1,6 @@
 //! `cargo xtask figures`, Catmull-Clark part: the experiment of Settgast et al. 2004, Section 5,
 //! on the paper's test scene (Fig. 12; here 40 instances of `catmark_helmet`) with the camera
-//! orbiting the scene centre. Runs `subdiv bench framerate` and writes CSV + SVG plots into
+//! orbiting the scene centre. Runs `subdiv bench framerate` and writes CSV, PNG and SVG plots into
 //! `docs/figures/` and a section of `docs/figures.md`:
 //! Fig. 5 (triangles per frame, adaptive vs uniform depths 2, 3, 4), Fig. 6 (patches per depth per
 //! frame), Fig. 7 (frames per second: fixed depths 2, 3, 4 and adaptive with frame-rate control
@@ -53,8 +53,33 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-fn plot(path: &Path, title: &str, y_label: &str, series: &[(String, Vec<f64>)]) -> Result<()> {
-    let root = SVGBackend::new(path, (900, 500)).into_drawing_area();
+/// Plot size in pixels (PNG) and units (SVG).
+const PLOT_SIZE: (u32, u32) = (900, 500);
+
+/// Writes the plot as `STEM.png` (rasterised, text with the DejaVu Sans font) and `STEM.svg`.
+fn plot(stem: &Path, title: &str, y_label: &str, series: &[(String, Vec<f64>)]) -> Result<()> {
+    let svg = stem.with_extension("svg");
+    draw(SVGBackend::new(&svg, PLOT_SIZE).into_drawing_area(), title, y_label, series)
+        .with_context(|| format!("drawing {}", svg.display()))?;
+    let (w, h) = PLOT_SIZE;
+    let mut rgb = vec![0u8; (w * h * 3) as usize];
+    draw(BitMapBackend::with_buffer(&mut rgb, PLOT_SIZE).into_drawing_area(), title, y_label, series)
+        .with_context(|| format!("drawing {}", stem.display()))?;
+    let png = stem.with_extension("png");
+    image::save_buffer(&png, &rgb, w, h, image::ExtendedColorType::Rgb8)
+        .with_context(|| format!("writing {}", png.display()))?;
+    Ok(())
+}
+
+fn draw<DB: DrawingBackend>(
+    root: DrawingArea<DB, plotters::coord::Shift>,
+    title: &str,
+    y_label: &str,
+    series: &[(String, Vec<f64>)],
+) -> Result<()>
+where
+    DB::ErrorType: 'static,
+{
     root.fill(&WHITE)?;
     let n = series.iter().map(|s| s.1.len()).max().unwrap_or(1);
     let ymax = series.iter().flat_map(|s| s.1.iter().copied()).fold(0.0f64, f64::max) * 1.1;
@@ -78,6 +103,28 @@ fn plot(path: &Path, title: &str, y_label: &str, series: &[(String, Vec<f64>)]) 
     Ok(())
 }
 
+/// DejaVu Sans, the font the plots' text is rasterised with (Debian package `fonts-dejavu-core`).
+const FONT: &str = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+/// Registers the plots' font with plotters: installs it with apt when missing and running as
+/// root, otherwise names the command and fails.
+fn register_font() -> Result<()> {
+    if !Path::new(FONT).exists() {
+        let cmd = "apt-get update && apt-get install -y fonts-dejavu-core";
+        if !crate::vulkan::is_root() {
+            bail!("the plots need the DejaVu Sans font ({FONT}). Install it with:\n    sudo sh -c '{cmd}'\nthen run this command again");
+        }
+        eprintln!("figures: installing the plot font: {cmd}");
+        let status = Command::new("sh").args(["-c", cmd]).env("DEBIAN_FRONTEND", "noninteractive").status().context("could not run apt-get")?;
+        if !status.success() || !Path::new(FONT).exists() {
+            bail!("installing fonts-dejavu-core failed ({status}); run as root: {cmd}");
+        }
+    }
+    let bytes: &'static [u8] = Box::leak(std::fs::read(FONT).with_context(|| format!("reading {FONT}"))?.into_boxed_slice());
+    plotters::style::register_font("sans-serif", FontStyle::Normal, bytes).map_err(|_| anyhow::anyhow!("{FONT} is not a font plotters can read"))?;
+    Ok(())
+}
+
 fn csv(path: &Path, header: &str, cols: &[Vec<f64>]) -> Result<()> {
     let n = cols.iter().map(|c| c.len()).max().unwrap_or(0);
     let mut s = format!("frame,{header}\n");
@@ -92,6 +139,7 @@ fn csv(path: &Path, header: &str, cols: &[Vec<f64>]) -> Result<()> {
 pub fn run(root: &Path, exe: &Path) -> Result<()> {
     let dir: PathBuf = root.join("docs/figures");
     std::fs::create_dir_all(&dir)?;
+    register_font()?;
     let frames = "180";
     // Figs. 5 and 6: tessellation only, along the orbit.
     let adaptive = bench(exe, &["--no-render", "--frames", frames])?;
@@ -104,13 +152,13 @@ pub fn run(root: &Path, exe: &Path) -> Result<()> {
     for &(d, t) in &uniform {
         series.push((format!("uniform depth {d}"), vec![t as f64; tri.len()]));
     }
-    plot(&dir.join("fig5_triangles.svg"), "Fig. 5: triangles per frame (40 helmets, orbit)", "triangles", &series)?;
+    plot(&dir.join("fig5_triangles"), "Fig. 5: triangles per frame (40 helmets, orbit)", "triangles", &series)?;
     csv(&dir.join("fig5_triangles.csv"), "adaptive,uniform2,uniform3,uniform4", &series.iter().map(|s| s.1.clone()).collect::<Vec<_>>())?;
     let depths = adaptive.iter().map(|f| f.patches.len()).max().unwrap_or(0);
     let per_depth: Vec<(String, Vec<f64>)> = (0..depths)
         .map(|d| (format!("depth {d}"), adaptive.iter().map(|f| *f.patches.get(d).unwrap_or(&0) as f64).collect()))
         .collect();
-    plot(&dir.join("fig6_patches.svg"), "Fig. 6: patches per depth per frame", "patches", &per_depth)?;
+    plot(&dir.join("fig6_patches"), "Fig. 6: patches per depth per frame", "patches", &per_depth)?;
     let hdr: Vec<String> = (0..depths).map(|d| format!("depth{d}")).collect();
     csv(&dir.join("fig6_patches.csv"), &hdr.join(","), &per_depth.iter().map(|s| s.1.clone()).collect::<Vec<_>>())?;
 
@@ -127,7 +175,7 @@ pub fn run(root: &Path, exe: &Path) -> Result<()> {
     )?;
     let mut s7: Vec<(String, Vec<f64>)> = fixed.iter().map(|(d, fr)| (format!("uniform depth {d}"), fr.iter().map(|f| f.fps).collect())).collect();
     s7.push((format!("adaptive, target {t_low:.1} then {t_high:.1} fps"), ctl.iter().map(|f| f.fps).collect()));
-    plot(&dir.join("fig7_framerate.svg"), "Fig. 7: frames per second (lavapipe)", "fps", &s7)?;
+    plot(&dir.join("fig7_framerate"), "Fig. 7: frames per second (lavapipe)", "fps", &s7)?;
     csv(&dir.join("fig7_framerate.csv"), "uniform2,uniform3,uniform4,adaptive", &s7.iter().map(|s| s.1.clone()).collect::<Vec<_>>())?;
     // Frames after the switch until the rate stays within 10 % of the target.
     let half = ctl.len() / 2;
@@ -140,8 +188,8 @@ pub fn run(root: &Path, exe: &Path) -> Result<()> {
     writeln!(md, "## Adaptive Catmull-Clark tessellation (Settgast et al. 2004, Figs. 5–7)\n")?;
     writeln!(md, "Generated by `cargo xtask figures` (data: `subdiv bench framerate`, scene: 40 instances of")?;
     writeln!(md, "`catmark_helmet`, 2320 cage faces, camera orbiting the scene centre 2° per frame, 640×480,")?;
-    writeln!(md, "depths 0–4). Plots are SVG (plotters' SVG backend; no font rasterizer needed), data as CSV.\n")?;
-    writeln!(md, "![Fig. 5](figures/fig5_triangles.svg)\n")?;
+    writeln!(md, "depths 0–4). Plots as PNG (and the same as SVG beside them: `docs/figures/*.svg`), data as CSV.\n")?;
+    writeln!(md, "![Fig. 5](figures/fig5_triangles.png)\n")?;
     writeln!(
         md,
         "**Fig. 5** Triangles per frame: adaptive {:.0} on average (min {:.0}, max {:.0}) against uniform depth 2: {}, 3: {}, 4: {} \
@@ -154,10 +202,10 @@ pub fn run(root: &Path, exe: &Path) -> Result<()> {
         uniform[2].1,
         100.0 * mean(&tri) / uniform[2].1 as f64
     )?;
-    writeln!(md, "![Fig. 6](figures/fig6_patches.svg)\n")?;
+    writeln!(md, "![Fig. 6](figures/fig6_patches.png)\n")?;
     let avg_pd: Vec<String> = per_depth.iter().map(|(n, v)| format!("{n}: {:.0}", mean(v))).collect();
     writeln!(md, "**Fig. 6** Patches per depth per frame (average {}). As in the paper, most patches stay coarse (back faces at depth 0) while silhouettes and near, curved regions go deep.\n", avg_pd.join(", "))?;
-    writeln!(md, "![Fig. 7](figures/fig7_framerate.svg)\n")?;
+    writeln!(md, "![Fig. 7](figures/fig7_framerate.png)\n")?;
     writeln!(
         md,
         "**Fig. 7** Frames per second on lavapipe (CPU Vulkan, 2 cores; tessellation + rendering): uniform depth 2: {f2:.1}, 3: {f3:.1}, 4: {f4:.1} fps \
@@ -179,6 +227,6 @@ pub fn run(root: &Path, exe: &Path) -> Result<()> {
         _ => format!("{}\n\n{}", old.trim_end(), md),
     };
     std::fs::write(&path, new)?;
-    println!("figures: wrote docs/figures/fig5_triangles.svg, fig6_patches.svg, fig7_framerate.svg (+ CSV) and docs/figures.md");
+    println!("figures: wrote docs/figures/fig5_triangles, fig6_patches, fig7_framerate (.png, .svg, .csv) and docs/figures.md");
     Ok(())
 }

@@ -16,7 +16,7 @@ fn loader_present() -> bool {
         .any(|p| Path::new(p).exists())
 }
 
-fn is_root() -> bool {
+pub fn is_root() -> bool {
     Command::new("id").arg("-u").output().map(|o| String::from_utf8_lossy(&o.stdout).trim() == "0").unwrap_or(false)
 }
 
