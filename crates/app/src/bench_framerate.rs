@@ -53,7 +53,10 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
         bail!("--frames must be at least 1");
     }
     if a.max_depth > 6 {
-        bail!("--max-depth {} is too deep for this scene (at most 6)", a.max_depth);
+        bail!(
+            "--max-depth {} is too deep for this scene (at most 6)",
+            a.max_depth
+        );
     }
     if let Some(d) = a.depth {
         if d > a.max_depth {
@@ -70,7 +73,13 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
     let (lo, hi) = mesh.bounds();
     let centre = (lo + hi) * 0.5;
     let radius = (hi - lo).length() * 0.5;
-    let mut node = DynamicSubdivision::new(mesh, DepthParams { max_depth: a.max_depth, ..Default::default() })?;
+    let mut node = DynamicSubdivision::new(
+        mesh,
+        DepthParams {
+            max_depth: a.max_depth,
+            ..Default::default()
+        },
+    )?;
     let mode = match (a.depth, a.target_fps) {
         (Some(d), _) => {
             node.set_face_depths(Some(vec![d; nf]))?;
@@ -82,7 +91,11 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
         }
         (None, None) => "adaptive, no frame-rate control".to_string(),
     };
-    let mut renderer = if a.no_render { None } else { Some(Renderer::new()?) };
+    let mut renderer = if a.no_render {
+        None
+    } else {
+        Some(Renderer::new()?)
+    };
     let (w, h) = a.size;
     println!("scene={} faces={nf} size={w}x{h} mode={mode}", a.scene);
     let mut last: Option<f32> = None;
@@ -93,7 +106,12 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
         let t0 = Instant::now();
         // The camera orbits the scene centre about the y axis, looking at it from above.
         let ang = (i as f32 * a.orbit_step).to_radians();
-        let eye = centre + Vec3::new(ang.cos() * 1.1 * radius, 0.55 * radius, ang.sin() * 1.1 * radius);
+        let eye = centre
+            + Vec3::new(
+                ang.cos() * 1.1 * radius,
+                0.55 * radius,
+                ang.sin() * 1.1 * radius,
+            );
         let camera = Camera::new(eye, centre, Vec3::Y, 45.0, w, h);
         if a.no_cache {
             node.clear_cache();
@@ -113,8 +131,15 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
         last = Some(dt);
         let tris = g.num_triangles();
         let per: Vec<String> = g.units_per_depth().iter().map(|n| n.to_string()).collect();
-        let cap = node.controller().map(|c| c.cap()).unwrap_or(a.depth.unwrap_or(a.max_depth));
-        println!("frame={i} fps={:.3} triangles={tris} maxsd={cap} patches={}", 1.0 / dt, per.join(","));
+        let cap = node
+            .controller()
+            .map(|c| c.cap())
+            .unwrap_or(a.depth.unwrap_or(a.max_depth));
+        println!(
+            "frame={i} fps={:.3} triangles={tris} maxsd={cap} patches={}",
+            1.0 / dt,
+            per.join(",")
+        );
     }
     Ok(ExitCode::SUCCESS)
 }

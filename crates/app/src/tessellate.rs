@@ -243,7 +243,14 @@ pub fn run(a: &TessellateArgs) -> anyhow::Result<ExitCode> {
             // Uniform tessellation with the same maximum screen error: every face at the deepest
             // depth any visible face needed.
             let asg = node.assignment();
-            let dmax = asg.depth.iter().zip(&asg.active).filter(|(_, on)| **on).map(|(d, _)| *d).max().unwrap_or(0);
+            let dmax = asg
+                .depth
+                .iter()
+                .zip(&asg.active)
+                .filter(|(_, on)| **on)
+                .map(|(d, _)| *d)
+                .max()
+                .unwrap_or(0);
             let u = node.uniform_triangles_at(dmax);
             println!(
                 "uniform triangles at equal max screen error (depth {dmax}): {u} (adaptive/uniform = {:.3})",

@@ -284,9 +284,19 @@ fn adaptive_and_doi_tessellation() {
     assert_eq!(code, 0, "{err}");
     assert!(stdout.contains("adaptive/uniform"), "{stdout}");
     // Absurd depths are refused before allocating.
-    let (code, _, err) = run(&["tessellate", pawn.to_str().unwrap(), "--depth", "11", "-o", "/tmp/never.obj"]);
+    let (code, _, err) = run(&[
+        "tessellate",
+        pawn.to_str().unwrap(),
+        "--depth",
+        "11",
+        "-o",
+        "/tmp/never.obj",
+    ]);
     assert_ne!(code, 0);
-    assert!(err.contains("would produce") && err.contains("limit points"), "{err}");
+    assert!(
+        err.contains("would produce") && err.contains("limit points"),
+        "{err}"
+    );
     // Bad values are errors, not panics.
     for bad in [
         vec!["--pixel-error", "-1", "--eye-relative", "0,0,3"],
