@@ -83,6 +83,23 @@ pub fn make_doi(
     })
 }
 
+/// Refuses DoI options that the chosen DoI (`doi`, `None` for no DoI at all) would ignore
+/// (shared by `refine` and `render --doi`).
+pub fn check_doi_options(
+    doi: Option<&str>,
+    focus: &[String],
+    skeleton: Option<&std::path::Path>,
+    hip: Option<Vec3>,
+) -> anyhow::Result<()> {
+    if doi != Some("focus") && (!focus.is_empty() || skeleton.is_some()) {
+        anyhow::bail!("--focus and --skeleton need --doi focus");
+    }
+    if hip.is_some() && doi != Some("haptic") {
+        anyhow::bail!("--hip needs --doi haptic");
+    }
+    Ok(())
+}
+
 pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
     let input = a.input.display().to_string();
     let mut mesh = crate::load::load_mesh(&a.input, a.split_nonmanifold)?;
@@ -103,12 +120,7 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
         a.hip.is_some(),
         &input,
     )?;
-    if a.doi != "focus" && (!a.focus.is_empty() || a.skeleton.is_some()) {
-        anyhow::bail!("--focus and --skeleton need --doi focus");
-    }
-    if a.hip.is_some() && a.doi != "haptic" {
-        anyhow::bail!("--hip needs --doi haptic");
-    }
+    check_doi_options(Some(&a.doi), &a.focus, a.skeleton.as_deref(), a.hip)?;
     let threshold = a.threshold.unwrap_or(doi.default_threshold());
     if !threshold.is_finite() {
         anyhow::bail!("--threshold must be a finite number");

@@ -62,9 +62,19 @@ pub struct SurfaceArgs {
     /// Split quads and n-gons into triangles first (for --doi on a Catmull-Clark cage).
     #[arg(long)]
     pub triangulate: bool,
-    /// Focus objects (OBJ group names) for --doi focus.
+    /// Focus objects (OBJ group names) for --doi focus; repeatable.
     #[arg(long = "focus", value_name = "NAME")]
     pub focus: Vec<String>,
+    /// Skeleton polyline for --doi focus (points as `v X Y Z` or `X Y Z` lines).
+    #[arg(long)]
+    pub skeleton: Option<PathBuf>,
+    /// Haptic interaction point for --doi haptic: refine the triangle closest to it and its
+    /// one-neighbourhood instead of using the Clough-Tocher G1 error.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub hip: Option<Vec3>,
+    /// How edge or vertex DoI values become face values (--doi).
+    #[arg(long, default_value = "max", value_parser = ["max", "avg", "min"])]
+    pub aggregate: String,
 }
 
 /// Uniform depth when neither `--depth` nor an adaptive camera is given.
@@ -94,6 +104,20 @@ pub fn helmet40() -> anyhow::Result<Mesh> {
 }
 
 impl SurfaceArgs {
+    /// Refuses DoI options without the DoI that uses them (as `subdiv refine` does).
+    pub fn check_doi_options(&self) -> anyhow::Result<()> {
+        crate::refine::check_doi_options(
+            self.doi.as_deref(),
+            &self.focus,
+            self.skeleton.as_deref(),
+            self.hip,
+        )?;
+        if self.doi.is_none() && self.aggregate != "max" {
+            bail!("--aggregate needs --doi NAME");
+        }
+        Ok(())
+    }
+
     /// The input's name for messages.
     pub fn label(&self) -> String {
         match (&self.scene, &self.input) {
@@ -518,6 +542,7 @@ pub fn view_for(camera: &Camera, lo: Vec3, hi: Vec3) -> View {
 }
 
 pub fn run(a: &RenderArgs) -> anyhow::Result<ExitCode> {
+    a.surface.check_doi_options()?;
     if a.surface.doi.is_some() {
         return run_doi(a);
     }
@@ -554,60 +579,146 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     )
 }
 
-/// `subdiv render --doi`: the DoI-driven adaptive Loop mesh (the meshes of Isenberg et al.,
-/// Figs. 3, 4, 9, 10), drawn as refined (not pushed to the limit), with the DoI as the scalar.
+/// A DoI-driven adaptive Loop refinement ready to run for a camera (the meshes of Isenberg et
+/// al., Figs. 3, 4, 9, 10): the cage (triangulated with `--triangulate`), the DoI and the
+/// refinement options of the surface flags. Shared by `render --doi` and `view --doi`.
+pub struct DoiSetup {
+    cage: Mesh,
+    doi: Box<dyn subdiv_doi::Doi>,
+    hip: Option<Vec3>,
+    opts: subdiv_doi::RefineOptions,
+    name: String,
+}
+
+impl DoiSetup {
+    /// Loads the cage and builds the DoI the surface flags name (`--doi` must be given).
+    pub fn new(surface: &SurfaceArgs) -> anyhow::Result<DoiSetup> {
+        surface.check_doi_options()?;
+        let name = surface.doi.clone().context("--doi NAME is needed")?;
+        let label = surface.label();
+        let mut cage = surface.load_cage()?;
+        if surface.triangulate {
+            cage = subdiv_doi::triangulate(&cage)
+                .with_context(|| format!("{label}: triangulating"))?;
+        }
+        let doi = crate::refine::make_doi(
+            &name,
+            &cage,
+            &surface.focus,
+            surface.skeleton.as_deref(),
+            surface.hip.is_some(),
+            &label,
+        )?;
+        let threshold = surface.threshold.unwrap_or(doi.default_threshold());
+        if !threshold.is_finite() {
+            bail!("--threshold must be a finite number");
+        }
+        let aggregate: subdiv_doi::Aggregate =
+            surface.aggregate.parse().map_err(anyhow::Error::msg)?;
+        let opts = subdiv_doi::RefineOptions {
+            threshold,
+            steps: surface.steps,
+            aggregate,
+        };
+        Ok(DoiSetup {
+            cage,
+            doi,
+            hip: surface.hip,
+            opts,
+            name,
+        })
+    }
+
+    /// Bounds of the cage.
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        self.cage.bounds()
+    }
+
+    /// Whether the refinement depends on the camera.
+    pub fn is_view_dependent(&self) -> bool {
+        self.doi.is_view_dependent()
+    }
+
+    /// Refines for `camera`: the refined mesh (drawn as refined, not pushed to the limit) with
+    /// each vertex's largest DoI over its faces as the scalar, and a one-line summary.
+    pub fn scene(&self, camera: &Camera) -> anyhow::Result<(Scene, String)> {
+        let ctx = subdiv_doi::DoiContext {
+            camera: Some(*camera),
+            hip: self.hip,
+            ..Default::default()
+        };
+        let r = subdiv_doi::refine_adaptive(&self.cage, self.doi.as_ref(), &ctx, &self.opts)
+            .context("refining")?;
+        let m = &r.mesh.mesh;
+        let (mut scratch, mut values) = (Vec::new(), Vec::new());
+        subdiv_doi::face_values(
+            self.doi.as_ref(),
+            m,
+            &ctx,
+            self.opts.aggregate,
+            &mut scratch,
+            &mut values,
+        )?;
+        let mut scalar = vec![f32::NEG_INFINITY; m.num_vertices()];
+        for f in m.faces() {
+            let v = values[f.idx()];
+            for x in m.face_vertices(f) {
+                scalar[x.idx()] = scalar[x.idx()].max(if v.is_finite() { v } else { 0.0 });
+            }
+        }
+        for s in &mut scalar {
+            if !s.is_finite() {
+                *s = 0.0;
+            }
+        }
+        let normals = subdiv_doi::vertex_normals(m);
+        let (offsets, indices) = m.face_lists();
+        let limit = LimitMesh {
+            positions: m.positions().iter().map(|p| p.to_array()).collect(),
+            normals: normals.iter().map(|n| n.to_array()).collect(),
+            face_offsets: offsets.to_vec(),
+            face_indices: indices.iter().map(|v| v.0).collect(),
+        };
+        let note = format!(
+            "{} DoI, threshold {}, {} steps: {} -> {} triangles",
+            self.name,
+            self.opts.threshold,
+            self.opts.steps,
+            self.cage.num_faces(),
+            m.num_faces()
+        );
+        Ok((Scene::from_limit(limit, scalar), note))
+    }
+}
+
+/// `subdiv render --doi`: the DoI-driven adaptive Loop mesh with the DoI as the scalar.
 fn run_doi(a: &RenderArgs) -> anyhow::Result<ExitCode> {
-    let name = a.surface.doi.as_deref().unwrap_or_default();
-    let label = a.surface.label();
     let mut style = a.style.clone();
     style.doi_values = true;
     let options = style.render_options()?;
     let t0 = Instant::now();
-    let mut cage = a.surface.load_cage()?;
-    if a.surface.triangulate {
-        cage = subdiv_doi::triangulate(&cage).with_context(|| format!("{label}: triangulating"))?;
-    }
-    let doi = crate::refine::make_doi(name, &cage, &a.surface.focus, None, false, &label)?;
-    let (lo, hi) = cage.bounds();
+    let setup = DoiSetup::new(&a.surface)?;
+    let (lo, hi) = setup.bounds();
     let camera = a.camera.camera(lo, hi);
-    let ctx = subdiv_doi::DoiContext { camera: Some(camera), ..Default::default() };
-    let threshold = a.surface.threshold.unwrap_or(doi.default_threshold());
-    let opts = subdiv_doi::RefineOptions { threshold, steps: a.surface.steps, aggregate: subdiv_doi::Aggregate::Max };
-    let r = subdiv_doi::refine_adaptive(&cage, doi.as_ref(), &ctx, &opts).with_context(|| format!("{label}: refining"))?;
-    let m = &r.mesh.mesh;
-    // DoI per face of the result, spread to vertices by maximum (the heat-map scalar).
-    let (mut scratch, mut values) = (Vec::new(), Vec::new());
-    subdiv_doi::face_values(doi.as_ref(), m, &ctx, subdiv_doi::Aggregate::Max, &mut scratch, &mut values)?;
-    let mut scalar = vec![f32::NEG_INFINITY; m.num_vertices()];
-    for f in m.faces() {
-        let v = values[f.idx()];
-        for x in m.face_vertices(f) {
-            scalar[x.idx()] = scalar[x.idx()].max(if v.is_finite() { v } else { 0.0 });
-        }
-    }
-    for s in &mut scalar {
-        if !s.is_finite() {
-            *s = 0.0;
-        }
-    }
-    let normals = subdiv_doi::vertex_normals(m);
-    let (offsets, indices) = m.face_lists();
-    let limit = LimitMesh {
-        positions: m.positions().iter().map(|p| p.to_array()).collect(),
-        normals: normals.iter().map(|n| n.to_array()).collect(),
-        face_offsets: offsets.to_vec(),
-        face_indices: indices.iter().map(|v| v.0).collect(),
-    };
-    let mut scene = Scene::from_limit(limit, scalar);
+    let (mut scene, note) = setup.scene(&camera).with_context(|| a.surface.label())?;
     let tessellate_ms = t0.elapsed().as_secs_f64() * 1e3;
     let view = view_for(&camera, lo, hi);
     if a.style.silhouettes {
         let mut lines = Vec::new();
-        scene.silhouettes.lines_into(&scene.mesh.positions, view.eye, &mut lines);
+        scene
+            .silhouettes
+            .lines_into(&scene.mesh.positions, view.eye, &mut lines);
         scene.mesh.lines = Some(lines);
     }
-    let note = format!("{name} DoI, threshold {threshold}, {} steps: {} -> {} triangles", a.surface.steps, cage.num_faces(), m.num_faces());
-    draw_and_report(a, &scene, &view, [camera.width, camera.height], &options, &note, tessellate_ms)
+    draw_and_report(
+        a,
+        &scene,
+        &view,
+        [camera.width, camera.height],
+        &options,
+        &note,
+        tessellate_ms,
+    )
 }
 
 /// `subdiv render` of the adaptive tessellation: depths (and culling) from the camera, or from

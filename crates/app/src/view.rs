@@ -16,7 +16,8 @@ use subdiv_vk::{OwnedMesh, RenderMesh, Shading, View};
 
 use crate::camera_args::CameraArgs;
 use crate::render::{
-    DEFAULT_DEPTH, Scene, Silhouettes, StyleArgs, SurfaceArgs, depth_histogram, orbit_camera,
+    DEFAULT_DEPTH, DoiSetup, Scene, Silhouettes, StyleArgs, SurfaceArgs, depth_histogram,
+    orbit_camera,
 };
 
 /// `subdiv view` arguments.
@@ -158,7 +159,122 @@ impl FrameSource for AdaptiveSource {
     }
 }
 
+/// The DoI frame source (`--doi`): the adaptive Loop mesh of the DoI, refined again whenever the
+/// culling camera moves (view-dependent DoIs) and coloured by the DoI with `H`.
+struct DoiSource {
+    setup: DoiSetup,
+    scene: Option<Scene>,
+    /// Culling camera (eye, forward) the scene was refined for.
+    refined_for: Option<(Vec3, Vec3)>,
+    version: u64,
+    note: String,
+    lines: Vec<[f32; 3]>,
+    status: String,
+}
+
+impl FrameSource for DoiSource {
+    fn frame(
+        &mut self,
+        request: &FrameRequest,
+    ) -> Result<SourceFrame<'_>, Box<dyn std::error::Error + Send + Sync>> {
+        let key = (request.cull_view.eye, request.cull_view.forward());
+        let stale = match self.refined_for {
+            None => true,
+            Some(k) => self.setup.is_view_dependent() && k != key,
+        };
+        if stale {
+            let camera = camera_from_view(&request.cull_view, request.size);
+            let (scene, note) = self.setup.scene(&camera).map_err(|e| format!("{e:#}"))?;
+            self.scene = Some(scene);
+            self.note = note;
+            self.refined_for = Some(key);
+            self.version += 1;
+        }
+        let scene = self.scene.as_ref().expect("refined above");
+        if request.silhouettes {
+            scene.silhouettes.lines_into(
+                &scene.mesh.positions,
+                request.cull_view.eye,
+                &mut self.lines,
+            );
+        } else {
+            self.lines.clear();
+        }
+        self.status.clone_from(&self.note);
+        if request.shading == Shading::Depth {
+            self.status
+                .push_str(" | colours show the DoI (no subdivision depths)");
+        }
+        Ok(SourceFrame {
+            mesh: RenderMesh {
+                lines: Some(&self.lines),
+                ..scene.mesh.as_render_mesh()
+            },
+            status: &self.status,
+            vertex_version: Some(self.version),
+        })
+    }
+}
+
+/// `subdiv view --doi`.
+fn run_doi(a: &ViewArgs) -> anyhow::Result<ExitCode> {
+    let mut style = a.style.clone();
+    style.doi_values = true;
+    let render = style.render_options()?;
+    let setup = DoiSetup::new(&a.surface)?;
+    let (lo, hi) = setup.bounds();
+    let camera = a.camera.camera(lo, hi);
+    let (orbit, exact) = orbit_camera(&camera, lo, hi);
+    if !exact {
+        eprintln!(
+            "note: the viewer orbits about +Y; the camera's --up and vertical views are approximated"
+        );
+    }
+    let title = format!(
+        "subdiv view {} ({} DoI, {} steps)",
+        a.surface.label(),
+        a.surface.doi.as_deref().unwrap_or_default(),
+        a.surface.steps
+    );
+    let mut source = DoiSource {
+        setup,
+        scene: None,
+        refined_for: None,
+        version: 0,
+        note: String::new(),
+        lines: Vec::new(),
+        status: String::new(),
+    };
+    let options = ViewerOptions {
+        title,
+        size: [camera.width, camera.height],
+        camera: Some(orbit),
+        render,
+        screenshot_after: a.screenshot_after,
+        screenshot_path: a
+            .output
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("screenshot.png")),
+        ..ViewerOptions::default()
+    };
+    let report = viewer::run(&mut source, options)?;
+    for shot in &report.screenshots {
+        println!("screenshot -> {}", shot.display());
+    }
+    println!(
+        "viewed {}: {} frames ({})",
+        a.surface.label(),
+        report.frames,
+        source.note
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
 pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
+    a.surface.check_doi_options()?;
+    if a.surface.doi.is_some() {
+        return run_doi(a);
+    }
     if a.surface.is_adaptive(&a.camera)? {
         return run_adaptive(a);
     }

@@ -277,19 +277,42 @@ fn no_vulkan_driver_names_the_package_to_install() {
     assert!(!out.exists());
 }
 
+/// `subdiv` in a window: on the display, or under `xvfb-run`; `None` (test skipped, note
+/// printed) when there is neither and none is required.
+fn view_command() -> Option<Command> {
+    if std::env::var_os("DISPLAY").is_some() {
+        return Some(subdiv());
+    }
+    let xvfb = std::env::var_os("PATH")
+        .is_some_and(|p| std::env::split_paths(&p).any(|d| d.join("xvfb-run").is_file()));
+    if !xvfb {
+        assert!(
+            std::env::var("SUBDIV_VK_REQUIRE_DISPLAY").as_deref() != Ok("1"),
+            "SUBDIV_VK_REQUIRE_DISPLAY=1 but no DISPLAY and no xvfb-run"
+        );
+        eprintln!("skipping: no DISPLAY and no xvfb-run (install xvfb, or run `cargo xtask test`)");
+        return None;
+    }
+    let mut c = Command::new("xvfb-run");
+    c.args([
+        "-a",
+        "-s",
+        "-screen 0 640x480x24",
+        env!("CARGO_BIN_EXE_subdiv"),
+    ]);
+    for (k, v) in subdiv().get_envs() {
+        if let Some(v) = v {
+            c.env(k, v);
+        }
+    }
+    Some(c)
+}
+
 /// `subdiv view --screenshot-after 5` shows exactly what `subdiv render` draws, silhouettes,
 /// wireframe and depth colours included.
 #[test]
 fn view_screenshot_equals_render() {
-    let require = std::env::var("SUBDIV_VK_REQUIRE_DISPLAY").as_deref() == Ok("1");
-    let xvfb = std::env::var_os("PATH")
-        .is_some_and(|p| std::env::split_paths(&p).any(|d| d.join("xvfb-run").is_file()));
-    if std::env::var_os("DISPLAY").is_none() && !xvfb {
-        assert!(
-            !require,
-            "SUBDIV_VK_REQUIRE_DISPLAY=1 but no DISPLAY and no xvfb-run"
-        );
-        eprintln!("skipping: no DISPLAY and no xvfb-run (install xvfb, or run `cargo xtask test`)");
+    if view_command().is_none() {
         return;
     }
     let input = box_obj();
@@ -315,25 +338,8 @@ fn view_screenshot_equals_render() {
         return;
     };
     let shot = tmp("view-shot.png");
-    let mut view = if std::env::var_os("DISPLAY").is_some() {
-        subdiv()
-    } else {
-        let mut c = Command::new("xvfb-run");
-        c.args([
-            "-a",
-            "-s",
-            "-screen 0 640x480x24",
-            env!("CARGO_BIN_EXE_subdiv"),
-        ]);
-        let direct = subdiv();
-        for (k, v) in direct.get_envs() {
-            if let Some(v) = v {
-                c.env(k, v);
-            }
-        }
-        c
-    };
-    let o = view
+    let o = view_command()
+        .unwrap()
         .args(["view", input.to_str().unwrap()])
         .args(flags)
         .args(["--screenshot-after", "5", "-o", shot.to_str().unwrap()])
@@ -376,12 +382,204 @@ fn doi_meshes_render_with_doi_shading() {
     };
     let text = String::from_utf8_lossy(&o.stdout).to_string();
     // Fewer triangles than three uniform Loop steps (992 * 64).
-    let after: usize = text.split("-> ").nth(1).and_then(|t| t.split(' ').next()).and_then(|n| n.parse().ok()).unwrap();
+    let after: usize = text
+        .split("-> ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap();
     assert!(after > 992 && after < 992 * 64, "{text}");
     let img = subdiv_vk::read_png(&out).unwrap();
     let centre = pixel(&img, 80, 60);
     assert_ne!(centre, pixel(&img, 0, 0), "the teapot is drawn");
     // DoI shading without a DoI is a clear error.
-    let o = subdiv().args(["render", teapot.to_str().unwrap(), "--split-nonmanifold", "--scheme", "loop", "--shading", "doi", "-o", out.to_str().unwrap()]).output().unwrap();
+    let o = subdiv()
+        .args([
+            "render",
+            teapot.to_str().unwrap(),
+            "--split-nonmanifold",
+            "--scheme",
+            "loop",
+            "--shading",
+            "doi",
+            "-o",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
     assert_clean_failure(&o, "--shading doi needs --doi");
+}
+
+/// `render --doi` takes the DoI options of `subdiv refine` (haptic interaction point,
+/// aggregation) and refines exactly as `refine` does; without the DoI they are refused.
+#[test]
+fn render_doi_options_match_refine() {
+    let bunny = root().join("fixtures/meshes/tri_bunny_3k.obj");
+    let bunny = bunny.to_str().unwrap();
+    let out = tmp("doi_opts.png");
+    let obj = tmp("doi_opts.obj");
+    // The haptic interaction point at a vertex of the bunny's back.
+    let text = std::fs::read_to_string(bunny).unwrap();
+    let v = text
+        .lines()
+        .filter(|l| l.starts_with("v "))
+        .nth(1200)
+        .unwrap();
+    let hip: Vec<&str> = v.split_whitespace().skip(1).collect();
+    let hip = format!("--hip={}", hip.join(","));
+    let cases: [(&str, Vec<&str>); 2] = [
+        ("haptic", vec![hip.as_str()]),
+        ("silhouette", vec!["--aggregate", "avg"]),
+    ];
+    for (doi, extra) in cases {
+        let refine = subdiv()
+            .args([
+                "refine",
+                bunny,
+                "--doi",
+                doi,
+                "--eye-relative",
+                "0.3,0.4,2.1",
+                "-o",
+            ])
+            .arg(&obj)
+            .args(&extra)
+            .output()
+            .unwrap();
+        assert!(refine.status.success(), "refine {doi}: {}", stderr(&refine));
+        let rtext = String::from_utf8_lossy(&refine.stdout).to_string();
+        let refined = rtext
+            .split("-> ")
+            .nth(1)
+            .and_then(|t| t.split(' ').next())
+            .unwrap()
+            .to_string();
+        let mut args = vec![
+            "render",
+            bunny,
+            "--scheme",
+            "loop",
+            "--doi",
+            doi,
+            "--eye-relative",
+            "0.3,0.4,2.1",
+        ];
+        args.extend(&extra);
+        args.extend([
+            "--shading",
+            "doi",
+            "--size",
+            "120x90",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        let Some(o) = render(&args) else {
+            return;
+        };
+        let text = String::from_utf8_lossy(&o.stdout).to_string();
+        assert!(
+            text.contains(&format!("-> {refined} triangles")),
+            "{doi}: refine gave {refined} triangles, render: {text}"
+        );
+    }
+    // The options without their DoI are refused.
+    let o = subdiv()
+        .args(["render", bunny, "--scheme", "loop", "--hip", "0,0,0", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, "--hip needs --doi haptic");
+    let o = subdiv()
+        .args([
+            "render",
+            bunny,
+            "--scheme",
+            "loop",
+            "--aggregate",
+            "avg",
+            "-o",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, "--aggregate needs --doi");
+    let o = subdiv()
+        .args([
+            "render",
+            bunny,
+            "--scheme",
+            "loop",
+            "--doi",
+            "silhouette",
+            "--skeleton",
+            bunny,
+            "-o",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, "--focus and --skeleton need --doi focus");
+}
+
+/// `subdiv view --doi` shows the DoI-driven adaptive Loop mesh of `subdiv render --doi`, DoI
+/// heat map included, and refines it for the viewer's camera.
+#[test]
+fn view_doi_screenshot_equals_render() {
+    if view_command().is_none() {
+        return;
+    }
+    let teapot = root().join("fixtures/meshes/tri_teapot.obj");
+    let flags = [
+        teapot.to_str().unwrap(),
+        "--split-nonmanifold",
+        "--scheme",
+        "loop",
+        "--doi",
+        "silhouette",
+        "--eye-relative",
+        "0,0.3,2.2",
+        "--shading",
+        "doi",
+        "--size",
+        "200x150",
+    ];
+    let rendered = tmp("view-doi-render.png");
+    let Some(r) = render(&[&["render"][..], &flags, &["-o", rendered.to_str().unwrap()]].concat())
+    else {
+        return;
+    };
+    let shot = tmp("view-doi-shot.png");
+    let o = view_command()
+        .unwrap()
+        .arg("view")
+        .args(flags)
+        .args(["--screenshot-after", "3", "-o", shot.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let err = stderr(&o);
+    assert!(o.status.success(), "subdiv view --doi failed:\n{err}");
+    assert!(
+        !err.contains("subdiv-vk validation:"),
+        "validation messages:\n{err}"
+    );
+    // Both report the same refinement.
+    let summary = |text: &str| {
+        text.split("DoI, threshold")
+            .nth(1)
+            .and_then(|t| t.split(" triangles").next())
+            .map(str::to_string)
+    };
+    let (rt, vt) = (
+        String::from_utf8_lossy(&r.stdout).to_string(),
+        String::from_utf8_lossy(&o.stdout).to_string(),
+    );
+    assert!(
+        summary(&vt).is_some() && summary(&rt) == summary(&vt),
+        "render: {rt}\nview: {vt}"
+    );
+    let (a, b) = (read_png(&shot).unwrap(), read_png(&rendered).unwrap());
+    assert!(
+        a == b,
+        "view --doi screenshot differs from subdiv render --doi"
+    );
 }
