@@ -1130,11 +1130,13 @@ fn step_general(
             if (0..=n).contains(&vi) && (0..=n).contains(&vj) {
                 dst.edge_sharp(2 * vi, 2 * vj, toward)
             } else {
-                crease::child_edge_sharpness(
-                    method,
-                    s,
-                    far_info(src, corners, vi, vj, (toward + 2) % 4),
-                )
+                // Far-end information only matters to the Chaikin rule.
+                let far = if method == CreaseMethod::Chaikin {
+                    far_info(src, corners, vi, vj, (toward + 2) % 4)
+                } else {
+                    (0.0, 0)
+                };
+                crease::child_edge_sharpness(method, s, far)
             }
         };
         let c0 = child_at(i, j, dir);
@@ -1158,9 +1160,9 @@ fn step_general(
         let k = dst.at(i + bi, j + bj);
         dst.p[k] = e;
         dst.ex[k] = true;
-        // New far info for crossing edges leaving the table.
+        // New far info for crossing edges leaving the table (Chaikin only).
         let outer = |vi: i32, vj: i32| !((0..=n).contains(&vi) && (0..=n).contains(&vj));
-        if outer(i, j) || outer(bi, bj) {
+        if method == CreaseMethod::Chaikin && (outer(i, j) || outer(bi, bj)) {
             let (oi, oj, toward) = if outer(i, j) {
                 (i, j, dir)
             } else {
