@@ -10,7 +10,7 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 use glam::Vec3;
 use subdiv_mesh::{Camera, Mesh, parse_obj};
-use subdiv_rules::{LimitMesh, Scheme, tessellate_uniform};
+use subdiv_rules::{LimitMesh, Scheme};
 use subdiv_stitch::{DynamicSubdivision, FrameGeometry};
 use subdiv_vk::{OrbitCamera, OwnedMesh, RenderOptions, Renderer, Shading, View};
 
@@ -331,7 +331,7 @@ impl Scene {
         let scheme: Scheme = args.scheme.parse().map_err(anyhow::Error::msg)?;
         let cage = args.load_cage()?;
         let depth = args.depth.unwrap_or(DEFAULT_DEPTH);
-        let limit = tessellate_uniform(&cage, scheme, depth)
+        let limit = crate::tessellate::uniform(&cage, scheme, depth)
             .map_err(|e| anyhow::anyhow!("{}: {e}", args.label()))?;
         if limit.num_faces() == 0 {
             bail!("{}: the limit surface has no faces to draw", args.label());

@@ -124,20 +124,26 @@ pub struct TessellateArgs {
     pub split_nonmanifold: bool,
 }
 
+/// The uniform limit tessellation at `depth` (shared by `tessellate`, `render` and `view`):
+/// Catmull-Clark on the slate tessellator, Loop on the whole-mesh refinement.
+pub fn uniform(
+    mesh: &subdiv_mesh::Mesh,
+    scheme: Scheme,
+    depth: u32,
+) -> Result<subdiv_rules::LimitMesh, Box<dyn std::error::Error + Send + Sync>> {
+    Ok(match scheme {
+        Scheme::CatmullClark => slate_tessellate(mesh, depth)?,
+        Scheme::Loop => tessellate_uniform(mesh, scheme, depth)?,
+    })
+}
+
 pub fn run(a: &TessellateArgs) -> anyhow::Result<ExitCode> {
     let scheme: Scheme = a.scheme.parse().map_err(anyhow::Error::msg)?;
     let mesh = crate::load::load_mesh(&a.input, a.split_nonmanifold)?;
     let input = a.input.display();
     let t0 = Instant::now();
     if let Some(depth) = a.depth {
-        let t = match scheme {
-            // Catmull-Clark runs on the slate tessellator; Loop on the whole-mesh refinement.
-            Scheme::CatmullClark => {
-                slate_tessellate(&mesh, depth).map_err(|e| anyhow::anyhow!("{input}: {e}"))?
-            }
-            Scheme::Loop => tessellate_uniform(&mesh, scheme, depth)
-                .map_err(|e| anyhow::anyhow!("{input}: {e}"))?,
-        };
+        let t = uniform(&mesh, scheme, depth).map_err(|e| anyhow::anyhow!("{input}: {e}"))?;
         let ms = t0.elapsed().as_secs_f64() * 1e3;
         write_obj(&a.output, &t.obj_data())?;
         println!(
