@@ -12,7 +12,7 @@ use subdiv_mesh::Camera;
 use subdiv_rules::LimitMesh;
 use subdiv_stitch::DynamicSubdivision;
 use subdiv_vk::viewer::{self, FrameRequest, FrameSource, SourceFrame, ViewerOptions};
-use subdiv_vk::{OwnedMesh, RenderMesh, Shading, View};
+use subdiv_vk::{OrbitCamera, OwnedMesh, RenderMesh, Shading, View};
 
 use crate::camera_args::CameraArgs;
 use crate::render::{
@@ -216,13 +216,9 @@ impl FrameSource for DoiSource {
     }
 }
 
-/// `subdiv view --doi`.
-fn run_doi(a: &ViewArgs) -> anyhow::Result<ExitCode> {
-    let mut style = a.style.clone();
-    style.doi_values = true;
-    let render = style.render_options()?;
-    let setup = DoiSetup::new(&a.surface)?;
-    let (lo, hi) = setup.bounds();
+/// The initial camera for cage bounds `lo`, `hi` and the orbit camera the viewer starts from
+/// (with a note when the orbit can only approximate it).
+fn start_camera(a: &ViewArgs, lo: Vec3, hi: Vec3) -> (Camera, OrbitCamera) {
     let camera = a.camera.camera(lo, hi);
     let (orbit, exact) = orbit_camera(&camera, lo, hi);
     if !exact {
@@ -230,6 +226,48 @@ fn run_doi(a: &ViewArgs) -> anyhow::Result<ExitCode> {
             "note: the viewer orbits about +Y; the camera's --up and vertical views are approximated"
         );
     }
+    (camera, orbit)
+}
+
+/// Runs the viewer on `source` (screenshot flags from `a`), prints the screenshots written and
+/// the closing line `viewed LABEL: N frames[ (NOTE)]`.
+fn show<S: FrameSource>(
+    a: &ViewArgs,
+    source: &mut S,
+    mut options: ViewerOptions,
+    note: impl FnOnce(&S) -> String,
+) -> anyhow::Result<ExitCode> {
+    options.screenshot_after = a.screenshot_after;
+    options.screenshot_path = a
+        .output
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("screenshot.png"));
+    let report = viewer::run(source, options)?;
+    for shot in &report.screenshots {
+        println!("screenshot -> {}", shot.display());
+    }
+    let note = note(source);
+    let note = if note.is_empty() {
+        note
+    } else {
+        format!(" ({note})")
+    };
+    println!(
+        "viewed {}: {} frames{note}",
+        a.surface.label(),
+        report.frames
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `subdiv view --doi`.
+fn run_doi(a: &ViewArgs) -> anyhow::Result<ExitCode> {
+    let mut style = a.style.clone();
+    style.doi_values = true;
+    let render = style.render_options()?;
+    let setup = DoiSetup::new(&a.surface)?;
+    let (lo, hi) = setup.bounds();
+    let (camera, orbit) = start_camera(a, lo, hi);
     let title = format!(
         "subdiv view {} ({} DoI, {} steps)",
         a.surface.label(),
@@ -250,24 +288,9 @@ fn run_doi(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         size: [camera.width, camera.height],
         camera: Some(orbit),
         render,
-        screenshot_after: a.screenshot_after,
-        screenshot_path: a
-            .output
-            .clone()
-            .unwrap_or_else(|| PathBuf::from("screenshot.png")),
         ..ViewerOptions::default()
     };
-    let report = viewer::run(&mut source, options)?;
-    for shot in &report.screenshots {
-        println!("screenshot -> {}", shot.display());
-    }
-    println!(
-        "viewed {}: {} frames ({})",
-        a.surface.label(),
-        report.frames,
-        source.note
-    );
-    Ok(ExitCode::SUCCESS)
+    show(a, &mut source, options, |s| s.note.clone())
 }
 
 pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
@@ -281,13 +304,7 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     let render = a.style.render_options()?;
     let scene = Scene::load(&a.surface)?;
     let (lo, hi) = scene.bounds();
-    let camera = a.camera.camera(lo, hi);
-    let (orbit, exact) = orbit_camera(&camera, lo, hi);
-    if !exact {
-        eprintln!(
-            "note: the viewer orbits about +Y; the camera's --up and vertical views are approximated"
-        );
-    }
+    let (camera, orbit) = start_camera(a, lo, hi);
     let title = format!(
         "subdiv view {} ({}, depth {})",
         a.surface.label(),
@@ -306,19 +323,9 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         size: [camera.width, camera.height],
         camera: Some(orbit),
         render,
-        screenshot_after: a.screenshot_after,
-        screenshot_path: a
-            .output
-            .clone()
-            .unwrap_or_else(|| PathBuf::from("screenshot.png")),
         ..ViewerOptions::default()
     };
-    let report = viewer::run(&mut source, options)?;
-    for shot in &report.screenshots {
-        println!("screenshot -> {}", shot.display());
-    }
-    println!("viewed {}: {} frames", a.surface.label(), report.frames);
-    Ok(ExitCode::SUCCESS)
+    show(a, &mut source, options, |_| String::new())
 }
 
 /// `subdiv view` on the adaptive tessellation.
@@ -331,13 +338,7 @@ fn run_adaptive(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     }
     let cage = a.surface.load_cage()?;
     let (lo, hi) = cage.bounds();
-    let camera = a.camera.camera(lo, hi);
-    let (orbit, exact) = orbit_camera(&camera, lo, hi);
-    if !exact {
-        eprintln!(
-            "note: the viewer orbits about +Y; the camera's --up and vertical views are approximated"
-        );
-    }
+    let (camera, orbit) = start_camera(a, lo, hi);
     let title = format!(
         "subdiv view {} (adaptive, max depth {})",
         a.surface.label(),
@@ -356,17 +357,7 @@ fn run_adaptive(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         render,
         // A scripted screenshot shows the view-dependent depths without frame-time feedback.
         frame_rate_control: a.screenshot_after.is_none(),
-        screenshot_after: a.screenshot_after,
-        screenshot_path: a
-            .output
-            .clone()
-            .unwrap_or_else(|| PathBuf::from("screenshot.png")),
         ..ViewerOptions::default()
     };
-    let report = viewer::run(&mut source, options)?;
-    for shot in &report.screenshots {
-        println!("screenshot -> {}", shot.display());
-    }
-    println!("viewed {}: {} frames", a.surface.label(), report.frames);
-    Ok(ExitCode::SUCCESS)
+    show(a, &mut source, options, |_| String::new())
 }
