@@ -100,45 +100,110 @@ pub fn check_doi_options(
     Ok(())
 }
 
+/// A DoI-driven refinement as the DoI flags describe it, ready to run for a camera: the
+/// triangle cage (split with `--triangulate`), the DoI and the refinement options. Shared by
+/// `refine`, `render --doi` and `view --doi`, so the three treat their flags alike.
+pub struct DoiRefinement {
+    /// The triangle mesh refined.
+    pub cage: subdiv_mesh::Mesh,
+    /// The Degree-of-Interest function.
+    pub doi: Box<dyn Doi>,
+    /// Haptic interaction point (`--hip`).
+    pub hip: Option<Vec3>,
+    /// Threshold, steps and aggregation.
+    pub opts: RefineOptions,
+}
+
+/// The DoI flags shared by `refine` and `render`/`view --doi`.
+pub struct DoiFlags<'a> {
+    pub doi: &'a str,
+    pub threshold: Option<f32>,
+    pub steps: u32,
+    pub aggregate: &'a str,
+    pub triangulate: bool,
+    pub focus: &'a [String],
+    pub skeleton: Option<&'a std::path::Path>,
+    pub hip: Option<Vec3>,
+}
+
+impl DoiRefinement {
+    /// Checks the flags against each other and against `mesh` (read from `input`), and builds
+    /// the DoI.
+    pub fn new(
+        mut mesh: subdiv_mesh::Mesh,
+        input: &str,
+        f: &DoiFlags<'_>,
+    ) -> anyhow::Result<DoiRefinement> {
+        check_doi_options(Some(f.doi), f.focus, f.skeleton, f.hip)?;
+        if f.triangulate {
+            mesh = triangulate(&mesh).with_context(|| format!("{input}: triangulating"))?;
+        } else if let Some(face) = mesh.faces().find(|&x| mesh.face_size(x) != 3) {
+            anyhow::bail!(
+                "{input}: face {} has {} vertices; Loop subdivision needs triangles (pass --triangulate to split quads and n-gons)",
+                face.0,
+                mesh.face_size(face)
+            );
+        }
+        let doi = make_doi(f.doi, &mesh, f.focus, f.skeleton, f.hip.is_some(), input)?;
+        let threshold = f.threshold.unwrap_or(doi.default_threshold());
+        if !threshold.is_finite() {
+            anyhow::bail!("--threshold must be a finite number");
+        }
+        let aggregate: Aggregate = f.aggregate.parse().map_err(anyhow::Error::msg)?;
+        Ok(DoiRefinement {
+            cage: mesh,
+            doi,
+            hip: f.hip,
+            opts: RefineOptions {
+                threshold,
+                steps: f.steps,
+                aggregate,
+            },
+        })
+    }
+
+    /// The evaluation context for `camera`.
+    pub fn context(&self, camera: subdiv_mesh::Camera) -> DoiContext {
+        DoiContext {
+            camera: Some(camera),
+            hip: self.hip,
+            ..Default::default()
+        }
+    }
+
+    /// Refines the cage for `camera`.
+    pub fn run(&self, camera: subdiv_mesh::Camera) -> anyhow::Result<subdiv_doi::Refined> {
+        Ok(refine_adaptive(
+            &self.cage,
+            self.doi.as_ref(),
+            &self.context(camera),
+            &self.opts,
+        )?)
+    }
+}
+
 pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
     let input = a.input.display().to_string();
-    let mut mesh = crate::load::load_mesh(&a.input, a.split_nonmanifold)?;
-    if a.triangulate {
-        mesh = triangulate(&mesh).with_context(|| format!("{input}: triangulating"))?;
-    } else if let Some(f) = mesh.faces().find(|&f| mesh.face_size(f) != 3) {
-        anyhow::bail!(
-            "{input}: face {} has {} vertices; Loop subdivision needs triangles (pass --triangulate to split quads and n-gons)",
-            f.0,
-            mesh.face_size(f)
-        );
-    }
-    let doi = make_doi(
-        &a.doi,
-        &mesh,
-        &a.focus,
-        a.skeleton.as_deref(),
-        a.hip.is_some(),
+    let mesh = crate::load::load_mesh(&a.input, a.split_nonmanifold)?;
+    let setup = DoiRefinement::new(
+        mesh,
         &input,
+        &DoiFlags {
+            doi: &a.doi,
+            threshold: a.threshold,
+            steps: a.steps,
+            aggregate: &a.aggregate,
+            triangulate: a.triangulate,
+            focus: &a.focus,
+            skeleton: a.skeleton.as_deref(),
+            hip: a.hip,
+        },
     )?;
-    check_doi_options(Some(&a.doi), &a.focus, a.skeleton.as_deref(), a.hip)?;
-    let threshold = a.threshold.unwrap_or(doi.default_threshold());
-    if !threshold.is_finite() {
-        anyhow::bail!("--threshold must be a finite number");
-    }
-    let aggregate: Aggregate = a.aggregate.parse().map_err(anyhow::Error::msg)?;
-    let (lo, hi) = mesh.bounds();
-    let ctx = DoiContext {
-        camera: Some(a.camera.camera(lo, hi)),
-        hip: a.hip,
-        ..Default::default()
-    };
-    let opts = RefineOptions {
-        threshold,
-        steps: a.steps,
-        aggregate,
-    };
+    let (lo, hi) = setup.cage.bounds();
+    let (mesh, doi, threshold) = (&setup.cage, &setup.doi, setup.opts.threshold);
     let t0 = Instant::now();
-    let r = refine_adaptive(&mesh, doi.as_ref(), &ctx, &opts)
+    let r = setup
+        .run(a.camera.camera(lo, hi))
         .with_context(|| format!("{input}: refining"))?;
     let ms = t0.elapsed().as_secs_f64() * 1e3;
     write_mesh_obj(&a.output, &r.mesh.mesh)?;

@@ -583,10 +583,7 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<ExitCode> {
 /// al., Figs. 3, 4, 9, 10): the cage (triangulated with `--triangulate`), the DoI and the
 /// refinement options of the surface flags. Shared by `render --doi` and `view --doi`.
 pub struct DoiSetup {
-    cage: Mesh,
-    doi: Box<dyn subdiv_doi::Doi>,
-    hip: Option<Vec3>,
-    opts: subdiv_doi::RefineOptions,
+    refinement: crate::refine::DoiRefinement,
     name: String,
 }
 
@@ -595,70 +592,42 @@ impl DoiSetup {
     pub fn new(surface: &SurfaceArgs) -> anyhow::Result<DoiSetup> {
         surface.check_doi_options()?;
         let name = surface.doi.clone().context("--doi NAME is needed")?;
-        let label = surface.label();
-        let mut cage = surface.load_cage()?;
-        if surface.triangulate {
-            cage = subdiv_doi::triangulate(&cage)
-                .with_context(|| format!("{label}: triangulating"))?;
-        }
-        let doi = crate::refine::make_doi(
-            &name,
-            &cage,
-            &surface.focus,
-            surface.skeleton.as_deref(),
-            surface.hip.is_some(),
-            &label,
+        let refinement = crate::refine::DoiRefinement::new(
+            surface.load_cage()?,
+            &surface.label(),
+            &crate::refine::DoiFlags {
+                doi: &name,
+                threshold: surface.threshold,
+                steps: surface.steps,
+                aggregate: &surface.aggregate,
+                triangulate: surface.triangulate,
+                focus: &surface.focus,
+                skeleton: surface.skeleton.as_deref(),
+                hip: surface.hip,
+            },
         )?;
-        let threshold = surface.threshold.unwrap_or(doi.default_threshold());
-        if !threshold.is_finite() {
-            bail!("--threshold must be a finite number");
-        }
-        let aggregate: subdiv_doi::Aggregate =
-            surface.aggregate.parse().map_err(anyhow::Error::msg)?;
-        let opts = subdiv_doi::RefineOptions {
-            threshold,
-            steps: surface.steps,
-            aggregate,
-        };
-        Ok(DoiSetup {
-            cage,
-            doi,
-            hip: surface.hip,
-            opts,
-            name,
-        })
+        Ok(DoiSetup { refinement, name })
     }
 
     /// Bounds of the cage.
     pub fn bounds(&self) -> (Vec3, Vec3) {
-        self.cage.bounds()
+        self.refinement.cage.bounds()
     }
 
     /// Whether the refinement depends on the camera.
     pub fn is_view_dependent(&self) -> bool {
-        self.doi.is_view_dependent()
+        self.refinement.doi.is_view_dependent()
     }
 
     /// Refines for `camera`: the refined mesh (drawn as refined, not pushed to the limit) with
     /// each vertex's largest DoI over its faces as the scalar, and a one-line summary.
     pub fn scene(&self, camera: &Camera) -> anyhow::Result<(Scene, String)> {
-        let ctx = subdiv_doi::DoiContext {
-            camera: Some(*camera),
-            hip: self.hip,
-            ..Default::default()
-        };
-        let r = subdiv_doi::refine_adaptive(&self.cage, self.doi.as_ref(), &ctx, &self.opts)
-            .context("refining")?;
+        let r = self.refinement.run(*camera).context("refining")?;
         let m = &r.mesh.mesh;
+        let (doi, opts) = (self.refinement.doi.as_ref(), &self.refinement.opts);
+        let ctx = self.refinement.context(*camera);
         let (mut scratch, mut values) = (Vec::new(), Vec::new());
-        subdiv_doi::face_values(
-            self.doi.as_ref(),
-            m,
-            &ctx,
-            self.opts.aggregate,
-            &mut scratch,
-            &mut values,
-        )?;
+        subdiv_doi::face_values(doi, m, &ctx, opts.aggregate, &mut scratch, &mut values)?;
         let mut scalar = vec![f32::NEG_INFINITY; m.num_vertices()];
         for f in m.faces() {
             let v = values[f.idx()];
@@ -682,9 +651,9 @@ impl DoiSetup {
         let note = format!(
             "{} DoI, threshold {}, {} steps: {} -> {} triangles",
             self.name,
-            self.opts.threshold,
-            self.opts.steps,
-            self.cage.num_faces(),
+            opts.threshold,
+            opts.steps,
+            self.refinement.cage.num_faces(),
             m.num_faces()
         );
         Ok((Scene::from_limit(limit, scalar), note))
