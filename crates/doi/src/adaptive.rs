@@ -24,10 +24,9 @@
 //! 1.6° after 4 and 0.7° after 5 (uniform Loop: 15°); the silhouette and dihedral DoIs stay at
 //! 7.3° and 4.3° up to 5 steps. The topology itself never nests green splits. What was measured
 //! (2026-11-22): the thinnest triangle is a single green triangle (at 4 steps the only one below
-//! 3°), the corner of a green family whose parent is itself the thin green triangle of the step
-//! before, merged back and refined; balancing the refinement levels around vertices (2:1, as
-//! in restricted quadtrees) leaves the worst angle unchanged, so the cause is the geometry of
-//! the moved vertices, not level jumps.
+//! 3°), at the same vertex as the thinnest (also green) triangle of the step before; balancing
+//! the refinement levels around vertices (2:1, as in restricted quadtrees) leaves the worst angle
+//! unchanged, so level jumps around vertices are not the cause.
 
 use std::time::Instant;
 
