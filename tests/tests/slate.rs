@@ -91,7 +91,8 @@ fn slates_equal_whole_mesh_refinement() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// Deeper levels (4 and 5) on the small creased, boundary and Chaikin cages: the band
+/// Deeper levels (4 to 6; 6 is past the default `maxsd` of 5, so the slates grow) on the small
+/// creased, boundary and Chaikin cages: the band
 /// invariant of the general step (checked by debug assertions), the separable regular rules and
 /// the per-configuration limit stencils still give the whole-mesh reference's surface.
 #[test]
@@ -106,11 +107,12 @@ fn deep_slates_equal_whole_mesh_refinement() {
         }
         let (lo, hi) = mesh.bounds();
         let diag = (hi - lo).length() as f64;
-        for depth in 4..=5 {
+        for depth in 4..=6 {
             let s = subdiv_slate::tessellate(&mesh, depth).unwrap();
             let r = tessellate_uniform(&mesh, Scheme::CatmullClark, depth).unwrap();
             // Both paths round in f32 at every level: at depth 4 their difference reaches
-            // 1.01e-6 x diag on catmark_flap (the same before the band and stencil changes).
+            // 1.01e-6 x diag on catmark_flap (the same before the band and stencil changes), and
+            // 1.13e-6 at depth 6.
             match compare(&s, &r, 2e-6 * diag) {
                 Ok((_, deg)) if deg > 0.5 => {
                     failures.push(format!("{name} depth {depth}: normals differ by {deg} deg"))
@@ -124,5 +126,5 @@ fn deep_slates_equal_whole_mesh_refinement() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
-    assert!(checked >= 10, "only {checked} deep comparisons");
+    assert!(checked >= 15, "only {checked} deep comparisons");
 }
