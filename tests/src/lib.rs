@@ -159,14 +159,25 @@ pub fn canonical_face(f: &[usize]) -> Vec<usize> {
 pub fn catmull_clark_cages() -> Vec<(String, subdiv_mesh::Mesh)> {
     let mut v: Vec<PathBuf> = fixture_files("reference/shapes", "obj")
         .into_iter()
-        .filter(|p| p.file_name().is_some_and(|n| n.to_string_lossy().starts_with("catmark_")))
+        .filter(|p| {
+            p.file_name()
+                .is_some_and(|n| n.to_string_lossy().starts_with("catmark_"))
+        })
         .collect();
     v.extend(fixture_files("meshes", "obj"));
     v.into_iter()
         .map(|p| {
-            let opts = subdiv_mesh::ReadOptions { split_nonmanifold_vertices: true };
+            let opts = subdiv_mesh::ReadOptions {
+                split_nonmanifold_vertices: true,
+            };
             let m = subdiv_mesh::read_obj_with(&p, opts).unwrap_or_else(|e| panic!("{e}"));
-            (p.file_stem().unwrap_or_default().to_string_lossy().to_string(), m)
+            (
+                p.file_stem()
+                    .unwrap_or_default()
+                    .to_string_lossy()
+                    .to_string(),
+                m,
+            )
         })
         .collect()
 }

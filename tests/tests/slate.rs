@@ -118,7 +118,10 @@ fn deep_slates_equal_whole_mesh_refinement() {
                     failures.push(format!("{name} depth {depth}: normals differ by {deg} deg"))
                 }
                 Ok((e, deg)) => {
-                    eprintln!("{name} depth {depth}: max error {:.2e} x diag, normals within {deg:.4} deg", e / diag);
+                    eprintln!(
+                        "{name} depth {depth}: max error {:.2e} x diag, normals within {deg:.4} deg",
+                        e / diag
+                    );
                     checked += 1;
                 }
                 Err(e) => failures.push(format!("{name} depth {depth}: {e}")),

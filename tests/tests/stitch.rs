@@ -3,7 +3,7 @@
 use std::collections::HashMap;
 
 use glam::DVec3;
-use subdiv_mesh::{read_obj_with, Mesh, MeshStats, ReadOptions};
+use subdiv_mesh::{Mesh, MeshStats, ReadOptions, read_obj_with};
 use subdiv_stitch::{Assembler, FanMethod, FrameGeometry};
 use subdiv_tests::PointGrid;
 
@@ -27,7 +27,10 @@ impl Rng {
 fn check_closed(name: &str, g: &FrameGeometry) -> usize {
     let mut dir: HashMap<(u32, u32), u32> = HashMap::new();
     for t in g.indices.chunks(3) {
-        assert!(t[0] != t[1] && t[1] != t[2] && t[0] != t[2], "{name}: degenerate triangle {t:?}");
+        assert!(
+            t[0] != t[1] && t[1] != t[2] && t[0] != t[2],
+            "{name}: degenerate triangle {t:?}"
+        );
         for k in 0..3 {
             *dir.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
         }
@@ -54,12 +57,22 @@ fn random_depths_are_watertight() {
         let tol = 1e-5 * (hi - lo).length() as f64;
         // Reference points: the uniform tessellation one level deeper than any patch.
         let uni = subdiv_slate::tessellate(&mesh, maxd + 1).unwrap();
-        let pts: Vec<DVec3> = uni.positions.iter().map(|p| glam::Vec3::from(*p).as_dvec3()).collect();
+        let pts: Vec<DVec3> = uni
+            .positions
+            .iter()
+            .map(|p| glam::Vec3::from(*p).as_dvec3())
+            .collect();
         let grid = PointGrid::new(&pts, tol * 10.0);
         let mut g = FrameGeometry::default();
         for round in 0..12 {
-            let depth: Vec<u8> = (0..nu).map(|_| (rng.next() % (maxd as u64 + 1)) as u8).collect();
-            let method = if round % 3 == 2 { FanMethod::Simple } else { FanMethod::Subdivided };
+            let depth: Vec<u8> = (0..nu)
+                .map(|_| (rng.next() % (maxd as u64 + 1)) as u8)
+                .collect();
+            let method = if round % 3 == 2 {
+                FanMethod::Simple
+            } else {
+                FanMethod::Subdivided
+            };
             asm.set_method(method);
             asm.frame(&mesh, &depth, &vec![true; nu], &mut g).unwrap();
             let open = check_closed(&name, &g);
@@ -71,18 +84,29 @@ fn random_depths_are_watertight() {
                     .edges()
                     .filter(|&e| mesh.is_boundary_edge(e))
                     .map(|e| {
-                        let h = if mesh.face(e.halfedge(0)).is_some() { e.halfedge(0) } else { e.halfedge(1) };
+                        let h = if mesh.face(e.halfedge(0)).is_some() {
+                            e.halfedge(0)
+                        } else {
+                            e.halfedge(1)
+                        };
                         let f = mesh.face(h).idx();
                         1usize << depth[f].max(asm.min_depth(f))
                     })
                     .sum();
-                assert_eq!(open, want, "{name} round {round}: open edges ({} cage boundary edges)", stats.boundary_edges);
+                assert_eq!(
+                    open, want,
+                    "{name} round {round}: open edges ({} cage boundary edges)",
+                    stats.boundary_edges
+                );
             }
             // Every referenced vertex is a limit point of the surface.
             for &i in g.indices.iter().step_by(7) {
                 let p = glam::Vec3::from(g.positions[i as usize]).as_dvec3();
                 let (_, d) = grid.nearest(p);
-                assert!(d <= tol, "{name} round {round}: vertex {i} at {p:?} is {d:.2e} off the limit surface");
+                assert!(
+                    d <= tol,
+                    "{name} round {round}: vertex {i} at {p:?} is {d:.2e} off the limit surface"
+                );
             }
         }
     }
@@ -95,13 +119,18 @@ fn uniform_depths_equal_uniform_tessellation() {
         let mut asm = Assembler::new(&mesh, 3).unwrap();
         let mut g = FrameGeometry::default();
         for d in 1..=3u8 {
-            asm.frame(&mesh, &vec![d; nu], &vec![true; nu], &mut g).unwrap();
+            asm.frame(&mesh, &vec![d; nu], &vec![true; nu], &mut g)
+                .unwrap();
             let uni = subdiv_slate::tessellate(&mesh, d as u32).unwrap();
             let quads = uni.num_faces() - 0;
             let holes_q: usize = 0;
             assert_eq!(g.num_triangles(), 2 * (quads - holes_q), "{name} depth {d}");
             let (p, _, idx) = g.compact();
-            assert_eq!(p.len(), uni.positions.len(), "{name} depth {d}: vertex count");
+            assert_eq!(
+                p.len(),
+                uni.positions.len(),
+                "{name} depth {d}: vertex count"
+            );
             assert_eq!(idx.len(), 6 * quads);
         }
     }
@@ -113,24 +142,30 @@ fn cache_reuses_blocks_while_depths_do_not_rise() {
     let nu = mesh.num_faces();
     let mut asm = Assembler::new(&mesh, 4).unwrap();
     let mut g = FrameGeometry::default();
-    asm.frame(&mesh, &vec![3; nu], &vec![true; nu], &mut g).unwrap();
+    asm.frame(&mesh, &vec![3; nu], &vec![true; nu], &mut g)
+        .unwrap();
     assert_eq!(g.patches_recomputed, asm.patch_set().patches().len());
     let v0 = g.vertex_version;
     // Lower every depth: nothing recomputed, vertices unchanged.
-    asm.frame(&mesh, &vec![2; nu], &vec![true; nu], &mut g).unwrap();
+    asm.frame(&mesh, &vec![2; nu], &vec![true; nu], &mut g)
+        .unwrap();
     assert_eq!(g.patches_recomputed, 0);
     assert_eq!(g.vertex_version, v0);
     // Raise one face: only the patches that need more detail are recomputed.
     let mut d = vec![2u8; nu];
     d[0] = 4;
     asm.frame(&mesh, &d, &vec![true; nu], &mut g).unwrap();
-    assert!(g.patches_recomputed >= 1 && g.patches_recomputed < asm.patch_set().patches().len() / 2);
+    assert!(
+        g.patches_recomputed >= 1 && g.patches_recomputed < asm.patch_set().patches().len() / 2
+    );
     assert_ne!(g.vertex_version, v0);
     assert_eq!(check_closed("helmet", &g) > 0, true); // the helmet is open
 }
 
 fn fixtures_shape(n: &str) -> std::path::PathBuf {
-    subdiv_tests::fixtures().join("reference/shapes").join(format!("{n}.obj"))
+    subdiv_tests::fixtures()
+        .join("reference/shapes")
+        .join(format!("{n}.obj"))
 }
 
 /// Welds identical coordinates, then checks every edge has two triangles in opposite
@@ -148,14 +183,20 @@ fn welded_open_edges(name: &str, g: &FrameGeometry) -> usize {
     let mut dir: HashMap<(u32, u32), u32> = HashMap::new();
     for t in g.indices.chunks(3) {
         let t = [id[t[0] as usize], id[t[1] as usize], id[t[2] as usize]];
-        assert!(t[0] != t[1] && t[1] != t[2] && t[0] != t[2], "{name}: degenerate triangle after welding");
+        assert!(
+            t[0] != t[1] && t[1] != t[2] && t[0] != t[2],
+            "{name}: degenerate triangle after welding"
+        );
         for k in 0..3 {
             *dir.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
         }
     }
     let mut open = 0;
     for (&(a, b), &c) in &dir {
-        assert_eq!(c, 1, "{name}: welded edge {a}->{b} used {c} times (T-junction or flip)");
+        assert_eq!(
+            c, 1,
+            "{name}: welded edge {a}->{b} used {c} times (T-junction or flip)"
+        );
         if !dir.contains_key(&(b, a)) {
             open += 1;
         }
@@ -188,11 +229,21 @@ fn random_cameras_are_watertight() {
             for c in 0..cameras {
                 let dir = glam::Vec3::new(unit(), unit(), unit()).normalize_or_zero();
                 let dist = 1.2 + 4.0 * (unit() + 1.0);
-                let cam = Camera::eye_relative(lo, hi, dir * dist, 30.0 + 30.0 * (unit() + 1.0), 640, 480);
+                let cam = Camera::eye_relative(
+                    lo,
+                    hi,
+                    dir * dist,
+                    30.0 + 30.0 * (unit() + 1.0),
+                    640,
+                    480,
+                );
                 let g = node.update(&cam, None).unwrap();
                 let open = welded_open_edges(&name, g);
                 if stats.boundary_edges == 0 && holes == 0 {
-                    assert_eq!(open, 0, "{name} camera {c} (pixel mode {pixel_mode}): closed cage has open edges");
+                    assert_eq!(
+                        open, 0,
+                        "{name} camera {c} (pixel mode {pixel_mode}): closed cage has open edges"
+                    );
                 }
             }
         }
@@ -207,13 +258,25 @@ fn moving_the_cage_updates_the_surface() {
     let mesh = read_obj_with(fixtures_shape("catmark_cube"), ReadOptions::default()).unwrap();
     let (lo, hi) = mesh.bounds();
     let cam = Camera::eye_relative(lo, hi, glam::Vec3::new(0.5, 0.7, 3.0), 45.0, 640, 480);
-    let mut node = DynamicSubdivision::new(mesh.clone(), DepthParams { max_depth: 3, ..Default::default() }).unwrap();
+    let mut node = DynamicSubdivision::new(
+        mesh.clone(),
+        DepthParams {
+            max_depth: 3,
+            ..Default::default()
+        },
+    )
+    .unwrap();
     let before = node.update(&cam, None).unwrap().clone();
     let moved: Vec<glam::Vec3> = mesh.positions().iter().map(|p| *p * 2.0).collect();
     node.set_positions(&moved).unwrap();
     let after = node.update(&cam, None).unwrap();
     // Twice the cage, twice the limit surface (the same camera sees it bigger, depths may differ).
-    let max = |g: &FrameGeometry| g.indices.iter().map(|&i| glam::Vec3::from(g.positions[i as usize]).length()).fold(0.0f32, f32::max);
+    let max = |g: &FrameGeometry| {
+        g.indices
+            .iter()
+            .map(|&i| glam::Vec3::from(g.positions[i as usize]).length())
+            .fold(0.0f32, f32::max)
+    };
     assert!((max(after) / max(&before) - 2.0).abs() < 1e-3);
     assert!(node.set_positions(&moved[..3]).is_err());
     let mut bad = moved.clone();

@@ -179,9 +179,7 @@ pub fn run(root: &Path, options: &Options) -> Result<()> {
             // An empty input means a built-in scene (`--scene` in the arguments).
             cmd.arg(root.join(scene.input));
         }
-        cmd.args(scene.args)
-            .args(["--size", SIZE, "-o"])
-            .arg(&png);
+        cmd.args(scene.args).args(["--size", SIZE, "-o"]).arg(&png);
         vulkan::configure(&mut cmd, root);
         if validation {
             cmd.env("SUBDIV_VK_VALIDATION", "1");

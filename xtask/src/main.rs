@@ -17,13 +17,16 @@ mod vulkan;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result, bail};
 
 /// The embedded default cage: OpenSubdiv's `catmark_pawn` (588 quads, semi-sharp creases).
 const DEMO_CAGE: &str = include_str!("../../fixtures/reference/shapes/catmark_pawn.obj");
 
 fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("xtask lives in the workspace").to_path_buf()
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask lives in the workspace")
+        .to_path_buf()
 }
 
 /// Cargo's target folder: `CARGO_TARGET_DIR` (relative to the workspace root) or `target/`.
@@ -39,7 +42,9 @@ fn cargo() -> Command {
 
 fn run(mut cmd: Command) -> Result<()> {
     let shown = format!("{cmd:?}");
-    let status = cmd.status().with_context(|| format!("could not start {shown}"))?;
+    let status = cmd
+        .status()
+        .with_context(|| format!("could not start {shown}"))?;
     if !status.success() {
         bail!("{shown} failed with {status}");
     }
@@ -54,7 +59,9 @@ fn figures_cc_run() -> Result<()> {
         c.args(["build", "--release", "--quiet", "-p", "subdiv"]);
         c
     })?;
-    let exe = target_dir().join("release").join(format!("subdiv{}", std::env::consts::EXE_SUFFIX));
+    let exe = target_dir()
+        .join("release")
+        .join(format!("subdiv{}", std::env::consts::EXE_SUFFIX));
     // The Vulkan environment of the tests (lavapipe pinned), for the frame-rate runs.
     let mut probe = Command::new("true");
     vulkan::configure(&mut probe, &root());
@@ -77,7 +84,9 @@ fn demo() -> Result<()> {
         c.args(["build", "--release", "--quiet", "-p", "subdiv"]);
         c
     })?;
-    let exe = target_dir().join("release").join(format!("subdiv{}", std::env::consts::EXE_SUFFIX));
+    let exe = target_dir()
+        .join("release")
+        .join(format!("subdiv{}", std::env::consts::EXE_SUFFIX));
     println!("== subdiv info (embedded cage: catmark_pawn) ==");
     run({
         let mut c = Command::new(&exe);
@@ -87,26 +96,50 @@ fn demo() -> Result<()> {
     println!("== subdiv tessellate --depth 4 ==");
     run({
         let mut c = Command::new(&exe);
-        c.arg("tessellate").arg(&cage).args(["--depth", "4", "-o"]).arg(out.join("demo.obj"));
+        c.arg("tessellate")
+            .arg(&cage)
+            .args(["--depth", "4", "-o"])
+            .arg(out.join("demo.obj"));
         c
     })?;
     vulkan::ensure_driver()?;
     println!("== subdiv tessellate (adaptive, view-dependent) --stats ==");
     run({
         let mut c = Command::new(&exe);
-        c.arg("tessellate").arg(&cage).args(["--up", "0,0,1", "--eye-relative", "1.5,-1.7,0.9", "--size", "800x800", "--stats", "-o"]);
+        c.arg("tessellate").arg(&cage).args([
+            "--up",
+            "0,0,1",
+            "--eye-relative",
+            "1.5,-1.7,0.9",
+            "--size",
+            "800x800",
+            "--stats",
+            "-o",
+        ]);
         c.arg(out.join("demo_adaptive.obj"));
         c
     })?;
     println!("== subdiv render (adaptive, depth colours) ==");
     run({
         let mut c = Command::new(&exe);
-        c.arg("render").arg(&cage).args(["--up", "0,0,1", "--eye-relative", "1.5,-1.7,0.9", "--shading", "depth"]);
-        c.args(["--size", "800x800", "-o"]).arg(out.join("demo.png"));
+        c.arg("render").arg(&cage).args([
+            "--up",
+            "0,0,1",
+            "--eye-relative",
+            "1.5,-1.7,0.9",
+            "--shading",
+            "depth",
+        ]);
+        c.args(["--size", "800x800", "-o"])
+            .arg(out.join("demo.png"));
         vulkan::configure(&mut c, &root());
         c
     })?;
-    println!("demo: wrote {} and {}", out.join("demo.obj").display(), out.join("demo.png").display());
+    println!(
+        "demo: wrote {} and {}",
+        out.join("demo.obj").display(),
+        out.join("demo.png").display()
+    );
     Ok(())
 }
 
@@ -142,7 +175,9 @@ fn main() -> Result<()> {
         Some("bench-osd") => bench_osd::run(&root()),
         Some("golden") => golden::Options::parse(&args[1..]).and_then(|o| golden::run(&root(), &o)),
         _ => {
-            eprintln!("usage: cargo xtask <demo|test|figures|golden [--bless] [--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]>");
+            eprintln!(
+                "usage: cargo xtask <demo|test|figures|golden [--bless] [--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]>"
+            );
             std::process::exit(2);
         }
     }

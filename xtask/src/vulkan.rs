@@ -3,7 +3,7 @@
 use std::path::Path;
 use std::process::Command;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result, bail};
 
 /// lavapipe's ICD manifest on Debian/Ubuntu x86_64.
 pub const LAVAPIPE_ICD: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
@@ -11,13 +11,21 @@ pub const LAVAPIPE_ICD: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
 pub const PACKAGES: &[&str] = &["mesa-vulkan-drivers", "libvulkan1"];
 
 fn loader_present() -> bool {
-    ["/usr/lib/x86_64-linux-gnu/libvulkan.so.1", "/usr/lib/libvulkan.so.1", "/usr/lib64/libvulkan.so.1"]
-        .iter()
-        .any(|p| Path::new(p).exists())
+    [
+        "/usr/lib/x86_64-linux-gnu/libvulkan.so.1",
+        "/usr/lib/libvulkan.so.1",
+        "/usr/lib64/libvulkan.so.1",
+    ]
+    .iter()
+    .any(|p| Path::new(p).exists())
 }
 
 pub fn is_root() -> bool {
-    Command::new("id").arg("-u").output().map(|o| String::from_utf8_lossy(&o.stdout).trim() == "0").unwrap_or(false)
+    Command::new("id")
+        .arg("-u")
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim() == "0")
+        .unwrap_or(false)
 }
 
 /// Makes sure lavapipe and the Vulkan loader are installed: installs them with apt when running
@@ -26,9 +34,14 @@ pub fn ensure_driver() -> Result<()> {
     if Path::new(LAVAPIPE_ICD).exists() && loader_present() {
         return Ok(());
     }
-    let cmd = format!("apt-get update && apt-get install -y {}", PACKAGES.join(" "));
+    let cmd = format!(
+        "apt-get update && apt-get install -y {}",
+        PACKAGES.join(" ")
+    );
     if !is_root() {
-        bail!("no Vulkan driver found (lavapipe). Install it with:\n    sudo sh -c '{cmd}'\nthen run this command again");
+        bail!(
+            "no Vulkan driver found (lavapipe). Install it with:\n    sudo sh -c '{cmd}'\nthen run this command again"
+        );
     }
     eprintln!("xtask: no Vulkan driver found; installing lavapipe: {cmd}");
     let status = Command::new("sh")
@@ -37,7 +50,10 @@ pub fn ensure_driver() -> Result<()> {
         .status()
         .context("could not run apt-get")?;
     if !status.success() || !Path::new(LAVAPIPE_ICD).exists() {
-        bail!("installing {} failed ({status}); run as root: {cmd}", PACKAGES.join(" "));
+        bail!(
+            "installing {} failed ({status}); run as root: {cmd}",
+            PACKAGES.join(" ")
+        );
     }
     Ok(())
 }
@@ -53,24 +69,43 @@ pub fn configure(cmd: &mut Command, root: &Path) {
 }
 
 /// The Khronos validation layer's manifest (Debian package `vulkan-validationlayers`).
-pub const VALIDATION_LAYER_MANIFEST: &str = "/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json";
+pub const VALIDATION_LAYER_MANIFEST: &str =
+    "/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json";
 
 /// Xvfb and the X11 libraries winit loads at run time (for the window tests).
-pub const X11_PACKAGES: &[&str] = &["xvfb", "libx11-6", "libxcursor1", "libxrandr2", "libxi6", "libxkbcommon-x11-0"];
+pub const X11_PACKAGES: &[&str] = &[
+    "xvfb",
+    "libx11-6",
+    "libxcursor1",
+    "libxrandr2",
+    "libxi6",
+    "libxkbcommon-x11-0",
+];
 
 /// Shared objects of [`X11_PACKAGES`] that winit opens with `dlopen`.
-const X11_LIBRARIES: &[&str] =
-    &["libX11.so.6", "libXcursor.so.1", "libXrandr.so.2", "libXi.so.6", "libxkbcommon-x11.so.0"];
+const X11_LIBRARIES: &[&str] = &[
+    "libX11.so.6",
+    "libXcursor.so.1",
+    "libXrandr.so.2",
+    "libXi.so.6",
+    "libxkbcommon-x11.so.0",
+];
 
 fn library_present(name: &str) -> bool {
-    ["/usr/lib/x86_64-linux-gnu", "/usr/lib/aarch64-linux-gnu", "/usr/lib", "/usr/lib64"]
-        .iter()
-        .any(|d| Path::new(d).join(name).exists())
+    [
+        "/usr/lib/x86_64-linux-gnu",
+        "/usr/lib/aarch64-linux-gnu",
+        "/usr/lib",
+        "/usr/lib64",
+    ]
+    .iter()
+    .any(|d| Path::new(d).join(name).exists())
 }
 
 /// `true` when `program` is on `PATH`.
 pub fn on_path(program: &str) -> bool {
-    std::env::var_os("PATH").is_some_and(|p| std::env::split_paths(&p).any(|d| d.join(program).is_file()))
+    std::env::var_os("PATH")
+        .is_some_and(|p| std::env::split_paths(&p).any(|d| d.join(program).is_file()))
 }
 
 /// Optional test dependencies: present already, installed now with apt (as root), or missing
@@ -79,9 +114,14 @@ fn ensure_optional(what: &str, packages: &[&str], present: &dyn Fn() -> bool) ->
     if present() {
         return true;
     }
-    let cmd = format!("apt-get update && apt-get install -y {}", packages.join(" "));
+    let cmd = format!(
+        "apt-get update && apt-get install -y {}",
+        packages.join(" ")
+    );
     if !is_root() {
-        eprintln!("xtask: {what} missing; those checks are skipped. Install with:\n    sudo sh -c '{cmd}'");
+        eprintln!(
+            "xtask: {what} missing; those checks are skipped. Install with:\n    sudo sh -c '{cmd}'"
+        );
         return false;
     }
     eprintln!("xtask: {what} missing; installing: {cmd}");
@@ -91,7 +131,10 @@ fn ensure_optional(what: &str, packages: &[&str], present: &dyn Fn() -> bool) ->
         .status()
         .is_ok_and(|s| s.success());
     if !ok || !present() {
-        eprintln!("xtask: installing {} failed; those checks are skipped", packages.join(" "));
+        eprintln!(
+            "xtask: installing {} failed; those checks are skipped",
+            packages.join(" ")
+        );
         return false;
     }
     true
@@ -100,9 +143,11 @@ fn ensure_optional(what: &str, packages: &[&str], present: &dyn Fn() -> bool) ->
 /// Makes sure the Khronos validation layer is installed (so Vulkan tests run with validation);
 /// returns whether it is.
 pub fn ensure_validation_layer() -> bool {
-    ensure_optional("the Vulkan validation layer", &["vulkan-validationlayers"], &|| {
-        Path::new(VALIDATION_LAYER_MANIFEST).exists()
-    })
+    ensure_optional(
+        "the Vulkan validation layer",
+        &["vulkan-validationlayers"],
+        &|| Path::new(VALIDATION_LAYER_MANIFEST).exists(),
+    )
 }
 
 /// Makes sure `xvfb-run` and the X11 libraries winit needs are installed (for the window

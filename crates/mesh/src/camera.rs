@@ -22,8 +22,22 @@ pub struct Camera {
 
 impl Camera {
     /// A camera at `eye` looking at `target`.
-    pub fn new(eye: Vec3, target: Vec3, up: Vec3, fov_y_deg: f32, width: u32, height: u32) -> Camera {
-        Camera { eye, target, up, fov_y_deg, width, height }
+    pub fn new(
+        eye: Vec3,
+        target: Vec3,
+        up: Vec3,
+        fov_y_deg: f32,
+        width: u32,
+        height: u32,
+    ) -> Camera {
+        Camera {
+            eye,
+            target,
+            up,
+            fov_y_deg,
+            width,
+            height,
+        }
     }
 
     /// A camera looking at the centre of the box `lo..hi` from `centre + rel * radius`, where the
@@ -36,13 +50,31 @@ impl Camera {
     /// assert!((c.eye - Vec3::new(0.0, 0.0, 3.0 * 3f32.sqrt())).length() < 1e-5);
     /// assert_eq!(c.target, Vec3::ZERO);
     /// ```
-    pub fn eye_relative(lo: Vec3, hi: Vec3, rel: Vec3, fov_y_deg: f32, width: u32, height: u32) -> Camera {
+    pub fn eye_relative(
+        lo: Vec3,
+        hi: Vec3,
+        rel: Vec3,
+        fov_y_deg: f32,
+        width: u32,
+        height: u32,
+    ) -> Camera {
         let centre = (lo + hi) * 0.5;
         let radius = ((hi - lo).length() * 0.5).max(f32::MIN_POSITIVE);
         let eye = centre + rel * radius;
         let dir = (centre - eye).normalize_or_zero();
-        let up = if dir.cross(Vec3::Y).length_squared() < 1e-6 { Vec3::Z } else { Vec3::Y };
-        Camera { eye, target: centre, up, fov_y_deg, width, height }
+        let up = if dir.cross(Vec3::Y).length_squared() < 1e-6 {
+            Vec3::Z
+        } else {
+            Vec3::Y
+        };
+        Camera {
+            eye,
+            target: centre,
+            up,
+            fov_y_deg,
+            width,
+            height,
+        }
     }
 
     /// Unit viewing direction.
@@ -111,7 +143,14 @@ mod tests {
 
     #[test]
     fn projection_centre_and_scale() {
-        let c = Camera::new(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, Vec3::Y, 90.0, 200, 100);
+        let c = Camera::new(
+            Vec3::new(0.0, 0.0, 10.0),
+            Vec3::ZERO,
+            Vec3::Y,
+            90.0,
+            200,
+            100,
+        );
         let p = c.project(Vec3::ZERO).unwrap();
         assert!((p - Vec2::new(100.0, 50.0)).length() < 1e-4);
         // fov 90: focal = h/2 = 50 px; a unit at distance 10 covers 5 px; +y goes up the image.

@@ -246,17 +246,34 @@ impl PolygonSoup {
     pub fn instanced(&self, offsets: &[glam::Vec3]) -> PolygonSoup {
         let nv = self.positions.len() as i64;
         let nf = self.num_faces() as i64;
-        let mut out = PolygonSoup { options: self.options, groups: self.groups.clone(), ..Default::default() };
+        let mut out = PolygonSoup {
+            options: self.options,
+            groups: self.groups.clone(),
+            ..Default::default()
+        };
         for (k, off) in offsets.iter().enumerate() {
             let (bv, bf) = (k as i64 * nv, k as i64 * nf);
-            out.positions.extend(self.positions.iter().map(|p| *p + *off));
+            out.positions
+                .extend(self.positions.iter().map(|p| *p + *off));
             for f in 0..self.num_faces() {
                 out.push_face(self.face(f).iter().map(|&i| i + bv));
             }
             out.face_groups.extend_from_slice(&self.face_groups);
-            out.creases.extend(self.creases.iter().map(|t| CreaseTag { a: t.a + bv, b: t.b + bv, line: None, ..*t }));
-            out.corners.extend(self.corners.iter().map(|t| CornerTag { v: t.v + bv, line: None, ..*t }));
-            out.holes.extend(self.holes.iter().map(|t| HoleTag { f: t.f + bf, line: None }));
+            out.creases.extend(self.creases.iter().map(|t| CreaseTag {
+                a: t.a + bv,
+                b: t.b + bv,
+                line: None,
+                ..*t
+            }));
+            out.corners.extend(self.corners.iter().map(|t| CornerTag {
+                v: t.v + bv,
+                line: None,
+                ..*t
+            }));
+            out.holes.extend(self.holes.iter().map(|t| HoleTag {
+                f: t.f + bf,
+                line: None,
+            }));
         }
         out
     }

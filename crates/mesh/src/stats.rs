@@ -89,7 +89,10 @@ impl MeshStats {
                 max_s = max_s.max(s);
             }
         }
-        let sharp_vertices = mesh.vertices().filter(|&v| mesh.vertex_sharpness(v) > 0.0).count();
+        let sharp_vertices = mesh
+            .vertices()
+            .filter(|&v| mesh.vertex_sharpness(v) > 0.0)
+            .count();
         let holes = mesh.faces().filter(|&f| mesh.is_hole(f)).count();
         // Components: union-find over faces through shared edges.
         let mut parent: Vec<u32> = (0..mesh.num_faces() as u32).collect();
@@ -107,8 +110,11 @@ impl MeshStats {
                 parent[ra.max(rb) as usize] = ra.min(rb);
             }
         }
-        let components = (0..mesh.num_faces() as u32).filter(|&f| find(&mut parent, f) == f).count();
-        let euler = (mesh.num_vertices() - isolated) as i64 - mesh.num_edges() as i64 + mesh.num_faces() as i64;
+        let components = (0..mesh.num_faces() as u32)
+            .filter(|&f| find(&mut parent, f) == f)
+            .count();
+        let euler = (mesh.num_vertices() - isolated) as i64 - mesh.num_edges() as i64
+            + mesh.num_faces() as i64;
         let genus = (2 * components as i64 - euler - loops as i64) / 2;
         MeshStats {
             vertices: mesh.num_vertices(),
@@ -143,7 +149,12 @@ mod tests {
         for j in 0..4 {
             for i in 0..4 {
                 let (u, v) = (i as f32 * 1.57, j as f32 * 1.57);
-                s += &format!("v {} {} {}\n", (2.0 + v.cos()) * u.cos(), (2.0 + v.cos()) * u.sin(), v.sin());
+                s += &format!(
+                    "v {} {} {}\n",
+                    (2.0 + v.cos()) * u.cos(),
+                    (2.0 + v.cos()) * u.sin(),
+                    v.sin()
+                );
             }
         }
         for j in 0..4 {
@@ -157,17 +168,34 @@ mod tests {
         }
         let m = Mesh::from_soup(&parse_obj(&s).unwrap()).unwrap();
         let st = MeshStats::of(&m);
-        assert_eq!((st.euler, st.genus, st.boundary_loops, st.components), (0, 1, 0, 1));
+        assert_eq!(
+            (st.euler, st.genus, st.boundary_loops, st.components),
+            (0, 1, 0, 1)
+        );
         assert_eq!(st.valences.get(&4), Some(&16));
         // A crease tag on a diagonal that is not an edge is refused.
-        let soup = parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nt crease 2/1/0 0 2 1\n").unwrap();
+        let soup =
+            parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nt crease 2/1/0 0 2 1\n")
+                .unwrap();
         assert!(Mesh::from_soup(&soup).is_err());
     }
 
     #[test]
     fn quad_with_isolated_vertex() {
-        let m = Mesh::from_soup(&parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 9 9 9\nf 1 2 3 4\n").unwrap()).unwrap();
+        let m = Mesh::from_soup(
+            &parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 9 9 9\nf 1 2 3 4\n").unwrap(),
+        )
+        .unwrap();
         let st = MeshStats::of(&m);
-        assert_eq!((st.boundary_loops, st.boundary_edges, st.isolated_vertices, st.genus, st.euler), (1, 4, 1, 0, 1));
+        assert_eq!(
+            (
+                st.boundary_loops,
+                st.boundary_edges,
+                st.isolated_vertices,
+                st.genus,
+                st.euler
+            ),
+            (1, 4, 1, 0, 1)
+        );
     }
 }

@@ -97,13 +97,21 @@ impl DynamicSubdivision {
     /// patch cache are recomputed; the topology and tags stay.
     pub fn set_positions(&mut self, positions: &[glam::Vec3]) -> Result<(), AssemblyError> {
         if positions.len() != self.mesh.num_vertices() {
-            return Err(AssemblyError::Length { what: "positions", got: positions.len(), want: self.mesh.num_vertices() });
+            return Err(AssemblyError::Length {
+                what: "positions",
+                got: positions.len(),
+                want: self.mesh.num_vertices(),
+            });
         }
         if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
             return Err(AssemblyError::NonFinite { vertex: v as u32 });
         }
         self.mesh.positions_mut().copy_from_slice(positions);
-        self.vertex = VertexData::compute(&self.mesh, self.params.cone_aperture_deg, self.params.max_depth);
+        self.vertex = VertexData::compute(
+            &self.mesh,
+            self.params.cone_aperture_deg,
+            self.params.max_depth,
+        );
         self.spheres = face_spheres(&self.mesh, &self.vertex);
         self.deviation = None;
         self.assembler = Assembler::new(&self.mesh, self.params.max_depth as u32)?;
@@ -135,7 +143,11 @@ impl DynamicSubdivision {
             .filter(|&f| !self.mesh.is_hole(f))
             .map(|f| {
                 let n = self.mesh.face_size(f);
-                if n == 4 { 2usize << (2 * d) } else { n * (2usize << (2 * d.saturating_sub(1))) }
+                if n == 4 {
+                    2usize << (2 * d)
+                } else {
+                    n * (2usize << (2 * d.saturating_sub(1)))
+                }
             })
             .sum()
     }

@@ -50,7 +50,10 @@ pub enum AssemblyError {
         max: u32,
     },
     /// The frame's patch blocks would not fit in memory.
-    #[error("this frame needs {points} cached limit points (limit {})", subdiv_slate::MAX_POINTS)]
+    #[error(
+        "this frame needs {points} cached limit points (limit {})",
+        subdiv_slate::MAX_POINTS
+    )]
     TooLarge {
         /// Points needed.
         points: u64,
