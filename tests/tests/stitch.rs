@@ -122,9 +122,8 @@ fn uniform_depths_equal_uniform_tessellation() {
             asm.frame(&mesh, &vec![d; nu], &vec![true; nu], &mut g)
                 .unwrap();
             let uni = subdiv_slate::tessellate(&mesh, d as u32).unwrap();
-            let quads = uni.num_faces() - 0;
-            let holes_q: usize = 0;
-            assert_eq!(g.num_triangles(), 2 * (quads - holes_q), "{name} depth {d}");
+            let quads = uni.num_faces();
+            assert_eq!(g.num_triangles(), 2 * quads, "{name} depth {d}");
             let (p, _, idx) = g.compact();
             assert_eq!(
                 p.len(),
@@ -159,7 +158,7 @@ fn cache_reuses_blocks_while_depths_do_not_rise() {
         g.patches_recomputed >= 1 && g.patches_recomputed < asm.patch_set().patches().len() / 2
     );
     assert_ne!(g.vertex_version, v0);
-    assert_eq!(check_closed("helmet", &g) > 0, true); // the helmet is open
+    assert!(check_closed("helmet", &g) > 0); // the helmet is open
 }
 
 fn fixtures_shape(n: &str) -> std::path::PathBuf {

@@ -100,7 +100,7 @@ pub fn helmet40() -> anyhow::Result<Mesh> {
             })
         })
         .collect();
-    Ok(Mesh::from_soup(&soup.instanced(&offsets)).context("helmet40 scene")?)
+    Mesh::from_soup(&soup.instanced(&offsets)).context("helmet40 scene")
 }
 
 impl SurfaceArgs {

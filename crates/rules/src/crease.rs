@@ -86,9 +86,7 @@ pub fn semi_sharp_sum(s: &[f32]) -> (f32, u32) {
 pub fn edge_crease_weight(method: CreaseMethod, s: f32, child: [f32; 2]) -> f32 {
     if is_smooth(s) {
         0.0
-    } else if s >= 1.0 {
-        1.0
-    } else if method == CreaseMethod::Chaikin && child[0] > 0.0 && child[1] > 0.0 {
+    } else if s >= 1.0 || (method == CreaseMethod::Chaikin && child[0] > 0.0 && child[1] > 0.0) {
         1.0
     } else {
         s

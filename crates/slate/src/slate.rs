@@ -1062,7 +1062,7 @@ fn step_general(
     for &kk in sc.dirty_list.iter() {
         let kk = kk as usize;
         let (i, j) = ((kk % ss) as i32 - 1, (kk / ss) as i32 - 1);
-        if !((0..=n).contains(&i) && (0..=n).contains(&j)) || !src.ex[kk] {
+        if !((0..=n).contains(&i) && (0..=n).contains(&j) && src.ex[kk]) {
             continue;
         }
         if (i == 0 || i == n) && (j == 0 || j == n) && is_corner(i, j).is_some() {
