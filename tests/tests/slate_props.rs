@@ -91,6 +91,35 @@ fn distinct_points_closed_output_and_thread_independence() {
     }
 }
 
+/// Workers are kept by their threads between tessellations (`subdiv_slate::thread_worker`): a
+/// worker that has served every other cage (its stencil cache full of their configurations)
+/// gives the same bits as a fresh one.
+#[test]
+fn reused_workers_give_the_same_output() {
+    let cages = cages();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let warm: Vec<LimitMesh> = pool.install(|| {
+        for (_, mesh) in &cages {
+            subdiv_slate::tessellate(mesh, 2).unwrap();
+        }
+        cages
+            .iter()
+            .rev()
+            .map(|(_, m)| subdiv_slate::tessellate(m, 3).unwrap())
+            .collect()
+    });
+    for ((name, mesh), w) in cages.iter().rev().zip(&warm) {
+        assert_eq!(
+            &run(mesh, 3, 1),
+            w,
+            "{name}: a reused worker changed the output"
+        );
+    }
+}
+
 /// A disk of `n` quads around a valence-`n` centre, lifted into a cone; boundary and interior.
 fn pole(n: u32, closed: bool) -> Mesh {
     let mut p = vec![Vec3::new(0.0, 0.0, 1.0)];

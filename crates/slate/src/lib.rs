@@ -10,7 +10,7 @@
 //! semi-sharp creases with the uniform or Chaikin rule, darts, corners), valences are limited only
 //! by memory (the corner arrays are sized from the mesh), n-gons and quads next to them are
 //! tessellated through their level-1 quads, limits are exact for semi-sharp creases, patches run
-//! in parallel with one pair of slates per worker, and shared points are written by one owner
+//! in parallel with one pair of slates per thread (kept between calls, see [`thread_worker`]), and shared points are written by one owner
 //! patch so the output is bit-identical for any thread count (see [`PatchLayout`]).
 //!
 //! ```
@@ -28,7 +28,7 @@ mod tessellate;
 
 pub use layout::PatchLayout;
 pub use patches::{PatchRef, PatchSet, Unit};
-pub use slate::Worker;
+pub use slate::{KEEP_MAXSD, Worker, WorkerGuard, thread_worker};
 pub use tessellate::{
     DEFAULT_MAXSD, MAX_DEPTH, MAX_POINTS, SlateError, slate_bytes_per_thread, tessellate,
     tessellate_layout, tessellate_layout_into,

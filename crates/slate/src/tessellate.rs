@@ -6,7 +6,7 @@ use subdiv_mesh::Mesh;
 use subdiv_rules::{LimitMesh, RulesError, Scheme, limit_surface};
 
 use crate::layout::{Patch, PatchLayout};
-use crate::slate::Worker;
+use crate::slate::{Worker, thread_worker};
 
 /// Errors of the slate tessellator.
 #[derive(Debug, thiserror::Error)]
@@ -179,7 +179,7 @@ pub fn tessellate_layout_into(
         .zip(chunks.into_par_iter())
         .with_min_len(8)
         .for_each_init(
-            || Worker::new(maxsd),
+            || thread_worker(maxsd),
             |w, (p, quads)| {
                 let src = if p.level == 0 {
                     mesh

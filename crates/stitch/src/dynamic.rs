@@ -11,7 +11,7 @@ use subdiv_depth::{
     Assignment, DepthParams, FrameRateController, Sphere, VertexData, assign, face_spheres,
 };
 use subdiv_mesh::{Camera, Mesh};
-use subdiv_slate::Worker;
+use subdiv_slate::thread_worker;
 
 use crate::AssemblyError;
 use crate::fans::{Assembler, FanMethod, FrameGeometry};
@@ -282,7 +282,7 @@ pub fn chord_deviations(mesh: &Mesh, asm: &Assembler, max_depth: u8) -> Vec<Vec<
         .patches()
         .par_iter()
         .map_init(
-            || (Worker::new(fine), Vec::new(), Vec::new()),
+            || (thread_worker(fine), Vec::new(), Vec::new()),
             |(w, pos, nrm), p| {
                 // Level-1 patches are one level coarser than their face.
                 let l_fine = fine - p.level as u32;

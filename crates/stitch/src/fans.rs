@@ -18,7 +18,7 @@
 
 use rayon::prelude::*;
 use subdiv_mesh::{HalfedgeId, Mesh, VertexId};
-use subdiv_slate::{PatchRef, PatchSet, Worker};
+use subdiv_slate::{PatchRef, PatchSet, thread_worker};
 
 use crate::AssemblyError;
 
@@ -257,7 +257,7 @@ impl Assembler {
         let mut fresh: Vec<(usize, Block)> = todo
             .par_iter()
             .map_init(
-                || Worker::new(maxsd),
+                || thread_worker(maxsd),
                 |w, &i| {
                     let p = &set.patches()[i];
                     let d = required[i] as u32;
