@@ -5,11 +5,13 @@
 use std::path::PathBuf;
 
 use glam::Vec3;
+use subdiv::{RefineError, RefineOptions, refine_adaptive};
 use subdiv_doi::{
-    Aggregate, Dihedral, Doi, DoiContext, DoiError, Focus, HapticG1, HapticPoint, RefineOptions,
-    Silhouette, ViewAngle, refine_adaptive, silhouette_distance, silhouette_segments, triangulate,
+    Aggregate, Dihedral, Doi, DoiContext, Focus, HapticG1, HapticPoint, Silhouette, ViewAngle,
+    silhouette_distance, silhouette_segments,
 };
-use subdiv_mesh::{Camera, Mesh, ReadOptions, read_obj_with};
+use subdiv_loop::LoopError;
+use subdiv_mesh::{Camera, Mesh, MeshError, ReadOptions, read_obj_with, triangulate};
 use subdiv_rules::{Scheme, refine_uniform_levels};
 use subdiv_tests::fixtures;
 
@@ -231,7 +233,10 @@ fn quads_need_triangulation() {
     };
     let e = refine_adaptive(&quads, &Dihedral, &DoiContext::default(), &opts).unwrap_err();
     assert!(
-        matches!(e, DoiError::NotTriangles { face: 0, size: 4 }),
+        matches!(
+            e,
+            RefineError::Loop(LoopError::Mesh(MeshError::NotTriangles { face: 0, size: 4 }))
+        ),
         "{e}"
     );
     assert!(e.to_string().contains("needs a triangle mesh"));

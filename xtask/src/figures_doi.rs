@@ -9,9 +9,10 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use glam::Vec3;
+use subdiv::{RefineOptions, refine_adaptive};
 use subdiv_doi::{
-    Aggregate, Dihedral, Doi, DoiContext, Focus, HapticG1, HapticPoint, RefineOptions, Silhouette,
-    ViewAngle, refine_adaptive, silhouette_distance, silhouette_segments,
+    Aggregate, Dihedral, Doi, DoiContext, Focus, HapticG1, HapticPoint, Silhouette, ViewAngle,
+    silhouette_distance, silhouette_segments,
 };
 use subdiv_mesh::{Camera, Mesh, ReadOptions, read_obj_with};
 use subdiv_rules::{Scheme, refine_uniform_levels};

@@ -143,7 +143,7 @@ fn parse_tolerance(s: &str) -> Result<Tolerance> {
 fn build_subdiv() -> Result<PathBuf> {
     crate::run({
         let mut c = crate::cargo();
-        c.args(["build", "--quiet", "-p", "subdiv"]);
+        c.args(["build", "--quiet", "-p", "subdiv-cli"]);
         c
     })?;
     Ok(crate::target_dir()

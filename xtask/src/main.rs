@@ -56,7 +56,7 @@ fn figures_cc_run() -> Result<()> {
     vulkan::ensure_driver()?;
     run({
         let mut c = cargo();
-        c.args(["build", "--release", "--quiet", "-p", "subdiv"]);
+        c.args(["build", "--release", "--quiet", "-p", "subdiv-cli"]);
         c
     })?;
     let exe = target_dir()
@@ -81,7 +81,7 @@ fn demo() -> Result<()> {
     std::fs::write(&cage, DEMO_CAGE)?;
     run({
         let mut c = cargo();
-        c.args(["build", "--release", "--quiet", "-p", "subdiv"]);
+        c.args(["build", "--release", "--quiet", "-p", "subdiv-cli"]);
         c
     })?;
     let exe = target_dir()

@@ -4,7 +4,13 @@
 //! Section 3.1: a curvature depth per cage vertex from the cone of normals, computed once per
 //! mesh ([`VertexData`]); per frame a back/front/silhouette classification and a projected-size
 //! adjustment ([`assign`]), or the least depth within a screen-space error ([`DepthParams::pixel_error`]);
-//! and frame-rate control by feedback ([`FrameRateController`]).
+//! and frame-rate control by feedback ([`FrameRateController`]). A Degree of Interest can drive
+//! the depths instead ([`depths_from_face_values`]).
+//!
+//! **Invariants.** Depths never exceed the caller's maximum depth; curvature data is computed
+//! once per cage (and again only when the cage or the cone aperture changes); per-frame
+//! assignment and the controller are pure functions of their inputs (deterministic, no
+//! hidden state beyond the controller's own).
 //!
 //! ```
 //! use subdiv_depth::{assign, face_spheres, DepthParams, VertexData};
@@ -26,6 +32,7 @@
 mod assign;
 mod controller;
 mod curvature;
+mod doi;
 
 pub use assign::{
     Assignment, Class, DepthParams, Sphere, adjust_projected, assign, classify_vertex,
@@ -33,3 +40,4 @@ pub use assign::{
 };
 pub use controller::FrameRateController;
 pub use curvature::VertexData;
+pub use doi::depths_from_face_values;

@@ -39,7 +39,7 @@ impl Doi for Dihedral {
     }
     fn evaluate(&self, mesh: &Mesh, _ctx: &DoiContext, out: &mut Vec<f32>) -> Result<(), DoiError> {
         let mut normals = Vec::new();
-        crate::view::face_normals(mesh, &mut normals);
+        subdiv_mesh::face_normals(mesh, &mut normals);
         out.clear();
         out.extend(mesh.edges().map(|e| dihedral_angle_deg(mesh, &normals, e)));
         Ok(())

@@ -1,21 +1,11 @@
-//! Errors of the DoI functions and the adaptive step.
+//! Errors of the DoI functions.
 
 use thiserror::Error;
 
-/// What can go wrong evaluating a DoI or refining adaptively. Every variant names the face,
+/// What can go wrong evaluating a DoI. Every variant names the face,
 /// vertex, group, file or line at fault.
 #[derive(Debug, Error)]
 pub enum DoiError {
-    /// Loop subdivision needs a triangle mesh.
-    #[error(
-        "face {face} has {size} vertices; adaptive Loop subdivision needs a triangle mesh (triangulate it first)"
-    )]
-    NotTriangles {
-        /// The first non-triangular face.
-        face: u32,
-        /// Its size.
-        size: u32,
-    },
     /// A view-dependent DoI was evaluated without a camera.
     #[error("the {doi} DoI is view-dependent and needs a camera")]
     NeedsCamera {
@@ -85,23 +75,7 @@ pub enum DoiError {
         /// Its value.
         value: f32,
     },
-    /// Too many triangles.
-    #[error("step {step} would produce {faces} triangles (limit {limit})")]
-    TooLarge {
-        /// 1-based step.
-        step: u32,
-        /// Triangles it would produce.
-        faces: u64,
-        /// The limit.
-        limit: u64,
-    },
-    /// The red-green closure refused its input.
-    #[error(transparent)]
-    Stitch(#[from] subdiv_stitch::red_green::StitchError),
-    /// A refined mesh failed validation (a bug: the closure keeps the mesh valid).
-    #[error("internal error: the refined mesh is invalid: {0}")]
-    Internal(subdiv_mesh::MeshError),
-    /// Building a mesh (triangulation) failed.
+    /// The mesh is not what the DoI needs (a triangle mesh, for the haptic DoIs).
     #[error(transparent)]
     Mesh(#[from] subdiv_mesh::MeshError),
 }

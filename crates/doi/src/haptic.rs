@@ -10,7 +10,7 @@
 //!   and its one-neighbourhood).
 
 use glam::Vec3;
-use subdiv_mesh::{EdgeId, FaceId, Mesh};
+use subdiv_mesh::{EdgeId, FaceId, Mesh, closest_point_on_triangle, vertex_normals};
 
 use crate::DoiError;
 use crate::framework::{Doi, DoiContext, Domain};
@@ -169,27 +169,6 @@ impl CloughTocher {
     }
 }
 
-/// Area-weighted vertex normals of a mesh (unit length; zero for isolated vertices).
-pub fn vertex_normals(mesh: &Mesh) -> Vec<Vec3> {
-    let mut n = vec![Vec3::ZERO; mesh.num_vertices()];
-    let pos = mesh.positions();
-    for f in mesh.faces() {
-        let v = mesh.face_vertices(f);
-        // Newell's normal, scaled by twice the area; works for any polygon.
-        let mut s = Vec3::ZERO;
-        for k in 0..v.len() {
-            s += pos[v[k].idx()].cross(pos[v[(k + 1) % v.len()].idx()]);
-        }
-        for &x in v {
-            n[x.idx()] += s;
-        }
-    }
-    for x in &mut n {
-        *x = x.normalize_or_zero();
-    }
-    n
-}
-
 /// The Clough-Tocher interpolant of every face of a triangle mesh, with `normals` per vertex.
 pub fn clough_tocher_patches(mesh: &Mesh, normals: &[Vec3]) -> Vec<CloughTocher> {
     mesh.faces()
@@ -282,7 +261,7 @@ impl Doi for HapticG1 {
         0.5
     }
     fn evaluate(&self, mesh: &Mesh, _ctx: &DoiContext, out: &mut Vec<f32>) -> Result<(), DoiError> {
-        crate::adaptive::check_triangles(mesh)?;
+        mesh.check_triangles()?;
         let normals = vertex_normals(mesh);
         let ct = clough_tocher_patches(mesh, &normals);
         out.clear();
@@ -385,39 +364,6 @@ pub fn closest_face(mesh: &Mesh, p: Vec3) -> Option<FaceId> {
     best.1
 }
 
-/// The point of triangle `a b c` closest to `p` (Ericson, Real-Time Collision Detection, 5.1.5).
-#[inline]
-pub fn closest_point_on_triangle(p: Vec3, a: Vec3, b: Vec3, c: Vec3) -> Vec3 {
-    let (ab, ac, ap) = (b - a, c - a, p - a);
-    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return a;
-    }
-    let bp = p - b;
-    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
-    if d3 >= 0.0 && d4 <= d3 {
-        return b;
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        return a + ab * (d1 / (d1 - d3));
-    }
-    let cp = p - c;
-    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
-    if d6 >= 0.0 && d5 <= d6 {
-        return c;
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        return a + ac * (d2 / (d2 - d6));
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
-        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    }
-    let denom = 1.0 / (va + vb + vc);
-    a + ab * (vb * denom) + ac * (vc * denom)
-}
 
 #[cfg(test)]
 mod tests {

@@ -2,7 +2,7 @@
 //! the silhouette polyline used to compare meshes (Fig. 5).
 
 use glam::{Vec2, Vec3};
-use subdiv_mesh::{Camera, EdgeId, Mesh};
+use subdiv_mesh::{Camera, EdgeId, Mesh, face_normals};
 
 use crate::DoiError;
 use crate::framework::{Doi, DoiContext, Domain};
@@ -109,11 +109,6 @@ impl Doi for Silhouette {
     }
 }
 
-/// All face normals of `mesh` into `out`.
-pub fn face_normals(mesh: &Mesh, out: &mut Vec<Vec3>) {
-    out.clear();
-    out.extend(mesh.faces().map(|f| mesh.face_normal(f)));
-}
 
 /// Eq. (2) for edge `e` with precomputed face normals.
 #[inline]

@@ -17,6 +17,16 @@ pub enum MeshError {
     /// The mesh has no faces.
     #[error("the mesh has no faces")]
     Empty,
+    /// A triangle mesh was needed (Loop subdivision, red-green closure, the triangle DoIs).
+    #[error(
+        "face {face} has {size} vertices; Loop subdivision needs a triangle mesh (triangulate it first)"
+    )]
+    NotTriangles {
+        /// The first non-triangular face.
+        face: u32,
+        /// Its vertex count.
+        size: u32,
+    },
     /// A face refers to a vertex that does not exist.
     #[error("face {face}: vertex index {index} is out of range (the mesh has {count} vertices)")]
     IndexOutOfRange {
@@ -160,7 +170,7 @@ impl MeshError {
     pub fn line(&self) -> Option<u32> {
         match self {
             MeshError::Parse { line, .. } => Some(*line),
-            MeshError::Empty | MeshError::TooLarge { .. } => None,
+            MeshError::Empty | MeshError::TooLarge { .. } | MeshError::NotTriangles { .. } => None,
             MeshError::IndexOutOfRange { line, .. }
             | MeshError::FaceTooSmall { line, .. }
             | MeshError::RepeatedVertex { line, .. }

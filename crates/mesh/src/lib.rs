@@ -22,6 +22,7 @@
 
 mod camera;
 mod error;
+mod geometry;
 mod handle;
 mod mesh;
 mod obj;
@@ -31,6 +32,10 @@ mod stats;
 
 pub use camera::Camera;
 pub use error::{MeshError, ObjError};
+pub use geometry::{
+    Vector3, closest_point_on_triangle, face_normals, newell_area, newell_normal, triangulate,
+    vertex_normals,
+};
 pub use handle::{EdgeId, FaceId, HalfedgeId, VertexId};
 pub use mesh::{Mesh, Outgoing};
 pub use obj::{

@@ -33,7 +33,7 @@ mod ring;
 pub use limit::{LimitMesh, limit_surface, tessellate_uniform};
 pub use point::{Point, centroid};
 pub use refine::{
-    MAX_REFINED_FACES, check_triangles, refine_uniform, refine_uniform_levels, refined_face_count,
+    MAX_REFINED_FACES, RefineKernel, refine_uniform, refine_uniform_levels, refined_face_count,
 };
 pub use ring::{QuadRingStencil, Ring, limit_point, limit_point_with};
 
@@ -65,16 +65,9 @@ impl std::str::FromStr for Scheme {
 /// Errors of the refinement functions.
 #[derive(Debug, Error)]
 pub enum RulesError {
-    /// Loop subdivision needs triangles.
-    #[error(
-        "face {face} has {size} vertices; Loop subdivision needs a triangle mesh (triangulate it first)"
-    )]
-    NotTriangles {
-        /// The first non-triangular face.
-        face: u32,
-        /// Its size.
-        size: u32,
-    },
+    /// Loop subdivision needs triangles ([`subdiv_mesh::MeshError::NotTriangles`]).
+    #[error(transparent)]
+    NotTriangles(#[from] subdiv_mesh::MeshError),
     /// The requested depth would produce too many faces.
     #[error("depth {depth} would produce {faces} faces (limit {MAX_REFINED_FACES})")]
     TooDeep {

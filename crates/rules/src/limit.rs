@@ -135,7 +135,7 @@ pub fn tessellate_uniform(
     depth: u32,
 ) -> Result<LimitMesh, RulesError> {
     if scheme == Scheme::Loop {
-        crate::refine::check_triangles(mesh)?;
+        mesh.check_triangles()?;
     }
     let hidden;
     let base = if mesh.options().boundary == BoundaryInterpolation::None {

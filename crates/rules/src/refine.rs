@@ -7,7 +7,7 @@
 //! sharpness, child faces the hole flag and group of their parent.
 
 use glam::Vec3;
-use subdiv_mesh::{Mesh, PolygonSoup, VertexId};
+use subdiv_mesh::{CreaseMethod, EdgeId, HalfedgeId, Mesh, PolygonSoup, VertexId};
 
 use crate::crease::{VertexRules, decrement, edge_crease_weight, is_sharp};
 use crate::{RulesError, Scheme, catmark, loop_scheme};
@@ -24,86 +24,29 @@ use crate::{RulesError, Scheme, catmark, loop_scheme};
 /// ```
 pub fn refine_uniform(mesh: &Mesh, scheme: Scheme) -> Result<Mesh, RulesError> {
     if scheme == Scheme::Loop {
-        check_triangles(mesh)?;
+        mesh.check_triangles()?;
     }
     let nv = mesh.num_vertices();
-    let ne = mesh.num_edges();
-    let method = mesh.options().crease;
     let pos = mesh.positions();
-
     let fp: Vec<Vec3> = if scheme == Scheme::CatmullClark {
         mesh.faces().map(|f| mesh.face_centroid(f)).collect()
     } else {
         Vec::new()
     };
 
-    // Vertex points, and the child sharpness of each edge at each end (indexed by the half-edge
-    // leaving that end).
-    let mut child_sharp = vec![0.0f32; mesh.num_halfedges()];
-    let mut positions: Vec<Vec3> = Vec::with_capacity(nv + fp.len() + ne);
-    let mut edges: Vec<Vec3> = Vec::new();
-    let mut faces: Vec<Vec3> = Vec::new();
-    let mut sharp: Vec<f32> = Vec::new();
-    let mut cs: Vec<f32> = Vec::new();
-    let mut hs = Vec::new();
+    let mut kernel = RefineKernel::new(mesh, scheme);
+    let mut positions: Vec<Vec3> = Vec::with_capacity(nv + fp.len() + mesh.num_edges());
     for v in mesh.vertices() {
-        if mesh.is_isolated(v) {
-            positions.push(pos[v.idx()]);
-            continue;
-        }
-        hs.clear();
-        hs.extend(mesh.outgoing(v));
-        edges.clear();
-        faces.clear();
-        sharp.clear();
-        for &h in &hs {
-            edges.push(pos[mesh.to(h).idx()]);
-            sharp.push(mesh.edge_sharpness(h.edge()));
-            let f = mesh.face(h);
-            if f.is_some() && scheme == Scheme::CatmullClark {
-                faces.push(fp[f.idx()]);
-            }
-        }
-        cs.clear();
-        cs.resize(hs.len(), 0.0);
-        let rules = VertexRules::new(method, mesh.vertex_sharpness(v), &sharp, &mut cs);
-        for (k, &h) in hs.iter().enumerate() {
-            child_sharp[h.idx()] = cs[k];
-        }
-        let p = match scheme {
-            Scheme::CatmullClark => catmark::vertex_point(pos[v.idx()], &edges, &faces, &rules),
-            Scheme::Loop => loop_scheme::vertex_point(pos[v.idx()], &edges, &rules),
-        };
-        positions.push(p);
+        positions.push(kernel.vertex_point(v, &fp));
     }
     positions.extend_from_slice(&fp);
-
-    // Edge points.
     let edge_base = positions.len() as u32;
     for e in mesh.edges() {
-        let h0 = e.halfedge(0);
-        let h1 = e.halfedge(1);
-        let a = pos[mesh.from(h0).idx()];
-        let b = pos[mesh.to(h0).idx()];
-        let s = mesh.edge_sharpness(e);
-        let w = edge_crease_weight(method, s, [child_sharp[h0.idx()], child_sharp[h1.idx()]]);
-        let mut adj = [Vec3::ZERO; 2];
-        let mut k = 0;
-        for h in [h0, h1] {
-            let f = mesh.face(h);
-            if f.is_some() {
-                adj[k] = match scheme {
-                    Scheme::CatmullClark => fp[f.idx()],
-                    // The vertex of the triangle opposite the edge.
-                    Scheme::Loop => pos[mesh.to(mesh.next(h)).idx()],
-                };
-                k += 1;
-            }
-        }
-        positions.push(match scheme {
-            Scheme::CatmullClark => catmark::edge_point(a, b, &adj[..k], w),
-            Scheme::Loop => loop_scheme::edge_point(a, b, &adj[..k], w),
-        });
+        positions.push(kernel.edge_point(e, |h| match scheme {
+            Scheme::CatmullClark => fp[mesh.face(h).idx()],
+            // The vertex of the triangle opposite the edge.
+            Scheme::Loop => pos[mesh.to(mesh.next(h)).idx()],
+        }));
     }
 
     // Child faces.
@@ -114,7 +57,7 @@ pub fn refine_uniform(mesh: &Mesh, scheme: Scheme) -> Result<Mesh, RulesError> {
     };
     let mut holes = Vec::new();
     let mut groups = Vec::new();
-    let ep = |h: subdiv_mesh::HalfedgeId| (edge_base + h.edge().0) as i64;
+    let ep = |h: HalfedgeId| (edge_base + h.edge().0) as i64;
     for f in mesh.faces() {
         let h0 = mesh.face_halfedge(f);
         let n = mesh.face_size(f);
@@ -150,31 +93,170 @@ pub fn refine_uniform(mesh: &Mesh, scheme: Scheme) -> Result<Mesh, RulesError> {
     let mut child = Mesh::from_soup(&soup).map_err(RulesError::Internal)?;
     child.set_holes(holes);
     child.set_groups(mesh.groups().to_vec(), groups);
+    kernel.transfer_sharpness(&mut child, |e| Some(VertexId(edge_base + e.0)), |_| true);
+    Ok(child)
+}
 
-    // Sharpness of the child edges and vertices.
-    for e in mesh.edges() {
-        if !is_sharp(mesh.edge_sharpness(e)) || mesh.is_boundary_edge(e) {
-            continue;
+/// The one refinement kernel: the vertex and edge rules of one subdivision step applied to a
+/// mesh, with crease sharpness carried to the child mesh. Uniform refinement
+/// ([`refine_uniform`]) applies it to every vertex and edge; adaptive Loop refinement
+/// (`subdiv-loop`) to the vertices and edges its closure selects. Both therefore produce
+/// bit-identical points wherever they refine the same neighbourhood.
+///
+/// Call [`RefineKernel::vertex_point`] for both ends of an edge before its
+/// [`RefineKernel::edge_point`]: the vertex rules decide the child sharpness of the edge at each
+/// end (OpenSubdiv's `Sdc::Crease`), which the edge's crease weight needs.
+#[derive(Debug)]
+pub struct RefineKernel<'m> {
+    mesh: &'m Mesh,
+    scheme: Scheme,
+    method: CreaseMethod,
+    /// Child sharpness of each edge at the origin of each half-edge.
+    child_sharp: Vec<f32>,
+    halfedges: Vec<HalfedgeId>,
+    edge_ends: Vec<Vec3>,
+    face_points: Vec<Vec3>,
+    edge_sharpness: Vec<f32>,
+    child_edge_sharpness: Vec<f32>,
+}
+
+impl<'m> RefineKernel<'m> {
+    /// A kernel for one step of `scheme` on `mesh`.
+    pub fn new(mesh: &'m Mesh, scheme: Scheme) -> RefineKernel<'m> {
+        RefineKernel {
+            mesh,
+            scheme,
+            method: mesh.options().crease,
+            child_sharp: vec![0.0; mesh.num_halfedges()],
+            halfedges: Vec::new(),
+            edge_ends: Vec::new(),
+            face_points: Vec::new(),
+            edge_sharpness: Vec::new(),
+            child_edge_sharpness: Vec::new(),
         }
-        let m = VertexId(edge_base + e.0);
-        for side in 0..2 {
-            let h = e.halfedge(side);
-            let s = child_sharp[h.idx()];
-            if is_sharp(s) {
-                let a = mesh.from(h);
-                if let Some(ch) = child.find_halfedge(a, m) {
-                    child.set_edge_sharpness(ch.edge(), s);
+    }
+
+    /// The vertex point of `v` (Catmull-Clark or Loop vertex rule with crease, corner and
+    /// boundary rules), recording the child sharpness of each edge at `v`. `face_points` holds
+    /// the Catmull-Clark face points by face (unused for Loop). An isolated vertex stays.
+    pub fn vertex_point(&mut self, v: VertexId, face_points: &[Vec3]) -> Vec3 {
+        let mesh = self.mesh;
+        let pos = mesh.positions();
+        if mesh.is_isolated(v) {
+            return pos[v.idx()];
+        }
+        self.halfedges.clear();
+        self.halfedges.extend(mesh.outgoing(v));
+        self.edge_ends.clear();
+        self.face_points.clear();
+        self.edge_sharpness.clear();
+        for &h in &self.halfedges {
+            self.edge_ends.push(pos[mesh.to(h).idx()]);
+            self.edge_sharpness.push(mesh.edge_sharpness(h.edge()));
+            let f = mesh.face(h);
+            if f.is_some() && self.scheme == Scheme::CatmullClark {
+                self.face_points.push(face_points[f.idx()]);
+            }
+        }
+        self.child_edge_sharpness.clear();
+        self.child_edge_sharpness.resize(self.halfedges.len(), 0.0);
+        let rules = VertexRules::new(
+            self.method,
+            mesh.vertex_sharpness(v),
+            &self.edge_sharpness,
+            &mut self.child_edge_sharpness,
+        );
+        for (k, &h) in self.halfedges.iter().enumerate() {
+            self.child_sharp[h.idx()] = self.child_edge_sharpness[k];
+        }
+        match self.scheme {
+            Scheme::CatmullClark => {
+                catmark::vertex_point(pos[v.idx()], &self.edge_ends, &self.face_points, &rules)
+            }
+            Scheme::Loop => loop_scheme::vertex_point(pos[v.idx()], &self.edge_ends, &rules),
+        }
+    }
+
+    /// The child sharpness of `h`'s edge at `h`'s origin (after that vertex's
+    /// [`RefineKernel::vertex_point`]).
+    #[inline]
+    pub fn child_sharpness(&self, h: HalfedgeId) -> f32 {
+        self.child_sharp[h.idx()]
+    }
+
+    /// The edge point of `e`. `side(h)` gives, for each half-edge of `e` with a face, the point
+    /// on that side: the face point (Catmull-Clark) or the vertex opposite the edge (Loop).
+    pub fn edge_point(&self, e: EdgeId, side: impl Fn(HalfedgeId) -> Vec3) -> Vec3 {
+        let mesh = self.mesh;
+        let pos = mesh.positions();
+        let (h0, h1) = (e.halfedge(0), e.halfedge(1));
+        let a = pos[mesh.from(h0).idx()];
+        let b = pos[mesh.to(h0).idx()];
+        let s = mesh.edge_sharpness(e);
+        let w = edge_crease_weight(
+            self.method,
+            s,
+            [self.child_sharp[h0.idx()], self.child_sharp[h1.idx()]],
+        );
+        let mut adj = [Vec3::ZERO; 2];
+        let mut k = 0;
+        for h in [h0, h1] {
+            if mesh.face(h).is_some() {
+                adj[k] = side(h);
+                k += 1;
+            }
+        }
+        match self.scheme {
+            Scheme::CatmullClark => catmark::edge_point(a, b, &adj[..k], w),
+            Scheme::Loop => loop_scheme::edge_point(a, b, &adj[..k], w),
+        }
+    }
+
+    /// Carries sharpness to `child`, whose vertex `i` descends from the parent's vertex `i`.
+    /// `midpoint(e)` is the child vertex of split edge `e` (`None`: the edge is kept whole);
+    /// `decays(v)` says whether `v` was refined this step. The halves of a split crease edge get
+    /// the child sharpness recorded by the vertex rules; a kept edge keeps its sharpness; a
+    /// refined vertex's sharpness decays by one, a kept one's stays.
+    pub fn transfer_sharpness(
+        &self,
+        child: &mut Mesh,
+        midpoint: impl Fn(EdgeId) -> Option<VertexId>,
+        decays: impl Fn(VertexId) -> bool,
+    ) {
+        let mesh = self.mesh;
+        for e in mesh.edges() {
+            let s = mesh.edge_sharpness(e);
+            if !is_sharp(s) || mesh.is_boundary_edge(e) {
+                continue;
+            }
+            match midpoint(e) {
+                Some(m) => {
+                    for side in 0..2 {
+                        let h = e.halfedge(side);
+                        let cs = self.child_sharp[h.idx()];
+                        if is_sharp(cs) {
+                            if let Some(ch) = child.find_halfedge(mesh.from(h), m) {
+                                child.set_edge_sharpness(ch.edge(), cs);
+                            }
+                        }
+                    }
+                }
+                None => {
+                    let [a, b] = mesh.edge_vertices(e);
+                    if let Some(ch) = child.find_halfedge(a, b) {
+                        child.set_edge_sharpness(ch.edge(), s);
+                    }
                 }
             }
         }
-    }
-    for v in mesh.vertices() {
-        let s = mesh.vertex_sharpness(v);
-        if is_sharp(s) {
-            child.set_vertex_sharpness(v, decrement(s).max(child.vertex_sharpness(v)));
+        for v in mesh.vertices() {
+            let s = mesh.vertex_sharpness(v);
+            if is_sharp(s) {
+                let s = if decays(v) { decrement(s) } else { s };
+                child.set_vertex_sharpness(v, s.max(child.vertex_sharpness(v)));
+            }
         }
     }
-    Ok(child)
 }
 
 /// Refines `depth` times.
@@ -185,17 +267,6 @@ pub fn refine_uniform_levels(mesh: &Mesh, scheme: Scheme, depth: u32) -> Result<
         m = refine_uniform(&m, scheme)?;
     }
     Ok(m)
-}
-
-/// Refuses Loop subdivision of a mesh with non-triangular faces.
-pub fn check_triangles(mesh: &Mesh) -> Result<(), RulesError> {
-    match mesh.faces().find(|&f| mesh.face_size(f) != 3) {
-        Some(f) => Err(RulesError::NotTriangles {
-            face: f.0,
-            size: mesh.face_size(f) as u32,
-        }),
-        None => Ok(()),
-    }
 }
 
 /// Maximum number of faces a uniform refinement may produce.

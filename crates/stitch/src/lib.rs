@@ -1,41 +1,23 @@
 //! `subdiv-stitch`: gap-free assembly of adaptively refined meshes.
 //!
-//! Adaptive refinement leaves neighbouring regions at different levels; this crate turns them
-//! back into one conforming (crack-free) mesh.
+//! The Catmull-Clark patches of a frame are tessellated at different depths (Settgast et al.
+//! 2004, §3.1); this crate closes the gaps between them with triangle fans (§3.3, Figs. 4 and
+//! 10): quads next to a deeper neighbour are replaced by fans around the limit point of the next
+//! level's face point, through the deeper side's own points, with the shared edge of two replaced
+//! quads subdivided once more ([`FanMethod::Subdivided`]) or not ([`FanMethod::Simple`]).
+//! [`Assembler`] keeps each patch's tessellation between frames and recomputes only patches whose
+//! depth rose.
 //!
-//! - [`red_green`]: the red-green closure of adaptive Loop subdivision (Amresh & Farin 2002, as
-//!   used by Isenberg, Hartmann & König, "Interest Value Driven Adaptive Subdivision", 2003,
-//!   §3 and Fig. 1): triangles next to refined ("red") triangles are split in 2, 3 or 4
-//!   ("green"), and a green triangle that must be refined later is first merged back into its
-//!   parent, which is then refined regularly.
-//!
-//! - [`DynamicSubdivision`]: the front door for view-dependent Catmull-Clark tessellation
-//!   (the paper's `DynamicSubdivisionCC` node): cage, curvature depths, cache, parameters, and
-//!   `update(&camera, last_frame_time)` per frame.
-//! - [`fans`]: Catmull-Clark patches tessellated at different depths, closed by triangle fans
-//!   (Settgast et al. 2004, Section 3.3), with per-patch caching across frames ([`Assembler`]).
-//!
-//! ```
-//! use subdiv_mesh::{Mesh, PolygonSoup, glam::Vec3};
-//! use subdiv_stitch::red_green::{close, GreenState};
-//! // Two triangles sharing an edge; refining the first splits the shared edge, so the second
-//! // needs a green closure (one split edge: bisected into two triangles).
-//! let p = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 0.0)];
-//! let mesh = Mesh::from_soup(&PolygonSoup::from_faces(p, &[[0u32, 1, 2], [1, 3, 2]]))?;
-//! let closure = close(&mesh, &GreenState::new(2), &[true, false])?;
-//! assert_eq!(closure.red_face, vec![true, false]);
-//! assert_eq!(closure.split_edge.iter().filter(|&&s| s).count(), 3);
-//! # Ok::<(), Box<dyn std::error::Error>>(())
-//! ```
+//! **Invariants.** Watertight to the bit: every point shared by two patches is written by one
+//! owner (the deeper side) and referenced through it, so after assembly every interior edge has
+//! exactly two triangles and the only open edges are the cage's boundary (and its holes). The
+//! cage is never modified.
 
-pub mod dynamic;
 pub mod fans;
-pub mod red_green;
 
-pub use dynamic::{DynamicSubdivision, chord_deviations};
 pub use fans::{Assembler, FanMethod, FrameGeometry};
 
-/// Errors of the Catmull-Clark assembly ([`Assembler`], [`DynamicSubdivision`]).
+/// Errors of the Catmull-Clark assembly ([`Assembler`]).
 #[derive(Debug, thiserror::Error)]
 pub enum AssemblyError {
     /// Set-up of the patches failed.

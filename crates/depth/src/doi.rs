@@ -1,4 +1,4 @@
-//! One DoI, either scheme: face values to per-patch Catmull-Clark depths.
+//! Depths from a Degree of Interest: face values to per-patch subdivision depths.
 
 /// Maps DoI face values to per-face (per-patch) subdivision depths for a depth-driven
 /// tessellator such as the Catmull-Clark slates.
@@ -10,7 +10,7 @@
 /// focus) gives the most interesting faces the most steps, like the adaptive Loop refinement.
 ///
 /// ```
-/// use subdiv_doi::depths_from_face_values;
+/// use subdiv_depth::depths_from_face_values;
 /// assert_eq!(depths_from_face_values(&[0.0, 1.0, 0.2], 0.5, 4), vec![0, 4, 0]);
 /// assert_eq!(depths_from_face_values(&[30.0, 40.0, 60.0, 90.0], 30.0, 3), vec![0, 1, 2, 3]);
 /// assert_eq!(depths_from_face_values(&[f32::NAN, 2.0], 0.0, 2), vec![0, 2]);

@@ -10,7 +10,7 @@ use std::process::ExitCode;
 use glam::Vec3;
 use subdiv_mesh::Camera;
 use subdiv_rules::LimitMesh;
-use subdiv_stitch::DynamicSubdivision;
+use subdiv::DynamicSubdivision;
 use subdiv_vk::viewer::{self, FrameRequest, FrameSource, SourceFrame, ViewerOptions};
 use subdiv_vk::{OrbitCamera, OwnedMesh, RenderMesh, Shading, View};
 

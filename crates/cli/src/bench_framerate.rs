@@ -8,7 +8,7 @@ use anyhow::bail;
 use glam::Vec3;
 use subdiv_depth::DepthParams;
 use subdiv_mesh::Camera;
-use subdiv_stitch::DynamicSubdivision;
+use subdiv::DynamicSubdivision;
 use subdiv_vk::{RenderMesh, RenderOptions, Renderer};
 
 use crate::camera_args::parse_size;

@@ -6,11 +6,12 @@ use std::time::Instant;
 
 use anyhow::Context;
 use glam::Vec3;
+use subdiv::{RefineOptions, refine_adaptive};
 use subdiv_doi::{
-    Aggregate, Dihedral, Doi, DoiContext, Focus, HapticG1, HapticPoint, RefineOptions, Silhouette,
-    ViewAngle, read_skeleton, refine_adaptive, triangulate,
+    Aggregate, Dihedral, Doi, DoiContext, Focus, HapticG1, HapticPoint, Silhouette, ViewAngle,
+    read_skeleton,
 };
-use subdiv_mesh::write_mesh_obj;
+use subdiv_mesh::{triangulate, write_mesh_obj};
 
 use crate::camera_args::{CameraArgs, parse_vec3};
 
@@ -172,7 +173,7 @@ impl DoiRefinement {
     }
 
     /// Refines the cage for `camera`.
-    pub fn run(&self, camera: subdiv_mesh::Camera) -> anyhow::Result<subdiv_doi::Refined> {
+    pub fn run(&self, camera: subdiv_mesh::Camera) -> anyhow::Result<subdiv::Refined> {
         Ok(refine_adaptive(
             &self.cage,
             self.doi.as_ref(),

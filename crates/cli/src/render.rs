@@ -11,7 +11,8 @@ use anyhow::{Context, bail};
 use glam::Vec3;
 use subdiv_mesh::{Camera, Mesh, parse_obj};
 use subdiv_rules::{LimitMesh, Scheme};
-use subdiv_stitch::{DynamicSubdivision, FrameGeometry};
+use subdiv::DynamicSubdivision;
+use subdiv_stitch::FrameGeometry;
 use subdiv_vk::{OrbitCamera, OwnedMesh, RenderOptions, Renderer, Shading, View};
 
 use crate::camera_args::{CameraArgs, parse_vec3};
@@ -640,7 +641,7 @@ impl DoiSetup {
                 *s = 0.0;
             }
         }
-        let normals = subdiv_doi::vertex_normals(m);
+        let normals = subdiv_mesh::vertex_normals(m);
         let (offsets, indices) = m.face_lists();
         let limit = LimitMesh {
             positions: m.positions().iter().map(|p| p.to_array()).collect(),

@@ -13,15 +13,14 @@ use subdiv_depth::{
 use subdiv_mesh::{Camera, Mesh};
 use subdiv_slate::thread_worker;
 
-use crate::AssemblyError;
-use crate::fans::{Assembler, FanMethod, FrameGeometry};
+use subdiv_stitch::{Assembler, AssemblyError, FanMethod, FrameGeometry};
 
 /// View-dependent adaptive Catmull-Clark tessellation with crack-free stitching.
 ///
 /// ```
 /// use subdiv_mesh::{read_obj, Camera, glam::Vec3};
 /// use subdiv_depth::DepthParams;
-/// use subdiv_stitch::DynamicSubdivision;
+/// use subdiv::DynamicSubdivision;
 /// # let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/reference/shapes/catmark_pawn.obj");
 /// let mesh = read_obj(path).unwrap();
 /// let mut node = DynamicSubdivision::new(mesh, DepthParams::default()).unwrap();
@@ -243,19 +242,7 @@ impl DynamicSubdivision {
 
     /// Number of triangles of the uniform tessellation at the maximum depth (for comparison).
     pub fn uniform_triangles(&self) -> usize {
-        let d = self.params.max_depth as u32;
-        self.mesh
-            .faces()
-            .filter(|&f| !self.mesh.is_hole(f))
-            .map(|f| {
-                let n = self.mesh.face_size(f);
-                if n == 4 {
-                    2usize << (2 * d)
-                } else {
-                    n * (2usize << (2 * d.saturating_sub(1)))
-                }
-            })
-            .sum()
+        self.uniform_triangles_at(self.params.max_depth)
     }
 
     /// Chord deviation per face and depth (world units), computed on first use of the

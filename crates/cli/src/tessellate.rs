@@ -9,7 +9,8 @@ use subdiv_depth::DepthParams;
 use subdiv_mesh::{ObjData, write_obj};
 use subdiv_rules::{Scheme, tessellate_uniform};
 use subdiv_slate::tessellate as slate_tessellate;
-use subdiv_stitch::{DynamicSubdivision, FanMethod};
+use subdiv::DynamicSubdivision;
+use subdiv_stitch::FanMethod;
 
 use crate::camera_args::CameraArgs;
 
@@ -190,7 +191,7 @@ pub fn run(a: &TessellateArgs) -> anyhow::Result<ExitCode> {
             )
             .with_context(|| format!("{input}: evaluating the {name} DoI"))?;
             let t = a.threshold.unwrap_or(doi.default_threshold());
-            Some(subdiv_doi::depths_from_face_values(
+            Some(subdiv_depth::depths_from_face_values(
                 &values,
                 t,
                 a.adaptive.max_depth,

@@ -2,7 +2,7 @@
 //! uniform Loop refinement of the same mesh, as cost per output triangle.
 //!
 //! ```sh
-//! cargo run --release -p subdiv-doi --example bench_step [-- MESH.obj [REPEATS]]
+//! cargo run --release -p subdiv --example bench_step [-- MESH.obj [REPEATS]]
 //! ```
 //!
 //! Defaults to `../shared/meshes/tri_armadillo_52k.obj` relative to the repository root and
@@ -11,7 +11,8 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use subdiv_doi::{AdaptiveMesh, Aggregate, DoiContext, Silhouette, face_values, loop_step, select};
+use subdiv_doi::{Aggregate, DoiContext, Silhouette, face_values, select};
+use subdiv_loop::{AdaptiveMesh, loop_step};
 use subdiv_mesh::{Camera, ReadOptions, glam::Vec3, read_obj_with};
 use subdiv_rules::{Scheme, refine_uniform};
 
