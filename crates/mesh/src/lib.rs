@@ -6,6 +6,17 @@
 //! Properties are plain arrays indexed by typed handles ([`VertexId`], [`HalfedgeId`],
 //! [`EdgeId`], [`FaceId`]).
 //!
+//! Invariants of every [`Mesh`]:
+//! - **built only through validation**: [`Mesh::from_soup`] is the only constructor, and its
+//!   fields are private; afterwards the topology is fixed (the setters change positions,
+//!   sharpness, holes and groups only);
+//! - **edge-manifold**: every edge has one or two faces;
+//! - **vertex-manifold**: the faces around every vertex with faces form a single fan;
+//! - **consistently oriented**: two faces sharing an edge traverse it in opposite directions;
+//! - **explicit boundary half-edges**: every edge has two half-edges; the side without a face is
+//!   a boundary half-edge ([`FaceId::NONE`]), linked into closed boundary loops;
+//! - **properties as arrays indexed by handle**: `handle.idx()` indexes every per-element array.
+//!
 //! Meshes are built from a [`PolygonSoup`] — usually read from an OBJ file with OpenSubdiv's
 //! crease/corner/hole tags by [`read_obj`] — and every defect of the input is a [`MeshError`]
 //! naming the face, vertex or tag and its line.

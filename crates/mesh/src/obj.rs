@@ -106,122 +106,172 @@ pub fn parse_obj(text: &str) -> Result<PolygonSoup, MeshError> {
 }
 
 fn parse_tag(soup: &mut PolygonSoup, toks: Vec<&str>, line: u32) -> Result<(), MeshError> {
-    let perr = |msg: String| MeshError::Parse { line, msg };
-    let name = *toks
-        .first()
-        .ok_or_else(|| perr("tag without a name".into()))?;
-    let counts = toks
-        .get(1)
-        .ok_or_else(|| perr(format!("tag '{name}' without counts n/n/n")))?;
-    let c: Vec<usize> = counts
-        .split('/')
-        .map(|x| x.parse::<usize>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| perr(format!("tag '{name}': invalid counts '{counts}'")))?;
-    if c.len() != 3 {
-        return Err(perr(format!(
-            "tag '{name}': counts must be ints/floats/strings, got '{counts}'"
-        )));
-    }
-    let args = &toks[2..];
-    if args.len() != c[0] + c[1] + c[2] {
-        return Err(perr(format!(
-            "tag '{name}': counts {counts} announce {} arguments, found {}",
-            c[0] + c[1] + c[2],
-            args.len()
-        )));
-    }
-    let ints: Vec<i64> = args[..c[0]]
-        .iter()
-        .map(|t| {
-            t.parse::<i64>()
-                .map_err(|_| perr(format!("tag '{name}': invalid integer '{t}'")))
-        })
-        .collect::<Result<_, _>>()?;
-    let floats: Vec<f32> = args[c[0]..c[0] + c[1]]
-        .iter()
-        .map(|t| {
-            t.parse::<f32>()
-                .map_err(|_| perr(format!("tag '{name}': invalid number '{t}'")))
-        })
-        .collect::<Result<_, _>>()?;
-    let strings = &args[c[0] + c[1]..];
-    let line = Some(line);
-    match name {
-        "crease" => {
-            if ints.len() < 2 {
-                return Err(perr("crease tag needs at least two vertices".into()));
-            }
-            let edges = ints.len() - 1;
-            if floats.len() != 1 && floats.len() != edges {
-                return Err(perr(format!(
-                    "crease tag over {edges} edges needs 1 or {edges} sharpness values, found {}",
-                    floats.len()
-                )));
-            }
-            for k in 0..edges {
-                let s = if floats.len() == 1 {
-                    floats[0]
-                } else {
-                    floats[k]
-                };
-                soup.creases.push(CreaseTag {
-                    a: ints[k],
-                    b: ints[k + 1],
-                    sharpness: s,
-                    line,
-                });
-            }
-        }
-        "corner" => {
-            if floats.len() != 1 && floats.len() != ints.len() {
-                return Err(perr(format!(
-                    "corner tag over {} vertices needs 1 or {} sharpness values, found {}",
-                    ints.len(),
-                    ints.len(),
-                    floats.len()
-                )));
-            }
-            for (k, &v) in ints.iter().enumerate() {
-                let s = if floats.len() == 1 {
-                    floats[0]
-                } else {
-                    floats[k]
-                };
-                soup.corners.push(CornerTag {
-                    v,
-                    sharpness: s,
-                    line,
-                });
-            }
-        }
-        "hole" => soup.holes.extend(ints.iter().map(|&f| HoleTag { f, line })),
-        "interpolateboundary" => {
-            soup.options.boundary = match ints.first() {
-                Some(0) => BoundaryInterpolation::None,
-                Some(1) => BoundaryInterpolation::EdgeAndCorner,
-                Some(2) => BoundaryInterpolation::EdgeOnly,
-                other => {
-                    return Err(perr(format!(
-                        "interpolateboundary: expected 0, 1 or 2, got {other:?}"
-                    )));
-                }
-            }
-        }
-        "creasemethod" => {
-            soup.options.crease = match strings.first().copied() {
-                Some("chaikin") => CreaseMethod::Chaikin,
-                Some("uniform") | Some("normal") => CreaseMethod::Uniform,
-                other => {
-                    return Err(perr(format!(
-                        "creasemethod: expected chaikin or uniform, got {other:?}"
-                    )));
-                }
-            }
-        }
+    let args = TagArgs::parse(&toks, line)?;
+    match args.name {
+        "crease" => crease_tags(soup, &args, line)?,
+        "corner" => corner_tags(soup, &args, line)?,
+        "hole" => soup.holes.extend(args.ints.iter().map(|&f| HoleTag {
+            f,
+            line: Some(line),
+        })),
+        "interpolateboundary" => soup.options.boundary = boundary_option(&args, line)?,
+        "creasemethod" => soup.options.crease = crease_option(&args, line)?,
         _ => {}
     }
     Ok(())
+}
+
+fn perr(line: u32, msg: String) -> MeshError {
+    MeshError::Parse { line, msg }
+}
+
+/// A tag line `t name ni/nf/ns args..` with its arguments split by type.
+struct TagArgs<'a> {
+    name: &'a str,
+    ints: Vec<i64>,
+    floats: Vec<f32>,
+    strings: &'a [&'a str],
+}
+
+impl<'a> TagArgs<'a> {
+    /// Splits the tokens after `t`, checking the counts against the arguments and parsing the
+    /// integers and numbers (for every tag, known or not).
+    fn parse(toks: &'a [&'a str], line: u32) -> Result<TagArgs<'a>, MeshError> {
+        let name = *toks
+            .first()
+            .ok_or_else(|| perr(line, "tag without a name".into()))?;
+        let counts = toks
+            .get(1)
+            .ok_or_else(|| perr(line, format!("tag '{name}' without counts n/n/n")))?;
+        let c: Vec<usize> = counts
+            .split('/')
+            .map(|x| x.parse::<usize>())
+            .collect::<Result<_, _>>()
+            .map_err(|_| perr(line, format!("tag '{name}': invalid counts '{counts}'")))?;
+        if c.len() != 3 {
+            return Err(perr(
+                line,
+                format!("tag '{name}': counts must be ints/floats/strings, got '{counts}'"),
+            ));
+        }
+        let args = &toks[2..];
+        if args.len() != c[0] + c[1] + c[2] {
+            return Err(perr(
+                line,
+                format!(
+                    "tag '{name}': counts {counts} announce {} arguments, found {}",
+                    c[0] + c[1] + c[2],
+                    args.len()
+                ),
+            ));
+        }
+        let ints: Vec<i64> = args[..c[0]]
+            .iter()
+            .map(|t| {
+                t.parse::<i64>()
+                    .map_err(|_| perr(line, format!("tag '{name}': invalid integer '{t}'")))
+            })
+            .collect::<Result<_, _>>()?;
+        let floats: Vec<f32> = args[c[0]..c[0] + c[1]]
+            .iter()
+            .map(|t| {
+                t.parse::<f32>()
+                    .map_err(|_| perr(line, format!("tag '{name}': invalid number '{t}'")))
+            })
+            .collect::<Result<_, _>>()?;
+        Ok(TagArgs {
+            name,
+            ints,
+            floats,
+            strings: &args[c[0] + c[1]..],
+        })
+    }
+}
+
+/// `t crease`: a chain of vertices, one sharpness for all its edges or one per edge.
+fn crease_tags(soup: &mut PolygonSoup, args: &TagArgs<'_>, line: u32) -> Result<(), MeshError> {
+    let (ints, floats) = (&args.ints, &args.floats);
+    if ints.len() < 2 {
+        return Err(perr(line, "crease tag needs at least two vertices".into()));
+    }
+    let edges = ints.len() - 1;
+    if floats.len() != 1 && floats.len() != edges {
+        return Err(perr(
+            line,
+            format!(
+                "crease tag over {edges} edges needs 1 or {edges} sharpness values, found {}",
+                floats.len()
+            ),
+        ));
+    }
+    for k in 0..edges {
+        let s = if floats.len() == 1 {
+            floats[0]
+        } else {
+            floats[k]
+        };
+        soup.creases.push(CreaseTag {
+            a: ints[k],
+            b: ints[k + 1],
+            sharpness: s,
+            line: Some(line),
+        });
+    }
+    Ok(())
+}
+
+/// `t corner`: vertices, one sharpness for all or one per vertex.
+fn corner_tags(soup: &mut PolygonSoup, args: &TagArgs<'_>, line: u32) -> Result<(), MeshError> {
+    let (ints, floats) = (&args.ints, &args.floats);
+    if floats.len() != 1 && floats.len() != ints.len() {
+        return Err(perr(
+            line,
+            format!(
+                "corner tag over {} vertices needs 1 or {} sharpness values, found {}",
+                ints.len(),
+                ints.len(),
+                floats.len()
+            ),
+        ));
+    }
+    for (k, &v) in ints.iter().enumerate() {
+        let s = if floats.len() == 1 {
+            floats[0]
+        } else {
+            floats[k]
+        };
+        soup.corners.push(CornerTag {
+            v,
+            sharpness: s,
+            line: Some(line),
+        });
+    }
+    Ok(())
+}
+
+/// `t interpolateboundary k`: 0 none, 1 edge-and-corner, 2 edge-only.
+fn boundary_option(args: &TagArgs<'_>, line: u32) -> Result<BoundaryInterpolation, MeshError> {
+    match args.ints.first() {
+        Some(0) => Ok(BoundaryInterpolation::None),
+        Some(1) => Ok(BoundaryInterpolation::EdgeAndCorner),
+        Some(2) => Ok(BoundaryInterpolation::EdgeOnly),
+        other => Err(perr(
+            line,
+            format!("interpolateboundary: expected 0, 1 or 2, got {other:?}"),
+        )),
+    }
+}
+
+/// `t creasemethod chaikin|uniform` (`normal` is read as uniform).
+fn crease_option(args: &TagArgs<'_>, line: u32) -> Result<CreaseMethod, MeshError> {
+    match args.strings.first().copied() {
+        Some("chaikin") => Ok(CreaseMethod::Chaikin),
+        Some("uniform") | Some("normal") => Ok(CreaseMethod::Uniform),
+        other => Err(perr(
+            line,
+            format!("creasemethod: expected chaikin or uniform, got {other:?}"),
+        )),
+    }
 }
 
 /// Reads an OBJ file and builds a validated mesh.

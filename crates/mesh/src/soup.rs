@@ -1,5 +1,7 @@
 //! A polygon soup: the unvalidated input from which a [`Mesh`](crate::Mesh) is built.
 
+use std::collections::HashMap;
+
 use glam::Vec3;
 
 use crate::options::SchemeOptions;
@@ -132,22 +134,24 @@ impl PolygonSoup {
     /// refused by [`Mesh::from_soup`](crate::Mesh::from_soup); after this repair the surface is
     /// open at that point. Out-of-range indices are left for validation to report.
     pub fn split_nonmanifold_vertices(&mut self) -> Vec<(u32, u32)> {
-        use std::collections::HashMap;
-        let nv = self.positions.len() as i64;
-        let nc = self.face_indices.len();
         if self.face_offsets.len() < 2 {
             return Vec::new();
         }
-        // Union-find over face corners: two corners at the same vertex are in one fan when their
-        // faces share an edge at that vertex.
-        let mut parent: Vec<usize> = (0..nc).collect();
-        fn find(p: &mut [usize], mut x: usize) -> usize {
-            while p[x] != x {
-                p[x] = p[p[x]];
-                x = p[x];
-            }
-            x
+        let mut parent = self.corner_fans();
+        let (remap, created) = self.copy_extra_fans(&mut parent);
+        if created.is_empty() {
+            return created;
         }
+        self.retag_copies(&remap, &created);
+        self.face_indices = remap;
+        created
+    }
+
+    /// Union-find over face corners: two corners at the same vertex are in one fan when their
+    /// faces share an edge at that vertex. Returns the forest (`parent[corner]`).
+    fn corner_fans(&self) -> Vec<usize> {
+        let nc = self.face_indices.len();
+        let mut parent: Vec<usize> = (0..nc).collect();
         let mut seen: HashMap<(i64, i64), usize> = HashMap::with_capacity(nc * 2);
         for f in 0..self.num_faces() {
             let s = self.face_offsets[f] as usize;
@@ -161,7 +165,7 @@ impl PolygonSoup {
                 ] {
                     match seen.get(&(v, w)) {
                         Some(&o) => {
-                            let (a, b) = (find(&mut parent, o), find(&mut parent, c));
+                            let (a, b) = (find_root(&mut parent, o), find_root(&mut parent, c));
                             parent[a.max(b)] = a.min(b);
                         }
                         None => {
@@ -171,17 +175,24 @@ impl PolygonSoup {
                 }
             }
         }
-        // The fan holding a vertex's first corner keeps the vertex; other fans get copies.
+        parent
+    }
+
+    /// The fan holding a vertex's first corner keeps the vertex; every other fan gets a copy,
+    /// appended to the positions. Returns the face indices remapped to the copies and the
+    /// `(original, copy)` pairs. Out-of-range indices are left alone.
+    fn copy_extra_fans(&mut self, parent: &mut [usize]) -> (Vec<i64>, Vec<(u32, u32)>) {
+        let nv = self.positions.len() as i64;
         let mut owner: HashMap<i64, usize> = HashMap::new();
         let mut copy_of_root: HashMap<usize, i64> = HashMap::new();
         let mut created = Vec::new();
         let mut remap: Vec<i64> = self.face_indices.clone();
-        for c in 0..nc {
-            let v = self.face_indices[c];
+        for (c, slot) in remap.iter_mut().enumerate() {
+            let v = *slot;
             if v < 0 || v >= nv {
                 continue;
             }
-            let r = find(&mut parent, c);
+            let r = find_root(parent, c);
             let first = *owner.entry(v).or_insert(r);
             if first == r {
                 continue;
@@ -195,12 +206,14 @@ impl PolygonSoup {
                 created.push((v as u32, id as u32));
                 id
             });
-            remap[c] = nvid;
+            *slot = nvid;
         }
-        if created.is_empty() {
-            return created;
-        }
-        // Crease tags: find the copies that now carry each tagged edge.
+        (remap, created)
+    }
+
+    /// Crease tags follow their edge to the copies that now carry it (`remap` is the new face
+    /// indices); corner tags are repeated on every copy of their vertex.
+    fn retag_copies(&mut self, remap: &[i64], created: &[(u32, u32)]) {
         let mut edge_map: HashMap<(i64, i64), (i64, i64)> = HashMap::new();
         for f in 0..self.num_faces() {
             let s = self.face_offsets[f] as usize;
@@ -220,16 +233,23 @@ impl PolygonSoup {
         }
         let mut extra = Vec::new();
         for t in &self.corners {
-            for &(o, n) in &created {
+            for &(o, n) in created {
                 if t.v == o as i64 {
                     extra.push(CornerTag { v: n as i64, ..*t });
                 }
             }
         }
         self.corners.extend(extra);
-        self.face_indices = remap;
-        created
     }
+}
+
+/// The root of `x` in a union-find forest, halving the path on the way.
+fn find_root(p: &mut [usize], mut x: usize) -> usize {
+    while p[x] != x {
+        p[x] = p[p[x]];
+        x = p[x];
+    }
+    x
 }
 
 impl PolygonSoup {

@@ -1,0 +1,113 @@
+//! Step 5: sharpness and tags. Applies the soup's crease, corner and hole tags (refusing tags
+//! that name missing elements or carry invalid sharpness), then sharpens the boundary as
+//! OpenSubdiv does before refinement.
+
+use std::collections::HashMap;
+
+use crate::error::MeshError;
+use crate::handle::{EdgeId, VertexId};
+use crate::mesh::Mesh;
+use crate::options::{BoundaryInterpolation, SHARPNESS_INFINITE};
+use crate::soup::PolygonSoup;
+
+/// Applies crease, then corner, then hole tags, in that order; `edge_map` maps a `(min, max)`
+/// vertex pair to its edge.
+pub(super) fn apply_tags(
+    mesh: &mut Mesh,
+    soup: &PolygonSoup,
+    edge_map: &HashMap<(u32, u32), u32>,
+) -> Result<(), MeshError> {
+    apply_creases(mesh, soup, edge_map)?;
+    apply_corners(mesh, soup)?;
+    apply_holes(mesh, soup)
+}
+
+/// `s` clamped to [`SHARPNESS_INFINITE`], or the error if it is NaN, infinite or negative.
+fn valid_sharpness(tag: &'static str, s: f32, line: Option<u32>) -> Result<f32, MeshError> {
+    if s.is_finite() && s >= 0.0 {
+        Ok(s.min(SHARPNESS_INFINITE))
+    } else {
+        Err(MeshError::BadSharpness {
+            tag,
+            value: s,
+            line,
+        })
+    }
+}
+
+fn apply_creases(
+    mesh: &mut Mesh,
+    soup: &PolygonSoup,
+    edge_map: &HashMap<(u32, u32), u32>,
+) -> Result<(), MeshError> {
+    let nv = mesh.num_vertices() as u32;
+    for t in &soup.creases {
+        let s = valid_sharpness("crease", t.sharpness, t.line)?;
+        for &x in &[t.a, t.b] {
+            if x < 0 || x >= nv as i64 {
+                return Err(MeshError::TagMissingVertex {
+                    tag: "crease",
+                    vertex: x,
+                    count: nv,
+                    line: t.line,
+                });
+            }
+        }
+        let (a, b) = (t.a as u32, t.b as u32);
+        match edge_map.get(&(a.min(b), a.max(b))) {
+            Some(&e) => mesh.edge_sharpness[e as usize] = s,
+            None => return Err(MeshError::TagMissingEdge { a, b, line: t.line }),
+        }
+    }
+    Ok(())
+}
+
+fn apply_corners(mesh: &mut Mesh, soup: &PolygonSoup) -> Result<(), MeshError> {
+    let nv = mesh.num_vertices() as u32;
+    for t in &soup.corners {
+        let s = valid_sharpness("corner", t.sharpness, t.line)?;
+        if t.v < 0 || t.v >= nv as i64 {
+            return Err(MeshError::TagMissingVertex {
+                tag: "corner",
+                vertex: t.v,
+                count: nv,
+                line: t.line,
+            });
+        }
+        mesh.vertex_sharpness[t.v as usize] = s;
+    }
+    Ok(())
+}
+
+fn apply_holes(mesh: &mut Mesh, soup: &PolygonSoup) -> Result<(), MeshError> {
+    let nf = mesh.num_faces();
+    for t in &soup.holes {
+        if t.f < 0 || t.f >= nf as i64 {
+            return Err(MeshError::TagMissingFace {
+                face: t.f,
+                count: nf as u32,
+                line: t.line,
+            });
+        }
+        mesh.face_hole[t.f as usize] = true;
+    }
+    Ok(())
+}
+
+/// Boundary edges become infinitely sharp; with [`BoundaryInterpolation::EdgeAndCorner`] so do
+/// boundary vertices with a single face (`corner_count` is the number of faces per vertex).
+pub(super) fn sharpen_boundary(mesh: &mut Mesh, corner_count: &[u32]) {
+    for e in 0..mesh.num_edges() {
+        if mesh.is_boundary_edge(EdgeId(e as u32)) {
+            mesh.edge_sharpness[e] = SHARPNESS_INFINITE;
+        }
+    }
+    if mesh.options.boundary == BoundaryInterpolation::EdgeAndCorner {
+        for v in 0..mesh.num_vertices() as u32 {
+            let vid = VertexId(v);
+            if mesh.is_boundary_vertex(vid) && corner_count[v as usize] == 1 {
+                mesh.vertex_sharpness[v as usize] = SHARPNESS_INFINITE;
+            }
+        }
+    }
+}
