@@ -180,23 +180,7 @@ impl Gpu {
             .copied()
             .unwrap_or_default();
         let device = &self.ctx.device;
-        // SAFETY: the slot's previous submission completed (its fence was waited
-        // on above), so the fence may be reset and the GPU no longer reads its
-        // command buffer, target or mesh buffer; `cmd` comes from a pool created
-        // with RESET_COMMAND_BUFFER.
-        unsafe {
-            device.reset_fences(&[fence]).call("vkResetFences")?;
-            device
-                .reset_command_buffer(cmd, vk::CommandBufferResetFlags::empty())
-                .call("vkResetCommandBuffer")?;
-            device
-                .begin_command_buffer(
-                    cmd,
-                    &vk::CommandBufferBeginInfo::default()
-                        .flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT),
-                )
-                .call("vkBeginCommandBuffer")?;
-        }
+        begin_commands(device, fence, cmd)?;
         frame::record(
             device,
             cmd,
@@ -215,36 +199,8 @@ impl Gpu {
             },
         );
         record_blit(device, cmd, target.color.raw, swap_image, extent);
-        let waits = [vk::SemaphoreSubmitInfo::default()
-            .semaphore(acquired)
-            .stage_mask(vk::PipelineStageFlags2::ALL_TRANSFER)];
-        let signals = [vk::SemaphoreSubmitInfo::default()
-            .semaphore(rendered)
-            .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
-        let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
-        let submit = [vk::SubmitInfo2::default()
-            .wait_semaphore_infos(&waits)
-            .command_buffer_infos(&cmds)
-            .signal_semaphore_infos(&signals)];
-        let swapchains = [swapchain.raw];
-        let indices = [image_index];
-        let wait_present = [rendered];
-        let present = vk::PresentInfoKHR::default()
-            .wait_semaphores(&wait_present)
-            .swapchains(&swapchains)
-            .image_indices(&indices);
-        // SAFETY: `cmd` is fully recorded and ends here; `fence` was reset above
-        // and is unsignalled; `acquired` is signalled by the acquire above and
-        // waited on by this submission; `rendered` belongs to the acquired image
-        // and is signalled here and waited on by its presentation; the queue is
-        // used from this thread only.
-        let presented = unsafe {
-            device.end_command_buffer(cmd).call("vkEndCommandBuffer")?;
-            device
-                .queue_submit2(self.ctx.queue, &submit, fence)
-                .call("vkQueueSubmit2")?;
-            self.loader.queue_present(self.ctx.queue, &present)
-        };
+        let presented =
+            self.submit_and_present(cmd, fence, (acquired, rendered), swapchain.raw, image_index)?;
         match presented {
             Ok(suboptimal) => self.swapchain_dirty |= suboptimal,
             Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => self.swapchain_dirty = true,
@@ -294,6 +250,49 @@ impl Gpu {
         }
     }
 
+    /// Submits `cmd` (waiting on `acquired`, signalling `rendered` and
+    /// `fence`) and presents image `image_index`; returns the present result.
+    fn submit_and_present(
+        &self,
+        cmd: vk::CommandBuffer,
+        fence: vk::Fence,
+        (acquired, rendered): (vk::Semaphore, vk::Semaphore),
+        swapchain: vk::SwapchainKHR,
+        image_index: u32,
+    ) -> Result<std::result::Result<bool, vk::Result>> {
+        let device = &self.ctx.device;
+        let waits = [vk::SemaphoreSubmitInfo::default()
+            .semaphore(acquired)
+            .stage_mask(vk::PipelineStageFlags2::ALL_TRANSFER)];
+        let signals = [vk::SemaphoreSubmitInfo::default()
+            .semaphore(rendered)
+            .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
+        let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
+        let submit = [vk::SubmitInfo2::default()
+            .wait_semaphore_infos(&waits)
+            .command_buffer_infos(&cmds)
+            .signal_semaphore_infos(&signals)];
+        let swapchains = [swapchain];
+        let indices = [image_index];
+        let wait_present = [rendered];
+        let present = vk::PresentInfoKHR::default()
+            .wait_semaphores(&wait_present)
+            .swapchains(&swapchains)
+            .image_indices(&indices);
+        // SAFETY: `cmd` is fully recorded and ends here; `fence` was reset by
+        // `begin_commands` and is unsignalled; `acquired` is signalled by the
+        // acquire of this frame and waited on by this submission; `rendered`
+        // belongs to the acquired image and is signalled here and waited on by
+        // its presentation; the queue is used from this thread only.
+        unsafe {
+            device.end_command_buffer(cmd).call("vkEndCommandBuffer")?;
+            device
+                .queue_submit2(self.ctx.queue, &submit, fence)
+                .call("vkQueueSubmit2")?;
+            Ok(self.loader.queue_present(self.ctx.queue, &present))
+        }
+    }
+
     /// Gives slot `index` a target of `extent` and uploads the frame's mesh
     /// (only the part after the vertices when the slot still holds them);
     /// returns the mesh buffer. The slot's fence has been waited on.
@@ -328,6 +327,28 @@ impl Gpu {
         slot.vertex_version = packed.vertex_version;
         Ok(mesh_buffer)
     }
+}
+
+/// Resets the slot's fence and command buffer and begins recording.
+fn begin_commands(device: &ash::Device, fence: vk::Fence, cmd: vk::CommandBuffer) -> Result<()> {
+    // SAFETY: the slot's previous submission completed (`draw` waited on its
+    // fence), so the fence may be reset and the GPU no longer reads its command
+    // buffer, target or mesh buffer; `cmd` comes from a pool created with
+    // RESET_COMMAND_BUFFER.
+    unsafe {
+        device.reset_fences(&[fence]).call("vkResetFences")?;
+        device
+            .reset_command_buffer(cmd, vk::CommandBufferResetFlags::empty())
+            .call("vkResetCommandBuffer")?;
+        device
+            .begin_command_buffer(
+                cmd,
+                &vk::CommandBufferBeginInfo::default()
+                    .flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT),
+            )
+            .call("vkBeginCommandBuffer")?;
+    }
+    Ok(())
 }
 
 /// A command buffer, a signalled fence and a semaphore for one frame in flight.
