@@ -96,8 +96,9 @@ impl Buffer {
 
     pub fn destroy(&mut self, ctx: &mut Context) {
         // SAFETY: the buffer was created by this device, and the owner calls this
-        // only after the GPU finished with it (fence waited or device idle); the
-        // handle is nulled below so it is destroyed once.
+        // only after the GPU finished with it (fence waited or device idle) or
+        // when it was never used (`new` failing); the handle is nulled below so
+        // it is destroyed once.
         unsafe { ctx.device.destroy_buffer(self.raw, None) };
         self.raw = vk::Buffer::null();
         if let Some(a) = self.allocation.take() {
@@ -202,7 +203,8 @@ impl Image {
     pub fn destroy(&mut self, ctx: &mut Context) {
         // SAFETY: the image and view were created by this device, and the owner
         // calls this only after the GPU finished with them (fence waited or
-        // device idle); the handles are nulled below so they are destroyed once.
+        // device idle) or when they were never used (`new` failing); the handles
+        // are nulled below so they are destroyed once.
         unsafe {
             if self.view != vk::ImageView::null() {
                 ctx.device.destroy_image_view(self.view, None);

@@ -229,7 +229,9 @@ impl Gpu {
         // SAFETY: `swapchain_raw` is this loader's current swapchain (`draw`
         // read its extent); `acquired` has no pending operation: its last wait
         // was in this slot's previous submission, which completed when the
-        // slot's fence signalled (waited on by `draw` just before).
+        // slot's fence signalled (waited on by `draw` just before). An error
+        // between this acquire and the submit would leave it signalled, but
+        // every error from `draw` ends the viewer.
         let acquire = unsafe {
             self.loader
                 .acquire_next_image(swapchain_raw, u64::MAX, acquired, vk::Fence::null())
