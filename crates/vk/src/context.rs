@@ -121,7 +121,8 @@ pub(crate) struct Context {
 }
 
 fn layer_available(entry: &ash::Entry, name: &CStr) -> Result<bool> {
-    // SAFETY: plain enumeration call on a loaded entry.
+    // SAFETY: `entry` holds a loaded Vulkan library; enumerating layers needs no
+    // instance and has no other preconditions.
     let layers = unsafe { entry.enumerate_instance_layer_properties() }
         .call("vkEnumerateInstanceLayerProperties")?;
     Ok(layers
@@ -139,91 +140,25 @@ impl Context {
         instance_extensions: &[*const c_char],
         surface: Option<SurfaceFactory<'_>>,
     ) -> Result<Self> {
-        // SAFETY: loading the Vulkan library runs its initialisers; that is the
-        // documented contract of a Vulkan loader.
-        let entry = unsafe {
-            match &options.library_path {
-                Some(path) => ash::Entry::load_from(path),
-                None => ash::Entry::load(),
-            }
-        }
-        .map_err(|e| VkError::LoaderMissing {
-            detail: e.to_string(),
-        })?;
-
-        let want_validation = match options.validation {
-            Validation::Off => false,
-            Validation::FromEnv => {
-                let on = std::env::var(VALIDATION_ENV).is_ok_and(|v| v == "1");
-                if on && !layer_available(&entry, VALIDATION_LAYER)? {
-                    return Err(VkError::ValidationLayerMissing);
-                }
-                on
-            }
-            Validation::IfAvailable => layer_available(&entry, VALIDATION_LAYER)?,
-            Validation::Required => {
-                if !layer_available(&entry, VALIDATION_LAYER)? {
-                    return Err(VkError::ValidationLayerMissing);
-                }
-                true
-            }
-        };
-
-        let app_name = CString::from(c"subdiv");
-        let app_info = vk::ApplicationInfo::default()
-            .application_name(&app_name)
-            .application_version(1)
-            .engine_name(&app_name)
-            .engine_version(1)
-            .api_version(vk::API_VERSION_1_3);
-        let mut extensions: Vec<*const c_char> = instance_extensions.to_vec();
-        let mut layers: Vec<*const c_char> = Vec::new();
-        if want_validation {
-            extensions.push(ext::debug_utils::NAME.as_ptr());
-            layers.push(VALIDATION_LAYER.as_ptr());
-        }
+        let entry = load_entry(options)?;
+        let want_validation = validation_wanted(&entry, options.validation)?;
         let log = ValidationLog::default();
-        let user_data = Arc::as_ptr(&log.0) as *mut c_void;
-        let mut messenger_info = vk::DebugUtilsMessengerCreateInfoEXT::default()
-            .message_severity(
-                vk::DebugUtilsMessageSeverityFlagsEXT::WARNING
-                    | vk::DebugUtilsMessageSeverityFlagsEXT::ERROR,
-            )
-            .message_type(
-                vk::DebugUtilsMessageTypeFlagsEXT::GENERAL
-                    | vk::DebugUtilsMessageTypeFlagsEXT::VALIDATION
-                    | vk::DebugUtilsMessageTypeFlagsEXT::PERFORMANCE,
-            )
-            .pfn_user_callback(Some(debug_callback))
-            .user_data(user_data);
-        let mut create_info = vk::InstanceCreateInfo::default()
-            .application_info(&app_info)
-            .enabled_extension_names(&extensions)
-            .enabled_layer_names(&layers);
-        if want_validation {
-            create_info = create_info.push_next(&mut messenger_info);
-        }
-        // SAFETY: all pointers in create_info live until the call returns.
-        let instance =
-            unsafe { entry.create_instance(&create_info, None) }.map_err(
-                |result| match result {
-                    vk::Result::ERROR_INCOMPATIBLE_DRIVER
-                    | vk::Result::ERROR_INITIALIZATION_FAILED => VkError::NoDriver {
-                        detail: format!("vkCreateInstance: {result}"),
-                    },
-                    result => VkError::Vulkan {
-                        call: "vkCreateInstance",
-                        result,
-                    },
-                },
-            )?;
+        let mut messenger_info = messenger_info(&log);
+        let instance = create_instance(
+            &entry,
+            instance_extensions,
+            want_validation,
+            &mut messenger_info,
+        )?;
 
         // From here on, a partially built context is cleaned up by `Partial`.
         let mut partial = Partial::default();
         partial.instance = Some(instance.clone());
         if want_validation {
             let du = ext::debug_utils::Instance::new(&entry, &instance);
-            // SAFETY: valid instance with debug_utils enabled.
+            // SAFETY: the instance is live and was created with debug_utils
+            // enabled; the callback's user data is the log's mutex, kept alive
+            // by `log`, which the context owns until after the messenger is gone.
             let messenger = unsafe { du.create_debug_utils_messenger(&messenger_info, None) }
                 .call("vkCreateDebugUtilsMessengerEXT")?;
             partial.debug = Some((du, messenger));
@@ -234,30 +169,10 @@ impl Context {
         }
 
         let chosen = pick_device(&instance, partial.surface.as_ref())?;
-        let priorities = [1.0f32];
-        let queue_infos = [vk::DeviceQueueCreateInfo::default()
-            .queue_family_index(chosen.queue_family)
-            .queue_priorities(&priorities)];
-        let features = vk::PhysicalDeviceFeatures::default()
-            .wide_lines(chosen.wide_lines)
-            .independent_blend(true);
-        let mut features13 = vk::PhysicalDeviceVulkan13Features::default()
-            .dynamic_rendering(true)
-            .synchronization2(true);
-        let mut device_extensions: Vec<*const c_char> = Vec::new();
-        if partial.surface.is_some() {
-            device_extensions.push(khr::swapchain::NAME.as_ptr());
-        }
-        let device_info = vk::DeviceCreateInfo::default()
-            .queue_create_infos(&queue_infos)
-            .enabled_features(&features)
-            .enabled_extension_names(&device_extensions)
-            .push_next(&mut features13);
-        // SAFETY: physical device from this instance; create info lives through the call.
-        let device = unsafe { instance.create_device(chosen.physical, &device_info, None) }
-            .call("vkCreateDevice")?;
+        let device = create_device(&instance, &chosen, partial.surface.is_some())?;
         partial.device = Some(device.clone());
-        // SAFETY: queue family/index were requested above.
+        // SAFETY: the device was created with one queue of `chosen.queue_family`,
+        // so queue index 0 of that family exists.
         let queue = unsafe { device.get_device_queue(chosen.queue_family, 0) };
         let allocator = Allocator::new(&AllocatorCreateDesc {
             instance: instance.clone(),
@@ -313,6 +228,134 @@ impl Context {
     }
 }
 
+/// Opens the Vulkan loader library (the system's, or `options.library_path`).
+fn load_entry(options: &ContextOptions) -> Result<ash::Entry> {
+    // SAFETY: loading runs the library's initialisers and trusts it to be a
+    // conforming Vulkan loader: the system's `libvulkan.so.1` is one, and
+    // `library_path` is documented as a Vulkan loader to open instead.
+    unsafe {
+        match &options.library_path {
+            Some(path) => ash::Entry::load_from(path),
+            None => ash::Entry::load(),
+        }
+    }
+    .map_err(|e| VkError::LoaderMissing {
+        detail: e.to_string(),
+    })
+}
+
+/// Whether to enable the validation layer under `policy`; an error when the
+/// policy requires a layer that is not installed.
+fn validation_wanted(entry: &ash::Entry, policy: Validation) -> Result<bool> {
+    Ok(match policy {
+        Validation::Off => false,
+        Validation::FromEnv => {
+            let on = std::env::var(VALIDATION_ENV).is_ok_and(|v| v == "1");
+            if on && !layer_available(entry, VALIDATION_LAYER)? {
+                return Err(VkError::ValidationLayerMissing);
+            }
+            on
+        }
+        Validation::IfAvailable => layer_available(entry, VALIDATION_LAYER)?,
+        Validation::Required => {
+            if !layer_available(entry, VALIDATION_LAYER)? {
+                return Err(VkError::ValidationLayerMissing);
+            }
+            true
+        }
+    })
+}
+
+/// The debug messenger (warnings and errors into `log`), also chained into
+/// instance creation so that creation itself is validated.
+fn messenger_info(log: &ValidationLog) -> vk::DebugUtilsMessengerCreateInfoEXT<'static> {
+    let user_data = Arc::as_ptr(&log.0) as *mut c_void;
+    vk::DebugUtilsMessengerCreateInfoEXT::default()
+        .message_severity(
+            vk::DebugUtilsMessageSeverityFlagsEXT::WARNING
+                | vk::DebugUtilsMessageSeverityFlagsEXT::ERROR,
+        )
+        .message_type(
+            vk::DebugUtilsMessageTypeFlagsEXT::GENERAL
+                | vk::DebugUtilsMessageTypeFlagsEXT::VALIDATION
+                | vk::DebugUtilsMessageTypeFlagsEXT::PERFORMANCE,
+        )
+        .pfn_user_callback(Some(debug_callback))
+        .user_data(user_data)
+}
+
+/// A Vulkan 1.3 instance with `instance_extensions`, plus debug_utils and the
+/// validation layer when `validation`.
+fn create_instance(
+    entry: &ash::Entry,
+    instance_extensions: &[*const c_char],
+    validation: bool,
+    messenger_info: &mut vk::DebugUtilsMessengerCreateInfoEXT<'static>,
+) -> Result<ash::Instance> {
+    let app_name = CString::from(c"subdiv");
+    let app_info = vk::ApplicationInfo::default()
+        .application_name(&app_name)
+        .application_version(1)
+        .engine_name(&app_name)
+        .engine_version(1)
+        .api_version(vk::API_VERSION_1_3);
+    let mut extensions: Vec<*const c_char> = instance_extensions.to_vec();
+    let mut layers: Vec<*const c_char> = Vec::new();
+    if validation {
+        extensions.push(ext::debug_utils::NAME.as_ptr());
+        layers.push(VALIDATION_LAYER.as_ptr());
+    }
+    let mut create_info = vk::InstanceCreateInfo::default()
+        .application_info(&app_info)
+        .enabled_extension_names(&extensions)
+        .enabled_layer_names(&layers);
+    if validation {
+        create_info = create_info.push_next(messenger_info);
+    }
+    // SAFETY: every pointer in `create_info` (names, extension and layer
+    // strings, the chained messenger info) lives until the call returns; the
+    // extension names are NUL-terminated static strings.
+    unsafe { entry.create_instance(&create_info, None) }.map_err(|result| match result {
+        vk::Result::ERROR_INCOMPATIBLE_DRIVER | vk::Result::ERROR_INITIALIZATION_FAILED => {
+            VkError::NoDriver {
+                detail: format!("vkCreateInstance: {result}"),
+            }
+        }
+        result => VkError::Vulkan {
+            call: "vkCreateInstance",
+            result,
+        },
+    })
+}
+
+/// A device with one queue of `chosen.queue_family`, dynamic rendering and
+/// synchronization2, and the swapchain extension when presenting.
+fn create_device(instance: &ash::Instance, chosen: &Chosen, present: bool) -> Result<ash::Device> {
+    let priorities = [1.0f32];
+    let queue_infos = [vk::DeviceQueueCreateInfo::default()
+        .queue_family_index(chosen.queue_family)
+        .queue_priorities(&priorities)];
+    let features = vk::PhysicalDeviceFeatures::default()
+        .wide_lines(chosen.wide_lines)
+        .independent_blend(true);
+    let mut features13 = vk::PhysicalDeviceVulkan13Features::default()
+        .dynamic_rendering(true)
+        .synchronization2(true);
+    let mut device_extensions: Vec<*const c_char> = Vec::new();
+    if present {
+        device_extensions.push(khr::swapchain::NAME.as_ptr());
+    }
+    let device_info = vk::DeviceCreateInfo::default()
+        .queue_create_infos(&queue_infos)
+        .enabled_features(&features)
+        .enabled_extension_names(&device_extensions)
+        .push_next(&mut features13);
+    // SAFETY: `chosen.physical` was enumerated from this instance and supports
+    // every requested feature (checked by `pick_device`); the create info and
+    // its chain live through the call.
+    unsafe { instance.create_device(chosen.physical, &device_info, None) }.call("vkCreateDevice")
+}
+
 impl Drop for Context {
     fn drop(&mut self) {
         // SAFETY: everything created from this device has been destroyed by its
@@ -346,7 +389,9 @@ struct Partial {
 
 impl Drop for Partial {
     fn drop(&mut self) {
-        // SAFETY: objects were created from these handles and are not used elsewhere.
+        // SAFETY: each object was created from the handles stored next to it and
+        // is owned by this guard alone (nothing was submitted to the device yet);
+        // children go before parents: device, surface, messenger, instance.
         unsafe {
             if let Some(device) = self.device.take() {
                 device.destroy_device(None);
@@ -376,7 +421,7 @@ fn pick_device(
     instance: &ash::Instance,
     surface: Option<&(khr::surface::Instance, vk::SurfaceKHR)>,
 ) -> Result<Chosen> {
-    // SAFETY: valid instance.
+    // SAFETY: the instance is live; enumeration has no other preconditions.
     let devices =
         unsafe { instance.enumerate_physical_devices() }.map_err(|result| match result {
             vk::Result::ERROR_INITIALIZATION_FAILED => VkError::NoDriver {
@@ -396,7 +441,7 @@ fn pick_device(
     let mut found = Vec::new();
     let mut best: Option<(u32, Chosen)> = None;
     for physical in devices {
-        // SAFETY: physical device handle from this instance.
+        // SAFETY: `physical` was just enumerated from this live instance.
         let props = unsafe { instance.get_physical_device_properties(physical) };
         let name = props
             .device_name_as_c_str()
@@ -409,43 +454,10 @@ fn pick_device(
             vk::api_version_minor(version),
             vk::api_version_patch(version)
         ));
-        if vk::api_version_major(version) < 1
-            || (vk::api_version_major(version) == 1 && vk::api_version_minor(version) < 3)
-        {
+        let Some((queue_family, wide_lines)) = suitable(instance, physical, version, surface)?
+        else {
             continue;
-        }
-        let mut f13 = vk::PhysicalDeviceVulkan13Features::default();
-        let mut f2 = vk::PhysicalDeviceFeatures2::default().push_next(&mut f13);
-        // SAFETY: as above; the chain lives through the call.
-        unsafe { instance.get_physical_device_features2(physical, &mut f2) };
-        let wide_lines = f2.features.wide_lines == vk::TRUE;
-        let independent_blend = f2.features.independent_blend == vk::TRUE;
-        if f13.dynamic_rendering != vk::TRUE
-            || f13.synchronization2 != vk::TRUE
-            || !independent_blend
-        {
-            continue;
-        }
-        // SAFETY: as above.
-        let families = unsafe { instance.get_physical_device_queue_family_properties(physical) };
-        let mut family = None;
-        for (i, f) in families.iter().enumerate() {
-            let Ok(i) = u32::try_from(i) else { continue };
-            if !f.queue_flags.contains(vk::QueueFlags::GRAPHICS) {
-                continue;
-            }
-            if let Some((loader, raw)) = surface {
-                // SAFETY: surface and device from this instance.
-                let ok = unsafe { loader.get_physical_device_surface_support(physical, i, *raw) }
-                    .call("vkGetPhysicalDeviceSurfaceSupportKHR")?;
-                if !ok {
-                    continue;
-                }
-            }
-            family = Some(i);
-            break;
-        }
-        let Some(queue_family) = family else { continue };
+        };
         let mut score = match props.device_type {
             vk::PhysicalDeviceType::DISCRETE_GPU => 4,
             vk::PhysicalDeviceType::INTEGRATED_GPU => 3,
@@ -474,9 +486,65 @@ fn pick_device(
         })
 }
 
+/// `Some((queue family, wide lines))` if `physical` has Vulkan 1.3 with
+/// dynamic rendering, synchronization2 and independent blend, and a graphics
+/// queue family (that can present to `surface`, if given).
+fn suitable(
+    instance: &ash::Instance,
+    physical: vk::PhysicalDevice,
+    version: u32,
+    surface: Option<&(khr::surface::Instance, vk::SurfaceKHR)>,
+) -> Result<Option<(u32, bool)>> {
+    if vk::api_version_major(version) < 1
+        || (vk::api_version_major(version) == 1 && vk::api_version_minor(version) < 3)
+    {
+        return Ok(None);
+    }
+    let mut f13 = vk::PhysicalDeviceVulkan13Features::default();
+    let mut f2 = vk::PhysicalDeviceFeatures2::default().push_next(&mut f13);
+    // SAFETY: `physical` comes from this live instance, which supports Vulkan
+    // 1.3 (so vkGetPhysicalDeviceFeatures2 exists); the chain lives through the call.
+    unsafe { instance.get_physical_device_features2(physical, &mut f2) };
+    let wide_lines = f2.features.wide_lines == vk::TRUE;
+    let independent_blend = f2.features.independent_blend == vk::TRUE;
+    if f13.dynamic_rendering != vk::TRUE || f13.synchronization2 != vk::TRUE || !independent_blend {
+        return Ok(None);
+    }
+    Ok(queue_family(instance, physical, surface)?.map(|family| (family, wide_lines)))
+}
+
+/// The first graphics queue family of `physical` (that can present to
+/// `surface`, if given).
+fn queue_family(
+    instance: &ash::Instance,
+    physical: vk::PhysicalDevice,
+    surface: Option<&(khr::surface::Instance, vk::SurfaceKHR)>,
+) -> Result<Option<u32>> {
+    // SAFETY: `physical` comes from this live instance.
+    let families = unsafe { instance.get_physical_device_queue_family_properties(physical) };
+    for (i, f) in families.iter().enumerate() {
+        let Ok(i) = u32::try_from(i) else { continue };
+        if !f.queue_flags.contains(vk::QueueFlags::GRAPHICS) {
+            continue;
+        }
+        if let Some((loader, raw)) = surface {
+            // SAFETY: the surface and the physical device both come from this
+            // live instance, and `i` is one of the device's queue families.
+            let ok = unsafe { loader.get_physical_device_surface_support(physical, i, *raw) }
+                .call("vkGetPhysicalDeviceSurfaceSupportKHR")?;
+            if !ok {
+                continue;
+            }
+        }
+        return Ok(Some(i));
+    }
+    Ok(None)
+}
+
 fn pick_depth_format(instance: &ash::Instance, physical: vk::PhysicalDevice) -> vk::Format {
     for format in [vk::Format::D32_SFLOAT, vk::Format::X8_D24_UNORM_PACK32] {
-        // SAFETY: valid handles.
+        // SAFETY: `physical` was enumerated from this live instance; querying
+        // format properties has no other preconditions.
         let props = unsafe { instance.get_physical_device_format_properties(physical, format) };
         if props
             .optimal_tiling_features

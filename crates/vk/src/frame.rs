@@ -203,7 +203,25 @@ pub(crate) struct FrameInputs<'a> {
 
 /// Records one frame. Afterwards the colour image is in `TRANSFER_SRC_OPTIMAL`
 /// layout and the requested readback copies are recorded and made host-visible.
+///
+/// `cmd` must be in the recording state; every handle in `f` must belong to
+/// `device` and stay alive until the submission completes (the callers wait
+/// on a fence before reusing or destroying any of them).
 pub(crate) fn record(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_>) {
+    begin_rendering(device, cmd, f);
+    draw_triangles(device, cmd, f);
+    draw_lines(device, cmd, f);
+    // SAFETY: `cmd` is recording inside the render pass begun by `begin_rendering`.
+    unsafe { device.cmd_end_rendering(cmd) };
+    to_transfer_source(device, cmd, f);
+    if f.readback != Readback::None {
+        copy_to_readback(device, cmd, f);
+    }
+}
+
+/// Moves the attachments into their attachment layouts and begins rendering
+/// to them (cleared), with viewport and scissor covering the target.
+fn begin_rendering(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_>) {
     let t = f.target;
     let color_aspect = vk::ImageAspectFlags::COLOR;
     let attach_stage = vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT;
@@ -278,11 +296,9 @@ pub(crate) fn record(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInpu
         min_depth: 0.0,
         max_depth: 1.0,
     };
-    let l = f.layout;
-    let p = f.pipelines;
-    let stages = vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT;
-    // SAFETY: `cmd` is in the recording state; all handles belong to `device`
-    // and outlive the submission (guaranteed by the callers' fences).
+    // SAFETY: `cmd` is recording (see `record`); the target's images and views
+    // belong to `device` and outlive the submission; the barriers move them
+    // into the layouts the attachment infos name.
     unsafe {
         device.cmd_pipeline_barrier2(
             cmd,
@@ -291,28 +307,48 @@ pub(crate) fn record(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInpu
         device.cmd_begin_rendering(cmd, &rendering);
         device.cmd_set_viewport(cmd, 0, &[viewport]);
         device.cmd_set_scissor(cmd, 0, &[area]);
-        if l.tri_count > 0 {
-            let pipeline = if f.options.shading == scene::Shading::Wire {
-                p.fill_depth_only
-            } else {
-                p.fill
-            };
-            device.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::GRAPHICS, pipeline);
-            let push = scene::mesh_push_constants(f.view, f.options, l);
-            device.cmd_push_constants(cmd, p.layout, stages, 0, &push);
-            device.cmd_bind_vertex_buffers(cmd, 0, &[f.mesh_buffer], &[l.tri_vertices]);
-            if l.tri_indexed {
-                device.cmd_bind_index_buffer(
-                    cmd,
-                    f.mesh_buffer,
-                    l.tri_indices,
-                    vk::IndexType::UINT32,
-                );
-                device.cmd_draw_indexed(cmd, l.tri_count * 3, 1, 0, 0, 0);
-            } else {
-                device.cmd_draw(cmd, l.tri_count * 3, 1, 0, 0);
-            }
+    }
+}
+
+/// Draws the triangles (shaded, or depth and auxiliary targets only for
+/// [`scene::Shading::Wire`]).
+fn draw_triangles(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_>) {
+    let l = f.layout;
+    let p = f.pipelines;
+    let stages = vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT;
+    if l.tri_count == 0 {
+        return;
+    }
+    let pipeline = if f.options.shading == scene::Shading::Wire {
+        p.fill_depth_only
+    } else {
+        p.fill
+    };
+    let push = scene::mesh_push_constants(f.view, f.options, l);
+    // SAFETY: `cmd` is recording inside the render pass; pipeline, layout and
+    // mesh buffer belong to `device` and outlive the submission; the offsets
+    // and counts come from the layout the buffer was packed with.
+    unsafe {
+        device.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::GRAPHICS, pipeline);
+        device.cmd_push_constants(cmd, p.layout, stages, 0, &push);
+        device.cmd_bind_vertex_buffers(cmd, 0, &[f.mesh_buffer], &[l.tri_vertices]);
+        if l.tri_indexed {
+            device.cmd_bind_index_buffer(cmd, f.mesh_buffer, l.tri_indices, vk::IndexType::UINT32);
+            device.cmd_draw_indexed(cmd, l.tri_count * 3, 1, 0, 0, 0);
+        } else {
+            device.cmd_draw(cmd, l.tri_count * 3, 1, 0, 0);
         }
+    }
+}
+
+/// Draws the wireframe edges and the extra lines with the line pipeline.
+fn draw_lines(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_>) {
+    let l = f.layout;
+    let p = f.pipelines;
+    let stages = vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT;
+    // SAFETY: as in `draw_triangles`; depth test and line width are dynamic
+    // state of the line pipeline (line width only when `dynamic_line_width`).
+    unsafe {
         if l.edge_count > 0 || l.line_count > 0 {
             device.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::GRAPHICS, p.line);
         }
@@ -337,97 +373,115 @@ pub(crate) fn record(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInpu
             device.cmd_bind_vertex_buffers(cmd, 0, &[f.mesh_buffer], &[l.line_vertices]);
             device.cmd_draw(cmd, l.line_count * 2, 1, 0, 0);
         }
-        device.cmd_end_rendering(cmd);
+    }
+}
 
-        let from_attachment = (
-            attach_stage,
-            vk::AccessFlags2::COLOR_ATTACHMENT_WRITE,
-            vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-        );
-        let to_transfer = (
-            vk::PipelineStageFlags2::ALL_TRANSFER,
-            vk::AccessFlags2::TRANSFER_READ,
-            vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-        );
-        let mut barriers = vec![image_barrier(
-            t.color.raw,
+/// After rendering: the colour image (and with [`Readback::All`] the
+/// auxiliary images) into `TRANSFER_SRC_OPTIMAL`.
+fn to_transfer_source(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_>) {
+    let t = f.target;
+    let color_aspect = vk::ImageAspectFlags::COLOR;
+    let from_attachment = (
+        vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT,
+        vk::AccessFlags2::COLOR_ATTACHMENT_WRITE,
+        vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+    );
+    let to_transfer = (
+        vk::PipelineStageFlags2::ALL_TRANSFER,
+        vk::AccessFlags2::TRANSFER_READ,
+        vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+    );
+    let mut barriers = vec![image_barrier(
+        t.color.raw,
+        color_aspect,
+        from_attachment,
+        to_transfer,
+    )];
+    if f.readback == Readback::All {
+        barriers.push(image_barrier(
+            t.normal.raw,
             color_aspect,
             from_attachment,
             to_transfer,
-        )];
-        if f.readback == Readback::All {
-            barriers.push(image_barrier(
-                t.normal.raw,
-                color_aspect,
-                from_attachment,
-                to_transfer,
-            ));
-            barriers.push(image_barrier(
-                t.linear_depth.raw,
-                color_aspect,
-                from_attachment,
-                to_transfer,
-            ));
-        }
+        ));
+        barriers.push(image_barrier(
+            t.linear_depth.raw,
+            color_aspect,
+            from_attachment,
+            to_transfer,
+        ));
+    }
+    // SAFETY: `cmd` is recording outside a render pass; the images belong to
+    // `device` and were left in COLOR_ATTACHMENT_OPTIMAL by the rendering.
+    unsafe {
         device.cmd_pipeline_barrier2(
             cmd,
             &vk::DependencyInfo::default().image_memory_barriers(&barriers),
         );
+    }
+}
 
-        if f.readback != Readback::None {
-            let pixels = u64::from(t.extent.width) * u64::from(t.extent.height);
-            let copy = |offset: u64| vk::BufferImageCopy {
-                buffer_offset: offset,
-                buffer_row_length: 0,
-                buffer_image_height: 0,
-                image_subresource: vk::ImageSubresourceLayers {
-                    aspect_mask: color_aspect,
-                    mip_level: 0,
-                    base_array_layer: 0,
-                    layer_count: 1,
-                },
-                image_offset: vk::Offset3D::default(),
-                image_extent: vk::Extent3D {
-                    width: t.extent.width,
-                    height: t.extent.height,
-                    depth: 1,
-                },
-            };
-            let src = vk::ImageLayout::TRANSFER_SRC_OPTIMAL;
-            device.cmd_copy_image_to_buffer(cmd, t.color.raw, src, t.readback.raw, &[copy(0)]);
-            if f.readback == Readback::All {
-                let normal_at = pixels * COLOR_BYTES;
-                let depth_at = normal_at + pixels * NORMAL_BYTES;
-                device.cmd_copy_image_to_buffer(
-                    cmd,
-                    t.normal.raw,
-                    src,
-                    t.readback.raw,
-                    &[copy(normal_at)],
-                );
-                device.cmd_copy_image_to_buffer(
-                    cmd,
-                    t.linear_depth.raw,
-                    src,
-                    t.readback.raw,
-                    &[copy(depth_at)],
-                );
-            }
-            let to_host = [vk::BufferMemoryBarrier2::default()
-                .src_stage_mask(vk::PipelineStageFlags2::ALL_TRANSFER)
-                .src_access_mask(vk::AccessFlags2::TRANSFER_WRITE)
-                .dst_stage_mask(vk::PipelineStageFlags2::HOST)
-                .dst_access_mask(vk::AccessFlags2::HOST_READ)
-                .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-                .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-                .buffer(t.readback.raw)
-                .offset(0)
-                .size(vk::WHOLE_SIZE)];
-            device.cmd_pipeline_barrier2(
+/// Copies the requested images into the readback buffer and makes the
+/// copies visible to the host.
+fn copy_to_readback(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_>) {
+    let t = f.target;
+    let pixels = u64::from(t.extent.width) * u64::from(t.extent.height);
+    let copy = |offset: u64| vk::BufferImageCopy {
+        buffer_offset: offset,
+        buffer_row_length: 0,
+        buffer_image_height: 0,
+        image_subresource: vk::ImageSubresourceLayers {
+            aspect_mask: vk::ImageAspectFlags::COLOR,
+            mip_level: 0,
+            base_array_layer: 0,
+            layer_count: 1,
+        },
+        image_offset: vk::Offset3D::default(),
+        image_extent: vk::Extent3D {
+            width: t.extent.width,
+            height: t.extent.height,
+            depth: 1,
+        },
+    };
+    let src = vk::ImageLayout::TRANSFER_SRC_OPTIMAL;
+    let to_host = [vk::BufferMemoryBarrier2::default()
+        .src_stage_mask(vk::PipelineStageFlags2::ALL_TRANSFER)
+        .src_access_mask(vk::AccessFlags2::TRANSFER_WRITE)
+        .dst_stage_mask(vk::PipelineStageFlags2::HOST)
+        .dst_access_mask(vk::AccessFlags2::HOST_READ)
+        .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+        .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+        .buffer(t.readback.raw)
+        .offset(0)
+        .size(vk::WHOLE_SIZE)];
+    // SAFETY: `cmd` is recording outside a render pass; the copied images are
+    // in TRANSFER_SRC_OPTIMAL (`to_transfer_source`); the readback buffer
+    // belongs to `device` and holds all three sections for this extent
+    // (`Target::new` sized it), so every copy stays in bounds.
+    unsafe {
+        device.cmd_copy_image_to_buffer(cmd, t.color.raw, src, t.readback.raw, &[copy(0)]);
+        if f.readback == Readback::All {
+            let normal_at = pixels * COLOR_BYTES;
+            let depth_at = normal_at + pixels * NORMAL_BYTES;
+            device.cmd_copy_image_to_buffer(
                 cmd,
-                &vk::DependencyInfo::default().buffer_memory_barriers(&to_host),
+                t.normal.raw,
+                src,
+                t.readback.raw,
+                &[copy(normal_at)],
+            );
+            device.cmd_copy_image_to_buffer(
+                cmd,
+                t.linear_depth.raw,
+                src,
+                t.readback.raw,
+                &[copy(depth_at)],
             );
         }
+        device.cmd_pipeline_barrier2(
+            cmd,
+            &vk::DependencyInfo::default().buffer_memory_barriers(&to_host),
+        );
     }
 }
 

@@ -1,19 +1,38 @@
 //! `subdiv-vk`: the Vulkan renderer of subdiv.
 //!
-//! Raw [`ash`] on Vulkan 1.3 (dynamic rendering, synchronization2), memory
-//! from `gpu-allocator`, GLSL shaders compiled to SPIR-V by naga at build time.
-//! It draws plain triangle meshes ([`RenderMesh`]) with several shading modes,
-//! wireframe and extra lines:
+//! Its job: draw plain triangle meshes ([`RenderMesh`]) with several shading
+//! modes, wireframe and extra lines, headless or in a window, and read the
+//! pixels back. Raw [`ash`] on Vulkan 1.3 (dynamic rendering, synchronization2),
+//! memory from `gpu-allocator`, GLSL shaders compiled to SPIR-V by naga at
+//! build time.
 //!
 //! - [`Renderer`]: headless offscreen rendering with readback to PNG ([`write_png`])
 //!   and depth / normals / scalar to EXR ([`write_exr`]);
 //! - [`viewer`]: an interactive window (winit + swapchain) fed by a [`viewer::FrameSource`];
 //! - [`golden`]: golden-image comparison for regression tests.
 //!
-//! The Vulkan library is loaded at run time; without a driver every entry point
-//! returns [`VkError::LoaderMissing`] or [`VkError::NoDriver`], naming the Debian
-//! package to install. Set `SUBDIV_VK_VALIDATION=1` to enable the Khronos
-//! validation layer.
+//! # Invariants
+//!
+//! - **Knows no other workspace crate.** Input is plain buffers: positions,
+//!   normals, `u32` indices, optional edges, scalars and line segments in a
+//!   [`RenderMesh`], plus a [`View`] and [`RenderOptions`]. Whoever produces
+//!   geometry (the tessellator, a test) converts to these; nothing here
+//!   depends on subdivision types.
+//! - **The loader is opened at run time.** The Vulkan library is loaded with
+//!   `dlopen` when a [`Renderer`] or viewer is created, never linked, so the
+//!   crate builds and its users run without a driver: every entry point then
+//!   returns [`VkError::LoaderMissing`] or [`VkError::NoDriver`] naming the
+//!   Debian package to install. Set `SUBDIV_VK_VALIDATION=1` to enable the
+//!   Khronos validation layer.
+//! - **Nothing global.** Each [`Renderer`] and viewer owns its own instance,
+//!   device and allocator, so any number of them can run in parallel threads.
+//! - **One frame recipe.** The headless renderer and the viewer record frames
+//!   with the same code into the same offscreen targets; a viewer screenshot
+//!   equals a headless render of the same camera and size.
+//! - **Owned teardown.** Every Vulkan object is destroyed by its owner once
+//!   the GPU is done with it (a fence waited on, or the device idle), and
+//!   before the device; each `unsafe` block states why it is sound in a
+//!   `// SAFETY:` comment.
 //!
 //! See [`Renderer`] for an example.
 

@@ -29,9 +29,10 @@ impl Buffer {
             .size(size.max(4))
             .usage(usage)
             .sharing_mode(vk::SharingMode::EXCLUSIVE);
-        // SAFETY: valid device, create info lives through the call.
+        // SAFETY: `ctx.device` is live; `info` has a non-zero size and lives
+        // through the call.
         let raw = unsafe { ctx.device.create_buffer(&info, None) }.call("vkCreateBuffer")?;
-        // SAFETY: buffer from this device.
+        // SAFETY: `raw` was just created by this device.
         let requirements = unsafe { ctx.device.get_buffer_memory_requirements(raw) };
         let allocation = match ctx.allocator().allocate(&AllocationCreateDesc {
             name,
@@ -42,12 +43,16 @@ impl Buffer {
         }) {
             Ok(a) => a,
             Err(e) => {
-                // SAFETY: not bound or used yet.
+                // SAFETY: `raw` was created by this device just above and was never
+                // bound or used by the GPU, so it can be destroyed at once.
                 unsafe { ctx.device.destroy_buffer(raw, None) };
                 return Err(e.into());
             }
         };
-        // SAFETY: fresh allocation satisfying the buffer's requirements.
+        // SAFETY: `allocation` was made from this device's allocator for
+        // `requirements` of `raw`, which is not yet bound to any memory; the
+        // memory handle (unsafe to obtain because it must not be freed by us)
+        // is only used for this bind, and the allocator keeps owning it.
         let bound = unsafe {
             ctx.device
                 .bind_buffer_memory(raw, allocation.memory(), allocation.offset())
@@ -90,7 +95,10 @@ impl Buffer {
     }
 
     pub fn destroy(&mut self, ctx: &mut Context) {
-        // SAFETY: the owner guarantees the GPU no longer uses the buffer.
+        // SAFETY: the buffer was created by this device, and the owner calls this
+        // only after the GPU finished with it (fence waited or device idle) or
+        // when it was never used (`new` failing); the handle is nulled below so
+        // it is destroyed once.
         unsafe { ctx.device.destroy_buffer(self.raw, None) };
         self.raw = vk::Buffer::null();
         if let Some(a) = self.allocation.take() {
@@ -130,9 +138,10 @@ impl Image {
             .usage(usage)
             .sharing_mode(vk::SharingMode::EXCLUSIVE)
             .initial_layout(vk::ImageLayout::UNDEFINED);
-        // SAFETY: valid device and create info.
+        // SAFETY: `ctx.device` is live; `info` describes a 2D image with a
+        // non-zero extent (checked by `Target::new`) and lives through the call.
         let raw = unsafe { ctx.device.create_image(&info, None) }.call("vkCreateImage")?;
-        // SAFETY: image from this device.
+        // SAFETY: `raw` was just created by this device.
         let requirements = unsafe { ctx.device.get_image_memory_requirements(raw) };
         let allocation = match ctx.allocator().allocate(&AllocationCreateDesc {
             name,
@@ -143,7 +152,8 @@ impl Image {
         }) {
             Ok(a) => a,
             Err(e) => {
-                // SAFETY: unused image.
+                // SAFETY: `raw` was created by this device just above and was never
+                // bound or used by the GPU.
                 unsafe { ctx.device.destroy_image(raw, None) };
                 return Err(e.into());
             }
@@ -153,13 +163,15 @@ impl Image {
             view: vk::ImageView::null(),
             allocation: Some(allocation),
         };
-        // SAFETY: the memory handle is only used to bind this image.
-        let memory = image
-            .allocation
-            .as_ref()
-            .map(|a| (unsafe { a.memory() }, a.offset()));
+        let memory = image.allocation.as_ref().map(|a| {
+            // SAFETY: `Allocation::memory` is unsafe because the returned handle
+            // must not be freed by us; it is only used to bind this image, and
+            // the allocator keeps owning (and later frees) the memory.
+            (unsafe { a.memory() }, a.offset())
+        });
         if let Some((memory, offset)) = memory {
-            // SAFETY: fresh allocation satisfying the image's requirements.
+            // SAFETY: the memory was allocated for `requirements` of `raw`, which
+            // is not yet bound to any memory.
             if let Err(result) = unsafe { ctx.device.bind_image_memory(raw, memory, offset) } {
                 image.destroy(ctx);
                 return Err(VkError::Vulkan {
@@ -173,7 +185,8 @@ impl Image {
             .view_type(vk::ImageViewType::TYPE_2D)
             .format(format)
             .subresource_range(subresource_range(aspect));
-        // SAFETY: bound image from this device.
+        // SAFETY: `raw` was created by this device and is bound to memory;
+        // `view_info` matches its format and lives through the call.
         match unsafe { ctx.device.create_image_view(&view_info, None) } {
             Ok(view) => image.view = view,
             Err(result) => {
@@ -188,7 +201,10 @@ impl Image {
     }
 
     pub fn destroy(&mut self, ctx: &mut Context) {
-        // SAFETY: the owner guarantees the GPU no longer uses the image.
+        // SAFETY: the image and view were created by this device, and the owner
+        // calls this only after the GPU finished with them (fence waited or
+        // device idle) or when they were never used (`new` failing); the handles
+        // are nulled below so they are destroyed once.
         unsafe {
             if self.view != vk::ImageView::null() {
                 ctx.device.destroy_image_view(self.view, None);

@@ -97,18 +97,21 @@ impl Renderer {
             .queue_family_index(renderer.ctx.queue_family)
             .flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER);
         let device = &renderer.ctx.device;
-        // SAFETY: valid device; on error `Drop` destroys what was made.
+        // SAFETY: `device` is live and `pool_info` names its queue family; should
+        // a later step fail, `Drop for Renderer` destroys the pool.
         renderer.pool =
             unsafe { device.create_command_pool(&pool_info, None) }.call("vkCreateCommandPool")?;
         let alloc = vk::CommandBufferAllocateInfo::default()
             .command_pool(renderer.pool)
             .level(vk::CommandBufferLevel::PRIMARY)
             .command_buffer_count(1);
-        // SAFETY: pool from this device.
+        // SAFETY: the pool was just created from `device` and is used by this
+        // thread only; `alloc` lives through the call.
         let buffers =
             unsafe { device.allocate_command_buffers(&alloc) }.call("vkAllocateCommandBuffers")?;
         renderer.cmd = buffers.first().copied().unwrap_or_default();
-        // SAFETY: valid device.
+        // SAFETY: `device` is live; the fence starts unsignalled, as `draw`
+        // expects for its first submission. `Drop` destroys it.
         renderer.fence = unsafe { device.create_fence(&vk::FenceCreateInfo::default(), None) }
             .call("vkCreateFence")?;
         Ok(renderer)
@@ -198,8 +201,10 @@ impl Renderer {
         let target = self.target()?;
         let device = &self.ctx.device;
         let cmd = self.cmd;
-        // SAFETY: the previous submission finished (we always wait on the fence),
-        // so the command buffer and all buffers are free to reuse.
+        // SAFETY: every earlier submission of `cmd` was waited for on the fence
+        // before `draw` returned (that wait fails only on device loss), so the
+        // GPU no longer uses the command buffer, target or mesh buffer; `cmd`
+        // comes from a pool created with RESET_COMMAND_BUFFER.
         unsafe {
             device
                 .reset_command_buffer(cmd, vk::CommandBufferResetFlags::empty())
@@ -227,7 +232,10 @@ impl Renderer {
         );
         let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
         let submit = [vk::SubmitInfo2::default().command_buffer_infos(&cmds)];
-        // SAFETY: recorded command buffer, fence unsignalled.
+        // SAFETY: `cmd` was fully recorded by `frame::record` and ends here; the
+        // fence is unsignalled (created so, and reset after every wait); the
+        // queue is used from this thread only (`&mut self`), and all handles the
+        // commands reference live until the wait below returns.
         unsafe {
             device.end_command_buffer(cmd).call("vkEndCommandBuffer")?;
             device
@@ -244,8 +252,10 @@ impl Renderer {
 
 impl Drop for Renderer {
     fn drop(&mut self) {
-        // SAFETY: wait for the GPU, then destroy everything made from the device
-        // before `ctx` (dropped after this) destroys the device itself.
+        // SAFETY: the device is live (`ctx` is dropped after this body); once it
+        // is idle, nothing destroyed here is in use by the GPU. Everything was
+        // made from this device and is destroyed once (taken, or null-checked),
+        // before `ctx` destroys the device itself.
         unsafe {
             let _ = self.ctx.device.device_wait_idle();
             if let Some(mut t) = self.target.take() {

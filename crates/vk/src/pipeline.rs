@@ -39,7 +39,8 @@ struct Modules {
 fn module(ctx: &Context, bytes: &[u8]) -> Result<vk::ShaderModule> {
     let code = shaders::words(bytes)?;
     let info = vk::ShaderModuleCreateInfo::default().code(&code);
-    // SAFETY: valid SPIR-V produced and validated by naga at build time.
+    // SAFETY: `ctx.device` is live; `code` is SPIR-V that naga produced and
+    // validated at build time, as aligned u32 words (`shaders::words`).
     unsafe { ctx.device.create_shader_module(&info, None) }.call("vkCreateShaderModule")
 }
 
@@ -51,7 +52,8 @@ impl Pipelines {
             .size(128);
         let ranges = [range];
         let layout_info = vk::PipelineLayoutCreateInfo::default().push_constant_ranges(&ranges);
-        // SAFETY: valid device.
+        // SAFETY: `ctx.device` is live; `layout_info` and its push-constant range
+        // live through the call.
         let layout = unsafe { ctx.device.create_pipeline_layout(&layout_info, None) }
             .call("vkCreatePipelineLayout")?;
         let mut pipelines = Pipelines {
@@ -73,7 +75,9 @@ impl Pipelines {
             line_frag: vk::ShaderModule::null(),
         };
         let result = pipelines.build(ctx, &mut modules);
-        // SAFETY: modules are not needed once pipelines exist (or failed).
+        // SAFETY: the modules were created by this device and are referenced only
+        // while creating pipelines, which has returned (successfully or not);
+        // null handles (modules never made) are skipped.
         unsafe {
             for m in [
                 modules.mesh_vert,
@@ -173,27 +177,10 @@ impl Pipelines {
         let viewport = vk::PipelineViewportStateCreateInfo::default()
             .viewport_count(1)
             .scissor_count(1);
-        let mut raster = vk::PipelineRasterizationStateCreateInfo::default()
-            .polygon_mode(vk::PolygonMode::FILL)
-            .cull_mode(vk::CullModeFlags::NONE)
-            .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
-            .line_width(1.0);
-        if kind == Kind::Fill {
-            // Push surfaces back a little so edges drawn on them pass the depth test.
-            raster = raster
-                .depth_bias_enable(true)
-                .depth_bias_constant_factor(1.0)
-                .depth_bias_slope_factor(1.0);
-        }
+        let raster = rasterization(kind);
         let multisample = vk::PipelineMultisampleStateCreateInfo::default()
             .rasterization_samples(vk::SampleCountFlags::TYPE_1);
-        let depth = vk::PipelineDepthStencilStateCreateInfo::default()
-            .depth_test_enable(true)
-            .depth_write_enable(kind == Kind::Fill)
-            .depth_compare_op(match kind {
-                Kind::Fill => vk::CompareOp::LESS,
-                Kind::Line => vk::CompareOp::LESS_OR_EQUAL,
-            });
+        let depth = depth_stencil(kind);
         let blend_attachments = write_masks.map(|mask| {
             vk::PipelineColorBlendAttachmentState::default()
                 .blend_enable(false)
@@ -201,13 +188,7 @@ impl Pipelines {
         });
         let blend =
             vk::PipelineColorBlendStateCreateInfo::default().attachments(&blend_attachments);
-        let mut dynamic = vec![vk::DynamicState::VIEWPORT, vk::DynamicState::SCISSOR];
-        if kind == Kind::Line {
-            dynamic.push(vk::DynamicState::DEPTH_TEST_ENABLE);
-            if self.dynamic_line_width {
-                dynamic.push(vk::DynamicState::LINE_WIDTH);
-            }
-        }
+        let dynamic = dynamic_states(kind, self.dynamic_line_width);
         let dynamic_state = vk::PipelineDynamicStateCreateInfo::default().dynamic_states(&dynamic);
         let formats = [COLOR_FORMAT, NORMAL_FORMAT, LINEAR_DEPTH_FORMAT];
         let mut rendering = vk::PipelineRenderingCreateInfo::default()
@@ -225,7 +206,8 @@ impl Pipelines {
             .dynamic_state(&dynamic_state)
             .layout(self.layout)
             .push_next(&mut rendering);
-        // SAFETY: all referenced state lives through the call.
+        // SAFETY: `ctx.device` is live; the shader modules and layout were created
+        // by it, and every state structure `info` points to lives through the call.
         let pipelines = unsafe {
             ctx.device
                 .create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)
@@ -246,7 +228,9 @@ impl Pipelines {
     }
 
     pub fn destroy(&mut self, ctx: &Context) {
-        // SAFETY: the owner waited for the device to be idle.
+        // SAFETY: the pipelines and layout were created by this device; the owner
+        // calls this after waiting for the device to be idle (or before any use);
+        // null handles are skipped or ignored, and all are nulled below.
         unsafe {
             for p in [self.fill, self.fill_depth_only, self.line] {
                 if p != vk::Pipeline::null() {
@@ -260,6 +244,48 @@ impl Pipelines {
         self.line = vk::Pipeline::null();
         self.layout = vk::PipelineLayout::null();
     }
+}
+
+/// Filled triangles (depth-biased) or lines; no culling.
+fn rasterization(kind: Kind) -> vk::PipelineRasterizationStateCreateInfo<'static> {
+    let raster = vk::PipelineRasterizationStateCreateInfo::default()
+        .polygon_mode(vk::PolygonMode::FILL)
+        .cull_mode(vk::CullModeFlags::NONE)
+        .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
+        .line_width(1.0);
+    if kind == Kind::Fill {
+        // Push surfaces back a little so edges drawn on them pass the depth test.
+        raster
+            .depth_bias_enable(true)
+            .depth_bias_constant_factor(1.0)
+            .depth_bias_slope_factor(1.0)
+    } else {
+        raster
+    }
+}
+
+/// Triangles test and write depth; lines only test it (less-or-equal).
+fn depth_stencil(kind: Kind) -> vk::PipelineDepthStencilStateCreateInfo<'static> {
+    vk::PipelineDepthStencilStateCreateInfo::default()
+        .depth_test_enable(true)
+        .depth_write_enable(kind == Kind::Fill)
+        .depth_compare_op(match kind {
+            Kind::Fill => vk::CompareOp::LESS,
+            Kind::Line => vk::CompareOp::LESS_OR_EQUAL,
+        })
+}
+
+/// Viewport and scissor always; lines also set depth test and (with
+/// `wideLines`) their width per draw.
+fn dynamic_states(kind: Kind, dynamic_line_width: bool) -> Vec<vk::DynamicState> {
+    let mut dynamic = vec![vk::DynamicState::VIEWPORT, vk::DynamicState::SCISSOR];
+    if kind == Kind::Line {
+        dynamic.push(vk::DynamicState::DEPTH_TEST_ENABLE);
+        if dynamic_line_width {
+            dynamic.push(vk::DynamicState::LINE_WIDTH);
+        }
+    }
+    dynamic
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]

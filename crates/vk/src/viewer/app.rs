@@ -1,0 +1,404 @@
+//! The viewer's winit application: window, input, camera, frame pacing,
+//! title and screenshots. The GPU side lives in [`super::gpu`].
+
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use ash::vk;
+use winit::application::ApplicationHandler;
+use winit::dpi::PhysicalSize;
+use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
+use winit::keyboard::{Key, NamedKey};
+use winit::window::{Window, WindowId};
+
+use super::gpu::Gpu;
+use super::{FrameRequest, FrameSource, ViewerOptions, ViewerReport};
+use crate::error::{Result, VkError};
+use crate::image_io::write_png;
+use crate::scene::{OrbitCamera, RenderOptions, Shading, View};
+
+/// See [`super::run`].
+pub(super) fn run(source: &mut dyn FrameSource, options: ViewerOptions) -> Result<ViewerReport> {
+    let mut builder = EventLoop::builder();
+    #[cfg(all(unix, not(target_os = "macos"), not(target_os = "android")))]
+    {
+        use winit::platform::x11::EventLoopBuilderExtX11;
+        builder.with_any_thread(true);
+    }
+    let event_loop = builder
+        .build()
+        .map_err(|e| VkError::Window(e.to_string()))?;
+    event_loop.set_control_flow(ControlFlow::Poll);
+    let mut app = App {
+        gpu: None,
+        window: None,
+        source,
+        camera: options.camera,
+        render: options.render,
+        silhouettes: options.render.show_lines,
+        target_fps: options.target_fps.max(1.0),
+        frame_rate_control: options.frame_rate_control,
+        frozen: None,
+        dragging: false,
+        cursor: None,
+        last_frame: None,
+        last_frame_time: Duration::ZERO,
+        fps: 0.0,
+        last_title: None,
+        screenshot_requested: false,
+        report: ViewerReport::default(),
+        error: None,
+        options,
+    };
+    let run = event_loop.run_app(&mut app);
+    // Vulkan objects go before the window they present to.
+    let log = app.gpu.as_ref().map(|g| g.ctx.validation_log());
+    app.report.validation_enabled = app.gpu.as_ref().is_some_and(|g| g.ctx.validation_enabled());
+    app.gpu = None;
+    app.report.validation_messages = log.map(|l| l.take()).unwrap_or_default();
+    app.window = None;
+    if let Some(e) = app.error.take() {
+        return Err(e);
+    }
+    run.map_err(|e| VkError::Window(e.to_string()))?;
+    app.report.camera = app.camera;
+    Ok(app.report)
+}
+
+struct App<'s> {
+    // Declared before `window`: dropped first.
+    gpu: Option<Gpu>,
+    window: Option<Arc<Window>>,
+    source: &'s mut dyn FrameSource,
+    options: ViewerOptions,
+    camera: Option<OrbitCamera>,
+    render: RenderOptions,
+    silhouettes: bool,
+    target_fps: f32,
+    frame_rate_control: bool,
+    frozen: Option<View>,
+    dragging: bool,
+    cursor: Option<(f64, f64)>,
+    last_frame: Option<Instant>,
+    last_frame_time: Duration,
+    fps: f32,
+    last_title: Option<Instant>,
+    screenshot_requested: bool,
+    report: ViewerReport,
+    error: Option<VkError>,
+}
+
+impl App<'_> {
+    fn fail(&mut self, event_loop: &ActiveEventLoop, error: VkError) {
+        if self.error.is_none() {
+            self.error = Some(error);
+        }
+        event_loop.exit();
+    }
+
+    fn init(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
+        let [w, h] = self.options.size;
+        let attributes = Window::default_attributes()
+            .with_title(self.options.title.clone())
+            .with_inner_size(PhysicalSize::new(w.max(1), h.max(1)));
+        let window = Arc::new(
+            event_loop
+                .create_window(attributes)
+                .map_err(|e| VkError::Window(e.to_string()))?,
+        );
+        let gpu = Gpu::new(&window, &self.options.context)?;
+        self.window = Some(window);
+        self.gpu = Some(gpu);
+        Ok(())
+    }
+
+    fn key(&mut self, key: &Key) {
+        let Key::Character(c) = key.as_ref() else {
+            return;
+        };
+        let toggle = |current: Shading, mode: Shading| {
+            if current == mode {
+                Shading::Smooth
+            } else {
+                mode
+            }
+        };
+        match c.to_ascii_lowercase().as_str() {
+            "w" => self.render.wire_overlay = !self.render.wire_overlay,
+            "d" => self.render.shading = toggle(self.render.shading, Shading::Depth),
+            "h" => self.render.shading = toggle(self.render.shading, Shading::Doi),
+            "s" => self.silhouettes = !self.silhouettes,
+            "f" => {
+                self.frozen = match self.frozen {
+                    Some(_) => None,
+                    None => self.current_view(),
+                }
+            }
+            "+" | "=" => self.target_fps = (self.target_fps * 1.25).min(1000.0),
+            "-" | "_" => self.target_fps = (self.target_fps / 1.25).max(1.0),
+            "c" => self.frame_rate_control = !self.frame_rate_control,
+            "p" => self.screenshot_requested = true,
+            _ => {}
+        }
+    }
+
+    fn current_view(&self) -> Option<View> {
+        let extent = self.gpu.as_ref()?.swapchain.as_ref()?.extent;
+        let aspect = extent.width as f32 / extent.height.max(1) as f32;
+        Some(self.camera?.view(aspect))
+    }
+
+    fn redraw(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
+        let Some(extent) = self.swapchain_extent()? else {
+            return Ok(());
+        };
+        let aspect = extent.width as f32 / extent.height as f32;
+        let now = Instant::now();
+        self.update_fps(now);
+        let request = self.request(extent, aspect)?;
+        let frame = self
+            .source
+            .frame(&request)
+            .map_err(|e| VkError::FrameSource(e.to_string()))?;
+
+        let mut options = self.render;
+        options.show_lines = self.silhouettes || self.frozen.is_some();
+        // Silhouettes off but a frozen frustum to show: drop the source's lines.
+        let mut extra_lines: Vec<[f32; 3]> = Vec::new();
+        let mut mesh = frame.mesh;
+        if let Some(frozen) = self.frozen {
+            if self.silhouettes {
+                extra_lines.extend_from_slice(mesh.lines.unwrap_or_default());
+            }
+            extra_lines.extend(frozen.frustum_lines());
+            mesh.lines = Some(&extra_lines);
+        }
+        let at_limit = self
+            .options
+            .screenshot_after
+            .is_some_and(|n| self.report.frames + 1 >= u64::from(n));
+        let shot = self.screenshot_requested || at_limit;
+        let triangles = mesh.triangle_count();
+        let status = frame.status.to_string();
+        // `swapchain_extent` returned an extent, so the GPU state exists.
+        let Some(gpu) = self.gpu.as_mut() else {
+            return Ok(());
+        };
+        let image = gpu.draw(&mesh, &request.view, &options, frame.vertex_version, shot)?;
+        self.report.frames += 1;
+
+        if let Some(image) = image
+            && self.save_screenshot(&image, at_limit)?
+        {
+            event_loop.exit();
+            return Ok(());
+        }
+        if self
+            .last_title
+            .is_none_or(|t| now.duration_since(t) > Duration::from_millis(250))
+        {
+            self.last_title = Some(now);
+            let title = self.title(triangles, &status);
+            if let Some(window) = self.window.as_ref() {
+                window.set_title(&title);
+            }
+        }
+        Ok(())
+    }
+
+    /// The swapchain extent for this frame, (re)creating the swapchain if
+    /// needed; `None` before the window exists and while it is minimised.
+    fn swapchain_extent(&mut self) -> Result<Option<vk::Extent2D>> {
+        let Some(gpu) = self.gpu.as_mut() else {
+            return Ok(None);
+        };
+        let Some(window) = self.window.as_ref() else {
+            return Ok(None);
+        };
+        let size = window.inner_size();
+        if size.width == 0 || size.height == 0 {
+            return Ok(None); // minimised
+        }
+        gpu.ensure_swapchain(size).map(Some)
+    }
+
+    /// Measures the previous frame's time and smooths the frame rate.
+    fn update_fps(&mut self, now: Instant) {
+        if let Some(last) = self.last_frame {
+            self.last_frame_time = now - last;
+            let instant = 1.0 / self.last_frame_time.as_secs_f32().max(1e-6);
+            self.fps = if self.fps == 0.0 {
+                instant
+            } else {
+                0.9 * self.fps + 0.1 * instant
+            };
+        }
+        self.last_frame = Some(now);
+    }
+
+    /// This frame's request to the source.
+    ///
+    /// The first frame is asked for with a provisional camera if none was
+    /// given; the camera is then fitted to the geometry and used from then on.
+    fn request(&mut self, extent: vk::Extent2D, aspect: f32) -> Result<FrameRequest> {
+        let provisional = self.camera.is_none();
+        let camera = self.camera.unwrap_or_else(|| {
+            OrbitCamera::framing(glam::Vec3::splat(-1.0), glam::Vec3::splat(1.0))
+        });
+        let view = camera.view(aspect);
+        let mut request = FrameRequest {
+            view,
+            cull_view: self.frozen.unwrap_or(view),
+            size: [extent.width, extent.height],
+            shading: self.render.shading,
+            silhouettes: self.silhouettes,
+            target_fps: self.target_fps,
+            frame_rate_control: self.frame_rate_control,
+            last_frame_time: self.last_frame_time,
+            frame_index: self.report.frames,
+        };
+        if provisional {
+            let fitted = {
+                let frame = self
+                    .source
+                    .frame(&request)
+                    .map_err(|e| VkError::FrameSource(e.to_string()))?;
+                OrbitCamera::framing_mesh(&frame.mesh)
+            };
+            self.camera = Some(fitted);
+            request.view = fitted.view(aspect);
+            request.cull_view = self.frozen.unwrap_or(request.view);
+        }
+        Ok(request)
+    }
+
+    /// Writes a screenshot; returns whether it was the one that ends the
+    /// session ([`ViewerOptions::screenshot_after`]).
+    fn save_screenshot(&mut self, image: &image::RgbaImage, at_limit: bool) -> Result<bool> {
+        let path = if at_limit {
+            self.options.screenshot_path.clone()
+        } else {
+            numbered(
+                &self.options.screenshot_path,
+                self.report.screenshots.len() + 1,
+            )
+        };
+        write_png(&path, image)?;
+        eprintln!("screenshot: {}", path.display());
+        self.report.screenshots.push(path);
+        self.screenshot_requested = false;
+        Ok(at_limit)
+    }
+
+    /// The window title: fps, triangles, modes and the source's status.
+    fn title(&self, triangles: usize, status: &str) -> String {
+        let mut title = format!(
+            "{} | {:.1} fps | {} triangles | {}",
+            self.options.title,
+            self.fps,
+            triangles,
+            self.render.shading.name()
+        );
+        if self.render.wire_overlay {
+            title.push_str(" +wire");
+        }
+        if self.silhouettes {
+            title.push_str(" +silhouettes");
+        }
+        if self.frozen.is_some() {
+            title.push_str(" | culling camera frozen");
+        }
+        if self.frame_rate_control {
+            title.push_str(&format!(" | target {:.0} fps", self.target_fps));
+        } else {
+            title.push_str(" | fps control off");
+        }
+        if !status.is_empty() {
+            title.push_str(" | ");
+            title.push_str(status);
+        }
+        title
+    }
+}
+
+/// `dir/name.png` → `dir/name-0003.png`.
+fn numbered(path: &std::path::Path, n: usize) -> PathBuf {
+    let stem = path
+        .file_stem()
+        .map_or_else(|| "screenshot".into(), |s| s.to_string_lossy().into_owned());
+    let ext = path
+        .extension()
+        .map_or_else(|| "png".into(), |s| s.to_string_lossy().into_owned());
+    path.with_file_name(format!("{stem}-{n:04}.{ext}"))
+}
+
+impl ApplicationHandler for App<'_> {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.window.is_none()
+            && let Err(e) = self.init(event_loop)
+        {
+            self.fail(event_loop, e);
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(_) => {
+                if let Some(gpu) = self.gpu.as_mut() {
+                    gpu.swapchain_dirty = true;
+                }
+            }
+            WindowEvent::RedrawRequested => {
+                if let Err(e) = self.redraw(event_loop) {
+                    self.fail(event_loop, e);
+                }
+            }
+            WindowEvent::KeyboardInput { event, .. } if event.state == ElementState::Pressed => {
+                if matches!(event.logical_key.as_ref(), Key::Named(NamedKey::Escape))
+                    || matches!(event.logical_key.as_ref(), Key::Character(c) if c.eq_ignore_ascii_case("q"))
+                {
+                    event_loop.exit();
+                } else {
+                    self.key(&event.logical_key);
+                }
+            }
+            WindowEvent::MouseInput {
+                state,
+                button: MouseButton::Left,
+                ..
+            } => {
+                self.dragging = state == ElementState::Pressed;
+            }
+            WindowEvent::CursorMoved { position, .. } => {
+                if self.dragging
+                    && let (Some((x, y)), Some(camera)) = (self.cursor, self.camera.as_mut())
+                {
+                    camera.rotate(
+                        ((position.x - x) * 0.01) as f32,
+                        ((position.y - y) * 0.01) as f32,
+                    );
+                }
+                self.cursor = Some((position.x, position.y));
+            }
+            WindowEvent::MouseWheel { delta, .. } => {
+                let steps = match delta {
+                    MouseScrollDelta::LineDelta(_, y) => y,
+                    MouseScrollDelta::PixelDelta(p) => (p.y / 40.0) as f32,
+                };
+                if let Some(camera) = self.camera.as_mut() {
+                    camera.zoom(0.9f32.powf(steps));
+                }
+            }
+            _ => {}
+        }
+    }
+
+    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
+        if let Some(window) = self.window.as_ref() {
+            window.request_redraw();
+        }
+    }
+}

@@ -1,0 +1,428 @@
+//! The viewer's GPU state: Vulkan context, pipelines and the frames in flight,
+//! and the drawing of one frame into the swapchain.
+
+use ash::{khr, vk};
+use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
+use winit::window::Window;
+
+use super::swapchain::{Swapchain, record_blit};
+use crate::context::{Context, ContextOptions};
+use crate::error::{Result, VkError, VkResultExt};
+use crate::frame::{self, FrameInputs, MeshBuffer, Readback, Target};
+use crate::pipeline::Pipelines;
+use crate::scene::{self, Layout, RenderMesh, RenderOptions, View};
+
+/// Frames in flight: the CPU builds frame n+1 while the GPU draws frame n.
+const FRAMES_IN_FLIGHT: usize = 2;
+
+struct Slot {
+    cmd: vk::CommandBuffer,
+    fence: vk::Fence,
+    acquired: vk::Semaphore,
+    target: Option<Target>,
+    /// Vertex + index buffer of this slot: indices rebuilt per frame,
+    /// double-buffered across slots so the CPU never overwrites what the GPU
+    /// still reads.
+    mesh: MeshBuffer,
+    /// [`super::SourceFrame::vertex_version`] of the vertices in `mesh`.
+    vertex_version: Option<u64>,
+}
+
+pub(super) struct Gpu {
+    pub(super) ctx: Context,
+    pipelines: Pipelines,
+    pub(super) loader: khr::swapchain::Device,
+    pool: vk::CommandPool,
+    slots: Vec<Slot>,
+    next: usize,
+    pub(super) swapchain: Option<Swapchain>,
+    pub(super) swapchain_dirty: bool,
+    pub(super) format: vk::SurfaceFormatKHR,
+}
+
+/// One frame's mesh, packed on the CPU before waiting for the slot.
+struct Packed<'a> {
+    mesh: &'a RenderMesh<'a>,
+    options: &'a RenderOptions,
+    /// The packed bytes; without the vertices when `reuse`.
+    bytes: Vec<u8>,
+    layout: Layout,
+    /// Where `bytes` belong in the buffer.
+    offset: u64,
+    /// The slot's buffer already holds these vertices.
+    reuse: bool,
+    vertex_version: Option<u64>,
+}
+
+impl Gpu {
+    pub(super) fn new(window: &Window, options: &ContextOptions) -> Result<Self> {
+        let display = window
+            .display_handle()
+            .map_err(|e| VkError::Window(e.to_string()))?
+            .as_raw();
+        let handle = window
+            .window_handle()
+            .map_err(|e| VkError::Window(e.to_string()))?
+            .as_raw();
+        let extensions = ash_window::enumerate_required_extensions(display)
+            .call("enumerate surface extensions")?;
+        let factory = |entry: &ash::Entry, instance: &ash::Instance| {
+            // SAFETY: `display` and `handle` are the live raw handles of `window`;
+            // the instance was created with the extensions ash-window listed for
+            // this display; the window outlives the surface, because the viewer
+            // drops the GPU state (whose context destroys the surface) first.
+            unsafe { ash_window::create_surface(entry, instance, display, handle, None) }
+                .call("vkCreate*SurfaceKHR")
+        };
+        let ctx = Context::new(options, extensions, Some(&factory))?;
+        let pipelines = Pipelines::new(&ctx)?;
+        let loader = khr::swapchain::Device::new(&ctx.instance, &ctx.device);
+        let mut gpu = Gpu {
+            ctx,
+            pipelines,
+            loader,
+            pool: vk::CommandPool::null(),
+            slots: Vec::new(),
+            next: 0,
+            swapchain: None,
+            swapchain_dirty: true,
+            format: vk::SurfaceFormatKHR::default(),
+        };
+        let (surface_loader, surface) = gpu.surface()?;
+        // SAFETY: the physical device and the surface were both created from
+        // this context's instance, which outlives the call.
+        let formats = unsafe {
+            surface_loader.get_physical_device_surface_formats(gpu.ctx.physical, surface)
+        }
+        .call("vkGetPhysicalDeviceSurfaceFormatsKHR")?;
+        // UNORM formats keep the shader's values, so the window equals headless renders.
+        gpu.format = [vk::Format::B8G8R8A8_UNORM, vk::Format::R8G8B8A8_UNORM]
+            .iter()
+            .find_map(|f| formats.iter().find(|s| s.format == *f).copied())
+            .or_else(|| formats.first().copied())
+            .ok_or(VkError::Window("the surface offers no formats".into()))?;
+        let pool_info = vk::CommandPoolCreateInfo::default()
+            .queue_family_index(gpu.ctx.queue_family)
+            .flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER);
+        // SAFETY: the device is live and `pool_info` names its queue family;
+        // should a later step fail, `Drop for Gpu` destroys the pool.
+        gpu.pool = unsafe { gpu.ctx.device.create_command_pool(&pool_info, None) }
+            .call("vkCreateCommandPool")?;
+        for _ in 0..FRAMES_IN_FLIGHT {
+            let slot = create_slot(&gpu.ctx.device, gpu.pool)?;
+            gpu.slots.push(slot);
+        }
+        Ok(gpu)
+    }
+
+    pub(super) fn surface(&self) -> Result<(&khr::surface::Instance, vk::SurfaceKHR)> {
+        self.ctx
+            .surface
+            .as_ref()
+            .map(|(l, s)| (l, *s))
+            .ok_or(VkError::Window("no surface".into()))
+    }
+
+    /// Draws and presents one frame; with `screenshot`, waits for it and returns the image.
+    pub(super) fn draw(
+        &mut self,
+        mesh: &RenderMesh<'_>,
+        view: &View,
+        options: &RenderOptions,
+        vertex_version: Option<u64>,
+        screenshot: bool,
+    ) -> Result<Option<image::RgbaImage>> {
+        let Some(extent) = self.swapchain.as_ref().map(|s| s.extent) else {
+            return Ok(None);
+        };
+        let index = self.next;
+        // CPU work first (overlaps the GPU's previous frame): pack the mesh,
+        // without the vertices if this slot's buffer already holds them.
+        let reuse = vertex_version.is_some() && self.slots[index].vertex_version == vertex_version;
+        let (bytes, layout, offset) = scene::pack_from(mesh, options, !reuse)?;
+        let packed = Packed {
+            mesh,
+            options,
+            bytes,
+            layout,
+            offset,
+            reuse,
+            vertex_version,
+        };
+        self.next = (self.next + 1) % FRAMES_IN_FLIGHT;
+        let (fence, acquired, cmd) = {
+            let slot = &self.slots[index];
+            (slot.fence, slot.acquired, slot.cmd)
+        };
+        // SAFETY: `fence` was created by this device for this slot; it is either
+        // still signalled from creation or pending on the slot's last submission.
+        unsafe { self.ctx.device.wait_for_fences(&[fence], true, u64::MAX) }
+            .call("vkWaitForFences")?;
+
+        // Acquire before touching the fence, so an out-of-date swapchain leaves it signalled.
+        let Some(image_index) = self.acquire(acquired)? else {
+            return Ok(None);
+        };
+        let mesh_buffer = self.prepare_slot(index, extent, &packed)?;
+        let slot = &self.slots[index];
+        let (Some(target), Some(swapchain)) = (slot.target.as_ref(), self.swapchain.as_ref())
+        else {
+            return Ok(None);
+        };
+        let swap_image = swapchain
+            .images
+            .get(image_index as usize)
+            .copied()
+            .unwrap_or_default();
+        let rendered = swapchain
+            .rendered
+            .get(image_index as usize)
+            .copied()
+            .unwrap_or_default();
+        let device = &self.ctx.device;
+        begin_commands(device, fence, cmd)?;
+        frame::record(
+            device,
+            cmd,
+            &FrameInputs {
+                pipelines: &self.pipelines,
+                target,
+                mesh_buffer,
+                layout: &packed.layout,
+                view,
+                options,
+                readback: if screenshot {
+                    Readback::Color
+                } else {
+                    Readback::None
+                },
+            },
+        );
+        record_blit(device, cmd, target.color.raw, swap_image, extent);
+        let presented =
+            self.submit_and_present(cmd, fence, (acquired, rendered), swapchain.raw, image_index)?;
+        match presented {
+            Ok(suboptimal) => self.swapchain_dirty |= suboptimal,
+            Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => self.swapchain_dirty = true,
+            Err(result) => {
+                return Err(VkError::Vulkan {
+                    call: "vkQueuePresentKHR",
+                    result,
+                });
+            }
+        }
+        if !screenshot {
+            return Ok(None);
+        }
+        // SAFETY: `fence` belongs to this device and was just submitted with this frame.
+        unsafe { device.wait_for_fences(&[fence], true, u64::MAX) }.call("vkWaitForFences")?;
+        target.read_color().map(Some)
+    }
+
+    /// Acquires the next swapchain image, signalling `acquired`; `None` (and
+    /// the swapchain marked for re-creation) when it is out of date.
+    fn acquire(&mut self, acquired: vk::Semaphore) -> Result<Option<u32>> {
+        let swapchain_raw = self
+            .swapchain
+            .as_ref()
+            .map_or(vk::SwapchainKHR::null(), |s| s.raw);
+        // SAFETY: `swapchain_raw` is this loader's current swapchain (`draw`
+        // read its extent); `acquired` has no pending operation: its last wait
+        // was in this slot's previous submission, which completed when the
+        // slot's fence signalled (waited on by `draw` just before). An error
+        // between this acquire and the submit would leave it signalled, but
+        // every error from `draw` ends the viewer.
+        let acquire = unsafe {
+            self.loader
+                .acquire_next_image(swapchain_raw, u64::MAX, acquired, vk::Fence::null())
+        };
+        match acquire {
+            Ok((i, suboptimal)) => {
+                self.swapchain_dirty |= suboptimal;
+                Ok(Some(i))
+            }
+            Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => {
+                self.swapchain_dirty = true;
+                Ok(None)
+            }
+            Err(result) => Err(VkError::Vulkan {
+                call: "vkAcquireNextImageKHR",
+                result,
+            }),
+        }
+    }
+
+    /// Submits `cmd` (waiting on `acquired`, signalling `rendered` and
+    /// `fence`) and presents image `image_index`; returns the present result.
+    fn submit_and_present(
+        &self,
+        cmd: vk::CommandBuffer,
+        fence: vk::Fence,
+        (acquired, rendered): (vk::Semaphore, vk::Semaphore),
+        swapchain: vk::SwapchainKHR,
+        image_index: u32,
+    ) -> Result<std::result::Result<bool, vk::Result>> {
+        let device = &self.ctx.device;
+        let waits = [vk::SemaphoreSubmitInfo::default()
+            .semaphore(acquired)
+            .stage_mask(vk::PipelineStageFlags2::ALL_TRANSFER)];
+        let signals = [vk::SemaphoreSubmitInfo::default()
+            .semaphore(rendered)
+            .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
+        let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
+        let submit = [vk::SubmitInfo2::default()
+            .wait_semaphore_infos(&waits)
+            .command_buffer_infos(&cmds)
+            .signal_semaphore_infos(&signals)];
+        let swapchains = [swapchain];
+        let indices = [image_index];
+        let wait_present = [rendered];
+        let present = vk::PresentInfoKHR::default()
+            .wait_semaphores(&wait_present)
+            .swapchains(&swapchains)
+            .image_indices(&indices);
+        // SAFETY: `cmd` is fully recorded and ends here; `fence` was reset by
+        // `begin_commands` and is unsignalled; `acquired` is signalled by the
+        // acquire of this frame and waited on by this submission; `rendered`
+        // belongs to the acquired image and is signalled here and waited on by
+        // its presentation; the queue is used from this thread only.
+        unsafe {
+            device.end_command_buffer(cmd).call("vkEndCommandBuffer")?;
+            device
+                .queue_submit2(self.ctx.queue, &submit, fence)
+                .call("vkQueueSubmit2")?;
+            Ok(self.loader.queue_present(self.ctx.queue, &present))
+        }
+    }
+
+    /// Gives slot `index` a target of `extent` and uploads the frame's mesh
+    /// (only the part after the vertices when the slot still holds them);
+    /// returns the mesh buffer. The slot's fence has been waited on.
+    fn prepare_slot(
+        &mut self,
+        index: usize,
+        extent: vk::Extent2D,
+        packed: &Packed<'_>,
+    ) -> Result<vk::Buffer> {
+        let slot = &mut self.slots[index];
+        if slot.target.as_ref().is_none_or(|t| t.extent != extent) {
+            if let Some(mut old) = slot.target.take() {
+                old.destroy(&mut self.ctx);
+            }
+            slot.target = Some(Target::new(&mut self.ctx, extent)?);
+        }
+        slot.vertex_version = None;
+        let kept = if packed.reuse {
+            slot.mesh
+                .upload_at(&packed.bytes, packed.offset, packed.layout.total)?
+        } else {
+            None
+        };
+        let mesh_buffer = match kept {
+            Some(buffer) => buffer,
+            None if packed.reuse => {
+                let (all, _) = scene::pack(packed.mesh, packed.options)?;
+                slot.mesh.upload(&mut self.ctx, &all)?
+            }
+            None => slot.mesh.upload(&mut self.ctx, &packed.bytes)?,
+        };
+        slot.vertex_version = packed.vertex_version;
+        Ok(mesh_buffer)
+    }
+}
+
+/// Resets the slot's fence and command buffer and begins recording.
+fn begin_commands(device: &ash::Device, fence: vk::Fence, cmd: vk::CommandBuffer) -> Result<()> {
+    // SAFETY: the slot's previous submission completed (`draw` waited on its
+    // fence), so the fence may be reset and the GPU no longer reads its command
+    // buffer, target or mesh buffer; `cmd` comes from a pool created with
+    // RESET_COMMAND_BUFFER.
+    unsafe {
+        device.reset_fences(&[fence]).call("vkResetFences")?;
+        device
+            .reset_command_buffer(cmd, vk::CommandBufferResetFlags::empty())
+            .call("vkResetCommandBuffer")?;
+        device
+            .begin_command_buffer(
+                cmd,
+                &vk::CommandBufferBeginInfo::default()
+                    .flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT),
+            )
+            .call("vkBeginCommandBuffer")?;
+    }
+    Ok(())
+}
+
+/// A command buffer, a signalled fence and a semaphore for one frame in flight.
+fn create_slot(device: &ash::Device, pool: vk::CommandPool) -> Result<Slot> {
+    let alloc = vk::CommandBufferAllocateInfo::default()
+        .command_pool(pool)
+        .level(vk::CommandBufferLevel::PRIMARY)
+        .command_buffer_count(1);
+    // SAFETY: `pool` was created from `device` and is used by this thread only;
+    // the create infos live through the calls. If the semaphore fails, the fence
+    // made just before is destroyed here (never used); the command buffer is
+    // freed with the pool by `Drop for Gpu`.
+    unsafe {
+        let cmd = device
+            .allocate_command_buffers(&alloc)
+            .call("vkAllocateCommandBuffers")?;
+        let fence = device
+            .create_fence(
+                &vk::FenceCreateInfo::default().flags(vk::FenceCreateFlags::SIGNALED),
+                None,
+            )
+            .call("vkCreateFence")?;
+        let acquired = match device.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) {
+            Ok(s) => s,
+            Err(result) => {
+                device.destroy_fence(fence, None);
+                return Err(VkError::Vulkan {
+                    call: "vkCreateSemaphore",
+                    result,
+                });
+            }
+        };
+        Ok(Slot {
+            cmd: cmd.first().copied().unwrap_or_default(),
+            fence,
+            acquired,
+            target: None,
+            mesh: MeshBuffer::default(),
+            vertex_version: None,
+        })
+    }
+}
+
+impl Drop for Gpu {
+    fn drop(&mut self) {
+        // SAFETY: the device is live (the context is dropped after this body);
+        // waiting for it to be idle makes every object destroyed below unused.
+        unsafe {
+            let _ = self.ctx.device.device_wait_idle();
+        }
+        if let Some(s) = self.swapchain.take() {
+            self.destroy_swapchain(s);
+        }
+        let mut slots = std::mem::take(&mut self.slots);
+        for slot in &mut slots {
+            if let Some(mut t) = slot.target.take() {
+                t.destroy(&mut self.ctx);
+            }
+            slot.mesh.destroy(&mut self.ctx);
+            // SAFETY: the device is idle (waited above); the fence and semaphore
+            // were created by this device for this slot and are destroyed once,
+            // as the slots were taken out of `self`.
+            unsafe {
+                self.ctx.device.destroy_fence(slot.fence, None);
+                self.ctx.device.destroy_semaphore(slot.acquired, None);
+            }
+        }
+        self.pipelines.destroy(&self.ctx);
+        if self.pool != vk::CommandPool::null() {
+            // SAFETY: the device is idle; the pool was created by this device, and
+            // destroying it frees the slots' command buffers, none of them pending.
+            unsafe { self.ctx.device.destroy_command_pool(self.pool, None) };
+        }
+    }
+}

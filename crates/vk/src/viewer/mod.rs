@@ -1,0 +1,165 @@
+//! The interactive viewer: a winit window with a Vulkan swapchain.
+//!
+//! Each frame the viewer asks a [`FrameSource`] for geometry given the current
+//! camera, renders it with exactly the same code as the headless [`crate::Renderer`]
+//! into an offscreen image, and blits that image to the swapchain. Screenshots
+//! read the offscreen image back, so they equal a headless render of the same view.
+//!
+//! Controls: left drag rotates, wheel zooms; `W` wireframe overlay, `D` depth
+//! colours, `H` DoI heat map, `S` silhouette lines, `F` freeze the culling camera
+//! (its frustum is drawn), `+`/`-` target frame rate, `C` frame-rate control on/off,
+//! `P` screenshot, `Esc`/`Q` quit. The title shows fps, triangles and the
+//! source's status text.
+
+mod app;
+mod gpu;
+mod swapchain;
+
+use std::path::PathBuf;
+use std::time::Duration;
+
+use crate::context::ContextOptions;
+use crate::error::Result;
+use crate::scene::{OrbitCamera, OwnedMesh, RenderMesh, RenderOptions, Shading, View};
+
+/// What the viewer asks its [`FrameSource`] for, once per frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameRequest {
+    /// The camera the frame is rendered with.
+    pub view: View,
+    /// The camera to cull and choose levels of detail with: equal to `view`
+    /// unless the culling camera is frozen (`F`).
+    pub cull_view: View,
+    /// Image size in pixels.
+    pub size: [u32; 2],
+    /// Current shading mode: fill [`RenderMesh::scalars`] with subdivision depths
+    /// for [`Shading::Depth`] and degrees of interest for [`Shading::Doi`].
+    pub shading: Shading,
+    /// Whether silhouette lines ([`RenderMesh::lines`]) are shown.
+    pub silhouettes: bool,
+    /// Target frame rate set with `+`/`-`.
+    pub target_fps: f32,
+    /// Whether frame-rate control is on (`C`).
+    pub frame_rate_control: bool,
+    /// Wall time of the previous frame (zero for the first).
+    pub last_frame_time: Duration,
+    /// Frame counter, from 0.
+    pub frame_index: u64,
+}
+
+/// Geometry for one frame, borrowed from the source.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SourceFrame<'a> {
+    /// What to draw.
+    pub mesh: RenderMesh<'a>,
+    /// Extra text for the window title, e.g. patches per depth.
+    pub status: &'a str,
+    /// Identifies the vertex data (positions, normals, scalars). When it equals
+    /// the previous frame's, the viewer keeps the vertices already in its
+    /// per-frame device buffers and uploads only indices and lines (e.g. limit
+    /// points stay while subdivision depths do not rise). `None`: always upload.
+    pub vertex_version: Option<u64>,
+}
+
+/// Produces the geometry of each frame (e.g. the adaptive tessellator).
+pub trait FrameSource {
+    /// Geometry for the camera in `request`.
+    fn frame(
+        &mut self,
+        request: &FrameRequest,
+    ) -> std::result::Result<SourceFrame<'_>, Box<dyn std::error::Error + Send + Sync>>;
+}
+
+impl FrameSource for OwnedMesh {
+    fn frame(
+        &mut self,
+        _request: &FrameRequest,
+    ) -> std::result::Result<SourceFrame<'_>, Box<dyn std::error::Error + Send + Sync>> {
+        // The mesh cannot change while the viewer borrows it: one vertex version.
+        Ok(SourceFrame {
+            mesh: self.as_render_mesh(),
+            status: "",
+            vertex_version: Some(0),
+        })
+    }
+}
+
+/// Viewer settings.
+#[derive(Clone, Debug)]
+pub struct ViewerOptions {
+    /// Window title prefix.
+    pub title: String,
+    /// Initial window size in pixels.
+    pub size: [u32; 2],
+    /// Initial camera; `None`: frame the first frame's geometry.
+    pub camera: Option<OrbitCamera>,
+    /// Initial render options (shading, overlay, colours).
+    pub render: RenderOptions,
+    /// Initial target frame rate.
+    pub target_fps: f32,
+    /// Whether frame-rate control starts on.
+    pub frame_rate_control: bool,
+    /// Render this many frames, save a screenshot to `screenshot_path`, exit.
+    pub screenshot_after: Option<u32>,
+    /// Where screenshots go: this path for `screenshot_after`; for `P`, the
+    /// same name with a counter (`shot.png` → `shot-0001.png`).
+    pub screenshot_path: PathBuf,
+    /// Vulkan loader and validation options.
+    pub context: ContextOptions,
+}
+
+impl Default for ViewerOptions {
+    fn default() -> Self {
+        ViewerOptions {
+            title: String::from("subdiv"),
+            size: [960, 720],
+            camera: None,
+            render: RenderOptions::default(),
+            target_fps: 30.0,
+            frame_rate_control: true,
+            screenshot_after: None,
+            screenshot_path: PathBuf::from("screenshot.png"),
+            context: ContextOptions::default(),
+        }
+    }
+}
+
+/// What happened during a viewer session.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ViewerReport {
+    /// Frames rendered.
+    pub frames: u64,
+    /// Screenshots written.
+    pub screenshots: Vec<PathBuf>,
+    /// The camera when the viewer closed.
+    pub camera: Option<OrbitCamera>,
+    /// Whether the Khronos validation layer was active.
+    pub validation_enabled: bool,
+    /// Validation-layer messages (empty unless the layer was enabled).
+    pub validation_messages: Vec<String>,
+}
+
+/// Opens a window and runs the viewer until it is closed (or the screenshot
+/// requested by [`ViewerOptions::screenshot_after`] is written).
+///
+/// winit allows one event loop per process, so call this at most once.
+///
+/// ```no_run
+/// use subdiv_vk::OwnedMesh;
+/// use subdiv_vk::viewer::{self, ViewerOptions};
+///
+/// # fn main() -> Result<(), subdiv_vk::VkError> {
+/// let mut mesh = OwnedMesh {
+///     positions: vec![[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 1.0, 0.0]],
+///     normals: vec![[0.0, 0.0, 1.0]; 3],
+///     triangles: vec![0, 1, 2],
+///     ..Default::default()
+/// };
+/// let report = viewer::run(&mut mesh, ViewerOptions::default())?;
+/// println!("{} frames", report.frames);
+/// # Ok(())
+/// # }
+/// ```
+pub fn run(source: &mut dyn FrameSource, options: ViewerOptions) -> Result<ViewerReport> {
+    app::run(source, options)
+}
