@@ -1,13 +1,17 @@
 //! `cargo xtask`: project automation (demo, tests, set-up of the Vulkan driver).
 //!
 //! - `cargo xtask demo`: tessellates the embedded default cage and writes `out/`.
-//! - `cargo xtask test`: installs what the tests need (lavapipe) if missing, then runs every test.
+//! - `cargo xtask test`: runs `check-architecture`, installs what the tests need (lavapipe) if
+//!   missing, then runs every test.
+//! - `cargo xtask check-architecture`: fails unless the workspace crates' dependencies on each
+//!   other equal the `crate-graph` block of `docs/architecture.md`.
 //! - `cargo xtask figures`: reproduces the papers' tables into `docs/figures.md`.
 //! - `cargo xtask golden [--bless] [--tolerance MEAN,P99] [SCENE...]`: golden-image regression
 //!   (see `docs/golden.md`).
 //! - `cargo xtask bench-osd [--install]`: OpenSubdiv 3.5 (libosd-dev) timed beside the slate
 //!   tessellator (see `docs/performance.md`).
 
+mod architecture;
 mod bench_osd;
 mod figures_cc;
 mod figures_doi;
@@ -144,6 +148,8 @@ fn demo() -> Result<()> {
 }
 
 fn test() -> Result<()> {
+    // Cheap, and a wrong crate graph is worth knowing before the long run.
+    architecture::run(&root())?;
     vulkan::ensure_driver()?;
     // With the layer installed, the Vulkan tests run with validation and fail on any message.
     vulkan::ensure_validation_layer();
@@ -171,12 +177,13 @@ fn main() -> Result<()> {
     match args.first().map(String::as_str) {
         Some("demo") => demo(),
         Some("test") => test(),
+        Some("check-architecture") => architecture::run(&root()),
         Some("figures") => figures_doi::run(&root()).and_then(|()| figures_cc_run()),
         Some("bench-osd") => bench_osd::run(&root()),
         Some("golden") => golden::Options::parse(&args[1..]).and_then(|o| golden::run(&root(), &o)),
         _ => {
             eprintln!(
-                "usage: cargo xtask <demo|test|figures|golden [--bless] [--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]>"
+                "usage: cargo xtask <demo|test|check-architecture|figures|golden [--bless] [--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]>"
             );
             std::process::exit(2);
         }
