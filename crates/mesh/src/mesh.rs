@@ -263,16 +263,10 @@ impl Mesh {
     pub fn is_isolated(&self, v: VertexId) -> bool {
         !self.vertex_out[v.idx()].is_some()
     }
-    /// The face normal of `f` (Newell's method), normalised; zero for a degenerate face.
+    /// The face normal of `f` (Newell's method relative to a corner, [`crate::newell_normal`]),
+    /// normalised; zero for a degenerate face.
     pub fn face_normal(&self, f: FaceId) -> Vec3 {
-        let vs = self.face_vertices(f);
-        let mut n = Vec3::ZERO;
-        for i in 0..vs.len() {
-            let a = self.positions[vs[i].idx()];
-            let b = self.positions[vs[(i + 1) % vs.len()].idx()];
-            n += a.cross(b);
-        }
-        n.normalize_or_zero()
+        crate::newell_normal(self.face_vertices(f).iter().map(|v| self.positions[v.idx()]))
     }
     /// The centroid of face `f`.
     pub fn face_centroid(&self, f: FaceId) -> Vec3 {

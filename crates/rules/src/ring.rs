@@ -180,7 +180,8 @@ impl Ring {
     pub fn vertex_sharpness(&self) -> f32 {
         self.vertex_sharpness
     }
-    /// Unit normal of face `i` of the ring (Newell's method over the whole polygon; for Loop the
+    /// Unit normal of face `i` of the ring (Newell's method relative to a corner,
+    /// [`subdiv_mesh::newell_area`], over the whole polygon; for Loop the
     /// triangle spanned by the centre and edges `i`, `i+1`).
     pub fn face_normal(&self, i: usize) -> DVec3 {
         let n = self.edges.len();
@@ -191,11 +192,7 @@ impl Ring {
             pts.extend_from_slice(self.face_inner(i));
         }
         pts.push(self.edges[(i + 1) % n]);
-        let mut nrm = DVec3::ZERO;
-        for k in 0..pts.len() {
-            nrm += pts[k].cross(pts[(k + 1) % pts.len()]);
-        }
-        nrm.normalize_or_zero()
+        subdiv_mesh::newell_area(pts).normalize_or_zero()
     }
 
     /// `true` if all faces are quads.

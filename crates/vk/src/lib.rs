@@ -36,7 +36,6 @@
 //!
 //! See [`Renderer`] for an example.
 
-#![warn(missing_docs)]
 
 mod context;
 mod error;
