@@ -21,15 +21,21 @@
 //! assert_eq!(t.num_faces(), 588 * 16);
 //! ```
 
+mod gather;
 mod layout;
+mod limit;
 mod patches;
-mod slate;
+mod pool;
+mod step;
+mod table;
 mod tessellate;
+mod worker;
 
 pub use layout::PatchLayout;
 pub use patches::{PatchRef, PatchSet, Unit};
-pub use slate::{KEEP_MAXSD, Worker, WorkerGuard, thread_worker};
+pub use pool::{KEEP_MAXSD, WorkerGuard, thread_worker};
 pub use tessellate::{
     DEFAULT_MAXSD, MAX_DEPTH, MAX_POINTS, SlateError, slate_bytes_per_thread, tessellate,
     tessellate_layout, tessellate_layout_into,
 };
+pub use worker::Worker;

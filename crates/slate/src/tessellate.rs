@@ -6,7 +6,8 @@ use subdiv_mesh::Mesh;
 use subdiv_rules::{LimitMesh, RulesError, Scheme, limit_surface};
 
 use crate::layout::{Patch, PatchLayout};
-use crate::slate::{Worker, thread_worker};
+use crate::pool::thread_worker;
+use crate::worker::Worker;
 
 /// Errors of the slate tessellator.
 #[derive(Debug, thiserror::Error)]
