@@ -278,3 +278,178 @@ fn level1_max_valence(any: bool, mesh: &Mesh) -> usize {
         4
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_meshes::{cube, grid, pentagon_flower, pentagonal_prism, single_quad};
+    use subdiv_rules::{Scheme, refine_uniform_levels};
+
+    /// How many times each output id is written: once per owner, plus isolated vertices.
+    fn write_counts(layout: &PatchLayout) -> Vec<u32> {
+        let mut count = vec![0u32; layout.num_points()];
+        for v in &layout.isolated {
+            count[v.idx()] += 1;
+        }
+        for p in &layout.patches {
+            let n = 1u32 << (layout.depth - p.level as u32);
+            for k in 0..4 {
+                if p.corner_owned[k] {
+                    count[p.corners[k] as usize] += 1;
+                }
+            }
+            for side in p.sides.iter().filter(|s| s.owned) {
+                for s in 1..n {
+                    count[side.id(s) as usize] += 1;
+                }
+            }
+            for x in 0..(n - 1) * (n - 1) {
+                count[(p.interior + x) as usize] += 1;
+            }
+        }
+        count
+    }
+
+    #[test]
+    fn point_and_quad_counts_match_uniform_refinement() {
+        for (name, mesh) in [
+            ("quad", single_quad()),
+            ("cube", cube()),
+            ("grid", grid(3)),
+            ("flower", pentagon_flower()),
+            ("prism", pentagonal_prism()),
+        ] {
+            for depth in 1..=3 {
+                let layout = PatchLayout::new(&mesh, depth).unwrap();
+                let refined = refine_uniform_levels(&mesh, Scheme::CatmullClark, depth).unwrap();
+                assert_eq!(
+                    layout.num_points(),
+                    refined.num_vertices(),
+                    "{name} depth {depth}: points"
+                );
+                assert_eq!(
+                    layout.num_quads(),
+                    refined.num_faces(),
+                    "{name} depth {depth}: quads"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn point_counts_follow_the_closed_formula() {
+        // m = 2^depth samples per cage edge: V + E (m - 1) + the interior of every face, which
+        // for an n-gon is its face point, n inner edges and n level-1 quads of side m / 2.
+        let expected = |mesh: &Mesh, depth: u32| {
+            let m = 1usize << depth;
+            let m1 = m / 2;
+            let faces: usize = mesh
+                .faces()
+                .map(|f| match mesh.face_size(f) {
+                    4 => (m - 1) * (m - 1),
+                    n => 1 + n * (m1 - 1) + n * (m1 - 1) * (m1 - 1),
+                })
+                .sum();
+            mesh.num_vertices() + mesh.num_edges() * (m - 1) + faces
+        };
+        assert_eq!(
+            PatchLayout::new(&single_quad(), 2).unwrap().num_points(),
+            25
+        );
+        assert_eq!(
+            PatchLayout::new(&cube(), 3).unwrap().num_points(),
+            6 * 64 + 2
+        );
+        for mesh in [single_quad(), cube(), pentagon_flower(), pentagonal_prism()] {
+            for depth in 1..=4 {
+                let layout = PatchLayout::new(&mesh, depth).unwrap();
+                assert_eq!(layout.num_points(), expected(&mesh, depth), "depth {depth}");
+            }
+        }
+    }
+
+    #[test]
+    fn every_output_point_has_exactly_one_owner() {
+        for (name, mesh) in [
+            ("quad", single_quad()),
+            ("cube", cube()),
+            ("grid", grid(3)),
+            ("flower", pentagon_flower()),
+            ("prism", pentagonal_prism()),
+        ] {
+            for depth in 1..=3 {
+                let layout = PatchLayout::new(&mesh, depth).unwrap();
+                let count = write_counts(&layout);
+                let bad: Vec<usize> = (0..count.len()).filter(|&i| count[i] != 1).collect();
+                assert!(
+                    bad.is_empty(),
+                    "{name} depth {depth}: ids {bad:?} not written once"
+                );
+                // Ids that are only referenced stay in range too.
+                for p in &layout.patches {
+                    assert!(p.corners.iter().all(|&c| (c as usize) < count.len()));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn patches_and_max_valence() {
+        // One patch per regular quad, n per n-gon or quad next to one.
+        let layout = PatchLayout::new(&cube(), 2).unwrap();
+        assert_eq!(layout.num_patches(), 6);
+        assert!(layout.level1.is_none());
+        // Valence 3 everywhere, but never below 4 (a slate corner is at least a regular one).
+        assert_eq!(layout.max_valence(), 4);
+        let flower = pentagon_flower();
+        let layout = PatchLayout::new(&flower, 2).unwrap();
+        assert_eq!(layout.num_patches(), 5 + 5 * 4 + 5);
+        assert!(layout.level1.is_some());
+        assert_eq!(
+            layout.max_valence(),
+            5,
+            "a level-1 face point of the pentagon"
+        );
+        let levels: Vec<u8> = layout.patches.iter().map(|p| p.level).collect();
+        assert_eq!(levels.iter().filter(|&&l| l == 1).count(), 25);
+        assert!(
+            levels[25..].iter().all(|&l| l == 0),
+            "outer ring from the cage"
+        );
+    }
+
+    #[test]
+    fn shared_points_are_shared_by_the_output_quads() {
+        // With one id per shared point, the output is a closed quad mesh wherever the cage is:
+        // every directed edge once, each with its reverse; Euler characteristic kept.
+        for (name, mesh, euler) in [
+            ("cube", cube(), 2),
+            ("prism", pentagonal_prism(), 2),
+            ("flower", pentagon_flower(), 1),
+            ("grid", grid(2), 1),
+        ] {
+            for depth in 1..=3 {
+                let layout = PatchLayout::new(&mesh, depth).unwrap();
+                let out = crate::tessellate_layout(&mesh, &layout).unwrap();
+                let mut directed = std::collections::HashSet::new();
+                for f in 0..out.num_faces() {
+                    let q = out.face(f);
+                    for k in 0..q.len() {
+                        let e = (q[k], q[(k + 1) % q.len()]);
+                        assert!(directed.insert(e), "{name} depth {depth}: edge {e:?} twice");
+                    }
+                }
+                let undirected: std::collections::HashSet<(u32, u32)> = directed
+                    .iter()
+                    .map(|&(a, b)| (a.min(b), a.max(b)))
+                    .collect();
+                if euler == 2 {
+                    assert_eq!(directed.len(), 2 * undirected.len(), "{name}: closed");
+                }
+                let chi =
+                    out.positions.len() as i64 - undirected.len() as i64 + out.num_faces() as i64;
+                assert_eq!(chi, euler, "{name} depth {depth}: Euler characteristic");
+            }
+        }
+    }
+}

@@ -54,6 +54,8 @@ mod pool;
 mod step;
 mod table;
 mod tessellate;
+#[cfg(test)]
+mod test_meshes;
 mod worker;
 
 pub use layout::PatchLayout;
