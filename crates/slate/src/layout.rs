@@ -120,36 +120,13 @@ impl PatchLayout {
                 next += mesh.face_size(f) as u32 * (m1.saturating_sub(1));
             }
         }
-        let edge_start = |h: HalfedgeId| edge_base + h.edge().0 * (m - 1);
-        let forward = |h: HalfedgeId| h == h.edge().halfedge(0);
-
-        // Owners.
-        let edge_owner_face = |h: HalfedgeId| -> FaceId {
-            let e = h.edge();
-            let f0 = mesh.face(e.halfedge(0));
-            if f0.is_some() {
-                f0
-            } else {
-                mesh.face(e.halfedge(1))
-            }
-        };
-        let vertex_owner = |v: VertexId| -> (FaceId, usize) {
-            let h = mesh.vertex_halfedge(v);
-            let f = mesh.face(h);
-            let k = mesh
-                .face_vertices(f)
-                .iter()
-                .position(|&x| x == v)
-                .unwrap_or(0);
-            (f, k)
-        };
-        let hidden = |f: FaceId| {
-            mesh.is_hole(f)
-                || (mesh.options().boundary == subdiv_mesh::BoundaryInterpolation::None
-                    && mesh
-                        .face_vertices(f)
-                        .iter()
-                        .any(|&v| mesh.is_boundary_vertex(v)))
+        let numbering = Numbering {
+            mesh,
+            m,
+            m1,
+            edge_base,
+            face_point,
+            inner_edge,
         };
 
         let mut patches = Vec::new();
@@ -164,96 +141,10 @@ impl PatchLayout {
                 }
                 v
             };
-            let n = hs.len();
-            let vs = mesh.face_vertices(f);
             if !irregular[f.idx()] {
-                let mut corners = [0u32; 4];
-                let mut corner_owned = [false; 4];
-                let mut sides = [SideMap::default(); 4];
-                for k in 0..4 {
-                    corners[k] = vs[k].0;
-                    corner_owned[k] = vertex_owner(vs[k]) == (f, k);
-                    let h = hs[k];
-                    let (first, step) = if forward(h) {
-                        (edge_start(h), 1)
-                    } else {
-                        (edge_start(h) + (m - 2), -1)
-                    };
-                    sides[k] = SideMap {
-                        first,
-                        step,
-                        owned: edge_owner_face(h) == f,
-                    };
-                }
-                let interior = next;
-                next += (m - 1) * (m - 1);
-                patches.push(Patch {
-                    face: f,
-                    level: 0,
-                    corners,
-                    corner_owned,
-                    sides,
-                    interior,
-                    visible: !hidden(f),
-                });
+                patches.push(numbering.cage_patch(f, &hs, &mut next));
             } else {
-                for k in 0..n {
-                    let h = hs[k];
-                    let hp = hs[(k + n - 1) % n];
-                    let mid = |h: HalfedgeId| edge_start(h) + (m / 2 - 1);
-                    let owner_f = edge_owner_face(h);
-                    let corners = [vs[k].0, mid(h), face_point[f.idx()], mid(hp)];
-                    let corner_owned = [vertex_owner(vs[k]) == (f, k), owner_f == f, k == 0, false];
-                    let s0 = if forward(h) {
-                        SideMap {
-                            first: edge_start(h),
-                            step: 1,
-                            owned: owner_f == f,
-                        }
-                    } else {
-                        SideMap {
-                            first: edge_start(h) + (m - 2),
-                            step: -1,
-                            owned: owner_f == f,
-                        }
-                    };
-                    let s1 = SideMap {
-                        first: inner_edge[f.idx()] + k as u32 * (m1.saturating_sub(1)),
-                        step: 1,
-                        owned: true,
-                    };
-                    let s2 = SideMap {
-                        first: inner_edge[f.idx()]
-                            + ((k + n - 1) % n) as u32 * (m1.saturating_sub(1))
-                            + m1.saturating_sub(2),
-                        step: -1,
-                        owned: false,
-                    };
-                    let s3 = if forward(hp) {
-                        SideMap {
-                            first: edge_start(hp) + m / 2,
-                            step: 1,
-                            owned: edge_owner_face(hp) == f,
-                        }
-                    } else {
-                        SideMap {
-                            first: (edge_start(hp) + m / 2).wrapping_sub(2),
-                            step: -1,
-                            owned: edge_owner_face(hp) == f,
-                        }
-                    };
-                    let interior = next;
-                    next += (m1.saturating_sub(1)) * (m1.saturating_sub(1));
-                    patches.push(Patch {
-                        face: FaceId(first_child[f.idx()] + k as u32),
-                        level: 1,
-                        corners,
-                        corner_owned,
-                        sides: [s0, s1, s2, s3],
-                        interior,
-                        visible: !hidden(f),
-                    });
-                }
+                numbering.level1_patches(f, &hs, first_child[f.idx()], &mut next, &mut patches);
             }
         }
         let isolated = mesh.vertices().filter(|&v| mesh.is_isolated(v)).collect();
@@ -267,6 +158,177 @@ impl PatchLayout {
                 .max_valence()
                 .max(level1_max_valence(any_irregular, mesh)),
         })
+    }
+}
+
+/// The output numbering of the points shared between patches, and who owns them.
+struct Numbering<'a> {
+    mesh: &'a Mesh,
+    /// Samples per cage edge (`2^depth`).
+    m: u32,
+    /// Samples per level-1 edge (`m / 2`).
+    m1: u32,
+    /// First id of the interior points of cage edges (`m - 1` per edge, in edge order).
+    edge_base: u32,
+    /// Id of the face point of each irregular face.
+    face_point: Vec<u32>,
+    /// First id of the interior points of each irregular face's inner level-1 edges.
+    inner_edge: Vec<u32>,
+}
+
+impl Numbering<'_> {
+    fn edge_start(&self, h: HalfedgeId) -> u32 {
+        self.edge_base + h.edge().0 * (self.m - 1)
+    }
+
+    fn forward(h: HalfedgeId) -> bool {
+        h == h.edge().halfedge(0)
+    }
+
+    /// The face that owns the points of `h`'s edge.
+    fn edge_owner_face(&self, h: HalfedgeId) -> FaceId {
+        let e = h.edge();
+        let f0 = self.mesh.face(e.halfedge(0));
+        if f0.is_some() {
+            f0
+        } else {
+            self.mesh.face(e.halfedge(1))
+        }
+    }
+
+    /// The face and corner index that own vertex `v`.
+    fn vertex_owner(&self, v: VertexId) -> (FaceId, usize) {
+        let mesh = self.mesh;
+        let h = mesh.vertex_halfedge(v);
+        let f = mesh.face(h);
+        let k = mesh
+            .face_vertices(f)
+            .iter()
+            .position(|&x| x == v)
+            .unwrap_or(0);
+        (f, k)
+    }
+
+    /// `true` for faces whose patches are computed but not drawn.
+    fn hidden(&self, f: FaceId) -> bool {
+        let mesh = self.mesh;
+        mesh.is_hole(f)
+            || (mesh.options().boundary == subdiv_mesh::BoundaryInterpolation::None
+                && mesh
+                    .face_vertices(f)
+                    .iter()
+                    .any(|&v| mesh.is_boundary_vertex(v)))
+    }
+
+    /// The one patch of a regular quad `f` (half-edges `hs`), gathered from the cage; its
+    /// interior takes the ids from `next` on.
+    fn cage_patch(&self, f: FaceId, hs: &[HalfedgeId], next: &mut u32) -> Patch {
+        let (m, vs) = (self.m, self.mesh.face_vertices(f));
+        let mut corners = [0u32; 4];
+        let mut corner_owned = [false; 4];
+        let mut sides = [SideMap::default(); 4];
+        for k in 0..4 {
+            corners[k] = vs[k].0;
+            corner_owned[k] = self.vertex_owner(vs[k]) == (f, k);
+            let h = hs[k];
+            let (first, step) = if Self::forward(h) {
+                (self.edge_start(h), 1)
+            } else {
+                (self.edge_start(h) + (m - 2), -1)
+            };
+            sides[k] = SideMap {
+                first,
+                step,
+                owned: self.edge_owner_face(h) == f,
+            };
+        }
+        let interior = *next;
+        *next += (m - 1) * (m - 1);
+        Patch {
+            face: f,
+            level: 0,
+            corners,
+            corner_owned,
+            sides,
+            interior,
+            visible: !self.hidden(f),
+        }
+    }
+
+    /// The level-1 quads of face `f` (half-edges `hs`), the first of them face `first_child` of
+    /// the level-1 mesh; their interiors take the ids from `next` on.
+    fn level1_patches(
+        &self,
+        f: FaceId,
+        hs: &[HalfedgeId],
+        first_child: u32,
+        next: &mut u32,
+        patches: &mut Vec<Patch>,
+    ) {
+        let (m, m1, vs, n) = (self.m, self.m1, self.mesh.face_vertices(f), hs.len());
+        let inner_edge = self.inner_edge[f.idx()];
+        for k in 0..n {
+            let h = hs[k];
+            let hp = hs[(k + n - 1) % n];
+            let mid = |h: HalfedgeId| self.edge_start(h) + (m / 2 - 1);
+            let owner_f = self.edge_owner_face(h);
+            let corners = [vs[k].0, mid(h), self.face_point[f.idx()], mid(hp)];
+            let corner_owned = [
+                self.vertex_owner(vs[k]) == (f, k),
+                owner_f == f,
+                k == 0,
+                false,
+            ];
+            let s0 = if Self::forward(h) {
+                SideMap {
+                    first: self.edge_start(h),
+                    step: 1,
+                    owned: owner_f == f,
+                }
+            } else {
+                SideMap {
+                    first: self.edge_start(h) + (m - 2),
+                    step: -1,
+                    owned: owner_f == f,
+                }
+            };
+            let s1 = SideMap {
+                first: inner_edge + k as u32 * (m1.saturating_sub(1)),
+                step: 1,
+                owned: true,
+            };
+            let s2 = SideMap {
+                first: inner_edge
+                    + ((k + n - 1) % n) as u32 * (m1.saturating_sub(1))
+                    + m1.saturating_sub(2),
+                step: -1,
+                owned: false,
+            };
+            let s3 = if Self::forward(hp) {
+                SideMap {
+                    first: self.edge_start(hp) + m / 2,
+                    step: 1,
+                    owned: self.edge_owner_face(hp) == f,
+                }
+            } else {
+                SideMap {
+                    first: (self.edge_start(hp) + m / 2).wrapping_sub(2),
+                    step: -1,
+                    owned: self.edge_owner_face(hp) == f,
+                }
+            };
+            let interior = *next;
+            *next += (m1.saturating_sub(1)) * (m1.saturating_sub(1));
+            patches.push(Patch {
+                face: FaceId(first_child + k as u32),
+                level: 1,
+                corners,
+                corner_owned,
+                sides: [s0, s1, s2, s3],
+                interior,
+                visible: !self.hidden(f),
+            });
+        }
     }
 }
 
