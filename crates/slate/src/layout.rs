@@ -120,36 +120,13 @@ impl PatchLayout {
                 next += mesh.face_size(f) as u32 * (m1.saturating_sub(1));
             }
         }
-        let edge_start = |h: HalfedgeId| edge_base + h.edge().0 * (m - 1);
-        let forward = |h: HalfedgeId| h == h.edge().halfedge(0);
-
-        // Owners.
-        let edge_owner_face = |h: HalfedgeId| -> FaceId {
-            let e = h.edge();
-            let f0 = mesh.face(e.halfedge(0));
-            if f0.is_some() {
-                f0
-            } else {
-                mesh.face(e.halfedge(1))
-            }
-        };
-        let vertex_owner = |v: VertexId| -> (FaceId, usize) {
-            let h = mesh.vertex_halfedge(v);
-            let f = mesh.face(h);
-            let k = mesh
-                .face_vertices(f)
-                .iter()
-                .position(|&x| x == v)
-                .unwrap_or(0);
-            (f, k)
-        };
-        let hidden = |f: FaceId| {
-            mesh.is_hole(f)
-                || (mesh.options().boundary == subdiv_mesh::BoundaryInterpolation::None
-                    && mesh
-                        .face_vertices(f)
-                        .iter()
-                        .any(|&v| mesh.is_boundary_vertex(v)))
+        let numbering = Numbering {
+            mesh,
+            m,
+            m1,
+            edge_base,
+            face_point,
+            inner_edge,
         };
 
         let mut patches = Vec::new();
@@ -164,96 +141,10 @@ impl PatchLayout {
                 }
                 v
             };
-            let n = hs.len();
-            let vs = mesh.face_vertices(f);
             if !irregular[f.idx()] {
-                let mut corners = [0u32; 4];
-                let mut corner_owned = [false; 4];
-                let mut sides = [SideMap::default(); 4];
-                for k in 0..4 {
-                    corners[k] = vs[k].0;
-                    corner_owned[k] = vertex_owner(vs[k]) == (f, k);
-                    let h = hs[k];
-                    let (first, step) = if forward(h) {
-                        (edge_start(h), 1)
-                    } else {
-                        (edge_start(h) + (m - 2), -1)
-                    };
-                    sides[k] = SideMap {
-                        first,
-                        step,
-                        owned: edge_owner_face(h) == f,
-                    };
-                }
-                let interior = next;
-                next += (m - 1) * (m - 1);
-                patches.push(Patch {
-                    face: f,
-                    level: 0,
-                    corners,
-                    corner_owned,
-                    sides,
-                    interior,
-                    visible: !hidden(f),
-                });
+                patches.push(numbering.cage_patch(f, &hs, &mut next));
             } else {
-                for k in 0..n {
-                    let h = hs[k];
-                    let hp = hs[(k + n - 1) % n];
-                    let mid = |h: HalfedgeId| edge_start(h) + (m / 2 - 1);
-                    let owner_f = edge_owner_face(h);
-                    let corners = [vs[k].0, mid(h), face_point[f.idx()], mid(hp)];
-                    let corner_owned = [vertex_owner(vs[k]) == (f, k), owner_f == f, k == 0, false];
-                    let s0 = if forward(h) {
-                        SideMap {
-                            first: edge_start(h),
-                            step: 1,
-                            owned: owner_f == f,
-                        }
-                    } else {
-                        SideMap {
-                            first: edge_start(h) + (m - 2),
-                            step: -1,
-                            owned: owner_f == f,
-                        }
-                    };
-                    let s1 = SideMap {
-                        first: inner_edge[f.idx()] + k as u32 * (m1.saturating_sub(1)),
-                        step: 1,
-                        owned: true,
-                    };
-                    let s2 = SideMap {
-                        first: inner_edge[f.idx()]
-                            + ((k + n - 1) % n) as u32 * (m1.saturating_sub(1))
-                            + m1.saturating_sub(2),
-                        step: -1,
-                        owned: false,
-                    };
-                    let s3 = if forward(hp) {
-                        SideMap {
-                            first: edge_start(hp) + m / 2,
-                            step: 1,
-                            owned: edge_owner_face(hp) == f,
-                        }
-                    } else {
-                        SideMap {
-                            first: (edge_start(hp) + m / 2).wrapping_sub(2),
-                            step: -1,
-                            owned: edge_owner_face(hp) == f,
-                        }
-                    };
-                    let interior = next;
-                    next += (m1.saturating_sub(1)) * (m1.saturating_sub(1));
-                    patches.push(Patch {
-                        face: FaceId(first_child[f.idx()] + k as u32),
-                        level: 1,
-                        corners,
-                        corner_owned,
-                        sides: [s0, s1, s2, s3],
-                        interior,
-                        visible: !hidden(f),
-                    });
-                }
+                numbering.level1_patches(f, &hs, first_child[f.idx()], &mut next, &mut patches);
             }
         }
         let isolated = mesh.vertices().filter(|&v| mesh.is_isolated(v)).collect();
@@ -270,11 +161,357 @@ impl PatchLayout {
     }
 }
 
+/// The output numbering of the points shared between patches, and who owns them.
+struct Numbering<'a> {
+    mesh: &'a Mesh,
+    /// Samples per cage edge (`2^depth`).
+    m: u32,
+    /// Samples per level-1 edge (`m / 2`).
+    m1: u32,
+    /// First id of the interior points of cage edges (`m - 1` per edge, in edge order).
+    edge_base: u32,
+    /// Id of the face point of each irregular face.
+    face_point: Vec<u32>,
+    /// First id of the interior points of each irregular face's inner level-1 edges.
+    inner_edge: Vec<u32>,
+}
+
+impl Numbering<'_> {
+    fn edge_start(&self, h: HalfedgeId) -> u32 {
+        self.edge_base + h.edge().0 * (self.m - 1)
+    }
+
+    fn forward(h: HalfedgeId) -> bool {
+        h == h.edge().halfedge(0)
+    }
+
+    /// The face that owns the points of `h`'s edge.
+    fn edge_owner_face(&self, h: HalfedgeId) -> FaceId {
+        let e = h.edge();
+        let f0 = self.mesh.face(e.halfedge(0));
+        if f0.is_some() {
+            f0
+        } else {
+            self.mesh.face(e.halfedge(1))
+        }
+    }
+
+    /// The face and corner index that own vertex `v`.
+    fn vertex_owner(&self, v: VertexId) -> (FaceId, usize) {
+        let mesh = self.mesh;
+        let h = mesh.vertex_halfedge(v);
+        let f = mesh.face(h);
+        let k = mesh
+            .face_vertices(f)
+            .iter()
+            .position(|&x| x == v)
+            .unwrap_or(0);
+        (f, k)
+    }
+
+    /// `true` for faces whose patches are computed but not drawn.
+    fn hidden(&self, f: FaceId) -> bool {
+        let mesh = self.mesh;
+        mesh.is_hole(f)
+            || (mesh.options().boundary == subdiv_mesh::BoundaryInterpolation::None
+                && mesh
+                    .face_vertices(f)
+                    .iter()
+                    .any(|&v| mesh.is_boundary_vertex(v)))
+    }
+
+    /// The one patch of a regular quad `f` (half-edges `hs`), gathered from the cage; its
+    /// interior takes the ids from `next` on.
+    fn cage_patch(&self, f: FaceId, hs: &[HalfedgeId], next: &mut u32) -> Patch {
+        let (m, vs) = (self.m, self.mesh.face_vertices(f));
+        let mut corners = [0u32; 4];
+        let mut corner_owned = [false; 4];
+        let mut sides = [SideMap::default(); 4];
+        for k in 0..4 {
+            corners[k] = vs[k].0;
+            corner_owned[k] = self.vertex_owner(vs[k]) == (f, k);
+            let h = hs[k];
+            let (first, step) = if Self::forward(h) {
+                (self.edge_start(h), 1)
+            } else {
+                (self.edge_start(h) + (m - 2), -1)
+            };
+            sides[k] = SideMap {
+                first,
+                step,
+                owned: self.edge_owner_face(h) == f,
+            };
+        }
+        let interior = *next;
+        *next += (m - 1) * (m - 1);
+        Patch {
+            face: f,
+            level: 0,
+            corners,
+            corner_owned,
+            sides,
+            interior,
+            visible: !self.hidden(f),
+        }
+    }
+
+    /// The level-1 quads of face `f` (half-edges `hs`), the first of them face `first_child` of
+    /// the level-1 mesh; their interiors take the ids from `next` on.
+    fn level1_patches(
+        &self,
+        f: FaceId,
+        hs: &[HalfedgeId],
+        first_child: u32,
+        next: &mut u32,
+        patches: &mut Vec<Patch>,
+    ) {
+        let (m, m1, vs, n) = (self.m, self.m1, self.mesh.face_vertices(f), hs.len());
+        let inner_edge = self.inner_edge[f.idx()];
+        for k in 0..n {
+            let h = hs[k];
+            let hp = hs[(k + n - 1) % n];
+            let mid = |h: HalfedgeId| self.edge_start(h) + (m / 2 - 1);
+            let owner_f = self.edge_owner_face(h);
+            let corners = [vs[k].0, mid(h), self.face_point[f.idx()], mid(hp)];
+            let corner_owned = [
+                self.vertex_owner(vs[k]) == (f, k),
+                owner_f == f,
+                k == 0,
+                false,
+            ];
+            let s0 = if Self::forward(h) {
+                SideMap {
+                    first: self.edge_start(h),
+                    step: 1,
+                    owned: owner_f == f,
+                }
+            } else {
+                SideMap {
+                    first: self.edge_start(h) + (m - 2),
+                    step: -1,
+                    owned: owner_f == f,
+                }
+            };
+            let s1 = SideMap {
+                first: inner_edge + k as u32 * (m1.saturating_sub(1)),
+                step: 1,
+                owned: true,
+            };
+            let s2 = SideMap {
+                first: inner_edge
+                    + ((k + n - 1) % n) as u32 * (m1.saturating_sub(1))
+                    + m1.saturating_sub(2),
+                step: -1,
+                owned: false,
+            };
+            let s3 = if Self::forward(hp) {
+                SideMap {
+                    first: self.edge_start(hp) + m / 2,
+                    step: 1,
+                    owned: self.edge_owner_face(hp) == f,
+                }
+            } else {
+                SideMap {
+                    first: (self.edge_start(hp) + m / 2).wrapping_sub(2),
+                    step: -1,
+                    owned: self.edge_owner_face(hp) == f,
+                }
+            };
+            let interior = *next;
+            *next += (m1.saturating_sub(1)) * (m1.saturating_sub(1));
+            patches.push(Patch {
+                face: FaceId(first_child + k as u32),
+                level: 1,
+                corners,
+                corner_owned,
+                sides: [s0, s1, s2, s3],
+                interior,
+                visible: !self.hidden(f),
+            });
+        }
+    }
+}
+
 fn level1_max_valence(any: bool, mesh: &Mesh) -> usize {
     // A level-1 face point has the valence of its face.
     if any {
         mesh.faces().map(|f| mesh.face_size(f)).max().unwrap_or(4)
     } else {
         4
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_meshes::{cube, grid, pentagon_flower, pentagonal_prism, single_quad};
+    use subdiv_rules::{Scheme, refine_uniform_levels};
+
+    /// How many times each output id is written: once per owner, plus isolated vertices.
+    fn write_counts(layout: &PatchLayout) -> Vec<u32> {
+        let mut count = vec![0u32; layout.num_points()];
+        for v in &layout.isolated {
+            count[v.idx()] += 1;
+        }
+        for p in &layout.patches {
+            let n = 1u32 << (layout.depth - p.level as u32);
+            for k in 0..4 {
+                if p.corner_owned[k] {
+                    count[p.corners[k] as usize] += 1;
+                }
+            }
+            for side in p.sides.iter().filter(|s| s.owned) {
+                for s in 1..n {
+                    count[side.id(s) as usize] += 1;
+                }
+            }
+            for x in 0..(n - 1) * (n - 1) {
+                count[(p.interior + x) as usize] += 1;
+            }
+        }
+        count
+    }
+
+    #[test]
+    fn point_and_quad_counts_match_uniform_refinement() {
+        for (name, mesh) in [
+            ("quad", single_quad()),
+            ("cube", cube()),
+            ("grid", grid(3)),
+            ("flower", pentagon_flower()),
+            ("prism", pentagonal_prism()),
+        ] {
+            for depth in 1..=3 {
+                let layout = PatchLayout::new(&mesh, depth).unwrap();
+                let refined = refine_uniform_levels(&mesh, Scheme::CatmullClark, depth).unwrap();
+                assert_eq!(
+                    layout.num_points(),
+                    refined.num_vertices(),
+                    "{name} depth {depth}: points"
+                );
+                assert_eq!(
+                    layout.num_quads(),
+                    refined.num_faces(),
+                    "{name} depth {depth}: quads"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn point_counts_follow_the_closed_formula() {
+        // m = 2^depth samples per cage edge: V + E (m - 1) + the interior of every face, which
+        // for an n-gon is its face point, n inner edges and n level-1 quads of side m / 2.
+        let expected = |mesh: &Mesh, depth: u32| {
+            let m = 1usize << depth;
+            let m1 = m / 2;
+            let faces: usize = mesh
+                .faces()
+                .map(|f| match mesh.face_size(f) {
+                    4 => (m - 1) * (m - 1),
+                    n => 1 + n * (m1 - 1) + n * (m1 - 1) * (m1 - 1),
+                })
+                .sum();
+            mesh.num_vertices() + mesh.num_edges() * (m - 1) + faces
+        };
+        assert_eq!(
+            PatchLayout::new(&single_quad(), 2).unwrap().num_points(),
+            25
+        );
+        assert_eq!(
+            PatchLayout::new(&cube(), 3).unwrap().num_points(),
+            6 * 64 + 2
+        );
+        for mesh in [single_quad(), cube(), pentagon_flower(), pentagonal_prism()] {
+            for depth in 1..=4 {
+                let layout = PatchLayout::new(&mesh, depth).unwrap();
+                assert_eq!(layout.num_points(), expected(&mesh, depth), "depth {depth}");
+            }
+        }
+    }
+
+    #[test]
+    fn every_output_point_has_exactly_one_owner() {
+        for (name, mesh) in [
+            ("quad", single_quad()),
+            ("cube", cube()),
+            ("grid", grid(3)),
+            ("flower", pentagon_flower()),
+            ("prism", pentagonal_prism()),
+        ] {
+            for depth in 1..=3 {
+                let layout = PatchLayout::new(&mesh, depth).unwrap();
+                let count = write_counts(&layout);
+                let bad: Vec<usize> = (0..count.len()).filter(|&i| count[i] != 1).collect();
+                assert!(
+                    bad.is_empty(),
+                    "{name} depth {depth}: ids {bad:?} not written once"
+                );
+                // Ids that are only referenced stay in range too.
+                for p in &layout.patches {
+                    assert!(p.corners.iter().all(|&c| (c as usize) < count.len()));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn patches_and_max_valence() {
+        // One patch per regular quad, n per n-gon or quad next to one.
+        let layout = PatchLayout::new(&cube(), 2).unwrap();
+        assert_eq!(layout.num_patches(), 6);
+        assert!(layout.level1.is_none());
+        // Valence 3 everywhere, but never below 4 (a slate corner is at least a regular one).
+        assert_eq!(layout.max_valence(), 4);
+        let flower = pentagon_flower();
+        let layout = PatchLayout::new(&flower, 2).unwrap();
+        assert_eq!(layout.num_patches(), 5 + 5 * 4 + 5);
+        assert!(layout.level1.is_some());
+        assert_eq!(
+            layout.max_valence(),
+            5,
+            "a level-1 face point of the pentagon"
+        );
+        let levels: Vec<u8> = layout.patches.iter().map(|p| p.level).collect();
+        assert_eq!(levels.iter().filter(|&&l| l == 1).count(), 25);
+        assert!(
+            levels[25..].iter().all(|&l| l == 0),
+            "outer ring from the cage"
+        );
+    }
+
+    #[test]
+    fn shared_points_are_shared_by_the_output_quads() {
+        // With one id per shared point, the output is a closed quad mesh wherever the cage is:
+        // every directed edge once, each with its reverse; Euler characteristic kept.
+        for (name, mesh, euler) in [
+            ("cube", cube(), 2),
+            ("prism", pentagonal_prism(), 2),
+            ("flower", pentagon_flower(), 1),
+            ("grid", grid(2), 1),
+        ] {
+            for depth in 1..=3 {
+                let layout = PatchLayout::new(&mesh, depth).unwrap();
+                let out = crate::tessellate_layout(&mesh, &layout).unwrap();
+                let mut directed = std::collections::HashSet::new();
+                for f in 0..out.num_faces() {
+                    let q = out.face(f);
+                    for k in 0..q.len() {
+                        let e = (q[k], q[(k + 1) % q.len()]);
+                        assert!(directed.insert(e), "{name} depth {depth}: edge {e:?} twice");
+                    }
+                }
+                let undirected: std::collections::HashSet<(u32, u32)> = directed
+                    .iter()
+                    .map(|&(a, b)| (a.min(b), a.max(b)))
+                    .collect();
+                if euler == 2 {
+                    assert_eq!(directed.len(), 2 * undirected.len(), "{name}: closed");
+                }
+                let chi =
+                    out.positions.len() as i64 - undirected.len() as i64 + out.num_faces() as i64;
+                assert_eq!(chi, euler, "{name} depth {depth}: Euler characteristic");
+            }
+        }
     }
 }

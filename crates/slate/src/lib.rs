@@ -1,17 +1,42 @@
 //! `subdiv-slate`: the per-patch Catmull-Clark tessellator with two static slates.
 //!
+//! The crate's job: given a cage [`Mesh`](subdiv_mesh::Mesh) and a depth `d`, produce the
+//! uniform level-`d` tessellation of its Catmull-Clark limit surface (every quad of the
+//! level-`d` refinement, with exact limit points and limit normals as vertices) without
+//! refining the whole mesh: each face is tessellated on its own, in parallel.
+//!
 //! Settgast, Müller, Fünfzig and Fellner, "Adaptive Tessellation of Subdivision Surfaces",
 //! Section 3.2: every face of the cage is tessellated on its own. Its 1-neighbourhood is gathered
 //! into a statically sized *slate*; `tessellate(depth, slate i)` subdivides it once into the
 //! other slate and recurses, and the limit points and limit normals of the `(2^d + 1)^2` grid are
-//! computed from the last slate. The cage is never modified.
+//! computed from the last slate.
 //!
-//! Beyond the paper: every rule of `subdiv-rules` applies inside the slate (boundaries, sharp and
-//! semi-sharp creases with the uniform or Chaikin rule, darts, corners), valences are limited only
-//! by memory (the corner arrays are sized from the mesh), n-gons and quads next to them are
-//! tessellated through their level-1 quads, limits are exact for semi-sharp creases, patches run
-//! in parallel with one pair of slates per thread (kept between calls, see [`thread_worker`]), and shared points are written by one owner
-//! patch so the output is bit-identical for any thread count (see [`PatchLayout`]).
+//! # Invariants
+//!
+//! - **The cage is never modified.** Patches only read the mesh (or a local level-1 refinement
+//!   built beside it, for n-gons and their neighbours); all refinement happens in the slates.
+//! - **One owner per output point.** A point shared by several patches (a cage vertex, a point
+//!   on a cage edge, ...) is numbered once and written by exactly one *owner* patch; the others
+//!   only reference it (see [`PatchLayout`]). No two tasks write the same output element.
+//! - **Output identical for any thread count.** Every point is computed by its owner alone from
+//!   that patch's own gather, in a fixed order, and a worker's reuse between patches cannot
+//!   change results (see [`thread_worker`]), so the output is bit-identical whether it runs on
+//!   one thread or many.
+//!
+//! # Beyond the paper
+//!
+//! Every rule of `subdiv-rules` applies inside the slate (boundaries, sharp and semi-sharp
+//! creases with the uniform or Chaikin rule, darts, corners), valences are limited only by memory
+//! (the corner arrays are sized from the mesh), n-gons and quads next to them are tessellated
+//! through their level-1 quads, limits are exact for semi-sharp creases, and patches run in
+//! parallel with one pair of slates per thread (kept between calls, see [`thread_worker`]).
+//!
+//! # Modules
+//!
+//! `table` (a slate's storage), `gather` (a patch's 1-neighbourhood into slate 0), `step` (one
+//! subdivision step), `limit` (limit points and normals), `worker` (a thread's slates and the
+//! pipeline of one patch), `pool` (the per-thread workers), `patches` and `layout` (per-mesh
+//! set-up and output numbering), `tessellate` (the parallel driver).
 //!
 //! ```
 //! use subdiv_mesh::read_obj;
@@ -21,15 +46,23 @@
 //! assert_eq!(t.num_faces(), 588 * 16);
 //! ```
 
+mod gather;
 mod layout;
+mod limit;
 mod patches;
-mod slate;
+mod pool;
+mod step;
+mod table;
 mod tessellate;
+#[cfg(test)]
+mod test_meshes;
+mod worker;
 
 pub use layout::PatchLayout;
 pub use patches::{PatchRef, PatchSet, Unit};
-pub use slate::{KEEP_MAXSD, Worker, WorkerGuard, thread_worker};
+pub use pool::{KEEP_MAXSD, WorkerGuard, thread_worker};
 pub use tessellate::{
     DEFAULT_MAXSD, MAX_DEPTH, MAX_POINTS, SlateError, slate_bytes_per_thread, tessellate,
     tessellate_layout, tessellate_layout_into,
 };
+pub use worker::Worker;

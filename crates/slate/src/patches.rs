@@ -230,3 +230,106 @@ impl PatchSet {
         self.max_valence
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_meshes::{cube, grid, pentagon_flower, pentagonal_prism, single_quad};
+
+    /// Units are one per face in face order, and their patch ranges tile the patch list.
+    fn check_units(mesh: &Mesh, set: &PatchSet) {
+        assert_eq!(set.units().len(), mesh.num_faces());
+        let mut next = 0;
+        for (u, (unit, f)) in set.units().iter().zip(mesh.faces()).enumerate() {
+            assert_eq!(unit.face, f);
+            assert_eq!(unit.first_patch, next);
+            next += unit.patch_count;
+            let range = unit.first_patch as usize..(unit.first_patch + unit.patch_count) as usize;
+            for (k, p) in set.patches()[range].iter().enumerate() {
+                assert_eq!((p.unit, p.sub), (u as u32, k as u32));
+                assert_eq!(p.level, unit.irregular as u8);
+            }
+        }
+        assert_eq!(next as usize, set.patches().len());
+    }
+
+    #[test]
+    fn one_unit_per_face() {
+        for mesh in [
+            single_quad(),
+            cube(),
+            grid(3),
+            pentagon_flower(),
+            pentagonal_prism(),
+        ] {
+            check_units(&mesh, &PatchSet::new(&mesh).unwrap());
+        }
+    }
+
+    #[test]
+    fn regular_grid_is_gathered_from_the_cage() {
+        let mesh = grid(3);
+        let set = PatchSet::new(&mesh).unwrap();
+        assert!(set.level1.is_none(), "no level-1 mesh without n-gons");
+        assert_eq!(set.patches().len(), 9);
+        for (unit, p) in set.units().iter().zip(set.patches()) {
+            assert!(!unit.irregular);
+            assert_eq!(unit.patch_count, 1);
+            assert_eq!((p.level, p.src_face), (0, unit.face));
+            assert!(std::ptr::eq(set.source(&mesh, p), &mesh));
+        }
+        assert_eq!(set.max_valence(), 4);
+    }
+
+    #[test]
+    fn ngons_and_their_neighbours_get_level1_units() {
+        let mesh = pentagon_flower();
+        let set = PatchSet::new(&mesh).unwrap();
+        let level1 = set
+            .level1
+            .as_ref()
+            .expect("a level-1 mesh for the pentagon");
+        for unit in set.units() {
+            let f = unit.face.idx();
+            // Face 0 is the pentagon, 1..=5 touch it, 6..=10 do not.
+            assert_eq!(unit.irregular, f <= 5, "face {f}");
+            let expected = if f <= 5 { mesh.face_size(unit.face) } else { 1 };
+            assert_eq!(unit.patch_count as usize, expected, "face {f}");
+        }
+        assert_eq!(set.patches().len(), 5 + 5 * 4 + 5);
+        assert_eq!(set.max_valence(), 5);
+        for p in set.patches() {
+            let unit = set.units()[p.unit as usize];
+            let src = set.source(&mesh, p);
+            if p.level == 0 {
+                assert!(std::ptr::eq(src, &mesh));
+                continue;
+            }
+            assert!(std::ptr::eq(src, level1));
+            // Level-1 quad `sub` of a face starts at the child of the face's corner `sub`: of
+            // its four vertices, the first is the nearest to that cage vertex.
+            assert_eq!(level1.face_size(p.src_face), 4);
+            let corner = mesh.position(mesh.face_vertices(unit.face)[p.sub as usize]);
+            let dist: Vec<f32> = level1
+                .face_vertices(p.src_face)
+                .iter()
+                .map(|&v| level1.position(v).distance(corner))
+                .collect();
+            assert!(
+                dist[1..].iter().all(|&d| d > dist[0]),
+                "face {} sub {}: {dist:?}",
+                unit.face.idx(),
+                p.sub
+            );
+        }
+    }
+
+    #[test]
+    fn every_face_of_a_prism_is_irregular() {
+        // Every quad of a pentagonal prism touches a pentagon.
+        let mesh = pentagonal_prism();
+        let set = PatchSet::new(&mesh).unwrap();
+        assert!(set.units().iter().all(|u| u.irregular));
+        assert_eq!(set.patches().len(), 2 * 5 + 5 * 4);
+    }
+}

@@ -6,7 +6,8 @@ use subdiv_mesh::Mesh;
 use subdiv_rules::{LimitMesh, RulesError, Scheme, limit_surface};
 
 use crate::layout::{Patch, PatchLayout};
-use crate::slate::{Worker, thread_worker};
+use crate::pool::thread_worker;
+use crate::worker::Worker;
 
 /// Errors of the slate tessellator.
 #[derive(Debug, thiserror::Error)]
@@ -48,8 +49,13 @@ struct SharedOut {
     nrm: *mut [f32; 3],
     len: usize,
 }
-// SAFETY: tasks write disjoint indices (ownership partition of the layout), checked < len.
+// SAFETY: the pointers are only written through `write` and `write_unchecked`, at indices
+// below `len` (asserted, or checked by `check_range`), and the tasks sharing a `SharedOut` write
+// disjoint indices (each output point has one owner patch in the layout); nothing reads through
+// them while tasks run, and the buffers outlive the parallel loop that uses them.
 unsafe impl Sync for SharedOut {}
+// SAFETY: as for `Sync`: the raw pointers carry no thread affinity, and the only accesses are
+// the disjoint, bounds-checked writes described there.
 unsafe impl Send for SharedOut {}
 
 impl SharedOut {
@@ -70,6 +76,9 @@ impl SharedOut {
     /// `i < len` (see [`SharedOut::check_range`]) and no other task writes index `i`.
     #[inline(always)]
     unsafe fn write_unchecked(&self, i: usize, p: Vec3A, n: Vec3A) {
+        // SAFETY: the caller guarantees `i < len`, so both writes stay inside the `len`-element
+        // buffers `pos` and `nrm` point to, and that no other task writes index `i`, so the
+        // writes race with nothing.
         unsafe {
             *self.pos.add(i) = p.to_array();
             *self.nrm.add(i) = n.to_array();

@@ -1,0 +1,240 @@
+//! Gathering a patch: the 1-neighbourhood of a quad of the mesh copied into slate 0 (Settgast et
+//! al., Fig. 2), with the sharpness of its edges, the corner arrays of its irregular corners and,
+//! for the Chaikin rule, what is known of the creases beyond the table.
+
+use glam::Vec3A;
+use subdiv_mesh::{CreaseMethod, FaceId, HalfedgeId, Mesh, VertexId};
+use subdiv_rules::Scheme;
+use subdiv_rules::crease::is_semi_sharp;
+
+use crate::table::Table;
+use crate::worker::Worker;
+
+/// Table position of the face's corner `k` at level 0.
+const CORNER_POS: [(i32, i32); 4] = [(0, 0), (1, 0), (1, 1), (0, 1)];
+/// Outward direction of side `k` (as a table offset).
+const OUTWARD: [(i32, i32); 4] = [(0, -1), (1, 0), (0, 1), (-1, 0)];
+/// Direction index (0 = +i, 1 = +j, 2 = -i, 3 = -j) running along side `k`.
+const SIDE_DIR: [usize; 4] = [0, 1, 2, 3];
+/// Direction index pointing away from side `k`.
+const OUT_DIR: [usize; 4] = [3, 0, 1, 2];
+
+/// Vertex ids of the level-0 table, `[j + 1][i + 1]`.
+type TableVertices = [[VertexId; 4]; 4];
+
+/// Table edges and their half-edges, collected while gathering: at most the face's 4 sides,
+/// 3 per edge neighbour and 2 per regular corner.
+struct TableEdges {
+    edges: [((i32, i32), usize, HalfedgeId); 24],
+    len: usize,
+}
+
+impl TableEdges {
+    #[inline]
+    fn push(&mut self, at: (i32, i32), dir: usize, h: HalfedgeId) {
+        self.edges[self.len] = (at, dir, h);
+        self.len += 1;
+    }
+}
+
+impl Worker {
+    /// Gathers the 1-neighbourhood of quad `f` of `mesh` (whose neighbourhood is all quads) into
+    /// slate 0 (paper Fig. 2).
+    pub(crate) fn gather(&mut self, mesh: &Mesh, f: FaceId) {
+        self.cur = 0;
+        self.method = mesh.options().crease;
+        self.origin32 = Vec3A::from(mesh.position(mesh.from(mesh.face_halfedge(f))));
+        self.origin = self.origin32.as_dvec3();
+        let origin32 = self.origin32;
+        let t = &mut self.t[0];
+        t.dirty = true;
+        t.reset(1, false);
+        let h0 = mesh.face_halfedge(f);
+        let hs = [h0, mesh.next(h0), mesh.next(mesh.next(h0)), mesh.prev(h0)];
+        let mut vid = face_and_edge_neighbours(mesh, &hs);
+        self.regular = true;
+        // Table edges and their half-edges: the face's sides, the three other sides of each edge
+        // neighbour, and the two outer sides of each regular corner's diagonal face.
+        let mut edges = side_edges(mesh, &hs);
+        self.gather_corners(mesh, &hs, &mut vid, &mut edges);
+        let t = &mut self.t[0];
+        fill_points(t, mesh, &vid, origin32);
+        for &((i, j), d, h) in &edges.edges[..edges.len] {
+            let s = mesh.edge_sharpness(h.edge());
+            if s > 0.0 {
+                self.regular = false;
+                t.set_edge_sharp(i, j, d, s);
+            }
+        }
+        // Missing points anywhere except the diagonal spots of irregular corners mean boundary.
+        for j in -1..=2i32 {
+            for i in -1..=2i32 {
+                let diag_spot = (i == -1 || i == 2) && (j == -1 || j == 2);
+                if !t.exists[t.at(i, j)] && !diag_spot {
+                    self.regular = false;
+                }
+            }
+        }
+        // Far ends of the crossing edges, for the Chaikin rule.
+        if self.method == CreaseMethod::Chaikin {
+            self.regular = false;
+            gather_far(t, mesh, &vid);
+        }
+    }
+
+    /// Corners: an interior valence-4 corner without a corner tag completes the table with its
+    /// diagonal vertex (and two table edges); any other corner keeps its whole ring in a corner
+    /// array.
+    #[inline]
+    fn gather_corners(
+        &mut self,
+        mesh: &Mesh,
+        hs: &[HalfedgeId; 4],
+        vid: &mut TableVertices,
+        edges: &mut TableEdges,
+    ) {
+        for k in 0..4 {
+            let v = mesh.from(hs[k]);
+            let boundary = mesh.is_boundary_vertex(v);
+            let mut valence = 0usize;
+            for _ in mesh.outgoing(v) {
+                valence += 1;
+                if valence > 4 {
+                    break;
+                }
+            }
+            // Sharp edges at an interior valence-4 corner are table edges like any other (the
+            // general step's rules handle them); a corner tag has no place in the table.
+            let c = &mut self.corners[k];
+            c.active = valence != 4 || boundary || mesh.vertex_sharpness(v) > 0.0;
+            c.boundary = boundary;
+            if c.active {
+                c.ring
+                    .load_with_halfedges(mesh, v, Scheme::CatmullClark, &mut self.hes);
+                c.valence = self.hes.len();
+                c.ih = self.hes.iter().position(|&h| h == hs[k]).unwrap_or(0);
+                if boundary || c.ring.vertex_sharpness() > 0.0 {
+                    self.regular = false;
+                }
+            } else {
+                c.valence = 4;
+                let g = mesh.prev(mesh.prev(hs[k]).twin()).twin(); // corner -> behind
+                let gn = mesh.next(g);
+                let d = mesh.to(gn);
+                let (ci, cj) = CORNER_POS[k];
+                let (o1i, o1j) = OUTWARD[k];
+                let (o2i, o2j) = OUTWARD[(k + 3) % 4];
+                vid[(cj + o1j + o2j + 1) as usize][(ci + o1i + o2i + 1) as usize] = d;
+                edges.push((ci + o2i, cj + o2j), OUT_DIR[k], gn);
+                edges.push(
+                    (ci + o1i, cj + o1j),
+                    OUT_DIR[(k + 3) % 4],
+                    mesh.next(gn).twin(),
+                );
+            }
+        }
+    }
+}
+
+/// Vertex ids of the face's corners and of the two far vertices of each edge neighbour.
+#[inline]
+fn face_and_edge_neighbours(mesh: &Mesh, hs: &[HalfedgeId; 4]) -> TableVertices {
+    let mut vid = [[VertexId::NONE; 4]; 4];
+    for k in 0..4 {
+        let (ci, cj) = CORNER_POS[k];
+        vid[(cj + 1) as usize][(ci + 1) as usize] = mesh.from(hs[k]);
+    }
+    for k in 0..4 {
+        let tw = hs[k].twin();
+        if mesh.face(tw).is_some() {
+            let x = mesh.to(mesh.next(tw));
+            let y = mesh.to(mesh.next(mesh.next(tw)));
+            let (ai, aj) = CORNER_POS[k];
+            let (bi, bj) = CORNER_POS[(k + 1) % 4];
+            let (oi, oj) = OUTWARD[k];
+            vid[(aj + oj + 1) as usize][(ai + oi + 1) as usize] = x;
+            vid[(bj + oj + 1) as usize][(bi + oi + 1) as usize] = y;
+        }
+    }
+    vid
+}
+
+/// The face's sides and the three other sides of each edge neighbour.
+#[inline]
+fn side_edges(mesh: &Mesh, hs: &[HalfedgeId; 4]) -> TableEdges {
+    let mut edges = TableEdges {
+        edges: [((0, 0), 0, HalfedgeId::NONE); 24],
+        len: 0,
+    };
+    for k in 0..4 {
+        edges.push(CORNER_POS[k], SIDE_DIR[k], hs[k]);
+        let tw = hs[k].twin();
+        if mesh.face(tw).is_some() {
+            let g1 = mesh.next(tw);
+            let g2 = mesh.next(g1);
+            let (ai, aj) = CORNER_POS[k];
+            let (oi, oj) = OUTWARD[k];
+            edges.push(CORNER_POS[k], OUT_DIR[k], g1);
+            edges.push((ai + oi, aj + oj), SIDE_DIR[k], g2);
+            edges.push(CORNER_POS[(k + 1) % 4], OUT_DIR[k], mesh.next(g2));
+        }
+    }
+    edges
+}
+
+/// Positions (relative to `origin32`) and existence flags of the level-0 table.
+#[inline]
+fn fill_points(t: &mut Table, mesh: &Mesh, vid: &TableVertices, origin32: Vec3A) {
+    for j in -1..=2i32 {
+        for i in -1..=2i32 {
+            let v = vid[(j + 1) as usize][(i + 1) as usize];
+            let k = t.at(i, j);
+            t.exists[k] = v.is_some();
+            t.positions[k] = if v.is_some() {
+                Vec3A::from(mesh.position(v)) - origin32
+            } else {
+                Vec3A::ZERO
+            };
+        }
+    }
+}
+
+/// Far ends of the crossing edges (Chaikin rule): for each crossing edge of the level-0 table,
+/// the (sum, count) of the semi-sharp edges at its outer end other than itself.
+fn gather_far(t: &mut Table, mesh: &Mesh, vid: &TableVertices) {
+    for side in 0..4 {
+        for s in 0..=1i32 {
+            let (ii, jj, oi, oj) = side_crossing(side, s, 1);
+            let a = vid[(jj + 1) as usize][(ii + 1) as usize];
+            let b = vid[(oj + 1) as usize][(oi + 1) as usize];
+            if !(a.is_some() && b.is_some()) {
+                continue;
+            }
+            let Some(h) = mesh.find_halfedge(a, b) else {
+                continue;
+            };
+            let mut sum = 0.0;
+            let mut cnt = 0;
+            for g in mesh.outgoing(b) {
+                let sh = mesh.edge_sharpness(g.edge());
+                if g.edge() != h.edge() && is_semi_sharp(sh) {
+                    sum += sh;
+                    cnt += 1;
+                }
+            }
+            t.far_semi_sharp[side][s as usize] = (sum, cnt);
+        }
+    }
+}
+
+/// Table coordinates of the crossing edge at position `s` along side `side` (grid `n`): the
+/// inner end `(i, j)` and the outer end `(oi, oj)`.
+#[inline]
+fn side_crossing(side: usize, s: i32, n: i32) -> (i32, i32, i32, i32) {
+    match side {
+        0 => (s, 0, s, -1),
+        1 => (n, s, n + 1, s),
+        2 => (s, n, s, n + 1),
+        _ => (0, s, -1, s),
+    }
+}

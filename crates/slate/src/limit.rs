@@ -1,0 +1,222 @@
+//! Limit points and normals of the final grid of a patch.
+//!
+//! Interior points always take the regular limit masks (separable form, [`Worker::limit_interior`]);
+//! border points take them where their neighbourhood is plain, and otherwise (creases,
+//! boundaries) the exact limit of their ring, through a [`QuadRingStencil`] kept per sharpness
+//! configuration — [`Ring::limit`](subdiv_rules::Ring::limit) precomputed, so a semi-sharp crease
+//! still gets its true limit at any depth.
+
+use glam::Vec3A;
+use subdiv_mesh::CreaseMethod;
+use subdiv_rules::QuadRingStencil;
+use subdiv_rules::catmark;
+use subdiv_rules::crease::Rule;
+
+use crate::table::{DI, DJ, far_info};
+use crate::worker::Worker;
+
+/// Most configurations a worker keeps stencils for (beyond, the oldest are replaced). Real cages
+/// meet few: catmark_pawn 2, catmark_helmet 3 (one per crease direction and sharpness left).
+pub(crate) const MAX_STENCILS: usize = 16;
+
+/// A table ring's configuration: what its limit stencil depends on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct StencilKey {
+    method: CreaseMethod,
+    boundary: bool,
+    valence: u8,
+    diag: u8,
+    sharp: [u32; 4],
+    far: [(u32, u32); 4],
+}
+
+impl Worker {
+    /// Limit position and normal of grid point `(i, j)` of the current slate. Each point is
+    /// evaluated once per patch (corner arrays are consumed by their evaluation).
+    #[inline]
+    pub(crate) fn limit(&mut self, i: i32, j: i32) -> (Vec3A, Vec3A) {
+        let n = self.t[self.cur].grid_size as i32;
+        if (i == 0 || i == n) && (j == 0 || j == n) {
+            let k = match (i == 0, j == 0) {
+                (true, true) => 0,
+                (false, true) => 1,
+                (false, false) => 2,
+                (true, false) => 3,
+            };
+            if self.corners[k].active {
+                // Corner arrays hold world positions (in f64).
+                let (p, nrm) = self.corners[k].ring.limit();
+                return (Vec3A::from(p.as_vec3()), Vec3A::from(nrm.as_vec3()));
+            }
+        }
+        let t = &self.t[self.cur];
+        if self.regular || t.is_plain(i, j) {
+            let k = t.at(i, j);
+            let s = t.stride;
+            let p = &t.positions;
+            let e = [p[k + 1], p[k + s], p[k - 1], p[k - s]];
+            let dg = [p[k + s + 1], p[k + s - 1], p[k - s - 1], p[k - s + 1]];
+            let (pos, t1, t2) = catmark::limit(p[k], &e, &dg, Rule::Smooth);
+            let nrm = t1.cross(t2);
+            let len = nrm.length();
+            if len > 0.0 && len.is_finite() {
+                return (pos + self.origin32, nrm / len);
+            }
+        }
+        self.limit_general(i, j)
+    }
+
+    /// Limits of all interior grid points `(i, j)`, `1 <= i, j <= n - 1`, of the current slate,
+    /// passed row by row to `emit(i, j, position, normal)`.
+    ///
+    /// Off the band every point is plain (see [`band`](crate::table::band)), general table or
+    /// not, so the regular limit masks apply to every interior point; they are evaluated in their
+    /// separable form (`catmark::limit_row_sums` once per table row, shared by the three output
+    /// rows around it).
+    #[inline]
+    pub(crate) fn limit_interior(&mut self, mut emit: impl FnMut(i32, i32, Vec3A, Vec3A)) {
+        let t = &self.t[self.cur];
+        let n = t.grid_size as i32;
+        if n < 2 {
+            return;
+        }
+        debug_assert!(
+            (1..n).all(|j| (1..n).all(|i| t.is_plain(i, j))),
+            "interior points of a slate must be plain"
+        );
+        let cnt = (n - 1) as usize;
+        // Row sums of table rows 0..=n in a three-row rolling buffer.
+        if self.sum_b.len() < 3 * cnt {
+            self.sum_b.resize(3 * cnt, Vec3A::ZERO);
+            self.sum_a.resize(3 * cnt, Vec3A::ZERO);
+        }
+        let (sb, sa) = (&mut self.sum_b[..3 * cnt], &mut self.sum_a[..3 * cnt]);
+        let slot = |r: i32| (r % 3) as usize * cnt..((r % 3) as usize + 1) * cnt;
+        let sums = |j: i32, sb: &mut [Vec3A], sa: &mut [Vec3A]| {
+            let base = t.at(0, j);
+            catmark::limit_row_sums(
+                &t.positions[base..base + cnt + 2],
+                &mut sb[slot(j)],
+                &mut sa[slot(j)],
+            );
+        };
+        sums(0, sb, sa);
+        sums(1, sb, sa);
+        let o = self.origin32;
+        let mut bad = std::mem::take(&mut self.bad);
+        bad.clear();
+        for j in 1..n {
+            sums(j + 1, sb, sa);
+            let (bs, b0, bn) = (&sb[slot(j - 1)], &sb[slot(j)], &sb[slot(j + 1)]);
+            let (as_, a0, an) = (&sa[slot(j - 1)], &sa[slot(j)], &sa[slot(j + 1)]);
+            for x in 0..cnt {
+                let (pos, t1, t2) =
+                    catmark::limit_regular_from_sums([bs[x], b0[x], bn[x]], [as_[x], a0[x], an[x]]);
+                let nrm = t1.cross(t2);
+                let len2 = nrm.length_squared();
+                if len2 > 0.0 && len2.is_finite() {
+                    emit(x as i32 + 1, j, pos + o, nrm * len2.sqrt().recip());
+                } else {
+                    bad.push((x as i32 + 1, j));
+                }
+            }
+        }
+        // Degenerate tangents: those points exactly, through a ring.
+        for &(i, j) in &bad {
+            let (pos, nrm) = self.limit(i, j);
+            emit(i, j, pos, nrm);
+        }
+        self.bad = bad;
+    }
+
+    /// Limit through a ring built from the table (creases, boundaries, degenerate tangents).
+    fn limit_general(&mut self, i: i32, j: i32) -> (Vec3A, Vec3A) {
+        let t = &self.t[self.cur];
+        // Counter-clockwise directions, starting after a missing one (boundary).
+        self.dirs.clear();
+        let present: [bool; 4] = std::array::from_fn(|d| t.edge_exists(i, j, d));
+        let start = (0..4)
+            .find(|&d| !present[(d + 3) % 4] && present[d])
+            .unwrap_or(0);
+        for k in 0..4 {
+            let d = (start + k) % 4;
+            if present[d] {
+                self.dirs.push(d);
+            }
+        }
+        let boundary = self.dirs.len() < 4;
+        let chaikin = self.method == CreaseMethod::Chaikin;
+        self.r_edges.clear();
+        self.r_sharp.clear();
+        self.r_far.clear();
+        self.r_diag.clear();
+        for (k, &d) in self.dirs.iter().enumerate() {
+            let (ni, nj) = (i + DI[d], j + DJ[d]);
+            self.r_edges.push(t.positions[t.at(ni, nj)].as_dvec3());
+            self.r_sharp.push(t.edge_sharp(i, j, d));
+            // Far-end information only matters to the Chaikin rule.
+            self.r_far.push(if chaikin {
+                far_info(t, &self.corners, ni, nj, (d + 2) % 4)
+            } else {
+                (0.0, 0)
+            });
+            if !boundary || k + 1 < self.dirs.len() {
+                let d2 = (d + 1) % 4;
+                self.r_diag
+                    .push(t.positions[t.at(i + DI[d] + DI[d2], j + DJ[d] + DJ[d2])].as_dvec3());
+            }
+        }
+        let center = t.positions[t.at(i, j)].as_dvec3();
+        let idx = self.stencil_index(boundary);
+        let (p, nrm) = self.stencils[idx]
+            .1
+            .limit(center, &self.r_edges, &self.r_diag);
+        (
+            Vec3A::from((p + self.origin).as_vec3()),
+            Vec3A::from(nrm.as_vec3()),
+        )
+    }
+
+    /// Index in the stencil cache of the limit stencil of the ring in `r_edges`, `r_sharp`,
+    /// `r_far` and `r_diag`, computed and cached on first use.
+    ///
+    /// The ring's limit is linear in its points with weights fixed by its configuration: one
+    /// stencil per configuration, computed by the ring's own refinement on first use.
+    fn stencil_index(&mut self, boundary: bool) -> usize {
+        let mut key = StencilKey {
+            method: self.method,
+            boundary,
+            valence: self.r_edges.len() as u8,
+            diag: self.r_diag.len() as u8,
+            sharp: [0; 4],
+            far: [(0, 0); 4],
+        };
+        for (k, (&s, &(fs, fc))) in self.r_sharp.iter().zip(&self.r_far).enumerate() {
+            key.sharp[k] = s.to_bits();
+            key.far[k] = (fs.to_bits(), fc);
+        }
+        let hit = match self.stencils.get(self.last_stencil) {
+            Some((k, _)) if *k == key => Some(self.last_stencil),
+            _ => self.stencils.iter().position(|(k, _)| *k == key),
+        };
+        let idx = hit.unwrap_or_else(|| {
+            let st = QuadRingStencil::new(
+                self.method,
+                boundary,
+                &self.r_sharp,
+                &self.r_far,
+                self.r_diag.len(),
+            );
+            if self.stencils.len() < MAX_STENCILS {
+                self.stencils.push((key, st));
+                self.stencils.len() - 1
+            } else {
+                let slot = (self.last_stencil + 1) % MAX_STENCILS;
+                self.stencils[slot] = (key, st);
+                slot
+            }
+        });
+        self.last_stencil = idx;
+        idx
+    }
+}

@@ -1,0 +1,391 @@
+//! One subdivision step ([`Worker::step`]): the table of slate `i` into the table of slate
+//! `1 - i` with the rules of `subdiv-rules`, and the corner arrays refined in place.
+//!
+//! Every table is first refined by the smooth regular rules in their separable form (rows split,
+//! then split rows combined, [`step_regular`]); a table with creases or boundaries then redoes,
+//! with the general face, edge and vertex rules, only its *dirty* points: the ends of sharp edges
+//! and the neighbours of missing points ([`step_general`]). Those lie on the *band* (rows and
+//! columns `-1, 0, n, n + 1`, see [`band`](crate::table::band)), so the general work grows with
+//! the patch's side, not its area.
+
+use glam::{DVec3, Vec3A};
+use subdiv_mesh::CreaseMethod;
+use subdiv_rules::catmark;
+use subdiv_rules::crease::{self, VertexRules, edge_crease_weight, is_semi_sharp};
+
+use crate::table::{Corner, DI, DJ, Table, corner_frame, far_info, ring_index_of_dir};
+use crate::worker::Worker;
+
+impl Worker {
+    /// One subdivision step: slate `cur` to slate `1 - cur`, corner arrays refined in place.
+    pub(crate) fn step(&mut self) {
+        let (a, b) = self.t.split_at_mut(1);
+        let (src, dst) = if self.cur == 0 {
+            (&a[0], &mut b[0])
+        } else {
+            (&b[0], &mut a[0])
+        };
+        let n = src.grid_size as i32;
+        dst.reset(src.grid_size * 2, self.regular);
+        for c in self.corners.iter_mut() {
+            if c.active {
+                c.ring.refine();
+            }
+        }
+        if self.regular {
+            step_regular(src, dst, &mut self.split);
+        } else {
+            let scratch = Scratch {
+                dirty: &mut self.dirty,
+                dirty_list: &mut self.dirty_list,
+                split: &mut self.split,
+                vertex: VertexScratch {
+                    e_pts: &mut self.e_pts,
+                    f_pts: &mut self.f_pts,
+                    e_sh: &mut self.e_sh,
+                    c_sh: &mut self.c_sh,
+                    dirs: &mut self.dirs,
+                },
+            };
+            step_general(src, dst, &self.corners, self.method, scratch);
+        }
+        // Corner arrays fill the table where it cannot be computed.
+        for (k, c) in self.corners.iter().enumerate() {
+            if !c.active {
+                continue;
+            }
+            let ((ci, cj), d, d2) = corner_frame(k, 2 * n);
+            write_corner(dst, c, ci, cj, d, d2, self.origin);
+        }
+        self.cur = 1 - self.cur;
+    }
+}
+
+/// Copies a refined corner array into the table around its corner `(ci, cj)`.
+fn write_corner(t: &mut Table, c: &Corner, ci: i32, cj: i32, d: usize, d2: usize, origin: DVec3) {
+    let r = &c.ring;
+    let m = c.valence;
+    let put = |t: &mut Table, i: i32, j: i32, p: Option<DVec3>| {
+        let k = t.at(i, j);
+        match p {
+            Some(p) => {
+                t.positions[k] = Vec3A::from((p - origin).as_vec3());
+                t.exists[k] = true;
+            }
+            None => {
+                t.positions[k] = Vec3A::from((r.center() - origin).as_vec3());
+                t.exists[k] = false;
+            }
+        }
+    };
+    put(t, ci, cj, Some(r.center()));
+    let back = (d + 2) % 4; // -d
+    let down = (d2 + 2) % 4; // -d2
+    let e_back = ring_index_of_dir(c, d, d2, back);
+    let e_down = ring_index_of_dir(c, d, d2, down);
+    put(t, ci + DI[back], cj + DJ[back], e_back.map(|x| r.edge(x)));
+    put(t, ci + DI[down], cj + DJ[down], e_down.map(|x| r.edge(x)));
+    // The diagonal behind the corner exists only for an interior valence-4 vertex.
+    let diag = if !c.boundary && m == 4 {
+        Some(r.diag((c.ih + 2) % 4))
+    } else {
+        None
+    };
+    put(t, ci + DI[back] + DI[down], cj + DJ[back] + DJ[down], diag);
+    // Child sharpness of the corner's edges.
+    for dir in [d, d2, back, down] {
+        let (ni, nj) = (ci + DI[dir], cj + DJ[dir]);
+        if !t.inside(ni, nj) {
+            continue;
+        }
+        let s = ring_index_of_dir(c, d, d2, dir)
+            .map(|x| r.edge_sharpness(x))
+            .unwrap_or(0.0);
+        t.set_edge_sharp(ci, cj, dir, s);
+    }
+}
+
+/// Smooth regular step: no sharpness, no boundary. The face, edge and vertex rules of a regular
+/// grid in their separable form (`catmark::split_row` and friends): each source row is split
+/// along its length, and neighbouring split rows combine into the rows of `dst`. Split rows live
+/// in a three-row rolling buffer `split`. Active corners get a (meaningless) vertex point too:
+/// `write_corner` replaces it.
+fn step_regular(src: &Table, dst: &mut Table, split: &mut Vec<Vec3A>) {
+    let ss = src.stride;
+    let ds = dst.stride;
+    debug_assert_eq!(ds, 2 * ss - 3);
+    if split.len() < 3 * ds {
+        split.resize(3 * ds, Vec3A::ZERO);
+    }
+    // Storage row y of dst is level coordinate y - 1: odd coordinates (even y) lie between split
+    // rows y / 2 and y / 2 + 1, even ones (odd y) at split row (y + 1) / 2.
+    let slot = |r: usize| (r % 3) * ds..(r % 3 + 1) * ds;
+    for (r, row) in src.positions[..ss * ss].chunks_exact(ss).enumerate() {
+        catmark::split_row(row, &mut split[slot(r)]);
+        if r == 0 {
+            continue;
+        }
+        let h = &split[..3 * ds];
+        if r >= 2 {
+            let y = 2 * r - 3;
+            let out = &mut dst.positions[y * ds..(y + 1) * ds];
+            catmark::split_rows_even(&h[slot(r - 2)], &h[slot(r - 1)], &h[slot(r)], out);
+        }
+        let y = 2 * r - 2;
+        let out = &mut dst.positions[y * ds..(y + 1) * ds];
+        catmark::split_rows_mid(&h[slot(r - 1)], &h[slot(r)], out);
+    }
+    dst.exists[..ds * ds].fill(true);
+}
+
+/// The worker's scratch a general step uses (borrowed field by field beside the tables).
+struct Scratch<'a> {
+    dirty: &'a mut Vec<bool>,
+    dirty_list: &'a mut Vec<u32>,
+    split: &'a mut Vec<Vec3A>,
+    vertex: VertexScratch<'a>,
+}
+
+/// Scratch of one general vertex point: its edge directions, edge and face points, and the
+/// sharpness of its edges and of their children.
+struct VertexScratch<'a> {
+    e_pts: &'a mut Vec<Vec3A>,
+    f_pts: &'a mut Vec<Vec3A>,
+    e_sh: &'a mut Vec<f32>,
+    c_sh: &'a mut Vec<f32>,
+    dirs: &'a mut Vec<usize>,
+}
+
+/// What the general rules of one step read: the source table, the refined corner arrays and the
+/// crease rule.
+#[derive(Clone, Copy)]
+struct General<'a> {
+    src: &'a Table,
+    corners: &'a [Corner; 4],
+    method: CreaseMethod,
+}
+
+/// General step: creases, boundaries, fractional sharpness, Chaikin.
+fn step_general(
+    src: &Table,
+    dst: &mut Table,
+    corners: &[Corner; 4],
+    method: CreaseMethod,
+    mut sc: Scratch<'_>,
+) {
+    let n = src.grid_size as i32;
+    let g = General {
+        src,
+        corners,
+        method,
+    };
+    // The smooth regular rules everywhere first; then the general rules where they differ.
+    step_regular(src, dst, sc.split);
+    let missing = src.mark_dirty(sc.dirty, sc.dirty_list);
+    if missing {
+        // Missing points lie on the outer ring, so only faces touching it can be missing.
+        for j in -1..=n {
+            let all = j == -1 || j == n;
+            for i in -1..=n {
+                if (all || i == -1 || i == n) && !src.face_exists(i, j) {
+                    let k = dst.at(2 * i + 1, 2 * j + 1);
+                    dst.exists[k] = false;
+                }
+            }
+        }
+    }
+    // Child sharpness at active corners comes from their (already refined) corner arrays.
+    for (k, c) in corners.iter().enumerate() {
+        if c.active {
+            let ((ci, cj), d, d2) = corner_frame(k, n);
+            for dir in 0..4 {
+                if let Some(x) = ring_index_of_dir(c, d, d2, dir) {
+                    dst.set_edge_sharp(2 * ci, 2 * cj, dir, c.ring.edge_sharpness(x));
+                }
+            }
+        }
+    }
+    // Vertex points and the child sharpness of their edges, at the patch's dirty points.
+    let is_corner = |i: i32, j: i32| -> Option<usize> {
+        (0..4).find(|&k| {
+            let ((ci, cj), _, _) = corner_frame(k, n);
+            ci == i && cj == j && corners[k].active
+        })
+    };
+    let ss = src.stride;
+    for &kk in sc.dirty_list.iter() {
+        let kk = kk as usize;
+        let (i, j) = ((kk % ss) as i32 - 1, (kk / ss) as i32 - 1);
+        if !((0..=n).contains(&i) && (0..=n).contains(&j) && src.exists[kk]) {
+            continue;
+        }
+        if (i == 0 || i == n) && (j == 0 || j == n) && is_corner(i, j).is_some() {
+            continue;
+        }
+        general_vertex_point(g, dst, i, j, &mut sc.vertex);
+    }
+    // Every edge with a dirty end, once: from its dirty end with the lower index. Horizontal edges
+    // of rows 0..=n and vertical edges of columns 0..=n (the outer ring's own edges have no
+    // children in the next table).
+    for &kk in sc.dirty_list.iter() {
+        let kk = kk as usize;
+        let (i, j) = ((kk % ss) as i32 - 1, (kk / ss) as i32 - 1);
+        for d in 0..4 {
+            let (qi, qj) = (i + DI[d], j + DJ[d]);
+            if !src.inside(qi, qj) {
+                continue;
+            }
+            let qk = src.at(qi, qj);
+            if sc.dirty[qk] && qk < kk {
+                continue;
+            }
+            let (ei, ej, dir) = if d < 2 { (i, j, d) } else { (qi, qj, d - 2) };
+            let row = if dir == 0 { ej } else { ei };
+            if (0..=n).contains(&row) {
+                general_edge_point(g, dst, sc.dirty, ei, ej, dir);
+            }
+        }
+    }
+    // The outer ends of crossing edges exist as edge points; new outer-ring vertices beyond
+    // (odd positions) are face points (already marked).
+}
+
+/// Vertex point of patch point `(i, j)` by the general rules, and the child sharpness of its
+/// edges.
+#[inline]
+fn general_vertex_point(
+    g: General<'_>,
+    dst: &mut Table,
+    i: i32,
+    j: i32,
+    sc: &mut VertexScratch<'_>,
+) {
+    let src = g.src;
+    sc.dirs.clear();
+    sc.e_pts.clear();
+    sc.e_sh.clear();
+    sc.f_pts.clear();
+    for d in 0..4 {
+        if src.edge_exists(i, j, d) {
+            sc.dirs.push(d);
+            sc.e_pts.push(src.positions[src.at(i + DI[d], j + DJ[d])]);
+            sc.e_sh.push(src.edge_sharp(i, j, d));
+        }
+    }
+    for d in 0..4 {
+        let d2 = (d + 1) % 4;
+        let (fi, fj) = (i + (DI[d] + DI[d2] - 1) / 2, j + (DJ[d] + DJ[d2] - 1) / 2);
+        if src.face_exists(fi, fj) {
+            sc.f_pts.push(dst.positions[dst.at(2 * fi + 1, 2 * fj + 1)]);
+        }
+    }
+    sc.c_sh.clear();
+    sc.c_sh.resize(sc.e_sh.len(), 0.0);
+    let rules = VertexRules::new(g.method, 0.0, sc.e_sh, sc.c_sh);
+    let v = src.positions[src.at(i, j)];
+    let k = dst.at(2 * i, 2 * j);
+    dst.positions[k] = catmark::vertex_point(v, sc.e_pts, sc.f_pts, &rules);
+    dst.exists[k] = true;
+    for (x, &d) in sc.dirs.iter().enumerate() {
+        dst.set_edge_sharp(2 * i, 2 * j, d, sc.c_sh[x]);
+    }
+}
+
+/// Edge point of the horizontal edge `(i,j)-(i+1,j)` (`dir` 0) or the vertical one
+/// `(i,j)-(i,j+1)` (`dir` 1), if it has a dirty end and the general rules differ there.
+#[inline]
+fn general_edge_point(g: General<'_>, dst: &mut Table, dirty: &[bool], i: i32, j: i32, dir: usize) {
+    let (src, n, method) = (g.src, g.src.grid_size as i32, g.method);
+    let (bi, bj) = (i + DI[dir], j + DJ[dir]);
+    // A missing end marks both ends dirty, so clean edges exist.
+    if !(dirty[src.at(i, j)] || dirty[src.at(bi, bj)]) {
+        return;
+    }
+    if !src.edge_exists(i, j, dir) {
+        let k = dst.at(i + bi, j + bj);
+        dst.exists[k] = false;
+        return;
+    }
+    let s = src.edge_sharp(i, j, dir);
+    // Faces on either side of the edge.
+    let sides: [(i32, i32); 2] = if dir == 0 {
+        [(i, j - 1), (i, j)]
+    } else {
+        [(i - 1, j), (i, j)]
+    };
+    if s == 0.0
+        && src.face_exists(sides[0].0, sides[0].1)
+        && src.face_exists(sides[1].0, sides[1].1)
+    {
+        // A smooth edge between two faces: the regular pass computed it alike.
+        return;
+    }
+    // Child sharpness at each end: from the vertex rules (inner ends) or the far info.
+    let child_at = |vi: i32, vj: i32, toward: usize| -> f32 {
+        if (0..=n).contains(&vi) && (0..=n).contains(&vj) {
+            dst.edge_sharp(2 * vi, 2 * vj, toward)
+        } else {
+            // Far-end information only matters to the Chaikin rule.
+            let far = if method == CreaseMethod::Chaikin {
+                far_info(src, g.corners, vi, vj, (toward + 2) % 4)
+            } else {
+                (0.0, 0)
+            };
+            crease::child_edge_sharpness(method, s, far)
+        }
+    };
+    let c0 = child_at(i, j, dir);
+    let c1 = child_at(bi, bj, (dir + 2) % 4);
+    let w = edge_crease_weight(method, s, [c0, c1]);
+    let mut faces = [Vec3A::ZERO; 2];
+    let mut nf = 0;
+    for (fi, fj) in sides {
+        if src.face_exists(fi, fj) {
+            faces[nf] = dst.positions[dst.at(2 * fi + 1, 2 * fj + 1)];
+            nf += 1;
+        }
+    }
+    let e = catmark::edge_point(
+        src.positions[src.at(i, j)],
+        src.positions[src.at(bi, bj)],
+        &faces[..nf],
+        w,
+    );
+    let k = dst.at(i + bi, j + bj);
+    dst.positions[k] = e;
+    dst.exists[k] = true;
+    if method == CreaseMethod::Chaikin {
+        crossing_far(g, dst, s, i, j, dir);
+    }
+}
+
+/// New far information (Chaikin rule) for an edge `(i,j)`-(direction `dir`) of sharpness `s`
+/// that crosses out of the table: the child crossing edge's semi-sharpness at its outer end.
+#[inline]
+fn crossing_far(g: General<'_>, dst: &mut Table, s: f32, i: i32, j: i32, dir: usize) {
+    let (src, n, method) = (g.src, g.src.grid_size as i32, g.method);
+    let (bi, bj) = (i + DI[dir], j + DJ[dir]);
+    let outer = |vi: i32, vj: i32| !((0..=n).contains(&vi) && (0..=n).contains(&vj));
+    if !(outer(i, j) || outer(bi, bj)) {
+        return;
+    }
+    let (oi, oj, toward) = if outer(i, j) {
+        (i, j, dir)
+    } else {
+        (bi, bj, (dir + 2) % 4)
+    };
+    let cf = crease::child_edge_sharpness(method, s, far_info(src, g.corners, oi, oj, toward));
+    let info = if is_semi_sharp(cf) { (cf, 1) } else { (0.0, 0) };
+    let (side, pos) = if oj == -1 {
+        (0, 2 * i)
+    } else if oi == n + 1 {
+        (1, 2 * j)
+    } else if oj == n + 1 {
+        (2, 2 * i)
+    } else {
+        (3, 2 * j)
+    };
+    if (0..=2 * n).contains(&pos) {
+        dst.far_semi_sharp[side][pos as usize] = info;
+    }
+}

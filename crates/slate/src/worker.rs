@@ -1,0 +1,169 @@
+//! The per-thread tessellation state ([`Worker`]): two slates, four corner arrays and scratch,
+//! and the whole pipeline of one patch ([`Worker::patch_grid`]: gather, steps, limits).
+//!
+//! The stages live in their own modules: [`gather`](crate::gather) fills slate 0 from the mesh,
+//! [`step`](crate::step) subdivides one slate into the other, [`limit`](crate::limit) evaluates
+//! the final grid.
+
+use glam::{DVec3, Vec3A};
+use subdiv_mesh::{CreaseMethod, FaceId, HalfedgeId, Mesh};
+use subdiv_rules::QuadRingStencil;
+
+use crate::limit::{MAX_STENCILS, StencilKey};
+use crate::table::{Corner, Table};
+
+/// Per-thread tessellation state: two slates and four corner arrays, allocated once.
+#[derive(Debug)]
+pub struct Worker {
+    pub(crate) t: [Table; 2],
+    pub(crate) corners: [Corner; 4],
+    pub(crate) cur: usize,
+    pub(crate) regular: bool,
+    pub(crate) method: CreaseMethod,
+    /// Patch-local origin: tables hold positions relative to it, so that rounding is relative
+    /// to the patch's size rather than to its distance from the world origin.
+    pub(crate) origin: DVec3,
+    pub(crate) origin32: Vec3A,
+    pub(crate) hes: Vec<HalfedgeId>,
+    // scratch for general rules
+    pub(crate) e_pts: Vec<Vec3A>,
+    pub(crate) f_pts: Vec<Vec3A>,
+    pub(crate) e_sh: Vec<f32>,
+    pub(crate) c_sh: Vec<f32>,
+    pub(crate) dirs: Vec<usize>,
+    pub(crate) r_edges: Vec<DVec3>,
+    pub(crate) r_sharp: Vec<f32>,
+    pub(crate) r_far: Vec<(f32, u32)>,
+    pub(crate) r_diag: Vec<DVec3>,
+    pub(crate) maxn: usize,
+    /// Scratch for output ids of a patch grid.
+    pub(crate) ids: Vec<u32>,
+    /// Per table point: near a sharp edge or a missing point (general rules needed).
+    pub(crate) dirty: Vec<bool>,
+    /// Indices set in `dirty` (cleared by the next marking).
+    pub(crate) dirty_list: Vec<u32>,
+    /// Three split rows of the separable regular step (`step_regular`).
+    pub(crate) split: Vec<Vec3A>,
+    /// Three rows of sums of the separable regular limit masks (`limit_interior`).
+    pub(crate) sum_b: Vec<Vec3A>,
+    pub(crate) sum_a: Vec<Vec3A>,
+    /// Interior points with degenerate regular tangents.
+    pub(crate) bad: Vec<(i32, i32)>,
+    /// Limit stencils of the crease and boundary configurations met by `limit_general`.
+    pub(crate) stencils: Vec<(StencilKey, QuadRingStencil)>,
+    /// Most recently used entry of `stencils`.
+    pub(crate) last_stencil: usize,
+}
+
+impl Worker {
+    /// A worker whose slates hold patches up to depth `maxsd`.
+    pub fn new(maxsd: u32) -> Worker {
+        let maxn = 1usize << maxsd;
+        Worker {
+            t: [Table::with_capacity(maxn), Table::with_capacity(maxn)],
+            corners: Default::default(),
+            cur: 0,
+            regular: true,
+            method: CreaseMethod::Uniform,
+            origin: DVec3::ZERO,
+            origin32: Vec3A::ZERO,
+            hes: Vec::with_capacity(16),
+            e_pts: Vec::with_capacity(4),
+            f_pts: Vec::with_capacity(4),
+            e_sh: Vec::with_capacity(4),
+            c_sh: Vec::with_capacity(4),
+            dirs: Vec::with_capacity(4),
+            r_edges: Vec::with_capacity(4),
+            r_sharp: Vec::with_capacity(4),
+            r_far: Vec::with_capacity(4),
+            r_diag: Vec::with_capacity(4),
+            maxn,
+            ids: Vec::new(),
+            dirty: Vec::new(),
+            dirty_list: Vec::new(),
+            split: Vec::new(),
+            sum_b: Vec::new(),
+            sum_a: Vec::new(),
+            bad: Vec::new(),
+            stencils: Vec::new(),
+            last_stencil: 0,
+        }
+    }
+
+    /// Bytes held by the two tables (capacity for `maxsd`).
+    pub fn table_bytes(&self) -> usize {
+        let cap = (self.maxn + 3) * (self.maxn + 3);
+        2 * cap * (std::mem::size_of::<Vec3A>() + 1 + 2 * std::mem::size_of::<f32>())
+    }
+
+    /// Most bytes the worker's scratch can reach besides the tables and corner arrays (capacity
+    /// for `maxsd`): the dirty mask and its list, the rolling rows of the regular step and of the
+    /// limit sums, the Chaikin far information and a full stencil cache.
+    pub fn scratch_bytes(&self) -> usize {
+        let (side, cap) = (self.maxn + 3, (self.maxn + 3) * (self.maxn + 3));
+        let v = std::mem::size_of::<Vec3A>();
+        // A table ring has at most 4 edges and 4 diagonals: 6 + 4 rows of 9 weights.
+        let stencil = std::mem::size_of::<(StencilKey, QuadRingStencil)>() + 10 * 9 * 8;
+        cap + 8 * side * 4
+            + 3 * side * v
+            + 6 * self.maxn * v
+            + 2 * 4 * (self.maxn + 1) * std::mem::size_of::<(f32, u32)>()
+            + MAX_STENCILS * stencil
+    }
+
+    /// Tessellates the quad `face` of `mesh` (whose 1-neighbourhood is all quads) at `depth` and
+    /// writes the limit points and normals of its `(2^depth + 1)^2` grid, row by row (`i` along
+    /// the face's first edge, `j` along its last edge reversed).
+    ///
+    /// ```
+    /// use subdiv_mesh::{parse_obj, FaceId, Mesh};
+    /// let cube = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
+    ///             f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+    /// let mesh = Mesh::from_soup(&parse_obj(cube)?)?;
+    /// let mut w = subdiv_slate::Worker::new(5);
+    /// let (mut p, mut n) = (vec![[0.0; 3]; 25], vec![[0.0; 3]; 25]);
+    /// w.patch_grid(&mesh, FaceId(0), 2, &mut p, &mut n);
+    /// assert!((p[12][2] - 0.0).abs() < 0.2); // the centre of face 0 (z = 0 side) lies near z = 0
+    /// # Ok::<(), subdiv_mesh::MeshError>(())
+    /// ```
+    pub fn patch_grid(
+        &mut self,
+        mesh: &Mesh,
+        face: FaceId,
+        depth: u32,
+        pos: &mut [[f32; 3]],
+        nrm: &mut [[f32; 3]],
+    ) {
+        let n = 1usize << depth;
+        let w = n + 1;
+        assert!(
+            pos.len() >= w * w && nrm.len() >= w * w,
+            "grid buffers too small"
+        );
+        assert!(n <= self.maxn, "depth exceeds the worker's slates");
+        self.gather(mesh, face);
+        for _ in 0..depth {
+            self.step();
+        }
+        let n = n as i32;
+        for j in 0..=n {
+            let row = j as usize * w;
+            // The border: whole first and last rows, the two ends of the others.
+            let step = if j == 0 || j == n {
+                1
+            } else {
+                n.max(1) as usize
+            };
+            for i in (0..=n).step_by(step) {
+                let (p, q) = self.limit(i, j);
+                pos[row + i as usize] = p.to_array();
+                nrm[row + i as usize] = q.to_array();
+            }
+        }
+        self.limit_interior(|i, j, p, q| {
+            let k = j as usize * w + i as usize;
+            pos[k] = p.to_array();
+            nrm[k] = q.to_array();
+        });
+    }
+}
