@@ -27,6 +27,9 @@ mod geometry;
 mod grid;
 mod index;
 
+#[cfg(test)]
+mod test_util;
+
 pub use assembler::Assembler;
 pub use geometry::FrameGeometry;
 pub use index::FanMethod;

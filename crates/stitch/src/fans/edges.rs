@@ -230,3 +230,77 @@ impl<'a> Frame<'a> {
         self.own(pi, n, n, d)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::test_util::{cube, split_cube};
+    use super::super::{Assembler, FrameGeometry};
+
+    #[test]
+    fn the_deeper_side_owns_an_edge_and_both_sides_see_the_same_points() {
+        for (name, mesh) in [("cube", cube()), ("split", split_cube())] {
+            let nf = mesh.num_faces();
+            let mut depth = vec![1u8; nf];
+            depth[0] = 3;
+            depth[nf - 1] = 2;
+            let active = vec![true; nf];
+            let mut asm = Assembler::new(&mesh, 3).unwrap();
+            asm.frame(&mesh, &depth, &active, &mut FrameGeometry::default())
+                .unwrap();
+            asm.with_frame(&mesh, &depth, &active, |fr| {
+                for e in mesh.edges() {
+                    let (h0, h1) = (e.halfedge(0), e.halfedge(1));
+                    let (f0, f1) = (mesh.face(h0).idx(), mesh.face(h1).idx());
+                    let r = fr.edge_res[e.idx()];
+                    assert_eq!(r, depth[f0].max(depth[f1]), "{name} edge {}", e.idx());
+                    let owner = fr.edge_owner[e.idx()] as usize;
+                    assert!(owner == f0 || owner == f1);
+                    assert_eq!(depth[owner], r, "{name}: the owner is the deeper side");
+                    // Both directions of the edge give the same point ids.
+                    let r = r as u32;
+                    for t in 0..=1u32 << r {
+                        assert_eq!(
+                            fr.edge_point_id(h0, t, r),
+                            fr.edge_point_id(h1, (1 << r) - t, r),
+                            "{name} edge {} t {t}",
+                            e.idx()
+                        );
+                        // Coarser queries sample the same points.
+                        if t % 2 == 0 && r > 0 {
+                            assert_eq!(
+                                fr.edge_point_id(h0, t / 2, r - 1),
+                                fr.edge_point_id(h0, t, r)
+                            );
+                        }
+                    }
+                }
+            });
+        }
+    }
+
+    #[test]
+    fn inactive_faces_own_nothing() {
+        let mesh = cube();
+        let depth = [3u8, 1, 1, 1, 1, 1];
+        let mut active = [true; 6];
+        active[0] = false;
+        let mut asm = Assembler::new(&mesh, 3).unwrap();
+        asm.frame(&mesh, &depth, &active, &mut FrameGeometry::default())
+            .unwrap();
+        asm.with_frame(&mesh, &depth, &active, |fr| {
+            for e in mesh.edges() {
+                let owner = fr.edge_owner[e.idx()] as usize;
+                assert_ne!(owner, 0);
+                assert_eq!(fr.edge_res[e.idx()], 1);
+            }
+            for &(f, _) in &fr.vertex_owner {
+                assert_ne!(f, 0);
+                assert!(active[f as usize]);
+            }
+            // No patch fans towards the culled deeper face.
+            for p in fr.set.patches() {
+                assert_eq!(fr.fans(p), [false; 4]);
+            }
+        });
+    }
+}

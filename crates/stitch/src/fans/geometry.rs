@@ -57,3 +57,37 @@ impl FrameGeometry {
         (pos, nrm, idx)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn units_per_depth_skips_undrawn_units() {
+        let g = FrameGeometry {
+            unit_depth: vec![2, u8::MAX, 0, 2, 2],
+            ..Default::default()
+        };
+        assert_eq!(g.units_per_depth(), vec![1, 0, 3]);
+        assert_eq!(
+            FrameGeometry::default().units_per_depth(),
+            Vec::<usize>::new()
+        );
+    }
+
+    #[test]
+    fn compact_keeps_referenced_vertices_in_first_use_order() {
+        let p = |x: f32| [x, 0.0, 0.0];
+        let g = FrameGeometry {
+            positions: vec![p(0.0), p(1.0), p(2.0), p(3.0), p(4.0)],
+            normals: vec![p(10.0), p(11.0), p(12.0), p(13.0), p(14.0)],
+            indices: vec![3, 1, 4, 4, 1, 3],
+            ..Default::default()
+        };
+        assert_eq!(g.num_triangles(), 2);
+        let (pos, nrm, idx) = g.compact();
+        assert_eq!(pos, vec![p(3.0), p(1.0), p(4.0)]);
+        assert_eq!(nrm, vec![p(13.0), p(11.0), p(14.0)]);
+        assert_eq!(idx, vec![0, 1, 2, 2, 1, 0]);
+    }
+}
