@@ -1,0 +1,432 @@
+//! The per-frame [`Assembler`] and its per-patch block cache (Section 4): each patch keeps its
+//! limit points in a block computed at some depth `c`; while the patch's depth does not rise
+//! above `c` the block is reused (sampled with stride `2^(c - d)`), and only the index buffer is
+//! rebuilt.
+
+use rayon::prelude::*;
+use subdiv_mesh::{HalfedgeId, Mesh};
+use subdiv_slate::{PatchSet, thread_worker};
+
+use super::edges::Frame;
+use super::geometry::FrameGeometry;
+use super::index::FanMethod;
+use crate::AssemblyError;
+
+/// A patch's cached limit points.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Block {
+    /// Depth the block was computed at (`-1`: never).
+    pub(super) depth: i32,
+    pub(super) pos: Vec<[f32; 3]>,
+    pub(super) nrm: Vec<[f32; 3]>,
+}
+
+/// Per-unit topology: its half-edges, in face order.
+#[derive(Clone, Debug)]
+pub(super) struct UnitTopo {
+    pub(super) hs: Vec<HalfedgeId>,
+}
+
+/// The adaptive assembler: per-mesh patch structure plus the per-patch block cache.
+#[derive(Debug)]
+pub struct Assembler {
+    set: PatchSet,
+    units: Vec<UnitTopo>,
+    blocks: Vec<Block>,
+    block_start: Vec<u32>,
+    version: u64,
+    maxsd: u32,
+    method: FanMethod,
+}
+
+impl Assembler {
+    /// Sets up the patches of `mesh`. `maxsd` is the deepest depth that will be requested.
+    pub fn new(mesh: &Mesh, maxsd: u32) -> Result<Assembler, AssemblyError> {
+        if maxsd > subdiv_slate::MAX_DEPTH - 1 {
+            return Err(AssemblyError::TooDeep {
+                depth: maxsd,
+                max: subdiv_slate::MAX_DEPTH - 1,
+            });
+        }
+        let set = PatchSet::new(mesh)?;
+        let units = set
+            .units()
+            .iter()
+            .map(|u| {
+                let h0 = mesh.face_halfedge(u.face);
+                let mut hs = vec![h0];
+                let mut h = mesh.next(h0);
+                while h != h0 {
+                    hs.push(h);
+                    h = mesh.next(h);
+                }
+                UnitTopo { hs }
+            })
+            .collect();
+        let n = set.patches().len();
+        Ok(Assembler {
+            set,
+            units,
+            blocks: vec![
+                Block {
+                    depth: -1,
+                    ..Default::default()
+                };
+                n
+            ],
+            block_start: vec![0; n + 1],
+            version: 0,
+            maxsd,
+            method: FanMethod::Subdivided,
+        })
+    }
+
+    /// Chooses the fan method.
+    pub fn set_method(&mut self, m: FanMethod) {
+        self.method = m;
+    }
+
+    /// The patch structure.
+    pub fn patch_set(&self) -> &PatchSet {
+        &self.set
+    }
+
+    /// Smallest depth a unit can have (level-1 units need at least 1).
+    pub fn min_depth(&self, unit: usize) -> u8 {
+        self.set.units()[unit].irregular as u8
+    }
+
+    /// Drops all cached blocks (e.g. after the mesh's positions changed).
+    pub fn invalidate(&mut self) {
+        for b in &mut self.blocks {
+            b.depth = -1;
+        }
+    }
+
+    /// Builds a frame: `depth[u]` per unit (cage face; clamped to `min_depth..=maxsd`) and
+    /// `active[u]` (units not drawn, e.g. culled or holes, are `false`).
+    pub fn frame(
+        &mut self,
+        mesh: &Mesh,
+        depth: &[u8],
+        active: &[bool],
+        out: &mut FrameGeometry,
+    ) -> Result<(), AssemblyError> {
+        let nu = self.set.units().len();
+        if depth.len() != nu || active.len() != nu {
+            return Err(AssemblyError::Length {
+                what: "depth/active",
+                got: depth.len().min(active.len()),
+                want: nu,
+            });
+        }
+        let depth: Vec<u8> = (0..nu)
+            .map(|u| depth[u].clamp(self.min_depth(u), self.maxsd as u8))
+            .collect();
+        let required = self.required_depths(mesh, &depth, active);
+        self.check_size(&required)?;
+        let recomputed = self.recompute_blocks(mesh, &required);
+        // Vertex buffer: the blocks, concatenated.
+        if recomputed > 0 || out.positions.is_empty() {
+            self.concatenate_blocks(out);
+        }
+        out.vertex_version = self.version;
+        out.patches_recomputed = recomputed;
+        let fr = Frame::new(
+            mesh,
+            &self.set,
+            &self.units,
+            &depth,
+            active,
+            &self.blocks,
+            &self.block_start,
+        );
+        self.fill_vertex_depth(&depth, out);
+        // Index buffer: each patch's triangles, in parallel, then concatenated in patch order.
+        fr.emit_frame(active, self.method, &mut out.indices);
+        out.unit_depth = (0..nu)
+            .map(|u| if active[u] { depth[u] } else { u8::MAX })
+            .collect();
+        Ok(())
+    }
+
+    /// Required depth per patch: its own, plus one where it must fan towards a deeper side
+    /// (`-1` for inactive patches).
+    fn required_depths(&self, mesh: &Mesh, depth: &[u8], active: &[bool]) -> Vec<i32> {
+        let fr = Frame::new(
+            mesh,
+            &self.set,
+            &self.units,
+            depth,
+            active,
+            &self.blocks,
+            &self.block_start,
+        );
+        self.set
+            .patches()
+            .iter()
+            .map(|p| {
+                if active[p.unit as usize] {
+                    fr.patch_depth(p) as i32 + fr.fans(p).iter().any(|&x| x) as i32
+                } else {
+                    -1
+                }
+            })
+            .collect()
+    }
+
+    /// Refuses frames whose blocks would not fit in memory.
+    fn check_size(&self, required: &[i32]) -> Result<(), AssemblyError> {
+        let total: u64 = (0..required.len())
+            .map(|i| {
+                let d = required[i].max(self.blocks[i].depth);
+                if d < 0 { 0 } else { ((1u64 << d) + 1).pow(2) }
+            })
+            .sum();
+        if total > subdiv_slate::MAX_POINTS {
+            return Err(AssemblyError::TooLarge { points: total });
+        }
+        Ok(())
+    }
+
+    /// Recomputes the blocks that are too coarse for `required`; returns how many.
+    fn recompute_blocks(&mut self, mesh: &Mesh, required: &[i32]) -> usize {
+        let todo: Vec<usize> = (0..required.len())
+            .filter(|&i| required[i] > self.blocks[i].depth)
+            .collect();
+        let set = &self.set;
+        let maxsd = self.maxsd + 1;
+        let mut fresh: Vec<(usize, Block)> = todo
+            .par_iter()
+            .map_init(
+                || thread_worker(maxsd),
+                |w, &i| {
+                    let p = &set.patches()[i];
+                    let d = required[i] as u32;
+                    let n = (1usize << d) + 1;
+                    let mut b = Block {
+                        depth: d as i32,
+                        pos: vec![[0.0; 3]; n * n],
+                        nrm: vec![[0.0; 3]; n * n],
+                    };
+                    w.patch_grid(set.source(mesh, p), p.src_face, d, &mut b.pos, &mut b.nrm);
+                    (i, b)
+                },
+            )
+            .collect();
+        let recomputed = fresh.len();
+        for (i, b) in fresh.drain(..) {
+            self.blocks[i] = b;
+        }
+        recomputed
+    }
+
+    /// Rebuilds the vertex buffer from the blocks (and their start offsets) and bumps the
+    /// vertex version.
+    fn concatenate_blocks(&mut self, out: &mut FrameGeometry) {
+        let mut acc = 0u32;
+        for (i, b) in self.blocks.iter().enumerate() {
+            self.block_start[i] = acc;
+            acc += b.pos.len() as u32;
+        }
+        self.block_start[self.blocks.len()] = acc;
+        out.positions.clear();
+        out.normals.clear();
+        out.vertex_depth.clear();
+        for b in &self.blocks {
+            out.positions.extend_from_slice(&b.pos);
+            out.normals.extend_from_slice(&b.nrm);
+        }
+        self.version += 1;
+    }
+
+    /// Depth per vertex (of the patch whose block holds it, at this frame's depth).
+    fn fill_vertex_depth(&self, depth: &[u8], out: &mut FrameGeometry) {
+        out.vertex_depth.clear();
+        out.vertex_depth.resize(out.positions.len(), 0.0);
+        for (i, p) in self.set.patches().iter().enumerate() {
+            let d = depth[p.unit as usize] as f32;
+            out.vertex_depth[self.block_start[i] as usize..self.block_start[i + 1] as usize]
+                .fill(d);
+        }
+    }
+}
+
+#[cfg(test)]
+impl Assembler {
+    /// Test access: the frame data (edge resolutions, owners, point ids) for `depth` and
+    /// `active`, over the blocks as currently cached.
+    pub(super) fn with_frame<R>(
+        &self,
+        mesh: &Mesh,
+        depth: &[u8],
+        active: &[bool],
+        f: impl FnOnce(&Frame) -> R,
+    ) -> R {
+        let fr = Frame::new(
+            mesh,
+            &self.set,
+            &self.units,
+            depth,
+            active,
+            &self.blocks,
+            &self.block_start,
+        );
+        f(&fr)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::test_util::{cube, grid, open_edges, prism, split_cube};
+    use super::*;
+
+    #[test]
+    fn cache_recomputes_only_patches_whose_depth_rose() {
+        let mesh = cube();
+        let mut asm = Assembler::new(&mesh, 4).unwrap();
+        let mut g = FrameGeometry::default();
+        asm.frame(&mesh, &[2; 6], &[true; 6], &mut g).unwrap();
+        assert_eq!(g.patches_recomputed, 6);
+        let v0 = g.vertex_version;
+        let pos0 = g.positions.clone();
+        // Lower every depth: blocks reused, vertex buffer untouched.
+        asm.frame(&mesh, &[1; 6], &[true; 6], &mut g).unwrap();
+        assert_eq!(g.patches_recomputed, 0);
+        assert_eq!(g.vertex_version, v0);
+        assert_eq!(g.positions, pos0);
+        assert_eq!(g.num_triangles(), 6 * 8);
+        assert_eq!(open_edges(&g), 0);
+        // Raise face 0 above the cache: face 0 and its four fanning neighbours, not face 1.
+        let mut depth = [2u8; 6];
+        depth[0] = 3;
+        asm.frame(&mesh, &depth, &[true; 6], &mut g).unwrap();
+        assert_eq!(g.patches_recomputed, 5);
+        assert!(g.vertex_version > v0);
+        assert_eq!(open_edges(&g), 0);
+        let v1 = g.vertex_version;
+        // Back down and up again: all cached.
+        asm.frame(&mesh, &[2; 6], &[true; 6], &mut g).unwrap();
+        asm.frame(&mesh, &depth, &[true; 6], &mut g).unwrap();
+        assert_eq!(g.patches_recomputed, 0);
+        assert_eq!(g.vertex_version, v1);
+        // Invalidating drops every block.
+        asm.invalidate();
+        asm.frame(&mesh, &depth, &[true; 6], &mut g).unwrap();
+        assert_eq!(g.patches_recomputed, 6);
+        assert!(g.vertex_version > v1);
+    }
+
+    #[test]
+    fn cached_frame_matches_fresh_frame() {
+        // A frame sampled from deeper cached blocks has the same triangles as a fresh one, and
+        // the same points up to rounding (blocks of different depths evaluate the limit
+        // through different paths, so the last bit may differ).
+        let mesh = prism();
+        let mut depth = [1u8, 2, 1, 3, 2];
+        let mut asm = Assembler::new(&mesh, 3).unwrap();
+        let mut g = FrameGeometry::default();
+        asm.frame(&mesh, &[3; 5], &[true; 5], &mut g).unwrap();
+        asm.frame(&mesh, &depth, &[true; 5], &mut g).unwrap();
+        assert_eq!(g.patches_recomputed, 0);
+        assert_eq!(open_edges(&g), 0);
+        let mut fresh_asm = Assembler::new(&mesh, 3).unwrap();
+        let mut fresh = FrameGeometry::default();
+        fresh_asm
+            .frame(&mesh, &depth, &[true; 5], &mut fresh)
+            .unwrap();
+        let (p_cached, _, i_cached) = g.compact();
+        let (p_fresh, _, i_fresh) = fresh.compact();
+        assert_eq!(i_cached, i_fresh);
+        for (a, b) in p_cached.iter().zip(&p_fresh) {
+            let d = (glam::Vec3::from(*a) - glam::Vec3::from(*b)).length();
+            assert!(d < 1e-5, "{a:?} vs {b:?}");
+        }
+        // Depth 0 is clamped to the triangle's minimum depth 1: the same frame.
+        depth[0] = 0;
+        let mut clamped = FrameGeometry::default();
+        fresh_asm
+            .frame(&mesh, &depth, &[true; 5], &mut clamped)
+            .unwrap();
+        assert_eq!(clamped.compact(), fresh.compact());
+    }
+
+    #[test]
+    fn vertex_depth_and_unit_depth_follow_the_frame() {
+        let mesh = cube();
+        let depth = [0u8, 1, 2, 0, 1, 2];
+        let g = super::super::test_util::frame(&mesh, 2, &depth, &[true; 6], FanMethod::Subdivided);
+        assert_eq!(g.unit_depth, depth);
+        assert_eq!(g.units_per_depth(), vec![2, 2, 2]);
+        assert_eq!(g.vertex_depth.len(), g.positions.len());
+        assert_eq!(g.normals.len(), g.positions.len());
+        for &i in &g.indices {
+            let d = g.vertex_depth[i as usize];
+            assert!((0.0..=2.0).contains(&d) && d.fract() == 0.0);
+        }
+    }
+
+    #[test]
+    fn depths_are_clamped_to_the_unit_range() {
+        let asm = Assembler::new(&split_cube(), 2).unwrap();
+        assert_eq!(
+            (0..7).map(|u| asm.min_depth(u)).collect::<Vec<_>>(),
+            vec![0, 1, 1, 1, 1, 1, 1]
+        );
+        let mesh = prism();
+        let deep =
+            super::super::test_util::frame(&mesh, 2, &[200; 5], &[true; 5], FanMethod::Subdivided);
+        let two =
+            super::super::test_util::frame(&mesh, 2, &[2; 5], &[true; 5], FanMethod::Subdivided);
+        assert_eq!(deep.indices, two.indices);
+        assert_eq!(deep.unit_depth, vec![2; 5]);
+    }
+
+    #[test]
+    fn bad_input_is_an_error_not_a_panic() {
+        let mesh = cube();
+        let max = subdiv_slate::MAX_DEPTH - 1;
+        assert!(matches!(
+            Assembler::new(&mesh, max + 1),
+            Err(AssemblyError::TooDeep { depth, max: m }) if depth == max + 1 && m == max
+        ));
+        assert!(Assembler::new(&mesh, max).is_ok());
+        let mut asm = Assembler::new(&mesh, 2).unwrap();
+        let mut g = FrameGeometry::default();
+        let err = asm.frame(&mesh, &[1; 5], &[true; 6], &mut g).unwrap_err();
+        assert!(matches!(
+            err,
+            AssemblyError::Length {
+                got: 5,
+                want: 6,
+                ..
+            }
+        ));
+        assert!(err.to_string().contains("5 entries"), "{err}");
+        let err = asm.frame(&mesh, &[1; 6], &[true; 7], &mut g).unwrap_err();
+        assert!(matches!(err, AssemblyError::Length { want: 6, .. }));
+        assert!(g.indices.is_empty());
+        // The assembler stays usable.
+        asm.frame(&mesh, &[1; 6], &[true; 6], &mut g).unwrap();
+        assert_eq!(g.num_triangles(), 48);
+    }
+
+    #[test]
+    fn frames_too_large_for_memory_are_refused_before_any_work() {
+        // 36 patches at depth 11 need 36 * 2049^2 > MAX_POINTS cached points.
+        let mesh = grid(6);
+        let max = subdiv_slate::MAX_DEPTH - 1;
+        let mut asm = Assembler::new(&mesh, max).unwrap();
+        let mut g = FrameGeometry::default();
+        let err = asm
+            .frame(&mesh, &[max as u8; 36], &[true; 36], &mut g)
+            .unwrap_err();
+        let want = 36 * ((1u64 << max) + 1).pow(2);
+        assert!(want > subdiv_slate::MAX_POINTS);
+        assert!(matches!(err, AssemblyError::TooLarge { points } if points == want));
+        assert!(g.positions.is_empty());
+        asm.frame(&mesh, &[1; 36], &[true; 36], &mut g).unwrap();
+        assert_eq!(g.patches_recomputed, 36);
+        assert_eq!(open_edges(&g), 24 * 2);
+    }
+}

@@ -1,0 +1,301 @@
+//! Index-buffer emission: plain quads (two triangles each) and, next to a deeper neighbour,
+//! triangle fans around the limit point of the quad's next-level face point.
+
+use rayon::prelude::*;
+use subdiv_slate::PatchRef;
+
+use super::edges::Frame;
+use super::grid::side_of_on;
+
+/// How the quads next to a deeper neighbour are closed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum FanMethod {
+    /// Fans, plus the subdivided edge between two replaced quads of a patch (the paper's method).
+    #[default]
+    Subdivided,
+    /// Fans only (the paper's "simple method", which shows buckles).
+    Simple,
+}
+
+impl Frame<'_> {
+    /// The frame's index buffer: each active, non-hole patch's triangles, emitted in parallel,
+    /// then concatenated in patch order into `out` (cleared first).
+    pub(super) fn emit_frame(&self, active: &[bool], method: FanMethod, out: &mut Vec<u32>) {
+        let tris: Vec<Vec<u32>> = self
+            .set
+            .patches()
+            .par_iter()
+            .map(|p| {
+                let mut v = Vec::new();
+                if active[p.unit as usize]
+                    && !self.mesh.is_hole(self.set.units()[p.unit as usize].face)
+                {
+                    self.emit_patch(p, method, &mut v);
+                }
+                v
+            })
+            .collect();
+        out.clear();
+        for t in tris {
+            out.extend_from_slice(&t);
+        }
+    }
+
+    /// The triangles of one patch.
+    fn emit_patch(&self, p: &PatchRef, method: FanMethod, out: &mut Vec<u32>) {
+        let pi = self.patch_index(p.unit as usize, p.sub as usize);
+        let d = self.patch_depth(p);
+        let n = 1u32 << d;
+        let fans = self.fans(p);
+        let replaced = |i: u32, j: u32| -> bool {
+            (fans[0] && j == 0)
+                || (fans[1] && i == n - 1)
+                || (fans[2] && j == n - 1)
+                || (fans[3] && i == 0)
+        };
+        let any = fans.iter().any(|&x| x);
+        let id = |i: u32, j: u32| self.point_id(pi, p, i, j);
+        let mut poly: Vec<u32> = Vec::with_capacity(16);
+        for j in 0..n {
+            for i in 0..n {
+                if !(any && replaced(i, j)) {
+                    let (a, b, c, e) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+                    out.extend_from_slice(&[a, b, c, a, c, e]);
+                    continue;
+                }
+                // Fan around the limit point of the quad's next-level face point.
+                let centre = self.own(pi, 2 * i + 1, 2 * j + 1, d + 1);
+                poly.clear();
+                // The quad's four edges, counter-clockwise: bottom, right, top, left; each from
+                // its start corner (inclusive) to its end corner (exclusive).
+                let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+                for (ek, &(ci, cj)) in corners.iter().enumerate() {
+                    poly.push(id(ci, cj));
+                    let (ni, nj) = corners[(ek + 1) % 4];
+                    // Is this edge on a fanned side of the patch?
+                    let on_side = match ek {
+                        0 if j == 0 => Some(0),
+                        1 if i + 1 == n => Some(1),
+                        2 if j + 1 == n => Some(2),
+                        3 if i == 0 => Some(3),
+                        _ => None,
+                    };
+                    if let Some(k) = on_side.filter(|&k| fans[k]) {
+                        self.push_fine_points(p, pi, k, (ci, cj), (ni, nj), n, &mut poly);
+                    } else if on_side.is_none() && method == FanMethod::Subdivided {
+                        // Inner edge: subdivide it if the quad across is replaced too.
+                        let (oi, oj) = match ek {
+                            0 => (i, j.wrapping_sub(1)),
+                            1 => (i + 1, j),
+                            2 => (i, j + 1),
+                            _ => (i.wrapping_sub(1), j),
+                        };
+                        if oi < n && oj < n && replaced(oi, oj) {
+                            poly.push(self.own(pi, ci + ni, cj + nj, d + 1));
+                        }
+                    }
+                }
+                for k in 0..poly.len() {
+                    out.extend_from_slice(&[centre, poly[k], poly[(k + 1) % poly.len()]]);
+                }
+            }
+        }
+    }
+
+    /// The deeper neighbour's points strictly between two corners of a border quad on side `k`.
+    #[allow(clippy::too_many_arguments)]
+    fn push_fine_points(
+        &self,
+        p: &PatchRef,
+        pi: usize,
+        k: usize,
+        a: (u32, u32),
+        b: (u32, u32),
+        n: u32,
+        poly: &mut Vec<u32>,
+    ) {
+        let _ = pi;
+        let u = p.unit as usize;
+        let hs = &self.units[u].hs;
+        let d = self.patch_depth(p);
+        let (_, sa) = side_of_on(k, a.0, a.1, n);
+        let (_, sb) = side_of_on(k, b.0, b.1, n);
+        // Cage half-edge and the parameter range (at unit resolution) the side covers.
+        let (h, ud, offset) = if p.level == 0 {
+            (hs[k], d, 0)
+        } else {
+            let nsub = hs.len();
+            let sub = p.sub as usize;
+            match k {
+                0 => (hs[sub], d + 1, 0),
+                _ => (hs[(sub + nsub - 1) % nsub], d + 1, n),
+            }
+        };
+        let r = self.edge_res[h.edge().idx()] as u32;
+        let delta = r - ud;
+        let (t0, t1) = ((offset + sa) << delta, (offset + sb) << delta);
+        if t1 > t0 {
+            for t in t0 + 1..t1 {
+                poly.push(self.edge_point_id(h, t, r));
+            }
+        } else {
+            for t in (t1 + 1..t0).rev() {
+                poly.push(self.edge_point_id(h, t, r));
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::test_util::{Rng, cube, frame, grid, open_edges, prism, split_cube};
+    use super::FanMethod;
+
+    const METHODS: [FanMethod; 2] = [FanMethod::Subdivided, FanMethod::Simple];
+
+    #[test]
+    fn uniform_depths_give_two_triangles_per_quad_and_no_fans() {
+        for (name, mesh, open_per_level) in [("cube", cube(), 0), ("grid", grid(3), 12)] {
+            let nf = mesh.num_faces();
+            for d in 0..=3u8 {
+                for method in METHODS {
+                    let g = frame(&mesh, 3, &vec![d; nf], &vec![true; nf], method);
+                    assert_eq!(
+                        g.num_triangles(),
+                        nf * 2 * 4usize.pow(d as u32),
+                        "{name} depth {d} {method:?}"
+                    );
+                    // No fan centres: only the grid points of the uniform tessellation.
+                    let (pos, _, idx) = g.compact();
+                    let n = (1usize << d) + 1;
+                    let want = if name == "cube" {
+                        6 * (n - 1) * (n - 1) + 2
+                    } else {
+                        (3 * (n - 1) + 1).pow(2)
+                    };
+                    assert_eq!(pos.len(), want, "{name} depth {d}: vertices");
+                    assert_eq!(idx.len(), g.indices.len());
+                    assert_eq!(open_edges(&g), open_per_level << d, "{name} depth {d}");
+                }
+            }
+        }
+    }
+
+    /// Triangles of a quad patch at depth `a` with one side next to a depth-`b` unit (`b > a`):
+    /// the `2^a` quads along that side become fans through the `2^(b-a) - 1` deeper points,
+    /// plus (subdivided method) the midpoint of each inner edge between two of them.
+    fn fanned_patch_triangles(a: u32, b: u32, method: FanMethod) -> usize {
+        let n = 1usize << a;
+        let plain = 2 * (n * n - n);
+        let fans = n * (4 + (1usize << (b - a)) - 1);
+        let extra = match method {
+            FanMethod::Subdivided => 2 * (n - 1),
+            FanMethod::Simple => 0,
+        };
+        plain + fans + extra
+    }
+
+    #[test]
+    fn one_deeper_face_turns_neighbour_border_quads_into_watertight_fans() {
+        let mesh = cube();
+        // Face 0 (z = 0) borders faces 2..=5; face 1 is opposite.
+        for a in 0..=2u32 {
+            for b in a + 1..=3 {
+                let mut depth = vec![a as u8; 6];
+                depth[0] = b as u8;
+                for method in METHODS {
+                    let g = frame(&mesh, 3, &depth, &[true; 6], method);
+                    let want = 2 * 4usize.pow(b)
+                        + 2 * 4usize.pow(a)
+                        + 4 * fanned_patch_triangles(a, b, method);
+                    assert_eq!(g.num_triangles(), want, "depths {a}/{b} {method:?}");
+                    assert_eq!(open_edges(&g), 0, "depths {a}/{b} {method:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn subdivided_method_adds_the_inner_edge_points() {
+        let mesh = cube();
+        let mut depth = vec![1u8; 6];
+        depth[0] = 2;
+        let sub = frame(&mesh, 2, &depth, &[true; 6], FanMethod::Subdivided);
+        let simple = frame(&mesh, 2, &depth, &[true; 6], FanMethod::Simple);
+        // Four neighbours, each with one inner edge between two fans: one more point, two
+        // more triangles each.
+        assert_eq!(sub.num_triangles(), simple.num_triangles() + 4 * 2);
+        assert_eq!(sub.compact().0.len(), simple.compact().0.len() + 4);
+        // Same vertex buffer: the method changes only the index buffer.
+        assert_eq!(sub.positions, simple.positions);
+    }
+
+    #[test]
+    fn fans_on_a_grid_stay_closed_inside() {
+        // The centre face of a 3x3 grid two levels deeper than the rest: its four neighbours
+        // fan, the outer boundary stays open with 2^d segments per boundary edge.
+        let mesh = grid(3);
+        let mut depth = vec![1u8; 9];
+        depth[4] = 3;
+        for method in METHODS {
+            let g = frame(&mesh, 3, &depth, &[true; 9], method);
+            assert_eq!(open_edges(&g), 12 * 2, "{method:?}");
+            let want = 2 * 64 + 4 * 8 + 4 * fanned_patch_triangles(1, 3, method);
+            assert_eq!(g.num_triangles(), want, "{method:?}");
+        }
+    }
+
+    #[test]
+    fn random_depths_are_watertight_with_n_gons() {
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        for (name, mesh) in [
+            ("cube", cube()),
+            ("prism", prism()),
+            ("split", split_cube()),
+        ] {
+            let nf = mesh.num_faces();
+            for round in 0..24 {
+                let depth: Vec<u8> = (0..nf).map(|_| rng.below(5) as u8).collect();
+                let method = METHODS[round % 2];
+                let g = frame(&mesh, 4, &depth, &vec![true; nf], method);
+                assert_eq!(
+                    open_edges(&g),
+                    0,
+                    "{name} round {round} depths {depth:?} {method:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn inactive_faces_emit_nothing_and_cause_no_fans() {
+        let mesh = cube();
+        // Face 0 culled, at a deeper depth that would otherwise make its neighbours fan.
+        let mut depth = vec![1u8; 6];
+        depth[0] = 3;
+        let mut active = [true; 6];
+        active[0] = false;
+        let g = frame(&mesh, 3, &depth, &active, FanMethod::Subdivided);
+        assert_eq!(g.num_triangles(), 5 * 8);
+        assert_eq!(g.unit_depth, vec![u8::MAX, 1, 1, 1, 1, 1]);
+        assert_eq!(g.units_per_depth(), vec![0, 5]);
+        // The culled face leaves a square hole of 4 * 2 segments.
+        assert_eq!(open_edges(&g), 8);
+        // Nothing active: nothing drawn.
+        let g = frame(&mesh, 3, &depth, &[false; 6], FanMethod::Subdivided);
+        assert_eq!(g.num_triangles(), 0);
+        assert_eq!(g.units_per_depth(), Vec::<usize>::new());
+    }
+
+    #[test]
+    fn n_gon_units_have_two_triangles_per_level_one_quad() {
+        let mesh = prism();
+        for d in 1..=3u32 {
+            let g = frame(&mesh, 3, &[d as u8; 5], &[true; 5], FanMethod::Subdivided);
+            // Two triangles of three level-1 quads each, three quads.
+            let want = 2 * 3 * 2 * 4usize.pow(d - 1) + 3 * 2 * 4usize.pow(d);
+            assert_eq!(g.num_triangles(), want, "depth {d}");
+            assert_eq!(open_edges(&g), 0);
+        }
+    }
+}
