@@ -279,7 +279,7 @@ pub fn chord_deviations(mesh: &Mesh, asm: &Assembler, max_depth: u8) -> Vec<Vec<
                 w.patch_grid(set.source(mesh, p), p.src_face, l_fine, pos, nrm);
                 let at = |i: usize, j: usize| Vec3::from(pos[j * (n + 1) + i]);
                 let mut dev = vec![f32::INFINITY; max_depth as usize + 1];
-                for ld in 0..=max_depth as usize {
+                for (ld, dev_ld) in dev.iter_mut().enumerate() {
                     // Patch depth for face depth `ld`.
                     let Some(l) = ld.checked_sub(p.level as usize) else {
                         continue;
@@ -310,7 +310,7 @@ pub fn chord_deviations(mesh: &Mesh, asm: &Assembler, max_depth: u8) -> Vec<Vec<
                             }
                         }
                     }
-                    dev[ld] = worst;
+                    *dev_ld = worst;
                 }
                 dev
             },
