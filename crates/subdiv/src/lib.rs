@@ -63,6 +63,7 @@
 //! ```
 
 mod dynamic;
+pub mod quality;
 mod refine;
 
 pub use dynamic::{DynamicSubdivision, chord_deviations};

@@ -1,0 +1,276 @@
+//! Image error of a rendered tessellation against a reference render: silhouette distance in
+//! pixels and shading angle in degrees.
+//!
+//! - **Silhouette.** Coverage masks of candidate and reference are compared pixel by pixel; for
+//!   every pixel where they disagree the error is the Euclidean distance from its centre to the
+//!   reference silhouette, taken as the midpoints of the pixel edges between a covered and an
+//!   uncovered pixel of the reference mask (so a pixel wrongly covered right next to the
+//!   silhouette counts 0.5 px, one a pixel further 1.5 px). Distances are exact (Felzenszwalb &
+//!   Huttenlocher's linear-time Euclidean distance transform on a grid of half pixels).
+//! - **Shading.** Inside both masks, the angle between the candidate's and the reference's
+//!   interpolated unit normals.
+
+/// Errors of one rendered frame against its reference.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FrameErrors {
+    /// Per disagreeing pixel: distance to the reference silhouette, in pixels.
+    pub silhouette_px: Vec<f32>,
+    /// Per pixel covered in both: normal angle in degrees.
+    pub shading_deg: Vec<f32>,
+}
+
+/// The `q`-quantile (0..=1, nearest rank) of `values`; 0 for no values.
+pub fn quantile(values: &[f32], q: f32) -> f32 {
+    if values.is_empty() {
+        return 0.0;
+    }
+    let mut v = values.to_vec();
+    v.sort_unstable_by(f32::total_cmp);
+    let rank = ((q.clamp(0.0, 1.0) * v.len() as f32).ceil() as usize).clamp(1, v.len());
+    v[rank - 1]
+}
+
+/// Compares candidate and reference coverage masks and normals (row-major, `width × height`).
+///
+/// ```
+/// use subdiv::quality::compare_frames;
+/// let (w, h) = (8, 8);
+/// // Reference: the left half covered; candidate: one column more.
+/// let reference: Vec<bool> = (0..w * h).map(|i| i % w < 4).collect();
+/// let candidate: Vec<bool> = (0..w * h).map(|i| i % w < 5).collect();
+/// let n = vec![[0.0, 0.0, 1.0]; w * h];
+/// let e = compare_frames(&candidate, &n, &reference, &n, w, h);
+/// assert_eq!(e.silhouette_px, vec![0.5; 8]); // column 4 lies half a pixel off the silhouette
+/// assert!(e.shading_deg.iter().all(|&a| a == 0.0));
+/// ```
+pub fn compare_frames(
+    candidate: &[bool],
+    candidate_normals: &[[f32; 3]],
+    reference: &[bool],
+    reference_normals: &[[f32; 3]],
+    width: usize,
+    height: usize,
+) -> FrameErrors {
+    let n = width * height;
+    assert!(
+        candidate.len() == n && reference.len() == n,
+        "mask sizes must be width × height"
+    );
+    let distance = silhouette_distance(reference, width, height);
+    let mut out = FrameErrors::default();
+    for i in 0..n {
+        if candidate[i] != reference[i] {
+            out.silhouette_px.push(distance[i]);
+        } else if candidate[i] {
+            out.shading_deg
+                .push(angle_deg(candidate_normals[i], reference_normals[i]));
+        }
+    }
+    out
+}
+
+/// Angle between two (unit or not) normals in degrees; 0 when either is zero.
+#[inline]
+fn angle_deg(a: [f32; 3], b: [f32; 3]) -> f32 {
+    let (a, b) = (glam::Vec3::from(a), glam::Vec3::from(b));
+    let (la, lb) = (a.length(), b.length());
+    if la == 0.0 || lb == 0.0 {
+        return 0.0;
+    }
+    (a.dot(b) / (la * lb)).clamp(-1.0, 1.0).acos().to_degrees()
+}
+
+/// Per pixel: Euclidean distance (pixels) from its centre to the nearest midpoint of a pixel
+/// edge between a covered and an uncovered pixel of `mask`; `f32::INFINITY` for every pixel
+/// when the mask has no such edge. Pixels outside the image count as uncovered.
+pub fn silhouette_distance(mask: &[bool], width: usize, height: usize) -> Vec<f32> {
+    // A grid of half pixels: pixel (x, y) has its centre at (2x + 1, 2y + 1); the edge between
+    // (x, y) and (x + 1, y) has its midpoint at (2x + 2, 2y + 1).
+    let (gw, gh) = (2 * width + 1, 2 * height + 1);
+    let covered = |x: isize, y: isize| {
+        x >= 0
+            && y >= 0
+            && (x as usize) < width
+            && (y as usize) < height
+            && mask[y as usize * width + x as usize]
+    };
+    let mut grid = vec![f64::INFINITY; gw * gh];
+    let mut any = false;
+    for y in 0..height as isize {
+        for x in -1..width as isize {
+            if covered(x, y) != covered(x + 1, y) {
+                grid[(2 * y as usize + 1) * gw + (2 * x + 2) as usize] = 0.0;
+                any = true;
+            }
+        }
+    }
+    for y in -1..height as isize {
+        for x in 0..width as isize {
+            if covered(x, y) != covered(x, y + 1) {
+                grid[(2 * y + 2) as usize * gw + 2 * x as usize + 1] = 0.0;
+                any = true;
+            }
+        }
+    }
+    if !any {
+        return vec![f32::INFINITY; width * height];
+    }
+    edt_2d(&mut grid, gw, gh);
+    let mut out = Vec::with_capacity(width * height);
+    for y in 0..height {
+        for x in 0..width {
+            // Squared distance in half pixels → pixels.
+            out.push((grid[(2 * y + 1) * gw + 2 * x + 1].sqrt() / 2.0) as f32);
+        }
+    }
+    out
+}
+
+/// In-place squared Euclidean distance transform of a grid holding 0 at sites and infinity
+/// elsewhere (Felzenszwalb & Huttenlocher 2012): columns, then rows.
+fn edt_2d(grid: &mut [f64], w: usize, h: usize) {
+    let n = w.max(h);
+    let (mut f, mut d) = (vec![0.0f64; n], vec![0.0f64; n]);
+    let (mut v, mut z) = (vec![0usize; n], vec![0.0f64; n + 1]);
+    for x in 0..w {
+        for y in 0..h {
+            f[y] = grid[y * w + x];
+        }
+        edt_1d(&f[..h], &mut d[..h], &mut v, &mut z);
+        for y in 0..h {
+            grid[y * w + x] = d[y];
+        }
+    }
+    for y in 0..h {
+        f[..w].copy_from_slice(&grid[y * w..(y + 1) * w]);
+        edt_1d(&f[..w], &mut d[..w], &mut v, &mut z);
+        grid[y * w..(y + 1) * w].copy_from_slice(&d[..w]);
+    }
+}
+
+/// One-dimensional squared distance transform of sampled function `f` (lower envelope of
+/// parabolas); infinite samples are no sites.
+fn edt_1d(f: &[f64], d: &mut [f64], v: &mut [usize], z: &mut [f64]) {
+    let n = f.len();
+    let mut k: usize = 0;
+    let Some(q0) = f.iter().position(|x| x.is_finite()) else {
+        d.fill(f64::INFINITY);
+        return;
+    };
+    v[0] = q0;
+    z[0] = f64::NEG_INFINITY;
+    z[1] = f64::INFINITY;
+    for q in q0 + 1..n {
+        if !f[q].is_finite() {
+            continue;
+        }
+        // z[0] is -inf, so the loop stops at k = 0 at the latest.
+        let s = loop {
+            let p = v[k];
+            let s = ((f[q] + (q * q) as f64) - (f[p] + (p * p) as f64)) / (2.0 * (q - p) as f64);
+            if s <= z[k] {
+                k -= 1;
+            } else {
+                break s;
+            }
+        };
+        k += 1;
+        v[k] = q;
+        z[k] = s;
+        z[k + 1] = f64::INFINITY;
+    }
+    k = 0;
+    for (q, dq) in d.iter_mut().enumerate() {
+        while z[k + 1] < q as f64 {
+            k += 1;
+        }
+        let p = v[k];
+        let dx = q as f64 - p as f64;
+        *dq = dx * dx + f[p];
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Brute force: distance from each pixel centre to the nearest boundary edge midpoint.
+    fn brute(mask: &[bool], w: usize, h: usize) -> Vec<f32> {
+        let cov = |x: isize, y: isize| {
+            x >= 0 && y >= 0 && (x as usize) < w && (y as usize) < h && mask[y as usize * w + x as usize]
+        };
+        let mut sites = Vec::new();
+        for y in -1..=h as isize {
+            for x in -1..=w as isize {
+                if cov(x, y) != cov(x + 1, y) {
+                    sites.push((x as f32 + 1.0, y as f32 + 0.5));
+                }
+                if cov(x, y) != cov(x, y + 1) {
+                    sites.push((x as f32 + 0.5, y as f32 + 1.0));
+                }
+            }
+        }
+        (0..w * h)
+            .map(|i| {
+                let (px, py) = ((i % w) as f32 + 0.5, (i / w) as f32 + 0.5);
+                sites
+                    .iter()
+                    .map(|&(sx, sy)| ((sx - px).powi(2) + (sy - py).powi(2)).sqrt())
+                    .fold(f32::INFINITY, f32::min)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn distance_transform_matches_brute_force() {
+        let (w, h) = (23, 17);
+        let mut seed = 12345u32;
+        for round in 0..20 {
+            // A disc plus random specks.
+            let mask: Vec<bool> = (0..w * h)
+                .map(|i| {
+                    seed ^= seed << 13;
+                    seed ^= seed >> 17;
+                    seed ^= seed << 5;
+                    let (x, y) = ((i % w) as f32 - 11.0, (i / w) as f32 - 8.0);
+                    x * x + y * y < (round as f32 * 0.4 + 2.0).powi(2) || seed % 53 == 0
+                })
+                .collect();
+            let fast = silhouette_distance(&mask, w, h);
+            let slow = brute(&mask, w, h);
+            for (a, b) in fast.iter().zip(&slow) {
+                assert!((a - b).abs() < 1e-4, "round {round}: {a} vs {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn errors_of_a_shifted_disc_and_tilted_normals() {
+        let (w, h) = (40, 30);
+        let disc = |cx: f32| -> Vec<bool> {
+            (0..w * h)
+                .map(|i| {
+                    let (x, y) = ((i % w) as f32 + 0.5 - cx, (i / w) as f32 + 0.5 - 15.0);
+                    x * x + y * y < 100.0
+                })
+                .collect()
+        };
+        let (reference, candidate) = (disc(20.0), disc(23.0));
+        let n = vec![[0.0, 0.0, 1.0]; w * h];
+        let tilt = 10f32.to_radians();
+        let m = vec![[tilt.sin(), 0.0, tilt.cos()]; w * h];
+        let e = compare_frames(&candidate, &m, &reference, &n, w, h);
+        let max = e.silhouette_px.iter().copied().fold(0.0f32, f32::max);
+        assert!(max > 2.0 && max <= 3.0, "{max}");
+        assert!(e.shading_deg.iter().all(|&a| (a - 10.0).abs() < 1e-3));
+        assert_eq!(quantile(&[3.0, 1.0, 2.0, 4.0], 0.5), 2.0);
+        assert_eq!(quantile(&[3.0, 1.0, 2.0, 4.0], 0.99), 4.0);
+        assert_eq!(quantile(&[], 0.99), 0.0);
+        // Identical frames: no silhouette error.
+        let same = compare_frames(&reference, &n, &reference, &n, w, h);
+        assert!(same.silhouette_px.is_empty());
+        // An empty reference: every candidate pixel is infinitely far from any silhouette.
+        let empty = vec![false; w * h];
+        assert!(silhouette_distance(&empty, w, h).iter().all(|d| d.is_infinite()));
+    }
+}
