@@ -6,18 +6,19 @@ use std::time::Instant;
 
 use anyhow::bail;
 use glam::Vec3;
+use subdiv::{BuiltinScene, DynamicSubdivision, view_for};
 use subdiv_depth::DepthParams;
 use subdiv_mesh::Camera;
-use subdiv::DynamicSubdivision;
 use subdiv_vk::{RenderMesh, RenderOptions, Renderer};
 
 use crate::camera_args::parse_size;
+use crate::choices::{SceneName, value_name};
 
 #[derive(clap::Args, Debug)]
 pub struct BenchFramerateArgs {
     /// The scene (the paper's Fig. 12: 40 instances of catmark_helmet).
-    #[arg(long, default_value = "helmet40", value_parser = ["helmet40"])]
-    pub scene: String,
+    #[arg(long, value_enum, default_value = "helmet40")]
+    pub scene: SceneName,
     /// Adaptive tessellation with frame-rate control aiming at this frame rate.
     #[arg(long)]
     pub target_fps: Option<f32>,
@@ -48,7 +49,8 @@ pub struct BenchFramerateArgs {
     pub no_cache: bool,
 }
 
-pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
+/// Refuses flag values the experiment cannot run with.
+fn check(a: &BenchFramerateArgs) -> anyhow::Result<()> {
     if a.frames == 0 {
         bail!("--frames must be at least 1");
     }
@@ -68,7 +70,12 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
             bail!("frame rates must be positive");
         }
     }
-    let mesh = crate::render::helmet40()?;
+    Ok(())
+}
+
+pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
+    check(a)?;
+    let mesh = BuiltinScene::from(a.scene).cage()?;
     let nf = mesh.num_faces();
     let (lo, hi) = mesh.bounds();
     let centre = (lo + hi) * 0.5;
@@ -97,7 +104,10 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
         Some(Renderer::new()?)
     };
     let (w, h) = a.size;
-    println!("scene={} faces={nf} size={w}x{h} mode={mode}", a.scene);
+    println!(
+        "scene={} faces={nf} size={w}x{h} mode={mode}",
+        value_name(&a.scene)
+    );
     let mut last: Option<f32> = None;
     for i in 0..a.frames {
         if let (Some(s), true) = (a.switch_fps, i == a.frames / 2) {
@@ -124,7 +134,7 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
             ..Default::default()
         };
         if let Some(r) = renderer.as_mut() {
-            let view = crate::render::view_for(&camera, lo, hi);
+            let view = view_for(&camera, lo, hi);
             r.render_discard(&mesh, &view, [w, h], &RenderOptions::default())?;
         }
         let dt = t0.elapsed().as_secs_f32();

@@ -1,13 +1,17 @@
 //! `subdiv`: the command-line front end. It parses arguments and wires the library crates
 //! together; all geometry lives in the libraries.
 
+mod adaptive_args;
 mod bench;
 mod bench_framerate;
 mod camera_args;
+mod choices;
+mod doi_args;
 mod info;
 mod load;
 mod refine;
 mod render;
+mod surface_args;
 mod tessellate;
 mod view;
 

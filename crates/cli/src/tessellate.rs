@@ -5,98 +5,30 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::{Context, bail};
-use subdiv_depth::DepthParams;
-use subdiv_mesh::{ObjData, write_obj};
-use subdiv_rules::{Scheme, tessellate_uniform};
-use subdiv_slate::tessellate as slate_tessellate;
-use subdiv::DynamicSubdivision;
-use subdiv_stitch::FanMethod;
+use clap::builder::{PossibleValuesParser, TypedValueParser};
+use subdiv::{DoiKind, DynamicSubdivision, depth_histogram, doi_face_depths, make_doi};
+use subdiv_mesh::{Mesh, ObjData, write_obj};
+use subdiv_rules::Scheme;
+use subdiv_stitch::FrameGeometry;
 
+use crate::adaptive_args::AdaptiveArgs;
 use crate::camera_args::CameraArgs;
-
-/// Flags of the view-dependent depth assignment (shared with `render` and `view`).
-#[derive(clap::Args, Debug, Clone)]
-pub struct AdaptiveArgs {
-    /// Deepest subdivision depth (`maxsd`).
-    #[arg(long, default_value_t = 5)]
-    pub max_depth: u8,
-    /// Normal-cone aperture in degrees for the curvature depth.
-    #[arg(long, default_value_t = 10.0)]
-    pub cone_aperture: f32,
-    /// Vertex classifier epsilon (back / front / silhouette).
-    #[arg(long, default_value_t = 0.1)]
-    pub classifier: f32,
-    /// Projected sub-patch radius bounds in pixels.
-    #[arg(long, value_parser = parse_pair, default_value = "2,8")]
-    pub projected_size: (f32, f32),
-    /// Choose the least depth whose chord error is at most PX pixels on screen.
-    #[arg(long)]
-    pub pixel_error: Option<f32>,
-    /// Leave out back faces instead of drawing them at depth 0.
-    #[arg(long)]
-    pub cull_back: bool,
-    /// Close depth transitions with plain fans (the paper's "simple method").
-    #[arg(long)]
-    pub simple_fans: bool,
-}
-
-impl AdaptiveArgs {
-    /// The depth parameters these flags describe.
-    pub fn params(&self) -> anyhow::Result<DepthParams> {
-        if self.max_depth > 10 {
-            bail!("--max-depth {} is too deep (at most 10)", self.max_depth);
-        }
-        if let Some(px) = self.pixel_error {
-            if !(px.is_finite() && px > 0.0) {
-                bail!("--pixel-error must be a positive number of pixels");
-            }
-        }
-        Ok(DepthParams {
-            max_depth: self.max_depth,
-            cone_aperture_deg: self.cone_aperture,
-            classifier_eps: self.classifier,
-            projected_size: Some(self.projected_size),
-            pixel_error: self.pixel_error,
-            cull_back: self.cull_back,
-        })
-    }
-
-    /// A ready node for `mesh`.
-    pub fn node(&self, mesh: subdiv_mesh::Mesh) -> anyhow::Result<DynamicSubdivision> {
-        let mut node = DynamicSubdivision::new(mesh, self.params()?)?;
-        if self.simple_fans {
-            node.set_fan_method(FanMethod::Simple);
-        }
-        Ok(node)
-    }
-}
-
-/// Parses `A,B`.
-pub fn parse_pair(s: &str) -> Result<(f32, f32), String> {
-    let (a, b) = s
-        .split_once(',')
-        .ok_or_else(|| format!("'{s}' is not MIN,MAX"))?;
-    let a: f32 = a
-        .trim()
-        .parse()
-        .map_err(|_| format!("'{s}' is not MIN,MAX"))?;
-    let b: f32 = b
-        .trim()
-        .parse()
-        .map_err(|_| format!("'{s}' is not MIN,MAX"))?;
-    if !(a.is_finite() && b.is_finite() && a > 0.0 && b >= a) {
-        return Err(format!("'{s}': need 0 < MIN <= MAX"));
-    }
-    Ok((a, b))
-}
+use crate::choices::{DoiName, SchemeName, value_name};
+use crate::doi_args::{DoiChoice, doi_error};
 
 #[derive(clap::Args, Debug)]
+#[command(mut_arg("doi", |a| a
+    .help(
+        "Drive the Catmull-Clark depths by a Degree-of-Interest function instead of the view \
+         (face values above the threshold map linearly onto depths 1..max-depth)"
+    )
+    .value_parser(cage_doi_parser())))]
 pub struct TessellateArgs {
     /// Input cage (OBJ with optional OpenSubdiv tags).
     pub input: PathBuf,
     /// Subdivision scheme.
-    #[arg(long, default_value = "catmull-clark", value_parser = ["catmull-clark", "loop"])]
-    pub scheme: String,
+    #[arg(long, value_enum, default_value = "catmull-clark")]
+    pub scheme: SchemeName,
     /// Uniform subdivision depth (without it, a camera makes the tessellation adaptive).
     #[arg(long)]
     pub depth: Option<u32>,
@@ -107,16 +39,8 @@ pub struct TessellateArgs {
     /// Print patches per depth, triangles and the uniform count at the maximum depth.
     #[arg(long)]
     pub stats: bool,
-    /// Drive the Catmull-Clark depths by a Degree-of-Interest function instead of the view
-    /// (face values above the threshold map linearly onto depths 1..max-depth).
-    #[arg(long, value_parser = ["view-angle", "silhouette", "dihedral", "focus"])]
-    pub doi: Option<String>,
-    /// DoI threshold (default: the DoI's figure value from the paper).
-    #[arg(long, allow_hyphen_values = true)]
-    pub threshold: Option<f32>,
-    /// Focus objects (OBJ groups) for --doi focus.
-    #[arg(long = "focus", value_name = "NAME")]
-    pub focus: Vec<String>,
+    #[command(flatten)]
+    pub doi: DoiChoice,
     /// Output OBJ (limit positions, limit normals, faces).
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
@@ -125,81 +49,77 @@ pub struct TessellateArgs {
     pub split_nonmanifold: bool,
 }
 
-/// The uniform limit tessellation at `depth` (shared by `tessellate`, `render` and `view`):
-/// Catmull-Clark on the slate tessellator, Loop on the whole-mesh refinement.
-pub fn uniform(
-    mesh: &subdiv_mesh::Mesh,
-    scheme: Scheme,
-    depth: u32,
-) -> Result<subdiv_rules::LimitMesh, Box<dyn std::error::Error + Send + Sync>> {
-    Ok(match scheme {
-        Scheme::CatmullClark => slate_tessellate(mesh, depth)?,
-        Scheme::Loop => tessellate_uniform(mesh, scheme, depth)?,
-    })
+/// `--doi` of `tessellate`: the DoIs that need neither a haptic interaction point nor Loop
+/// refinement.
+fn cage_doi_parser() -> impl TypedValueParser<Value = DoiName> {
+    PossibleValuesParser::new(["view-angle", "silhouette", "dihedral", "focus"])
+        .map(|s| <DoiName as clap::ValueEnum>::from_str(&s, false).expect("a DoI name"))
 }
 
 pub fn run(a: &TessellateArgs) -> anyhow::Result<ExitCode> {
-    let scheme: Scheme = a.scheme.parse().map_err(anyhow::Error::msg)?;
     let mesh = crate::load::load_mesh(&a.input, a.split_nonmanifold)?;
-    let input = a.input.display();
-    let t0 = Instant::now();
     if let Some(depth) = a.depth {
-        let t = uniform(&mesh, scheme, depth).map_err(|e| anyhow::anyhow!("{input}: {e}"))?;
-        let ms = t0.elapsed().as_secs_f64() * 1e3;
-        write_obj(&a.output, &t.obj_data())?;
-        println!(
-            "tessellated {input}: {} vertices, {} faces ({}, depth {depth}) in {ms:.1} ms -> {}",
-            t.positions.len(),
-            t.num_faces(),
-            a.scheme,
-            a.output.display()
-        );
-        if a.stats {
-            println!("patches per depth: {depth}:{}", mesh.num_faces());
-            println!("triangles: {}", t.triangles().len() / 3);
-        }
-        return Ok(ExitCode::SUCCESS);
+        return run_uniform(a, &mesh, depth);
     }
-    if !a.camera.has_camera() && a.doi.is_none() {
+    if !a.camera.has_camera() && a.doi.doi.is_none() {
         bail!(
             "give --depth N for a uniform tessellation, or a camera (--eye X,Y,Z or --eye-relative X,Y,Z) for an adaptive one"
         );
     }
-    if scheme != Scheme::CatmullClark {
+    if Scheme::from(a.scheme) != Scheme::CatmullClark {
         bail!(
             "adaptive tessellation with a camera is for --scheme catmull-clark; use `subdiv refine` for adaptive Loop"
         );
     }
+    run_adaptive(a, mesh)
+}
+
+/// `subdiv tessellate --depth N`.
+fn run_uniform(a: &TessellateArgs, mesh: &Mesh, depth: u32) -> anyhow::Result<ExitCode> {
+    let input = a.input.display();
+    let t0 = Instant::now();
+    let t = subdiv::uniform_limit(mesh, a.scheme.into(), depth)
+        .map_err(|e| anyhow::anyhow!("{input}: {e}"))?;
+    let ms = t0.elapsed().as_secs_f64() * 1e3;
+    write_obj(&a.output, &t.obj_data())?;
+    println!(
+        "tessellated {input}: {} vertices, {} faces ({}, depth {depth}) in {ms:.1} ms -> {}",
+        t.positions.len(),
+        t.num_faces(),
+        value_name(&a.scheme),
+        a.output.display()
+    );
+    if a.stats {
+        println!("patches per depth: {depth}:{}", mesh.num_faces());
+        println!("triangles: {}", t.triangles().len() / 3);
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `subdiv tessellate` with a camera or a DoI: the adaptive Catmull-Clark tessellation.
+fn run_adaptive(a: &TessellateArgs, mesh: Mesh) -> anyhow::Result<ExitCode> {
+    let input = a.input.display().to_string();
+    let t0 = Instant::now();
     let (lo, hi) = mesh.bounds();
     let camera = a.camera.camera(lo, hi);
-    let doi_depths = match &a.doi {
+    let doi_depths = match a.doi.doi {
         Some(name) => {
-            let doi =
-                crate::refine::make_doi(name, &mesh, &a.focus, None, false, &input.to_string())?;
-            let ctx = subdiv_doi::DoiContext {
-                camera: Some(camera),
-                ..Default::default()
-            };
-            let (mut scratch, mut values) = (Vec::new(), Vec::new());
-            subdiv_doi::face_values(
+            let kind = DoiKind::from(name);
+            let doi = make_doi(kind, &mesh, &a.doi.focus, None, false)
+                .map_err(|e| doi_error(e, &input))?;
+            let depths = doi_face_depths(
                 doi.as_ref(),
                 &mesh,
-                &ctx,
-                subdiv_doi::Aggregate::Max,
-                &mut scratch,
-                &mut values,
-            )
-            .with_context(|| format!("{input}: evaluating the {name} DoI"))?;
-            let t = a.threshold.unwrap_or(doi.default_threshold());
-            Some(subdiv_depth::depths_from_face_values(
-                &values,
-                t,
+                camera,
+                a.doi.threshold,
                 a.adaptive.max_depth,
-            ))
+            )
+            .with_context(|| format!("{input}: evaluating the {} DoI", kind.name()))?;
+            Some(depths)
         }
         None => None,
     };
-    let mut node = a.adaptive.node(mesh).with_context(|| format!("{input}"))?;
+    let mut node = a.adaptive.node(mesh).with_context(|| input.clone())?;
     node.set_face_depths(doi_depths)?;
     let g = node.update(&camera, None)?;
     let ms = t0.elapsed().as_secs_f64() * 1e3;
@@ -222,48 +142,39 @@ pub fn run(a: &TessellateArgs) -> anyhow::Result<ExitCode> {
         a.output.display()
     );
     if a.stats {
-        let per = g.units_per_depth();
-        let per: Vec<String> = per
-            .iter()
-            .enumerate()
-            .map(|(d, n)| format!("{d}:{n}"))
-            .collect();
-        let culled = g.unit_depth.iter().filter(|&&d| d == u8::MAX).count();
-        println!(
-            "patches per depth: {}{}",
-            per.join(" "),
-            if culled > 0 {
-                format!(" culled:{culled}")
-            } else {
-                String::new()
-            }
-        );
-        let tris = g.num_triangles();
-        let uni = node.uniform_triangles();
-        println!("triangles: {tris}");
-        println!(
-            "uniform triangles at max depth {}: {uni} (adaptive/uniform = {:.3})",
-            a.adaptive.max_depth,
-            tris as f64 / uni.max(1) as f64
-        );
-        if a.adaptive.pixel_error.is_some() {
-            // Uniform tessellation with the same maximum screen error: every face at the deepest
-            // depth any visible face needed.
-            let asg = node.assignment();
-            let dmax = asg
-                .depth
-                .iter()
-                .zip(&asg.active)
-                .filter(|(_, on)| **on)
-                .map(|(d, _)| *d)
-                .max()
-                .unwrap_or(0);
-            let u = node.uniform_triangles_at(dmax);
-            println!(
-                "uniform triangles at equal max screen error (depth {dmax}): {u} (adaptive/uniform = {:.3})",
-                tris as f64 / u.max(1) as f64
-            );
-        }
+        print_stats(a, &node, node.geometry());
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// `--stats` of the adaptive tessellation: patches per depth, triangles, and the uniform
+/// counts it compares with.
+fn print_stats(a: &TessellateArgs, node: &DynamicSubdivision, g: &FrameGeometry) {
+    println!("patches per depth: {}", depth_histogram(g));
+    let tris = g.num_triangles();
+    let uni = node.uniform_triangles();
+    println!("triangles: {tris}");
+    println!(
+        "uniform triangles at max depth {}: {uni} (adaptive/uniform = {:.3})",
+        a.adaptive.max_depth,
+        tris as f64 / uni.max(1) as f64
+    );
+    if a.adaptive.pixel_error.is_some() {
+        // Uniform tessellation with the same maximum screen error: every face at the deepest
+        // depth any visible face needed.
+        let asg = node.assignment();
+        let dmax = asg
+            .depth
+            .iter()
+            .zip(&asg.active)
+            .filter(|(_, on)| **on)
+            .map(|(d, _)| *d)
+            .max()
+            .unwrap_or(0);
+        let u = node.uniform_triangles_at(dmax);
+        println!(
+            "uniform triangles at equal max screen error (depth {dmax}): {u} (adaptive/uniform = {:.3})",
+            tris as f64 / u.max(1) as f64
+        );
+    }
 }

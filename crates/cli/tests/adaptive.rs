@@ -4,71 +4,15 @@
 //! Without a Vulkan driver the tests that render print a note and pass, unless
 //! `SUBDIV_VK_REQUIRE_DRIVER=1` (set by `cargo xtask test`).
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
+use std::path::PathBuf;
+
+use common::{assert_fails, root, run_ok, tmp};
 use subdiv_vk::read_png;
-
-const LAVAPIPE_ICD: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
 
 fn pawn() -> PathBuf {
     root().join("fixtures/reference/shapes/catmark_pawn.obj")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("subdiv-adaptive-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d.join(name)
-}
-
-fn subdiv() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_subdiv"));
-    if std::env::var_os("VK_DRIVER_FILES").is_none() && Path::new(LAVAPIPE_ICD).exists() {
-        c.env("VK_DRIVER_FILES", LAVAPIPE_ICD);
-    }
-    if std::env::var_os("MESA_SHADER_CACHE_DIR").is_none() {
-        c.env(
-            "MESA_SHADER_CACHE_DIR",
-            root().join("target/mesa-shader-cache"),
-        );
-    }
-    c
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// Runs `subdiv ARGS` expecting success; `None` (skipped, with a note) without a Vulkan driver
-/// unless one is required.
-fn run_ok(args: &[&str]) -> Option<Output> {
-    let o = subdiv().args(args).output().unwrap();
-    let err = stderr(&o);
-    let no_driver =
-        err.contains("no Vulkan driver found") || err.contains("cannot load the Vulkan loader");
-    if !o.status.success()
-        && no_driver
-        && std::env::var("SUBDIV_VK_REQUIRE_DRIVER").as_deref() != Ok("1")
-    {
-        eprintln!("skipping: {err}");
-        return None;
-    }
-    assert!(o.status.success(), "subdiv {args:?} failed:\n{err}");
-    Some(o)
-}
-
-/// Runs `subdiv ARGS` expecting a clean failure whose message contains `want`.
-fn assert_fails(args: &[&str], want: &str) {
-    let o = subdiv().args(args).output().unwrap();
-    let err = stderr(&o);
-    assert!(!o.status.success(), "subdiv {args:?} succeeded");
-    assert!(err.contains("error"), "no error line:\n{err}");
-    assert!(err.contains(want), "expected '{want}' in:\n{err}");
-    assert!(!err.contains("panicked"), "panic:\n{err}");
 }
 
 #[test]

@@ -1,37 +1,15 @@
 //! The `subdiv` binary end to end: outputs, and a clear `error: FILE:LINE: what` (never a panic)
 //! for every kind of bad input.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_subdiv"))
-}
-
-fn fixtures() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("subdiv-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d.join(name)
-}
-
-fn run(args: &[&str]) -> (i32, String, String) {
-    let o = bin().args(args).output().unwrap();
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into(),
-        String::from_utf8_lossy(&o.stderr).into(),
-    )
-}
+use common::{fixtures, run, tmp};
 
 const QUAD_HEAD: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
 
-#[test]
-fn bad_inputs_give_located_errors() {
-    let cases: &[(&str, String, &str, u32)] = &[
+/// Bad cages: name, OBJ text, the message expected, and the line it names.
+fn located_error_cases() -> Vec<(&'static str, String, &'static str, u32)> {
+    vec![
         (
             "range",
             format!("{QUAD_HEAD}f 1 2 3 9\n"),
@@ -128,8 +106,13 @@ fn bad_inputs_give_located_errors() {
             "face index 0 is invalid",
             5,
         ),
-    ];
-    for (name, text, want, line) in cases {
+    ]
+}
+
+#[test]
+fn bad_inputs_give_located_errors() {
+    let cases = located_error_cases();
+    for (name, text, want, line) in &cases {
         let p = tmp(&format!("{name}.obj"));
         std::fs::write(&p, text).unwrap();
         let out = tmp(&format!("{name}.out.obj"));

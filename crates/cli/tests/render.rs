@@ -6,83 +6,16 @@
 //! X server in `DISPLAY`, or starts one with `xvfb-run`; without either it prints a note and
 //! passes, unless `SUBDIV_VK_REQUIRE_DISPLAY=1`.
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
+use common::{assert_clean_failure, root, run_ok, stderr, subdiv, tmp};
 use subdiv_vk::{read_exr, read_png};
-
-const LAVAPIPE_ICD: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
-const VALIDATION_LAYER: &str = "/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json";
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
 
 fn box_obj() -> PathBuf {
     root().join("fixtures/scenes/box_8_sharp_edges.obj")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("subdiv-render-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d.join(name)
-}
-
-/// The `subdiv` binary with the Vulkan environment of the tests: lavapipe when installed and
-/// nothing else was chosen, the shader cache under `target/`, validation when installed.
-fn subdiv() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_subdiv"));
-    if std::env::var_os("VK_DRIVER_FILES").is_none() && Path::new(LAVAPIPE_ICD).exists() {
-        c.env("VK_DRIVER_FILES", LAVAPIPE_ICD);
-    }
-    if std::env::var_os("MESA_SHADER_CACHE_DIR").is_none() {
-        c.env(
-            "MESA_SHADER_CACHE_DIR",
-            root().join("target/mesa-shader-cache"),
-        );
-    }
-    if Path::new(VALIDATION_LAYER).exists() {
-        c.env("SUBDIV_VK_VALIDATION", "1");
-    }
-    c
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn assert_clean_failure(o: &Output, want: &str) {
-    let err = stderr(o);
-    assert!(
-        !o.status.success(),
-        "expected failure, got success; stderr:\n{err}"
-    );
-    assert_eq!(o.status.code(), Some(1), "{err}");
-    assert!(err.starts_with("error: "), "no `error:` line:\n{err}");
-    assert!(err.contains(want), "expected '{want}' in:\n{err}");
-    assert!(!err.contains("panicked"), "panic:\n{err}");
-}
-
-/// Runs `subdiv ARGS`; `None` (test skipped, note printed) when there is no Vulkan driver and
-/// none is required. Fails on a validation message.
-fn render(args: &[&str]) -> Option<Output> {
-    let o = subdiv().args(args).output().unwrap();
-    let err = stderr(&o);
-    let no_driver =
-        err.contains("no Vulkan driver found") || err.contains("cannot load the Vulkan loader");
-    if !o.status.success()
-        && no_driver
-        && std::env::var("SUBDIV_VK_REQUIRE_DRIVER").as_deref() != Ok("1")
-    {
-        eprintln!("skipping: {err}");
-        return None;
-    }
-    assert!(o.status.success(), "subdiv {args:?} failed:\n{err}");
-    assert!(
-        !err.contains("subdiv-vk validation:"),
-        "validation messages:\n{err}"
-    );
-    Some(o)
 }
 
 fn pixel(img: &subdiv_vk::image::RgbaImage, x: u32, y: u32) -> [u8; 4] {
@@ -93,7 +26,7 @@ fn pixel(img: &subdiv_vk::image::RgbaImage, x: u32, y: u32) -> [u8; 4] {
 fn render_writes_a_png_of_the_requested_size_with_the_surface_in_the_centre() {
     let out = tmp("box.png");
     let input = box_obj();
-    let Some(o) = render(&[
+    let Some(o) = run_ok(&[
         "render",
         input.to_str().unwrap(),
         "--size",
@@ -132,7 +65,7 @@ fn exr_holds_depth_normals_and_the_subdivision_depth() {
         "-o",
         png.to_str().unwrap(),
     ];
-    let Some(_) = render(&[&args[..], &["--exr", exr.to_str().unwrap()]].concat()) else {
+    let Some(_) = run_ok(&[&args[..], &["--exr", exr.to_str().unwrap()]].concat()) else {
         return;
     };
     let (w, h, channels) = read_exr(&exr).unwrap();
@@ -182,7 +115,7 @@ fn shadings_and_silhouettes_change_the_image() {
         ("overlay", &["--wire-overlay"][..]),
     ] {
         let out = tmp(&format!("shading-{name}.png"));
-        if render(&[&base[..], extra, &["-o", out.to_str().unwrap()]].concat()).is_none() {
+        if run_ok(&[&base[..], extra, &["-o", out.to_str().unwrap()]].concat()).is_none() {
             return;
         }
         images.push((name, read_png(&out).unwrap()));
@@ -327,7 +260,7 @@ fn view_screenshot_equals_render() {
         "--silhouettes",
     ];
     let rendered = tmp("view-render.png");
-    let Some(_) = render(
+    let Some(_) = run_ok(
         &[
             &["render", input.to_str().unwrap()][..],
             &flags,
@@ -361,7 +294,7 @@ fn view_screenshot_equals_render() {
 fn doi_meshes_render_with_doi_shading() {
     let teapot = root().join("fixtures/meshes/tri_teapot.obj");
     let out = tmp("doi.png");
-    let Some(o) = render(&[
+    let Some(o) = run_ok(&[
         "render",
         teapot.to_str().unwrap(),
         "--split-nonmanifold",
@@ -408,6 +341,48 @@ fn doi_meshes_render_with_doi_shading() {
         .output()
         .unwrap();
     assert_clean_failure(&o, "--shading doi needs --doi");
+}
+
+/// `render` refuses the DoI options (haptic interaction point, aggregation, skeleton) without
+/// the DoI that uses them.
+fn doi_options_without_their_doi_are_refused(bunny: &str, out: &Path) {
+    // The options without their DoI are refused.
+    let o = subdiv()
+        .args(["render", bunny, "--scheme", "loop", "--hip", "0,0,0", "-o"])
+        .arg(out)
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, "--hip needs --doi haptic");
+    let o = subdiv()
+        .args([
+            "render",
+            bunny,
+            "--scheme",
+            "loop",
+            "--aggregate",
+            "avg",
+            "-o",
+        ])
+        .arg(out)
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, "--aggregate needs --doi");
+    let o = subdiv()
+        .args([
+            "render",
+            bunny,
+            "--scheme",
+            "loop",
+            "--doi",
+            "silhouette",
+            "--skeleton",
+            bunny,
+            "-o",
+        ])
+        .arg(out)
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, "--focus and --skeleton need --doi focus");
 }
 
 /// `render --doi` takes the DoI options of `subdiv refine` (haptic interaction point,
@@ -473,7 +448,7 @@ fn render_doi_options_match_refine() {
             "-o",
             out.to_str().unwrap(),
         ]);
-        let Some(o) = render(&args) else {
+        let Some(o) = run_ok(&args) else {
             return;
         };
         let text = String::from_utf8_lossy(&o.stdout).to_string();
@@ -482,43 +457,7 @@ fn render_doi_options_match_refine() {
             "{doi}: refine gave {refined} triangles, render: {text}"
         );
     }
-    // The options without their DoI are refused.
-    let o = subdiv()
-        .args(["render", bunny, "--scheme", "loop", "--hip", "0,0,0", "-o"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert_clean_failure(&o, "--hip needs --doi haptic");
-    let o = subdiv()
-        .args([
-            "render",
-            bunny,
-            "--scheme",
-            "loop",
-            "--aggregate",
-            "avg",
-            "-o",
-        ])
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert_clean_failure(&o, "--aggregate needs --doi");
-    let o = subdiv()
-        .args([
-            "render",
-            bunny,
-            "--scheme",
-            "loop",
-            "--doi",
-            "silhouette",
-            "--skeleton",
-            bunny,
-            "-o",
-        ])
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert_clean_failure(&o, "--focus and --skeleton need --doi focus");
+    doi_options_without_their_doi_are_refused(bunny, &out);
 }
 
 /// `subdiv view --doi` shows the DoI-driven adaptive Loop mesh of `subdiv render --doi`, DoI
@@ -544,7 +483,7 @@ fn view_doi_screenshot_equals_render() {
         "200x150",
     ];
     let rendered = tmp("view-doi-render.png");
-    let Some(r) = render(&[&["render"][..], &flags, &["-o", rendered.to_str().unwrap()]].concat())
+    let Some(r) = run_ok(&[&["render"][..], &flags, &["-o", rendered.to_str().unwrap()]].concat())
     else {
         return;
     };

@@ -17,8 +17,22 @@
 //! | [`doi`] | Degree-of-Interest functions |
 //! | [`vk`] | the Vulkan renderer (plain buffers) |
 //!
-//! What lives here: [`DynamicSubdivision`] (the paper's per-frame `DynamicSubdivisionCC` node)
-//! and [`chord_deviations`]; DoI-driven refinement ([`refine_adaptive`], [`Refiner`]).
+//! What lives here — everything the `subdiv` command, the viewer and the figures share:
+//! - `dynamic.rs`: [`DynamicSubdivision`] (the paper's per-frame `DynamicSubdivisionCC` node)
+//!   and [`chord_deviations`];
+//! - `refine.rs`: DoI-driven refinement ([`refine_adaptive`], [`Refiner`]);
+//! - `doi_setup.rs`: from a DoI choice and its options to a [`Doi`](doi::Doi) and a ready
+//!   refinement ([`DoiKind`], [`DoiOptions`], [`DoiSetup`], [`doi_face_depths`]);
+//! - `scene.rs`: the tessellated [`Scene`] the renderer draws ([`uniform_limit`] tessellation,
+//!   per-vertex scalars, normals split at creases);
+//! - `silhouettes.rs`: [`Silhouettes`] extraction;
+//! - `frame.rs`: adaptive frames as a [`LimitMesh`](rules::LimitMesh) ([`frame_limit`],
+//!   [`depth_histogram`]);
+//! - `camera.rs`: [`Camera`](mesh::Camera) to and from the renderer's [`View`](vk::View) and
+//!   [`OrbitCamera`](vk::OrbitCamera) ([`view_for`], [`orbit_camera`], [`camera_from_view`]);
+//! - `frame_sources.rs`: the viewer's [`FrameSource`](vk::viewer::FrameSource)s
+//!   ([`UniformSource`], [`AdaptiveSource`], [`DoiSource`]);
+//! - `builtin.rs`: built-in scenes ([`BuiltinScene`], [`helmet40`], the paper's Fig. 12).
 //!
 //! **Invariants.** Nothing here changes a cage the caller passed in; every frame's geometry is
 //! watertight to the bit (shared points are referenced through one owner patch); errors are
@@ -61,13 +75,51 @@
 //! assert!(refined.mesh.mesh.num_faces() <= 4 * 16);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+//!
+//! # Rendering a result
+//! A [`Scene`] packs a tessellation for the renderer (per-vertex scalars, crease normals);
+//! [`view_for`] turns the tessellator's camera into the renderer's view. (`no_run`: rendering
+//! needs a Vulkan driver.)
+//! ```no_run
+//! use subdiv::{Scene, view_for, mesh::{Camera, parse_obj, Mesh, glam::Vec3}, rules::Scheme};
+//! use subdiv::vk::{RenderOptions, Renderer, Shading, write_png};
+//! let cube = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
+//!             f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+//! let cage = Mesh::from_soup(&parse_obj(cube)?)?;
+//! let mut scene = Scene::uniform(&cage, Scheme::CatmullClark, 3)?;
+//! let (lo, hi) = scene.bounds();
+//! let camera = Camera::eye_relative(lo, hi, Vec3::new(0.8, 0.5, 2.2), 45.0, 320, 240);
+//! let view = view_for(&camera, lo, hi);
+//! scene.mesh.lines = Some(scene.silhouette_lines(view.eye));
+//! let options = RenderOptions { shading: Shading::Depth, show_lines: true, ..Default::default() };
+//! let mut renderer = Renderer::new()?;
+//! let image = renderer.render(&scene.mesh.as_render_mesh(), &view, [320, 240], &options)?;
+//! write_png("cube.png", &image)?;
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
+mod builtin;
+mod camera;
+mod doi_setup;
 mod dynamic;
+mod frame;
+mod frame_sources;
 pub mod quality;
 mod refine;
+mod scene;
+mod silhouettes;
 
+pub use builtin::{BuiltinError, BuiltinScene, helmet40};
+pub use camera::{camera_from_view, orbit_camera, radius_about, view_for};
+pub use doi_setup::{
+    DoiKind, DoiOptions, DoiSetup, DoiSetupError, check_doi_options, doi_face_depths, make_doi,
+};
 pub use dynamic::{DynamicSubdivision, chord_deviations};
+pub use frame::{depth_histogram, frame_limit};
+pub use frame_sources::{AdaptiveSource, DoiSource, UniformSource};
 pub use refine::{RefineError, RefineOptions, Refined, Refiner, refine_adaptive};
+pub use scene::{Scene, SceneError, uniform_limit};
+pub use silhouettes::Silhouettes;
 
 pub use subdiv_depth as depth;
 pub use subdiv_doi as doi;

@@ -1,0 +1,139 @@
+//! The closed choices of the command line as `clap::ValueEnum`s, each naming the library value
+//! it stands for. The value names are the command line's (`catmull-clark`, `view-angle`, ...).
+
+use clap::ValueEnum;
+use subdiv::BuiltinScene;
+use subdiv_doi::Aggregate;
+use subdiv_rules::Scheme;
+use subdiv_vk::Shading;
+
+/// The value name of a choice as written on the command line.
+pub fn value_name<E: ValueEnum>(e: &E) -> String {
+    e.to_possible_value()
+        .map(|v| v.get_name().to_owned())
+        .unwrap_or_default()
+}
+
+/// `--scheme`: the subdivision scheme.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SchemeName {
+    CatmullClark,
+    Loop,
+}
+
+impl From<SchemeName> for Scheme {
+    fn from(s: SchemeName) -> Scheme {
+        match s {
+            SchemeName::CatmullClark => Scheme::CatmullClark,
+            SchemeName::Loop => Scheme::Loop,
+        }
+    }
+}
+
+/// `--scene`: a built-in scene.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SceneName {
+    Helmet40,
+}
+
+impl From<SceneName> for BuiltinScene {
+    fn from(s: SceneName) -> BuiltinScene {
+        match s {
+            SceneName::Helmet40 => BuiltinScene::Helmet40,
+        }
+    }
+}
+
+/// `--doi`: the Degree-of-Interest function.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DoiName {
+    ViewAngle,
+    Silhouette,
+    Dihedral,
+    Haptic,
+    Focus,
+}
+
+impl From<DoiName> for subdiv::DoiKind {
+    fn from(d: DoiName) -> subdiv::DoiKind {
+        use subdiv::DoiKind;
+        match d {
+            DoiName::ViewAngle => DoiKind::ViewAngle,
+            DoiName::Silhouette => DoiKind::Silhouette,
+            DoiName::Dihedral => DoiKind::Dihedral,
+            DoiName::Haptic => DoiKind::Haptic,
+            DoiName::Focus => DoiKind::Focus,
+        }
+    }
+}
+
+/// `--aggregate`: how edge or vertex DoI values become face values.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AggregateName {
+    Max,
+    Avg,
+    Min,
+}
+
+impl From<AggregateName> for Aggregate {
+    fn from(a: AggregateName) -> Aggregate {
+        match a {
+            AggregateName::Max => Aggregate::Max,
+            AggregateName::Avg => Aggregate::Avg,
+            AggregateName::Min => Aggregate::Min,
+        }
+    }
+}
+
+/// `--shading`: how the surface is shaded.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShadingName {
+    Smooth,
+    Flat,
+    Wire,
+    Depth,
+    Doi,
+}
+
+impl From<ShadingName> for Shading {
+    fn from(s: ShadingName) -> Shading {
+        match s {
+            ShadingName::Smooth => Shading::Smooth,
+            ShadingName::Flat => Shading::Flat,
+            ShadingName::Wire => Shading::Wire,
+            ShadingName::Depth => Shading::Depth,
+            ShadingName::Doi => Shading::Doi,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The value names are the command line's, and each choice names the library value of the
+    /// same name.
+    #[test]
+    fn value_names_match_the_library_names() {
+        for s in SchemeName::value_variants() {
+            assert_eq!(value_name(s).parse::<Scheme>().unwrap(), Scheme::from(*s));
+        }
+        for d in DoiName::value_variants() {
+            assert_eq!(value_name(d), subdiv::DoiKind::from(*d).name());
+        }
+        for a in AggregateName::value_variants() {
+            assert_eq!(
+                value_name(a).parse::<Aggregate>().unwrap(),
+                Aggregate::from(*a)
+            );
+        }
+        for s in ShadingName::value_variants() {
+            assert_eq!(value_name(s), Shading::from(*s).name());
+        }
+        for s in SceneName::value_variants() {
+            assert_eq!(value_name(s), BuiltinScene::from(*s).name());
+        }
+        assert_eq!(value_name(&SchemeName::CatmullClark), "catmull-clark");
+        assert_eq!(value_name(&DoiName::ViewAngle), "view-angle");
+    }
+}

@@ -1,0 +1,241 @@
+//! The flags `render` and `view` share: which surface to tessellate ([`SurfaceArgs`]) and how to
+//! draw it ([`StyleArgs`]).
+
+use std::path::PathBuf;
+
+use anyhow::{Context, bail};
+use glam::Vec3;
+use subdiv::{BuiltinScene, DynamicSubdivision, Scene};
+use subdiv_mesh::{Camera, Mesh};
+use subdiv_vk::{RenderOptions, Shading};
+
+use crate::adaptive_args::AdaptiveArgs;
+use crate::camera_args::{CameraArgs, parse_vec3};
+use crate::choices::{SceneName, SchemeName, ShadingName, value_name};
+use crate::doi_args::DoiArgs;
+
+/// Which surface to tessellate.
+#[derive(clap::Args, Debug, Clone)]
+#[command(mut_arg("doi", |a| a.help(
+    "Render the DoI-driven adaptive Loop mesh of `subdiv refine` (Isenberg et al. 2003) for this \
+     Degree-of-Interest function, seen from the camera (`--shading doi` colours it by the DoI)"
+)))]
+pub struct SurfaceArgs {
+    /// Input cage (OBJ with optional OpenSubdiv tags).
+    #[arg(required_unless_present = "scene")]
+    pub input: Option<PathBuf>,
+    /// A built-in scene instead of an input file: helmet40 (paper Fig. 12: 40 instances of
+    /// catmark_helmet on an 8x5 grid).
+    #[arg(long, conflicts_with = "input")]
+    pub scene: Option<SceneName>,
+    /// Subdivision scheme.
+    #[arg(long, value_enum, default_value = "catmull-clark")]
+    pub scheme: SchemeName,
+    /// Uniform subdivision depth. Without it, a camera (--eye or --eye-relative) makes the
+    /// Catmull-Clark tessellation adaptive; otherwise the default is depth 3.
+    #[arg(long)]
+    pub depth: Option<u32>,
+    /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
+    #[arg(long)]
+    pub split_nonmanifold: bool,
+    #[command(flatten)]
+    pub adaptive: AdaptiveArgs,
+    /// Choose the adaptive depths (and back-face culling) with a second camera at bbox centre +
+    /// (X,Y,Z) * bbox radius, while the image is seen from the first (paper Fig. 8); its frustum
+    /// is drawn as lines.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub cull_camera_eye_relative: Option<Vec3>,
+    /// Fixed per-face depths instead of view-dependent ones: a comma list (one per cage face)
+    /// or a file of such numbers (for figures of depth transitions).
+    #[arg(long, hide = true)]
+    pub face_depths: Option<String>,
+    #[command(flatten)]
+    pub doi: DoiArgs,
+}
+
+/// Uniform depth when neither `--depth` nor an adaptive camera is given.
+pub const DEFAULT_DEPTH: u32 = 3;
+
+impl SurfaceArgs {
+    /// Refuses DoI options without the DoI that uses them (as `subdiv refine` does).
+    pub fn check_doi_options(&self) -> anyhow::Result<()> {
+        self.doi.check()
+    }
+
+    /// The input's name for messages.
+    pub fn label(&self) -> String {
+        match (&self.scene, &self.input) {
+            (Some(s), _) => format!("scene {}", value_name(s)),
+            (None, Some(p)) => p.display().to_string(),
+            (None, None) => String::from("(no input)"),
+        }
+    }
+
+    /// Reads the cage (or builds the built-in scene).
+    pub fn load_cage(&self) -> anyhow::Result<Mesh> {
+        match (&self.scene, &self.input) {
+            (Some(s), _) => Ok(BuiltinScene::from(*s).cage()?),
+            (None, Some(p)) => crate::load::load_mesh(p, self.split_nonmanifold),
+            (None, None) => bail!("give an input cage or --scene helmet40"),
+        }
+    }
+
+    /// The uniform depth (`--depth`, else [`DEFAULT_DEPTH`]).
+    pub fn uniform_depth(&self) -> u32 {
+        self.depth.unwrap_or(DEFAULT_DEPTH)
+    }
+
+    /// Loads the cage and tessellates it uniformly.
+    pub fn uniform_scene(&self) -> anyhow::Result<Scene> {
+        let cage = self.load_cage()?;
+        Scene::uniform(&cage, self.scheme.into(), self.uniform_depth())
+            .map_err(|e| anyhow::anyhow!("{}: {e}", self.label()))
+    }
+
+    /// Whether these flags ask for the adaptive tessellation: Catmull-Clark, no `--depth`, and a
+    /// camera. Adaptive-only flags without it are refused.
+    pub fn is_adaptive(&self, camera: &CameraArgs) -> anyhow::Result<bool> {
+        let adaptive =
+            self.depth.is_none() && camera.has_camera() && self.scheme == SchemeName::CatmullClark;
+        if !adaptive && (self.cull_camera_eye_relative.is_some() || self.face_depths.is_some()) {
+            bail!(
+                "--cull-camera-eye-relative and --face-depths need the adaptive tessellation: \
+                 --scheme catmull-clark, a camera (--eye or --eye-relative) and no --depth"
+            );
+        }
+        Ok(adaptive)
+    }
+
+    /// The adaptive node for `mesh` with the adaptive flags (fan method, fixed face depths).
+    pub fn adaptive_node(&self, mesh: Mesh) -> anyhow::Result<DynamicSubdivision> {
+        let faces = mesh.num_faces();
+        let mut node = self.adaptive.node(mesh).with_context(|| self.label())?;
+        if let Some(spec) = &self.face_depths {
+            let depths = parse_face_depths(spec, self.adaptive.max_depth)?;
+            if depths.len() != faces {
+                bail!(
+                    "--face-depths has {} depths, the cage has {faces} faces",
+                    depths.len()
+                );
+            }
+            node.set_face_depths(Some(depths))?;
+        }
+        Ok(node)
+    }
+
+    /// The culling camera of `--cull-camera-eye-relative` (else `camera`).
+    pub fn cull_camera(
+        &self,
+        camera_args: &CameraArgs,
+        camera: &Camera,
+        lo: Vec3,
+        hi: Vec3,
+    ) -> Camera {
+        match self.cull_camera_eye_relative {
+            Some(rel) => CameraArgs {
+                eye: None,
+                target: None,
+                eye_relative: Some(rel),
+                ..camera_args.clone()
+            }
+            .camera(lo, hi),
+            None => *camera,
+        }
+    }
+}
+
+/// Parses `--face-depths`: a comma/whitespace list of depths, or a file holding one.
+fn parse_face_depths(spec: &str, max_depth: u8) -> anyhow::Result<Vec<u8>> {
+    let text = if spec
+        .chars()
+        .all(|c| c.is_ascii_digit() || c == ',' || c.is_whitespace())
+    {
+        spec.to_string()
+    } else {
+        std::fs::read_to_string(spec)
+            .with_context(|| format!("--face-depths: cannot read '{spec}'"))?
+    };
+    let mut out = Vec::new();
+    for t in text
+        .split(|c: char| c == ',' || c.is_whitespace())
+        .filter(|t| !t.is_empty())
+    {
+        let d: u8 = t
+            .parse()
+            .ok()
+            .filter(|&d| d <= max_depth)
+            .with_context(|| {
+                format!("--face-depths: '{t}' is not a depth between 0 and --max-depth {max_depth}")
+            })?;
+        out.push(d);
+    }
+    if out.is_empty() {
+        bail!("--face-depths: no depths given");
+    }
+    Ok(out)
+}
+
+/// How to draw it.
+#[derive(clap::Args, Debug, Clone)]
+pub struct StyleArgs {
+    /// Surface shading: smooth (limit normals), flat (face normals), wire (hidden-line
+    /// wireframe), depth (subdivision depth colours), doi (degree-of-interest heat map).
+    #[arg(long, value_enum, default_value = "smooth")]
+    pub shading: ShadingName,
+    /// Draw the tessellation's edges over the shaded surface.
+    #[arg(long)]
+    pub wire_overlay: bool,
+    /// Draw the silhouette edges (between front- and back-facing faces) as lines.
+    #[arg(long)]
+    pub silhouettes: bool,
+    /// Set when DoI values are available (`--doi`); not a flag.
+    #[arg(skip)]
+    pub doi_values: bool,
+}
+
+impl StyleArgs {
+    /// The renderer options these flags describe.
+    pub fn render_options(&self) -> anyhow::Result<RenderOptions> {
+        let shading = Shading::from(self.shading);
+        if shading == Shading::Doi && !self.doi_values {
+            bail!("--shading doi needs --doi NAME (degree-of-interest values to colour by)");
+        }
+        Ok(RenderOptions {
+            shading,
+            wire_overlay: self.wire_overlay,
+            show_lines: self.silhouettes,
+            // Depth-tested like the wireframe (surfaces are drawn with a depth bias), so
+            // silhouettes behind the surface stay hidden.
+            lines_on_top: false,
+            ..RenderOptions::default()
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn doi_shading_is_refused_without_doi_values() {
+        let mut style = StyleArgs {
+            shading: ShadingName::Doi,
+            wire_overlay: false,
+            silhouettes: false,
+            doi_values: false,
+        };
+        let e = style.render_options().unwrap_err().to_string();
+        assert!(e.contains("--shading doi needs --doi"), "{e}");
+        style.doi_values = true;
+        assert_eq!(style.render_options().unwrap().shading, Shading::Doi);
+        let style = StyleArgs {
+            shading: ShadingName::Depth,
+            wire_overlay: true,
+            silhouettes: true,
+            doi_values: false,
+        };
+        let o = style.render_options().unwrap();
+        assert_eq!(o.shading, Shading::Depth);
+        assert!(o.wire_overlay && o.show_lines);
+    }
+}

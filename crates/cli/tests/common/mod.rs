@@ -1,0 +1,112 @@
+//! The harness every `subdiv` end-to-end test shares: paths, a scratch directory, the binary
+//! with the tests' Vulkan environment, and runners that tell a missing driver from a failure.
+//!
+//! With the Khronos validation layer installed, every run has it on, and the runners that expect
+//! success fail on any validation message. Without a Vulkan driver they print a note and skip,
+//! unless `SUBDIV_VK_REQUIRE_DRIVER=1` (set by `cargo xtask test`).
+
+// Each test binary uses part of the harness.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+pub const LAVAPIPE_ICD: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+pub const VALIDATION_LAYER: &str =
+    "/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json";
+
+/// The workspace root.
+pub fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// `fixtures/` of the workspace.
+pub fn fixtures() -> PathBuf {
+    root().join("fixtures")
+}
+
+/// A path in this test process's scratch directory.
+pub fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("subdiv-cli-tests-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d.join(name)
+}
+
+/// The `subdiv` binary with the Vulkan environment of the tests: lavapipe when installed and
+/// nothing else was chosen, the shader cache under `target/`, validation when installed.
+pub fn subdiv() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_subdiv"));
+    if std::env::var_os("VK_DRIVER_FILES").is_none() && Path::new(LAVAPIPE_ICD).exists() {
+        c.env("VK_DRIVER_FILES", LAVAPIPE_ICD);
+    }
+    if std::env::var_os("MESA_SHADER_CACHE_DIR").is_none() {
+        c.env(
+            "MESA_SHADER_CACHE_DIR",
+            root().join("target/mesa-shader-cache"),
+        );
+    }
+    if Path::new(VALIDATION_LAYER).exists() {
+        c.env("SUBDIV_VK_VALIDATION", "1");
+    }
+    c
+}
+
+/// The process's stderr as text.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Runs `subdiv ARGS`: exit code (-1 when killed), stdout and stderr.
+pub fn run(args: &[&str]) -> (i32, String, String) {
+    let o = subdiv().args(args).output().unwrap();
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into(),
+        stderr(&o),
+    )
+}
+
+/// Runs `subdiv ARGS` expecting success; `None` (test skipped, note printed) when there is no
+/// Vulkan driver and none is required. Fails on a validation message.
+pub fn run_ok(args: &[&str]) -> Option<Output> {
+    let o = subdiv().args(args).output().unwrap();
+    let err = stderr(&o);
+    let no_driver =
+        err.contains("no Vulkan driver found") || err.contains("cannot load the Vulkan loader");
+    if !o.status.success()
+        && no_driver
+        && std::env::var("SUBDIV_VK_REQUIRE_DRIVER").as_deref() != Ok("1")
+    {
+        eprintln!("skipping: {err}");
+        return None;
+    }
+    assert!(o.status.success(), "subdiv {args:?} failed:\n{err}");
+    assert!(
+        !err.contains("subdiv-vk validation:"),
+        "validation messages:\n{err}"
+    );
+    Some(o)
+}
+
+/// A failed run with exit code 1, an `error: ` line containing `want`, and no panic.
+pub fn assert_clean_failure(o: &Output, want: &str) {
+    let err = stderr(o);
+    assert!(
+        !o.status.success(),
+        "expected failure, got success; stderr:\n{err}"
+    );
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.starts_with("error: "), "no `error:` line:\n{err}");
+    assert!(err.contains(want), "expected '{want}' in:\n{err}");
+    assert!(!err.contains("panicked"), "panic:\n{err}");
+}
+
+/// Runs `subdiv ARGS` expecting a clean failure whose message contains `want`.
+pub fn assert_fails(args: &[&str], want: &str) {
+    let o = subdiv().args(args).output().unwrap();
+    let err = stderr(&o);
+    assert!(!o.status.success(), "subdiv {args:?} succeeded");
+    assert!(err.contains("error"), "no error line:\n{err}");
+    assert!(err.contains(want), "expected '{want}' in:\n{err}");
+    assert!(!err.contains("panicked"), "panic:\n{err}");
+}

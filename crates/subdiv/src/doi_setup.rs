@@ -1,0 +1,397 @@
+//! DoI set-up: from a DoI choice and its options (focus objects, skeleton, haptic interaction
+//! point, threshold, steps, aggregation) to a ready [`Doi`] and a DoI-driven adaptive Loop
+//! refinement of a cage for a camera (the meshes of Isenberg et al. 2003, Figs. 3, 4, 9, 10).
+
+use std::path::PathBuf;
+
+use glam::Vec3;
+use subdiv_doi::{
+    Aggregate, Dihedral, Doi, DoiContext, DoiError, Focus, HapticG1, HapticPoint, Silhouette,
+    ViewAngle, read_skeleton,
+};
+use subdiv_mesh::{Camera, Mesh, MeshError, triangulate};
+use subdiv_rules::LimitMesh;
+
+use crate::{RefineError, RefineOptions, Refined, Scene, refine_adaptive};
+
+/// The Degree-of-Interest functions a DoI set-up can build.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DoiKind {
+    /// Angle between the view direction and the surface ([`ViewAngle`]).
+    ViewAngle,
+    /// Closeness to the silhouette ([`Silhouette`]).
+    Silhouette,
+    /// Dihedral angle at the edges ([`Dihedral`]).
+    Dihedral,
+    /// Haptic: the Clough-Tocher G1 error ([`HapticG1`]), or the neighbourhood of a haptic
+    /// interaction point when one is given ([`HapticPoint`]).
+    Haptic,
+    /// Distance to focus objects or a skeleton ([`Focus`]).
+    Focus,
+}
+
+impl DoiKind {
+    /// Every kind, in the order of the paper's figures.
+    pub const ALL: [DoiKind; 5] = [
+        DoiKind::ViewAngle,
+        DoiKind::Silhouette,
+        DoiKind::Dihedral,
+        DoiKind::Haptic,
+        DoiKind::Focus,
+    ];
+
+    /// The kind's name: `view-angle`, `silhouette`, `dihedral`, `haptic` or `focus`.
+    pub fn name(self) -> &'static str {
+        match self {
+            DoiKind::ViewAngle => "view-angle",
+            DoiKind::Silhouette => "silhouette",
+            DoiKind::Dihedral => "dihedral",
+            DoiKind::Haptic => "haptic",
+            DoiKind::Focus => "focus",
+        }
+    }
+}
+
+/// Why a DoI set-up was refused.
+#[derive(Debug, thiserror::Error)]
+pub enum DoiSetupError {
+    /// Focus objects or a skeleton were given for a DoI other than [`DoiKind::Focus`].
+    #[error("focus objects and a skeleton need the focus DoI")]
+    FocusWithoutFocusDoi,
+    /// A haptic interaction point was given for a DoI other than [`DoiKind::Haptic`].
+    #[error("a haptic interaction point needs the haptic DoI")]
+    HipWithoutHapticDoi,
+    /// Splitting the cage into triangles failed.
+    #[error("triangulating")]
+    Triangulate(#[source] MeshError),
+    /// The cage has a face that is no triangle and triangulation was not asked for.
+    #[error("face {face} has {size} vertices; Loop subdivision needs triangles")]
+    NotTriangles {
+        /// The first such face.
+        face: u32,
+        /// Its number of vertices.
+        size: usize,
+    },
+    /// The skeleton polyline could not be read.
+    #[error(transparent)]
+    Skeleton(DoiError),
+    /// The focus objects do not name groups of the cage (or name none).
+    #[error("focus objects")]
+    Focus(#[source] DoiError),
+    /// The threshold is NaN or infinite.
+    #[error("the threshold must be a finite number")]
+    Threshold,
+    /// The DoI could not be evaluated.
+    #[error(transparent)]
+    Doi(#[from] DoiError),
+    /// The refinement failed.
+    #[error("refining")]
+    Refine(#[source] RefineError),
+}
+
+/// A DoI choice and its options.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DoiOptions {
+    /// The Degree-of-Interest function.
+    pub kind: DoiKind,
+    /// Refine faces whose DoI exceeds this (`None`: the DoI's figure value from the paper).
+    pub threshold: Option<f32>,
+    /// Number of adaptive steps.
+    pub steps: u32,
+    /// How edge or vertex values become face values.
+    pub aggregate: Aggregate,
+    /// Split quads and n-gons into triangles first (Loop subdivision needs triangles).
+    pub triangulate: bool,
+    /// Focus objects (OBJ group or object names) for [`DoiKind::Focus`].
+    pub focus: Vec<String>,
+    /// Skeleton polyline file for [`DoiKind::Focus`].
+    pub skeleton: Option<PathBuf>,
+    /// Haptic interaction point for [`DoiKind::Haptic`].
+    pub hip: Option<Vec3>,
+}
+
+impl DoiOptions {
+    /// The options of `kind` with the defaults: the paper's threshold, 3 steps, the largest
+    /// value around a face, no triangulation, no focus objects, skeleton or interaction point.
+    pub fn new(kind: DoiKind) -> DoiOptions {
+        DoiOptions {
+            kind,
+            threshold: None,
+            steps: 3,
+            aggregate: Aggregate::Max,
+            triangulate: false,
+            focus: Vec::new(),
+            skeleton: None,
+            hip: None,
+        }
+    }
+}
+
+/// Refuses options that the chosen DoI (`kind`, `None` for no DoI at all) would ignore: focus
+/// objects or a skeleton without [`DoiKind::Focus`], a haptic interaction point without
+/// [`DoiKind::Haptic`].
+pub fn check_doi_options(
+    kind: Option<DoiKind>,
+    focus: &[String],
+    skeleton: Option<&std::path::Path>,
+    hip: Option<Vec3>,
+) -> Result<(), DoiSetupError> {
+    if kind != Some(DoiKind::Focus) && (!focus.is_empty() || skeleton.is_some()) {
+        return Err(DoiSetupError::FocusWithoutFocusDoi);
+    }
+    if hip.is_some() && kind != Some(DoiKind::Haptic) {
+        return Err(DoiSetupError::HipWithoutHapticDoi);
+    }
+    Ok(())
+}
+
+/// The DoI `kind` for `mesh`: focus objects and skeleton for [`DoiKind::Focus`] (the fade
+/// radius is [`Focus::default_radius`]); with `hip`, [`DoiKind::Haptic`] is the interaction
+/// point's neighbourhood.
+pub fn make_doi(
+    kind: DoiKind,
+    mesh: &Mesh,
+    focus: &[String],
+    skeleton: Option<&std::path::Path>,
+    hip: bool,
+) -> Result<Box<dyn Doi>, DoiSetupError> {
+    Ok(match kind {
+        DoiKind::ViewAngle => Box::new(ViewAngle),
+        DoiKind::Silhouette => Box::new(Silhouette),
+        DoiKind::Dihedral => Box::new(Dihedral),
+        DoiKind::Haptic if hip => Box::new(HapticPoint),
+        DoiKind::Haptic => Box::new(HapticG1),
+        DoiKind::Focus => {
+            let skeleton = match skeleton {
+                Some(p) => Some(read_skeleton(p).map_err(DoiSetupError::Skeleton)?),
+                None => None,
+            };
+            Box::new(
+                Focus::from_groups(mesh, focus, skeleton, Focus::default_radius(mesh))
+                    .map_err(DoiSetupError::Focus)?,
+            )
+        }
+    })
+}
+
+/// Per-face Catmull-Clark depths driven by a DoI instead of the view: the DoI's face values
+/// (largest value around each face) above `threshold` (`None`: the DoI's figure value) map
+/// linearly onto depths `1..=max_depth`.
+pub fn doi_face_depths(
+    doi: &dyn Doi,
+    mesh: &Mesh,
+    camera: Camera,
+    threshold: Option<f32>,
+    max_depth: u8,
+) -> Result<Vec<u8>, DoiError> {
+    let ctx = DoiContext::with_camera(camera);
+    let (mut scratch, mut values) = (Vec::new(), Vec::new());
+    subdiv_doi::face_values(doi, mesh, &ctx, Aggregate::Max, &mut scratch, &mut values)?;
+    let t = threshold.unwrap_or(doi.default_threshold());
+    Ok(subdiv_depth::depths_from_face_values(&values, t, max_depth))
+}
+
+/// A DoI-driven adaptive Loop refinement ready to run for a camera: the triangle cage (split
+/// when asked to), the DoI and the refinement options.
+pub struct DoiSetup {
+    /// The triangle mesh refined.
+    pub cage: Mesh,
+    /// The Degree-of-Interest function.
+    pub doi: Box<dyn Doi>,
+    /// The DoI chosen.
+    pub kind: DoiKind,
+    /// Haptic interaction point.
+    pub hip: Option<Vec3>,
+    /// Threshold (the default filled in), steps and aggregation.
+    pub opts: RefineOptions,
+}
+
+impl DoiSetup {
+    /// Checks the options against each other and against `cage`, and builds the DoI.
+    pub fn new(cage: Mesh, o: &DoiOptions) -> Result<DoiSetup, DoiSetupError> {
+        check_doi_options(Some(o.kind), &o.focus, o.skeleton.as_deref(), o.hip)?;
+        let cage = if o.triangulate {
+            triangulate(&cage).map_err(DoiSetupError::Triangulate)?
+        } else if let Some(face) = cage.faces().find(|&x| cage.face_size(x) != 3) {
+            return Err(DoiSetupError::NotTriangles {
+                face: face.0,
+                size: cage.face_size(face),
+            });
+        } else {
+            cage
+        };
+        let doi = make_doi(
+            o.kind,
+            &cage,
+            &o.focus,
+            o.skeleton.as_deref(),
+            o.hip.is_some(),
+        )?;
+        let threshold = o.threshold.unwrap_or(doi.default_threshold());
+        if !threshold.is_finite() {
+            return Err(DoiSetupError::Threshold);
+        }
+        Ok(DoiSetup {
+            cage,
+            doi,
+            kind: o.kind,
+            hip: o.hip,
+            opts: RefineOptions {
+                threshold,
+                steps: o.steps,
+                aggregate: o.aggregate,
+            },
+        })
+    }
+
+    /// Bounds of the cage.
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        self.cage.bounds()
+    }
+
+    /// Whether the refinement depends on the camera.
+    pub fn is_view_dependent(&self) -> bool {
+        self.doi.is_view_dependent()
+    }
+
+    /// The evaluation context for `camera`.
+    pub fn context(&self, camera: Camera) -> DoiContext {
+        DoiContext {
+            camera: Some(camera),
+            hip: self.hip,
+            ..Default::default()
+        }
+    }
+
+    /// Refines the cage for `camera`.
+    pub fn run(&self, camera: Camera) -> Result<Refined, RefineError> {
+        refine_adaptive(
+            &self.cage,
+            self.doi.as_ref(),
+            &self.context(camera),
+            &self.opts,
+        )
+    }
+
+    /// Refines for `camera`: the refined mesh as a scene (drawn as refined, not pushed to the
+    /// limit, with vertex normals) with each vertex's largest DoI over its faces as the scalar.
+    pub fn scene(&self, camera: &Camera) -> Result<Scene, DoiSetupError> {
+        let r = self.run(*camera).map_err(DoiSetupError::Refine)?;
+        let m = &r.mesh.mesh;
+        let ctx = self.context(*camera);
+        let (mut scratch, mut values) = (Vec::new(), Vec::new());
+        let (doi, agg) = (self.doi.as_ref(), self.opts.aggregate);
+        subdiv_doi::face_values(doi, m, &ctx, agg, &mut scratch, &mut values)?;
+        let mut scalar = vec![f32::NEG_INFINITY; m.num_vertices()];
+        for f in m.faces() {
+            let v = values[f.idx()];
+            for x in m.face_vertices(f) {
+                scalar[x.idx()] = scalar[x.idx()].max(if v.is_finite() { v } else { 0.0 });
+            }
+        }
+        for s in &mut scalar {
+            if !s.is_finite() {
+                *s = 0.0;
+            }
+        }
+        let normals = subdiv_mesh::vertex_normals(m);
+        let (offsets, indices) = m.face_lists();
+        let limit = LimitMesh {
+            positions: m.positions().iter().map(|p| p.to_array()).collect(),
+            normals: normals.iter().map(|n| n.to_array()).collect(),
+            face_offsets: offsets.to_vec(),
+            face_indices: indices.iter().map(|v| v.0).collect(),
+        };
+        Ok(Scene::from_limit(limit, scalar))
+    }
+
+    /// One line about a refinement of this set-up to `triangles` triangles:
+    /// `NAME DoI, threshold T, S steps: CAGE -> triangles triangles`.
+    pub fn summary(&self, triangles: usize) -> String {
+        format!(
+            "{} DoI, threshold {}, {} steps: {} -> {} triangles",
+            self.kind.name(),
+            self.opts.threshold,
+            self.opts.steps,
+            self.cage.num_faces(),
+            triangles
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use subdiv_mesh::parse_obj;
+
+    const CUBE: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
+        g bottom\nf 1 3 4 2\ng top\nf 5 6 8 7\ng sides\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+
+    fn cube() -> Mesh {
+        Mesh::from_soup(&parse_obj(CUBE).unwrap()).unwrap()
+    }
+
+    #[test]
+    fn options_the_doi_would_ignore_are_refused() {
+        let focus = vec![String::from("top")];
+        let e = check_doi_options(Some(DoiKind::Dihedral), &focus, None, None).unwrap_err();
+        assert!(matches!(e, DoiSetupError::FocusWithoutFocusDoi));
+        let hip = Some(Vec3::ZERO);
+        let e = check_doi_options(None, &[], None, hip).unwrap_err();
+        assert!(matches!(e, DoiSetupError::HipWithoutHapticDoi));
+        check_doi_options(Some(DoiKind::Haptic), &[], None, hip).unwrap();
+        check_doi_options(Some(DoiKind::Focus), &focus, None, None).unwrap();
+        assert_eq!(
+            DoiKind::ALL.map(DoiKind::name),
+            ["view-angle", "silhouette", "dihedral", "haptic", "focus"]
+        );
+    }
+
+    #[test]
+    fn quads_need_triangulation_and_focus_names_groups() {
+        let dihedral = DoiOptions::new(DoiKind::Dihedral);
+        let e = DoiSetup::new(cube(), &dihedral).err().unwrap();
+        assert!(
+            matches!(e, DoiSetupError::NotTriangles { face: 0, size: 4 }),
+            "{e}"
+        );
+        let mut focus = DoiOptions {
+            triangulate: true,
+            focus: vec!["lid".into()],
+            ..DoiOptions::new(DoiKind::Focus)
+        };
+        let e = DoiSetup::new(cube(), &focus).err().unwrap();
+        let cause = std::error::Error::source(&e).unwrap().to_string();
+        assert!(cause.contains("available: bottom, top, sides"), "{cause}");
+        focus.focus = vec!["top".into()];
+        focus.threshold = Some(f32::NAN);
+        let e = DoiSetup::new(cube(), &focus).err().unwrap();
+        assert!(matches!(e, DoiSetupError::Threshold));
+    }
+
+    #[test]
+    fn scene_carries_the_doi_per_vertex() {
+        let o = DoiOptions {
+            triangulate: true,
+            steps: 2,
+            ..DoiOptions::new(DoiKind::Dihedral)
+        };
+        let setup = DoiSetup::new(cube(), &o).unwrap();
+        assert_eq!(setup.cage.num_faces(), 12);
+        assert!(!setup.is_view_dependent());
+        let (lo, hi) = setup.bounds();
+        let camera = Camera::eye_relative(lo, hi, Vec3::new(0.8, 0.5, 2.2), 45.0, 64, 48);
+        let scene = setup.scene(&camera).unwrap();
+        assert!(scene.faces > 12 && scene.faces <= 12 * 16);
+        let scalars = scene.mesh.scalars.as_ref().unwrap();
+        assert!(scalars.iter().all(|s| s.is_finite()) && scalars.iter().any(|&s| s > 0.0));
+        let line = setup.summary(scene.faces);
+        assert!(
+            line.starts_with("dihedral DoI, threshold 30, 2 steps: 12 -> "),
+            "{line}"
+        );
+        let depths = doi_face_depths(setup.doi.as_ref(), &setup.cage, camera, None, 3).unwrap();
+        assert_eq!(depths.len(), 12);
+        assert!(depths.iter().all(|&d| d <= 3));
+    }
+}

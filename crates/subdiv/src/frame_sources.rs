@@ -1,0 +1,222 @@
+//! The viewer's frame sources ([`FrameSource`]): a uniform scene, the per-frame adaptive
+//! tessellation, and the DoI-driven adaptive Loop mesh, each with silhouettes for the viewer's
+//! culling camera.
+
+use glam::Vec3;
+use subdiv_rules::LimitMesh;
+use subdiv_vk::viewer::{FrameRequest, FrameSource, SourceFrame};
+use subdiv_vk::{OwnedMesh, RenderMesh, Shading};
+
+use crate::{DoiSetup, DynamicSubdivision, Scene, Silhouettes, camera_from_view, depth_histogram};
+
+/// The error type of [`FrameSource::frame`].
+type FrameError = Box<dyn std::error::Error + Send + Sync>;
+
+/// `error: cause: cause ...` on one line, as the viewer shows a frame source's error.
+fn chain(e: &dyn std::error::Error) -> String {
+    let mut s = e.to_string();
+    let mut source = e.source();
+    while let Some(c) = source {
+        s.push_str(": ");
+        s.push_str(&c.to_string());
+        source = c.source();
+    }
+    s
+}
+
+/// A uniform scene: fixed limit-surface vertices; silhouettes follow the culling camera (the
+/// view camera unless it is frozen).
+pub struct UniformSource {
+    mesh: OwnedMesh,
+    silhouettes: Silhouettes,
+    lines: Vec<[f32; 3]>,
+    faces: String,
+    status: String,
+}
+
+impl UniformSource {
+    /// The source showing `scene`.
+    pub fn new(scene: Scene) -> UniformSource {
+        UniformSource {
+            faces: format!("{} faces", scene.faces),
+            status: String::new(),
+            mesh: scene.mesh,
+            silhouettes: scene.silhouettes,
+            lines: Vec::new(),
+        }
+    }
+}
+
+impl FrameSource for UniformSource {
+    fn frame(&mut self, request: &FrameRequest) -> Result<SourceFrame<'_>, FrameError> {
+        if request.silhouettes {
+            self.silhouettes.lines_into(
+                &self.mesh.positions,
+                request.cull_view.eye,
+                &mut self.lines,
+            );
+        } else {
+            self.lines.clear();
+        }
+        self.status.clone_from(&self.faces);
+        if request.shading == Shading::Doi {
+            self.status.push_str(" | no DoI values (uniform heat map)");
+        }
+        Ok(SourceFrame {
+            mesh: RenderMesh {
+                lines: Some(&self.lines),
+                ..self.mesh.as_render_mesh()
+            },
+            status: &self.status,
+            // Positions, normals and depth scalars never change.
+            vertex_version: Some(0),
+        })
+    }
+}
+
+/// The adaptive tessellation: each frame, depths follow the culling camera, frame-rate control
+/// follows the viewer's switch and target with the real frame times, and the vertices stay on
+/// the GPU while the tessellation's `vertex_version` is unchanged.
+pub struct AdaptiveSource {
+    node: DynamicSubdivision,
+    /// The target frame rate the node's controller was set up with (`None`: control off).
+    control: Option<f32>,
+    lines: Vec<[f32; 3]>,
+    status: String,
+}
+
+impl AdaptiveSource {
+    /// The source tessellating with `node` (frame-rate control starts off).
+    pub fn new(node: DynamicSubdivision) -> AdaptiveSource {
+        AdaptiveSource {
+            node,
+            control: None,
+            lines: Vec::new(),
+            status: String::new(),
+        }
+    }
+}
+
+impl FrameSource for AdaptiveSource {
+    fn frame(&mut self, request: &FrameRequest) -> Result<SourceFrame<'_>, FrameError> {
+        let want = request.frame_rate_control.then_some(request.target_fps);
+        if want != self.control {
+            // The node has no access to its controller's target: a new target restarts it.
+            self.node.set_frame_rate_control(want);
+            self.control = want;
+        }
+        let camera = camera_from_view(&request.cull_view, request.size);
+        let t = request.last_frame_time.as_secs_f32();
+        self.node.update(&camera, (t > 0.0).then_some(t))?;
+        let g = self.node.geometry();
+        self.lines.clear();
+        if request.silhouettes {
+            let limit = LimitMesh {
+                positions: g.positions.clone(),
+                normals: g.normals.clone(),
+                face_offsets: (0..=g.indices.len() as u32 / 3).map(|i| i * 3).collect(),
+                face_indices: g.indices.clone(),
+            };
+            Silhouettes::new(&limit).lines_into(
+                &g.positions,
+                request.cull_view.eye,
+                &mut self.lines,
+            );
+        }
+        let cap = self
+            .node
+            .controller()
+            .map_or(self.node.params().max_depth, |c| c.cap());
+        self.status = format!(
+            "patches per depth {} | maxsd {cap} | {} patches recomputed",
+            depth_histogram(g),
+            g.patches_recomputed
+        );
+        Ok(SourceFrame {
+            mesh: RenderMesh {
+                positions: &g.positions,
+                normals: &g.normals,
+                triangles: &g.indices,
+                edges: None,
+                scalars: Some(&g.vertex_depth),
+                lines: Some(&self.lines),
+            },
+            status: &self.status,
+            vertex_version: Some(g.vertex_version),
+        })
+    }
+}
+
+/// The DoI-driven adaptive Loop mesh, refined again whenever the culling camera moves
+/// (view-dependent DoIs), with the DoI as the scalar.
+pub struct DoiSource {
+    setup: DoiSetup,
+    scene: Option<Scene>,
+    /// Culling camera (eye, forward) the scene was refined for.
+    refined_for: Option<(Vec3, Vec3)>,
+    version: u64,
+    note: String,
+    lines: Vec<[f32; 3]>,
+    status: String,
+}
+
+impl DoiSource {
+    /// The source refining with `setup` (the first frame refines).
+    pub fn new(setup: DoiSetup) -> DoiSource {
+        DoiSource {
+            setup,
+            scene: None,
+            refined_for: None,
+            version: 0,
+            note: String::new(),
+            lines: Vec::new(),
+            status: String::new(),
+        }
+    }
+
+    /// The [`DoiSetup::summary`] of the latest refinement (empty before the first frame).
+    pub fn note(&self) -> &str {
+        &self.note
+    }
+}
+
+impl FrameSource for DoiSource {
+    fn frame(&mut self, request: &FrameRequest) -> Result<SourceFrame<'_>, FrameError> {
+        let key = (request.cull_view.eye, request.cull_view.forward());
+        let stale = match self.refined_for {
+            None => true,
+            Some(k) => self.setup.is_view_dependent() && k != key,
+        };
+        if stale {
+            let camera = camera_from_view(&request.cull_view, request.size);
+            let scene = self.setup.scene(&camera).map_err(|e| chain(&e))?;
+            self.note = self.setup.summary(scene.faces);
+            self.scene = Some(scene);
+            self.refined_for = Some(key);
+            self.version += 1;
+        }
+        let scene = self.scene.as_ref().expect("refined above");
+        if request.silhouettes {
+            scene.silhouettes.lines_into(
+                &scene.mesh.positions,
+                request.cull_view.eye,
+                &mut self.lines,
+            );
+        } else {
+            self.lines.clear();
+        }
+        self.status.clone_from(&self.note);
+        if request.shading == Shading::Depth {
+            self.status
+                .push_str(" | colours show the DoI (no subdivision depths)");
+        }
+        Ok(SourceFrame {
+            mesh: RenderMesh {
+                lines: Some(&self.lines),
+                ..scene.mesh.as_render_mesh()
+            },
+            status: &self.status,
+            vertex_version: Some(self.version),
+        })
+    }
+}
