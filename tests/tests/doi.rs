@@ -235,7 +235,10 @@ fn quads_need_triangulation() {
     assert!(
         matches!(
             e,
-            RefineError::Loop(LoopError::Mesh(MeshError::NotTriangles { face: 0, size: 4 }))
+            RefineError::Loop(LoopError::Mesh(MeshError::NotTriangles {
+                face: 0,
+                size: 4
+            }))
         ),
         "{e}"
     );

@@ -205,9 +205,9 @@ fn welded_open_edges(name: &str, g: &FrameGeometry) -> usize {
 
 #[test]
 fn random_cameras_are_watertight() {
+    use subdiv::DynamicSubdivision;
     use subdiv_depth::DepthParams;
     use subdiv_mesh::Camera;
-    use subdiv::DynamicSubdivision;
     let mut rng = Rng(0x2545F4914F6CDD1D);
     let mut unit = || (rng.next() % 2001) as f32 / 1000.0 - 1.0;
     for (name, mesh) in cages() {
@@ -251,9 +251,9 @@ fn random_cameras_are_watertight() {
 
 #[test]
 fn moving_the_cage_updates_the_surface() {
+    use subdiv::DynamicSubdivision;
     use subdiv_depth::DepthParams;
     use subdiv_mesh::Camera;
-    use subdiv::DynamicSubdivision;
     let mesh = read_obj_with(fixtures_shape("catmark_cube"), ReadOptions::default()).unwrap();
     let (lo, hi) = mesh.bounds();
     let cam = Camera::eye_relative(lo, hi, glam::Vec3::new(0.5, 0.7, 3.0), 45.0, 640, 480);

@@ -2,8 +2,8 @@
 
 use anyhow::bail;
 use subdiv::DynamicSubdivision;
-use subdiv_depth::DepthParams;
-use subdiv_stitch::FanMethod;
+use subdiv::depth::DepthParams;
+use subdiv::stitch::FanMethod;
 
 /// Flags of the view-dependent depth assignment.
 #[derive(clap::Args, Debug, Clone)]
@@ -53,7 +53,7 @@ impl AdaptiveArgs {
     }
 
     /// A ready node for `mesh`.
-    pub fn node(&self, mesh: subdiv_mesh::Mesh) -> anyhow::Result<DynamicSubdivision> {
+    pub fn node(&self, mesh: subdiv::mesh::Mesh) -> anyhow::Result<DynamicSubdivision> {
         let mut node = DynamicSubdivision::new(mesh, self.params()?)?;
         if self.simple_fans {
             node.set_fan_method(FanMethod::Simple);

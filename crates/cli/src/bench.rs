@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use subdiv_slate::{
+use subdiv::slate::{
     PatchLayout, slate_bytes_per_thread, tessellate_layout, tessellate_layout_into,
 };
 

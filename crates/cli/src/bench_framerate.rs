@@ -6,10 +6,10 @@ use std::time::Instant;
 
 use anyhow::bail;
 use glam::Vec3;
+use subdiv::depth::DepthParams;
+use subdiv::mesh::Camera;
+use subdiv::vk::{RenderMesh, RenderOptions, Renderer};
 use subdiv::{BuiltinScene, DynamicSubdivision, view_for};
-use subdiv_depth::DepthParams;
-use subdiv_mesh::Camera;
-use subdiv_vk::{RenderMesh, RenderOptions, Renderer};
 
 use crate::camera_args::parse_size;
 use crate::choices::{SceneName, value_name};

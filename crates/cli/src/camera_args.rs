@@ -1,7 +1,7 @@
 //! Camera flags shared by `tessellate`, `refine`, `render` and `view`.
 
 use glam::Vec3;
-use subdiv_mesh::Camera;
+use subdiv::mesh::Camera;
 
 /// `--eye X,Y,Z --target X,Y,Z --up X,Y,Z | --eye-relative X,Y,Z`, `--fov DEG`, `--size WxH`.
 #[derive(clap::Args, Debug, Clone)]

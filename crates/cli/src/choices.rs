@@ -3,9 +3,9 @@
 
 use clap::ValueEnum;
 use subdiv::BuiltinScene;
-use subdiv_doi::Aggregate;
-use subdiv_rules::Scheme;
-use subdiv_vk::Shading;
+use subdiv::doi::Aggregate;
+use subdiv::rules::Scheme;
+use subdiv::vk::Shading;
 
 /// The value name of a choice as written on the command line.
 pub fn value_name<E: ValueEnum>(e: &E) -> String {

@@ -6,8 +6,8 @@ use std::path::PathBuf;
 
 use anyhow::anyhow;
 use glam::Vec3;
+use subdiv::mesh::Mesh;
 use subdiv::{DoiKind, DoiOptions, DoiSetup, DoiSetupError};
-use subdiv_mesh::Mesh;
 
 use crate::camera_args::parse_vec3;
 use crate::choices::{AggregateName, DoiName};

@@ -4,7 +4,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use subdiv_mesh::{BoundaryInterpolation, CreaseMethod, Mesh, MeshStats, ObjError, read_obj_soup};
+use subdiv::mesh::{BoundaryInterpolation, CreaseMethod, Mesh, MeshStats, ObjError, read_obj_soup};
 
 #[derive(clap::Args, Debug)]
 pub struct InfoArgs {

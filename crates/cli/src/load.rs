@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use subdiv_mesh::{Mesh, ReadOptions, read_obj_with};
+use subdiv::mesh::{Mesh, ReadOptions, read_obj_with};
 
 /// Reads and validates a cage; errors read `FILE:LINE: what`.
 pub fn load_mesh(path: &Path, split_nonmanifold: bool) -> anyhow::Result<Mesh> {

@@ -5,7 +5,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::Context;
-use subdiv_mesh::write_mesh_obj;
+use subdiv::mesh::write_mesh_obj;
 
 use crate::camera_args::CameraArgs;
 use crate::choices::value_name;
@@ -112,7 +112,7 @@ mod tests {
             o,
         ]))
         .unwrap();
-        let m = subdiv_mesh::read_obj(&out).unwrap();
+        let m = subdiv::mesh::read_obj(&out).unwrap();
         assert!(m.num_faces() > 12 && m.num_faces() <= 12 * 16);
         let e = run(&args(&[
             i,

@@ -5,8 +5,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::{Context, bail};
+use subdiv::vk::{RenderOptions, Renderer, View};
 use subdiv::{Scene, depth_histogram, frame_limit, view_for};
-use subdiv_vk::{RenderOptions, Renderer, View};
 
 use crate::camera_args::CameraArgs;
 use crate::choices::value_name;
@@ -160,12 +160,12 @@ fn draw_and_report(a: &RenderArgs, d: &Drawing<'_>) -> anyhow::Result<ExitCode> 
     let mesh = d.scene.mesh.as_render_mesh();
     let image = if let Some(exr) = &a.exr {
         let (image, aux) = renderer.render_with_aux(&mesh, d.view, d.size, d.options)?;
-        subdiv_vk::write_exr(exr, &aux)?;
+        subdiv::vk::write_exr(exr, &aux)?;
         image
     } else {
         renderer.render(&mesh, d.view, d.size, d.options)?
     };
-    subdiv_vk::write_png(&a.output, &image)?;
+    subdiv::vk::write_png(&a.output, &image)?;
     let render_ms = t1.elapsed().as_secs_f64() * 1e3;
     let line_note = match (&d.scene.mesh.lines, a.style.silhouettes) {
         (Some(l), true) => format!(", {} line segments", l.len() / 2),

@@ -5,9 +5,9 @@ use std::path::PathBuf;
 
 use anyhow::{Context, bail};
 use glam::Vec3;
+use subdiv::mesh::{Camera, Mesh};
+use subdiv::vk::{RenderOptions, Shading};
 use subdiv::{BuiltinScene, DynamicSubdivision, Scene};
-use subdiv_mesh::{Camera, Mesh};
-use subdiv_vk::{RenderOptions, Shading};
 
 use crate::adaptive_args::AdaptiveArgs;
 use crate::camera_args::{CameraArgs, parse_vec3};

@@ -6,10 +6,10 @@ use std::time::Instant;
 
 use anyhow::{Context, bail};
 use clap::builder::{PossibleValuesParser, TypedValueParser};
+use subdiv::mesh::{Mesh, ObjData, write_obj};
+use subdiv::rules::Scheme;
+use subdiv::stitch::FrameGeometry;
 use subdiv::{DoiKind, DynamicSubdivision, depth_histogram, doi_face_depths, make_doi};
-use subdiv_mesh::{Mesh, ObjData, write_obj};
-use subdiv_rules::Scheme;
-use subdiv_stitch::FrameGeometry;
 
 use crate::adaptive_args::AdaptiveArgs;
 use crate::camera_args::CameraArgs;

@@ -8,10 +8,10 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use glam::Vec3;
+use subdiv::mesh::Camera;
+use subdiv::vk::OrbitCamera;
+use subdiv::vk::viewer::{self, FrameSource, ViewerOptions};
 use subdiv::{AdaptiveSource, DoiSource, UniformSource, orbit_camera};
-use subdiv_mesh::Camera;
-use subdiv_vk::OrbitCamera;
-use subdiv_vk::viewer::{self, FrameSource, ViewerOptions};
 
 use crate::camera_args::CameraArgs;
 use crate::choices::value_name;

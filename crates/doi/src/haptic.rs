@@ -364,7 +364,6 @@ pub fn closest_face(mesh: &Mesh, p: Vec3) -> Option<FaceId> {
     best.1
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;

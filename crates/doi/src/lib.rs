@@ -53,8 +53,8 @@ pub use haptic::{
     closest_face, clough_tocher_patches, edge_g1_error, g1_error,
 };
 pub use view::{
-    Silhouette, ViewAngle, is_silhouette, point_segment_distance,
-    silhouette_distance, silhouette_segments, view_angle_deg,
+    Silhouette, ViewAngle, is_silhouette, point_segment_distance, silhouette_distance,
+    silhouette_segments, view_angle_deg,
 };
 
 /// The DoIs by command-line name, with their defaults.

@@ -109,7 +109,6 @@ impl Doi for Silhouette {
     }
 }
 
-
 /// Eq. (2) for edge `e` with precomputed face normals.
 #[inline]
 pub fn is_silhouette(mesh: &Mesh, normals: &[Vec3], cam: &Camera, e: EdgeId) -> bool {

@@ -112,7 +112,8 @@ pub fn loop_step(
         }
     }
     let mut kernel = RefineKernel::new(mesh, Scheme::Loop);
-    let mut positions: Vec<Vec3> = Vec::with_capacity(mesh.num_vertices() + closure.num_split_edges());
+    let mut positions: Vec<Vec3> =
+        Vec::with_capacity(mesh.num_vertices() + closure.num_split_edges());
     positions.extend_from_slice(pos);
     for v in mesh.vertices() {
         if need[v.idx()] {
@@ -327,6 +328,5 @@ mod tests {
                 .contains("selection has 1 entries but the mesh has 8"),
             "{e}"
         );
-
     }
 }

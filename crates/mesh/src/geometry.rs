@@ -216,7 +216,12 @@ mod tests {
         // keeps it exactly.
         let o = Vec3::new(1024.0, -2048.0, 512.0);
         let h = 1.0 / 256.0;
-        let quad = [o, o + Vec3::X * h, o + Vec3::new(h, h, 0.0), o + Vec3::Y * h];
+        let quad = [
+            o,
+            o + Vec3::X * h,
+            o + Vec3::new(h, h, 0.0),
+            o + Vec3::Y * h,
+        ];
         let n = newell_normal(quad);
         assert!((n - Vec3::Z).length() < 1e-3, "{n}");
         let absolute: Vec3 = (0..4).map(|k| quad[k].cross(quad[(k + 1) % 4])).sum();
@@ -230,13 +235,17 @@ mod tests {
         let d = newell_area([DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0)]);
         assert_eq!(d, DVec3::new(0.0, 0.0, 1.0));
         assert_eq!(newell_area([Vec3::ONE, Vec3::ONE * 2.0]), Vec3::ZERO);
-        assert_eq!(newell_normal([Vec3::ZERO, Vec3::X, Vec3::X * 2.0]), Vec3::ZERO);
+        assert_eq!(
+            newell_normal([Vec3::ZERO, Vec3::X, Vec3::X * 2.0]),
+            Vec3::ZERO
+        );
     }
 
     #[test]
     fn check_triangles_names_the_first_other_face() {
         let m = Mesh::from_soup(
-            &parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nf 1 2 4\nf 2 5 3 4\n").unwrap(),
+            &parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nf 1 2 4\nf 2 5 3 4\n")
+                .unwrap(),
         )
         .unwrap();
         let e = m.check_triangles().unwrap_err();
@@ -247,12 +256,20 @@ mod tests {
 
     #[test]
     fn vertex_normals_and_closest_points() {
-        let m = Mesh::from_soup(&parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap()).unwrap();
-        assert!(vertex_normals(&m).iter().all(|n| (*n - Vec3::Z).length() < 1e-6));
+        let m =
+            Mesh::from_soup(&parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap()).unwrap();
+        assert!(
+            vertex_normals(&m)
+                .iter()
+                .all(|n| (*n - Vec3::Z).length() < 1e-6)
+        );
         let (a, b, c) = (Vec3::ZERO, Vec3::X, Vec3::Y);
         let q = closest_point_on_triangle(Vec3::new(0.25, 0.25, 3.0), a, b, c);
         assert!((q - Vec3::new(0.25, 0.25, 0.0)).length() < 1e-6, "{q}");
-        assert_eq!(closest_point_on_triangle(Vec3::new(-1.0, -1.0, 0.0), a, b, c), a);
+        assert_eq!(
+            closest_point_on_triangle(Vec3::new(-1.0, -1.0, 0.0), a, b, c),
+            a
+        );
         let q = closest_point_on_triangle(Vec3::new(1.0, 1.0, 0.0), a, b, c);
         assert!((q - Vec3::new(0.5, 0.5, 0.0)).length() < 1e-6);
     }

@@ -266,7 +266,11 @@ impl Mesh {
     /// The face normal of `f` (Newell's method relative to a corner, [`crate::newell_normal`]),
     /// normalised; zero for a degenerate face.
     pub fn face_normal(&self, f: FaceId) -> Vec3 {
-        crate::newell_normal(self.face_vertices(f).iter().map(|v| self.positions[v.idx()]))
+        crate::newell_normal(
+            self.face_vertices(f)
+                .iter()
+                .map(|v| self.positions[v.idx()]),
+        )
     }
     /// The centroid of face `f`.
     pub fn face_centroid(&self, f: FaceId) -> Vec3 {

@@ -234,12 +234,16 @@ mod tests {
         };
         assert!(matches!(
             refine_adaptive(&m, &subdiv_doi::Silhouette, &DoiContext::default(), &opts),
-            Err(RefineError::Doi(DoiError::NeedsCamera { doi: "silhouette" }))
+            Err(RefineError::Doi(DoiError::NeedsCamera {
+                doi: "silhouette"
+            }))
         ));
         let quad =
             Mesh::from_soup(&parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap())
                 .unwrap();
-        let e = Refiner::new(quad, Box::new(subdiv_doi::Dihedral), opts).err().unwrap();
+        let e = Refiner::new(quad, Box::new(subdiv_doi::Dihedral), opts)
+            .err()
+            .unwrap();
         assert!(e.to_string().contains("face 0 has 4 vertices"), "{e}");
     }
 }

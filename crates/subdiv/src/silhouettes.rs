@@ -29,10 +29,8 @@ impl Silhouettes {
                 .map(|&v| Vec3::from(limit.normals[v as usize]))
                 .sum();
             if n.length_squared() < 1e-12 {
-                // Newell's normal of the polygon.
-                n = (0..vs.len())
-                    .map(|k| p(vs[k]).cross(p(vs[(k + 1) % vs.len()])))
-                    .sum();
+                // Newell's normal of the polygon (relative to a corner).
+                n = subdiv_mesh::newell_area(vs.iter().map(|&v| p(v)));
             }
             face_normal.push(n.normalize_or_zero());
             face_centre.push(centre);

@@ -36,7 +36,6 @@
 //!
 //! See [`Renderer`] for an example.
 
-
 mod context;
 mod error;
 mod frame;

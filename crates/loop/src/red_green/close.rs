@@ -188,4 +188,3 @@ pub fn close(mesh: &Mesh, state: &GreenState, selected: &[bool]) -> Result<Closu
     }
     Ok(m.c)
 }
-

@@ -177,9 +177,9 @@ fn bad_input() {
     .unwrap();
     let e = close(&quad, &GreenState::new(1), &[true]).unwrap_err();
     assert_eq!(
-    e,
-    LoopError::Mesh(subdiv_mesh::MeshError::NotTriangles { face: 0, size: 4 })
-);
+        e,
+        LoopError::Mesh(subdiv_mesh::MeshError::NotTriangles { face: 0, size: 4 })
+    );
     assert!(e.to_string().contains("face 0 has 4 vertices"));
     let c = close(&mesh, &GreenState::new(2), &[true, false]).unwrap();
     let mid = vec![VertexId::NONE; mesh.num_edges()];

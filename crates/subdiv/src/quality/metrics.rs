@@ -197,7 +197,11 @@ mod tests {
     /// Brute force: distance from each pixel centre to the nearest boundary edge midpoint.
     fn brute(mask: &[bool], w: usize, h: usize) -> Vec<f32> {
         let cov = |x: isize, y: isize| {
-            x >= 0 && y >= 0 && (x as usize) < w && (y as usize) < h && mask[y as usize * w + x as usize]
+            x >= 0
+                && y >= 0
+                && (x as usize) < w
+                && (y as usize) < h
+                && mask[y as usize * w + x as usize]
         };
         let mut sites = Vec::new();
         for y in -1..=h as isize {
@@ -271,6 +275,10 @@ mod tests {
         assert!(same.silhouette_px.is_empty());
         // An empty reference: every candidate pixel is infinitely far from any silhouette.
         let empty = vec![false; w * h];
-        assert!(silhouette_distance(&empty, w, h).iter().all(|d| d.is_infinite()));
+        assert!(
+            silhouette_distance(&empty, w, h)
+                .iter()
+                .all(|d| d.is_infinite())
+        );
     }
 }
