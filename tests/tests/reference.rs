@@ -16,16 +16,16 @@ struct Outcome {
     smooth_normals: usize,
 }
 
-fn check(shape: &str, level: u32) -> Result<Outcome, String> {
+fn check(shape: &str, level: subdiv_rules::Depth) -> Result<Outcome, String> {
     check_with(shape, level, false)
 }
 
 /// Catmull-Clark shapes again, through the slate tessellator.
-fn check_slate(shape: &str, level: u32) -> Result<Outcome, String> {
+fn check_slate(shape: &str, level: subdiv_rules::Depth) -> Result<Outcome, String> {
     check_with(shape, level, true)
 }
 
-fn check_with(shape: &str, level: u32, slates: bool) -> Result<Outcome, String> {
+fn check_with(shape: &str, level: subdiv_rules::Depth, slates: bool) -> Result<Outcome, String> {
     let cage_path = fixtures()
         .join("reference/shapes")
         .join(format!("{shape}.obj"));
@@ -155,7 +155,7 @@ fn every_reference_shape_matches_opensubdiv() {
     for file in fixture_files("reference/limit", "txt") {
         let name = file.file_stem().unwrap().to_string_lossy().to_string();
         let (shape, lv) = name.rsplit_once(".L").unwrap();
-        let level: u32 = lv.parse().unwrap();
+        let level: subdiv_rules::Depth = lv.parse().unwrap();
         match check(shape, level) {
             Ok(o) => {
                 checked += 1;

@@ -91,7 +91,7 @@ fn slates_equal_whole_mesh_refinement() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// Deeper levels (4 to 6; 6 is past the default `maxsd` of 5, so the slates grow) on the small
+/// Deeper levels (4 to 6; 6 is past the default `max_depth` of 5, so the slates grow) on the small
 /// creased, boundary and Chaikin cages: the band
 /// invariant of the general step (checked by debug assertions), the separable regular rules and
 /// the per-configuration limit stencils still give the whole-mesh reference's surface.

@@ -11,7 +11,7 @@ fn cages() -> Vec<(String, Mesh)> {
     subdiv_tests::catmull_clark_cages()
 }
 
-fn run(mesh: &Mesh, depth: u32, threads: usize) -> LimitMesh {
+fn run(mesh: &Mesh, depth: subdiv_slate::Depth, threads: usize) -> LimitMesh {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()

@@ -121,7 +121,7 @@ fn uniform_depths_equal_uniform_tessellation() {
         for d in 1..=3u8 {
             asm.frame(&mesh, &vec![d; nu], &vec![true; nu], &mut g)
                 .unwrap();
-            let uni = subdiv_slate::tessellate(&mesh, d as u32).unwrap();
+            let uni = subdiv_slate::tessellate(&mesh, d).unwrap();
             let quads = uni.num_faces();
             assert_eq!(g.num_triangles(), 2 * quads, "{name} depth {d}");
             let (p, _, idx) = g.compact();

@@ -65,7 +65,7 @@ fn measure(root: &Path, name: &str) -> Result<Row> {
         hip: Some(hip),
         ..Default::default()
     };
-    let uniform = refine_uniform_levels(&mesh, Scheme::Loop, STEPS)?;
+    let uniform = refine_uniform_levels(&mesh, Scheme::Loop, STEPS as subdiv::rules::Depth)?;
     let run = |doi: &dyn Doi| -> Result<(usize, Vec<usize>, Mesh)> {
         let opts = RefineOptions {
             threshold: doi.default_threshold(),

@@ -3,14 +3,15 @@
 use anyhow::bail;
 use subdiv::DynamicSubdivision;
 use subdiv::depth::DepthParams;
-use subdiv::stitch::FanMethod;
+use subdiv::rules::Depth;
+use subdiv::stitch::{FanMethod, MAX_ADAPTIVE_DEPTH};
 
 /// Flags of the view-dependent depth assignment.
 #[derive(clap::Args, Debug, Clone)]
 pub struct AdaptiveArgs {
-    /// Deepest subdivision depth (`maxsd`).
+    /// Deepest subdivision depth (the paper's `maxsd`).
     #[arg(long, default_value_t = 5)]
-    pub max_depth: u8,
+    pub max_depth: Depth,
     /// Normal-cone aperture in degrees for the curvature depth.
     #[arg(long, default_value_t = 10.0)]
     pub cone_aperture: f32,
@@ -34,8 +35,11 @@ pub struct AdaptiveArgs {
 impl AdaptiveArgs {
     /// The depth parameters these flags describe.
     pub fn params(&self) -> anyhow::Result<DepthParams> {
-        if self.max_depth > 10 {
-            bail!("--max-depth {} is too deep (at most 10)", self.max_depth);
+        if self.max_depth > MAX_ADAPTIVE_DEPTH {
+            bail!(
+                "--max-depth {} is too deep (at most {MAX_ADAPTIVE_DEPTH})",
+                self.max_depth
+            );
         }
         if let Some(px) = self.pixel_error {
             if !(px.is_finite() && px > 0.0) {

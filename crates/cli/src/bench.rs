@@ -30,7 +30,7 @@ pub struct BenchTessellateArgs {
     pub input: PathBuf,
     /// Uniform depth.
     #[arg(long, default_value_t = 5)]
-    pub depth: u32,
+    pub depth: subdiv::rules::Depth,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,

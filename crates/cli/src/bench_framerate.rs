@@ -8,6 +8,7 @@ use anyhow::bail;
 use glam::Vec3;
 use subdiv::depth::DepthParams;
 use subdiv::mesh::Camera;
+use subdiv::rules::Depth;
 use subdiv::vk::{RenderMesh, RenderOptions, Renderer};
 use subdiv::{BuiltinScene, DynamicSubdivision, view_for};
 
@@ -28,13 +29,13 @@ pub struct BenchFramerateArgs {
     pub switch_fps: Option<f32>,
     /// Fixed uniform depth for every patch (no adaptivity, no control).
     #[arg(long)]
-    pub depth: Option<u8>,
+    pub depth: Option<Depth>,
     /// Number of frames.
     #[arg(long, default_value_t = 150)]
     pub frames: usize,
     /// Deepest depth for the adaptive mode (the paper uses 0-4).
     #[arg(long, default_value_t = 4)]
-    pub max_depth: u8,
+    pub max_depth: Depth,
     /// Viewport size.
     #[arg(long, value_parser = parse_size, default_value = "640x480")]
     pub size: (u32, u32),

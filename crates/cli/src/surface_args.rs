@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use anyhow::{Context, bail};
 use glam::Vec3;
 use subdiv::mesh::{Camera, Mesh};
+use subdiv::rules::Depth;
 use subdiv::vk::{RenderOptions, Shading};
 use subdiv::{BuiltinScene, DynamicSubdivision, Scene};
 
@@ -34,7 +35,7 @@ pub struct SurfaceArgs {
     /// Uniform subdivision depth. Without it, a camera (--eye or --eye-relative) makes the
     /// Catmull-Clark tessellation adaptive; otherwise the default is depth 3.
     #[arg(long)]
-    pub depth: Option<u32>,
+    pub depth: Option<subdiv::rules::Depth>,
     /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
     #[arg(long)]
     pub split_nonmanifold: bool,
@@ -54,7 +55,7 @@ pub struct SurfaceArgs {
 }
 
 /// Uniform depth when neither `--depth` nor an adaptive camera is given.
-pub const DEFAULT_DEPTH: u32 = 3;
+pub const DEFAULT_DEPTH: subdiv::rules::Depth = 3;
 
 impl SurfaceArgs {
     /// Refuses DoI options without the DoI that uses them (as `subdiv refine` does).
@@ -81,7 +82,7 @@ impl SurfaceArgs {
     }
 
     /// The uniform depth (`--depth`, else [`DEFAULT_DEPTH`]).
-    pub fn uniform_depth(&self) -> u32 {
+    pub fn uniform_depth(&self) -> subdiv::rules::Depth {
         self.depth.unwrap_or(DEFAULT_DEPTH)
     }
 
@@ -145,7 +146,7 @@ impl SurfaceArgs {
 }
 
 /// Parses `--face-depths`: a comma/whitespace list of depths, or a file holding one.
-fn parse_face_depths(spec: &str, max_depth: u8) -> anyhow::Result<Vec<u8>> {
+fn parse_face_depths(spec: &str, max_depth: Depth) -> anyhow::Result<Vec<Depth>> {
     let text = if spec
         .chars()
         .all(|c| c.is_ascii_digit() || c == ',' || c.is_whitespace())

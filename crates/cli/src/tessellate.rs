@@ -31,7 +31,7 @@ pub struct TessellateArgs {
     pub scheme: SchemeName,
     /// Uniform subdivision depth (without it, a camera makes the tessellation adaptive).
     #[arg(long)]
-    pub depth: Option<u32>,
+    pub depth: Option<subdiv::rules::Depth>,
     #[command(flatten)]
     pub camera: CameraArgs,
     #[command(flatten)]
@@ -75,7 +75,11 @@ pub fn run(a: &TessellateArgs) -> anyhow::Result<ExitCode> {
 }
 
 /// `subdiv tessellate --depth N`.
-fn run_uniform(a: &TessellateArgs, mesh: &Mesh, depth: u32) -> anyhow::Result<ExitCode> {
+fn run_uniform(
+    a: &TessellateArgs,
+    mesh: &Mesh,
+    depth: subdiv::rules::Depth,
+) -> anyhow::Result<ExitCode> {
     let input = a.input.display();
     let t0 = Instant::now();
     let t = subdiv::uniform_limit(mesh, a.scheme.into(), depth)

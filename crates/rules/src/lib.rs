@@ -39,6 +39,15 @@ pub use ring::{QuadRingStencil, Ring, limit_point, limit_point_with};
 
 use thiserror::Error;
 
+/// A subdivision depth: how many subdivision steps a face, patch or whole mesh is refined by (0:
+/// the cage itself). One type for this quantity across the workspace; "culled" is expressed
+/// with `Option<Depth>` or a separate flag, never a sentinel value.
+pub type Depth = u8;
+
+/// The deepest tessellation any crate of the workspace produces (a slate table side of
+/// `2^12 + 3`; uniform refinement is bounded by face count, [`MAX_REFINED_FACES`], well before).
+pub const MAX_DEPTH: Depth = 12;
+
 /// The subdivision scheme.
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Default, Hash)]
 pub enum Scheme {
@@ -72,7 +81,7 @@ pub enum RulesError {
     #[error("depth {depth} would produce {faces} faces (limit {MAX_REFINED_FACES})")]
     TooDeep {
         /// Requested depth.
-        depth: u32,
+        depth: Depth,
         /// Faces it would produce.
         faces: u64,
     },

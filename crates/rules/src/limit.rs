@@ -6,7 +6,7 @@ use subdiv_mesh::{BoundaryInterpolation, Mesh, ObjData, VertexId};
 
 use crate::refine::refine_uniform_levels;
 use crate::ring::{Ring, limit_point_with};
-use crate::{RulesError, Scheme};
+use crate::{Depth, RulesError, Scheme};
 
 /// A tessellated limit surface: one limit point and unit normal per vertex, and polygons.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -132,7 +132,7 @@ pub fn limit_surface(mesh: &Mesh, scheme: Scheme) -> LimitMesh {
 pub fn tessellate_uniform(
     mesh: &Mesh,
     scheme: Scheme,
-    depth: u32,
+    depth: Depth,
 ) -> Result<LimitMesh, RulesError> {
     if scheme == Scheme::Loop {
         mesh.check_triangles()?;
@@ -210,7 +210,7 @@ mod tests {
         // every level, and its normal is that of the paraboloid shifted by the same offset.
         let f = |x: f32, y: f32| x * x + 2.0 * y * y;
         let m = quad_grid(8, f);
-        for depth in 0..=2u32 {
+        for depth in 0..=2u8 {
             let t = tessellate_uniform(&m, Scheme::CatmullClark, depth).unwrap();
             let scale = (1u32 << depth) as f32;
             let mut checked = 0;
@@ -245,7 +245,7 @@ mod tests {
         // neighbour, so z = x^2 + y^2 has limit z + 1/2 on a unit lattice. Quadratics are
         // reproduced, so every point of the limit surface (level-1 vertices too) has that offset.
         let m = tri_grid(10, |x, y| x * x + y * y);
-        for (depth, offset) in [(0u32, 0.5f32), (1, 0.5)] {
+        for (depth, offset) in [(0u8, 0.5f32), (1, 0.5)] {
             let t = tessellate_uniform(&m, Scheme::Loop, depth).unwrap();
             let mut checked = 0;
             for p in t.positions.iter() {

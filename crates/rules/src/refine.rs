@@ -10,7 +10,7 @@ use glam::Vec3;
 use subdiv_mesh::{CreaseMethod, EdgeId, HalfedgeId, Mesh, PolygonSoup, VertexId};
 
 use crate::crease::{VertexRules, decrement, edge_crease_weight, is_sharp};
-use crate::{RulesError, Scheme, catmark, loop_scheme};
+use crate::{Depth, RulesError, Scheme, catmark, loop_scheme};
 
 /// One uniform refinement step of the whole mesh.
 ///
@@ -260,7 +260,11 @@ impl<'m> RefineKernel<'m> {
 }
 
 /// Refines `depth` times.
-pub fn refine_uniform_levels(mesh: &Mesh, scheme: Scheme, depth: u32) -> Result<Mesh, RulesError> {
+pub fn refine_uniform_levels(
+    mesh: &Mesh,
+    scheme: Scheme,
+    depth: Depth,
+) -> Result<Mesh, RulesError> {
     check_size(mesh, scheme, depth)?;
     let mut m = mesh.clone();
     for _ in 0..depth {
@@ -273,11 +277,11 @@ pub fn refine_uniform_levels(mesh: &Mesh, scheme: Scheme, depth: u32) -> Result<
 pub const MAX_REFINED_FACES: u64 = 1 << 26;
 
 /// Number of faces of the uniform level-`depth` refinement.
-pub fn refined_face_count(mesh: &Mesh, scheme: Scheme, depth: u32) -> u64 {
+pub fn refined_face_count(mesh: &Mesh, scheme: Scheme, depth: Depth) -> u64 {
     if depth == 0 {
         return mesh.num_faces() as u64;
     }
-    let per = 4u64.saturating_pow(depth - 1);
+    let per = 4u64.saturating_pow(u32::from(depth) - 1);
     match scheme {
         Scheme::CatmullClark => {
             let corners: u64 = mesh.faces().map(|f| mesh.face_size(f) as u64).sum();
@@ -287,7 +291,7 @@ pub fn refined_face_count(mesh: &Mesh, scheme: Scheme, depth: u32) -> u64 {
     }
 }
 
-fn check_size(mesh: &Mesh, scheme: Scheme, depth: u32) -> Result<(), RulesError> {
+fn check_size(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<(), RulesError> {
     let faces = refined_face_count(mesh, scheme, depth);
     if faces > MAX_REFINED_FACES {
         return Err(RulesError::TooDeep { depth, faces });

@@ -275,7 +275,8 @@ fn main() {
             subdiv_mesh::read_obj_soup(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let cage = OsdCage::from_soup(&soup);
         for &depth in depths {
-            let layout = PatchLayout::new(&mesh, depth).expect("fixture cage tessellates");
+            let layout = PatchLayout::new(&mesh, depth as subdiv_slate::Depth)
+                .expect("fixture cage tessellates");
             let mut out = tessellate_layout(&mesh, &layout).expect("fixture cage tessellates");
             let points = out.positions.len();
 
@@ -310,7 +311,7 @@ fn main() {
                 (
                     points,
                     layout.num_patches(),
-                    slate_bytes_per_thread(depth, layout.max_valence()),
+                    slate_bytes_per_thread(depth as subdiv_slate::Depth, layout.max_valence()),
                 ),
             );
 

@@ -12,7 +12,7 @@
 //! by construction and the output independent of the number of threads.
 
 use subdiv_mesh::{FaceId, HalfedgeId, Mesh, VertexId};
-use subdiv_rules::RulesError;
+use subdiv_rules::{Depth, RulesError};
 
 use crate::patches::{irregular_faces, local_level1};
 
@@ -52,7 +52,7 @@ pub(crate) struct Patch {
 /// The patches of a mesh for one uniform depth, and the output numbering.
 #[derive(Debug)]
 pub struct PatchLayout {
-    pub(crate) depth: u32,
+    pub(crate) depth: Depth,
     pub(crate) patches: Vec<Patch>,
     pub(crate) num_points: u32,
     pub(crate) level1: Option<Mesh>,
@@ -72,7 +72,7 @@ impl PatchLayout {
     /// Number of output quads.
     pub fn num_quads(&self) -> usize {
         let per = |p: &Patch| {
-            let n = 1usize << (self.depth - p.level as u32);
+            let n = 1usize << (self.depth - p.level);
             n * n
         };
         self.patches.iter().filter(|p| p.visible).map(per).sum()
@@ -85,7 +85,7 @@ impl PatchLayout {
 
 impl PatchLayout {
     /// Builds the patch list and output numbering of `mesh` for uniform depth `depth >= 1`.
-    pub fn new(mesh: &Mesh, depth: u32) -> Result<PatchLayout, RulesError> {
+    pub fn new(mesh: &Mesh, depth: Depth) -> Result<PatchLayout, RulesError> {
         assert!(
             depth >= 1,
             "PatchLayout needs depth >= 1 (depth 0 is the cage itself)"
@@ -354,7 +354,7 @@ mod tests {
             count[v.idx()] += 1;
         }
         for p in &layout.patches {
-            let n = 1u32 << (layout.depth - p.level as u32);
+            let n = 1u32 << (layout.depth - p.level);
             for k in 0..4 {
                 if p.corner_owned[k] {
                     count[p.corners[k] as usize] += 1;
@@ -402,7 +402,7 @@ mod tests {
     fn point_counts_follow_the_closed_formula() {
         // m = 2^depth samples per cage edge: V + E (m - 1) + the interior of every face, which
         // for an n-gon is its face point, n inner edges and n level-1 quads of side m / 2.
-        let expected = |mesh: &Mesh, depth: u32| {
+        let expected = |mesh: &Mesh, depth: Depth| {
             let m = 1usize << depth;
             let m1 = m / 2;
             let faces: usize = mesh

@@ -60,9 +60,10 @@ mod worker;
 
 pub use layout::PatchLayout;
 pub use patches::{PatchRef, PatchSet, Unit};
-pub use pool::{KEEP_MAXSD, WorkerGuard, thread_worker};
+pub use pool::{KEEP_MAX_DEPTH, WorkerGuard, thread_worker};
+pub use subdiv_rules::{Depth, MAX_DEPTH};
 pub use tessellate::{
-    DEFAULT_MAXSD, MAX_DEPTH, MAX_POINTS, SlateError, slate_bytes_per_thread, tessellate,
+    DEFAULT_MAX_DEPTH, MAX_POINTS, SlateError, slate_bytes_per_thread, tessellate,
     tessellate_layout, tessellate_layout_into,
 };
 pub use worker::Worker;

@@ -1,21 +1,23 @@
 //! The per-thread worker pool: every thread keeps one [`Worker`] between tessellations.
 
+use subdiv_rules::Depth;
+
 use crate::worker::Worker;
 
-/// Deepest `maxsd` whose worker a thread keeps between tessellations (about 230 KB of tables
+/// Deepest `max_depth` whose worker a thread keeps between tessellations (about 230 KB of tables
 /// and scratch at 6); deeper workers (megabytes) are freed when their job ends.
-pub const KEEP_MAXSD: u32 = 6;
+pub const KEEP_MAX_DEPTH: Depth = 6;
 
 thread_local! {
     static THREAD_WORKER: std::cell::Cell<Option<Box<Worker>>> = const { std::cell::Cell::new(None) };
 }
 
-/// The calling thread's reusable [`Worker`] for patches up to depth `maxsd`: the slates are
+/// The calling thread's reusable [`Worker`] for patches up to depth `max_depth`: the slates are
 /// allocated on a thread's first use and then serve every later patch and every later
 /// tessellation on that thread (per-frame updates included), so steady-state tessellation
 /// allocates nothing. The worker goes back to the thread when the guard drops; a thread that
 /// already holds one (a nested job started while the first guard is alive), or a request deeper
-/// than [`KEEP_MAXSD`], gets a fresh worker that is freed at the end instead.
+/// than [`KEEP_MAX_DEPTH`], gets a fresh worker that is freed at the end instead.
 ///
 /// Reuse cannot change results: every patch starts with a fresh gather, and the worker's only
 /// other state, its cache of limit stencils, is keyed by everything a stencil depends on.
@@ -27,17 +29,17 @@ thread_local! {
 /// let w2 = subdiv_slate::thread_worker(4);
 /// assert!(w2.table_bytes() >= subdiv_slate::Worker::new(4).table_bytes());
 /// ```
-pub fn thread_worker(maxsd: u32) -> WorkerGuard {
-    let maxn = 1usize << maxsd;
+pub fn thread_worker(max_depth: Depth) -> WorkerGuard {
+    let maxn = 1usize << max_depth;
     let cached = THREAD_WORKER.with(|c| c.take());
     let w = match cached {
         Some(w) if w.maxn >= maxn => w,
         Some(w) => {
             // Too small for this request: put it back for later shallow jobs.
             THREAD_WORKER.with(|c| c.set(Some(w)));
-            Box::new(Worker::new(maxsd))
+            Box::new(Worker::new(max_depth))
         }
-        None => Box::new(Worker::new(maxsd)),
+        None => Box::new(Worker::new(max_depth)),
     };
     WorkerGuard(Some(w))
 }
@@ -64,7 +66,7 @@ impl std::ops::DerefMut for WorkerGuard {
 impl Drop for WorkerGuard {
     fn drop(&mut self) {
         let Some(w) = self.0.take() else { return };
-        if w.maxn > 1usize << KEEP_MAXSD {
+        if w.maxn > 1usize << KEEP_MAX_DEPTH {
             return;
         }
         // Keep the larger of the returned and the held worker (the other is freed).
@@ -104,14 +106,14 @@ mod tests {
             assert_eq!(slates(&thread_worker(5)), pb);
             assert_eq!(slates(&thread_worker(3)), pb);
             // A deeper request than the held worker gets a bigger one, which replaces it.
-            let c = thread_worker(KEEP_MAXSD);
+            let c = thread_worker(KEEP_MAX_DEPTH);
             let pc = slates(&c);
-            assert!(c.maxn == 1 << KEEP_MAXSD);
+            assert!(c.maxn == 1 << KEEP_MAX_DEPTH);
             drop(c);
             assert_eq!(slates(&thread_worker(2)), pc);
-            // Past KEEP_MAXSD the worker is freed at the end; the kept one stays.
-            let d = thread_worker(KEEP_MAXSD + 1);
-            assert!(d.maxn == 1 << (KEEP_MAXSD + 1));
+            // Past KEEP_MAX_DEPTH the worker is freed at the end; the kept one stays.
+            let d = thread_worker(KEEP_MAX_DEPTH + 1);
+            assert!(d.maxn == 1 << (KEEP_MAX_DEPTH + 1));
             drop(d);
             assert_eq!(slates(&thread_worker(2)), pc);
         })

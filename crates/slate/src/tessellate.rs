@@ -3,7 +3,7 @@
 use glam::Vec3A;
 use rayon::prelude::*;
 use subdiv_mesh::Mesh;
-use subdiv_rules::{LimitMesh, RulesError, Scheme, limit_surface};
+use subdiv_rules::{Depth, LimitMesh, MAX_DEPTH, RulesError, Scheme, limit_surface};
 
 use crate::layout::{Patch, PatchLayout};
 use crate::pool::thread_worker;
@@ -16,15 +16,15 @@ pub enum SlateError {
     #[error("depth {depth} exceeds the maximum slate depth {max}")]
     TooDeep {
         /// Requested depth.
-        depth: u32,
+        depth: Depth,
         /// Supported maximum.
-        max: u32,
+        max: Depth,
     },
     /// The tessellation would not fit in memory.
     #[error("depth {depth} would produce {points} limit points (limit {MAX_POINTS})")]
     TooLarge {
         /// Requested depth.
-        depth: u32,
+        depth: Depth,
         /// Points it would produce.
         points: u64,
     },
@@ -33,14 +33,11 @@ pub enum SlateError {
     Rules(#[from] RulesError),
 }
 
-/// Deepest supported subdivision depth (table side `2^12 + 3`).
-pub const MAX_DEPTH: u32 = 12;
-
 /// Most limit points one tessellation may produce (about 3 GiB of positions and normals).
 pub const MAX_POINTS: u64 = 1 << 27;
 
-/// Default `maxsd` of the paper: slates are sized for at least this depth.
-pub const DEFAULT_MAXSD: u32 = 5;
+/// Default `max_depth` of the paper: slates are sized for at least this depth.
+pub const DEFAULT_MAX_DEPTH: Depth = 5;
 
 /// Output pointers shared by the patch tasks. Each output point has exactly one owner patch
 /// (see [`PatchLayout`]), so no two tasks ever write the same element.
@@ -100,7 +97,7 @@ impl SharedOut {
 /// assert_eq!(t.positions.len(), 6 * 64 + 2);
 /// # Ok::<(), subdiv_mesh::MeshError>(())
 /// ```
-pub fn tessellate(mesh: &Mesh, depth: u32) -> Result<LimitMesh, SlateError> {
+pub fn tessellate(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateError> {
     if depth == 0 {
         return Ok(limit_surface(mesh, Scheme::CatmullClark));
     }
@@ -144,7 +141,7 @@ pub fn tessellate_layout_into(
             max: MAX_DEPTH,
         });
     }
-    let maxsd = depth.max(DEFAULT_MAXSD);
+    let max_depth = depth.max(DEFAULT_MAX_DEPTH);
     let np = layout.num_points();
     result.positions.resize(np, [0.0; 3]);
     result.normals.resize(np, [0.0; 3]);
@@ -155,7 +152,7 @@ pub fn tessellate_layout_into(
     // Face ranges by prefix sum over visible patches.
     let quads_of = |p: &Patch| {
         if p.visible {
-            1usize << (2 * (depth - p.level as u32))
+            1usize << (2 * (depth - p.level))
         } else {
             0
         }
@@ -188,21 +185,21 @@ pub fn tessellate_layout_into(
         .zip(chunks.into_par_iter())
         .with_min_len(8)
         .for_each_init(
-            || thread_worker(maxsd),
+            || thread_worker(max_depth),
             |w, (p, quads)| {
                 let src = if p.level == 0 {
                     mesh
                 } else {
                     level1.expect("level-1 mesh for level-1 patches")
                 };
-                run_patch(w, src, p, depth - p.level as u32, &out, quads);
+                run_patch(w, src, p, depth - p.level, &out, quads);
             },
         );
     Ok(())
 }
 
 /// Gathers, subdivides and evaluates one patch; writes the points it owns and its quads.
-fn run_patch(wk: &mut Worker, src: &Mesh, p: &Patch, e: u32, out: &SharedOut, quads: &mut [u32]) {
+fn run_patch(wk: &mut Worker, src: &Mesh, p: &Patch, e: Depth, out: &SharedOut, quads: &mut [u32]) {
     let w = &mut *wk;
     w.gather(src, p.face);
     for _ in 0..e {
@@ -297,8 +294,8 @@ fn point_id(p: &Patch, n: u32, i: u32, j: u32) -> (u32, bool) {
 /// Bytes of slate memory one worker uses for depth `depth`, independent of the mesh size: two
 /// tables, the worker's bounded scratch (rolling rows, dirty mask, at most 16 limit stencils) and
 /// the four corner arrays, which grow with the largest valence (`2 * 2 * valence` points each).
-pub fn slate_bytes_per_thread(depth: u32, max_valence: usize) -> usize {
-    let w = Worker::new(depth.max(DEFAULT_MAXSD));
+pub fn slate_bytes_per_thread(depth: Depth, max_valence: usize) -> usize {
+    let w = Worker::new(depth.max(DEFAULT_MAX_DEPTH));
     w.table_bytes()
         + w.scratch_bytes()
         + 4 * (4 * max_valence * std::mem::size_of::<glam::DVec3>() + 2 * max_valence * 4)
@@ -329,7 +326,7 @@ mod tests {
                     count[v.idx()] += 1;
                 }
                 for p in &layout.patches {
-                    let n = 1u32 << (depth - p.level as u32);
+                    let n = 1u32 << (depth - p.level);
                     for j in 0..=n {
                         for i in 0..=n {
                             let (id, owned) = point_id(p, n, i, j);

@@ -7,7 +7,7 @@
 
 use glam::{DVec3, Vec3A};
 use subdiv_mesh::{CreaseMethod, FaceId, HalfedgeId, Mesh};
-use subdiv_rules::QuadRingStencil;
+use subdiv_rules::{Depth, QuadRingStencil};
 
 use crate::limit::{MAX_STENCILS, StencilKey};
 use crate::table::{Corner, Table};
@@ -56,9 +56,9 @@ pub struct Worker {
 }
 
 impl Worker {
-    /// A worker whose slates hold patches up to depth `maxsd`.
-    pub fn new(maxsd: u32) -> Worker {
-        let maxn = 1usize << maxsd;
+    /// A worker whose slates hold patches up to depth `max_depth`.
+    pub fn new(max_depth: Depth) -> Worker {
+        let maxn = 1usize << max_depth;
         Worker {
             t: [Table::with_capacity(maxn), Table::with_capacity(maxn)],
             corners: Default::default(),
@@ -90,14 +90,14 @@ impl Worker {
         }
     }
 
-    /// Bytes held by the two tables (capacity for `maxsd`).
+    /// Bytes held by the two tables (capacity for `max_depth`).
     pub fn table_bytes(&self) -> usize {
         let cap = (self.maxn + 3) * (self.maxn + 3);
         2 * cap * (std::mem::size_of::<Vec3A>() + 1 + 2 * std::mem::size_of::<f32>())
     }
 
     /// Most bytes the worker's scratch can reach besides the tables and corner arrays (capacity
-    /// for `maxsd`): the dirty mask and its list, the rolling rows of the regular step and of the
+    /// for `max_depth`): the dirty mask and its list, the rolling rows of the regular step and of the
     /// limit sums, the Chaikin far information and a full stencil cache.
     pub fn scratch_bytes(&self) -> usize {
         let (side, cap) = (self.maxn + 3, (self.maxn + 3) * (self.maxn + 3));
@@ -130,7 +130,7 @@ impl Worker {
         &mut self,
         mesh: &Mesh,
         face: FaceId,
-        depth: u32,
+        depth: Depth,
         pos: &mut [[f32; 3]],
         nrm: &mut [[f32; 3]],
     ) {

@@ -30,6 +30,6 @@ mod index;
 #[cfg(test)]
 mod test_util;
 
-pub use assembler::Assembler;
+pub use assembler::{Assembler, MAX_ADAPTIVE_DEPTH};
 pub use geometry::FrameGeometry;
 pub use index::FanMethod;

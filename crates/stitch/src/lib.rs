@@ -15,7 +15,7 @@
 
 pub mod fans;
 
-pub use fans::{Assembler, FanMethod, FrameGeometry};
+pub use fans::{Assembler, FanMethod, FrameGeometry, MAX_ADAPTIVE_DEPTH};
 
 /// Errors of the Catmull-Clark assembly ([`Assembler`]).
 #[derive(Debug, thiserror::Error)]
@@ -27,9 +27,9 @@ pub enum AssemblyError {
     #[error("maximum depth {depth} exceeds {max}")]
     TooDeep {
         /// Requested.
-        depth: u32,
+        depth: subdiv_slate::Depth,
         /// Supported.
-        max: u32,
+        max: subdiv_slate::Depth,
     },
     /// The frame's patch blocks would not fit in memory.
     #[error(

@@ -10,7 +10,7 @@ use subdiv_doi::{
     ViewAngle, read_skeleton,
 };
 use subdiv_mesh::{Camera, Mesh, MeshError, triangulate};
-use subdiv_rules::LimitMesh;
+use subdiv_rules::{Depth, LimitMesh};
 
 use crate::{RefineError, RefineOptions, Refined, Scene, refine_adaptive};
 
@@ -182,7 +182,7 @@ pub fn doi_face_depths(
     mesh: &Mesh,
     camera: Camera,
     threshold: Option<f32>,
-    max_depth: u8,
+    max_depth: Depth,
 ) -> Result<Vec<u8>, DoiError> {
     let ctx = DoiContext::with_camera(camera);
     let (mut scratch, mut values) = (Vec::new(), Vec::new());

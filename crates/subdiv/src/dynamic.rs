@@ -11,7 +11,7 @@ use subdiv_depth::{
     Assignment, DepthParams, FrameRateController, Sphere, VertexData, assign, face_spheres,
 };
 use subdiv_mesh::{Camera, Mesh};
-use subdiv_slate::thread_worker;
+use subdiv_slate::{Depth, thread_worker};
 
 use subdiv_stitch::{Assembler, AssemblyError, FanMethod, FrameGeometry};
 
@@ -39,7 +39,7 @@ pub struct DynamicSubdivision {
     deviation: Option<Vec<Vec<f32>>>,
     assembler: Assembler,
     controller: Option<FrameRateController>,
-    fixed_depths: Option<Vec<u8>>,
+    fixed_depths: Option<Vec<Depth>>,
     assignment: Assignment,
     geometry: FrameGeometry,
 }
@@ -49,7 +49,7 @@ impl DynamicSubdivision {
     pub fn new(mesh: Mesh, params: DepthParams) -> Result<DynamicSubdivision, AssemblyError> {
         let vertex = VertexData::compute(&mesh, params.cone_aperture_deg, params.max_depth);
         let spheres = face_spheres(&mesh, &vertex);
-        let assembler = Assembler::new(&mesh, params.max_depth as u32)?;
+        let assembler = Assembler::new(&mesh, params.max_depth)?;
         Ok(DynamicSubdivision {
             mesh,
             params,
@@ -78,7 +78,7 @@ impl DynamicSubdivision {
         let recompute = p.cone_aperture_deg != self.params.cone_aperture_deg
             || p.max_depth != self.params.max_depth;
         if p.max_depth != self.params.max_depth {
-            self.assembler = Assembler::new(&self.mesh, p.max_depth as u32)?;
+            self.assembler = Assembler::new(&self.mesh, p.max_depth)?;
             self.deviation = None;
         }
         self.params = p;
@@ -113,7 +113,7 @@ impl DynamicSubdivision {
         );
         self.spheres = face_spheres(&self.mesh, &self.vertex);
         self.deviation = None;
-        self.assembler = Assembler::new(&self.mesh, self.params.max_depth as u32)?;
+        self.assembler = Assembler::new(&self.mesh, self.params.max_depth)?;
         Ok(())
     }
 
@@ -135,7 +135,7 @@ impl DynamicSubdivision {
         self.assembler.invalidate();
     }
     /// Number of triangles of the uniform tessellation at `depth` (visible faces).
-    pub fn uniform_triangles_at(&self, depth: u8) -> usize {
+    pub fn uniform_triangles_at(&self, depth: Depth) -> usize {
         let d = depth as u32;
         self.mesh
             .faces()
@@ -156,7 +156,7 @@ impl DynamicSubdivision {
     }
     /// Overrides the view-dependent depths with fixed per-face depths (uniform tessellation, or
     /// depths from a Degree-of-Interest function); `None` returns to view-dependent depths.
-    pub fn set_face_depths(&mut self, depths: Option<Vec<u8>>) -> Result<(), AssemblyError> {
+    pub fn set_face_depths(&mut self, depths: Option<Vec<Depth>>) -> Result<(), AssemblyError> {
         if let Some(d) = &depths {
             if d.len() != self.mesh.num_faces() {
                 return Err(AssemblyError::Length {
@@ -262,9 +262,9 @@ impl DynamicSubdivision {
 /// For each cage face and depth `l <= max_depth`: the largest distance between the limit surface
 /// and the bilinear chord quads of the depth-`l` tessellation, sampled on the depth-`max_depth+1`
 /// grid of every patch of the face.
-pub fn chord_deviations(mesh: &Mesh, asm: &Assembler, max_depth: u8) -> Vec<Vec<f32>> {
+pub fn chord_deviations(mesh: &Mesh, asm: &Assembler, max_depth: Depth) -> Vec<Vec<f32>> {
     let set = asm.patch_set();
-    let fine = max_depth as u32 + 1;
+    let fine = max_depth + 1;
     let per_patch: Vec<Vec<f32>> = set
         .patches()
         .par_iter()
@@ -272,7 +272,7 @@ pub fn chord_deviations(mesh: &Mesh, asm: &Assembler, max_depth: u8) -> Vec<Vec<
             || (thread_worker(fine), Vec::new(), Vec::new()),
             |(w, pos, nrm), p| {
                 // Level-1 patches are one level coarser than their face.
-                let l_fine = fine - p.level as u32;
+                let l_fine = fine - p.level;
                 let n = 1usize << l_fine;
                 pos.resize((n + 1) * (n + 1), [0.0f32; 3]);
                 nrm.resize((n + 1) * (n + 1), [0.0f32; 3]);
@@ -349,7 +349,7 @@ mod tests {
         Mesh::from_soup(&parse_obj(obj).unwrap()).unwrap()
     }
 
-    fn params(max_depth: u8) -> DepthParams {
+    fn params(max_depth: Depth) -> DepthParams {
         DepthParams {
             max_depth,
             projected_size: None,

@@ -4,7 +4,7 @@
 
 use glam::Vec3;
 use subdiv_mesh::Mesh;
-use subdiv_rules::{LimitMesh, RulesError, Scheme, tessellate_uniform};
+use subdiv_rules::{Depth, LimitMesh, RulesError, Scheme, tessellate_uniform};
 use subdiv_slate::SlateError;
 use subdiv_vk::OwnedMesh;
 
@@ -26,7 +26,7 @@ pub enum SceneError {
 
 /// The uniform limit tessellation of `mesh` at `depth`: Catmull-Clark on the slate tessellator,
 /// Loop on the whole-mesh refinement.
-pub fn uniform_limit(mesh: &Mesh, scheme: Scheme, depth: u32) -> Result<LimitMesh, SceneError> {
+pub fn uniform_limit(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<LimitMesh, SceneError> {
     Ok(match scheme {
         Scheme::CatmullClark => subdiv_slate::tessellate(mesh, depth)?,
         Scheme::Loop => tessellate_uniform(mesh, scheme, depth)?,
@@ -47,7 +47,7 @@ pub struct Scene {
 impl Scene {
     /// The uniform tessellation of `cage` at `depth` as a scene; every vertex's scalar is
     /// `depth`. A tessellation without faces is [`SceneError::Empty`].
-    pub fn uniform(cage: &Mesh, scheme: Scheme, depth: u32) -> Result<Scene, SceneError> {
+    pub fn uniform(cage: &Mesh, scheme: Scheme, depth: Depth) -> Result<Scene, SceneError> {
         let limit = uniform_limit(cage, scheme, depth)?;
         if limit.num_faces() == 0 {
             return Err(SceneError::Empty);

@@ -5,18 +5,22 @@
 
 use rayon::prelude::*;
 use subdiv_mesh::{HalfedgeId, Mesh};
-use subdiv_slate::{PatchSet, thread_worker};
+use subdiv_slate::{Depth, MAX_DEPTH, PatchSet, thread_worker};
 
 use super::edges::Frame;
 use super::geometry::FrameGeometry;
 use super::index::FanMethod;
 use crate::AssemblyError;
 
+/// The deepest face depth the assembler accepts: one below [`MAX_DEPTH`], since a patch next to a
+/// deeper one is computed one level deeper for its fan centres and subdivided edges.
+pub const MAX_ADAPTIVE_DEPTH: Depth = MAX_DEPTH - 1;
+
 /// A patch's cached limit points.
 #[derive(Clone, Debug, Default)]
 pub(super) struct Block {
-    /// Depth the block was computed at (`-1`: never).
-    pub(super) depth: i32,
+    /// Depth the block was computed at (`None`: never).
+    pub(super) depth: Option<Depth>,
     pub(super) pos: Vec<[f32; 3]>,
     pub(super) nrm: Vec<[f32; 3]>,
 }
@@ -35,17 +39,19 @@ pub struct Assembler {
     blocks: Vec<Block>,
     block_start: Vec<u32>,
     version: u64,
-    maxsd: u32,
+    max_depth: Depth,
     method: FanMethod,
 }
 
 impl Assembler {
-    /// Sets up the patches of `mesh`. `maxsd` is the deepest depth that will be requested.
-    pub fn new(mesh: &Mesh, maxsd: u32) -> Result<Assembler, AssemblyError> {
-        if maxsd > subdiv_slate::MAX_DEPTH - 1 {
+    /// Sets up the patches of `mesh`. `max_depth` is the deepest depth that will be requested;
+    /// it is at most [`MAX_ADAPTIVE_DEPTH`] (a patch next to a deeper one is computed one level
+    /// deeper for its fan centres).
+    pub fn new(mesh: &Mesh, max_depth: Depth) -> Result<Assembler, AssemblyError> {
+        if max_depth > MAX_ADAPTIVE_DEPTH {
             return Err(AssemblyError::TooDeep {
-                depth: maxsd,
-                max: subdiv_slate::MAX_DEPTH - 1,
+                depth: max_depth,
+                max: MAX_ADAPTIVE_DEPTH,
             });
         }
         let set = PatchSet::new(mesh)?;
@@ -69,14 +75,14 @@ impl Assembler {
             units,
             blocks: vec![
                 Block {
-                    depth: -1,
+                    depth: None,
                     ..Default::default()
                 };
                 n
             ],
             block_start: vec![0; n + 1],
             version: 0,
-            maxsd,
+            max_depth,
             method: FanMethod::Subdivided,
         })
     }
@@ -92,23 +98,23 @@ impl Assembler {
     }
 
     /// Smallest depth a unit can have (level-1 units need at least 1).
-    pub fn min_depth(&self, unit: usize) -> u8 {
-        self.set.units()[unit].irregular as u8
+    pub fn min_depth(&self, unit: usize) -> Depth {
+        self.set.units()[unit].irregular as Depth
     }
 
     /// Drops all cached blocks (e.g. after the mesh's positions changed).
     pub fn invalidate(&mut self) {
         for b in &mut self.blocks {
-            b.depth = -1;
+            b.depth = None;
         }
     }
 
-    /// Builds a frame: `depth[u]` per unit (cage face; clamped to `min_depth..=maxsd`) and
+    /// Builds a frame: `depth[u]` per unit (cage face; clamped to `min_depth..=max_depth`) and
     /// `active[u]` (units not drawn, e.g. culled or holes, are `false`).
     pub fn frame(
         &mut self,
         mesh: &Mesh,
-        depth: &[u8],
+        depth: &[Depth],
         active: &[bool],
         out: &mut FrameGeometry,
     ) -> Result<(), AssemblyError> {
@@ -120,8 +126,8 @@ impl Assembler {
                 want: nu,
             });
         }
-        let depth: Vec<u8> = (0..nu)
-            .map(|u| depth[u].clamp(self.min_depth(u), self.maxsd as u8))
+        let depth: Vec<Depth> = (0..nu)
+            .map(|u| depth[u].clamp(self.min_depth(u), self.max_depth))
             .collect();
         let required = self.required_depths(mesh, &depth, active);
         self.check_size(&required)?;
@@ -151,8 +157,8 @@ impl Assembler {
     }
 
     /// Required depth per patch: its own, plus one where it must fan towards a deeper side
-    /// (`-1` for inactive patches).
-    fn required_depths(&self, mesh: &Mesh, depth: &[u8], active: &[bool]) -> Vec<i32> {
+    /// (`None` for inactive patches).
+    fn required_depths(&self, mesh: &Mesh, depth: &[Depth], active: &[bool]) -> Vec<Option<Depth>> {
         let fr = Frame::new(
             mesh,
             &self.set,
@@ -166,21 +172,19 @@ impl Assembler {
             .patches()
             .iter()
             .map(|p| {
-                if active[p.unit as usize] {
-                    fr.patch_depth(p) as i32 + fr.fans(p).iter().any(|&x| x) as i32
-                } else {
-                    -1
-                }
+                active[p.unit as usize].then(|| {
+                    fr.patch_depth(p) as Depth + Depth::from(fr.fans(p).iter().any(|&x| x))
+                })
             })
             .collect()
     }
 
     /// Refuses frames whose blocks would not fit in memory.
-    fn check_size(&self, required: &[i32]) -> Result<(), AssemblyError> {
+    fn check_size(&self, required: &[Option<Depth>]) -> Result<(), AssemblyError> {
         let total: u64 = (0..required.len())
-            .map(|i| {
-                let d = required[i].max(self.blocks[i].depth);
-                if d < 0 { 0 } else { ((1u64 << d) + 1).pow(2) }
+            .map(|i| match required[i].max(self.blocks[i].depth) {
+                None => 0,
+                Some(d) => ((1u64 << d) + 1).pow(2),
             })
             .sum();
         if total > subdiv_slate::MAX_POINTS {
@@ -190,22 +194,23 @@ impl Assembler {
     }
 
     /// Recomputes the blocks that are too coarse for `required`; returns how many.
-    fn recompute_blocks(&mut self, mesh: &Mesh, required: &[i32]) -> usize {
+    fn recompute_blocks(&mut self, mesh: &Mesh, required: &[Option<Depth>]) -> usize {
         let todo: Vec<usize> = (0..required.len())
             .filter(|&i| required[i] > self.blocks[i].depth)
             .collect();
         let set = &self.set;
-        let maxsd = self.maxsd + 1;
+        let max_depth = self.max_depth + 1;
         let mut fresh: Vec<(usize, Block)> = todo
             .par_iter()
             .map_init(
-                || thread_worker(maxsd),
+                || thread_worker(max_depth),
                 |w, &i| {
                     let p = &set.patches()[i];
-                    let d = required[i] as u32;
+                    // Only patches with a required depth are recomputed (`None` is below any).
+                    let d = required[i].unwrap_or_default();
                     let n = (1usize << d) + 1;
                     let mut b = Block {
-                        depth: d as i32,
+                        depth: Some(d),
                         pos: vec![[0.0; 3]; n * n],
                         nrm: vec![[0.0; 3]; n * n],
                     };
@@ -241,7 +246,7 @@ impl Assembler {
     }
 
     /// Depth per vertex (of the patch whose block holds it, at this frame's depth).
-    fn fill_vertex_depth(&self, depth: &[u8], out: &mut FrameGeometry) {
+    fn fill_vertex_depth(&self, depth: &[Depth], out: &mut FrameGeometry) {
         out.vertex_depth.clear();
         out.vertex_depth.resize(out.positions.len(), 0.0);
         for (i, p) in self.set.patches().iter().enumerate() {
@@ -259,7 +264,7 @@ impl Assembler {
     pub(super) fn with_frame<R>(
         &self,
         mesh: &Mesh,
-        depth: &[u8],
+        depth: &[Depth],
         active: &[bool],
         f: impl FnOnce(&Frame) -> R,
     ) -> R {
@@ -419,7 +424,7 @@ mod tests {
         let mut asm = Assembler::new(&mesh, max).unwrap();
         let mut g = FrameGeometry::default();
         let err = asm
-            .frame(&mesh, &[max as u8; 36], &[true; 36], &mut g)
+            .frame(&mesh, &[max; 36], &[true; 36], &mut g)
             .unwrap_err();
         let want = 36 * ((1u64 << max) + 1).pow(2);
         assert!(want > subdiv_slate::MAX_POINTS);

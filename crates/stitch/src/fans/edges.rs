@@ -105,9 +105,13 @@ impl<'a> Frame<'a> {
     #[inline]
     pub(super) fn own(&self, pi: usize, i: u32, j: u32, d_coords: u32) -> u32 {
         let b = &self.blocks[pi];
-        debug_assert!(b.depth >= d_coords as i32, "block too coarse");
-        let stride = 1u32 << (b.depth as u32 - d_coords);
-        let w = (1u32 << b.depth) + 1;
+        debug_assert!(
+            b.depth.is_some_and(|c| u32::from(c) >= d_coords),
+            "block too coarse"
+        );
+        let depth = u32::from(b.depth.unwrap_or_default());
+        let stride = 1u32 << (depth - d_coords);
+        let w = (1u32 << depth) + 1;
         self.block_start[pi] + j * stride * w + i * stride
     }
 

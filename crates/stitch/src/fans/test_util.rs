@@ -49,12 +49,12 @@ pub(super) fn split_cube() -> Mesh {
 /// One frame of a fresh assembler.
 pub(super) fn frame(
     mesh: &Mesh,
-    maxsd: u32,
+    max_depth: subdiv_slate::Depth,
     depth: &[u8],
     active: &[bool],
     method: FanMethod,
 ) -> FrameGeometry {
-    let mut asm = Assembler::new(mesh, maxsd).unwrap();
+    let mut asm = Assembler::new(mesh, max_depth).unwrap();
     asm.set_method(method);
     let mut g = FrameGeometry::default();
     asm.frame(mesh, depth, active, &mut g).unwrap();
