@@ -227,7 +227,7 @@ impl DynamicSubdivision {
             if let Some(t) = last_frame_time {
                 c.update(t);
             }
-            c.apply(&mut a.depth);
+            c.apply(&mut a);
         }
         for f in self.mesh.faces() {
             if self.mesh.is_hole(f) {
