@@ -24,7 +24,10 @@ fn receding_eye_coarsens_down_to_depth_zero() {
     let mut node = DynamicSubdivision::new(mesh, DepthParams::default()).unwrap();
     let mut counts = Vec::new();
     for d in [2.0f32, 10.0, 40.0, 160.0] {
-        let tris = node.update(&camera(lo, hi, d), None).unwrap().num_triangles();
+        let tris = node
+            .update(&camera(lo, hi, d), None)
+            .unwrap()
+            .num_triangles();
         let depths = &node.assignment().depth;
         let mut hist = [0usize; 6];
         for &x in depths {
@@ -42,7 +45,13 @@ fn receding_eye_coarsens_down_to_depth_zero() {
             "triangles must fall as the eye recedes: {counts:?}"
         );
     }
-    assert!(counts[2].1 < counts[1].1 && counts[1].1 < counts[0].1, "{counts:?}");
+    assert!(
+        counts[2].1 < counts[1].1 && counts[1].1 < counts[0].1,
+        "{counts:?}"
+    );
     let (_, _, deepest) = counts[3];
-    assert_eq!(deepest, 0, "at 160 half-diagonals every patch is at depth 0: {counts:?}");
+    assert_eq!(
+        deepest, 0,
+        "at 160 half-diagonals every patch is at depth 0: {counts:?}"
+    );
 }

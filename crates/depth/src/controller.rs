@@ -178,7 +178,11 @@ impl FrameRateController {
             })
             .collect();
         movable.sort_unstable_by(|x, y| {
-            let by_priority = if up { y.0.total_cmp(&x.0) } else { x.0.total_cmp(&y.0) };
+            let by_priority = if up {
+                y.0.total_cmp(&x.0)
+            } else {
+                x.0.total_cmp(&y.0)
+            };
             by_priority.then(x.1.cmp(&y.1))
         });
         // The share counts triangles, not patches, so the cost model holds whatever depths the

@@ -6,11 +6,23 @@ use super::*;
 /// at depth 0.
 fn scene(n: usize) -> Assignment {
     let class: Vec<Class> = (0..n)
-        .map(|i| if i % 7 == 3 { Class::Back } else { Class::Front })
+        .map(|i| {
+            if i % 7 == 3 {
+                Class::Back
+            } else {
+                Class::Front
+            }
+        })
         .collect();
     Assignment {
         depth: (0..n)
-            .map(|i| if class[i] == Class::Back { 0 } else { (i % 5) as u8 })
+            .map(|i| {
+                if class[i] == Class::Back {
+                    0
+                } else {
+                    (i % 5) as u8
+                }
+            })
             .collect(),
         active: vec![true; n],
         radius: (0..n).map(|i| 10.0 + ((i * 37) % 101) as f32).collect(),
@@ -21,7 +33,11 @@ fn scene(n: usize) -> Assignment {
 
 /// Frame time of a scene whose cost is proportional to its triangles.
 fn cost(a: &Assignment, seconds_per_triangle: f32) -> f32 {
-    a.depth.iter().map(|&d| 2.0 * 4f32.powi(d as i32)).sum::<f32>() * seconds_per_triangle
+    a.depth
+        .iter()
+        .map(|&d| 2.0 * 4f32.powi(d as i32))
+        .sum::<f32>()
+        * seconds_per_triangle
 }
 
 /// Runs `frames` frames; returns the frame rates.
@@ -62,9 +78,15 @@ fn adjustment_shrinks_near_the_target() {
         c.share().abs()
     };
     let slow: Vec<f32> = [1.9, 1.5, 1.2, 1.05].into_iter().map(step).collect();
-    assert!(slow.windows(2).all(|w| w[0] > w[1] && w[1] > 0.0), "{slow:?}");
+    assert!(
+        slow.windows(2).all(|w| w[0] > w[1] && w[1] > 0.0),
+        "{slow:?}"
+    );
     let fast: Vec<f32> = [0.55, 0.7, 0.85, 0.95].into_iter().map(step).collect();
-    assert!(fast.windows(2).all(|w| w[0] > w[1] && w[1] > 0.0), "{fast:?}");
+    assert!(
+        fast.windows(2).all(|w| w[0] > w[1] && w[1] > 0.0),
+        "{fast:?}"
+    );
     // Inside the dead band nothing moves.
     assert_eq!(step(1.02), 0.0);
     assert_eq!(step(0.98), 0.0);
@@ -128,14 +150,26 @@ fn patches_are_chosen_by_priority() {
         );
         for f in stayed {
             if up {
-                assert!(p(f) <= worst_moved, "{f} has priority {} > {worst_moved}", p(f));
+                assert!(
+                    p(f) <= worst_moved,
+                    "{f} has priority {} > {worst_moved}",
+                    p(f)
+                );
             } else {
-                assert!(p(f) >= worst_moved, "{f} has priority {} < {worst_moved}", p(f));
+                assert!(
+                    p(f) >= worst_moved,
+                    "{f} has priority {} < {worst_moved}",
+                    p(f)
+                );
             }
         }
         // One level each way, never past the cap or below 0.
         for &f in &moved {
-            let want = if up { geo.depth[f] + 1 } else { geo.depth[f] - 1 };
+            let want = if up {
+                geo.depth[f] + 1
+            } else {
+                geo.depth[f] - 1
+            };
             assert_eq!(a.depth[f], want);
         }
     }
@@ -147,11 +181,22 @@ fn converges_within_70_frames() {
     let geo = scene(2320);
     let spt = 1e-7;
     let full = 1.0 / cost(&geo, spt);
-    for target in [full * 1.8, full * 3.0, full * 0.9, full * 0.7, full * 6.0, full * 20.0] {
+    for target in [
+        full * 1.8,
+        full * 3.0,
+        full * 0.9,
+        full * 0.7,
+        full * 6.0,
+        full * 20.0,
+    ] {
         let mut c = FrameRateController::new(target, 4);
         let fps = run(&geo, &mut c, spt, 120);
         let ok = (70..120).all(|i| (fps[i] / target - 1.0).abs() <= 0.05);
-        assert!(ok, "target {target:.1}: fps from frame 70: {:?}", &fps[70..80]);
+        assert!(
+            ok,
+            "target {target:.1}: fps from frame 70: {:?}",
+            &fps[70..80]
+        );
     }
     // Switching targets (the paper's 14-15 -> 39-40 fps experiment, Section 5).
     let (low, high) = (full * 1.2, full * 3.5);
@@ -159,7 +204,11 @@ fn converges_within_70_frames() {
     run(&geo, &mut c, spt, 80);
     c.set_target_fps(high);
     let fps = run(&geo, &mut c, spt, 80);
-    assert!((70..80).all(|i| (fps[i] / high - 1.0).abs() <= 0.05), "{:?}", &fps[60..80]);
+    assert!(
+        (70..80).all(|i| (fps[i] / high - 1.0).abs() <= 0.05),
+        "{:?}",
+        &fps[60..80]
+    );
 }
 
 #[test]
@@ -177,4 +226,3 @@ fn deterministic_and_bounded() {
     a.apply(&mut s);
     assert!(s.depth.iter().all(|&x| x <= a.cap()));
 }
-

@@ -145,7 +145,11 @@ mod tests {
             for &v in lim.face(g) {
                 let p = Vec3::from(lim.positions[v as usize]);
                 let d = (p - s.centre).length();
-                assert!(d <= s.radius, "face {a}: limit point at {d} > radius {}", s.radius);
+                assert!(
+                    d <= s.radius,
+                    "face {a}: limit point at {d} > radius {}",
+                    s.radius
+                );
             }
         }
     }
