@@ -7,13 +7,15 @@
 use glam::Vec3;
 use subdiv_mesh::{Camera, Mesh};
 
+use crate::Depth;
 use crate::curvature::VertexData;
+use crate::sphere::Sphere;
 
 /// The paper's user parameters, plus the pixel-error mode and back-face culling.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DepthParams {
     /// Deepest depth (`maxsd`).
-    pub max_depth: u8,
+    pub max_depth: Depth,
     /// `NormalConeAperture` in degrees.
     pub cone_aperture_deg: f32,
     /// `VertexClassifier` epsilon on `ln . camray`.
@@ -63,34 +65,6 @@ pub fn classify_vertex(camera: &Camera, lp: Vec3, ln: Vec3, eps: f32) -> Class {
     }
 }
 
-/// A bounding sphere.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sphere {
-    /// Centre.
-    pub centre: Vec3,
-    /// Radius.
-    pub radius: f32,
-}
-
-/// A bounding sphere for each cage face's limit patch: centred at the average of its corners'
-/// limit points, containing its control points (the limit patch lies in the convex hull of its
-/// 1-neighbourhood; the face's own vertices and corner limits are a close, cheap stand-in).
-pub fn face_spheres(mesh: &Mesh, vd: &VertexData) -> Vec<Sphere> {
-    mesh.faces()
-        .map(|f| {
-            let vs = mesh.face_vertices(f);
-            let centre = vs.iter().map(|v| vd.limit[v.idx()]).sum::<Vec3>() / vs.len() as f32;
-            let mut r = 0.0f32;
-            for v in vs {
-                r = r
-                    .max((vd.limit[v.idx()] - centre).length())
-                    .max((mesh.position(*v) - centre).length());
-            }
-            Sphere { centre, radius: r }
-        })
-        .collect()
-}
-
 /// Projected radius in pixels of a sphere (infinite when the eye is inside it).
 #[inline]
 pub fn projected_radius(camera: &Camera, s: &Sphere) -> f32 {
@@ -101,32 +75,67 @@ pub fn projected_radius(camera: &Camera, s: &Sphere) -> f32 {
     s.radius * camera.focal_pixels() / (d * d - s.radius * s.radius).sqrt()
 }
 
-/// The projected-size adjustment: from depth `l`, deepen while `R 2^-l > r_max`, or go up while
-/// `R 2^-l < r_min` (keeping `R 2^-l >= r_min`).
-pub fn adjust_projected(l: u8, r: f32, (r_min, r_max): (f32, f32), max_depth: u8) -> u8 {
-    let size = |l: u8| r / (1u32 << l) as f32;
+/// The projected-size adjustment of Section 3.1, for a patch whose bounding sphere projects to
+/// radius `r` pixels, so that its sub-patches at depth `l` measure `R 2^-l`:
+///
+/// * if `R 2^-l > r_max`, the least `s` with `R 2^-(l+s) <= r_max` further levels (at most up
+///   to `max_depth`): depth `l + s`;
+/// * if `R 2^-l < r_min`, the least `s` with `R 2^-(l-s) >= r_min`, over any number of levels:
+///   depth `l - s`, or depth 0 when even the whole patch (`R`) is below `r_min`;
+/// * otherwise `l`.
+///
+/// With `r_max >= 2 r_min` (the band spans at least one level) the result lies in the band
+/// whenever some depth in `0..=max_depth` does.
+pub fn adjust_projected(l: Depth, r: f32, (r_min, r_max): (f32, f32), max_depth: Depth) -> Depth {
+    let size = |l: Depth| r / (1u32 << l) as f32;
     let mut l = l.min(max_depth);
     if size(l) > r_max {
         while l < max_depth && size(l) > r_max {
             l += 1;
         }
-    } else if size(l) < r_min {
-        while l > 0 && size(l - 1) >= r_min && size(l) < r_min {
+    } else {
+        while l > 0 && size(l) < r_min {
             l -= 1;
         }
     }
     l
 }
 
+/// The frame-rate control priority of a patch (Section 3.1 leaves the choice open): an estimate,
+/// up to a constant factor, of the screen-space chord error of its sub-patches at depth `d`.
+/// A sub-patch measures `rho = R 2^-d` pixels; the curvature depth `c` is where the normal
+/// spread falls to the cone aperture `alpha`, and the spread halves with every level, so at `d`
+/// it is `alpha 2^(c-d)`; a chord across an arc of radius `rho` and turning angle `theta`
+/// deviates by about `rho theta / 4`. Dropping the common factor `alpha / 4`:
+/// `R 2^(c - 2d)`. Raising the patch with the largest value (or lowering the smallest) buys
+/// the most (or costs the least) visible error per patch moved.
+#[inline]
+pub fn priority(r: f32, curvature: Depth, d: Depth) -> f32 {
+    r * ((curvature as i32 - 2 * d as i32) as f32).exp2()
+}
+
 /// The result of one frame's assignment.
 #[derive(Clone, Debug, Default)]
 pub struct Assignment {
     /// Depth per cage face.
-    pub depth: Vec<u8>,
+    pub depth: Vec<Depth>,
     /// `false` for culled faces.
     pub active: Vec<bool>,
     /// Class per cage face.
     pub class: Vec<Class>,
+    /// Projected radius `R` of each face's bounding sphere, in pixels.
+    pub radius: Vec<f32>,
+    /// Curvature depth of each face (the largest of its vertices').
+    pub curvature: Vec<Depth>,
+}
+
+impl Assignment {
+    /// The frame-rate control [`priority`] of every face at its current depth.
+    pub fn priorities(&self) -> Vec<f32> {
+        (0..self.depth.len())
+            .map(|f| priority(self.radius[f], self.curvature[f], self.depth[f]))
+            .collect()
+    }
 }
 
 /// Assigns a depth to every cage face for `camera`. `deviation[f][l]` (world units) is the chord
@@ -144,8 +153,7 @@ pub fn assign(
         .collect();
     let mut out = Assignment {
         depth: Vec::with_capacity(mesh.num_faces()),
-        active: Vec::new(),
-        class: Vec::new(),
+        ..Assignment::default()
     };
     for f in mesh.faces() {
         let vs = mesh.face_vertices(f);
@@ -162,32 +170,36 @@ pub fn assign(
             Class::Front => curv,
             Class::Silhouette => (p.max_depth + curv).div_ceil(2),
         };
+        let r = projected_radius(camera, &spheres[f.idx()]);
         if cls != Class::Back {
             if let (Some(px), Some(dev)) = (p.pixel_error, deviation) {
                 d = pixel_error_depth(camera, &spheres[f.idx()], &dev[f.idx()], px, p.max_depth);
             } else if let Some(ps) = p.projected_size {
-                d = adjust_projected(
-                    d,
-                    projected_radius(camera, &spheres[f.idx()]),
-                    ps,
-                    p.max_depth,
-                );
+                d = adjust_projected(d, r, ps, p.max_depth);
             }
         }
         out.depth.push(d.min(p.max_depth));
         out.active.push(!(p.cull_back && cls == Class::Back));
         out.class.push(cls);
+        out.radius.push(r);
+        out.curvature.push(curv);
     }
     out
 }
 
 /// The least depth whose chord error, projected at the sphere's nearest point, is at most `px`.
-pub fn pixel_error_depth(camera: &Camera, s: &Sphere, dev: &[f32], px: f32, max_depth: u8) -> u8 {
+pub fn pixel_error_depth(
+    camera: &Camera,
+    s: &Sphere,
+    dev: &[f32],
+    px: f32,
+    max_depth: Depth,
+) -> Depth {
     let d = ((s.centre - camera.eye).length() - s.radius).max(1e-6 * s.radius.max(1e-6));
     let scale = camera.focal_pixels() / d;
     for (l, &e) in dev.iter().enumerate().take(max_depth as usize + 1) {
         if e * scale <= px {
-            return l as u8;
+            return l as Depth;
         }
     }
     max_depth
@@ -239,6 +251,57 @@ mod tests {
         assert_eq!(adjust_projected(3, 40.0, (2.0, 8.0), 6), 3);
         // Never beyond max depth.
         assert_eq!(adjust_projected(0, 1e6, (2.0, 8.0), 4), 4);
+    }
+
+    #[test]
+    fn projected_size_coarsens_any_number_of_levels() {
+        // R = 20 px: depth 5 gives 0.625 px sub-patches; the least s with 20 2^-(5-s) >= 2
+        // is s = 2 (depth 3: 2.5 px); depth 4 (1.25 px) would still be below r_min.
+        assert_eq!(adjust_projected(5, 20.0, (2.0, 8.0), 5), 3);
+        // R = 4 px: three levels up, to depth 1 (2 px).
+        assert_eq!(adjust_projected(4, 4.0, (2.0, 8.0), 5), 1);
+        // A whole patch below r_min (a few pixels for the whole model): depth 0.
+        assert_eq!(adjust_projected(5, 1.5, (2.0, 8.0), 5), 0);
+        assert_eq!(adjust_projected(5, 0.0, (2.0, 8.0), 5), 0);
+        // Deepening: the least s with R 2^-(l+s) <= r_max, several levels at once.
+        assert_eq!(adjust_projected(0, 100.0, (2.0, 8.0), 6), 4);
+        // Within the band, any depth is left alone.
+        for l in 0..=5u8 {
+            let r = 5.0 * (1u32 << l) as f32;
+            assert_eq!(adjust_projected(l, r, (2.0, 8.0), 5), l);
+        }
+    }
+
+    #[test]
+    fn projected_size_result_is_in_band_when_possible() {
+        // r_max = 2 r_min + margin: for any R and start depth the result is in the band
+        // whenever some depth of 0..=6 is.
+        let band = (2.0, 8.0);
+        for i in 0..400 {
+            let r = 0.1 * 1.03f32.powi(i);
+            for l in 0..=6u8 {
+                let d = adjust_projected(l, r, band, 6);
+                let size = r / (1u32 << d) as f32;
+                let possible = (0..=6).any(|k| {
+                    let s = r / (1u32 << k) as f32;
+                    s >= band.0 && s <= band.1
+                });
+                if possible {
+                    assert!(size >= band.0 && size <= band.1, "R {r} from {l}: {d}");
+                } else {
+                    assert!(d == 0 || d == 6, "R {r} from {l}: {d}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn priority_prefers_large_curved_coarse_patches() {
+        assert!(priority(100.0, 3, 2) > priority(50.0, 3, 2));
+        assert!(priority(100.0, 4, 2) > priority(100.0, 3, 2));
+        assert!(priority(100.0, 3, 1) > priority(100.0, 3, 2));
+        // One level deeper quarters the estimate (size and normal spread both halve).
+        assert_eq!(priority(64.0, 2, 3) * 4.0, priority(64.0, 2, 2));
     }
 
     #[test]

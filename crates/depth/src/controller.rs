@@ -1,46 +1,104 @@
 //! Frame-rate control by feedback (Funkhouser and Séquin 1993, as used in Settgast et al. 2004,
-//! Section 3.1): measured frame times move patches one depth down (too slow) or up (too fast).
-//! The cap `maxsd` moves first for rapid changes; near the target only a fraction of the patches
-//! moves, and that fraction shrinks as the frame rate approaches the target.
+//! Section 3.1): "Starting with the tessellation depths assigned from geometric properties,
+//! patches are moved to the neighbouring lower depth for decreasing detail and to the
+//! neighbouring higher depth for increasing detail. We always start by adjusting the maximum
+//! depth `maxsd` for rapid adjustment. The amount of adjustment is decreased as the frame rate
+//! gets closer to the target frame rate."
 //!
-//! Pure and deterministic: the same sequence of frame times gives the same depths.
+//! Two knobs, in that order: the cap (the adjusted `maxsd`), moved one level per frame while
+//! the frame time is off by more than [`CAP_RATIO`]; then the movable patches holding a signed
+//! share of their triangles moved one level (up: the highest [`priority`](crate::priority) first; down: the lowest
+//! first), updated in proportion to the remaining error so the steps shrink near the target.
+//! Back faces are never raised.
+//!
+//! **Cost model** behind the constants: a frame's time is taken as proportional to its
+//! triangles, and a patch at depth `d` has `2 * 4^d` of them, so one level costs a factor
+//! [`LEVEL_FACTOR`] per patch.
+//!
+//! Pure and deterministic: the same frame times and assignments give the same depths.
+
+use crate::Depth;
+use crate::assign::{Assignment, Class, priority};
+
+/// Triangles per patch grow by this factor per level (`2 * 4^d` for a quad at depth `d`).
+pub const LEVEL_FACTOR: f32 = 4.0;
+
+/// The cap moves while the frame time is off by more than this ratio, `sqrt(LEVEL_FACTOR)`.
+/// One cap level changes the frame time by a factor of at most [`LEVEL_FACTOR`], so from a
+/// ratio `r > 2` it lands above `r / 4 > 1/2`: closer to the target in log terms than `r`
+/// (`|ln r - ln 4| < |ln r|` exactly when `r > 2`), and never past the opposite threshold, so
+/// the cap cannot oscillate between two levels.
+pub const CAP_RATIO: f32 = 2.0;
+
+/// Dead band, as a log ratio of frame time to target: `ln(40/39)`, the steady-state accuracy
+/// the paper reports (39-40 fps for a 40 fps target, Section 5). Within it nothing moves,
+/// which keeps timer noise from reshuffling patches (and the patch cache) every frame.
+pub const TOLERANCE: f32 = 0.025_317_808; // ln(40 / 39)
+
+/// Fraction of the model's correction applied per frame. The share update is a Newton step on
+/// the cost model; if a share really costs `k` times what the model assumes, the error
+/// shrinks by `|1 - GAIN k|` per frame, which converges for `0 < k < 2 / GAIN = 4`. The model
+/// counts a patch at depth `d` as `4^d` triangles; an n-gon has `n/4` times that at `d >= 1`
+/// and `n` times at depth 0 (`k` up to 2 for pentagons, 3 for hexagons), and the share of
+/// movable triangles is at most all of them (`k <= 1`), so `GAIN = 2 / LEVEL_FACTOR` keeps
+/// every such mismatch inside the range, at the cost of about two frames per halving of the
+/// error where the model is exact.
+pub const GAIN: f32 = 2.0 / LEVEL_FACTOR;
+
+/// Relative cost of moving patches holding a share `s` of the movable triangles one level
+/// (`s > 0`: up, the moved triangles multiply by `LEVEL_FACTOR`; `s < 0`: down, by
+/// `1 / LEVEL_FACTOR`), taking all triangles as movable. Where only a fraction `m` of them is,
+/// the true slope is `m` times the model's: within the convergence range of [`GAIN`].
+fn model(s: f32) -> f32 {
+    if s >= 0.0 {
+        1.0 + (LEVEL_FACTOR - 1.0) * s
+    } else {
+        1.0 + (1.0 - 1.0 / LEVEL_FACTOR) * s
+    }
+}
+
+/// The share whose [`model`] cost is `c`.
+fn model_inverse(c: f32) -> f32 {
+    if c >= 1.0 {
+        (c - 1.0) / (LEVEL_FACTOR - 1.0)
+    } else {
+        (c - 1.0) / (1.0 - 1.0 / LEVEL_FACTOR)
+    }
+}
 
 /// The feedback controller.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FrameRateController {
     target: f32,
-    max_depth: u8,
-    cap: u8,
-    shift: f32,
-    /// Relative error band within which nothing changes.
-    pub tolerance: f32,
-    /// Relative error beyond which the cap moves (rapid adjustment).
-    pub coarse: f32,
-    /// Gain of the fine adjustment.
-    pub gain: f32,
+    max_depth: Depth,
+    cap: Depth,
+    share: f32,
 }
 
 impl FrameRateController {
     /// A controller aiming at `target_fps`, for depths up to `max_depth`.
     ///
     /// ```
-    /// use subdiv_depth::FrameRateController;
+    /// use subdiv_depth::{Assignment, Class, FrameRateController};
     /// let mut c = FrameRateController::new(30.0, 5);
-    /// c.update(0.2); // 5 fps: far too slow, the cap drops at once
-    /// assert_eq!(c.cap(), 4);
-    /// let mut d = vec![5, 3, 1];
-    /// c.apply(&mut d);
-    /// assert_eq!(d[0], 4);
+    /// c.update(0.2); // 5 fps: six times too slow, the cap drops first
+    /// assert_eq!((c.cap(), c.share()), (4, 0.0));
+    /// let mut a = Assignment {
+    ///     depth: vec![5, 3, 1],
+    ///     active: vec![true; 3],
+    ///     class: vec![Class::Front; 3],
+    ///     radius: vec![100.0; 3],
+    ///     curvature: vec![2; 3],
+    /// };
+    /// c.apply(&mut a);
+    /// assert_eq!(a.depth, [4, 3, 1]);
     /// ```
-    pub fn new(target_fps: f32, max_depth: u8) -> FrameRateController {
+    pub fn new(target_fps: f32, max_depth: Depth) -> FrameRateController {
         FrameRateController {
             target: 1.0 / target_fps.max(1e-3),
             max_depth,
             cap: max_depth,
-            shift: 0.0,
-            tolerance: 0.04,
-            coarse: 0.6,
-            gain: 0.35,
+            share: 0.0,
         }
     }
 
@@ -53,12 +111,12 @@ impl FrameRateController {
         1.0 / self.target
     }
     /// The current depth cap (the adjusted `maxsd`).
-    pub fn cap(&self) -> u8 {
+    pub fn cap(&self) -> Depth {
         self.cap
     }
-    /// The fraction of patches currently moved one level (negative: down).
-    pub fn shift(&self) -> f32 {
-        self.shift
+    /// The share of the movable patches' triangles currently moved one level (negative: down).
+    pub fn share(&self) -> f32 {
+        self.share
     }
 
     /// Feeds the time the last frame took (seconds).
@@ -66,145 +124,86 @@ impl FrameRateController {
         if !(frame_time.is_finite() && frame_time > 0.0) {
             return;
         }
-        let e = frame_time / self.target - 1.0; // > 0: too slow
-        if e.abs() <= self.tolerance {
+        let r = frame_time / self.target; // > 1: too slow
+        if r.ln().abs() <= TOLERANCE {
             return;
         }
-        if e > self.coarse && self.cap > 0 {
+        // `maxsd` first, for rapid adjustment.
+        if r > CAP_RATIO && self.cap > 0 {
             self.cap -= 1;
-            self.shift = 0.0;
+            self.share = 0.0;
             return;
         }
-        if e < -self.coarse / (1.0 + self.coarse) && self.cap < self.max_depth {
+        if r < 1.0 / CAP_RATIO && self.cap < self.max_depth {
             self.cap += 1;
-            self.shift = 0.0;
+            self.share = 0.0;
             return;
         }
-        // Fine adjustment, proportional to the (log) error: smaller steps near the target.
-        let step = (-self.gain * (1.0 + e).ln()).clamp(-0.25, 0.25);
-        self.shift += step;
-        if self.shift > 1.0 {
-            if self.cap < self.max_depth {
-                self.cap += 1;
-                self.shift -= 1.0;
-            } else {
-                self.shift = 1.0;
-            }
-        } else if self.shift < -1.0 {
-            if self.cap > 0 {
-                self.cap -= 1;
-                self.shift += 1.0;
-            } else {
-                self.shift = -1.0;
-            }
-        }
+        // Then the share: the model's share for the cost that would meet the target, damped.
+        let want = model_inverse(model(self.share) / r);
+        let next = self.share + GAIN * (want - self.share);
+        self.share = if next > 1.0 && self.cap < self.max_depth {
+            self.cap += 1;
+            0.0
+        } else if next < -1.0 && self.cap > 0 {
+            self.cap -= 1;
+            0.0
+        } else {
+            next.clamp(-1.0, 1.0)
+        };
     }
 
-    /// Applies the control to geometric depths: the cap, then a fraction `|shift|` of the patches
-    /// (chosen by a fixed hash of their index, so the choice is stable between frames) moved one
-    /// level down or up.
-    pub fn apply(&self, depth: &mut [u8]) {
-        let frac = self.shift.abs();
-        for (i, d) in depth.iter_mut().enumerate() {
-            let mut v = (*d).min(self.cap);
-            if hash01(i as u32) < frac {
-                if self.shift < 0.0 {
-                    v = v.saturating_sub(1);
+    /// Applies the control to a frame's geometric depths: every depth capped at [`Self::cap`],
+    /// then `|share|` of the movable patches moved one level. Up: the non-back patches below
+    /// the cap, highest [`priority`] first. Down: the patches above depth 0, lowest priority
+    /// first. Priorities are taken at the capped depths; ties go to the lower face index.
+    pub fn apply(&self, a: &mut Assignment) {
+        for d in &mut a.depth {
+            *d = (*d).min(self.cap);
+        }
+        if self.share == 0.0 {
+            return;
+        }
+        let up = self.share > 0.0;
+        let mut movable: Vec<(f32, usize, f32)> = (0..a.depth.len())
+            .filter(|&f| {
+                if up {
+                    a.class[f] != Class::Back && a.depth[f] < self.cap
                 } else {
-                    v = (v + 1).min(self.cap);
+                    a.depth[f] > 0
                 }
+            })
+            .map(|f| {
+                let p = priority(a.radius[f], a.curvature[f], a.depth[f]);
+                (p, f, LEVEL_FACTOR.powi(a.depth[f] as i32))
+            })
+            .collect();
+        movable.sort_unstable_by(|x, y| {
+            let by_priority = if up {
+                y.0.total_cmp(&x.0)
+            } else {
+                x.0.total_cmp(&y.0)
+            };
+            by_priority.then(x.1.cmp(&y.1))
+        });
+        // The share counts triangles, not patches, so the cost model holds whatever depths the
+        // prioritised patches have.
+        let budget = self.share.abs() * movable.iter().map(|m| m.2).sum::<f32>();
+        let mut moved = 0.0;
+        for &(_, f, tris) in &movable {
+            if moved >= budget {
+                break;
             }
-            *d = v;
+            moved += tris;
+            if up {
+                a.depth[f] += 1;
+            } else {
+                a.depth[f] -= 1;
+            }
         }
     }
-}
-
-/// A fixed pseudo-random number in [0, 1) per index.
-#[inline]
-fn hash01(i: u32) -> f32 {
-    let mut x = i.wrapping_mul(0x9E37_79B9) ^ 0x85EB_CA6B;
-    x ^= x >> 16;
-    x = x.wrapping_mul(0x7FEB_352D);
-    x ^= x >> 15;
-    x = x.wrapping_mul(0x846C_A68B);
-    x ^= x >> 16;
-    (x >> 8) as f32 / (1u32 << 24) as f32
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Frame time of a scene whose cost is proportional to its triangles.
-    fn cost(depths: &[u8], seconds_per_triangle: f32) -> f32 {
-        depths
-            .iter()
-            .map(|&d| 2.0 * 4f32.powi(d as i32))
-            .sum::<f32>()
-            * seconds_per_triangle
-    }
-
-    fn run(
-        geometric: &[u8],
-        target_fps: f32,
-        start_fps_guess: &mut FrameRateController,
-        spt: f32,
-        frames: usize,
-    ) -> Vec<f32> {
-        let mut fps = Vec::new();
-        let c = start_fps_guess;
-        c.set_target_fps(target_fps);
-        for _ in 0..frames {
-            let mut d = geometric.to_vec();
-            c.apply(&mut d);
-            let t = cost(&d, spt);
-            fps.push(1.0 / t);
-            c.update(t);
-        }
-        fps
-    }
-
-    #[test]
-    fn converges_within_70_frames() {
-        // 2320 patches (40 helmets) with geometric depths 0..4.
-        let geometric: Vec<u8> = (0..2320u32).map(|i| (i % 5) as u8).collect();
-        let spt = 1e-7;
-        let full = 1.0 / cost(&geometric, spt);
-        for target in [full * 1.8, full * 3.0, full * 0.9, full * 6.0] {
-            let mut c = FrameRateController::new(target, 4);
-            let fps = run(&geometric, target, &mut c, spt, 120);
-            let ok = (70..120).all(|i| (fps[i] / target - 1.0).abs() <= 0.10);
-            assert!(
-                ok,
-                "target {target:.1}: fps from frame 70: {:?}",
-                &fps[70..80]
-            );
-        }
-        // Switching targets between two levels (the paper's 14-15 -> 39-40 fps experiment).
-        let mut c = FrameRateController::new(1.0, 4);
-        let low = full * 1.2;
-        let high = full * 3.5;
-        run(&geometric, low, &mut c, spt, 80);
-        let fps = run(&geometric, high, &mut c, spt, 80);
-        assert!(
-            (70..80).all(|i| (fps[i] / high - 1.0).abs() <= 0.10),
-            "{:?}",
-            &fps[60..80]
-        );
-    }
-
-    #[test]
-    fn deterministic_and_bounded() {
-        let mut a = FrameRateController::new(60.0, 5);
-        let mut b = a.clone();
-        for t in [0.05, 0.03, 0.02, 0.017, 0.016, 0.01, 0.2, f32::NAN, -1.0] {
-            a.update(t);
-            b.update(t);
-        }
-        assert_eq!(a, b);
-        assert!(a.cap() <= 5 && a.shift().abs() <= 1.0);
-        let mut d = vec![9u8; 10];
-        a.apply(&mut d);
-        assert!(d.iter().all(|&x| x <= a.cap()));
-    }
-}
+#[path = "controller_tests.rs"]
+mod tests;

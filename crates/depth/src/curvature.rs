@@ -6,7 +6,7 @@
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 use subdiv_mesh::{Mesh, VertexId};
-use subdiv_rules::{Ring, Scheme};
+use subdiv_rules::{Depth, Ring, Scheme};
 
 /// Limit point, limit normal and curvature depth of every cage vertex.
 #[derive(Clone, Debug, Default)]
@@ -16,7 +16,7 @@ pub struct VertexData {
     /// Unit limit normals (zero for isolated vertices).
     pub normal: Vec<Vec3>,
     /// Curvature depth (`0..=max_depth`).
-    pub depth: Vec<u8>,
+    pub depth: Vec<Depth>,
 }
 
 impl VertexData {
@@ -34,9 +34,9 @@ impl VertexData {
     /// assert!(v.depth.iter().all(|&d| d >= 2));
     /// # Ok::<(), subdiv_mesh::MeshError>(())
     /// ```
-    pub fn compute(mesh: &Mesh, aperture_deg: f32, max_depth: u8) -> VertexData {
+    pub fn compute(mesh: &Mesh, aperture_deg: f32, max_depth: Depth) -> VertexData {
         let cos_a = (aperture_deg.to_radians() as f64).cos();
-        let per: Vec<(Vec3, Vec3, u8)> = (0..mesh.num_vertices() as u32)
+        let per: Vec<(Vec3, Vec3, Depth)> = (0..mesh.num_vertices() as u32)
             .into_par_iter()
             .map_init(Ring::new, |ring, v| {
                 let v = VertexId(v);
@@ -61,7 +61,7 @@ impl VertexData {
 }
 
 /// The smallest level at which all face normals around the ring's centre are within the cone.
-fn cone_depth(ring: &mut Ring, ln: DVec3, cos_a: f64, max_depth: u8) -> u8 {
+fn cone_depth(ring: &mut Ring, ln: DVec3, cos_a: f64, max_depth: Depth) -> Depth {
     if ln == DVec3::ZERO {
         return 0;
     }

@@ -1,5 +1,7 @@
 //! Depths from a Degree of Interest: face values to per-patch subdivision depths.
 
+use crate::Depth;
+
 /// Maps DoI face values to per-face (per-patch) subdivision depths for a depth-driven
 /// tessellator such as the Catmull-Clark slates.
 ///
@@ -15,7 +17,7 @@
 /// assert_eq!(depths_from_face_values(&[30.0, 40.0, 60.0, 90.0], 30.0, 3), vec![0, 1, 2, 3]);
 /// assert_eq!(depths_from_face_values(&[f32::NAN, 2.0], 0.0, 2), vec![0, 2]);
 /// ```
-pub fn depths_from_face_values(values: &[f32], threshold: f32, max_depth: u8) -> Vec<u8> {
+pub fn depths_from_face_values(values: &[f32], threshold: f32, max_depth: Depth) -> Vec<Depth> {
     let vmax = values
         .iter()
         .copied()
@@ -31,7 +33,7 @@ pub fn depths_from_face_values(values: &[f32], threshold: f32, max_depth: u8) ->
                 max_depth
             } else {
                 let d = (max_depth as f32 * ((v - threshold) / span)).ceil();
-                d.clamp(1.0, max_depth as f32) as u8
+                d.clamp(1.0, max_depth as f32) as Depth
             }
         })
         .collect()
@@ -55,7 +57,7 @@ mod tests {
                 .all(|&x| x == 0)
         );
         assert!(depths_from_face_values(&v, 50.0, 0).iter().all(|&x| x == 0));
-        assert_eq!(depths_from_face_values(&[], 0.0, 3), Vec::<u8>::new());
+        assert_eq!(depths_from_face_values(&[], 0.0, 3), Vec::<Depth>::new());
         assert_eq!(
             depths_from_face_values(&[f32::INFINITY, 1.0], 0.0, 3),
             vec![3, 3]

@@ -20,7 +20,7 @@
 //! let mesh = Mesh::from_soup(&parse_obj(cube)?)?;
 //! let params = DepthParams::default();
 //! let vd = VertexData::compute(&mesh, params.cone_aperture_deg, params.max_depth);
-//! let spheres = face_spheres(&mesh, &vd);
+//! let spheres = face_spheres(&mesh);
 //! let cam = Camera::new(Vec3::new(0.5, 0.5, 5.0), Vec3::splat(0.5), Vec3::Y, 45.0, 800, 600);
 //! let a = assign(&mesh, &vd, &spheres, None, &cam, &params);
 //! assert_eq!(a.depth.len(), 6);
@@ -33,11 +33,14 @@ mod assign;
 mod controller;
 mod curvature;
 mod doi;
+mod sphere;
 
 pub use assign::{
-    Assignment, Class, DepthParams, Sphere, adjust_projected, assign, classify_vertex,
-    face_spheres, pixel_error_depth, projected_radius,
+    Assignment, Class, DepthParams, adjust_projected, assign, classify_vertex, pixel_error_depth,
+    priority, projected_radius,
 };
 pub use controller::FrameRateController;
 pub use curvature::VertexData;
 pub use doi::depths_from_face_values;
+pub use sphere::{SPHERE_FACE_BUDGET, SPHERE_LEVELS, Sphere, face_spheres};
+pub use subdiv_rules::{Depth, MAX_DEPTH};

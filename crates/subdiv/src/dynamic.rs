@@ -48,7 +48,7 @@ impl DynamicSubdivision {
     /// Sets up the node for `mesh`: curvature depths, bounding spheres and patches.
     pub fn new(mesh: Mesh, params: DepthParams) -> Result<DynamicSubdivision, AssemblyError> {
         let vertex = VertexData::compute(&mesh, params.cone_aperture_deg, params.max_depth);
-        let spheres = face_spheres(&mesh, &vertex);
+        let spheres = face_spheres(&mesh);
         let assembler = Assembler::new(&mesh, params.max_depth)?;
         Ok(DynamicSubdivision {
             mesh,
@@ -84,7 +84,7 @@ impl DynamicSubdivision {
         self.params = p;
         if recompute {
             self.vertex = VertexData::compute(&self.mesh, p.cone_aperture_deg, p.max_depth);
-            self.spheres = face_spheres(&self.mesh, &self.vertex);
+            self.spheres = face_spheres(&self.mesh);
         }
         if let Some(c) = &mut self.controller {
             let fps = c.target_fps();
@@ -111,7 +111,7 @@ impl DynamicSubdivision {
             self.params.cone_aperture_deg,
             self.params.max_depth,
         );
-        self.spheres = face_spheres(&self.mesh, &self.vertex);
+        self.spheres = face_spheres(&self.mesh);
         self.deviation = None;
         self.assembler = Assembler::new(&self.mesh, self.params.max_depth)?;
         Ok(())
@@ -227,7 +227,7 @@ impl DynamicSubdivision {
             if let Some(t) = last_frame_time {
                 c.update(t);
             }
-            c.apply(&mut a.depth);
+            c.apply(&mut a);
         }
         for f in self.mesh.faces() {
             if self.mesh.is_hole(f) {

@@ -1,0 +1,228 @@
+//! Unit tests of the frame-rate controller, one per behaviour of Section 3.1's feedback loop.
+
+use super::*;
+
+/// `n` patches with geometric depths 0..=4, radii and curvatures varying; every 7th a back face
+/// at depth 0.
+fn scene(n: usize) -> Assignment {
+    let class: Vec<Class> = (0..n)
+        .map(|i| {
+            if i % 7 == 3 {
+                Class::Back
+            } else {
+                Class::Front
+            }
+        })
+        .collect();
+    Assignment {
+        depth: (0..n)
+            .map(|i| {
+                if class[i] == Class::Back {
+                    0
+                } else {
+                    (i % 5) as Depth
+                }
+            })
+            .collect(),
+        active: vec![true; n],
+        radius: (0..n).map(|i| 10.0 + ((i * 37) % 101) as f32).collect(),
+        curvature: (0..n).map(|i| ((i * 13) % 5) as Depth).collect(),
+        class,
+    }
+}
+
+/// Frame time of a scene whose cost is proportional to its triangles.
+fn cost(a: &Assignment, seconds_per_triangle: f32) -> f32 {
+    a.depth
+        .iter()
+        .map(|&d| 2.0 * 4f32.powi(d as i32))
+        .sum::<f32>()
+        * seconds_per_triangle
+}
+
+/// Runs `frames` frames; returns the frame rates.
+fn run(geo: &Assignment, c: &mut FrameRateController, spt: f32, frames: usize) -> Vec<f32> {
+    let mut fps = Vec::new();
+    for _ in 0..frames {
+        let mut a = geo.clone();
+        c.apply(&mut a);
+        let t = cost(&a, spt);
+        fps.push(1.0 / t);
+        c.update(t);
+    }
+    fps
+}
+
+#[test]
+fn cap_moves_first_while_far_off() {
+    let mut c = FrameRateController::new(30.0, 5);
+    // Ten times too slow: the cap drops one level per frame, the share stays untouched.
+    for cap in [4, 3, 2] {
+        c.update(10.0 / 30.0);
+        assert_eq!((c.cap(), c.share()), (cap, 0.0));
+    }
+    // Ten times too fast: the cap rises again.
+    c.update(0.1 / 30.0);
+    assert_eq!((c.cap(), c.share()), (3, 0.0));
+    // Within a factor CAP_RATIO the cap stays and the share moves.
+    c.update(1.5 / 30.0);
+    assert_eq!(c.cap(), 3);
+    assert!(c.share() < 0.0);
+}
+
+#[test]
+fn adjustment_shrinks_near_the_target() {
+    let step = |ratio: f32| {
+        let mut c = FrameRateController::new(50.0, 5);
+        c.update(ratio / 50.0);
+        c.share().abs()
+    };
+    let slow: Vec<f32> = [1.9, 1.5, 1.2, 1.05].into_iter().map(step).collect();
+    assert!(
+        slow.windows(2).all(|w| w[0] > w[1] && w[1] > 0.0),
+        "{slow:?}"
+    );
+    let fast: Vec<f32> = [0.55, 0.7, 0.85, 0.95].into_iter().map(step).collect();
+    assert!(
+        fast.windows(2).all(|w| w[0] > w[1] && w[1] > 0.0),
+        "{fast:?}"
+    );
+    // Inside the dead band nothing moves.
+    assert_eq!(step(1.02), 0.0);
+    assert_eq!(step(0.98), 0.0);
+}
+
+#[test]
+fn saturated_share_moves_the_cap() {
+    let mut c = FrameRateController::new(60.0, 5);
+    // Persistently 1.8 times too slow: below the cap threshold, so the share falls to -1 and
+    // then the cap takes over.
+    for _ in 0..20 {
+        c.update(1.8 / 60.0);
+    }
+    assert!(c.cap() < 5, "cap {} share {}", c.cap(), c.share());
+}
+
+#[test]
+fn back_faces_are_never_raised() {
+    let geo = scene(700);
+    let mut c = FrameRateController::new(60.0, 5);
+    // Far too fast at the full cap: the whole share goes up.
+    for _ in 0..10 {
+        c.update(0.6 / 60.0);
+    }
+    assert_eq!(c.share(), 1.0);
+    let mut a = geo.clone();
+    c.apply(&mut a);
+    for f in 0..a.depth.len() {
+        if geo.class[f] == Class::Back {
+            assert_eq!(a.depth[f], geo.depth[f], "back face {f} raised");
+        } else {
+            assert_eq!(a.depth[f], (geo.depth[f] + 1).min(5), "front face {f}");
+        }
+    }
+}
+
+#[test]
+fn patches_are_chosen_by_priority() {
+    let geo = scene(500);
+    for ratio in [0.8f32, 1.25] {
+        let mut c = FrameRateController::new(60.0, 5);
+        c.update(ratio / 60.0);
+        let up = c.share() > 0.0;
+        let mut a = geo.clone();
+        c.apply(&mut a);
+        let moved: Vec<usize> = (0..500).filter(|&f| a.depth[f] != geo.depth[f]).collect();
+        assert!(!moved.is_empty());
+        let p = |f: usize| priority(geo.radius[f], geo.curvature[f], geo.depth[f]);
+        // Every moved patch outranks every movable patch left in place.
+        let stayed = (0..500).filter(|&f| {
+            let movable = if up {
+                geo.class[f] != Class::Back && geo.depth[f] < 5
+            } else {
+                geo.depth[f] > 0
+            };
+            movable && a.depth[f] == geo.depth[f]
+        });
+        let worst_moved = moved.iter().map(|&f| p(f)).fold(
+            if up { f32::INFINITY } else { f32::NEG_INFINITY },
+            |m, x| if up { m.min(x) } else { m.max(x) },
+        );
+        for f in stayed {
+            if up {
+                assert!(
+                    p(f) <= worst_moved,
+                    "{f} has priority {} > {worst_moved}",
+                    p(f)
+                );
+            } else {
+                assert!(
+                    p(f) >= worst_moved,
+                    "{f} has priority {} < {worst_moved}",
+                    p(f)
+                );
+            }
+        }
+        // One level each way, never past the cap or below 0.
+        for &f in &moved {
+            let want = if up {
+                geo.depth[f] + 1
+            } else {
+                geo.depth[f] - 1
+            };
+            assert_eq!(a.depth[f], want);
+        }
+    }
+}
+
+#[test]
+fn converges_within_70_frames() {
+    // 2320 patches (the paper's 40 models of 58 faces) with geometric depths 0..4.
+    let geo = scene(2320);
+    let spt = 1e-7;
+    let full = 1.0 / cost(&geo, spt);
+    for target in [
+        full * 1.8,
+        full * 3.0,
+        full * 0.9,
+        full * 0.7,
+        full * 6.0,
+        full * 20.0,
+    ] {
+        let mut c = FrameRateController::new(target, 4);
+        let fps = run(&geo, &mut c, spt, 120);
+        let ok = (70..120).all(|i| (fps[i] / target - 1.0).abs() <= 0.05);
+        assert!(
+            ok,
+            "target {target:.1}: fps from frame 70: {:?}",
+            &fps[70..80]
+        );
+    }
+    // Switching targets (the paper's 14-15 -> 39-40 fps experiment, Section 5).
+    let (low, high) = (full * 1.2, full * 3.5);
+    let mut c = FrameRateController::new(low, 4);
+    run(&geo, &mut c, spt, 80);
+    c.set_target_fps(high);
+    let fps = run(&geo, &mut c, spt, 80);
+    assert!(
+        (70..80).all(|i| (fps[i] / high - 1.0).abs() <= 0.05),
+        "{:?}",
+        &fps[60..80]
+    );
+}
+
+#[test]
+fn deterministic_and_bounded() {
+    let mut a = FrameRateController::new(60.0, 5);
+    let mut b = a.clone();
+    for t in [0.05, 0.03, 0.02, 0.017, 0.016, 0.01, 0.2, f32::NAN, -1.0] {
+        a.update(t);
+        b.update(t);
+    }
+    assert_eq!(a, b);
+    assert!(a.cap() <= 5 && a.share().abs() <= 1.0);
+    let mut s = scene(10);
+    s.depth = vec![9; 10];
+    a.apply(&mut s);
+    assert!(s.depth.iter().all(|&x| x <= a.cap()));
+}

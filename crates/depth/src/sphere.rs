@@ -1,0 +1,183 @@
+//! Bounding spheres of the limit patches (Settgast et al. 2004, Section 3.1: "We use a bounding
+//! sphere around the considered patch and estimate the radius of the projected sphere onto the
+//! image plane").
+//!
+//! **Why the sphere contains the limit patch.** Every Catmull-Clark rule this workspace applies
+//! (`subdiv_rules::catmark`) is an affine combination with non-negative weights: the face point
+//! is a centroid; the smooth edge point is `(a + b + f0 + f1) / 4`, the crease and boundary edge
+//! point the midpoint, a semi-sharp edge a blend of the two with weight `w` in `[0, 1]`; the
+//! smooth and dart vertex rule weighs the vertex `(n - 2) / n >= 0` (any valence `n >= 2`, so
+//! extraordinary vertices too) and its edge and face points `1 / n^2`, the crease rule
+//! `(1/8, 3/4, 1/8)`, the corner rule keeps the vertex, and fractional sharpness blends two
+//! such rules with a weight in `[0, 1]`. The points of a face's children together with their
+//! 1-neighbourhoods are computed from the face's own 1-neighbourhood only (the premise of the
+//! paper's slates, Section 3), so by induction every control point of every descendant of a
+//! face lies in the convex hull of the face's 1-neighbourhood control points. The limit patch
+//! is the closure of the limit points of those descendants' vertices (limit masks are positive
+//! too), so it lies in that closed convex hull, and a sphere that contains the hull's points
+//! contains the hull (a ball is convex) and the patch.
+//!
+//! Applied `k` levels down, the same argument bounds the patch by the union of the
+//! 1-neighbourhoods of its level-`k` descendants, which reaches only about `2^-k` of a face
+//! beyond the face: a tight sphere that is still a proof. Positions are `f32`, so the radius
+//! gets a rounding margin.
+
+use glam::Vec3;
+use subdiv_mesh::Mesh;
+use subdiv_rules::{Depth, Scheme, refine_uniform_levels};
+
+/// A bounding sphere.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sphere {
+    /// Centre.
+    pub centre: Vec3,
+    /// Radius.
+    pub radius: f32,
+}
+
+/// Levels of local refinement behind the spheres: at level 2 the hull reaches a quarter of a
+/// level-1 face (an eighth of the cage face's width) beyond the face, against a whole face
+/// at level 0; a third level would gain another sixteenth for four times the work.
+pub const SPHERE_LEVELS: Depth = 2;
+
+/// Most faces the refinement behind the spheres may create (16 Mi faces, about 1 GiB of
+/// mesh); larger cages use fewer levels, down to the cage's own 1-neighbourhoods.
+pub const SPHERE_FACE_BUDGET: u64 = 1 << 24;
+
+/// A sphere per cage face that provably contains the face's Catmull-Clark limit patch (see
+/// the module documentation): the smallest sphere around the centre of the bounding box of the
+/// control points of the 1-neighbourhoods of the face's level-`k` descendants that contains
+/// them all, `k =` [`SPHERE_LEVELS`] (fewer for very large cages).
+pub fn face_spheres(mesh: &Mesh) -> Vec<Sphere> {
+    for k in (1..=SPHERE_LEVELS).rev() {
+        let faces = subdiv_rules::refined_face_count(mesh, Scheme::CatmullClark, k);
+        if faces > SPHERE_FACE_BUDGET {
+            continue;
+        }
+        if let Ok(fine) = refine_uniform_levels(mesh, Scheme::CatmullClark, k) {
+            return hull_spheres(&fine, &ancestors(mesh, k), mesh.num_faces());
+        }
+    }
+    let identity: Vec<u32> = (0..mesh.num_faces() as u32).collect();
+    hull_spheres(mesh, &identity, mesh.num_faces())
+}
+
+/// The cage face of every face of the level-`k` uniform refinement (`subdiv_rules::refine`
+/// numbers the children of each face consecutively, `n` for an n-gon, then 4 per quad).
+fn ancestors(mesh: &Mesh, k: Depth) -> Vec<u32> {
+    let mut anc: Vec<u32> = mesh
+        .faces()
+        .flat_map(|f| std::iter::repeat_n(f.0, mesh.face_size(f)))
+        .collect();
+    for _ in 1..k {
+        anc = anc.iter().flat_map(|&a| [a; 4]).collect();
+    }
+    anc
+}
+
+/// Spheres around, per ancestor, all control points of the fine faces that share a vertex with
+/// one of its descendants (`ancestor[g]` is the cage face of fine face `g`).
+fn hull_spheres(fine: &Mesh, ancestor: &[u32], n: usize) -> Vec<Sphere> {
+    // Ancestors whose descendants touch each fine vertex.
+    let mut touching: Vec<Vec<u32>> = vec![Vec::new(); fine.num_vertices()];
+    for g in fine.faces() {
+        let a = ancestor[g.idx()];
+        for v in fine.face_vertices(g) {
+            let t = &mut touching[v.idx()];
+            if !t.contains(&a) {
+                t.push(a);
+            }
+        }
+    }
+    // Every fine face touching a descendant of `a` at a vertex is in that descendant's
+    // 1-neighbourhood: its points are in `a`'s hull set.
+    let for_each = |visit: &mut dyn FnMut(usize, Vec3)| {
+        for g in fine.faces() {
+            let vs = fine.face_vertices(g);
+            for v in vs {
+                for &a in &touching[v.idx()] {
+                    for w in vs {
+                        visit(a as usize, fine.position(*w));
+                    }
+                }
+            }
+        }
+    };
+    let mut lo = vec![Vec3::splat(f32::INFINITY); n];
+    let mut hi = vec![Vec3::splat(f32::NEG_INFINITY); n];
+    for_each(&mut |a, p| {
+        lo[a] = lo[a].min(p);
+        hi[a] = hi[a].max(p);
+    });
+    let centre: Vec<Vec3> = lo.iter().zip(&hi).map(|(l, h)| (*l + *h) * 0.5).collect();
+    let mut r2 = vec![0.0f32; n];
+    for_each(&mut |a, p| r2[a] = r2[a].max((p - centre[a]).length_squared()));
+    centre
+        .into_iter()
+        .zip(r2)
+        .map(|(c, r2)| {
+            let r = r2.sqrt();
+            // Rounding: the refined points carry a few ulps of error per level.
+            let margin = 16.0 * f32::EPSILON * (c.abs().max_element() + r);
+            Sphere {
+                centre: if c.is_finite() { c } else { Vec3::ZERO },
+                radius: r + margin,
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use subdiv_mesh::parse_obj;
+    use subdiv_rules::tessellate_uniform;
+
+    const CUBE: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
+                        f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+
+    /// Every limit point of a fine uniform tessellation lies in its cage face's sphere.
+    fn assert_contains(mesh: &Mesh, spheres: &[Sphere], depth: Depth) {
+        let lim = tessellate_uniform(mesh, Scheme::CatmullClark, depth).unwrap();
+        let anc = ancestors(mesh, depth);
+        for (g, a) in anc.iter().enumerate() {
+            let s = spheres[*a as usize];
+            for &v in lim.face(g) {
+                let p = Vec3::from(lim.positions[v as usize]);
+                let d = (p - s.centre).length();
+                assert!(
+                    d <= s.radius,
+                    "face {a}: limit point at {d} > radius {}",
+                    s.radius
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn spheres_contain_the_limit_surface() {
+        let cube = Mesh::from_soup(&parse_obj(CUBE).unwrap()).unwrap();
+        let s = face_spheres(&cube);
+        assert_contains(&cube, &s, 4);
+        // Tight: well inside the unit cube's face circle grown by its 1-ring (radius 1.5).
+        assert!(s.iter().all(|s| s.radius < 0.75), "{s:?}");
+        // A crease and an extraordinary vertex (a pentagon fan) keep the property.
+        let pent = "v 0 0 0\nv 1 0 0\nv 0.3 0.95 0\nv -0.8 0.6 0.2\nv -0.8 -0.6 0\nv 0.3 -0.95 0.3\n\
+                    v 2 1 0\nv 2 -1 0\n\
+                    f 1 2 3\nf 1 3 4\nf 1 4 5\nf 1 5 6\nf 1 6 2\nf 2 8 7 3\nf 2 6 8\n\
+                    t crease 2/1/0 0 1 1.5\nt crease 2/1/0 0 4 5\n";
+        let m = Mesh::from_soup(&parse_obj(pent).unwrap()).unwrap();
+        let s = face_spheres(&m);
+        assert_contains(&m, &s, 4);
+    }
+
+    #[test]
+    fn level_zero_hull_is_looser_but_contains() {
+        let cube = Mesh::from_soup(&parse_obj(CUBE).unwrap()).unwrap();
+        let identity: Vec<u32> = (0..6).collect();
+        let coarse = hull_spheres(&cube, &identity, 6);
+        assert_contains(&cube, &coarse, 4);
+        let fine = face_spheres(&cube);
+        assert!(coarse.iter().zip(&fine).all(|(c, f)| f.radius < c.radius));
+    }
+}
