@@ -76,6 +76,17 @@ pub enum RulesError {
         /// Faces it would produce.
         faces: u64,
     },
+    /// Two triangles on the same three vertices (a closed two-face pillow): Loop refinement would
+    /// join their edge points by two parallel edges, which a mesh cannot hold.
+    #[error(
+        "faces {face} and {other} are triangles on the same three vertices; Loop subdivision cannot refine such a two-face pillow"
+    )]
+    DoubledTriangle {
+        /// The later face.
+        face: u32,
+        /// The earlier face on the same vertices.
+        other: u32,
+    },
     /// A refined mesh failed validation (a bug: refinement of a valid mesh is valid).
     #[error("internal error: refined mesh is invalid: {0}")]
     Internal(subdiv_mesh::MeshError),

@@ -25,6 +25,7 @@ use crate::{RulesError, Scheme, catmark, loop_scheme};
 pub fn refine_uniform(mesh: &Mesh, scheme: Scheme) -> Result<Mesh, RulesError> {
     if scheme == Scheme::Loop {
         mesh.check_triangles()?;
+        check_doubled_triangles(mesh)?;
     }
     let nv = mesh.num_vertices();
     let pos = mesh.positions();
@@ -259,6 +260,31 @@ impl<'m> RefineKernel<'m> {
     }
 }
 
+/// Refuses two triangles on the same three vertices. Loop refinement connects the edge points
+/// of every triangle; for such a pair it would connect the same three edge points twice (parallel
+/// edges, which a [`Mesh`] cannot hold). Such triangles always share an edge, so checking each
+/// face against its neighbours finds them. Refinement never creates new pairs.
+fn check_doubled_triangles(mesh: &Mesh) -> Result<(), RulesError> {
+    let sorted = |f| {
+        let mut k: Vec<u32> = mesh.face_vertices(f).iter().map(|v| v.0).collect();
+        k.sort_unstable();
+        k
+    };
+    for f in mesh.faces() {
+        let h0 = mesh.face_halfedge(f);
+        for h in [h0, mesh.next(h0), mesh.prev(h0)] {
+            let g = mesh.face(h.twin());
+            if g.is_some() && g.0 < f.0 && sorted(f) == sorted(g) {
+                return Err(RulesError::DoubledTriangle {
+                    face: f.0,
+                    other: g.0,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Refines `depth` times.
 pub fn refine_uniform_levels(mesh: &Mesh, scheme: Scheme, depth: u32) -> Result<Mesh, RulesError> {
     check_size(mesh, scheme, depth)?;
@@ -293,4 +319,39 @@ fn check_size(mesh: &Mesh, scheme: Scheme, depth: u32) -> Result<(), RulesError>
         return Err(RulesError::TooDeep { depth, faces });
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use subdiv_mesh::parse_obj;
+
+    /// Found by fuzzing: a pillow (two triangles on one vertex triple) made Loop refinement
+    /// build a non-manifold child mesh and report an internal error.
+    #[test]
+    fn loop_refuses_a_two_triangle_pillow() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 0 0\nv 6 0 0\nv 5 1 0\n\
+                    f 4 5 6\nf 1 2 3\nf 3 2 1\n";
+        let m = Mesh::from_soup(&parse_obj(text).unwrap()).unwrap();
+        let e = refine_uniform(&m, Scheme::Loop).unwrap_err();
+        assert!(
+            matches!(e, RulesError::DoubledTriangle { face: 2, other: 1 }),
+            "{e:?}"
+        );
+        assert!(
+            e.to_string().starts_with("faces 2 and 1 are triangles"),
+            "{e}"
+        );
+        // Catmull-Clark refines the same pillow.
+        assert_eq!(
+            refine_uniform(&m, Scheme::CatmullClark)
+                .unwrap()
+                .num_faces(),
+            9
+        );
+        // Triangles sharing one edge are fine.
+        let fan = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 3 2 4\n";
+        let m = Mesh::from_soup(&parse_obj(fan).unwrap()).unwrap();
+        assert_eq!(refine_uniform(&m, Scheme::Loop).unwrap().num_faces(), 8);
+    }
 }
