@@ -275,6 +275,6 @@ fn junk(rng: &mut Rng, s: &mut String, nl: &str, percent: u64) {
         "#t crease 2/1/0 0 1 1",
         "vx 1 2 3",
     ];
-    s.push_str(*rng.pick(LINES));
+    s.push_str(rng.pick::<&str>(LINES));
     s.push_str(nl);
 }

@@ -185,7 +185,7 @@ pub fn free_lines(rng: &mut Rng) -> String {
                     let i = rng.range(-nv - 2, nv + 2);
                     let _ = write!(s, " {i}");
                     if rng.chance(10) {
-                        s.push_str(*rng.pick(&["/1", "//1", "/1/1", "/", "//", "/x"]));
+                        s.push_str(rng.pick::<&str>(&["/1", "//1", "/1/1", "/", "//", "/x"]));
                     }
                 }
                 s.push('\n');
@@ -198,7 +198,7 @@ pub fn free_lines(rng: &mut Rng) -> String {
                 s.push_str(&tag_line(rng, &cage));
                 s.push('\n');
             }
-            6 => s.push_str(*rng.pick(&[
+            6 => s.push_str(rng.pick::<&str>(&[
                 "g a\n",
                 "o b\n",
                 "s 1\n",
@@ -207,7 +207,7 @@ pub fn free_lines(rng: &mut Rng) -> String {
                 "#\n",
                 "\n",
             ])),
-            _ => s.push_str(*rng.pick(&[
+            _ => s.push_str(rng.pick::<&str>(&[
                 "v\n",
                 "v 1\n",
                 "f\n",

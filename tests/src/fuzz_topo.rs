@@ -33,7 +33,7 @@ fn p(x: f32, y: f32, z: f32) -> [f32; 3] {
 
 /// A `w` x `h` grid of quads (or triangles), open boundary.
 fn grid(rng: &mut Rng) -> Cage {
-    let (w, h) = (rng.range(1, 6) as i64, rng.range(1, 6) as i64);
+    let (w, h) = (rng.range(1, 6), rng.range(1, 6));
     let tri = rng.chance(40);
     let mut c = Cage::default();
     for j in 0..=h {
@@ -58,7 +58,7 @@ fn grid(rng: &mut Rng) -> Cage {
 
 /// A closed prism over an n-gon: two n-gon caps and n quads.
 fn prism(rng: &mut Rng) -> Cage {
-    let n = rng.range(3, 9) as i64;
+    let n = rng.range(3, 9);
     let mut c = Cage::default();
     for z in [0.0, 1.0] {
         for k in 0..n {
