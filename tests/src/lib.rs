@@ -181,3 +181,8 @@ pub fn catmull_clark_cages() -> Vec<(String, subdiv_mesh::Mesh)> {
         })
         .collect()
 }
+
+pub mod fuzz;
+pub mod fuzz_check;
+pub mod fuzz_lines;
+pub mod fuzz_topo;

@@ -155,12 +155,14 @@ impl<'a> TagArgs<'a> {
             ));
         }
         let args = &toks[2..];
-        if args.len() != c[0] + c[1] + c[2] {
+        // Checked: counts near `usize::MAX` must not wrap around to the number of arguments.
+        let announced = c[0].checked_add(c[1]).and_then(|n| n.checked_add(c[2]));
+        if announced != Some(args.len()) {
             return Err(perr(
                 line,
                 format!(
                     "tag '{name}': counts {counts} announce {} arguments, found {}",
-                    c[0] + c[1] + c[2],
+                    announced.map_or_else(|| "too many".to_string(), |n| n.to_string()),
                     args.len()
                 ),
             ));
@@ -510,6 +512,22 @@ t crease 3/1/0 0 2 3 2.5\nt corner 1/1/0 7 4\nt hole 1/0/0 1\nt creasemethod 0/0
         let e = Mesh::from_soup(&soup).unwrap_err();
         assert_eq!(e.line(), Some(5));
         assert!(matches!(e, MeshError::IndexOutOfRange { index: 3, .. }));
+    }
+
+    #[test]
+    fn tag_counts_that_overflow_are_parse_errors() {
+        // Found by fuzzing: these counts wrapped around to the number of arguments and the
+        // argument slices panicked.
+        for text in [
+            "t crease 18446744073709551615/1/0\n",
+            "t crease 18446744073709551615/18446744073709551615/2 1 2\n",
+            "v 0 0 0\nt corner 9223372036854775808/9223372036854775808/0\n",
+        ] {
+            let e = parse_obj(text).unwrap_err();
+            assert!(matches!(e, MeshError::Parse { .. }), "{text}: {e:?}");
+            assert_eq!(e.line(), Some(text.lines().count() as u32), "{text}");
+            assert!(e.to_string().contains("announce too many arguments"), "{e}");
+        }
     }
 
     #[test]

@@ -33,7 +33,8 @@ mod ring;
 pub use limit::{LimitMesh, limit_surface, tessellate_uniform};
 pub use point::{Point, centroid};
 pub use refine::{
-    MAX_REFINED_FACES, RefineKernel, refine_uniform, refine_uniform_levels, refined_face_count,
+    MAX_COORDINATE, MAX_REFINED_FACES, RefineKernel, check_coordinates, refine_uniform,
+    refine_uniform_levels, refined_face_count,
 };
 pub use ring::{QuadRingStencil, Ring, limit_point, limit_point_with};
 
@@ -84,6 +85,32 @@ pub enum RulesError {
         depth: Depth,
         /// Faces it would produce.
         faces: u64,
+    },
+    /// Two triangles on the same three vertices (a closed two-face pillow): Loop refinement would
+    /// join their edge points by two parallel edges, which a mesh cannot hold.
+    #[error(
+        "faces {face} and {other} are triangles on the same three vertices; Loop subdivision cannot refine such a two-face pillow"
+    )]
+    DoubledTriangle {
+        /// The later face.
+        face: u32,
+        /// The earlier face on the same vertices.
+        other: u32,
+    },
+    /// A cage coordinate beyond [`MAX_COORDINATE`]: the `f32` sums of subdivision would
+    /// overflow to infinite points.
+    #[error(
+        "vertex {vertex} has a coordinate beyond ±1e30 ({x}, {y}, {z}); subdivision would overflow (scale the model down)"
+    )]
+    HugeCoordinate {
+        /// The vertex.
+        vertex: u32,
+        /// Its position.
+        x: f32,
+        /// Its position.
+        y: f32,
+        /// Its position.
+        z: f32,
     },
     /// A refined mesh failed validation (a bug: refinement of a valid mesh is valid).
     #[error("internal error: refined mesh is invalid: {0}")]

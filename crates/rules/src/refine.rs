@@ -25,6 +25,7 @@ use crate::{Depth, RulesError, Scheme, catmark, loop_scheme};
 pub fn refine_uniform(mesh: &Mesh, scheme: Scheme) -> Result<Mesh, RulesError> {
     if scheme == Scheme::Loop {
         mesh.check_triangles()?;
+        check_doubled_triangles(mesh)?;
     }
     let nv = mesh.num_vertices();
     let pos = mesh.positions();
@@ -259,12 +260,63 @@ impl<'m> RefineKernel<'m> {
     }
 }
 
-/// Refines `depth` times.
+/// Refuses two triangles on the same three vertices. Loop refinement connects the edge points
+/// of every triangle; for such a pair it would connect the same three edge points twice (parallel
+/// edges, which a [`Mesh`] cannot hold). Such triangles always share an edge, so checking each
+/// face against its neighbours finds them. Refinement never creates new pairs.
+fn check_doubled_triangles(mesh: &Mesh) -> Result<(), RulesError> {
+    let sorted = |f| {
+        let mut k: Vec<u32> = mesh.face_vertices(f).iter().map(|v| v.0).collect();
+        k.sort_unstable();
+        k
+    };
+    for f in mesh.faces() {
+        let h0 = mesh.face_halfedge(f);
+        for h in [h0, mesh.next(h0), mesh.prev(h0)] {
+            let g = mesh.face(h.twin());
+            if g.is_some() && g.0 < f.0 && sorted(f) == sorted(g) {
+                return Err(RulesError::DoubledTriangle {
+                    face: f.0,
+                    other: g.0,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Largest coordinate magnitude of a mesh to refine or tessellate ([`check_coordinates`]).
+/// Subdivision sums weighted points in `f32`: near `f32::MAX` (3.4e38) they overflow to
+/// infinity, while below this bound even a sum of a million weighted points stays finite.
+pub const MAX_COORDINATE: f32 = 1e30;
+
+/// Refuses the first vertex with a coordinate beyond [`MAX_COORDINATE`]. Checked on the cage by
+/// [`refine_uniform_levels`] (and so [`tessellate_uniform`](crate::tessellate_uniform)) and
+/// the slate tessellator, not on refined meshes, whose points may exceed a cage at the bound by
+/// rounding.
+pub fn check_coordinates(mesh: &Mesh) -> Result<(), RulesError> {
+    let pos = mesh.positions();
+    match pos
+        .iter()
+        .position(|p| p.abs().max_element() > MAX_COORDINATE)
+    {
+        Some(v) => Err(RulesError::HugeCoordinate {
+            vertex: v as u32,
+            x: pos[v].x,
+            y: pos[v].y,
+            z: pos[v].z,
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Refines `depth` times (refusing cages beyond [`MAX_COORDINATE`]).
 pub fn refine_uniform_levels(
     mesh: &Mesh,
     scheme: Scheme,
     depth: Depth,
 ) -> Result<Mesh, RulesError> {
+    check_coordinates(mesh)?;
     check_size(mesh, scheme, depth)?;
     let mut m = mesh.clone();
     for _ in 0..depth {
@@ -297,4 +349,74 @@ fn check_size(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<(), RulesErro
         return Err(RulesError::TooDeep { depth, faces });
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use subdiv_mesh::parse_obj;
+
+    /// Found by fuzzing: a pillow (two triangles on one vertex triple) made Loop refinement
+    /// build a non-manifold child mesh and report an internal error.
+    #[test]
+    fn loop_refuses_a_two_triangle_pillow() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 0 0\nv 6 0 0\nv 5 1 0\n\
+                    f 4 5 6\nf 1 2 3\nf 3 2 1\n";
+        let m = Mesh::from_soup(&parse_obj(text).unwrap()).unwrap();
+        let e = refine_uniform(&m, Scheme::Loop).unwrap_err();
+        assert!(
+            matches!(e, RulesError::DoubledTriangle { face: 2, other: 1 }),
+            "{e:?}"
+        );
+        assert!(
+            e.to_string().starts_with("faces 2 and 1 are triangles"),
+            "{e}"
+        );
+        // Catmull-Clark refines the same pillow.
+        assert_eq!(
+            refine_uniform(&m, Scheme::CatmullClark)
+                .unwrap()
+                .num_faces(),
+            9
+        );
+        // Triangles sharing one edge are fine.
+        let fan = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 3 2 4\n";
+        let m = Mesh::from_soup(&parse_obj(fan).unwrap()).unwrap();
+        assert_eq!(refine_uniform(&m, Scheme::Loop).unwrap().num_faces(), 8);
+    }
+
+    /// Found by fuzzing: finite coordinates near `f32::MAX` overflowed to infinite points (an
+    /// internal error from the refined mesh's validation).
+    #[test]
+    fn huge_coordinates_are_refused_and_the_bound_is_safe() {
+        let cube = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
+                    f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+        let mut m = Mesh::from_soup(&parse_obj(cube).unwrap()).unwrap();
+        m.positions_mut()[6].y = 3.4e38;
+        for depth in [0, 1] {
+            let e = refine_uniform_levels(&m, Scheme::CatmullClark, depth).unwrap_err();
+            assert!(
+                matches!(e, RulesError::HugeCoordinate { vertex: 6, .. }),
+                "{e:?}"
+            );
+            assert!(
+                e.to_string()
+                    .starts_with("vertex 6 has a coordinate beyond"),
+                "{e}"
+            );
+        }
+        // At the bound (every vertex, either sign) the refinement and its limit are finite.
+        let mut m = Mesh::from_soup(&parse_obj(cube).unwrap()).unwrap();
+        for p in m.positions_mut() {
+            *p = (*p * 2.0 - glam::Vec3::ONE) * MAX_COORDINATE;
+        }
+        let t = crate::tessellate_uniform(&m, Scheme::CatmullClark, 3).unwrap();
+        assert!(
+            t.positions
+                .iter()
+                .chain(&t.normals)
+                .flatten()
+                .all(|x| x.is_finite())
+        );
+    }
 }

@@ -90,6 +90,7 @@ impl PatchLayout {
             depth >= 1,
             "PatchLayout needs depth >= 1 (depth 0 is the cage itself)"
         );
+        subdiv_rules::check_coordinates(mesh)?;
         let irregular = irregular_faces(mesh);
         let any_irregular = irregular.iter().any(|&x| x);
         let (level1, first_child) = if any_irregular {

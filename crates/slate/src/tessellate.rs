@@ -98,6 +98,8 @@ impl SharedOut {
 /// # Ok::<(), subdiv_mesh::MeshError>(())
 /// ```
 pub fn tessellate(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateError> {
+    // Coordinates near `f32::MAX` would overflow to infinite points.
+    subdiv_rules::check_coordinates(mesh)?;
     if depth == 0 {
         return Ok(limit_surface(mesh, Scheme::CatmullClark));
     }
@@ -135,6 +137,8 @@ pub fn tessellate_layout_into(
     result: &mut LimitMesh,
 ) -> Result<(), SlateError> {
     let depth = layout.depth;
+    // The positions may have moved since the layout was made.
+    subdiv_rules::check_coordinates(mesh)?;
     if depth > MAX_DEPTH {
         return Err(SlateError::TooDeep {
             depth,
@@ -342,5 +346,41 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// Found by fuzzing: finite coordinates near `f32::MAX` gave infinite limit points (quads)
+    /// or an internal error (n-gons, through the local level-1 mesh).
+    #[test]
+    fn huge_coordinates_are_refused() {
+        let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\nv 3 0 0\n\
+                    f 1 2 3 4\nf 2 5 6 3\nf 5 7 6\n";
+        let mut mesh = Mesh::from_soup(&subdiv_mesh::parse_obj(text).unwrap()).unwrap();
+        let layout = PatchLayout::new(&mesh, 1).unwrap();
+        mesh.positions_mut()[4].x = -3.4e38;
+        for depth in [0, 1, 2] {
+            let e = tessellate(&mesh, depth).unwrap_err();
+            assert!(
+                matches!(
+                    e,
+                    SlateError::Rules(RulesError::HugeCoordinate { vertex: 4, .. })
+                ),
+                "{e:?}"
+            );
+            assert!(
+                e.to_string()
+                    .starts_with("vertex 4 has a coordinate beyond"),
+                "{e}"
+            );
+        }
+        assert!(tessellate_layout(&mesh, &layout).is_err());
+        mesh.positions_mut()[4].x = -subdiv_rules::MAX_COORDINATE;
+        let t = tessellate(&mesh, 2).unwrap();
+        assert!(
+            t.positions
+                .iter()
+                .chain(&t.normals)
+                .flatten()
+                .all(|x| x.is_finite())
+        );
     }
 }
