@@ -161,10 +161,15 @@ pub fn split_rows_even<P: Point>(a: &[P], b: &[P], c: &[P], out: &mut [P]) {
 /// `i` (between edges `i` and `i+1`) opposite `v`. For a boundary vertex there is one edge more
 /// than quads, edge 0 and the last edge being the boundary. `rule` is the vertex's rule at this
 /// level (with no semi-sharp feature left, it is its rule at every finer level too).
+///
+/// As in OpenSubdiv (`Sdc::Scheme<SCHEME_CATMARK>::assignSmoothLimitMask` and
+/// `assignSmoothLimitTangentMasks`), a smooth or dart vertex of valence 2 takes the corner masks
+/// ([`corner_limit`]): its "limit" is its own position at this level.
 #[inline]
 pub fn limit<P: Point>(v: P, edges: &[P], diag: &[P], rule: Rule) -> (P, P, P) {
     let n = edges.len();
     match rule {
+        Rule::Smooth | Rule::Dart if n == 2 => corner_limit(v, edges),
         Rule::Smooth | Rule::Dart if n >= 3 && diag.len() == n => {
             let nf = n as f64;
             let (wv, we, wf) = if n == 4 {
@@ -206,14 +211,19 @@ pub fn limit<P: Point>(v: P, edges: &[P], diag: &[P], rule: Rule) -> (P, P, P) {
             let t2 = crease_cross_tangent(v, edges, diag, c0, c1);
             (pos, t1, t2)
         }
-        _ => {
-            // Corner (or a degenerate smooth vertex of valence 2): the vertex itself; tangents
-            // along its first two edges.
-            let t1 = if n > 0 { edges[0].sub(v) } else { P::ZERO };
-            let t2 = if n > 1 { edges[1].sub(v) } else { P::ZERO };
-            (v, t1, t2)
-        }
+        // Corners, and rings too small for their rule.
+        _ => corner_limit(v, edges),
     }
+}
+
+/// The corner limit masks (OpenSubdiv `assignCornerLimitMask`, `assignCornerLimitTangentMasks`):
+/// the vertex itself, tangents along its first two edges (`e0 - v`, `e1 - v`; zero where the ring
+/// has fewer edges).
+#[inline]
+pub fn corner_limit<P: Point>(v: P, edges: &[P]) -> (P, P, P) {
+    let t1 = edges.first().map_or(P::ZERO, |e| e.sub(v));
+    let t2 = edges.get(1).map_or(P::ZERO, |e| e.sub(v));
+    (v, t1, t2)
 }
 
 /// [`limit`] for a smooth regular (valence-4, interior) vertex: the bicubic B-spline at a knot.
@@ -394,6 +404,29 @@ mod tests {
         assert_eq!(edge_point(a, b, &f, 0.5), DVec3::new(1.0, 0.0, 0.5));
         assert_eq!(edge_point(a, b, &f[..1], 0.0), DVec3::new(1.0, 0.0, 0.0));
         assert_eq!(face_point(&[a, b, f[0]]), DVec3::new(1.0, 1.0 / 3.0, 0.0));
+    }
+
+    #[test]
+    fn valence2_smooth_vertex_takes_the_corner_masks() {
+        // Two quads sharing the vertex and both its edges (OpenSubdiv: corner masks). The general
+        // masks would give (4 v + 4 sum e + sum d) / 14 instead.
+        let v = DVec3::new(0.1, 0.2, 0.3);
+        let e = [DVec3::new(1.0, 0.0, 0.0), DVec3::new(0.0, 1.0, 0.0)];
+        let d = [DVec3::new(1.0, 1.0, 0.5), DVec3::new(1.0, 1.0, -0.5)];
+        for rule in [Rule::Smooth, Rule::Dart] {
+            let (p, t1, t2) = limit(v, &e, &d, rule);
+            assert_eq!(p, v);
+            assert_eq!(t1, e[0] - v);
+            assert_eq!(t2, e[1] - v);
+        }
+        // Valence 3 still takes the smooth masks.
+        let e3 = [e[0], e[1], DVec3::new(-1.0, -1.0, 0.0)];
+        let d3 = [d[0], d[1], DVec3::new(0.0, -1.0, 0.2)];
+        let (p, _, _) = limit(v, &e3, &d3, Rule::Smooth);
+        assert_ne!(p, v);
+        // A crease through a valence-2 vertex keeps the crease mask.
+        let (p, _, _) = limit(v, &e, &d, Rule::Crease([0, 1]));
+        assert!((p - (v * 2.0 / 3.0 + (e[0] + e[1]) / 6.0)).length() < 1e-15);
     }
 
     #[test]

@@ -683,6 +683,34 @@ mod tests {
         assert!(checked > 300);
     }
 
+    /// The pillow of fixtures/reference/shapes: its ring corners 0, 2, 4, 6 are interior
+    /// vertices of valence 2.
+    const PILLOW: &str = "v -1 -1 0.1\nv 0 -1 0\nv 1 -1 -0.1\nv 1 0 0.05\nv 1 1 0.1\nv 0 1 0\n\
+        v -1 1 -0.05\nv -1 0 0\nv 0.1 0 0.8\nv 0 -0.1 -0.6\nf 1 2 9 8\nf 2 3 4 9\nf 9 4 5 6\n\
+        f 8 9 6 7\nf 8 10 2 1\nf 10 4 3 2\nf 6 5 4 10\nf 7 6 10 8\n";
+
+    /// OpenSubdiv gives a smooth valence-2 vertex the corner masks: its limit at any level is its
+    /// position at that level, its normal the cross product of its two edges.
+    #[test]
+    fn valence2_limit_is_the_vertex_at_its_level() {
+        let mesh = Mesh::from_soup(&subdiv_mesh::parse_obj(PILLOW).unwrap()).unwrap();
+        let mut ring = Ring::new();
+        assert!(ring.load(&mesh, VertexId(0), Scheme::CatmullClark));
+        assert_eq!(ring.valence(), 2);
+        let mut level1 = ring.clone();
+        let (p, n) = ring.limit();
+        assert_eq!(p, mesh.position(VertexId(0)).as_dvec3());
+        let want = (ring.edge(0) - p).cross(ring.edge(1) - p).normalize();
+        assert!((n - want).length() < 1e-12, "{n} {want}");
+        level1.refine();
+        let c = level1.center();
+        assert_ne!(c, p);
+        assert_eq!(level1.limit().0, c);
+        // limit_point, and through it the whole-mesh paths, agree.
+        let (lp, _) = limit_point(&mesh, VertexId(0), Scheme::CatmullClark);
+        assert_eq!(lp.as_dvec3(), p);
+    }
+
     #[test]
     #[should_panic(expected = "configuration")]
     fn stencil_refuses_a_ring_of_another_size() {
