@@ -13,6 +13,8 @@
 
 use std::f64::consts::PI;
 
+use subdiv_mesh::TriangleSubdivision;
+
 use crate::crease::{Rule, VertexRules};
 use crate::point::{Point, centroid};
 
@@ -29,12 +31,49 @@ pub fn face_point<P: Point>(face: &[P]) -> P {
 /// and the crease weight from [`crate::crease::edge_crease_weight`].
 #[inline]
 pub fn edge_point<P: Point>(a: P, b: P, faces: &[P], crease_weight: f32) -> P {
+    edge_point_weighted(a, b, faces, crease_weight, 0.25)
+}
+
+/// OpenSubdiv's `CATMARK_SMOOTH_TRI_EDGE_WEIGHT` (sdc/catmarkScheme.h).
+pub const SMOOTH_TRI_EDGE_WEIGHT: f64 = 0.470;
+
+/// The weight of each face point in the smooth edge point of an edge between two faces of
+/// `face_sizes` vertices: 1/4, except under [`TriangleSubdivision::Smooth`] next to a triangle,
+/// where OpenSubdiv (`Sdc::Scheme<SCHEME_CATMARK>::assignSmoothMaskForEdge`) takes the mean of
+/// [`SMOOTH_TRI_EDGE_WEIGHT`] per triangle and 1/4 per other face; the edge's ends then weigh
+/// `(1 - 2 w) / 2` each. Only the edge rule changes (and only where a triangle is, so only at
+/// level 0): face and vertex points keep the Catmull-Clark rules.
+#[inline]
+pub fn edge_face_weight(triangles: TriangleSubdivision, face_sizes: [usize; 2]) -> f64 {
+    let tri = face_sizes.map(|n| n == 3);
+    if triangles != TriangleSubdivision::Smooth || !(tri[0] || tri[1]) {
+        return 0.25;
+    }
+    let w = tri.map(|t| if t { SMOOTH_TRI_EDGE_WEIGHT } else { 0.25 });
+    0.5 * (w[0] + w[1])
+}
+
+/// [`edge_point`] with the weight of each of the two face points in the smooth rule
+/// ([`edge_face_weight`]; 1/4 is the plain rule).
+#[inline]
+pub fn edge_point_weighted<P: Point>(
+    a: P,
+    b: P,
+    faces: &[P],
+    crease_weight: f32,
+    face_weight: f64,
+) -> P {
     let mid = a.add(b).scale(0.5);
     if crease_weight >= 1.0 || faces.len() < 2 {
         return mid;
     }
-    let smooth = if faces.len() == 2 {
+    let smooth = if faces.len() == 2 && face_weight == 0.25 {
         a.add(b).add(faces[0]).add(faces[1]).scale(0.25)
+    } else if faces.len() == 2 {
+        let wv = 0.5 * (1.0 - 2.0 * face_weight);
+        a.add(b)
+            .scale(wv)
+            .add(faces[0].add(faces[1]).scale(face_weight))
     } else {
         // Non-manifold edges never reach here (meshes are validated manifold); keep the
         // OpenSubdiv convention for completeness: half on the edge, half spread over the faces.
@@ -427,6 +466,34 @@ mod tests {
         // A crease through a valence-2 vertex keeps the crease mask.
         let (p, _, _) = limit(v, &e, &d, Rule::Crease([0, 1]));
         assert!((p - (v * 2.0 / 3.0 + (e[0] + e[1]) / 6.0)).length() < 1e-15);
+    }
+
+    #[test]
+    fn smooth_triangle_edge_weights() {
+        use TriangleSubdivision::{Catmark, Smooth};
+        // As sdc/catmarkScheme.h: face weight (f0 + f1) / 2 with 0.47 per triangle, ends
+        // (1 - 2 w) / 2.
+        assert_eq!(edge_face_weight(Catmark, [3, 3]), 0.25);
+        assert_eq!(edge_face_weight(Smooth, [4, 4]), 0.25);
+        assert_eq!(edge_face_weight(Smooth, [4, 5]), 0.25);
+        assert_eq!(edge_face_weight(Smooth, [3, 3]), 0.47);
+        assert_eq!(edge_face_weight(Smooth, [3, 4]), 0.5 * (0.47 + 0.25));
+        assert_eq!(edge_face_weight(Smooth, [6, 3]), 0.5 * (0.25 + 0.47));
+        let (a, b) = (DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0));
+        let f = [DVec3::new(1.0, 1.0, 0.0), DVec3::new(1.0, -1.0, 4.0)];
+        let p = edge_point_weighted(a, b, &f, 0.0, 0.47);
+        let want = (a + b) * 0.03 + (f[0] + f[1]) * 0.47;
+        assert!((p - want).length() < 1e-15, "{p} {want}");
+        // The plain weight is the plain rule, bit for bit; creases and boundaries ignore it.
+        assert_eq!(
+            edge_point_weighted(a, b, &f, 0.0, 0.25),
+            edge_point(a, b, &f, 0.0)
+        );
+        assert_eq!(edge_point_weighted(a, b, &f, 1.0, 0.47), (a + b) * 0.5);
+        assert_eq!(edge_point_weighted(a, b, &f[..1], 0.0, 0.47), (a + b) * 0.5);
+        let half = edge_point_weighted(a, b, &f, 0.5, 0.36);
+        let smooth = edge_point_weighted(a, b, &f, 0.0, 0.36);
+        assert!((half - ((a + b) * 0.25 + smooth * 0.5)).length() < 1e-15);
     }
 
     #[test]

@@ -13,7 +13,7 @@
 //! far end, which after one step is just the far half of the parent edge.
 
 use glam::{DVec3, Vec3};
-use subdiv_mesh::{CreaseMethod, Mesh, VertexId};
+use subdiv_mesh::{CreaseMethod, Mesh, TriangleSubdivision, VertexId};
 
 use crate::crease::{Rule, VertexRules, child_edge_sharpness, edge_crease_weight, is_semi_sharp};
 use crate::{Scheme, catmark, loop_scheme};
@@ -23,6 +23,7 @@ use crate::{Scheme, catmark, loop_scheme};
 pub struct Ring {
     scheme: Scheme,
     method: CreaseMethod,
+    triangles: TriangleSubdivision,
     center: DVec3,
     vertex_sharpness: f32,
     boundary: bool,
@@ -52,6 +53,7 @@ impl Ring {
     pub fn load(&mut self, mesh: &Mesh, v: VertexId, scheme: Scheme) -> bool {
         self.scheme = scheme;
         self.method = mesh.options().crease;
+        self.triangles = mesh.options().triangles;
         self.center = mesh.position(v).as_dvec3();
         self.vertex_sharpness = mesh.vertex_sharpness(v);
         self.boundary = mesh.is_boundary_vertex(v);
@@ -130,6 +132,8 @@ impl Ring {
     ) {
         self.scheme = Scheme::CatmullClark;
         self.method = method;
+        // Quads only: the triangle rule never applies.
+        self.triangles = TriangleSubdivision::Catmark;
         self.center = center;
         self.vertex_sharpness = vertex_sharpness;
         self.boundary = boundary;
@@ -259,16 +263,20 @@ impl Ring {
                     };
                     let after = if i < nf { Some(i) } else { None };
                     let mut faces = [DVec3::ZERO; 2];
+                    let mut sizes = [0usize; 2];
                     let mut k = 0;
                     for f in before.into_iter().chain(after) {
                         faces[k] = self.fp[f];
+                        sizes[k] = self.face_inner(f).len() + 3;
                         k += 1;
                     }
-                    self.tmp_edges.push(catmark::edge_point(
+                    let fw = catmark::edge_face_weight(self.triangles, sizes);
+                    self.tmp_edges.push(catmark::edge_point_weighted(
                         self.center,
                         self.edges[i],
                         &faces[..k],
                         w,
+                        fw,
                     ));
                     self.tmp_far.push(if is_semi_sharp(far_child) {
                         (far_child, 1)
