@@ -19,6 +19,19 @@ fn cages() -> Vec<std::path::PathBuf> {
     v
 }
 
+/// An interior vertex of valence 2 with the smooth or dart rule and no semi-sharpness left.
+fn valence2_smooth(mesh: &subdiv_mesh::Mesh, v: VertexId) -> bool {
+    let s: Vec<f32> = mesh
+        .outgoing(v)
+        .map(|h| mesh.edge_sharpness(h.edge()))
+        .collect();
+    mesh.valence(v) == 2
+        && !mesh.is_boundary_vertex(v)
+        && mesh.vertex_sharpness(v) == 0.0
+        && s.iter().all(|&x| x == 0.0 || x >= 10.0)
+        && s.iter().filter(|&&x| x >= 10.0).count() < 2
+}
+
 /// The limit of a vertex is the limit of all its descendants: evaluating the cage vertices'
 /// limits from the cage (refining their rings locally through every semi-sharp crease) must give
 /// the same points as evaluating them two levels down.
@@ -39,6 +52,13 @@ fn limit_points_are_level_invariant() {
         for v in mesh.vertices() {
             let (p0, n0) = limit_point(&mesh, v, scheme);
             let (p2, n2) = limit_point(&fine, v, scheme);
+            if scheme == Scheme::CatmullClark && valence2_smooth(&mesh, v) {
+                // OpenSubdiv gives these the corner masks: the "limit" is the vertex's position
+                // at the level it is evaluated from, so it is not level invariant.
+                assert_eq!(p0, mesh.position(v), "{}: vertex {v}", path.display());
+                assert_eq!(p2, fine.position(v), "{}: vertex {v}", path.display());
+                continue;
+            }
             assert!(
                 (p0 - p2).length() <= tol,
                 "{}: vertex {v}: {p0} at level 0, {p2} at level 2",

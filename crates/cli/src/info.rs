@@ -4,7 +4,10 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use subdiv::mesh::{BoundaryInterpolation, CreaseMethod, Mesh, MeshStats, ObjError, read_obj_soup};
+use subdiv::mesh::{
+    BoundaryInterpolation, CreaseMethod, Mesh, MeshStats, ObjError, TriangleSubdivision,
+    read_obj_soup,
+};
 
 #[derive(clap::Args, Debug)]
 pub struct InfoArgs {
@@ -28,6 +31,13 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<ExitCode> {
     let mut soup = read_obj_soup(&a.input)?;
     let mut out = String::new();
     writeln!(out, "file: {path}")?;
+    // Tag lines read but not applied: on stderr, in the report, and refused with --strict.
+    let ignored = crate::load::report_tag_warnings(&a.input, &soup.warnings);
+    if !soup.warnings.is_empty() {
+        let list: Vec<String> = soup.warnings.iter().map(|w| w.short()).collect();
+        writeln!(out, "ignored tags: {} ({})", list.len(), list.join(", "))?;
+    }
+
     if a.split_nonmanifold {
         let split = soup.split_nonmanifold_vertices();
         if !split.is_empty() {
@@ -88,7 +98,11 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<ExitCode> {
         CreaseMethod::Uniform => "uniform",
         CreaseMethod::Chaikin => "chaikin",
     };
-    writeln!(out, "options: boundary={b} crease={c}")?;
+    let t = match opts.triangles {
+        TriangleSubdivision::Catmark => "catmark",
+        TriangleSubdivision::Smooth => "smooth",
+    };
+    writeln!(out, "options: boundary={b} crease={c} triangles={t}")?;
     if !mesh.groups().is_empty() {
         writeln!(out, "groups: {}", mesh.groups().join(", "))?;
     }
@@ -102,6 +116,13 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<ExitCode> {
             "no (faces other than triangles; use --triangulate)"
         }
     )?;
+    if let Err(e) = ignored {
+        // --strict: the mesh is fine, but it has tag lines subdiv does not apply.
+        writeln!(out, "status: refused")?;
+        print!("{out}");
+        eprintln!("error: {e}");
+        return Ok(ExitCode::FAILURE);
+    }
     writeln!(out, "status: ok")?;
     print!("{out}");
     Ok(ExitCode::SUCCESS)

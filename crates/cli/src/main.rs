@@ -23,6 +23,10 @@ use clap::{Parser, Subcommand};
 #[derive(Parser, Debug)]
 #[command(name = "subdiv", version, about)]
 struct Cli {
+    /// Refuse cages with tag lines that are not applied (unknown tags, hierarchical edits, ...)
+    /// instead of warning about them.
+    #[arg(long, global = true)]
+    strict: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -46,6 +50,7 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    load::set_strict(cli.strict);
     let result = match cli.command {
         Command::Info(a) => info::run(&a),
         Command::Tessellate(a) => tessellate::run(&a),

@@ -294,3 +294,65 @@ fn adaptive_and_doi_tessellation() {
         assert!(!err.contains("panicked"));
     }
 }
+
+/// Tag lines subdiv does not apply: a located warning on stderr (and a line in `info`), an
+/// error with `--strict` for every command that reads a cage.
+#[test]
+fn ignored_tags_warn_and_strict_refuses() {
+    let cage = tmp("ignored_tags.obj");
+    std::fs::write(
+        &cage,
+        format!(
+            "{QUAD_HEAD}f 1 2 3 4\nt bogustag 0/0/0\nt vertexedit 1/3/2 0 1 2 3 value set\n\
+             t smoothtriangles 0/0/1 smooth\n"
+        ),
+    )
+    .unwrap();
+    let c = cage.to_str().unwrap();
+    let (code, stdout, err) = run(&["info", c]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        stdout.contains("ignored tags: 2 (line 6: t bogustag, line 7: t vertexedit)"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("triangles=smooth") && stdout.contains("status: ok"),
+        "{stdout}"
+    );
+    assert!(
+        err.contains(&format!(
+            "warning: {c}:6: tag 't bogustag' ignored (unknown tag)"
+        )),
+        "{err}"
+    );
+    assert!(
+        err.contains(&format!("warning: {c}:7: tag 't vertexedit' ignored")),
+        "{err}"
+    );
+    let (code, stdout, err) = run(&["info", "--strict", c]);
+    assert_eq!(code, 1);
+    assert!(stdout.contains("status: refused"), "{stdout}");
+    assert!(
+        err.contains(&format!(
+            "error: {c}:6: 2 tag line(s) not applied (--strict)"
+        )),
+        "{err}"
+    );
+
+    let out = tmp("ignored_tags_out.obj");
+    let o = out.to_str().unwrap();
+    let (code, _, err) = run(&["tessellate", c, "--depth", "1", "-o", o]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains(&format!("warning: {c}:6:")), "{err}");
+    let (code, _, err) = run(&["tessellate", "--strict", c, "--depth", "1", "-o", o]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("not applied (--strict)") && !err.contains("panicked"),
+        "{err}"
+    );
+    // A cage without such tags is unaffected by --strict.
+    let cube = fixtures().join("reference/shapes/catmark_cube.obj");
+    let (code, _, err) = run(&["info", "--strict", cube.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("warning"), "{err}");
+}

@@ -102,6 +102,35 @@ mod tests {
         Mesh::from_soup(&PolygonSoup::from_faces(p, &faces)).unwrap()
     }
 
+    /// A cage vertex of valence 2 takes OpenSubdiv's corner limit masks through `Ring::limit`:
+    /// its limit is the vertex itself, its normal `(e0 - v) x (e1 - v)`; the two faces of the
+    /// pillow's corner are back to back, so no cone holds them and it gets the most depth.
+    #[test]
+    fn valence2_vertex_uses_the_corner_masks() {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../fixtures/reference/shapes/catmark_pillow_valence2.obj"
+        ))
+        .unwrap();
+        let mesh = Mesh::from_soup(&subdiv_mesh::parse_obj(&text).unwrap()).unwrap();
+        let v = VertexId(0);
+        assert_eq!(mesh.valence(v), 2);
+        let data = VertexData::compute(&mesh, 20.0, 5);
+        assert_eq!(data.limit[0], mesh.position(v));
+        let p = mesh.position(v);
+        let e: Vec<Vec3> = mesh
+            .outgoing(v)
+            .map(|h| mesh.position(mesh.to(h)))
+            .collect();
+        let want = (e[0] - p).cross(e[1] - p).normalize();
+        assert!(
+            (data.normal[0] - want).length() < 1e-6,
+            "{:?}",
+            data.normal[0]
+        );
+        assert_eq!(data.depth[0], 5);
+    }
+
     #[test]
     fn curved_needs_more_depth_than_flat() {
         let flat = VertexData::compute(&grid(6, |_, _| 0.0), 5.0, 6);

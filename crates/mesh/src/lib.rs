@@ -2,7 +2,8 @@
 //!
 //! A [`Mesh`] is a validated, manifold, consistently oriented half-edge mesh with faces of any
 //! size, plus what subdivision needs beyond connectivity: edge and vertex sharpness (creases and
-//! corners), holes, face groups and the scheme options (boundary interpolation, crease method).
+//! corners), holes, face groups and the scheme options (boundary interpolation, crease method,
+//! triangle rule).
 //! Properties are plain arrays indexed by typed handles ([`VertexId`], [`HalfedgeId`],
 //! [`EdgeId`], [`FaceId`]).
 //!
@@ -40,6 +41,7 @@ mod obj;
 mod options;
 mod soup;
 mod stats;
+mod tags;
 
 pub use camera::Camera;
 pub use error::{MeshError, ObjError};
@@ -51,10 +53,13 @@ pub use handle::{EdgeId, FaceId, HalfedgeId, VertexId};
 pub use mesh::{Mesh, Outgoing};
 pub use obj::{
     ObjData, ReadOptions, format_mesh_obj, format_obj, parse_obj, read_obj, read_obj_soup,
-    read_obj_with, write_mesh_obj, write_obj,
+    read_obj_with, read_obj_with_warnings, write_mesh_obj, write_obj,
 };
-pub use options::{BoundaryInterpolation, CreaseMethod, SHARPNESS_INFINITE, SchemeOptions};
+pub use options::{
+    BoundaryInterpolation, CreaseMethod, SHARPNESS_INFINITE, SchemeOptions, TriangleSubdivision,
+};
 pub use soup::{CornerTag, CreaseTag, HoleTag, PolygonSoup};
 pub use stats::MeshStats;
+pub use tags::{IgnoredTagKind, TagWarning};
 
 pub use glam;

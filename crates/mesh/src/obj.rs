@@ -9,10 +9,13 @@
 //! t crease n/1/0 v0 .. v(n-1) s        t crease n/(n-1)/0 v0 .. v(n-1) s0 .. s(n-2)
 //! t corner n/1/0 v0 .. s               t corner n/n/0 v0 .. s0 ..
 //! t hole n/0/0 f0 ..                   t interpolateboundary 1/0/0 k  (0 none, 1 edge-and-corner, 2 edge-only)
-//! t creasemethod 0/0/1 chaikin|uniform
+//! t creasemethod 0/0/1 chaikin|uniform     t smoothtriangles 0/0/1 smooth|catmark
 //! ```
 //!
-//! Other statements (`vt`, `vn`, `s`, `usemtl`, ...) and unknown tags are ignored.
+//! Other statements (`vt`, `vn`, `s`, `usemtl`, ...) are ignored. Other tag lines (unknown
+//! names, OpenSubdiv's hierarchical edits such as `vertexedit`, face-varying options) are not
+//! applied: each leaves a [`TagWarning`] naming its line in [`PolygonSoup::warnings`] (see
+//! [`read_obj_with_warnings`]).
 //! (`tobj` is not used for reading: it renumbers vertices per object in order of first use and
 //! reports errors without line numbers.)
 //!
@@ -27,8 +30,11 @@ use glam::Vec3;
 
 use crate::error::{MeshError, ObjError};
 use crate::mesh::Mesh;
-use crate::options::{BoundaryInterpolation, CreaseMethod, SHARPNESS_INFINITE};
-use crate::soup::{CornerTag, CreaseTag, HoleTag, PolygonSoup};
+use crate::options::{
+    BoundaryInterpolation, CreaseMethod, SHARPNESS_INFINITE, TriangleSubdivision,
+};
+use crate::soup::PolygonSoup;
+use crate::tags::{TagWarning, parse_tag};
 
 /// Parses OBJ text into a polygon soup (no topology validation yet).
 pub fn parse_obj(text: &str) -> Result<PolygonSoup, MeshError> {
@@ -105,177 +111,6 @@ pub fn parse_obj(text: &str) -> Result<PolygonSoup, MeshError> {
     Ok(soup)
 }
 
-fn parse_tag(soup: &mut PolygonSoup, toks: Vec<&str>, line: u32) -> Result<(), MeshError> {
-    let args = TagArgs::parse(&toks, line)?;
-    match args.name {
-        "crease" => crease_tags(soup, &args, line)?,
-        "corner" => corner_tags(soup, &args, line)?,
-        "hole" => soup.holes.extend(args.ints.iter().map(|&f| HoleTag {
-            f,
-            line: Some(line),
-        })),
-        "interpolateboundary" => soup.options.boundary = boundary_option(&args, line)?,
-        "creasemethod" => soup.options.crease = crease_option(&args, line)?,
-        _ => {}
-    }
-    Ok(())
-}
-
-fn perr(line: u32, msg: String) -> MeshError {
-    MeshError::Parse { line, msg }
-}
-
-/// A tag line `t name ni/nf/ns args..` with its arguments split by type.
-struct TagArgs<'a> {
-    name: &'a str,
-    ints: Vec<i64>,
-    floats: Vec<f32>,
-    strings: &'a [&'a str],
-}
-
-impl<'a> TagArgs<'a> {
-    /// Splits the tokens after `t`, checking the counts against the arguments and parsing the
-    /// integers and numbers (for every tag, known or not).
-    fn parse(toks: &'a [&'a str], line: u32) -> Result<TagArgs<'a>, MeshError> {
-        let name = *toks
-            .first()
-            .ok_or_else(|| perr(line, "tag without a name".into()))?;
-        let counts = toks
-            .get(1)
-            .ok_or_else(|| perr(line, format!("tag '{name}' without counts n/n/n")))?;
-        let c: Vec<usize> = counts
-            .split('/')
-            .map(|x| x.parse::<usize>())
-            .collect::<Result<_, _>>()
-            .map_err(|_| perr(line, format!("tag '{name}': invalid counts '{counts}'")))?;
-        if c.len() != 3 {
-            return Err(perr(
-                line,
-                format!("tag '{name}': counts must be ints/floats/strings, got '{counts}'"),
-            ));
-        }
-        let args = &toks[2..];
-        // Checked: counts near `usize::MAX` must not wrap around to the number of arguments.
-        let announced = c[0].checked_add(c[1]).and_then(|n| n.checked_add(c[2]));
-        if announced != Some(args.len()) {
-            return Err(perr(
-                line,
-                format!(
-                    "tag '{name}': counts {counts} announce {} arguments, found {}",
-                    announced.map_or_else(|| "too many".to_string(), |n| n.to_string()),
-                    args.len()
-                ),
-            ));
-        }
-        let ints: Vec<i64> = args[..c[0]]
-            .iter()
-            .map(|t| {
-                t.parse::<i64>()
-                    .map_err(|_| perr(line, format!("tag '{name}': invalid integer '{t}'")))
-            })
-            .collect::<Result<_, _>>()?;
-        let floats: Vec<f32> = args[c[0]..c[0] + c[1]]
-            .iter()
-            .map(|t| {
-                t.parse::<f32>()
-                    .map_err(|_| perr(line, format!("tag '{name}': invalid number '{t}'")))
-            })
-            .collect::<Result<_, _>>()?;
-        Ok(TagArgs {
-            name,
-            ints,
-            floats,
-            strings: &args[c[0] + c[1]..],
-        })
-    }
-}
-
-/// `t crease`: a chain of vertices, one sharpness for all its edges or one per edge.
-fn crease_tags(soup: &mut PolygonSoup, args: &TagArgs<'_>, line: u32) -> Result<(), MeshError> {
-    let (ints, floats) = (&args.ints, &args.floats);
-    if ints.len() < 2 {
-        return Err(perr(line, "crease tag needs at least two vertices".into()));
-    }
-    let edges = ints.len() - 1;
-    if floats.len() != 1 && floats.len() != edges {
-        return Err(perr(
-            line,
-            format!(
-                "crease tag over {edges} edges needs 1 or {edges} sharpness values, found {}",
-                floats.len()
-            ),
-        ));
-    }
-    for k in 0..edges {
-        let s = if floats.len() == 1 {
-            floats[0]
-        } else {
-            floats[k]
-        };
-        soup.creases.push(CreaseTag {
-            a: ints[k],
-            b: ints[k + 1],
-            sharpness: s,
-            line: Some(line),
-        });
-    }
-    Ok(())
-}
-
-/// `t corner`: vertices, one sharpness for all or one per vertex.
-fn corner_tags(soup: &mut PolygonSoup, args: &TagArgs<'_>, line: u32) -> Result<(), MeshError> {
-    let (ints, floats) = (&args.ints, &args.floats);
-    if floats.len() != 1 && floats.len() != ints.len() {
-        return Err(perr(
-            line,
-            format!(
-                "corner tag over {} vertices needs 1 or {} sharpness values, found {}",
-                ints.len(),
-                ints.len(),
-                floats.len()
-            ),
-        ));
-    }
-    for (k, &v) in ints.iter().enumerate() {
-        let s = if floats.len() == 1 {
-            floats[0]
-        } else {
-            floats[k]
-        };
-        soup.corners.push(CornerTag {
-            v,
-            sharpness: s,
-            line: Some(line),
-        });
-    }
-    Ok(())
-}
-
-/// `t interpolateboundary k`: 0 none, 1 edge-and-corner, 2 edge-only.
-fn boundary_option(args: &TagArgs<'_>, line: u32) -> Result<BoundaryInterpolation, MeshError> {
-    match args.ints.first() {
-        Some(0) => Ok(BoundaryInterpolation::None),
-        Some(1) => Ok(BoundaryInterpolation::EdgeAndCorner),
-        Some(2) => Ok(BoundaryInterpolation::EdgeOnly),
-        other => Err(perr(
-            line,
-            format!("interpolateboundary: expected 0, 1 or 2, got {other:?}"),
-        )),
-    }
-}
-
-/// `t creasemethod chaikin|uniform` (`normal` is read as uniform).
-fn crease_option(args: &TagArgs<'_>, line: u32) -> Result<CreaseMethod, MeshError> {
-    match args.strings.first().copied() {
-        Some("chaikin") => Ok(CreaseMethod::Chaikin),
-        Some("uniform") | Some("normal") => Ok(CreaseMethod::Uniform),
-        other => Err(perr(
-            line,
-            format!("creasemethod: expected chaikin or uniform, got {other:?}"),
-        )),
-    }
-}
-
 /// Reads an OBJ file and builds a validated mesh.
 ///
 /// ```no_run
@@ -296,15 +131,25 @@ pub struct ReadOptions {
 
 /// Reads an OBJ file with options and builds a validated mesh.
 pub fn read_obj_with(path: impl AsRef<Path>, opts: ReadOptions) -> Result<Mesh, ObjError> {
+    Ok(read_obj_with_warnings(path, opts)?.0)
+}
+
+/// [`read_obj_with`], also returning the tag lines that were read but not applied (unknown
+/// tags, hierarchical edits, face-varying options), in file order.
+pub fn read_obj_with_warnings(
+    path: impl AsRef<Path>,
+    opts: ReadOptions,
+) -> Result<(Mesh, Vec<TagWarning>), ObjError> {
     let path = path.as_ref();
     let mut soup = read_obj_soup(path)?;
     if opts.split_nonmanifold_vertices {
         soup.split_nonmanifold_vertices();
     }
-    Mesh::from_soup(&soup).map_err(|err| ObjError::Invalid {
+    let mesh = Mesh::from_soup(&soup).map_err(|err| ObjError::Invalid {
         path: path.display().to_string(),
         err,
-    })
+    })?;
+    Ok((mesh, soup.warnings))
 }
 
 /// Reads an OBJ file into a polygon soup, without topology validation.
@@ -401,6 +246,9 @@ pub fn format_mesh_obj(mesh: &Mesh) -> String {
     let _ = writeln!(s, "t interpolateboundary 1/0/0 {ib}");
     if opts.crease == CreaseMethod::Chaikin {
         let _ = writeln!(s, "t creasemethod 0/0/1 chaikin");
+    }
+    if opts.triangles == TriangleSubdivision::Smooth {
+        let _ = writeln!(s, "t smoothtriangles 0/0/1 smooth");
     }
     for e in mesh.edges() {
         let sh = mesh.edge_sharpness(e);

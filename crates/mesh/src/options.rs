@@ -22,6 +22,17 @@ pub enum CreaseMethod {
     Chaikin,
 }
 
+/// The Catmull-Clark edge rule next to triangles (OpenSubdiv `TriangleSubdivision`).
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Default)]
+pub enum TriangleSubdivision {
+    /// The plain Catmull-Clark rules for every face (OpenSubdiv `TRI_SUB_CATMARK`).
+    #[default]
+    Catmark,
+    /// OpenSubdiv's "smooth triangle" weights (`TRI_SUB_SMOOTH`): a smooth edge point next to a
+    /// triangle weighs the two face points more (see `subdiv_rules::catmark::edge_face_weight`).
+    Smooth,
+}
+
 /// The options of a subdivision mesh.
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Default)]
 pub struct SchemeOptions {
@@ -29,6 +40,8 @@ pub struct SchemeOptions {
     pub boundary: BoundaryInterpolation,
     /// Crease decay rule.
     pub crease: CreaseMethod,
+    /// Catmull-Clark edge rule next to triangles.
+    pub triangles: TriangleSubdivision,
 }
 
 /// Sharpness at or above this value is infinite (OpenSubdiv `SHARPNESS_INFINITE`).

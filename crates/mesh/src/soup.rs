@@ -68,6 +68,8 @@ pub struct PolygonSoup {
     pub vertex_lines: Vec<u32>,
     /// 1-based source line of each face (empty when not from a file).
     pub face_lines: Vec<u32>,
+    /// Tag lines read but not applied, in file order (see [`crate::TagWarning`]).
+    pub warnings: Vec<crate::TagWarning>,
 }
 
 impl PolygonSoup {

@@ -13,6 +13,8 @@
 
 use std::f64::consts::PI;
 
+use subdiv_mesh::TriangleSubdivision;
+
 use crate::crease::{Rule, VertexRules};
 use crate::point::{Point, centroid};
 
@@ -29,12 +31,49 @@ pub fn face_point<P: Point>(face: &[P]) -> P {
 /// and the crease weight from [`crate::crease::edge_crease_weight`].
 #[inline]
 pub fn edge_point<P: Point>(a: P, b: P, faces: &[P], crease_weight: f32) -> P {
+    edge_point_weighted(a, b, faces, crease_weight, 0.25)
+}
+
+/// OpenSubdiv's `CATMARK_SMOOTH_TRI_EDGE_WEIGHT` (sdc/catmarkScheme.h).
+pub const SMOOTH_TRI_EDGE_WEIGHT: f64 = 0.470;
+
+/// The weight of each face point in the smooth edge point of an edge between two faces of
+/// `face_sizes` vertices: 1/4, except under [`TriangleSubdivision::Smooth`] next to a triangle,
+/// where OpenSubdiv (`Sdc::Scheme<SCHEME_CATMARK>::assignSmoothMaskForEdge`) takes the mean of
+/// [`SMOOTH_TRI_EDGE_WEIGHT`] per triangle and 1/4 per other face; the edge's ends then weigh
+/// `(1 - 2 w) / 2` each. Only the edge rule changes (and only where a triangle is, so only at
+/// level 0): face and vertex points keep the Catmull-Clark rules.
+#[inline]
+pub fn edge_face_weight(triangles: TriangleSubdivision, face_sizes: [usize; 2]) -> f64 {
+    let tri = face_sizes.map(|n| n == 3);
+    if triangles != TriangleSubdivision::Smooth || !(tri[0] || tri[1]) {
+        return 0.25;
+    }
+    let w = tri.map(|t| if t { SMOOTH_TRI_EDGE_WEIGHT } else { 0.25 });
+    0.5 * (w[0] + w[1])
+}
+
+/// [`edge_point`] with the weight of each of the two face points in the smooth rule
+/// ([`edge_face_weight`]; 1/4 is the plain rule).
+#[inline]
+pub fn edge_point_weighted<P: Point>(
+    a: P,
+    b: P,
+    faces: &[P],
+    crease_weight: f32,
+    face_weight: f64,
+) -> P {
     let mid = a.add(b).scale(0.5);
     if crease_weight >= 1.0 || faces.len() < 2 {
         return mid;
     }
-    let smooth = if faces.len() == 2 {
+    let smooth = if faces.len() == 2 && face_weight == 0.25 {
         a.add(b).add(faces[0]).add(faces[1]).scale(0.25)
+    } else if faces.len() == 2 {
+        let wv = 0.5 * (1.0 - 2.0 * face_weight);
+        a.add(b)
+            .scale(wv)
+            .add(faces[0].add(faces[1]).scale(face_weight))
     } else {
         // Non-manifold edges never reach here (meshes are validated manifold); keep the
         // OpenSubdiv convention for completeness: half on the edge, half spread over the faces.
@@ -161,10 +200,15 @@ pub fn split_rows_even<P: Point>(a: &[P], b: &[P], c: &[P], out: &mut [P]) {
 /// `i` (between edges `i` and `i+1`) opposite `v`. For a boundary vertex there is one edge more
 /// than quads, edge 0 and the last edge being the boundary. `rule` is the vertex's rule at this
 /// level (with no semi-sharp feature left, it is its rule at every finer level too).
+///
+/// As in OpenSubdiv (`Sdc::Scheme<SCHEME_CATMARK>::assignSmoothLimitMask` and
+/// `assignSmoothLimitTangentMasks`), a smooth or dart vertex of valence 2 takes the corner masks
+/// ([`corner_limit`]): its "limit" is its own position at this level.
 #[inline]
 pub fn limit<P: Point>(v: P, edges: &[P], diag: &[P], rule: Rule) -> (P, P, P) {
     let n = edges.len();
     match rule {
+        Rule::Smooth | Rule::Dart if n == 2 => corner_limit(v, edges),
         Rule::Smooth | Rule::Dart if n >= 3 && diag.len() == n => {
             let nf = n as f64;
             let (wv, we, wf) = if n == 4 {
@@ -206,14 +250,19 @@ pub fn limit<P: Point>(v: P, edges: &[P], diag: &[P], rule: Rule) -> (P, P, P) {
             let t2 = crease_cross_tangent(v, edges, diag, c0, c1);
             (pos, t1, t2)
         }
-        _ => {
-            // Corner (or a degenerate smooth vertex of valence 2): the vertex itself; tangents
-            // along its first two edges.
-            let t1 = if n > 0 { edges[0].sub(v) } else { P::ZERO };
-            let t2 = if n > 1 { edges[1].sub(v) } else { P::ZERO };
-            (v, t1, t2)
-        }
+        // Corners, and rings too small for their rule.
+        _ => corner_limit(v, edges),
     }
+}
+
+/// The corner limit masks (OpenSubdiv `assignCornerLimitMask`, `assignCornerLimitTangentMasks`):
+/// the vertex itself, tangents along its first two edges (`e0 - v`, `e1 - v`; zero where the ring
+/// has fewer edges).
+#[inline]
+pub fn corner_limit<P: Point>(v: P, edges: &[P]) -> (P, P, P) {
+    let t1 = edges.first().map_or(P::ZERO, |e| e.sub(v));
+    let t2 = edges.get(1).map_or(P::ZERO, |e| e.sub(v));
+    (v, t1, t2)
 }
 
 /// [`limit`] for a smooth regular (valence-4, interior) vertex: the bicubic B-spline at a knot.
@@ -394,6 +443,57 @@ mod tests {
         assert_eq!(edge_point(a, b, &f, 0.5), DVec3::new(1.0, 0.0, 0.5));
         assert_eq!(edge_point(a, b, &f[..1], 0.0), DVec3::new(1.0, 0.0, 0.0));
         assert_eq!(face_point(&[a, b, f[0]]), DVec3::new(1.0, 1.0 / 3.0, 0.0));
+    }
+
+    #[test]
+    fn valence2_smooth_vertex_takes_the_corner_masks() {
+        // Two quads sharing the vertex and both its edges (OpenSubdiv: corner masks). The general
+        // masks would give (4 v + 4 sum e + sum d) / 14 instead.
+        let v = DVec3::new(0.1, 0.2, 0.3);
+        let e = [DVec3::new(1.0, 0.0, 0.0), DVec3::new(0.0, 1.0, 0.0)];
+        let d = [DVec3::new(1.0, 1.0, 0.5), DVec3::new(1.0, 1.0, -0.5)];
+        for rule in [Rule::Smooth, Rule::Dart] {
+            let (p, t1, t2) = limit(v, &e, &d, rule);
+            assert_eq!(p, v);
+            assert_eq!(t1, e[0] - v);
+            assert_eq!(t2, e[1] - v);
+        }
+        // Valence 3 still takes the smooth masks.
+        let e3 = [e[0], e[1], DVec3::new(-1.0, -1.0, 0.0)];
+        let d3 = [d[0], d[1], DVec3::new(0.0, -1.0, 0.2)];
+        let (p, _, _) = limit(v, &e3, &d3, Rule::Smooth);
+        assert_ne!(p, v);
+        // A crease through a valence-2 vertex keeps the crease mask.
+        let (p, _, _) = limit(v, &e, &d, Rule::Crease([0, 1]));
+        assert!((p - (v * 2.0 / 3.0 + (e[0] + e[1]) / 6.0)).length() < 1e-15);
+    }
+
+    #[test]
+    fn smooth_triangle_edge_weights() {
+        use TriangleSubdivision::{Catmark, Smooth};
+        // As sdc/catmarkScheme.h: face weight (f0 + f1) / 2 with 0.47 per triangle, ends
+        // (1 - 2 w) / 2.
+        assert_eq!(edge_face_weight(Catmark, [3, 3]), 0.25);
+        assert_eq!(edge_face_weight(Smooth, [4, 4]), 0.25);
+        assert_eq!(edge_face_weight(Smooth, [4, 5]), 0.25);
+        assert_eq!(edge_face_weight(Smooth, [3, 3]), 0.47);
+        assert_eq!(edge_face_weight(Smooth, [3, 4]), 0.5 * (0.47 + 0.25));
+        assert_eq!(edge_face_weight(Smooth, [6, 3]), 0.5 * (0.25 + 0.47));
+        let (a, b) = (DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0));
+        let f = [DVec3::new(1.0, 1.0, 0.0), DVec3::new(1.0, -1.0, 4.0)];
+        let p = edge_point_weighted(a, b, &f, 0.0, 0.47);
+        let want = (a + b) * 0.03 + (f[0] + f[1]) * 0.47;
+        assert!((p - want).length() < 1e-15, "{p} {want}");
+        // The plain weight is the plain rule, bit for bit; creases and boundaries ignore it.
+        assert_eq!(
+            edge_point_weighted(a, b, &f, 0.0, 0.25),
+            edge_point(a, b, &f, 0.0)
+        );
+        assert_eq!(edge_point_weighted(a, b, &f, 1.0, 0.47), (a + b) * 0.5);
+        assert_eq!(edge_point_weighted(a, b, &f[..1], 0.0, 0.47), (a + b) * 0.5);
+        let half = edge_point_weighted(a, b, &f, 0.5, 0.36);
+        let smooth = edge_point_weighted(a, b, &f, 0.0, 0.36);
+        assert!((half - ((a + b) * 0.25 + smooth * 0.5)).length() < 1e-15);
     }
 
     #[test]

@@ -7,7 +7,9 @@
 //! sharpness, child faces the hole flag and group of their parent.
 
 use glam::Vec3;
-use subdiv_mesh::{CreaseMethod, EdgeId, HalfedgeId, Mesh, PolygonSoup, VertexId};
+use subdiv_mesh::{
+    CreaseMethod, EdgeId, HalfedgeId, Mesh, PolygonSoup, TriangleSubdivision, VertexId,
+};
 
 use crate::crease::{VertexRules, decrement, edge_crease_weight, is_sharp};
 use crate::{Depth, RulesError, Scheme, catmark, loop_scheme};
@@ -112,6 +114,7 @@ pub struct RefineKernel<'m> {
     mesh: &'m Mesh,
     scheme: Scheme,
     method: CreaseMethod,
+    triangles: TriangleSubdivision,
     /// Child sharpness of each edge at the origin of each half-edge.
     child_sharp: Vec<f32>,
     halfedges: Vec<HalfedgeId>,
@@ -128,6 +131,7 @@ impl<'m> RefineKernel<'m> {
             mesh,
             scheme,
             method: mesh.options().crease,
+            triangles: mesh.options().triangles,
             child_sharp: vec![0.0; mesh.num_halfedges()],
             halfedges: Vec::new(),
             edge_ends: Vec::new(),
@@ -208,6 +212,11 @@ impl<'m> RefineKernel<'m> {
             }
         }
         match self.scheme {
+            Scheme::CatmullClark if k == 2 && self.triangles == TriangleSubdivision::Smooth => {
+                let sizes = [h0, h1].map(|h| mesh.face_size(mesh.face(h)));
+                let fw = catmark::edge_face_weight(self.triangles, sizes);
+                catmark::edge_point_weighted(a, b, &adj, w, fw)
+            }
             Scheme::CatmullClark => catmark::edge_point(a, b, &adj[..k], w),
             Scheme::Loop => loop_scheme::edge_point(a, b, &adj[..k], w),
         }

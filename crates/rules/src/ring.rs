@@ -13,7 +13,7 @@
 //! far end, which after one step is just the far half of the parent edge.
 
 use glam::{DVec3, Vec3};
-use subdiv_mesh::{CreaseMethod, Mesh, VertexId};
+use subdiv_mesh::{CreaseMethod, Mesh, TriangleSubdivision, VertexId};
 
 use crate::crease::{Rule, VertexRules, child_edge_sharpness, edge_crease_weight, is_semi_sharp};
 use crate::{Scheme, catmark, loop_scheme};
@@ -23,6 +23,7 @@ use crate::{Scheme, catmark, loop_scheme};
 pub struct Ring {
     scheme: Scheme,
     method: CreaseMethod,
+    triangles: TriangleSubdivision,
     center: DVec3,
     vertex_sharpness: f32,
     boundary: bool,
@@ -52,6 +53,7 @@ impl Ring {
     pub fn load(&mut self, mesh: &Mesh, v: VertexId, scheme: Scheme) -> bool {
         self.scheme = scheme;
         self.method = mesh.options().crease;
+        self.triangles = mesh.options().triangles;
         self.center = mesh.position(v).as_dvec3();
         self.vertex_sharpness = mesh.vertex_sharpness(v);
         self.boundary = mesh.is_boundary_vertex(v);
@@ -130,6 +132,8 @@ impl Ring {
     ) {
         self.scheme = Scheme::CatmullClark;
         self.method = method;
+        // Quads only: the triangle rule never applies.
+        self.triangles = TriangleSubdivision::Catmark;
         self.center = center;
         self.vertex_sharpness = vertex_sharpness;
         self.boundary = boundary;
@@ -259,16 +263,20 @@ impl Ring {
                     };
                     let after = if i < nf { Some(i) } else { None };
                     let mut faces = [DVec3::ZERO; 2];
+                    let mut sizes = [0usize; 2];
                     let mut k = 0;
                     for f in before.into_iter().chain(after) {
                         faces[k] = self.fp[f];
+                        sizes[k] = self.face_inner(f).len() + 3;
                         k += 1;
                     }
-                    self.tmp_edges.push(catmark::edge_point(
+                    let fw = catmark::edge_face_weight(self.triangles, sizes);
+                    self.tmp_edges.push(catmark::edge_point_weighted(
                         self.center,
                         self.edges[i],
                         &faces[..k],
                         w,
+                        fw,
                     ));
                     self.tmp_far.push(if is_semi_sharp(far_child) {
                         (far_child, 1)
@@ -681,6 +689,34 @@ mod tests {
             checked += 1;
         }
         assert!(checked > 300);
+    }
+
+    /// The pillow of fixtures/reference/shapes: its ring corners 0, 2, 4, 6 are interior
+    /// vertices of valence 2.
+    const PILLOW: &str = "v -1 -1 0.1\nv 0 -1 0\nv 1 -1 -0.1\nv 1 0 0.05\nv 1 1 0.1\nv 0 1 0\n\
+        v -1 1 -0.05\nv -1 0 0\nv 0.1 0 0.8\nv 0 -0.1 -0.6\nf 1 2 9 8\nf 2 3 4 9\nf 9 4 5 6\n\
+        f 8 9 6 7\nf 8 10 2 1\nf 10 4 3 2\nf 6 5 4 10\nf 7 6 10 8\n";
+
+    /// OpenSubdiv gives a smooth valence-2 vertex the corner masks: its limit at any level is its
+    /// position at that level, its normal the cross product of its two edges.
+    #[test]
+    fn valence2_limit_is_the_vertex_at_its_level() {
+        let mesh = Mesh::from_soup(&subdiv_mesh::parse_obj(PILLOW).unwrap()).unwrap();
+        let mut ring = Ring::new();
+        assert!(ring.load(&mesh, VertexId(0), Scheme::CatmullClark));
+        assert_eq!(ring.valence(), 2);
+        let mut level1 = ring.clone();
+        let (p, n) = ring.limit();
+        assert_eq!(p, mesh.position(VertexId(0)).as_dvec3());
+        let want = (ring.edge(0) - p).cross(ring.edge(1) - p).normalize();
+        assert!((n - want).length() < 1e-12, "{n} {want}");
+        level1.refine();
+        let c = level1.center();
+        assert_ne!(c, p);
+        assert_eq!(level1.limit().0, c);
+        // limit_point, and through it the whole-mesh paths, agree.
+        let (lp, _) = limit_point(&mesh, VertexId(0), Scheme::CatmullClark);
+        assert_eq!(lp.as_dvec3(), p);
     }
 
     #[test]

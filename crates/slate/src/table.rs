@@ -299,8 +299,10 @@ pub(crate) fn ring_index_of_dir(c: &Corner, d: usize, d2: usize, dir: usize) -> 
             Some(idx as usize)
         }
     } else {
-        if off == 2 && m < 4 {
-            // valence 3: the edge opposite d is the one before d (shared slot)
+        if off == 2 && m == 3 {
+            // valence 3: the edge opposite d is the one before d (shared slot). Valence 2 needs
+            // no exception: the opposite directions are the ring's two edges again (the other
+            // face wraps around the corner), which the modular index gives.
             return Some((c.ih + m - 1) % m);
         }
         Some(((idx + m as isize) % m as isize) as usize)
