@@ -41,10 +41,10 @@ impl AdaptiveArgs {
                 self.max_depth
             );
         }
-        if let Some(px) = self.pixel_error {
-            if !(px.is_finite() && px > 0.0) {
-                bail!("--pixel-error must be a positive number of pixels");
-            }
+        if let Some(px) = self.pixel_error
+            && !(px.is_finite() && px > 0.0)
+        {
+            bail!("--pixel-error must be a positive number of pixels");
         }
         Ok(DepthParams {
             max_depth: self.max_depth,

@@ -157,14 +157,14 @@ impl DynamicSubdivision {
     /// Overrides the view-dependent depths with fixed per-face depths (uniform tessellation, or
     /// depths from a Degree-of-Interest function); `None` returns to view-dependent depths.
     pub fn set_face_depths(&mut self, depths: Option<Vec<Depth>>) -> Result<(), AssemblyError> {
-        if let Some(d) = &depths {
-            if d.len() != self.mesh.num_faces() {
-                return Err(AssemblyError::Length {
-                    what: "face depths",
-                    got: d.len(),
-                    want: self.mesh.num_faces(),
-                });
-            }
+        if let Some(d) = &depths
+            && d.len() != self.mesh.num_faces()
+        {
+            return Err(AssemblyError::Length {
+                what: "face depths",
+                got: d.len(),
+                want: self.mesh.num_faces(),
+            });
         }
         self.fixed_depths = depths;
         Ok(())
