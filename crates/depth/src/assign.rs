@@ -181,10 +181,10 @@ pub fn assign(
             } else {
                 pixel_error_depth(camera, sphere, &e.deviation, px, p.max_depth)
             };
-        } else if cls != Class::Back {
-            if let Some(ps) = p.projected_size {
-                d = adjust_projected(d, r, ps, p.max_depth);
-            }
+        } else if cls != Class::Back
+            && let Some(ps) = p.projected_size
+        {
+            d = adjust_projected(d, r, ps, p.max_depth);
         }
         out.depth.push(d.min(p.max_depth));
         out.active.push(!(p.cull_back && cls == Class::Back));
