@@ -149,7 +149,7 @@ const FONT: &str = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
 /// Registers the plots' font with plotters: installs it with apt when missing and running as
 /// root, otherwise names the command and fails.
-fn register_font() -> Result<()> {
+pub(crate) fn register_font() -> Result<()> {
     if !Path::new(FONT).exists() {
         let cmd = "apt-get update && apt-get install -y fonts-dejavu-core";
         if !crate::vulkan::is_root() {

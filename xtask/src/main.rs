@@ -10,12 +10,15 @@
 //!   (see `docs/golden.md`).
 //! - `cargo xtask bench-osd [--install]`: OpenSubdiv 3.5 (libosd-dev) timed beside the slate
 //!   tessellator (see `docs/performance.md`).
+//! - `cargo xtask plot-quality STEM LABEL=FILE...`: triangles against silhouette error from
+//!   saved `subdiv bench quality` output (see `docs/performance.md`).
 
 mod architecture;
 mod bench_osd;
 mod figures_cc;
 mod figures_doi;
 mod golden;
+mod plot_quality;
 mod vulkan;
 
 use std::path::{Path, PathBuf};
@@ -210,10 +213,11 @@ fn main() -> Result<()> {
             figures_cc_run()
         }
         Some("bench-osd") => bench_osd::run(&root()),
+        Some("plot-quality") => plot_quality::run(&args[1..]),
         Some("golden") => golden::Options::parse(&args[1..]).and_then(|o| golden::run(&root(), &o)),
         _ => {
             eprintln!(
-                "usage: cargo xtask <demo|test|check-architecture|figures|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]>"
+                "usage: cargo xtask <demo|test|check-architecture|figures|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|plot-quality STEM LABEL=FILE...>"
             );
             std::process::exit(2);
         }

@@ -22,6 +22,11 @@ pub enum BenchWhat {
     /// Frame rate of the paper's Fig. 12 scene rendered headless, one line per frame:
     /// `frame=<i> fps=<f> triangles=<n> maxsd=<cap> patches=<n0>,<n1>,..` (patches per depth).
     Framerate(crate::bench_framerate::BenchFramerateArgs),
+    /// Image error against the true surface (a deeper uniform tessellation): uniform depths
+    /// 0..=max, curvature-adaptive and pixel error 2, 1, 0.5; last lines, one per configuration:
+    /// `config=<name> triangles=<n> silhouette_px_max=<f> silhouette_px_p99=<f>
+    /// shading_deg_p99=<f> update_ms=<f> render_ms=<f>`.
+    Quality(crate::bench_quality::BenchQualityArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -46,6 +51,7 @@ pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
     match &a.what {
         BenchWhat::Tessellate(t) => bench_tessellate(t),
         BenchWhat::Framerate(f) => crate::bench_framerate::run(f),
+        BenchWhat::Quality(q) => crate::bench_quality::run(q),
     }
 }
 

@@ -4,6 +4,7 @@
 mod adaptive_args;
 mod bench;
 mod bench_framerate;
+mod bench_quality;
 mod camera_args;
 mod choices;
 mod doi_args;

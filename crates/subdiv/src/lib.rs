@@ -33,6 +33,8 @@
 //! - `frame_sources.rs`: the viewer's [`FrameSource`](vk::viewer::FrameSource)s
 //!   ([`UniformSource`], [`AdaptiveSource`], [`DoiSource`]);
 //! - `builtin.rs`: built-in scenes ([`BuiltinScene`], [`helmet40`], the paper's Fig. 12).
+//! - `quality/`: image error of tessellations against the true surface, rendered
+//!   ([`quality::QualityRun`], what `subdiv bench quality` prints).
 //!
 //! **Invariants.** Nothing here changes a cage the caller passed in; every frame's geometry is
 //! watertight to the bit (shared points are referenced through one owner patch); errors are

@@ -111,8 +111,11 @@ fn split_crease_normals(limit: &LimitMesh, mesh: &mut OwnedMesh) {
     let mut corner = Vec::new();
     for f in 0..limit.num_faces() {
         let vs = limit.face(f);
-        let n: Vec3 = (0..vs.len())
-            .map(|k| p(vs[k]).cross(p(vs[(k + 1) % vs.len()])))
+        // Newell's sum about the first corner: about the origin, the cross products of a small
+        // face far from it cancel in f32 and leave noise for a normal.
+        let o = p(vs[0]);
+        let n: Vec3 = (1..vs.len().saturating_sub(1))
+            .map(|k| (p(vs[k]) - o).cross(p(vs[k + 1]) - o))
             .sum();
         let n = n.normalize_or_zero();
         corner.clear();
@@ -182,6 +185,26 @@ mod tests {
         let scene = Scene::from_limit(quad, vec![0.0; 4]);
         assert_eq!(scene.mesh.positions.len(), 4);
         assert_eq!(scene.mesh.triangles, [0, 1, 2, 0, 2, 3]);
+    }
+
+    #[test]
+    fn small_faces_far_from_the_origin_keep_their_smooth_normals() {
+        // Quads of 1e-4 around (1.73, -1.22, 0.31), like deep faces of catmark_pawn: about the
+        // origin, the cross products cancel in f32 and the face normal was noise, so corners
+        // were split with a wrong (often flipped) normal.
+        for k in 0..50 {
+            let t = k as f32 * 0.0137;
+            let (x, y, z) = (1.7312345 + t, -1.2187654 - t, 0.3123456 + t);
+            let s = 1e-4f32;
+            let quad = LimitMesh {
+                positions: vec![[x, y, z], [x + s, y, z], [x + s, y + s, z], [x, y + s, z]],
+                normals: vec![[0.0, 0.0, 1.0]; 4],
+                face_offsets: vec![0, 4],
+                face_indices: vec![0, 1, 2, 3],
+            };
+            let scene = Scene::from_limit(quad, vec![6.0; 4]);
+            assert_eq!(scene.mesh.positions.len(), 4, "corner split at offset {t}");
+        }
     }
 
     #[test]

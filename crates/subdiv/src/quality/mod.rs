@@ -1,6 +1,18 @@
 //! Image quality of a tessellation against the true surface: what `subdiv bench quality`
 //! measures (issue: adaptive depth must earn its keep).
+//!
+//! - `metrics.rs`: per-pixel silhouette distance and shading angle of one frame against its
+//!   reference ([`compare_frames`], [`quantile`]);
+//! - `run.rs`: a whole run — reference renders per camera, then every configuration
+//!   ([`QualityRun`], [`measure`], [`Config`]);
+//! - `orbit.rs`: cameras evenly around the model ([`orbit_cameras`]).
 
 mod metrics;
+mod orbit;
+mod run;
+#[cfg(test)]
+mod tests;
 
 pub use metrics::{FrameErrors, compare_frames, quantile, silhouette_distance};
+pub use orbit::orbit_cameras;
+pub use run::{Config, ConfigQuality, QualityError, QualityParams, QualityRun, measure};

@@ -1,0 +1,110 @@
+//! `subdiv bench quality` end to end: the line format of a tiny run, and the refusal of a
+//! reference that is not deeper than the configurations. Without a Vulkan driver the run test
+//! prints a note and passes, unless `SUBDIV_VK_REQUIRE_DRIVER=1`.
+
+mod common;
+
+use common::{assert_clean_failure, root, run_ok, subdiv};
+
+const KEYS: [&str; 7] = [
+    "config",
+    "triangles",
+    "silhouette_px_max",
+    "silhouette_px_p99",
+    "shading_deg_p99",
+    "update_ms",
+    "render_ms",
+];
+
+fn cube() -> String {
+    root()
+        .join("fixtures/reference/shapes/catmark_cube.obj")
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// The fields of a result line, checked against [`KEYS`] in order; numbers parse and are finite.
+fn fields(line: &str) -> Vec<(String, f64)> {
+    let tokens: Vec<&str> = line.split(' ').collect();
+    assert_eq!(tokens.len(), KEYS.len(), "{line}");
+    let mut out = Vec::new();
+    for (t, key) in tokens.iter().zip(KEYS) {
+        let (k, v) = t.split_once('=').unwrap_or_else(|| panic!("{t} in {line}"));
+        assert_eq!(k, key, "{line}");
+        if key == "config" {
+            out.push((v.to_string(), 0.0));
+        } else if key == "triangles" {
+            out.push((key.to_string(), v.parse::<u64>().expect(line) as f64));
+        } else {
+            let x: f64 = v.parse().expect(line);
+            assert!(x.is_finite() && x >= 0.0, "{line}");
+            out.push((key.to_string(), x));
+        }
+    }
+    out
+}
+
+#[test]
+fn tiny_run_prints_one_line_per_configuration_last() {
+    let input = cube();
+    let Some(o) = run_ok(&[
+        "bench",
+        "quality",
+        &input,
+        "--size",
+        "64x48",
+        "--max-depth",
+        "1",
+        "--orbit",
+        "2",
+        "--runs",
+        "1",
+    ]) else {
+        return;
+    };
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let lines: Vec<&str> = stdout.lines().collect();
+    let names = [
+        "uniform-0",
+        "uniform-1",
+        "curvature",
+        "pixel-error-2",
+        "pixel-error-1",
+        "pixel-error-0.5",
+    ];
+    assert!(lines.len() >= names.len(), "{stdout}");
+    let last = &lines[lines.len() - names.len()..];
+    let mut silhouette = Vec::new();
+    for (line, name) in last.iter().zip(names) {
+        let f = fields(line);
+        assert_eq!(f[0].0, name, "{line}");
+        assert!(f[3].1 <= f[2].1, "p99 above max: {line}");
+        silhouette.push((f[1].1, f[2].1));
+    }
+    // Uniform depth 0 has 6 quads = 12 triangles; depth 1 four times as many.
+    assert_eq!((silhouette[0].0, silhouette[1].0), (12.0, 48.0), "{stdout}");
+    assert!(silhouette[1].1 <= silhouette[0].1, "{stdout}");
+}
+
+#[test]
+fn a_reference_that_is_not_deeper_is_refused() {
+    let input = cube();
+    let o = subdiv()
+        .args([
+            "bench",
+            "quality",
+            &input,
+            "--max-depth",
+            "3",
+            "--reference-depth",
+            "3",
+        ])
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, "--reference-depth 3 is not deeper than --max-depth 3");
+    let o = subdiv()
+        .args(["bench", "quality", &input, "--orbit", "0"])
+        .output()
+        .unwrap();
+    assert_clean_failure(&o, "--orbit must be at least 1");
+}
