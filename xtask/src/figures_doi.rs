@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use glam::Vec3;
-use subdiv::{RefineOptions, refine_adaptive};
+use subdiv::{Balance, RefineOptions, refine_adaptive};
 use subdiv_doi::{
     Aggregate, Dihedral, Doi, DoiContext, Focus, HapticG1, HapticPoint, Silhouette, ViewAngle,
     silhouette_distance, silhouette_segments,
@@ -71,6 +71,7 @@ fn measure(root: &Path, name: &str) -> Result<Row> {
             threshold: doi.default_threshold(),
             steps: STEPS,
             aggregate: Aggregate::Max,
+            balance: Balance::Vertex,
         };
         let r = refine_adaptive(&mesh, doi, &ctx, &opts)?;
         Ok((

@@ -48,6 +48,10 @@ pub struct DoiArgs {
     /// How edge or vertex DoI values become face values.
     #[arg(long, value_enum, default_value = "max")]
     pub aggregate: AggregateName,
+    /// Skip level balancing: only the paper's red-green closure (fewer triangles, but the
+    /// smallest angle decays with the steps).
+    #[arg(long)]
+    pub no_balance: bool,
 }
 
 impl DoiArgs {
@@ -79,6 +83,11 @@ impl DoiArgs {
             focus: self.choice.focus.clone(),
             skeleton: self.skeleton.clone(),
             hip: self.hip,
+            balance: if self.no_balance {
+                subdiv::Balance::None
+            } else {
+                subdiv::Balance::Vertex
+            },
         };
         DoiSetup::new(cage, &options).map_err(|e| doi_error(e, input))
     }

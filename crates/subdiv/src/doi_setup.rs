@@ -12,7 +12,7 @@ use subdiv_doi::{
 use subdiv_mesh::{Camera, Mesh, MeshError, triangulate};
 use subdiv_rules::{Depth, LimitMesh};
 
-use crate::{RefineError, RefineOptions, Refined, Scene, refine_adaptive};
+use crate::{Balance, RefineError, RefineOptions, Refined, Scene, refine_adaptive};
 
 /// The Degree-of-Interest functions a DoI set-up can build.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -108,6 +108,8 @@ pub struct DoiOptions {
     pub skeleton: Option<PathBuf>,
     /// Haptic interaction point for [`DoiKind::Haptic`].
     pub hip: Option<Vec3>,
+    /// Level balancing of the adaptive steps.
+    pub balance: Balance,
 }
 
 impl DoiOptions {
@@ -123,6 +125,7 @@ impl DoiOptions {
             focus: Vec::new(),
             skeleton: None,
             hip: None,
+            balance: Balance::Vertex,
         }
     }
 }
@@ -240,6 +243,7 @@ impl DoiSetup {
                 threshold,
                 steps: o.steps,
                 aggregate: o.aggregate,
+                balance: o.balance,
             },
         })
     }
