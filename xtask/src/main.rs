@@ -15,6 +15,7 @@ mod architecture;
 mod bench_osd;
 mod figures_cc;
 mod figures_doi;
+mod figures_focus;
 mod golden;
 mod vulkan;
 
@@ -178,12 +179,15 @@ fn main() -> Result<()> {
         Some("demo") => demo(),
         Some("test") => test(),
         Some("check-architecture") => architecture::run(&root()),
+        Some("figures") if args.get(1).map(String::as_str) == Some("doi") => {
+            figures_doi::run(&root())
+        }
         Some("figures") => figures_doi::run(&root()).and_then(|()| figures_cc_run()),
         Some("bench-osd") => bench_osd::run(&root()),
         Some("golden") => golden::Options::parse(&args[1..]).and_then(|o| golden::run(&root(), &o)),
         _ => {
             eprintln!(
-                "usage: cargo xtask <demo|test|check-architecture|figures|golden [--bless] [--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]>"
+                "usage: cargo xtask <demo|test|check-architecture|figures [doi]|golden [--bless] [--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]>"
             );
             std::process::exit(2);
         }
