@@ -222,7 +222,7 @@ pub fn loop_step_with(
     let level = asm
         .source_face
         .iter()
-        .map(|&f| cur.level[f as usize].saturating_add(closure.red_face[f as usize] as u8))
+        .map(|&f| cur.level[f as usize].saturating_add(u8::from(closure.red_face[f as usize])))
         .collect();
     let count = |s: &[bool]| s.iter().filter(|&&x| x).count();
     let selected_n = count(selected);

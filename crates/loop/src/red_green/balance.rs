@@ -62,7 +62,7 @@ pub fn balance(
         // The highest level around every vertex after the step.
         top.iter_mut().for_each(|t| *t = 0);
         for f in mesh.faces() {
-            let l = level[f.idx()].saturating_add(c.red_face[f.idx()] as u8);
+            let l = level[f.idx()].saturating_add(u8::from(c.red_face[f.idx()]));
             for v in mesh.face_vertices(f) {
                 top[v.idx()] = top[v.idx()].max(l);
             }
