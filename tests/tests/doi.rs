@@ -5,10 +5,11 @@
 use std::path::PathBuf;
 
 use glam::Vec3;
-use subdiv::{RefineError, RefineOptions, refine_adaptive};
+use subdiv::{Balance, RefineError, RefineOptions, refine_adaptive};
 use subdiv_doi::{
-    Aggregate, Dihedral, Doi, DoiContext, Focus, HapticG1, HapticPoint, Silhouette, ViewAngle,
-    silhouette_distance, silhouette_segments,
+    Aggregate, Curvature, Dihedral, Doi, DoiContext, Domain, Focus, Haptic, HapticPoint,
+    Silhouette, ViewAngle, closest_surface_point, face_values, silhouette_distance,
+    silhouette_segments,
 };
 use subdiv_loop::LoopError;
 use subdiv_mesh::{Camera, Mesh, MeshError, ReadOptions, read_obj_with, triangulate};
@@ -31,7 +32,7 @@ fn camera(m: &Mesh) -> Camera {
     Camera::eye_relative(lo, hi, Vec3::new(0.0, 0.0, 3.0), 45.0, 800, 600)
 }
 
-/// The five DoIs of the paper (haptic in both forms), set up for `m`.
+/// The five DoIs of the paper (haptic in both forms) and the vertex DoI, set up for `m`.
 fn dois(m: &Mesh) -> Vec<Box<dyn Doi>> {
     let (lo, hi) = m.bounds();
     let skeleton = vec![
@@ -43,11 +44,12 @@ fn dois(m: &Mesh) -> Vec<Box<dyn Doi>> {
         Box::new(ViewAngle),
         Box::new(Silhouette),
         Box::new(Dihedral),
-        Box::new(HapticG1),
+        Box::new(Haptic::for_mesh(m, Haptic::DEFAULT_TOLERANCE)),
         Box::new(HapticPoint),
         Box::new(
             Focus::from_groups(m, &[], Some(skeleton), Focus::default_radius(m) * 0.5).unwrap(),
         ),
+        Box::new(Curvature),
     ]
 }
 
@@ -55,7 +57,8 @@ fn context(m: &Mesh) -> DoiContext {
     let (lo, hi) = m.bounds();
     DoiContext {
         camera: Some(camera(m)),
-        hip: Some(lo + (hi - lo) * Vec3::new(0.9, 0.6, 0.5)),
+        // The haptic interaction point touches the surface.
+        hip: closest_surface_point(m, lo + (hi - lo) * Vec3::new(0.9, 0.6, 0.5)).map(|x| x.1),
         ..Default::default()
     }
 }
@@ -118,6 +121,7 @@ fn every_doi_and_step_count_is_conforming_and_cheaper_than_uniform() {
                     threshold: doi.default_threshold(),
                     steps,
                     aggregate: Aggregate::Max,
+                    balance: Balance::Vertex,
                 };
                 let r = refine_adaptive(&m, doi.as_ref(), &ctx, &opts).unwrap();
                 let what = format!("{name} {} {steps} steps", doi.name());
@@ -140,6 +144,7 @@ fn aggregates_order_the_triangle_counts() {
             threshold: 30.0,
             steps: 2,
             aggregate: agg,
+            balance: Balance::Vertex,
         };
         let r = refine_adaptive(&m, &Dihedral, &ctx, &opts).unwrap();
         assert_conforming(&m, &r.mesh.mesh, "aggregate");
@@ -176,6 +181,7 @@ fn threshold_below_every_value_is_uniform_loop_exactly() {
                     threshold: f32::NEG_INFINITY,
                     steps,
                     aggregate: Aggregate::Min,
+                    balance: Balance::Vertex,
                 };
                 let r = refine_adaptive(&m, doi.as_ref(), &ctx, &opts).unwrap();
                 let u = &uniform[steps as usize - 1];
@@ -200,6 +206,7 @@ fn silhouette_of_the_adaptive_mesh_matches_the_uniform_one() {
         threshold: 0.5,
         steps: 3,
         aggregate: Aggregate::Max,
+        balance: Balance::Vertex,
     };
     let r = refine_adaptive(&m, &Silhouette, &ctx, &opts).unwrap();
     let u = refine_uniform_levels(&m, Scheme::Loop, 3).unwrap();
@@ -230,6 +237,7 @@ fn quads_need_triangulation() {
         threshold: 30.0,
         steps: 2,
         aggregate: Aggregate::Max,
+        balance: Balance::Vertex,
     };
     let e = refine_adaptive(&quads, &Dihedral, &DoiContext::default(), &opts).unwrap_err();
     assert!(
@@ -291,6 +299,7 @@ fn unknown_focus_lists_the_groups() {
         threshold: 0.0,
         steps: 2,
         aggregate: Aggregate::Max,
+        balance: Balance::Vertex,
     };
     let r = refine_adaptive(&m, &focus, &DoiContext::default(), &opts).unwrap();
     assert_conforming(&m, &r.mesh.mesh, "teapot lid focus");
@@ -320,32 +329,99 @@ fn min_angle(m: &Mesh) -> f32 {
     worst
 }
 
-#[test]
-fn triangle_quality_does_not_decay_over_steps() {
-    // Green triangles are merged back before they are refined, so more steps do not make
-    // thinner triangles (nested green splits would roughly halve the worst angle every step).
-    let m = load("tri_bunny_3k.obj");
-    let ctx = context(&m);
-    for doi in [Box::new(Silhouette) as Box<dyn Doi>, Box::new(Dihedral)] {
-        let worst = |steps| {
-            let opts = RefineOptions {
-                threshold: doi.default_threshold(),
-                steps,
-                aggregate: Aggregate::Max,
-            };
-            min_angle(
-                &refine_adaptive(&m, doi.as_ref(), &ctx, &opts)
-                    .unwrap()
-                    .mesh
-                    .mesh,
-            )
-        };
-        let (w2, w5) = (worst(2), worst(5));
-        assert!(
-            w5 >= 0.9 * w2,
-            "{}: worst angle {w2}° after 2 steps, {w5}° after 5",
+/// The smallest angle after 5 steps of each DoI, balanced or not.
+fn min_angle_after_5(m: &Mesh, doi: &dyn Doi, balance: Balance) -> (f32, usize) {
+    let opts = RefineOptions {
+        threshold: doi.default_threshold(),
+        steps: 5,
+        aggregate: Aggregate::Max,
+        balance,
+    };
+    let r = refine_adaptive(m, doi, &context(m), &opts).unwrap();
+    (min_angle(&r.mesh.mesh), r.mesh.mesh.num_faces())
+}
+
+/// Checks the classic red-green bound (smallest angle after five balanced steps at least half
+/// the input's) for every DoI on `name`; returns the failures, and whether the unbalanced
+/// closure (view-angle DoI) breaks the bound.
+fn quality(name: &str) -> (Vec<String>, bool) {
+    let m = load(name);
+    let bound = 0.5 * min_angle(&m);
+    let mut failed = Vec::new();
+    for doi in dois(&m) {
+        let (w, n) = min_angle_after_5(&m, doi.as_ref(), Balance::Vertex);
+        eprintln!(
+            "{name} {}: {w:.2}° ({n} triangles), bound {bound:.2}°",
             doi.name()
         );
-        assert!(w5 > 0.25 * min_angle(&m), "{}: {w5}°", doi.name());
+        if w < bound {
+            failed.push(format!("{name} {}: {w}° < {bound}°", doi.name()));
+        }
     }
+    let (plain, _) = min_angle_after_5(&m, &ViewAngle, Balance::None);
+    (failed, plain < bound)
+}
+
+#[test]
+fn triangle_quality_does_not_decay_over_steps() {
+    // With level balancing and the vertex rule once per level (subdiv-loop), the smallest angle
+    // after five steps stays above half the input's, for every DoI. Without balancing it does
+    // not: the plain closure is checked to decay, so this test can tell the two apart.
+    let (failed, plain_decays) = quality("tri_bunny_3k.obj");
+    assert!(failed.is_empty(), "{failed:#?}");
+    assert!(plain_decays, "the unbalanced closure decays");
+}
+
+#[test]
+#[ignore = "known limit: the teapot's lip collapses (see subdiv_loop::loop_step); run with --ignored"]
+fn triangle_quality_on_the_teapot() {
+    let (failed, plain_decays) = quality("tri_teapot.obj");
+    assert!(failed.is_empty(), "{failed:#?}");
+    assert!(plain_decays);
+}
+
+#[test]
+fn vertex_doi_aggregates_to_faces_end_to_end() {
+    // Curvature gives vertex values; max, avg and min over a face's corners select nested sets
+    // of faces, and the refinement follows: max refines most, min least.
+    let m = load("tri_bunny_3k.obj");
+    let ctx = DoiContext::default();
+    assert_eq!(Curvature.domain(), Domain::Vertices);
+    let mut per_vertex = Vec::new();
+    Curvature.evaluate(&m, &ctx, &mut per_vertex).unwrap();
+    assert_eq!(per_vertex.len(), m.num_vertices());
+    let t = Curvature.default_threshold();
+    let (mut scratch, mut f) = (Vec::new(), Vec::new());
+    let mut selected = Vec::new();
+    for agg in [Aggregate::Max, Aggregate::Avg, Aggregate::Min] {
+        face_values(&Curvature, &m, &ctx, agg, &mut scratch, &mut f).unwrap();
+        // By hand: the aggregate of the three corner values.
+        for face in m.faces() {
+            let c = m.face_vertices(face).iter().map(|v| per_vertex[v.idx()]);
+            let want = match agg {
+                Aggregate::Max => c.fold(f32::MIN, f32::max),
+                Aggregate::Min => c.fold(f32::MAX, f32::min),
+                Aggregate::Avg => c.sum::<f32>() / 3.0,
+            };
+            assert!((f[face.idx()] - want).abs() < 1e-4);
+        }
+        selected.push(f.iter().filter(|&&x| x > t).count());
+        let opts = RefineOptions {
+            threshold: t,
+            steps: 2,
+            aggregate: agg,
+            balance: Balance::Vertex,
+        };
+        let r = refine_adaptive(&m, &Curvature, &ctx, &opts).unwrap();
+        assert_conforming(&m, &r.mesh.mesh, "curvature");
+        selected.push(r.mesh.mesh.num_faces());
+    }
+    let [smax, nmax, savg, navg, smin, nmin] = selected[..] else {
+        unreachable!()
+    };
+    assert!(smax > savg && savg > smin && smin > 0, "{selected:?}");
+    assert!(
+        nmax > navg && navg > nmin && nmin > m.num_faces(),
+        "{selected:?}"
+    );
 }

@@ -9,10 +9,10 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use glam::Vec3;
-use subdiv::{RefineOptions, refine_adaptive};
+use subdiv::{Balance, RefineOptions, refine_adaptive};
 use subdiv_doi::{
-    Aggregate, Dihedral, Doi, DoiContext, Focus, HapticG1, HapticPoint, Silhouette, ViewAngle,
-    silhouette_distance, silhouette_segments,
+    Aggregate, Curvature, Dihedral, Doi, DoiContext, Haptic, HapticPoint, Silhouette, ViewAngle,
+    closest_surface_point, silhouette_distance, silhouette_segments,
 };
 use subdiv_mesh::{Camera, Mesh, ReadOptions, read_obj_with};
 use subdiv_rules::{Scheme, refine_uniform_levels};
@@ -38,10 +38,16 @@ struct Row {
     model: String,
     input: usize,
     uniform: usize,
+    /// Balanced (the default) counts of view angle, silhouette, dihedral.
     counts: [usize; 3],
+    /// The same without balancing (the paper's plain closure).
+    plain: [usize; 3],
     per_step: [Vec<usize>; 3],
     silhouette: [f32; 6],
-    others: [usize; 3],
+    /// Haptic, haptic point, curvature max / avg / min.
+    others: [usize; 5],
+    /// Smallest angle of the input, then per DoI after 5 steps: (plain, balanced).
+    quality: (f32, Vec<(&'static str, f32, f32)>),
 }
 
 fn load(root: &Path, name: &str) -> Result<Mesh> {
@@ -59,18 +65,21 @@ fn measure(root: &Path, name: &str) -> Result<Row> {
     let mesh = load(root, name)?;
     let (lo, hi) = mesh.bounds();
     let cam = Camera::eye_relative(lo, hi, EYE_RELATIVE, FOV, SIZE.0, SIZE.1);
+    // The haptic interaction point touches the surface: a bounding-box point snapped to it.
     let hip = lo + (hi - lo) * Vec3::new(0.9, 0.6, 0.5);
+    let hip = closest_surface_point(&mesh, hip).map_or(hip, |x| x.1);
     let ctx = DoiContext {
         camera: Some(cam),
         hip: Some(hip),
         ..Default::default()
     };
     let uniform = refine_uniform_levels(&mesh, Scheme::Loop, STEPS as subdiv::rules::Depth)?;
-    let run = |doi: &dyn Doi| -> Result<(usize, Vec<usize>, Mesh)> {
+    let go = |doi: &dyn Doi, steps, aggregate, balance| -> Result<(usize, Vec<usize>, Mesh)> {
         let opts = RefineOptions {
             threshold: doi.default_threshold(),
-            steps: STEPS,
-            aggregate: Aggregate::Max,
+            steps,
+            aggregate,
+            balance,
         };
         let r = refine_adaptive(&mesh, doi, &ctx, &opts)?;
         Ok((
@@ -79,18 +88,35 @@ fn measure(root: &Path, name: &str) -> Result<Row> {
             r.mesh.mesh,
         ))
     };
+    let run = |doi: &dyn Doi| go(doi, STEPS, Aggregate::Max, Balance::Vertex);
+    let plain =
+        |doi: &dyn Doi| Ok::<_, anyhow::Error>(go(doi, STEPS, Aggregate::Max, Balance::None)?.0);
     let (va, va_steps, _) = run(&ViewAngle)?;
     let (si, si_steps, si_mesh) = run(&Silhouette)?;
     let (di, di_steps, _) = run(&Dihedral)?;
-    let (hg, _, _) = run(&HapticG1)?;
+    let plain_counts = [plain(&ViewAngle)?, plain(&Silhouette)?, plain(&Dihedral)?];
+    let haptic = Haptic::for_mesh(&mesh, Haptic::DEFAULT_TOLERANCE);
+    let (hg, _, _) = run(&haptic)?;
     let (hp, _, _) = run(&HapticPoint)?;
-    let skeleton = vec![lo, hi];
-    let (fo, _, _) = run(&Focus::from_groups(
-        &mesh,
-        &[],
-        Some(skeleton),
-        Focus::default_radius(&mesh),
-    )?)?;
+    let curv = |agg| Ok::<_, anyhow::Error>(go(&Curvature, STEPS, agg, Balance::Vertex)?.0);
+    let cu = [
+        curv(Aggregate::Max)?,
+        curv(Aggregate::Avg)?,
+        curv(Aggregate::Min)?,
+    ];
+    let mut quality = Vec::new();
+    let dois: [&dyn Doi; 6] = [
+        &ViewAngle,
+        &Silhouette,
+        &Dihedral,
+        &haptic,
+        &HapticPoint,
+        &Curvature,
+    ];
+    for doi in dois {
+        let angle = |b| Ok::<_, anyhow::Error>(min_angle(&go(doi, 5, Aggregate::Max, b)?.2));
+        quality.push((doi.name(), angle(Balance::None)?, angle(Balance::Vertex)?));
+    }
 
     // Fig. 5: silhouettes of the adaptive and the uniform mesh, in pixels.
     let s_uni = silhouette_segments(&uniform, &cam);
@@ -104,6 +130,7 @@ fn measure(root: &Path, name: &str) -> Result<Row> {
         input: mesh.num_faces(),
         uniform: uniform.num_faces(),
         counts: [va, si, di],
+        plain: plain_counts,
         per_step: [va_steps, si_steps, di_steps],
         silhouette: [
             max_au.max(max_ua),
@@ -113,8 +140,24 @@ fn measure(root: &Path, name: &str) -> Result<Row> {
             s_ada.len() as f32,
             s_uni.len() as f32,
         ],
-        others: [hg, hp, fo],
+        others: [hg, hp, cu[0], cu[1], cu[2]],
+        quality: (min_angle(&mesh), quality),
     })
+}
+
+/// The smallest corner angle of a triangle mesh, in degrees.
+pub(crate) fn min_angle(m: &Mesh) -> f32 {
+    let mut worst = 180.0f32;
+    for f in m.faces() {
+        let v = m.face_vertices(f);
+        for k in 0..3 {
+            let a = m.position(v[k]);
+            let b = m.position(v[(k + 1) % 3]);
+            let c = m.position(v[(k + 2) % 3]);
+            worst = worst.min((b - a).angle_between(c - a).to_degrees());
+        }
+    }
+    worst
 }
 
 fn pct(n: u64, d: u64) -> String {
@@ -149,7 +192,8 @@ pub fn run(root: &Path) -> Result<()> {
     writeln!(
         s,
         "Generated by `cargo xtask figures` (`xtask/src/figures_doi.rs`). {STEPS} steps of adaptive Loop \
-         subdivision with red-green closure (`subdiv-doi`, `subdiv-stitch::red_green`), each DoI at its \
+         subdivision with red-green closure (`subdiv-doi`, `subdiv-loop`), balanced by default (faces sharing a \
+         vertex differ by at most one level; `--no-balance` for the paper's plain closure), each DoI at its \
          default threshold (the paper's figure values: view angle: faces within 20° of edge-on, i.e. value \
          `acos|n·v|` > 70°; silhouette edges, eq. (2), t = 0.5; dihedral angle > 30°, concave edges 0), \
          edge values aggregated to faces by max. Camera: `--eye-relative 0,0,3` (\"viewed directly from the \
@@ -179,23 +223,32 @@ pub fn run(root: &Path) -> Result<()> {
     )?;
     for r in &rows {
         let u = r.uniform as u64;
+        let cell = |k: usize| {
+            let (p, b) = (r.plain[k] as u64, r.counts[k] as u64);
+            format!(
+                "{} ({}) / {} (+{:.0} %)",
+                thousands(p),
+                pct(p, u),
+                thousands(b),
+                100.0 * (b as f64 / p as f64 - 1.0)
+            )
+        };
         writeln!(
             s,
-            "| {} | {} | {} | {} ({}) | {} ({}) | {} ({}) |",
+            "| {} | {} | {} | {} | {} | {} |",
             r.model,
             r.input,
             thousands(u),
-            thousands(r.counts[0] as u64),
-            pct(r.counts[0] as u64, u),
-            thousands(r.counts[1] as u64),
-            pct(r.counts[1] as u64, u),
-            thousands(r.counts[2] as u64),
-            pct(r.counts[2] as u64, u)
+            cell(0),
+            cell(1),
+            cell(2)
         )?;
     }
     writeln!(
         s,
-        "\nPercentages are of the uniform count. Triangles after each step:\n"
+        "\nModel rows: the paper's plain red-green closure (percentage of uniform Loop) / with level \
+         balancing (the default) and, in parentheses, the triangle-count cost of balancing. The plain \
+         counts are the ones to compare with the paper's row. Triangles after each step (balanced):\n"
     )?;
     writeln!(s, "| model | view angle | silhouette | dihedral |")?;
     writeln!(s, "|---|---|---|---|")?;
@@ -237,34 +290,68 @@ pub fn run(root: &Path) -> Result<()> {
     }
     writeln!(
         s,
-        "\n### The other DoIs ({STEPS} steps, default thresholds)\n"
+        "\n### The other DoIs ({STEPS} steps, default thresholds, balanced)\n"
     )?;
     writeln!(
         s,
-        "Haptic: Clough-Tocher G¹ error of eqs. (4)–(6), t = 0.5 (the paper gives no value); haptic interaction \
-         point at bbox min + (0.9, 0.6, 0.5) × bbox extent; focus: skeleton polyline along the bbox diagonal, \
-         interest fading to 0 at half the bbox diagonal, t = 0 (so faces get about `3 (1 − d/r)` steps).\n"
+        "Haptic (§4.2): per face, the Clough-Tocher G¹ error (eq. (5) solved exactly, its out-of-plane \
+         residual counted, eq. (6)) over 12 τ and the depth by which the face's patch crosses the face's plane \
+         over τ L, the larger of the two against 1, with τ = {} and L the cage's mean edge length (the paper gives \
+         no value). Haptic point: the bbox point min + (0.9, 0.6, 0.5) × extent snapped to the closest surface \
+         point. Curvature: the vertex DoI (largest angle between the vertex normal and its faces' normals, \
+         t = 15°), vertex values to faces by max / avg / min.\n",
+        Haptic::DEFAULT_TOLERANCE
     )?;
     writeln!(
         s,
-        "| model | uniform | haptic G¹ | haptic point | focus (skeleton) |"
+        "| model | uniform | haptic | haptic point | curvature max | curvature avg | curvature min |"
     )?;
-    writeln!(s, "|---|---:|---:|---:|---:|")?;
+    writeln!(s, "|---|---:|---:|---:|---:|---:|---:|")?;
     for r in &rows {
         let u = r.uniform as u64;
+        let c = |k: usize| {
+            format!(
+                "{} ({})",
+                thousands(r.others[k] as u64),
+                pct(r.others[k] as u64, u)
+            )
+        };
         writeln!(
             s,
-            "| {} | {} | {} ({}) | {} ({}) | {} ({}) |",
+            "| {} | {} | {} | {} | {} | {} | {} |",
             r.model,
             thousands(u),
-            thousands(r.others[0] as u64),
-            pct(r.others[0] as u64, u),
-            thousands(r.others[1] as u64),
-            pct(r.others[1] as u64, u),
-            thousands(r.others[2] as u64),
-            pct(r.others[2] as u64, u)
+            c(0),
+            c(1),
+            c(2),
+            c(3),
+            c(4)
         )?;
     }
+    writeln!(s, "\n### Smallest triangle angle after 5 steps\n")?;
+    writeln!(
+        s,
+        "Plain closure → balanced (level balancing, two split edges refined red, the vertex rule once per \
+         level). The classic red-green bound asks for at least half the input's smallest angle.\n"
+    )?;
+    let names: Vec<&str> = rows[0].quality.1.iter().map(|q| q.0).collect();
+    writeln!(s, "| model | input (bound) | {} |", names.join(" | "))?;
+    writeln!(s, "|---|---:|{}", "---:|".repeat(names.len()))?;
+    for r in &rows {
+        let (input, q) = &r.quality;
+        let cells: Vec<String> = q
+            .iter()
+            .map(|(_, p, b)| format!("{p:.2}° → {b:.2}°"))
+            .collect();
+        writeln!(
+            s,
+            "| {} | {input:.2}° ({:.2}°) | {} |",
+            r.model,
+            input * 0.5,
+            cells.join(" | ")
+        )?;
+    }
+    crate::figures_focus::section(root, &mut s)?;
     writeln!(s, "{END}")?;
 
     let path = root.join("docs/figures.md");

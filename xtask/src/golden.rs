@@ -96,10 +96,14 @@ pub const SCENES: &[Scene] = &[
     scene("doi_view_angle_teapot", "fixtures/meshes/tri_teapot.obj", &["--split-nonmanifold", "--scheme", "loop", "--doi", "view-angle", "--eye-relative", "0,0.3,2.2", "--shading", "flat", "--wire-overlay"]),
     scene("doi_silhouette_teapot", "fixtures/meshes/tri_teapot.obj", &["--split-nonmanifold", "--scheme", "loop", "--doi", "silhouette", "--eye-relative", "0,0.3,2.2", "--shading", "flat", "--wire-overlay"]),
     scene("doi_dihedral_teapot", "fixtures/meshes/tri_teapot.obj", &["--split-nonmanifold", "--scheme", "loop", "--doi", "dihedral", "--eye-relative", "0,0.3,2.2", "--shading", "doi"]),
-    // Fig. 9: the haptic Clough-Tocher G1-error DoI on the bunny.
+    // The vertex DoI (curvature at vertices), aggregated to faces by the average (§3), shaded
+    // by the DoI.
+    scene("doi_curvature_avg_bunny", "fixtures/meshes/tri_bunny_3k.obj", &["--scheme", "loop", "--doi", "curvature", "--aggregate", "avg", "--steps", "2", "--eye-relative", "0.3,0.4,2.1", "--shading", "doi", "--wire-overlay"]),
+    // Fig. 9: the haptic DoI on the bunny (Clough-Tocher G1 error and one-side criterion).
     scene("doi_haptic_bunny", "fixtures/meshes/tri_bunny_3k.obj", &["--scheme", "loop", "--doi", "haptic", "--steps", "2", "--eye-relative", "0.3,0.4,2.1", "--shading", "flat", "--wire-overlay"]),
-    // Fig. 10: the illustration focus DoI: the dominant object gets the most steps.
-    scene("doi_focus_objects", "fixtures/scenes/focus_three_icosahedra.obj", &["--scheme", "loop", "--doi", "focus", "--focus", "focus", "--eye-relative", "0,0.5,1.6", "--shading", "flat", "--wire-overlay"]),
+    // Fig. 10: the illustration focus DoI: two dominant objects of different interest (1 and
+    // 0.5); the third, between them, gets the fading detail.
+    scene("doi_focus_objects", "fixtures/scenes/focus_three_icosahedra.obj", &["--scheme", "loop", "--doi", "focus", "--focus", "focus=1", "--focus", "far=0.5", "--eye-relative", "0,0.5,1.6", "--shading", "flat", "--wire-overlay"]),
     // Fig. 12: the 40-instance scene, adaptive.
     scene("helmet40_adaptive", "", &["--scene", "helmet40", "--eye-relative", "0.2,0.6,1.4", "--max-depth", "3", "--shading", "depth"]),
 ];

@@ -17,6 +17,7 @@ mod architecture;
 mod bench_osd;
 mod figures_cc;
 mod figures_doi;
+mod figures_focus;
 mod golden;
 mod plot_quality;
 mod vulkan;
@@ -206,6 +207,10 @@ fn main() -> Result<()> {
             step("checking the crate graph (docs/architecture.md)");
             architecture::run(&root())
         }
+        Some("figures") if args.get(1).map(String::as_str) == Some("doi") => {
+            step("Degree-of-Interest figures");
+            figures_doi::run(&root())
+        }
         Some("figures") => {
             step("Degree-of-Interest figures");
             figures_doi::run(&root())?;
@@ -217,7 +222,7 @@ fn main() -> Result<()> {
         Some("golden") => golden::Options::parse(&args[1..]).and_then(|o| golden::run(&root(), &o)),
         _ => {
             eprintln!(
-                "usage: cargo xtask <demo|test|check-architecture|figures|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|plot-quality STEM LABEL=FILE...>"
+                "usage: cargo xtask <demo|test|check-architecture|figures [doi]|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|plot-quality STEM LABEL=FILE...>"
             );
             std::process::exit(2);
         }

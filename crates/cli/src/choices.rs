@@ -52,6 +52,7 @@ pub enum DoiName {
     Dihedral,
     Haptic,
     Focus,
+    Curvature,
 }
 
 impl From<DoiName> for subdiv::DoiKind {
@@ -63,6 +64,7 @@ impl From<DoiName> for subdiv::DoiKind {
             DoiName::Dihedral => DoiKind::Dihedral,
             DoiName::Haptic => DoiKind::Haptic,
             DoiName::Focus => DoiKind::Focus,
+            DoiName::Curvature => DoiKind::Curvature,
         }
     }
 }

@@ -2,8 +2,6 @@
 //! command) and the refinement flags `--steps --triangulate --skeleton --hip --aggregate`
 //! (`refine`, `render --doi`, `view --doi`). Library errors become the flag-naming messages.
 
-use std::path::PathBuf;
-
 use anyhow::anyhow;
 use glam::Vec3;
 use subdiv::mesh::Mesh;
@@ -19,11 +17,13 @@ pub struct DoiChoice {
     #[arg(long)]
     pub doi: Option<DoiName>,
     /// Refine faces whose DoI exceeds this (default: the paper's figure value: view-angle 70
-    /// (degrees from head-on), silhouette 0.5, dihedral 30 (degrees), haptic 0.5, focus 0).
+    /// (degrees from head-on), silhouette 0.5, dihedral 30 (degrees), haptic 1 (either criterion beyond
+    /// its tolerance; 0.5 with --hip), focus 0).
     #[arg(long, allow_hyphen_values = true)]
     pub threshold: Option<f32>,
-    /// Focus objects (OBJ group or object names) for --doi focus; repeatable.
-    #[arg(long = "focus", value_name = "NAME")]
+    /// Focus objects for --doi focus: an OBJ group or object name, `NAME` (interest 1) or
+    /// `NAME=VALUE` (its own interest, eq. (7)'s DoI(o)); repeatable.
+    #[arg(long = "focus", value_name = "NAME[=VALUE]")]
     pub focus: Vec<String>,
 }
 
@@ -38,16 +38,23 @@ pub struct DoiArgs {
     /// Split quads and n-gons into triangles first (Loop subdivision needs triangles).
     #[arg(long)]
     pub triangulate: bool,
-    /// Skeleton polyline for --doi focus (points as `v X Y Z` or `X Y Z` lines).
-    #[arg(long)]
-    pub skeleton: Option<PathBuf>,
-    /// Haptic interaction point: with --doi haptic, refine the triangle closest to it and its
-    /// one-neighbourhood instead of using the Clough-Tocher G1 error.
+    /// Skeleton polyline for --doi focus (points as `v X Y Z` or `X Y Z` lines): `FILE` for
+    /// every focus object, or `NAME=FILE` for one; repeatable. Objects without one are measured
+    /// from their principal-axis segment.
+    #[arg(long, value_name = "[NAME=]FILE")]
+    pub skeleton: Vec<String>,
+    /// Haptic interaction point: with --doi haptic, refine the triangle closest to it (the point
+    /// is snapped to the closest surface point) and its one-neighbourhood instead of using the
+    /// Clough-Tocher criteria.
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub hip: Option<Vec3>,
     /// How edge or vertex DoI values become face values.
     #[arg(long, value_enum, default_value = "max")]
     pub aggregate: AggregateName,
+    /// Skip level balancing: only the paper's red-green closure (fewer triangles, but the
+    /// smallest angle decays with the steps).
+    #[arg(long)]
+    pub no_balance: bool,
 }
 
 impl DoiArgs {
@@ -58,7 +65,7 @@ impl DoiArgs {
 
     /// Refuses DoI options without the DoI that uses them.
     pub fn check(&self) -> anyhow::Result<()> {
-        let (focus, skeleton) = (&self.choice.focus, self.skeleton.as_deref());
+        let (focus, skeleton) = (&self.choice.focus, &self.skeleton);
         subdiv::check_doi_options(self.kind(), focus, skeleton, self.hip)
             .map_err(|e| doi_error(e, ""))?;
         if self.kind().is_none() && self.aggregate != AggregateName::Max {
@@ -77,8 +84,13 @@ impl DoiArgs {
             aggregate: self.aggregate.into(),
             triangulate: self.triangulate,
             focus: self.choice.focus.clone(),
-            skeleton: self.skeleton.clone(),
+            skeletons: self.skeleton.clone(),
             hip: self.hip,
+            balance: if self.no_balance {
+                subdiv::Balance::None
+            } else {
+                subdiv::Balance::Vertex
+            },
         };
         DoiSetup::new(cage, &options).map_err(|e| doi_error(e, input))
     }

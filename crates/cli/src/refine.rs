@@ -154,6 +154,21 @@ mod tests {
         ]))
         .unwrap_err();
         assert!(e.to_string().contains("--hip needs --doi haptic"));
+        // Focus objects with their own interest and skeleton; a bad value names the object.
+        // A bone far below the cube: only the top's own faces stay interesting.
+        let bone = temp("bone.txt", "0.5 0.5 -5\n0.5 0.5 -6\n");
+        let top = format!("top={}", bone.display());
+        let count = |focus: &[&str]| {
+            let mut a = vec![i, "--doi", "focus", "--triangulate", "-o", o];
+            a.extend_from_slice(focus);
+            run(&args(&a)).map(|_| subdiv::mesh::read_obj(&out).unwrap().num_faces())
+        };
+        let full = count(&["--focus", "top"]).unwrap();
+        let half = count(&["--focus", "top=0.5"]).unwrap();
+        let with_bone = count(&["--focus", "top=0.5", "--skeleton", &top]).unwrap();
+        assert!(half < full && with_bone < half, "{full} {half} {with_bone}");
+        let e = count(&["--focus", "top=lots"]).unwrap_err();
+        assert!(format!("{e:#}").contains("focus 'top=lots'"), "{e:#}");
         run(&args(&[
             i,
             "--doi",

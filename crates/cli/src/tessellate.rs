@@ -118,7 +118,7 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh) -> anyhow::Result<ExitCode> {
     let doi_depths = match a.doi.doi {
         Some(name) => {
             let kind = DoiKind::from(name);
-            let doi = make_doi(kind, &mesh, &a.doi.focus, None, false)
+            let doi = make_doi(kind, &mesh, &a.doi.focus, &[], false)
                 .map_err(|e| doi_error(e, &input))?;
             let depths = doi_face_depths(
                 doi.as_ref(),

@@ -29,6 +29,14 @@ pub enum DoiError {
     /// The focus DoI got neither objects nor a skeleton.
     #[error("the focus DoI needs at least one focus object (group name) or a skeleton polyline")]
     NoFocus,
+    /// A focus object given as `NAME=VALUE` could not be read.
+    #[error("focus '{spec}': {msg}")]
+    FocusSpec {
+        /// What was given.
+        spec: String,
+        /// What is wrong.
+        msg: String,
+    },
     /// A named focus group has no faces.
     #[error("focus group '{name}' has no faces")]
     EmptyFocus {

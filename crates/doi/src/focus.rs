@@ -2,30 +2,30 @@
 //!
 //! "The DoI functions for geometric primitives [...] are based on the weighted distance
 //! `d(p, o)` of the primitives `p` to the dominant object(s) `o`": zero for the object's own
-//! primitives, otherwise the distance to the centre of the object's bounding box, or the
-//! smallest distance to the object's internal skeleton (a polyline). "The closer the triangles
-//! are to the focus point the more subdivision steps are used."
-
-use std::path::Path;
+//! primitives, otherwise the distance to the centre of the object's bounding object, or the
+//! smallest distance to the object's internal skeleton. Every dominant object has its own
+//! interest value `DoI(o)`. "The closer the triangles are to the focus point the more
+//! subdivision steps are used."
 
 use glam::Vec3;
-use subdiv_mesh::Mesh;
+use subdiv_mesh::{Mesh, closest_point_on_triangle};
 
 use crate::DoiError;
 use crate::framework::{Doi, DoiContext, Domain};
+use crate::skeleton::{polyline_distance, principal_axis_skeleton, triangle_polyline_distance};
 
 /// How the distance to a focus object is measured.
 #[derive(Clone, Debug, PartialEq)]
 pub enum FocusShape {
-    /// To the centre of the object's axis-aligned bounding box.
+    /// To the centre of the object's bounding object (for compact objects).
     BoundingCentre(Vec3),
-    /// To the nearest point of a polyline (the object's internal skeleton); a single point is
-    /// allowed.
+    /// To the nearest point of a polyline, the object's internal skeleton (a single point is
+    /// allowed).
     Skeleton(Vec<Vec3>),
 }
 
 impl FocusShape {
-    /// Distance from `p` to the shape.
+    /// Distance from the point `p` to the shape.
     #[inline]
     pub fn distance(&self, p: Vec3) -> f32 {
         match self {
@@ -33,48 +33,100 @@ impl FocusShape {
             FocusShape::Skeleton(pts) => polyline_distance(p, pts),
         }
     }
-}
 
-/// Distance from `p` to the polyline `pts` (infinite when empty).
-#[inline]
-pub fn polyline_distance(p: Vec3, pts: &[Vec3]) -> f32 {
-    match pts {
-        [] => f32::INFINITY,
-        [a] => p.distance(*a),
-        _ => pts
-            .windows(2)
-            .map(|s| {
-                let d = s[1] - s[0];
-                let l2 = d.length_squared();
-                let t = if l2 > 0.0 {
-                    ((p - s[0]).dot(d) / l2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                p.distance(s[0] + d * t)
-            })
-            .fold(f32::INFINITY, f32::min),
+    /// Distance from the triangle `tri` (its nearest point, not its centroid) to the shape.
+    #[inline]
+    pub fn face_distance(&self, tri: [Vec3; 3]) -> f32 {
+        match self {
+            FocusShape::BoundingCentre(c) => {
+                c.distance(closest_point_on_triangle(*c, tri[0], tri[1], tri[2]))
+            }
+            FocusShape::Skeleton(pts) => triangle_polyline_distance(tri, pts),
+        }
     }
 }
 
 /// A dominant object: the faces of a mesh group (or none, for a bare skeleton), how distance to
-/// it is measured, and its own DoI (a weight; 1 by default).
+/// it is measured, and its own interest value.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FocusObject {
     /// Group index into `Mesh::groups` whose faces are at distance 0, if any.
     pub group: Option<u32>,
     /// The distance measure.
     pub shape: FocusShape,
-    /// The object's own DoI, `DoI(o)` in eq. (7): it scales the closeness.
+    /// The object's own interest, `DoI(o)` in eq. (7) (1 unless given).
     pub weight: f32,
 }
 
+/// A focus object as the user names it: `NAME` (interest 1) or `NAME=VALUE`, and optionally its
+/// own skeleton.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FocusSpec {
+    /// Group or object name in the mesh.
+    pub name: String,
+    /// Its interest value `DoI(o)` (finite, not negative).
+    pub value: f32,
+    /// Its skeleton; `None`: the one shared by all objects, else computed
+    /// ([`principal_axis_skeleton`]).
+    pub skeleton: Option<Vec<Vec3>>,
+}
+
+impl FocusSpec {
+    /// Parses `NAME` or `NAME=VALUE`.
+    ///
+    /// ```
+    /// use subdiv_doi::FocusSpec;
+    /// assert_eq!(FocusSpec::parse("bracelet=2.5")?.value, 2.5);
+    /// assert_eq!(FocusSpec::parse("arm")?.value, 1.0);
+    /// assert!(FocusSpec::parse("arm=much").unwrap_err().to_string().contains("not a number"));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn parse(s: &str) -> Result<FocusSpec, DoiError> {
+        let err = |msg: &str| DoiError::FocusSpec {
+            spec: s.to_string(),
+            msg: msg.to_string(),
+        };
+        let (name, value) = match s.rsplit_once('=') {
+            None => (s, 1.0),
+            Some((n, v)) => {
+                let v: f32 = v
+                    .trim()
+                    .parse()
+                    .map_err(|_| err("the value is not a number"))?;
+                (n, v)
+            }
+        };
+        if name.is_empty() {
+            return Err(err("no name"));
+        }
+        if !(value.is_finite() && value >= 0.0) {
+            return Err(err("the value must be finite and not negative"));
+        }
+        Ok(FocusSpec {
+            name: name.to_string(),
+            value,
+            skeleton: None,
+        })
+    }
+}
+
 /// Eq. (7): a face's interest is its closeness to the most interesting dominant object,
-/// `max_o DoI(o) · max(0, 1 − d(f, o) / radius)` with `d` measured from the face centroid (0 for
-/// the object's own faces). So that closer faces get more steps, the value compared with the
-/// threshold before step `s` of `N` is the number of steps the face still wants:
-/// `N · closeness − s`. With the default threshold 0 a face at distance `d` gets about
-/// `N (1 − d / radius)` steps; faces of the focus objects get all `N`.
+/// `max_o DoI(o) · max(0, 1 − d(f, o) / radius)`, with `d` the distance from the face (its
+/// nearest point) to the object's skeleton, 0 for the object's own faces.
+///
+/// The fall-off. The paper's eq. (7) combines the distance and `DoI(o)` without fixing how; it
+/// asks that details "fade out with increasing distance". Linear in `d`, reaching 0 at `radius`,
+/// is the simplest such fade that is bounded (faces beyond `radius` get nothing) and scale-free
+/// (`radius` defaults to half the bounding-box diagonal). Combined with the step mapping below,
+/// each unit of closeness is a number of halvings, so triangle size grows geometrically with the
+/// distance, which is the fading level of detail of Fig. 10.
+///
+/// The step mapping. The paper compares a DoI with a fixed threshold before every step; a static
+/// closeness compared that way would refine a face in every step or in none, and Fig. 10 needs
+/// "the closer, the more steps". So the value before step `s` of `N` is the number of steps the
+/// face still wants, `N · closeness − s`, and the threshold is 0: a face is refined in step `s`
+/// exactly when `N · closeness > s`, i.e. in its first `⌈N · closeness⌉` steps. An object of
+/// interest 1 gets all `N` steps, one of interest 0.5 half of them.
 ///
 /// Static (view-independent): the refinement is cached across frames.
 ///
@@ -87,7 +139,7 @@ pub struct FocusObject {
 /// let mut v = Vec::new();
 /// focus.evaluate(&m, &DoiContext { step: 0, steps: 3, ..Default::default() }, &mut v)?;
 /// assert_eq!(v[0], 3.0); // the object's own face wants all three steps
-/// assert_eq!(v[1], 0.0); // five units away, beyond the radius: none
+/// assert_eq!(v[1], 0.0); // four units away, at the radius: none
 /// let e = Focus::from_groups(&m, &["olaf".to_string()], None, 4.0).unwrap_err();
 /// assert!(e.to_string().contains("available: bracelet, arm"));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
@@ -101,14 +153,31 @@ pub struct Focus {
 }
 
 impl Focus {
-    /// Focus on the named groups/objects of `mesh` (by bounding-box centre, or by distance to
-    /// `skeleton` when given); with no names, the skeleton alone is the focus. `radius` is the
-    /// distance where interest fades to nothing (half the bounding-box diagonal of the mesh is a
-    /// good default, see [`Focus::default_radius`]).
+    /// Focus on the named groups of `mesh` (`NAME` or `NAME=VALUE`, see [`FocusSpec::parse`]),
+    /// all measured from `skeleton` when given, else each from its own computed skeleton; with no
+    /// names, the skeleton alone is the focus.
     pub fn from_groups(
         mesh: &Mesh,
         names: &[String],
         skeleton: Option<Vec<Vec3>>,
+        radius: f32,
+    ) -> Result<Focus, DoiError> {
+        let specs = names
+            .iter()
+            .map(|n| FocusSpec::parse(n))
+            .collect::<Result<Vec<_>, _>>()?;
+        Focus::new(mesh, &specs, skeleton, radius)
+    }
+
+    /// Focus on the objects `specs` of `mesh`. An object's distance is measured from its own
+    /// skeleton if it has one, else from `shared` if given, else from its principal-axis
+    /// skeleton ([`principal_axis_skeleton`] of its vertices). With no objects, `shared` alone
+    /// is the focus (interest 1). `radius` is the distance where interest fades to nothing
+    /// ([`Focus::default_radius`] is a good default).
+    pub fn new(
+        mesh: &Mesh,
+        specs: &[FocusSpec],
+        shared: Option<Vec<Vec3>>,
         radius: f32,
     ) -> Result<Focus, DoiError> {
         if !(radius.is_finite() && radius > 0.0) {
@@ -117,9 +186,10 @@ impl Focus {
                 value: radius,
             });
         }
-        if names.is_empty() {
-            return match skeleton {
-                Some(s) if !s.is_empty() => Ok(Focus {
+        let shared = shared.filter(|s| !s.is_empty());
+        if specs.is_empty() {
+            return match shared {
+                Some(s) => Ok(Focus {
                     objects: vec![FocusObject {
                         group: None,
                         shape: FocusShape::Skeleton(s),
@@ -127,40 +197,36 @@ impl Focus {
                     }],
                     radius,
                 }),
-                _ => Err(DoiError::NoFocus),
+                None => Err(DoiError::NoFocus),
             };
         }
-        let mut objects = Vec::with_capacity(names.len());
-        for name in names {
+        let mut objects = Vec::with_capacity(specs.len());
+        for spec in specs {
             let g = mesh
                 .groups()
                 .iter()
-                .position(|x| x == name)
+                .position(|x| *x == spec.name)
                 .ok_or_else(|| DoiError::UnknownFocus {
-                    name: name.clone(),
+                    name: spec.name.clone(),
                     available: mesh.groups().to_vec(),
                 })? as u32;
-            let shape = match &skeleton {
-                Some(s) if !s.is_empty() => FocusShape::Skeleton(s.clone()),
-                _ => {
-                    let (mut lo, mut hi) =
-                        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-                    for f in mesh.faces().filter(|&f| mesh.face_group(f) == g) {
-                        for &v in mesh.face_vertices(f) {
-                            lo = lo.min(mesh.position(v));
-                            hi = hi.max(mesh.position(v));
-                        }
-                    }
-                    if lo.x > hi.x {
-                        return Err(DoiError::EmptyFocus { name: name.clone() });
-                    }
-                    FocusShape::BoundingCentre((lo + hi) * 0.5)
-                }
+            let mut pts = Vec::new();
+            for f in mesh.faces().filter(|&f| mesh.face_group(f) == g) {
+                pts.extend(mesh.face_vertices(f).iter().map(|&v| mesh.position(v)));
+            }
+            if pts.is_empty() {
+                return Err(DoiError::EmptyFocus {
+                    name: spec.name.clone(),
+                });
+            }
+            let skeleton = match (&spec.skeleton, &shared) {
+                (Some(s), _) | (None, Some(s)) if !s.is_empty() => s.clone(),
+                _ => principal_axis_skeleton(&pts).unwrap_or_default(),
             };
             objects.push(FocusObject {
                 group: Some(g),
-                shape,
-                weight: 1.0,
+                shape: FocusShape::Skeleton(skeleton),
+                weight: spec.value,
             });
         }
         Ok(Focus { objects, radius })
@@ -172,15 +238,15 @@ impl Focus {
         ((hi - lo).length() * 0.5).max(f32::MIN_POSITIVE)
     }
 
-    /// The closeness of a face with centroid `c` in group `group`: eq. (7) without the step.
+    /// The closeness of triangle `tri` in group `group`: eq. (7) without the step.
     #[inline]
-    pub fn closeness(&self, c: Vec3, group: u32) -> f32 {
+    pub fn closeness(&self, tri: [Vec3; 3], group: u32) -> f32 {
         let mut best = 0.0f32;
         for o in &self.objects {
             let d = if o.group == Some(group) {
                 0.0
             } else {
-                o.shape.distance(c)
+                o.shape.face_distance(tri)
             };
             best = best.max(o.weight * (1.0 - d / self.radius).max(0.0));
         }
@@ -202,96 +268,23 @@ impl Doi for Focus {
         0.0
     }
     fn evaluate(&self, mesh: &Mesh, ctx: &DoiContext, out: &mut Vec<f32>) -> Result<(), DoiError> {
+        mesh.check_triangles()?;
         out.clear();
         let n = ctx.steps as f32;
         let s = ctx.step as f32;
-        out.extend(
-            mesh.faces()
-                .map(|f| n * self.closeness(mesh.face_centroid(f), mesh.face_group(f)) - s),
-        );
+        out.extend(mesh.faces().map(|f| {
+            let v = mesh.face_vertices(f);
+            let tri = [0, 1, 2].map(|k| mesh.position(v[k]));
+            n * self.closeness(tri, mesh.face_group(f)) - s
+        }));
         Ok(())
     }
-}
-
-/// Reads a skeleton polyline: one point per line, as `v X Y Z` (OBJ vertices; other OBJ lines
-/// are ignored), `X Y Z` or `X,Y,Z`; `#` starts a comment. Errors name the file and line.
-pub fn read_skeleton(path: &Path) -> Result<Vec<Vec3>, DoiError> {
-    let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| DoiError::Skeleton {
-        file: file.clone(),
-        line: 0,
-        msg: e.to_string(),
-    })?;
-    parse_skeleton(&text, &file)
-}
-
-/// [`read_skeleton`] on text; `file` names it in errors.
-pub fn parse_skeleton(text: &str, file: &str) -> Result<Vec<Vec3>, DoiError> {
-    let mut pts = Vec::new();
-    for (i, raw) in text.lines().enumerate() {
-        let line = raw.split('#').next().unwrap_or("").trim();
-        if line.is_empty() {
-            continue;
-        }
-        let body = if let Some(rest) = line.strip_prefix("v ") {
-            rest
-        } else if line.starts_with(|c: char| c.is_ascii_alphabetic()) {
-            continue; // other OBJ statements (l, g, o, ...)
-        } else {
-            line
-        };
-        let err = |msg: String| DoiError::Skeleton {
-            file: file.to_string(),
-            line: i as u32 + 1,
-            msg,
-        };
-        let xs: Vec<f32> = body
-            .split(|c: char| c == ',' || c.is_whitespace())
-            .filter(|t| !t.is_empty())
-            .map(|t| {
-                t.parse::<f32>()
-                    .map_err(|_| err(format!("'{t}' is not a number")))
-            })
-            .collect::<Result<_, _>>()?;
-        if xs.len() != 3 || xs.iter().any(|x| !x.is_finite()) {
-            return Err(err(format!("expected a point 'X Y Z', got '{line}'")));
-        }
-        pts.push(Vec3::new(xs[0], xs[1], xs[2]));
-    }
-    if pts.is_empty() {
-        return Err(DoiError::Skeleton {
-            file: file.to_string(),
-            line: 0,
-            msg: "no points".into(),
-        });
-    }
-    Ok(pts)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use subdiv_mesh::parse_obj;
-
-    #[test]
-    fn skeleton_distance_and_parsing() {
-        let s = parse_skeleton("# bone\nv 0 0 0\nv 10 0 0\nl 1 2\n", "bone.obj").unwrap();
-        assert_eq!(s.len(), 2);
-        assert_eq!(polyline_distance(Vec3::new(5.0, 3.0, 4.0), &s), 5.0);
-        assert_eq!(polyline_distance(Vec3::new(-3.0, 0.0, 4.0), &s), 5.0);
-        assert_eq!(
-            parse_skeleton("1,2,3\n", "x").unwrap(),
-            vec![Vec3::new(1.0, 2.0, 3.0)]
-        );
-        let e = parse_skeleton("v 0 0 0\nv 1 two 3\n", "bone.obj").unwrap_err();
-        assert_eq!(e.to_string(), "bone.obj:2: 'two' is not a number");
-        assert!(
-            parse_skeleton("# nothing\n", "e.txt")
-                .unwrap_err()
-                .to_string()
-                .contains("no points")
-        );
-    }
 
     #[test]
     fn closer_faces_want_more_steps() {
@@ -363,5 +356,39 @@ mod tests {
             Focus::from_groups(&m, &[], None, 1.0),
             Err(DoiError::NoFocus)
         ));
+    }
+
+    #[test]
+    fn objects_have_their_own_interest_and_skeleton() {
+        // Two separate triangles far apart and a third one between them.
+        let m = Mesh::from_soup(
+            &parse_obj(
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 10 0 0\nv 11 0 0\nv 10 1 0\nv 5 0 0\nv 6 0 0\nv 5 1 0\n\
+                 g a\nf 1 2 3\ng b\nf 4 5 6\ng mid\nf 7 8 9\n",
+            )
+            .unwrap(),
+        )
+        .unwrap();
+        let ctx = DoiContext {
+            steps: 4,
+            ..Default::default()
+        };
+        let focus = Focus::from_groups(&m, &["a=1".into(), "b=0.5".into()], None, 8.0).unwrap();
+        let mut v = Vec::new();
+        focus.evaluate(&m, &ctx, &mut v).unwrap();
+        assert_eq!((v[0], v[1]), (4.0, 2.0), "own faces: N · DoI(o)");
+        assert!(v[2] > 0.0 && v[2] < 2.0, "{v:?}");
+        // A per-object skeleton (a point beside the middle triangle) moves the interest there.
+        let mut specs = vec![FocusSpec::parse("b=0.5").unwrap()];
+        specs[0].skeleton = Some(vec![Vec3::new(5.5, 0.2, 0.0)]);
+        let focus = Focus::new(&m, &specs, Some(vec![Vec3::new(100.0, 0.0, 0.0)]), 8.0).unwrap();
+        focus.evaluate(&m, &ctx, &mut v).unwrap();
+        assert_eq!(
+            v[2], 2.0,
+            "the middle face touches b's skeleton: 0.5 of 4 steps"
+        );
+        assert!(v[0] < v[2]);
+        let e = Focus::from_groups(&m, &["a=-1".into()], None, 1.0).unwrap_err();
+        assert!(e.to_string().contains("not negative"), "{e}");
     }
 }

@@ -1,191 +1,50 @@
 //! DoIs for haptic rendering (Isenberg, Hartmann & König 2003, §4.2).
 //!
-//! - [`CloughTocher`]: the Clough-Tocher split-triangle interpolant (Clough & Tocher 1965; Farin,
-//!   CAGD, 5th ed.): every triangle of the mesh is split at its centroid into three sub-triangles,
-//!   each carrying a cubic Bézier patch with ten control points (Fig. 7), built from the vertex
-//!   positions and normals. The patches interpolate the corners and are C¹ inside the macro
-//!   triangle; across mesh edges they are only C⁰.
-//! - [`HapticG1`]: the G¹ error of eqs. (4)–(6) between the patches on either side of each edge.
-//! - [`HapticPoint`]: the binary haptic-interaction-point DoI (the triangle closest to the HIP
-//!   and its one-neighbourhood).
+//! The surface is interpolated by Clough-Tocher patches ([`CloughTocher`], Fig. 7). The paper
+//! asks two things of them: (1) the patches of neighbouring triangles join at least G¹, tested by
+//! eq. (5) and scored by eq. (6); (2) "the patch for a triangle is entirely on one side of the
+//! triangle". Triangles failing either are subdivided.
+//!
+//! - [`HapticG1`]: per edge, the G¹ error of eqs. (4)–(6), with eq. (5) solved exactly and its
+//!   out-of-plane residual counted ([`g1_error`]).
+//! - [`Haptic`]: the DoI of §4.2, per face, both criteria against a tolerance derived from the
+//!   mesh's mean edge length ([`plane_crossing`] for the second).
+//! - [`HapticPoint`]: the binary haptic-interaction-point DoI (the triangle closest to the HIP,
+//!   snapped to the surface, and its one-neighbourhood).
 
 use glam::Vec3;
 use subdiv_mesh::{EdgeId, FaceId, Mesh, closest_point_on_triangle, vertex_normals};
 
 use crate::DoiError;
+use crate::clough_tocher::{CloughTocher, clough_tocher_patches};
 use crate::framework::{Doi, DoiContext, Domain};
 
-/// Index of control point `b_ijk` (`i + j + k = 3`) in [`CubicTriangle::b`].
-#[inline]
-pub const fn bezier_index(i: usize, j: usize, _k: usize) -> usize {
-    let r = 3 - i;
-    r * (r + 1) / 2 + (r - j)
-}
-
-/// A cubic Bézier triangle: ten control points `b_ijk`, `i + j + k = 3`, over barycentric
-/// coordinates `(u, v, w)` of its three corners.
+/// The solution of eq. (5) for one first-row control point: `x = v1 q1 + v2 q2 + v3 q3 + r`
+/// with `v1 + v2 + v3 = 1` and `r` perpendicular to the plane of the `q`s.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CubicTriangle {
-    /// Control points, in the order of [`bezier_index`].
-    pub b: [Vec3; 10],
+pub struct Combination {
+    /// The barycentric coordinates `v` (exact when `x` lies in the plane of the `q`s).
+    pub v: [f32; 3],
+    /// `|r|` divided by the longest edge of the sub-triangle `q1 q2 q3`: 0 exactly when `x` is
+    /// a barycentric combination of the `q`s, as eq. (5) requires.
+    pub off_plane: f32,
 }
 
-impl CubicTriangle {
-    /// Control point `b_ijk`.
-    #[inline]
-    pub fn at(&self, i: usize, j: usize, k: usize) -> Vec3 {
-        self.b[bezier_index(i, j, k)]
-    }
-
-    /// The point at barycentric `(u, v, w)`.
-    #[inline]
-    pub fn eval(&self, u: f32, v: f32, w: f32) -> Vec3 {
-        let mut p = Vec3::ZERO;
-        for i in 0..=3usize {
-            for j in 0..=(3 - i) {
-                let k = 3 - i - j;
-                let c = 6.0 / (fact(i) * fact(j) * fact(k));
-                p +=
-                    self.at(i, j, k) * (c * u.powi(i as i32) * v.powi(j as i32) * w.powi(k as i32));
-            }
-        }
-        p
-    }
-
-    /// The derivative at `(u, v, w)` along the barycentric direction `d` (components summing
-    /// to 0).
-    #[inline]
-    pub fn derivative(&self, d: [f32; 3], u: f32, v: f32, w: f32) -> Vec3 {
-        let mut p = Vec3::ZERO;
-        for i in 0..=2usize {
-            for j in 0..=(2 - i) {
-                let k = 2 - i - j;
-                let c = 2.0 / (fact(i) * fact(j) * fact(k));
-                let q = self.at(i + 1, j, k) * d[0]
-                    + self.at(i, j + 1, k) * d[1]
-                    + self.at(i, j, k + 1) * d[2];
-                p += q * (c * u.powi(i as i32) * v.powi(j as i32) * w.powi(k as i32));
-            }
-        }
-        p * 3.0
-    }
-}
-
+/// Eq. (5): writes `x` as a barycentric combination of `q1, q2, q3`. The in-plane part is solved
+/// exactly (the unique `v` whose combination is the foot of `x` on the plane); where `x` is off
+/// the plane no combination exists, and the distance, relative to the sub-triangle's longest
+/// edge, is returned with it. `None` when the `q`s are (nearly) collinear: a degenerate net.
+///
+/// ```
+/// use subdiv_doi::barycentric_combination;
+/// use subdiv_mesh::glam::Vec3;
+/// let c = barycentric_combination(Vec3::new(0.5, 0.3, 0.0), Vec3::ZERO, Vec3::X, Vec3::Y).unwrap();
+/// assert!((c.v[0] - 0.2).abs() < 1e-6 && (c.v[1] - 0.5).abs() < 1e-6 && c.off_plane == 0.0);
+/// let c = barycentric_combination(Vec3::new(0.5, 0.3, 0.1), Vec3::ZERO, Vec3::X, Vec3::Y).unwrap();
+/// assert!((c.off_plane - 0.1 / 2f32.sqrt()).abs() < 1e-6); // not coplanar: no combination
+/// ```
 #[inline]
-fn fact(n: usize) -> f32 {
-    [1.0, 1.0, 2.0, 6.0][n]
-}
-
-/// The Clough-Tocher interpolant of one triangle: sub-patch `k` has corners `P_k`, `P_{k+1}` and
-/// the split point `C` (barycentric `u` on `P_k`, `v` on `P_{k+1}`, `w` on `C`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CloughTocher {
-    /// The three cubic sub-patches.
-    pub sub: [CubicTriangle; 3],
-}
-
-impl CloughTocher {
-    /// Builds the interpolant of triangle `p` (counter-clockwise) with unit vertex normals `n`.
-    ///
-    /// Boundary control points: `T_ij = P_i + ((P_j − P_i) projected into the tangent plane at
-    /// P_i) / 3`. Interior points: `I_i = (P_i + T_ij + T_ik) / 3` (C¹ at the vertices); the point
-    /// beside each edge is chosen so that the derivative toward `C` across the edge midpoint
-    /// varies linearly along the edge (the "reduced" Clough-Tocher choice, which reproduces
-    /// planes); `S_i = (I_i + F_ij + F_ki) / 3` and `C = (S_0 + S_1 + S_2) / 3` make the three
-    /// patches C¹ across the split lines, the split point being the centroid.
-    ///
-    /// ```
-    /// use subdiv_doi::CloughTocher;
-    /// use subdiv_mesh::glam::Vec3;
-    /// let p = [Vec3::ZERO, Vec3::X, Vec3::Y];
-    /// let ct = CloughTocher::new(p, [Vec3::Z; 3]);
-    /// assert!((ct.eval([0.0, 1.0, 0.0]) - Vec3::X).length() < 1e-6);
-    /// // Flat data: the patch is the triangle itself.
-    /// assert!((ct.eval([0.2, 0.3, 0.5]) - Vec3::new(0.3, 0.5, 0.0)).length() < 1e-6);
-    /// ```
-    pub fn new(p: [Vec3; 3], n: [Vec3; 3]) -> CloughTocher {
-        let t = |i: usize, j: usize| -> Vec3 {
-            let d = p[j] - p[i];
-            p[i] + (d - n[i] * d.dot(n[i])) / 3.0
-        };
-        // t_fwd[i] = T_{i,i+1}, t_back[i] = T_{i,i-1}.
-        let t_fwd = [t(0, 1), t(1, 2), t(2, 0)];
-        let t_back = [t(0, 2), t(1, 0), t(2, 1)];
-        let ii: [Vec3; 3] = std::array::from_fn(|i| (p[i] + t_fwd[i] + t_back[i]) / 3.0);
-        // f[k]: beside edge k = (k, k+1).
-        let f: [Vec3; 3] = std::array::from_fn(|k| {
-            let kn = (k + 1) % 3;
-            let (tij, tji) = (t_fwd[k], t_back[kn]);
-            let c20 = ii[k] - 0.5 * p[k] - 0.5 * tij;
-            let c02 = ii[kn] - 0.5 * tji - 0.5 * p[kn];
-            0.5 * (tij + tji) + 0.5 * (c20 + c02)
-        });
-        let s: [Vec3; 3] = std::array::from_fn(|i| (ii[i] + f[i] + f[(i + 2) % 3]) / 3.0);
-        let c = (s[0] + s[1] + s[2]) / 3.0;
-        let sub = std::array::from_fn(|k| {
-            let kn = (k + 1) % 3;
-            let mut b = [Vec3::ZERO; 10];
-            b[bezier_index(3, 0, 0)] = p[k];
-            b[bezier_index(0, 3, 0)] = p[kn];
-            b[bezier_index(0, 0, 3)] = c;
-            b[bezier_index(2, 1, 0)] = t_fwd[k];
-            b[bezier_index(1, 2, 0)] = t_back[kn];
-            b[bezier_index(2, 0, 1)] = ii[k];
-            b[bezier_index(0, 2, 1)] = ii[kn];
-            b[bezier_index(1, 1, 1)] = f[k];
-            b[bezier_index(1, 0, 2)] = s[k];
-            b[bezier_index(0, 1, 2)] = s[kn];
-            CubicTriangle { b }
-        });
-        CloughTocher { sub }
-    }
-
-    /// The sub-patch containing macro barycentric `l` and its coordinates there.
-    #[inline]
-    pub fn locate(l: [f32; 3]) -> (usize, [f32; 3]) {
-        // Sub-triangle k is where l[k+2] is the smallest coordinate.
-        let k = if l[2] <= l[0] && l[2] <= l[1] {
-            0
-        } else if l[0] <= l[1] {
-            1
-        } else {
-            2
-        };
-        let (a, b, c) = (l[k], l[(k + 1) % 3], l[(k + 2) % 3]);
-        (k, [a - c, b - c, 3.0 * c])
-    }
-
-    /// Maps a macro barycentric direction `d` to the coordinates of sub-patch `k`.
-    #[inline]
-    pub fn sub_direction(k: usize, d: [f32; 3]) -> [f32; 3] {
-        let (a, b, c) = (d[k], d[(k + 1) % 3], d[(k + 2) % 3]);
-        [a - c, b - c, 3.0 * c]
-    }
-
-    /// The surface point at macro barycentric `l` (coordinates of the triangle's corners).
-    pub fn eval(&self, l: [f32; 3]) -> Vec3 {
-        let (k, [u, v, w]) = Self::locate(l);
-        self.sub[k].eval(u, v, w)
-    }
-}
-
-/// The Clough-Tocher interpolant of every face of a triangle mesh, with `normals` per vertex.
-pub fn clough_tocher_patches(mesh: &Mesh, normals: &[Vec3]) -> Vec<CloughTocher> {
-    mesh.faces()
-        .map(|f| {
-            let v = mesh.face_vertices(f);
-            let p = [0, 1, 2].map(|k| mesh.position(v[k]));
-            let n = [0, 1, 2].map(|k| normals[v[k].idx()]);
-            CloughTocher::new(p, n)
-        })
-        .collect()
-}
-
-/// The barycentric combination of eq. (5): `x ≈ v1 q1 + v2 q2 + v3 q3` with `v1 + v2 + v3 = 1`,
-/// solved in the least-squares sense (`x` projected onto the plane of the `q`s); `None` when the
-/// `q`s are collinear.
-#[inline]
-pub fn barycentric_combination(x: Vec3, q1: Vec3, q2: Vec3, q3: Vec3) -> Option<[f32; 3]> {
+pub fn barycentric_combination(x: Vec3, q1: Vec3, q2: Vec3, q3: Vec3) -> Option<Combination> {
     let (e1, e3, r) = (q1 - q2, q3 - q2, x - q2);
     let (a, b, c) = (e1.dot(e1), e1.dot(e3), e3.dot(e3));
     let det = a * c - b * b;
@@ -195,22 +54,34 @@ pub fn barycentric_combination(x: Vec3, q1: Vec3, q2: Vec3, q3: Vec3) -> Option<
     let (r1, r3) = (e1.dot(r), e3.dot(r));
     let v1 = (c * r1 - b * r3) / det;
     let v3 = (a * r3 - b * r1) / det;
-    Some([v1, 1.0 - v1 - v3, v3])
+    let n = e1.cross(e3).normalize();
+    let longest = a.max(c).max((q1 - q3).length_squared()).sqrt();
+    Some(Combination {
+        v: [v1, 1.0 - v1 - v3, v3],
+        off_plane: r.dot(n).abs() / longest,
+    })
 }
 
-/// The G¹ error of eq. (6) across the edge shared by the macro triangles `ct_f` (where the edge
-/// runs `a → b` from corner `ka` to `ka + 1`) and `ct_g` (where it runs `b → a` from corner
-/// `kb`).
+/// The G¹ error given to an edge whose control net is degenerate (a sub-triangle of eq. (5)
+/// with collinear points): G¹ cannot be verified there, so the edge counts as failing any
+/// sensible tolerance (the error of agreeing nets is 0, of visibly kinked ones about 0.1 to 2).
+pub const DEGENERATE_G1_ERROR: f32 = 100.0;
+
+/// The G¹ error across the edge shared by the macro triangles `ct_f` (where the edge runs
+/// `a → b` from corner `ka` to `ka + 1`) and `ct_g` (where it runs `b → a` from corner `kb`).
 ///
 /// With `b` the sub-patch of `ct_f` on the edge and `b̂` the one of `ct_g`, eq. (5) writes each
 /// first-row point `b̂_(1,j,k)`, `j + k = 2`, as a barycentric combination `v` of the sub-triangle
-/// `b_(1,j,k), b_(0,j+1,k), b_(0,j,k+1)` of `b`'s net; for G¹ all three combinations agree. Eq. (6):
-/// `Σ_i | |v_i¹| − |v_i²| | + | |v_i¹| − |v_i³| |` over the components `i`. Combinations that
-/// cannot be formed (degenerate control nets) count as agreeing.
+/// `b_(1,j,k), b_(0,j+1,k), b_(0,j,k+1)` of `b`'s net; for G¹ each point lies in the plane of its
+/// sub-triangle and all three combinations agree. The error is eq. (6),
+/// `Σ_i | |v_i¹| − |v_i²| | + | |v_i¹| − |v_i³| |`, plus the three out-of-plane residuals
+/// ([`Combination::off_plane`]), so a net that is not coplanar never counts as agreeing. A
+/// degenerate net gives [`DEGENERATE_G1_ERROR`].
 pub fn g1_error(ct_f: &CloughTocher, ka: usize, ct_g: &CloughTocher, kb: usize) -> f32 {
     let b = &ct_f.sub[ka];
     let bh = &ct_g.sub[kb];
     let mut v = [[0.0f32; 3]; 3];
+    let mut off = 0.0f32;
     for (n, (j, k)) in [(2usize, 0usize), (1, 1), (0, 2)].into_iter().enumerate() {
         // In b: i on a, j on b, k on C. In b̂: i on b, j on a.
         let x = bh.at(k, j, 1);
@@ -218,21 +89,67 @@ pub fn g1_error(ct_f: &CloughTocher, ka: usize, ct_g: &CloughTocher, kb: usize) 
         let q2 = b.at(j + 1, k, 0);
         let q3 = b.at(j, k + 1, 0);
         match barycentric_combination(x, q1, q2, q3) {
-            Some(c) => v[n] = c,
-            None => return 0.0,
+            Some(c) => {
+                v[n] = c.v;
+                off += c.off_plane;
+            }
+            None => return DEGENERATE_G1_ERROR,
         }
     }
     let [v1, v2, v3] = v;
-    (0..3)
+    let eq6: f32 = (0..3)
         .map(|i| (v1[i].abs() - v2[i].abs()).abs() + (v1[i].abs() - v3[i].abs()).abs())
-        .sum()
+        .sum();
+    (eq6 + off).min(DEGENERATE_G1_ERROR)
 }
 
-/// The haptic DoI of eqs. (4)–(6): per edge, the G¹ error between the Clough-Tocher patches on
-/// either side (0 on boundary edges). Static. Vertex normals are area-weighted face normals.
+/// How far the Clough-Tocher patch `ct` of triangle `p` crosses the triangle's plane: with `d`
+/// the signed distances of its control points from the plane, `min(max d, max −d)` (a length).
+/// 0 means the whole patch lies on one side (the patch is in the convex hull of its control
+/// points), as the paper's second criterion asks; a positive value is the smaller of the two
+/// excursions, so a patch only touching the plane from the other side scores little. A
+/// zero-area triangle has no plane and scores 0.
 ///
-/// The paper gives no threshold for its Fig. 9; the default, 0.5, refines where the three
-/// combinations of eq. (5) differ by more than about a sixth in each component.
+/// ```
+/// use subdiv_doi::{plane_crossing, CloughTocher};
+/// use subdiv_mesh::glam::Vec3;
+/// let p = [Vec3::ZERO, Vec3::X, Vec3::Y];
+/// // Normals tilted like a dome: the patch bulges to one side only.
+/// let dome = [Vec3::new(-1.0, -1.0, 3.0), Vec3::new(1.0, 0.0, 3.0), Vec3::new(0.0, 1.0, 3.0)].map(|n| n.normalize());
+/// assert_eq!(plane_crossing(&CloughTocher::new(p, dome), p), 0.0);
+/// ```
+pub fn plane_crossing(ct: &CloughTocher, p: [Vec3; 3]) -> f32 {
+    let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
+    let (mut hi, mut lo) = (0.0f32, 0.0f32);
+    for sub in &ct.sub {
+        for b in sub.b {
+            let d = (b - p[0]).dot(n);
+            hi = hi.max(d);
+            lo = lo.min(d);
+        }
+    }
+    hi.min(-lo)
+}
+
+/// The mean edge length of a mesh (0 without edges).
+pub fn mean_edge_length(mesh: &Mesh) -> f32 {
+    let n = mesh.num_edges();
+    if n == 0 {
+        return 0.0;
+    }
+    let sum: f64 = mesh
+        .edges()
+        .map(|e| {
+            let [a, b] = mesh.edge_vertices(e);
+            mesh.position(a).distance(mesh.position(b)) as f64
+        })
+        .sum();
+    (sum / n as f64) as f32
+}
+
+/// The G¹ error of eqs. (4)–(6) per edge ([`g1_error`]; 0 on boundary edges). Static. Vertex
+/// normals are area-weighted face normals. One term of [`Haptic`]; on its own, threshold 0.6
+/// (the G¹ part of [`Haptic`] at the default tolerance).
 ///
 /// ```
 /// use subdiv_doi::{Doi, DoiContext, HapticG1};
@@ -249,7 +166,7 @@ pub struct HapticG1;
 
 impl Doi for HapticG1 {
     fn name(&self) -> &'static str {
-        "haptic"
+        "haptic-g1"
     }
     fn domain(&self) -> Domain {
         Domain::Edges
@@ -258,7 +175,7 @@ impl Doi for HapticG1 {
         false
     }
     fn default_threshold(&self) -> f32 {
-        0.5
+        Haptic::G1_PER_TOLERANCE * Haptic::DEFAULT_TOLERANCE
     }
     fn evaluate(&self, mesh: &Mesh, _ctx: &DoiContext, out: &mut Vec<f32>) -> Result<(), DoiError> {
         mesh.check_triangles()?;
@@ -288,9 +205,98 @@ pub fn edge_g1_error(mesh: &Mesh, ct: &[CloughTocher], e: EdgeId) -> f32 {
     g1_error(&ct[f.idx()], ka, &ct[g.idx()], kb)
 }
 
+/// The haptic DoI of §4.2: per face, both of the paper's criteria, each divided by its
+/// tolerance, combined by the larger ("the DoI has to incorporate two aspects": a triangle is
+/// subdivided when either fails). Threshold 1.
+///
+/// The tolerance is a length, `tolerance` (relative) times the cage's mean edge length `L`:
+/// - one side: [`plane_crossing`] of the face's patch divided by `tolerance · L`;
+/// - G¹: the largest [`g1_error`] of the face's edges divided by `12 · tolerance`. Why 12: the
+///   error is in units of the control net's spacing `s ≈ L/3`; moving one first-row point by `δ`
+///   changes its combination by about `δ/s` in two components, each entering eq. (6) twice, so
+///   an error `e` is a misplacement of about `e·s/4 = e·L/12`, and a misplacement of
+///   `tolerance · L` is an error of `12 · tolerance`.
+///
+/// Static (the cage's `L` is fixed when the DoI is made, so refinement converges).
+///
+/// ```
+/// use subdiv_doi::{Doi, DoiContext, Haptic};
+/// use subdiv_mesh::{parse_obj, Mesh};
+/// let flat = Mesh::from_soup(&parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 4\nf 1 4 3\n")?)?;
+/// let h = Haptic::for_mesh(&flat, Haptic::DEFAULT_TOLERANCE);
+/// let mut v = Vec::new();
+/// h.evaluate(&flat, &DoiContext::default(), &mut v)?;
+/// assert!(v.iter().all(|&x| x < 1e-3)); // flat: nothing to refine
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Haptic {
+    /// The tolerance in units of the mean edge length.
+    pub tolerance: f32,
+    /// The tolerance as a length.
+    pub length: f32,
+}
+
+impl Haptic {
+    /// Default tolerance: 5 % of the mean edge length.
+    pub const DEFAULT_TOLERANCE: f32 = 0.05;
+    /// G¹ error per unit of relative tolerance (see the type's documentation).
+    pub const G1_PER_TOLERANCE: f32 = 12.0;
+
+    /// The DoI for `mesh` with `tolerance` in units of its mean edge length.
+    pub fn for_mesh(mesh: &Mesh, tolerance: f32) -> Haptic {
+        Haptic {
+            tolerance,
+            length: (tolerance * mean_edge_length(mesh)).max(f32::MIN_POSITIVE),
+        }
+    }
+
+    /// The two terms of face `f` (G¹ and one-side, each divided by its tolerance).
+    pub fn terms(&self, mesh: &Mesh, ct: &[CloughTocher], f: FaceId) -> [f32; 2] {
+        let h0 = mesh.face_halfedge(f);
+        let g1 = [h0, mesh.next(h0), mesh.prev(h0)]
+            .iter()
+            .map(|h| edge_g1_error(mesh, ct, h.edge()))
+            .fold(0.0f32, f32::max);
+        let v = mesh.face_vertices(f);
+        let p = [0, 1, 2].map(|k| mesh.position(v[k]));
+        let side = plane_crossing(&ct[f.idx()], p);
+        [
+            g1 / (Self::G1_PER_TOLERANCE * self.tolerance),
+            side / self.length,
+        ]
+    }
+}
+
+impl Doi for Haptic {
+    fn name(&self) -> &'static str {
+        "haptic"
+    }
+    fn domain(&self) -> Domain {
+        Domain::Faces
+    }
+    fn is_view_dependent(&self) -> bool {
+        false
+    }
+    fn default_threshold(&self) -> f32 {
+        1.0
+    }
+    fn evaluate(&self, mesh: &Mesh, _ctx: &DoiContext, out: &mut Vec<f32>) -> Result<(), DoiError> {
+        mesh.check_triangles()?;
+        let normals = vertex_normals(mesh);
+        let ct = clough_tocher_patches(mesh, &normals);
+        out.clear();
+        out.extend(mesh.faces().map(|f| {
+            let [a, b] = self.terms(mesh, &ct, f);
+            a.max(b)
+        }));
+        Ok(())
+    }
+}
+
 /// The binary haptic-interaction-point DoI (§4.2): 1 for the triangle closest to the HIP
-/// (`DoiContext::hip`) and every triangle sharing a vertex with it, 0 elsewhere. Changes with
-/// the HIP, so it is re-evaluated per frame. Default threshold 0.5.
+/// (`DoiContext::hip`, snapped to the closest surface point) and every triangle sharing a vertex
+/// with it, 0 elsewhere. Changes with the HIP, so it is re-evaluated per frame. Threshold 0.5.
 ///
 /// ```
 /// use subdiv_doi::{Doi, DoiContext, HapticPoint};
@@ -329,7 +335,7 @@ impl Doi for HapticPoint {
         }
         out.clear();
         out.resize(mesh.num_faces(), 0.0);
-        let Some(closest) = closest_face(mesh, hip) else {
+        let Some((closest, _)) = closest_surface_point(mesh, hip) else {
             return Ok(());
         };
         let mut mark = vec![false; mesh.num_vertices()];
@@ -345,140 +351,35 @@ impl Doi for HapticPoint {
     }
 }
 
-/// The face of a triangle mesh closest to `p` (ties: lowest index), `None` without faces.
-pub fn closest_face(mesh: &Mesh, p: Vec3) -> Option<FaceId> {
+/// The face of a triangle mesh closest to `p` and the closest point on it (the surface contact
+/// point; ties: lowest face index), `None` without faces.
+pub fn closest_surface_point(mesh: &Mesh, p: Vec3) -> Option<(FaceId, Vec3)> {
     let mut best = (f32::INFINITY, None);
     for f in mesh.faces() {
         let v = mesh.face_vertices(f);
-        let d = closest_point_on_triangle(
+        let q = closest_point_on_triangle(
             p,
             mesh.position(v[0]),
             mesh.position(v[1]),
             mesh.position(v[2]),
-        )
-        .distance_squared(p);
+        );
+        let d = q.distance_squared(p);
         if d < best.0 {
-            best = (d, Some(f));
+            best = (d, Some((f, q)));
         }
     }
     best.1
 }
 
+/// The face of a triangle mesh closest to `p` (ties: lowest index), `None` without faces.
+pub fn closest_face(mesh: &Mesh, p: Vec3) -> Option<FaceId> {
+    closest_surface_point(mesh, p).map(|(f, _)| f)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn sample_ct() -> CloughTocher {
-        let p = [
-            Vec3::new(0.0, 0.0, 0.1),
-            Vec3::new(1.0, 0.1, 0.0),
-            Vec3::new(0.2, 0.9, 0.3),
-        ];
-        let n = [
-            Vec3::new(0.1, -0.2, 1.0),
-            Vec3::new(0.4, 0.1, 1.0),
-            Vec3::new(-0.2, 0.3, 1.0),
-        ]
-        .map(|x| x.normalize());
-        CloughTocher::new(p, n)
-    }
-
-    #[test]
-    fn bezier_indices_are_a_bijection() {
-        let mut seen = [false; 10];
-        for i in 0..=3 {
-            for j in 0..=3 - i {
-                let x = bezier_index(i, j, 3 - i - j);
-                assert!(!seen[x]);
-                seen[x] = true;
-            }
-        }
-        assert!(seen.iter().all(|&s| s));
-    }
-
-    #[test]
-    fn interpolates_corners_and_tangent_planes() {
-        let p = [
-            Vec3::new(0.0, 0.0, 0.1),
-            Vec3::new(1.0, 0.1, 0.0),
-            Vec3::new(0.2, 0.9, 0.3),
-        ];
-        let n = [
-            Vec3::new(0.1, -0.2, 1.0),
-            Vec3::new(0.4, 0.1, 1.0),
-            Vec3::new(-0.2, 0.3, 1.0),
-        ]
-        .map(|x| x.normalize());
-        let ct = CloughTocher::new(p, n);
-        for k in 0..3 {
-            let mut l = [0.0; 3];
-            l[k] = 1.0;
-            assert!((ct.eval(l) - p[k]).length() < 1e-6, "corner {k}");
-            // Both derivatives at the corner lie in the tangent plane given by the normal.
-            let (s, [u, v, w]) = CloughTocher::locate(l);
-            for d in [[1.0, -1.0, 0.0], [1.0, 0.0, -1.0]] {
-                let dd = ct.sub[s].derivative(CloughTocher::sub_direction(s, d), u, v, w);
-                assert!(
-                    dd.dot(n[k]).abs() < 1e-5 * dd.length().max(1.0),
-                    "corner {k}: {dd}"
-                );
-            }
-        }
-    }
-
-    #[test]
-    fn c1_across_the_split_lines() {
-        let ct = sample_ct();
-        let c = [1.0 / 3.0; 3];
-        let dirs = [[1.0f32, -1.0, 0.0], [0.0, 1.0, -1.0], [-1.0, 0.0, 1.0]];
-        for k in 0..3 {
-            // Points on the split line from corner k to the centre, shared by sub-patches k and
-            // k - 1 (= k + 2).
-            let km = (k + 2) % 3;
-            for s in [0.1f32, 0.35, 0.6, 0.9] {
-                let mut l = [0.0f32; 3];
-                for i in 0..3 {
-                    l[i] = (1.0 - s) * if i == k { 1.0 } else { 0.0 } + s * c[i];
-                }
-                let coords = |sub: usize| {
-                    let (a, b, cc) = (l[sub], l[(sub + 1) % 3], l[(sub + 2) % 3]);
-                    [a - cc, b - cc, 3.0 * cc]
-                };
-                let (ua, ub) = (coords(k), coords(km));
-                let pa = ct.sub[k].eval(ua[0], ua[1], ua[2]);
-                let pb = ct.sub[km].eval(ub[0], ub[1], ub[2]);
-                assert!((pa - pb).length() < 1e-6, "C0 on split line {k} at {s}");
-                for d in dirs {
-                    let da = ct.sub[k].derivative(
-                        CloughTocher::sub_direction(k, d),
-                        ua[0],
-                        ua[1],
-                        ua[2],
-                    );
-                    let db = ct.sub[km].derivative(
-                        CloughTocher::sub_direction(km, d),
-                        ub[0],
-                        ub[1],
-                        ub[2],
-                    );
-                    assert!(
-                        (da - db).length() < 1e-5,
-                        "C1 on split line {k} at {s}, dir {d:?}: {da} vs {db}"
-                    );
-                }
-            }
-        }
-        // A non-C1 net is detected by the same check: move one interior point.
-        let mut bad = ct;
-        bad.sub[0].b[bezier_index(1, 1, 1)] += Vec3::Z * 0.1;
-        let l = [0.5f32, 0.25, 0.25];
-        let ua = [l[0] - l[2], l[1] - l[2], 3.0 * l[2]];
-        let ub = [l[2] - l[1], l[0] - l[1], 3.0 * l[1]];
-        let d = [0.0f32, 1.0, -1.0];
-        let da = bad.sub[0].derivative(CloughTocher::sub_direction(0, d), ua[0], ua[1], ua[2]);
-        let db = bad.sub[2].derivative(CloughTocher::sub_direction(2, d), ub[0], ub[1], ub[2]);
-        assert!((da - db).length() > 1e-3);
-    }
+    use crate::clough_tocher::{CubicTriangle, bezier_index};
 
     #[test]
     fn g1_error_zero_when_flat_positive_on_a_fold() {
@@ -549,10 +450,81 @@ mod tests {
         let q = [Vec3::ZERO, Vec3::X, Vec3::Y];
         let c = barycentric_combination(q[0] * 0.2 + q[1] * 0.5 + q[2] * 0.3, q[0], q[1], q[2])
             .unwrap();
-        assert!(
-            (c[0] - 0.2).abs() < 1e-6 && (c[1] - 0.5).abs() < 1e-6 && (c[2] - 0.3).abs() < 1e-6
-        );
+        assert!((c.v[0] - 0.2).abs() < 1e-6 && (c.v[1] - 0.5).abs() < 1e-6);
+        assert!((c.v[2] - 0.3).abs() < 1e-6 && c.off_plane == 0.0);
         assert!(barycentric_combination(Vec3::Z, Vec3::ZERO, Vec3::X, Vec3::X * 2.0).is_none());
+    }
+
+    /// Two hand-built cubic nets sharing the edge from a = (0,0,0) to b = (3,0,0): `b` with its
+    /// first row at y = 1 and z = 0, `b̂` with its first row given by `row(k)` for the point at
+    /// b-weight `k` (so `b̂(k, j, 1)` faces `b(j, k, 1)`).
+    fn nets(row: impl Fn(usize) -> Vec3) -> (CloughTocher, CloughTocher) {
+        let mut b = CubicTriangle {
+            b: [Vec3::ZERO; 10],
+        };
+        let mut bh = b;
+        for j in 0..=3usize {
+            let k = 3 - j; // j on a, k on b: boundary point at x = k
+            b.b[bezier_index(j, k, 0)] = Vec3::new(k as f32, 0.0, 0.0);
+            bh.b[bezier_index(k, j, 0)] = Vec3::new(k as f32, 0.0, 0.0);
+        }
+        for (j, k) in [(2usize, 0usize), (1, 1), (0, 2)] {
+            b.b[bezier_index(j, k, 1)] = Vec3::new(k as f32 + 0.5, 1.0, 0.0);
+            bh.b[bezier_index(k, j, 1)] = row(k);
+        }
+        let wrap = |t: CubicTriangle| CloughTocher { sub: [t; 3] };
+        (wrap(b), wrap(bh))
+    }
+
+    #[test]
+    fn g1_on_hand_built_nets() {
+        // Coplanar and G1 (the same combination v = (-2, 1.5, 1.5) for all three points, not
+        // C1): no error.
+        let (f, g) = nets(|k| Vec3::new(k as f32 + 0.5, -2.0, 0.0));
+        assert!(g1_error(&f, 0, &g, 0) < 1e-5);
+        // The same combinations in the plane, but lifted off it: eq. (6) alone is 0 (the
+        // least-squares reading called this G1); the out-of-plane residual makes it an error.
+        let (f, g) = nets(|k| Vec3::new(k as f32 + 0.5, -2.0, 0.3));
+        let e = g1_error(&f, 0, &g, 0);
+        assert!((e - 3.0 * 0.3 / 1.25f32.sqrt()).abs() < 1e-4, "{e}");
+        // Coplanar but the combinations differ: eq. (6).
+        let (f, g) = nets(|k| Vec3::new(k as f32 + 0.5 + 0.2 * k as f32, -1.0, 0.0));
+        assert!(g1_error(&f, 0, &g, 0) > 0.1);
+        // A degenerate net (first-row point on the boundary line): not 0 but the defined error.
+        let (mut f, g) = nets(|k| Vec3::new(k as f32 + 0.5, -1.0, 0.0));
+        f.sub[0].b[bezier_index(1, 1, 1)] = Vec3::new(1.5, 0.0, 0.0);
+        assert_eq!(g1_error(&f, 0, &g, 0), DEGENERATE_G1_ERROR);
+    }
+
+    #[test]
+    fn patches_crossing_their_plane() {
+        let p = [Vec3::ZERO, Vec3::X, Vec3::Y];
+        let flat = CloughTocher::new(p, [Vec3::Z; 3]);
+        assert_eq!(plane_crossing(&flat, p), 0.0);
+        // Normals twisted like a saddle: the patch goes below the plane near edge 0-1 and above
+        // it near edge 1-2.
+        let n = [
+            Vec3::new(0.5, 0.0, 1.0),
+            Vec3::new(0.5, 0.0, 1.0),
+            Vec3::new(-0.5, 0.0, 1.0),
+        ]
+        .map(|x| x.normalize());
+        let twisted = CloughTocher::new(p, n);
+        let c = plane_crossing(&twisted, p);
+        assert!(c > 0.05, "{c}");
+        // In a mesh: the one-side term of the Haptic DoI is that crossing over the tolerance.
+        let m = Mesh::from_soup(&subdiv_mesh::PolygonSoup::from_faces(
+            p.to_vec(),
+            &[[0u32, 1, 2]],
+        ))
+        .unwrap();
+        let h = Haptic::for_mesh(&m, 0.05);
+        assert!((h.length - 0.05 * (2.0 + 2f32.sqrt()) / 3.0).abs() < 1e-6);
+        assert_eq!(
+            h.terms(&m, &[twisted], subdiv_mesh::FaceId(0))[1],
+            c / h.length
+        );
+        assert_eq!(h.terms(&m, &[flat], subdiv_mesh::FaceId(0)), [0.0, 0.0]);
     }
 
     #[test]

@@ -9,8 +9,9 @@
 //!   exceeds the threshold. DoIs are evaluated before every step; static DoIs are cached across
 //!   frames by `subdiv::Refiner`, view-dependent ones re-evaluated.
 //! - The DoIs of the paper: [`ViewAngle`] (eq. 1), [`Silhouette`] (eq. 2), [`Dihedral`]
-//!   (eq. 3), [`HapticG1`] (Clough-Tocher G¹ error, eqs. 4–6) and [`HapticPoint`], [`Focus`]
-//!   (eq. 7).
+//!   (eq. 3), [`Haptic`] (Clough-Tocher G¹ error, eqs. 4–6, and the one-side criterion;
+//!   [`HapticG1`] alone) and [`HapticPoint`], [`Focus`]
+//!   (eq. 7); and a vertex-valued one, [`Curvature`] (the normal's turn at each vertex).
 //!
 //! This crate computes interest values only. What is refined with them lives elsewhere:
 //! `subdiv-loop` refines a face selection adaptively, `subdiv-depth` maps face values to
@@ -37,20 +38,29 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod clough_tocher;
+mod curvature;
 mod dihedral;
 mod error;
 mod focus;
 mod framework;
 mod haptic;
+mod skeleton;
 mod view;
 
+pub use clough_tocher::{CloughTocher, CubicTriangle, bezier_index, clough_tocher_patches};
+pub use curvature::Curvature;
 pub use dihedral::{Dihedral, dihedral_angle_deg};
 pub use error::DoiError;
-pub use focus::{Focus, FocusObject, FocusShape, parse_skeleton, polyline_distance, read_skeleton};
+pub use focus::{Focus, FocusObject, FocusShape, FocusSpec};
 pub use framework::{Aggregate, Doi, DoiContext, Domain, aggregate_to_faces, face_values, select};
 pub use haptic::{
-    CloughTocher, CubicTriangle, HapticG1, HapticPoint, barycentric_combination, bezier_index,
-    closest_face, clough_tocher_patches, edge_g1_error, g1_error,
+    Combination, DEGENERATE_G1_ERROR, Haptic, HapticG1, HapticPoint, barycentric_combination,
+    closest_face, closest_surface_point, edge_g1_error, g1_error, mean_edge_length, plane_crossing,
+};
+pub use skeleton::{
+    parse_skeleton, polyline_distance, principal_axis_skeleton, read_skeleton, segment_distance,
+    triangle_polyline_distance, triangle_segment_distance,
 };
 pub use view::{
     Silhouette, ViewAngle, is_silhouette, point_segment_distance, silhouette_distance,
@@ -58,4 +68,11 @@ pub use view::{
 };
 
 /// The DoIs by command-line name, with their defaults.
-pub const DOI_NAMES: [&str; 5] = ["view-angle", "silhouette", "dihedral", "haptic", "focus"];
+pub const DOI_NAMES: [&str; 6] = [
+    "view-angle",
+    "silhouette",
+    "dihedral",
+    "haptic",
+    "focus",
+    "curvature",
+];

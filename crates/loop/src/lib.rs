@@ -38,4 +38,4 @@ mod step;
 
 pub use error::LoopError;
 pub use red_green::{GreenFamily, GreenState};
-pub use step::{AdaptiveMesh, MAX_TRIANGLES, StepStats, loop_step};
+pub use step::{AdaptiveMesh, Balance, MAX_TRIANGLES, StepStats, loop_step, loop_step_with};

@@ -2,17 +2,15 @@
 //! point, threshold, steps, aggregation) to a ready [`Doi`] and a DoI-driven adaptive Loop
 //! refinement of a cage for a camera (the meshes of Isenberg et al. 2003, Figs. 3, 4, 9, 10).
 
-use std::path::PathBuf;
-
 use glam::Vec3;
 use subdiv_doi::{
-    Aggregate, Dihedral, Doi, DoiContext, DoiError, Focus, HapticG1, HapticPoint, Silhouette,
-    ViewAngle, read_skeleton,
+    Aggregate, Curvature, Dihedral, Doi, DoiContext, DoiError, Focus, FocusSpec, Haptic,
+    HapticPoint, Silhouette, ViewAngle, closest_surface_point, read_skeleton,
 };
 use subdiv_mesh::{Camera, Mesh, MeshError, triangulate};
 use subdiv_rules::{Depth, LimitMesh};
 
-use crate::{RefineError, RefineOptions, Refined, Scene, refine_adaptive};
+use crate::{Balance, RefineError, RefineOptions, Refined, Scene, refine_adaptive};
 
 /// The Degree-of-Interest functions a DoI set-up can build.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -23,24 +21,30 @@ pub enum DoiKind {
     Silhouette,
     /// Dihedral angle at the edges ([`Dihedral`]).
     Dihedral,
-    /// Haptic: the Clough-Tocher G1 error ([`HapticG1`]), or the neighbourhood of a haptic
-    /// interaction point when one is given ([`HapticPoint`]).
+    /// Haptic: the Clough-Tocher G1 error and one-side criterion ([`Haptic`], tolerance 5 % of
+    /// the mean edge length), or the neighbourhood of a haptic interaction point when one is
+    /// given ([`HapticPoint`]).
     Haptic,
     /// Distance to focus objects or a skeleton ([`Focus`]).
     Focus,
+    /// How much the surface bends at each vertex ([`Curvature`]; vertex values, aggregated to
+    /// faces).
+    Curvature,
 }
 
 impl DoiKind {
-    /// Every kind, in the order of the paper's figures.
-    pub const ALL: [DoiKind; 5] = [
+    /// Every kind, in the order of the paper's figures, then the vertex DoI.
+    pub const ALL: [DoiKind; 6] = [
         DoiKind::ViewAngle,
         DoiKind::Silhouette,
         DoiKind::Dihedral,
         DoiKind::Haptic,
         DoiKind::Focus,
+        DoiKind::Curvature,
     ];
 
-    /// The kind's name: `view-angle`, `silhouette`, `dihedral`, `haptic` or `focus`.
+    /// The kind's name: `view-angle`, `silhouette`, `dihedral`, `haptic`, `focus` or
+    /// `curvature`.
     pub fn name(self) -> &'static str {
         match self {
             DoiKind::ViewAngle => "view-angle",
@@ -48,6 +52,7 @@ impl DoiKind {
             DoiKind::Dihedral => "dihedral",
             DoiKind::Haptic => "haptic",
             DoiKind::Focus => "focus",
+            DoiKind::Curvature => "curvature",
         }
     }
 }
@@ -102,12 +107,16 @@ pub struct DoiOptions {
     pub aggregate: Aggregate,
     /// Split quads and n-gons into triangles first (Loop subdivision needs triangles).
     pub triangulate: bool,
-    /// Focus objects (OBJ group or object names) for [`DoiKind::Focus`].
+    /// Focus objects for [`DoiKind::Focus`]: OBJ group or object names, `NAME` (interest 1) or
+    /// `NAME=VALUE`.
     pub focus: Vec<String>,
-    /// Skeleton polyline file for [`DoiKind::Focus`].
-    pub skeleton: Option<PathBuf>,
+    /// Skeleton polyline files for [`DoiKind::Focus`]: `FILE` (for every object without its
+    /// own) or `NAME=FILE` (for focus object `NAME`).
+    pub skeletons: Vec<String>,
     /// Haptic interaction point for [`DoiKind::Haptic`].
     pub hip: Option<Vec3>,
+    /// Level balancing of the adaptive steps.
+    pub balance: Balance,
 }
 
 impl DoiOptions {
@@ -121,22 +130,23 @@ impl DoiOptions {
             aggregate: Aggregate::Max,
             triangulate: false,
             focus: Vec::new(),
-            skeleton: None,
+            skeletons: Vec::new(),
             hip: None,
+            balance: Balance::Vertex,
         }
     }
 }
 
 /// Refuses options that the chosen DoI (`kind`, `None` for no DoI at all) would ignore: focus
-/// objects or a skeleton without [`DoiKind::Focus`], a haptic interaction point without
+/// objects or skeletons without [`DoiKind::Focus`], a haptic interaction point without
 /// [`DoiKind::Haptic`].
 pub fn check_doi_options(
     kind: Option<DoiKind>,
     focus: &[String],
-    skeleton: Option<&std::path::Path>,
+    skeletons: &[String],
     hip: Option<Vec3>,
 ) -> Result<(), DoiSetupError> {
-    if kind != Some(DoiKind::Focus) && (!focus.is_empty() || skeleton.is_some()) {
+    if kind != Some(DoiKind::Focus) && (!focus.is_empty() || !skeletons.is_empty()) {
         return Err(DoiSetupError::FocusWithoutFocusDoi);
     }
     if hip.is_some() && kind != Some(DoiKind::Haptic) {
@@ -145,14 +155,14 @@ pub fn check_doi_options(
     Ok(())
 }
 
-/// The DoI `kind` for `mesh`: focus objects and skeleton for [`DoiKind::Focus`] (the fade
+/// The DoI `kind` for `mesh`: focus objects and skeletons for [`DoiKind::Focus`] (the fade
 /// radius is [`Focus::default_radius`]); with `hip`, [`DoiKind::Haptic`] is the interaction
 /// point's neighbourhood.
 pub fn make_doi(
     kind: DoiKind,
     mesh: &Mesh,
     focus: &[String],
-    skeleton: Option<&std::path::Path>,
+    skeletons: &[String],
     hip: bool,
 ) -> Result<Box<dyn Doi>, DoiSetupError> {
     Ok(match kind {
@@ -160,18 +170,33 @@ pub fn make_doi(
         DoiKind::Silhouette => Box::new(Silhouette),
         DoiKind::Dihedral => Box::new(Dihedral),
         DoiKind::Haptic if hip => Box::new(HapticPoint),
-        DoiKind::Haptic => Box::new(HapticG1),
-        DoiKind::Focus => {
-            let skeleton = match skeleton {
-                Some(p) => Some(read_skeleton(p).map_err(DoiSetupError::Skeleton)?),
-                None => None,
-            };
-            Box::new(
-                Focus::from_groups(mesh, focus, skeleton, Focus::default_radius(mesh))
-                    .map_err(DoiSetupError::Focus)?,
-            )
-        }
+        DoiKind::Haptic => Box::new(Haptic::for_mesh(mesh, Haptic::DEFAULT_TOLERANCE)),
+        DoiKind::Curvature => Box::new(Curvature),
+        DoiKind::Focus => Box::new(make_focus(mesh, focus, skeletons)?),
     })
+}
+
+/// The focus DoI: `focus` as `NAME` or `NAME=VALUE`; `skeletons` as `NAME=FILE` when `NAME` is
+/// one of the focus objects, otherwise `FILE` for every object without its own.
+fn make_focus(mesh: &Mesh, focus: &[String], skeletons: &[String]) -> Result<Focus, DoiSetupError> {
+    let mut specs = focus
+        .iter()
+        .map(|f| FocusSpec::parse(f))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(DoiSetupError::Focus)?;
+    let mut shared = None;
+    for s in skeletons {
+        let read =
+            |p: &str| read_skeleton(std::path::Path::new(p)).map_err(DoiSetupError::Skeleton);
+        match s
+            .split_once('=')
+            .and_then(|(n, p)| Some((specs.iter().position(|x| x.name == n)?, p)))
+        {
+            Some((i, path)) => specs[i].skeleton = Some(read(path)?),
+            None => shared = Some(read(s)?),
+        }
+    }
+    Focus::new(mesh, &specs, shared, Focus::default_radius(mesh)).map_err(DoiSetupError::Focus)
 }
 
 /// Per-face Catmull-Clark depths driven by a DoI instead of the view: the DoI's face values
@@ -200,7 +225,7 @@ pub struct DoiSetup {
     pub doi: Box<dyn Doi>,
     /// The DoI chosen.
     pub kind: DoiKind,
-    /// Haptic interaction point.
+    /// Haptic interaction point, snapped to the closest point of the cage's surface.
     pub hip: Option<Vec3>,
     /// Threshold (the default filled in), steps and aggregation.
     pub opts: RefineOptions,
@@ -209,7 +234,7 @@ pub struct DoiSetup {
 impl DoiSetup {
     /// Checks the options against each other and against `cage`, and builds the DoI.
     pub fn new(cage: Mesh, o: &DoiOptions) -> Result<DoiSetup, DoiSetupError> {
-        check_doi_options(Some(o.kind), &o.focus, o.skeleton.as_deref(), o.hip)?;
+        check_doi_options(Some(o.kind), &o.focus, &o.skeletons, o.hip)?;
         let cage = if o.triangulate {
             triangulate(&cage).map_err(DoiSetupError::Triangulate)?
         } else if let Some(face) = cage.faces().find(|&x| cage.face_size(x) != 3) {
@@ -220,26 +245,25 @@ impl DoiSetup {
         } else {
             cage
         };
-        let doi = make_doi(
-            o.kind,
-            &cage,
-            &o.focus,
-            o.skeleton.as_deref(),
-            o.hip.is_some(),
-        )?;
+        let doi = make_doi(o.kind, &cage, &o.focus, &o.skeletons, o.hip.is_some())?;
         let threshold = o.threshold.unwrap_or(doi.default_threshold());
         if !threshold.is_finite() {
             return Err(DoiSetupError::Threshold);
         }
+        // The haptic interaction point touches the surface: snap it to the closest cage point.
+        let hip = o
+            .hip
+            .map(|p| closest_surface_point(&cage, p).map_or(p, |(_, q)| q));
         Ok(DoiSetup {
             cage,
             doi,
             kind: o.kind,
-            hip: o.hip,
+            hip,
             opts: RefineOptions {
                 threshold,
                 steps: o.steps,
                 aggregate: o.aggregate,
+                balance: o.balance,
             },
         })
     }
@@ -334,16 +358,23 @@ mod tests {
     #[test]
     fn options_the_doi_would_ignore_are_refused() {
         let focus = vec![String::from("top")];
-        let e = check_doi_options(Some(DoiKind::Dihedral), &focus, None, None).unwrap_err();
+        let e = check_doi_options(Some(DoiKind::Dihedral), &focus, &[], None).unwrap_err();
         assert!(matches!(e, DoiSetupError::FocusWithoutFocusDoi));
         let hip = Some(Vec3::ZERO);
-        let e = check_doi_options(None, &[], None, hip).unwrap_err();
+        let e = check_doi_options(None, &[], &[], hip).unwrap_err();
         assert!(matches!(e, DoiSetupError::HipWithoutHapticDoi));
-        check_doi_options(Some(DoiKind::Haptic), &[], None, hip).unwrap();
-        check_doi_options(Some(DoiKind::Focus), &focus, None, None).unwrap();
+        check_doi_options(Some(DoiKind::Haptic), &[], &[], hip).unwrap();
+        check_doi_options(Some(DoiKind::Focus), &focus, &[], None).unwrap();
         assert_eq!(
             DoiKind::ALL.map(DoiKind::name),
-            ["view-angle", "silhouette", "dihedral", "haptic", "focus"]
+            [
+                "view-angle",
+                "silhouette",
+                "dihedral",
+                "haptic",
+                "focus",
+                "curvature"
+            ]
         );
     }
 

@@ -67,12 +67,12 @@
 //!
 //! # DoI-driven refinement
 //! ```
-//! use subdiv::{refine_adaptive, RefineOptions};
+//! use subdiv::{refine_adaptive, Balance, RefineOptions};
 //! use subdiv::doi::{Aggregate, Dihedral, DoiContext};
 //! use subdiv::mesh::{parse_obj, Mesh};
 //! let tet = Mesh::from_soup(&parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n\
 //!     f 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n")?)?;
-//! let opts = RefineOptions { threshold: 30.0, steps: 2, aggregate: Aggregate::Max };
+//! let opts = RefineOptions { threshold: 30.0, steps: 2, aggregate: Aggregate::Max, balance: Balance::Vertex };
 //! let refined = refine_adaptive(&tet, &Dihedral, &DoiContext::default(), &opts)?;
 //! assert!(refined.mesh.mesh.num_faces() <= 4 * 16);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
@@ -121,7 +121,7 @@ pub use dynamic::DynamicSubdivision;
 pub use frame::{depth_histogram, frame_limit};
 pub use frame_sources::{AdaptiveSource, DoiSource, UniformSource};
 pub use patch_error::{SAMPLE_LEVELS, patch_errors};
-pub use refine::{RefineError, RefineOptions, Refined, Refiner, refine_adaptive};
+pub use refine::{Balance, RefineError, RefineOptions, Refined, Refiner, refine_adaptive};
 pub use scene::{Scene, SceneError, uniform_limit};
 pub use silhouettes::Silhouettes;
 

@@ -4,7 +4,8 @@
 use std::time::Instant;
 
 use subdiv_doi::{Aggregate, Doi, DoiContext, DoiError, face_values, select};
-use subdiv_loop::{AdaptiveMesh, LoopError, StepStats, loop_step};
+pub use subdiv_loop::Balance;
+use subdiv_loop::{AdaptiveMesh, LoopError, StepStats, loop_step_with};
 use subdiv_mesh::Mesh;
 use thiserror::Error;
 
@@ -38,6 +39,9 @@ pub struct RefineOptions {
     pub steps: u32,
     /// How edge or vertex values become face values.
     pub aggregate: Aggregate,
+    /// Level balancing before the red-green closure ([`Balance::Vertex`]: the smallest angle
+    /// does not decay; [`Balance::None`]: the paper's plain closure, fewest triangles).
+    pub balance: Balance,
 }
 
 /// The result of [`refine_adaptive`].
@@ -54,11 +58,11 @@ pub struct Refined {
 /// threshold are selected, and one [`subdiv_loop::loop_step`] is taken.
 ///
 /// ```
-/// use subdiv::{refine_adaptive, RefineOptions};
+/// use subdiv::{refine_adaptive, Balance, RefineOptions};
 /// use subdiv_doi::{Aggregate, Dihedral, DoiContext};
 /// use subdiv_mesh::{parse_obj, Mesh};
 /// let tet = Mesh::from_soup(&parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n")?)?;
-/// let opts = RefineOptions { threshold: 30.0, steps: 2, aggregate: Aggregate::Max };
+/// let opts = RefineOptions { threshold: 30.0, steps: 2, aggregate: Aggregate::Max, balance: Balance::Vertex };
 /// let r = refine_adaptive(&tet, &Dihedral, &DoiContext::default(), &opts)?;
 /// assert_eq!(r.steps.len(), 2);
 /// assert!(r.mesh.mesh.num_faces() <= 4 * 16);
@@ -97,7 +101,7 @@ pub fn refine_adaptive(
         )?;
         select(&values, opts.threshold, &mut sel);
         let t1 = Instant::now();
-        let (next, mut st) = loop_step(&cur, &sel).map_err(|e| match e {
+        let (next, mut st) = loop_step_with(&cur, &sel, opts.balance).map_err(|e| match e {
             LoopError::TooLarge { faces, limit } => RefineError::TooLarge {
                 step: s + 1,
                 faces,
@@ -117,11 +121,11 @@ pub fn refine_adaptive(
 /// view-dependent DoIs are re-evaluated (and the mesh re-refined) for every frame.
 ///
 /// ```
-/// use subdiv::{RefineOptions, Refiner};
+/// use subdiv::{Balance, RefineOptions, Refiner};
 /// use subdiv_doi::{Aggregate, Dihedral, DoiContext};
 /// use subdiv_mesh::{parse_obj, Mesh};
 /// let tet = Mesh::from_soup(&parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n")?)?;
-/// let opts = RefineOptions { threshold: 30.0, steps: 1, aggregate: Aggregate::Max };
+/// let opts = RefineOptions { threshold: 30.0, steps: 1, aggregate: Aggregate::Max, balance: Balance::Vertex };
 /// let mut r = Refiner::new(tet, Box::new(Dihedral), opts)?;
 /// r.frame(&DoiContext::default())?;
 /// r.frame(&DoiContext::default())?;
@@ -181,6 +185,7 @@ mod tests {
             threshold: 0.5,
             steps: 2,
             aggregate: Aggregate::Max,
+            balance: Balance::Vertex,
         };
         let mut r = Refiner::new(m.clone(), Box::new(subdiv_doi::Silhouette), opts).unwrap();
         let cam = |z: f32| Camera::new(Vec3::new(0.3, 0.2, z), Vec3::ZERO, Vec3::Y, 30.0, 64, 64);
@@ -222,6 +227,7 @@ mod tests {
             threshold: f32::NAN,
             steps: 1,
             aggregate: Aggregate::Max,
+            balance: Balance::Vertex,
         };
         assert!(matches!(
             refine_adaptive(&m, &subdiv_doi::Dihedral, &DoiContext::default(), &opts),
@@ -231,6 +237,7 @@ mod tests {
             threshold: 0.5,
             steps: 1,
             aggregate: Aggregate::Max,
+            balance: Balance::Vertex,
         };
         assert!(matches!(
             refine_adaptive(&m, &subdiv_doi::Silhouette, &DoiContext::default(), &opts),
