@@ -1,8 +1,9 @@
 //! `cargo xtask`: project automation (demo, tests, set-up of the Vulkan driver).
 //!
 //! - `cargo xtask demo`: tessellates the embedded default cage and writes `out/`.
-//! - `cargo xtask test`: runs `check-architecture`, installs what the tests need (lavapipe) if
-//!   missing, then runs every test.
+//! - `cargo xtask test`: runs `check-architecture`, installs what the tests need (lavapipe;
+//!   libosd-dev when root) if missing, then runs every test, a short `fuzz-osd` round and the
+//!   golden images.
 //! - `cargo xtask check-architecture`: fails unless the workspace crates' dependencies on each
 //!   other equal the `crate-graph` block of `docs/architecture.md`.
 //! - `cargo xtask figures`: reproduces the papers' tables into `docs/figures.md`.
@@ -10,11 +11,14 @@
 //!   (see `docs/golden.md`).
 //! - `cargo xtask bench-osd [--install]`: OpenSubdiv 3.5 (libosd-dev) timed beside the slate
 //!   tessellator (see `docs/performance.md`).
+//! - `cargo xtask fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I]`: random cages
+//!   against OpenSubdiv 3.5 (see `docs/testing.md`).
 
 mod architecture;
 mod bench_osd;
 mod figures_cc;
 mod figures_doi;
+mod fuzz_osd;
 mod golden;
 mod vulkan;
 
@@ -169,6 +173,7 @@ fn test() -> Result<()> {
     c.env("SUBDIV_VK_REQUIRE_DRIVER", "1");
     vulkan::configure(&mut c, &root());
     run(c)?;
+    fuzz_osd::short_round(&root())?;
     golden::run(&root(), &golden::Options::default())
 }
 
@@ -180,10 +185,13 @@ fn main() -> Result<()> {
         Some("check-architecture") => architecture::run(&root()),
         Some("figures") => figures_doi::run(&root()).and_then(|()| figures_cc_run()),
         Some("bench-osd") => bench_osd::run(&root()),
+        Some("fuzz-osd") => {
+            fuzz_osd::Options::parse(&args[1..]).and_then(|o| fuzz_osd::command(&root(), &o))
+        }
         Some("golden") => golden::Options::parse(&args[1..]).and_then(|o| golden::run(&root(), &o)),
         _ => {
             eprintln!(
-                "usage: cargo xtask <demo|test|check-architecture|figures|golden [--bless] [--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]>"
+                "usage: cargo xtask <demo|test|check-architecture|figures|golden [--bless] [--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I]>"
             );
             std::process::exit(2);
         }
