@@ -42,16 +42,18 @@ impl Reference {
     pub fn read(path: &std::path::Path) -> Reference {
         let text =
             std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        Self::parse(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+    }
+
+    /// Parses the text of a reference file (as `xtask/osd/ref_osd.cpp` prints it).
+    pub fn parse(text: &str) -> Result<Reference, String> {
         let mut lines = text.lines();
-        let head = lines.next().expect("empty reference file");
+        let head = lines.next().ok_or("empty reference file")?;
         let mut header = HashMap::new();
         let toks: Vec<&str> = head.split_whitespace().collect();
-        assert_eq!(
-            toks[0],
-            "osdref",
-            "{}: not a reference file",
-            path.display()
-        );
+        if toks.len() < 3 || toks[0] != "osdref" {
+            return Err(format!("not a reference file: {head:?}"));
+        }
         header.insert("V".into(), toks[1].into());
         header.insert("F".into(), toks[2].into());
         for t in &toks[3..] {
@@ -66,20 +68,42 @@ impl Reference {
             let mut it = l.split_whitespace();
             match it.next() {
                 Some("p") => {
-                    let x: Vec<f64> = it.map(|t| t.parse().expect("bad number")).collect();
+                    let x: Vec<f64> = it.map(|t| t.parse().unwrap_or(f64::NAN)).collect();
+                    if x.len() != 6 {
+                        return Err(format!("bad point line {l:?}"));
+                    }
                     positions.push(DVec3::new(x[0], x[1], x[2]));
                     normals.push(DVec3::new(x[3], x[4], x[5]));
                 }
-                Some("f") => faces.push(it.map(|t| t.parse().expect("bad index")).collect()),
+                Some("f") => faces.push(
+                    it.map(|t| t.parse().map_err(|_| format!("bad face line {l:?}")))
+                        .collect::<Result<_, _>>()?,
+                ),
                 _ => {}
             }
         }
-        Reference {
+        let r = Reference {
             header,
             positions,
             normals,
             faces,
+        };
+        for key in ["V", "F", "base_verts"] {
+            if r.header
+                .get(key)
+                .and_then(|v| v.parse::<usize>().ok())
+                .is_none()
+            {
+                return Err(format!("header has no number {key}"));
+            }
         }
+        if r.positions.len() != r.num("V") || r.faces.len() != r.num("F") {
+            return Err("point or face count differs from the header".into());
+        }
+        if r.faces.iter().flatten().any(|&i| i >= r.positions.len()) {
+            return Err("face index out of range".into());
+        }
+        Ok(r)
     }
 
     /// A header value parsed as a number.
@@ -186,3 +210,6 @@ pub mod fuzz;
 pub mod fuzz_check;
 pub mod fuzz_lines;
 pub mod fuzz_topo;
+pub mod osd_cage;
+pub mod osd_compare;
+pub mod osd_gen;

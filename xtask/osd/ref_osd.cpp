@@ -1,7 +1,7 @@
 // ref_osd: reference limit surfaces from OpenSubdiv 3.5 (Far, CPU, double precision) in the format
 // of fixtures/reference/OSD_REFERENCE_FORMAT.md.
 //
-//   ref_osd INPUT.obj LEVEL [catmark|loop]  > shape.L<LEVEL>.txt
+//   ref_osd INPUT.obj LEVEL [catmark|loop [local]]  > shape.L<LEVEL>.txt
 //
 // Reads an OBJ cage with OpenSubdiv's tag lines (crease, corner, hole, interpolateboundary,
 // creasemethod, and smoothtriangles as OpenSubdiv's regression/common/far_utils.h spells it:
@@ -13,6 +13,14 @@
 // With semi-sharp creases the limit is taken M levels deeper (M = LEVEL + ceil(max sharpness)),
 // from the vertex's descendant, so it is the true limit rather than OpenSubdiv's shortcut of
 // treating leftover sharpness as infinite; the header then says exact_from_level=M.
+//
+// `local` (used by `cargo xtask fuzz-osd`) takes each vertex's limit instead at the first level
+// L in LEVEL..M where the vertex's descendant has no semi-sharp sharpness left on itself or its
+// edges (its rule is final there); the header adds exact=per-vertex. For most vertices that is
+// the same point, since OpenSubdiv's limit masks are exact once the rule is final. Not for darts
+// and interior valence-2 vertices: OpenSubdiv gives them the smooth and the corner masks, which
+// are not their true limit, so their "limit" moves with the level it is taken at. subdiv takes
+// it, as here, at the level where the vertex's own neighbourhood has run out.
 //
 // Build: g++ -O2 -std=c++14 ref_osd.cpp -I/usr/include -losdCPU -o ref_osd
 
@@ -168,35 +176,75 @@ static int semiSharpCount(std::vector<float> const &w, float *maxSharp) {
     return n;
 }
 
-int main(int argc, char **argv) {
-    if (argc < 3) fail("usage: ref_osd INPUT.obj LEVEL [catmark|loop]");
-    Cage c = readObj(argv[1]);
-    int level = std::atoi(argv[2]);
-    bool loop = argc > 3 && std::string(argv[3]) == "loop";
-    if (level < 1 || level > 8) fail("LEVEL must be 1..8");
-    float maxSharp = 0.0f;
-    int semiE = semiSharpCount(c.creaseWeights, &maxSharp);
-    int semiV = semiSharpCount(c.cornerWeights, &maxSharp);
-    int deep = level + (int)std::ceil(maxSharp);
+struct Limits {
+    std::vector<Vec3> pos, du, dv;
+};
 
-    Far::TopologyRefiner *r = createRefiner(c, loop ? Sdc::SCHEME_LOOP : Sdc::SCHEME_CATMARK);
-    Far::TopologyRefiner::UniformOptions uo(deep);
-    uo.fullTopologyInLastLevel = true;
-    r->RefineUniform(uo);
-    Far::PrimvarRefinerReal<double> pr(*r);
+// Refines `r` (already refined to its max level) uniformly in primvars and takes the limit of
+// every vertex of its last level.
+static Limits limitsAtMaxLevel(Far::TopologyRefiner const &r, std::vector<Vec3> const &cage) {
+    int deep = r.GetMaxLevel();
+    Far::PrimvarRefinerReal<double> pr(r);
     std::vector<std::vector<Vec3> > lv(deep + 1);
-    lv[0] = c.positions;
+    lv[0] = cage;
     for (int l = 1; l <= deep; ++l) {
-        lv[l].resize(r->GetLevel(l).GetNumVertices());
+        lv[l].resize(r.GetLevel(l).GetNumVertices());
         Vec3 const *src = lv[l - 1].data();
         Vec3 *dst = lv[l].data();
         pr.Interpolate(l, src, dst);
     }
     size_t nd = lv[deep].size();
-    std::vector<Vec3> pos(nd), du(nd), dv(nd);
+    Limits out;
+    out.pos.resize(nd);
+    out.du.resize(nd);
+    out.dv.resize(nd);
     Vec3 const *src = lv[deep].data();
-    Vec3 *p = pos.data(), *u = du.data(), *w = dv.data();
+    Vec3 *p = out.pos.data(), *u = out.du.data(), *w = out.dv.data();
     pr.Limit(src, p, u, w);
+    return out;
+}
+
+static bool semiSharp(float s) { return s > 0.0f && s < 10.0f; }
+
+// No semi-sharp sharpness left on vertex v of level l or on its edges: its rule is final.
+static bool settled(Far::TopologyLevel const &l, int v) {
+    if (semiSharp(l.GetVertexSharpness(v))) return false;
+    Far::ConstIndexArray es = l.GetVertexEdges(v);
+    for (int k = 0; k < es.size(); ++k) {
+        if (semiSharp(l.GetEdgeSharpness(es[k]))) return false;
+    }
+    return true;
+}
+
+int main(int argc, char **argv) {
+    if (argc < 3) fail("usage: ref_osd INPUT.obj LEVEL [catmark|loop [local]]");
+    Cage c = readObj(argv[1]);
+    int level = std::atoi(argv[2]);
+    bool loop = argc > 3 && std::string(argv[3]) == "loop";
+    bool local = argc > 4 && std::string(argv[4]) == "local";
+    if (level < 1 || level > 8) fail("LEVEL must be 1..8");
+    float maxSharp = 0.0f;
+    int semiE = semiSharpCount(c.creaseWeights, &maxSharp);
+    int semiV = semiSharpCount(c.cornerWeights, &maxSharp);
+    int deep = level + (int)std::ceil(maxSharp);
+    Sdc::SchemeType scheme = loop ? Sdc::SCHEME_LOOP : Sdc::SCHEME_CATMARK;
+
+    Far::TopologyRefiner *r = createRefiner(c, scheme);
+    Far::TopologyRefiner::UniformOptions uo(deep);
+    uo.fullTopologyInLastLevel = true;
+    r->RefineUniform(uo);
+    // limits[l - level]: the limits at level l (local mode: every level from LEVEL to deep;
+    // otherwise only deep).
+    std::vector<Limits> limits(deep - level + 1);
+    limits[deep - level] = limitsAtMaxLevel(*r, c.positions);
+    for (int l = level; local && l < deep; ++l) {
+        Far::TopologyRefiner *rl = createRefiner(c, scheme);
+        Far::TopologyRefiner::UniformOptions ul(l);
+        ul.fullTopologyInLastLevel = true;
+        rl->RefineUniform(ul);
+        limits[l - level] = limitsAtMaxLevel(*rl, c.positions);
+        delete rl;
+    }
 
     Far::TopologyLevel const &L = r->GetLevel(level);
     int nv = L.GetNumVertices(), nf = 0;
@@ -212,11 +260,18 @@ int main(int argc, char **argv) {
                 (int)c.holes.size(), semiE, semiV, (int)c.positions.size(),
                 (int)c.vertsPerFace.size(), "3.5.0");
     if (deep > level) std::printf(" exact_from_level=%d", deep);
+    if (local) std::printf(" exact=per-vertex");
     std::printf("\n");
     for (int v = 0; v < nv; ++v) {
-        int d = v;
-        for (int l = level; l < deep; ++l) d = r->GetLevel(l).GetVertexChildVertex(d);
-        Vec3 const &a = du[d], &b = dv[d];
+        // The vertex's descendant at the first level where its own rule is final (local), or
+        // at `deep`.
+        int d = v, l = level;
+        for (; l < deep && !(local && settled(r->GetLevel(l), d)); ++l) {
+            d = r->GetLevel(l).GetVertexChildVertex(d);
+        }
+        Limits const &lim = limits[l - level];
+        std::vector<Vec3> const &pos = lim.pos;
+        Vec3 const &a = lim.du[d], &b = lim.dv[d];
         double n[3] = {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
         double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         if (len > 0.0) {

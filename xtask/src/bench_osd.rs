@@ -20,9 +20,9 @@ const CAGES: &[&str] = &[
 ];
 const DEPTHS: std::ops::RangeInclusive<u32> = 2..=5;
 const HEADER: &str = "/usr/include/opensubdiv/far/topologyRefiner.h";
-const INSTALL: &str = "apt-get install -y libosd-dev";
+pub const INSTALL: &str = "apt-get install -y libosd-dev";
 
-fn osd_present() -> bool {
+pub fn osd_present() -> bool {
     Path::new(HEADER).exists()
         && [
             "/usr/lib/x86_64-linux-gnu",
@@ -43,7 +43,7 @@ fn is_root() -> bool {
 }
 
 /// Runs `cmd` and returns its stdout; fails with its stderr when it fails.
-fn output(cmd: &mut Command) -> Result<String> {
+pub fn output(cmd: &mut Command) -> Result<String> {
     let shown = format!("{cmd:?}");
     let out = cmd
         .output()

@@ -1,8 +1,9 @@
 //! `cargo xtask`: project automation (demo, tests, set-up of the Vulkan driver).
 //!
 //! - `cargo xtask demo`: tessellates the embedded default cage and writes `out/`.
-//! - `cargo xtask test`: runs `check-architecture`, installs what the tests need (lavapipe) if
-//!   missing, then runs every test.
+//! - `cargo xtask test`: runs `check-architecture`, installs what the tests need (lavapipe;
+//!   libosd-dev when root) if missing, then runs every test, a short `fuzz-osd` round and the
+//!   golden images.
 //! - `cargo xtask check-architecture`: fails unless the workspace crates' dependencies on each
 //!   other equal the `crate-graph` block of `docs/architecture.md`.
 //! - `cargo xtask figures`: reproduces the papers' tables into `docs/figures.md`.
@@ -12,12 +13,15 @@
 //!   tessellator (see `docs/performance.md`).
 //! - `cargo xtask plot-quality STEM LABEL=FILE...`: triangles against silhouette error from
 //!   saved `subdiv bench quality` output (see `docs/performance.md`).
+//! - `cargo xtask fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I]`: random cages
+//!   against OpenSubdiv 3.5 (see `docs/testing.md`).
 
 mod architecture;
 mod bench_osd;
 mod figures_cc;
 mod figures_doi;
 mod figures_focus;
+mod fuzz_osd;
 mod golden;
 mod plot_quality;
 mod vulkan;
@@ -193,6 +197,8 @@ fn test() -> Result<()> {
     vulkan::configure(&mut c, &root());
     step("running cargo tests (cargo test --workspace)");
     run(c)?;
+    step("differential test against OpenSubdiv (short round)");
+    fuzz_osd::short_round(&root())?;
     golden::run(&root(), &golden::Options::default())?;
     eprintln!("xtask: all tests passed");
     Ok(())
@@ -219,10 +225,13 @@ fn main() -> Result<()> {
         }
         Some("bench-osd") => bench_osd::run(&root()),
         Some("plot-quality") => plot_quality::run(&args[1..]),
+        Some("fuzz-osd") => {
+            fuzz_osd::Options::parse(&args[1..]).and_then(|o| fuzz_osd::command(&root(), &o))
+        }
         Some("golden") => golden::Options::parse(&args[1..]).and_then(|o| golden::run(&root(), &o)),
         _ => {
             eprintln!(
-                "usage: cargo xtask <demo|test|check-architecture|figures [doi]|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|plot-quality STEM LABEL=FILE...>"
+                "usage: cargo xtask <demo|test|check-architecture|figures [doi]|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I]|plot-quality STEM LABEL=FILE...>"
             );
             std::process::exit(2);
         }

@@ -224,7 +224,7 @@ pub fn on_path(program: &str) -> bool {
 
 /// Optional test dependencies: present already, installed now with apt (as root), or missing
 /// with a note (not root, or apt failed). Returns whether they are usable.
-fn ensure_optional(
+pub fn ensure_optional(
     what: &str,
     packages: &[&str],
     others: &[(&str, &str)],

@@ -1,0 +1,312 @@
+//! `cargo xtask fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I]`: differential
+//! testing against OpenSubdiv 3.5 (Debian `libosd-dev`) on random cages.
+//!
+//! Compiles `xtask/osd/ref_osd.cpp` once into `<target>/osd/`, generates cages with
+//! `subdiv_tests::osd_gen::random_cage(seed, index)`, writes each to `<target>/fuzz-osd/`, runs
+//! `ref_osd` on it at every level of `--levels` (default 1..4; with semi-sharp creases it takes
+//! the limit where they have run out) and compares subdiv's uniform tessellation
+//! (`subdiv_rules::tessellate_uniform`) and, for Catmull-Clark, the slate tessellator with it
+//! (`subdiv_tests::osd_compare`: counts, faces, positions within 1e-5 x diagonal, smooth normals
+//! within 0.05 degrees). A disagreeing cage is printed with its seed and index, shrunk (faces
+//! and tags dropped while it still disagrees) and written to
+//! `<target>/fuzz-osd/failing-<seed>-<index>.obj`; the smallest also to `failing-<seed>.obj`.
+//! The last line is `fuzz-osd: <passed>/<total> cages agree`; any disagreement exits non-zero.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+use subdiv_tests::Reference;
+use subdiv_tests::osd_cage::OsdCage;
+use subdiv_tests::osd_compare::{Tessellator, compare};
+use subdiv_tests::osd_gen::random_cage;
+
+use crate::bench_osd::{INSTALL, osd_present};
+
+/// Normal tolerance (degrees) where the surface is smooth.
+const NORMAL_DEG: f64 = 0.05;
+/// The round `cargo xtask test` runs.
+pub const SHORT_ROUND: Options = Options {
+    cages: 300,
+    seed: 1,
+    levels: (1, 4),
+    index: None,
+};
+
+/// Command-line options.
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    cages: u64,
+    seed: u64,
+    levels: (u32, u32),
+    /// Only this cage (replay).
+    index: Option<u64>,
+}
+
+impl Options {
+    pub fn parse(args: &[String]) -> Result<Options> {
+        let mut o = Options {
+            cages: 1000,
+            ..SHORT_ROUND
+        };
+        let mut it = args.iter();
+        while let Some(a) = it.next() {
+            let mut value = || it.next().with_context(|| format!("{a} needs a value"));
+            match a.as_str() {
+                "--cages" => o.cages = value()?.parse().context("--cages N")?,
+                "--seed" => o.seed = value()?.parse().context("--seed S")?,
+                "--index" => o.index = Some(value()?.parse().context("--index I")?),
+                "--levels" => {
+                    let v = value()?;
+                    let (a, b) = v.split_once("..").unwrap_or((v, v));
+                    o.levels = (a.parse()?, b.trim_start_matches('=').parse()?);
+                    if o.levels.0 < 1 || o.levels.1 < o.levels.0 || o.levels.1 > 6 {
+                        bail!("--levels A..B with 1 <= A <= B <= 6");
+                    }
+                }
+                _ => bail!("unknown argument {a}"),
+            }
+        }
+        Ok(o)
+    }
+}
+
+/// One disagreement.
+#[derive(Debug, Clone)]
+struct Failure {
+    index: u64,
+    level: u32,
+    what: String,
+}
+
+/// The command: exits non-zero on a disagreement, with the summary as the last line.
+pub fn command(root: &Path, o: &Options) -> Result<()> {
+    if !osd_present() {
+        println!(
+            "fuzz-osd: skipped: OpenSubdiv 3.5 (Debian libosd-dev) is not installed. Install it with\n    sudo {INSTALL}"
+        );
+        return Ok(());
+    }
+    let (passed, total) = run(root, o)?;
+    println!("fuzz-osd: {passed}/{total} cages agree");
+    if passed != total {
+        std::process::exit(1);
+    }
+    Ok(())
+}
+
+/// The short round of `cargo xtask test`: installs libosd-dev as root when missing, skips with
+/// a note otherwise.
+pub fn short_round(root: &Path) -> Result<()> {
+    let others = [
+        ("Fedora", "dnf install opensubdiv-devel"),
+        ("Arch", "pacman -S opensubdiv"),
+    ];
+    if !crate::vulkan::ensure_optional(
+        "OpenSubdiv 3.5 (libosd-dev)",
+        &["libosd-dev"],
+        &others,
+        &osd_present,
+    ) {
+        return Ok(());
+    }
+    let (passed, total) = run(root, &SHORT_ROUND)?;
+    println!("fuzz-osd: {passed}/{total} cages agree");
+    if passed != total {
+        bail!(
+            "fuzz-osd: {} of {total} random cages disagree with OpenSubdiv",
+            total - passed
+        );
+    }
+    Ok(())
+}
+
+/// Compiles `ref_osd` unless the binary is newer than its source.
+fn build_harness(root: &Path) -> Result<PathBuf> {
+    let src = root.join("xtask/osd/ref_osd.cpp");
+    let exe = crate::target_dir().join("osd/ref_osd");
+    let modified = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
+    if modified(&exe).is_some_and(|e| modified(&src).is_some_and(|s| e >= s)) {
+        return Ok(exe);
+    }
+    std::fs::create_dir_all(exe.parent().expect("has a parent"))?;
+    println!("fuzz-osd: compiling {}", src.display());
+    crate::bench_osd::output(
+        Command::new("g++")
+            .args(["-O2", "-std=c++14", "-o"])
+            .arg(&exe)
+            .arg(&src)
+            .arg("-losdCPU"),
+    )
+    .context("compiling ref_osd (is g++ installed? apt-get install -y g++)")?;
+    Ok(exe)
+}
+
+struct Harness {
+    exe: PathBuf,
+    dir: PathBuf,
+    seed: u64,
+}
+
+impl Harness {
+    /// Compares `cage` at `level`: `Err` describes the first disagreement.
+    fn check_level(&self, cage: &OsdCage, path: &Path, level: u32) -> Result<(), String> {
+        let mesh = cage
+            .mesh()
+            .map_err(|e| format!("subdiv refuses the cage: {e}"))?;
+        let out = Command::new(&self.exe)
+            .arg(path)
+            .arg(level.to_string())
+            .arg(cage.scheme_name())
+            .arg("local")
+            .output()
+            .map_err(|e| format!("could not run ref_osd: {e}"))?;
+        if !out.status.success() {
+            return Err(format!(
+                "ref_osd failed: {}",
+                String::from_utf8_lossy(&out.stderr).trim()
+            ));
+        }
+        let reference = Reference::parse(&String::from_utf8_lossy(&out.stdout))?;
+        let depth = level as subdiv_rules::Depth;
+        compare(&mesh, depth, &reference, Tessellator::Uniform, NORMAL_DEG)
+            .map_err(|e| format!("uniform: {e}"))?;
+        if !cage.loop_scheme {
+            compare(&mesh, depth, &reference, Tessellator::Slate, NORMAL_DEG)
+                .map_err(|e| format!("slate: {e}"))?;
+        }
+        Ok(())
+    }
+
+    /// Writes `cage` to `name.obj` and compares it at `levels`; the first failing level.
+    fn check(&self, cage: &OsdCage, name: &str, levels: (u32, u32)) -> Result<(), (u32, String)> {
+        let path = self.dir.join(format!("{name}.obj"));
+        std::fs::write(&path, cage.to_obj())
+            .map_err(|e| (0, format!("{}: {e}", path.display())))?;
+        for level in levels.0..=levels.1 {
+            self.check_level(cage, &path, level)
+                .map_err(|e| (level, e))?;
+        }
+        let _ = std::fs::remove_file(&path);
+        Ok(())
+    }
+
+    /// Drops faces and tags while the cage still disagrees at `level`; the smallest cage and
+    /// its disagreement.
+    fn shrink(&self, mut cage: OsdCage, level: u32, mut what: String) -> (OsdCage, String) {
+        let name = format!("shrink-{}", self.seed);
+        'outer: loop {
+            for c in cage.reductions() {
+                if let Err((_, w)) = self.check(&c, &name, (level, level)) {
+                    cage = c;
+                    what = w;
+                    continue 'outer;
+                }
+            }
+            let _ = std::fs::remove_file(self.dir.join(format!("{name}.obj")));
+            return (cage, what);
+        }
+    }
+}
+
+/// Runs the round; returns (agreeing cages, cages).
+fn run(root: &Path, o: &Options) -> Result<(u64, u64)> {
+    let harness = Harness {
+        exe: build_harness(root)?,
+        dir: crate::target_dir().join("fuzz-osd"),
+        seed: o.seed,
+    };
+    std::fs::create_dir_all(&harness.dir)?;
+    let indices: Vec<u64> = match o.index {
+        Some(i) => vec![i],
+        None => (0..o.cages).collect(),
+    };
+    let start = Instant::now();
+    let next = AtomicU64::new(0);
+    let failures = Mutex::new(Vec::new());
+    let workers = std::thread::available_parallelism()
+        .map_or(2, |n| n.get())
+        .min(indices.len().max(1));
+    std::thread::scope(|s| {
+        for _ in 0..workers {
+            s.spawn(|| {
+                loop {
+                    let k = next.fetch_add(1, Ordering::Relaxed);
+                    let Some(&index) = indices.get(k as usize) else {
+                        break;
+                    };
+                    let cage = random_cage(o.seed, index);
+                    let name = format!("cage-{}-{index}", o.seed);
+                    if let Err((level, what)) = harness.check(&cage, &name, o.levels) {
+                        println!(
+                            "fuzz-osd: DISAGREE seed {} cage {index} level {level} ({}): {what}",
+                            o.seed,
+                            cage.features()
+                        );
+                        failures
+                            .lock()
+                            .expect("no panic")
+                            .push(Failure { index, level, what });
+                    }
+                    if (k + 1) % 1000 == 0 {
+                        eprintln!(
+                            "fuzz-osd: {} cages, {:.0} s",
+                            k + 1,
+                            start.elapsed().as_secs_f64()
+                        );
+                    }
+                }
+            });
+        }
+    });
+    let mut failures = failures.into_inner().expect("no panic");
+    failures.sort_by_key(|f| f.index);
+    report(&harness, o, &failures)?;
+    let total = indices.len() as u64;
+    println!(
+        "fuzz-osd: seed {} levels {}..{}: {} cages in {:.1} s ({workers} threads)",
+        o.seed,
+        o.levels.0,
+        o.levels.1,
+        total,
+        start.elapsed().as_secs_f64()
+    );
+    Ok((total - failures.len() as u64, total))
+}
+
+/// Shrinks up to eight failing cages and writes them; the smallest also as `failing-<seed>.obj`.
+fn report(h: &Harness, o: &Options, failures: &[Failure]) -> Result<()> {
+    let mut smallest: Option<OsdCage> = None;
+    for f in failures.iter().take(8) {
+        let (small, what) = h.shrink(random_cage(o.seed, f.index), f.level, f.what.clone());
+        let path = h.dir.join(format!("failing-{}-{}.obj", o.seed, f.index));
+        let note = format!(
+            "# fuzz-osd: seed {} cage {} level {} ({})\n# {}\n",
+            o.seed,
+            f.index,
+            f.level,
+            small.features(),
+            what.lines().next().unwrap_or("")
+        );
+        std::fs::write(&path, note + &small.to_obj())?;
+        println!(
+            "fuzz-osd: seed {} cage {} shrunk to {} faces ({}): {}\n    {what}",
+            o.seed,
+            f.index,
+            small.faces.len(),
+            small.features(),
+            path.display()
+        );
+        if smallest
+            .as_ref()
+            .is_none_or(|s| small.faces.len() < s.faces.len())
+        {
+            std::fs::copy(&path, h.dir.join(format!("failing-{}.obj", o.seed)))?;
+            smallest = Some(small);
+        }
+    }
+    Ok(())
+}
