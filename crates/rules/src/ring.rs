@@ -422,11 +422,13 @@ fn finish_limit(
         .iter()
         .map(|e| (*e - center).length_squared())
         .fold(0.0, f64::max);
+    // OpenSubdiv's limit normal is the cross product of the limit tangents as the masks give
+    // them (du x dv), also where the ring is folded so that it points against the ring's area;
+    // the area only stands in when the tangents are degenerate.
     let orient = |n: DVec3| {
         let len = n.length();
         if len > 1e-12 * scale.max(f64::MIN_POSITIVE) && len.is_finite() {
-            let n = n / len;
-            if n.dot(area) < 0.0 { -n } else { n }
+            n / len
         } else {
             area.normalize_or_zero()
         }
