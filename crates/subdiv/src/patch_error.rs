@@ -5,7 +5,7 @@
 use glam::Vec3;
 use rayon::prelude::*;
 use subdiv_depth::{NormalCone, PatchError, PatchErrors};
-use subdiv_mesh::Mesh;
+use subdiv_mesh::{Mesh, closest_point_on_triangle};
 use subdiv_slate::{Depth, MAX_DEPTH, thread_worker};
 use subdiv_stitch::Assembler;
 
@@ -17,7 +17,8 @@ pub const SAMPLE_LEVELS: Depth = 2;
 
 /// Measures, for each cage face and depth `l <= max_depth`, the largest distance between the
 /// limit surface and the triangles drawn at depth `l` (each grid quad split along its
-/// `(i, j)`–`(i + 1, j + 1)` diagonal, as `subdiv-stitch` draws it), sampled on the depth
+/// `(i, j)`–`(i + 1, j + 1)` diagonal, as `subdiv-stitch` draws it; each sample against the
+/// nearer of its quad's two triangles), sampled on the depth
 /// `max_depth + SAMPLE_LEVELS` grid (at most [`MAX_DEPTH`]) of every patch of the face; and a
 /// cone containing the face's limit normals, widened by the largest angle between neighbouring
 /// samples (normals between samples lean no further than that for a smooth patch).
@@ -96,14 +97,14 @@ impl Grid<'_> {
                 let e = self.at(i0, j0 + step);
                 for j in j0..=j0 + step {
                     for i in i0..=i0 + step {
-                        let u = (i - i0) as f32 / step as f32;
-                        let v = (j - j0) as f32 / step as f32;
-                        let on = if v <= u {
-                            a * (1.0 - u) + b * (u - v) + c * v
-                        } else {
-                            a * (1.0 - v) + c * u + e * (v - u)
-                        };
-                        worst = worst.max((self.at(i, j) - on).length());
+                        // Distance to the nearer of the quad's two drawn triangles: the
+                        // geometric gap, without the in-plane (parametric) shift of the
+                        // limit points, which moves nothing on screen.
+                        let p = self.at(i, j);
+                        let d = (p - closest_point_on_triangle(p, a, b, c))
+                            .length()
+                            .min((p - closest_point_on_triangle(p, a, c, e)).length());
+                        worst = worst.max(d);
                     }
                 }
             }
@@ -196,9 +197,9 @@ mod tests {
         let asm = Assembler::new(&quad, 2).unwrap();
         let e = patch_errors(&quad, &asm, 2);
         assert!(!e.closed);
-        // A flat quad: the deviation is only the parametric (in-plane) distance between limit
-        // points and the triangles' points of the same parameter (a conservative measure of the
-        // geometric distance); it falls with depth; the normals are all +z.
+        // A flat quad: the limit surface lies in the quad's plane; what remains is where its
+        // outline leaves the chord triangles (a real gap on screen), falling with depth; the
+        // normals are all +z.
         let d = &e.faces[0].deviation;
         assert!(d.windows(2).all(|w| w[1] < w[0]), "{d:?}");
         assert!((e.faces[0].normals.axis - Vec3::Z).length() < 1e-6);
