@@ -136,6 +136,7 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh) -> anyhow::Result<ExitCode> {
             normals: Some(&nrm),
             face_offsets: &offsets,
             face_indices: &idx,
+            corner_normals: &[],
         },
     )?;
     println!(

@@ -18,6 +18,9 @@ use subdiv_mesh::{CreaseMethod, Mesh, TriangleSubdivision, VertexId};
 use crate::crease::{Rule, VertexRules, child_edge_sharpness, edge_crease_weight, is_semi_sharp};
 use crate::{Scheme, catmark, loop_scheme};
 
+mod sided;
+use sided::{Sides, sided_normals};
+
 /// The neighbourhood of one vertex, refinable in isolation.
 #[derive(Clone, Debug, Default)]
 pub struct Ring {
@@ -345,6 +348,18 @@ impl Ring {
         finish_limit(&parts, self.center, &self.edges, self.num_faces())
     }
 
+    /// [`Ring::limit`], and where the limit surface has a crease or a corner at the vertex (an
+    /// infinitely sharp or still semi-sharp crease that stays sharp in the limit, a corner with
+    /// two or more smooth sectors), the exact one-sided limit normal of each face of the ring
+    /// (face `i` between edges `i` and `i + 1`) in `faces`: the crease tangent crossed with that
+    /// side's cross tangent. `faces` is left empty where the surface has one tangent plane.
+    pub fn limit_sided(&mut self, faces: &mut Vec<DVec3>) -> (DVec3, DVec3) {
+        let parts = self.limit_parts();
+        let nf = self.num_faces();
+        sided_normals(&parts, &parts.sides, self.center, &self.edges, nf, faces);
+        finish_limit(&parts, self.center, &self.edges, nf)
+    }
+
     /// Refines as far as [`Ring::limit`] needs, then evaluates the limit masks: the linear part
     /// of the limit (position and tangents), before the normal is formed.
     fn limit_parts(&mut self) -> LimitParts {
@@ -381,7 +396,14 @@ impl Ring {
             self.rot_diag = diag2;
         }
         self.diag_buf = diag;
-        LimitParts { pos, t1, t2, other }
+        let sides = Sides::new(rule, self.boundary, &self.sharp, self.num_faces());
+        LimitParts {
+            pos,
+            t1,
+            t2,
+            other,
+            sides,
+        }
     }
 
     fn eval_masks(&self, edges: &[DVec3], diag: &[DVec3], rule: Rule) -> (DVec3, DVec3, DVec3) {
@@ -393,13 +415,14 @@ impl Ring {
 }
 
 /// The linear part of a ring's limit: position, the two tangents, and for an interior crease the
-/// tangents of the other side.
-#[derive(Clone, Copy, Debug)]
+/// tangents of the other side, and the sectors of its faces.
+#[derive(Clone, Debug)]
 struct LimitParts {
     pos: DVec3,
     t1: DVec3,
     t2: DVec3,
     other: Option<(DVec3, DVec3)>,
+    sides: Sides,
 }
 
 /// Forms the unit normal from the tangents of [`LimitParts`]: oriented like the faces of the
@@ -475,6 +498,7 @@ pub struct QuadRingStencil {
     nd: usize,
     num_faces: usize,
     crease_sides: bool,
+    sides: Sides,
     /// Rows of `1 + m + nd` weights (centre, edges, diagonals): position, t1, t2, u1, u2 (other
     /// crease side; zero rows otherwise), refined centre, refined edges `0..m`.
     w: Vec<f64>,
@@ -503,6 +527,7 @@ impl QuadRingStencil {
         let mut edges = vec![DVec3::ZERO; m];
         let mut diag = vec![DVec3::ZERO; nd];
         let mut crease_sides = false;
+        let mut sides = Sides::One;
         let mut num_faces = 0;
         // Points q, q+1, q+2 at the x, y and z unit vectors: each output coordinate is one weight.
         for q in (0..np).step_by(3) {
@@ -522,6 +547,7 @@ impl QuadRingStencil {
             ring.load_quads(method, center, 0.0, boundary, &edges, sharp, far, &diag);
             let parts = ring.limit_parts();
             crease_sides = parts.other.is_some();
+            sides = parts.sides.clone();
             num_faces = ring.num_faces();
             let (u1, u2) = parts.other.unwrap_or((DVec3::ZERO, DVec3::ZERO));
             let mut put = |row: usize, v: DVec3| {
@@ -546,13 +572,32 @@ impl QuadRingStencil {
             nd,
             num_faces,
             crease_sides,
+            sides,
             w,
         }
+    }
+
+    /// `true` when rings of this configuration have one-sided normals
+    /// ([`QuadRingStencil::limit_sided`] fills its `faces`).
+    pub fn is_sided(&self) -> bool {
+        self.sides.is_sided()
     }
 
     /// Limit position and unit normal of the ring `center`, `edges`, `diag` (the configuration's
     /// sizes), like [`Ring::limit`] on the same ring.
     pub fn limit(&self, center: DVec3, edges: &[DVec3], diag: &[DVec3]) -> (DVec3, DVec3) {
+        self.limit_sided(center, edges, diag, &mut Vec::new())
+    }
+
+    /// [`QuadRingStencil::limit`] with the one-sided normals of [`Ring::limit_sided`] in
+    /// `faces` (empty unless [`QuadRingStencil::is_sided`]).
+    pub fn limit_sided(
+        &self,
+        center: DVec3,
+        edges: &[DVec3],
+        diag: &[DVec3],
+        faces: &mut Vec<DVec3>,
+    ) -> (DVec3, DVec3) {
         assert!(
             edges.len() == self.m && diag.len() == self.nd,
             "ring does not match the stencil's configuration"
@@ -582,8 +627,11 @@ impl QuadRingStencil {
             t1: row(1),
             t2: row(2),
             other: self.crease_sides.then(|| (row(3), row(4))),
+            sides: Sides::One,
         };
-        finish_limit(&parts, row(5), refined, self.num_faces)
+        let c = row(5);
+        sided_normals(&parts, &self.sides, c, refined, self.num_faces, faces);
+        finish_limit(&parts, c, refined, self.num_faces)
     }
 }
 
@@ -641,6 +689,7 @@ mod tests {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
         let choices = [0.0f32, 0.0, 0.5, 1.0, 1.5, 2.0, 3.25, 10.0];
         let mut checked = 0;
+        let mut sided = 0;
         for case in 0..400 {
             let method = if case % 2 == 0 {
                 CreaseMethod::Uniform
@@ -679,16 +728,22 @@ mod tests {
             let st = QuadRingStencil::new(method, boundary, &sharp, &far, nd);
             let mut ring = Ring::new();
             ring.load_quads(method, center, 0.0, boundary, &edges, &sharp, &far, &diag);
-            let (p0, n0) = ring.limit();
-            let (p1, n1) = st.limit(center, &edges, &diag);
+            let (mut f0, mut f1) = (Vec::new(), Vec::new());
+            let (p0, n0) = ring.limit_sided(&mut f0);
+            let (p1, n1) = st.limit_sided(center, &edges, &diag, &mut f1);
             assert!(
                 (p0 - p1).length() < 1e-12 && (n0 - n1).length() < 1e-9,
                 "case {case}: {method:?} boundary {boundary} sharp {sharp:?}: \
                  ring ({p0}, {n0}) stencil ({p1}, {n1})"
             );
+            assert_eq!(f0.len(), f1.len(), "case {case}");
+            assert_eq!(st.is_sided(), !f1.is_empty(), "case {case}");
+            assert!(f0.iter().zip(&f1).all(|(a, b)| (*a - *b).length() < 1e-9));
+            sided += usize::from(!f0.is_empty());
             checked += 1;
         }
         assert!(checked > 300);
+        assert!(sided >= 20, "{sided} sided configurations");
     }
 
     /// The pillow of fixtures/reference/shapes: its ring corners 0, 2, 4, 6 are interior

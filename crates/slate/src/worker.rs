@@ -53,6 +53,8 @@ pub struct Worker {
     pub(crate) stencils: Vec<(StencilKey, QuadRingStencil)>,
     /// Most recently used entry of `stencils`.
     pub(crate) last_stencil: usize,
+    /// One-sided normals of the faces of the ring last evaluated (`limit_sided`).
+    pub(crate) sided: Vec<DVec3>,
 }
 
 impl Worker {
@@ -87,6 +89,7 @@ impl Worker {
             bad: Vec::new(),
             stencils: Vec::new(),
             last_stencil: 0,
+            sided: Vec::new(),
         }
     }
 

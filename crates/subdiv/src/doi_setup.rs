@@ -301,6 +301,7 @@ impl DoiSetup {
             normals: normals.iter().map(|n| n.to_array()).collect(),
             face_offsets: offsets.to_vec(),
             face_indices: indices.iter().map(|v| v.0).collect(),
+            corner_normals: Vec::new(),
         };
         Ok(Scene::from_limit(limit, scalar))
     }

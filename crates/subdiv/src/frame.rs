@@ -12,6 +12,7 @@ pub fn frame_limit(g: &FrameGeometry) -> (LimitMesh, Vec<f32>) {
         normals: Vec::new(),
         face_offsets: (0..=g.indices.len() as u32 / 3).map(|i| i * 3).collect(),
         face_indices: Vec::with_capacity(g.indices.len()),
+        corner_normals: Vec::new(),
     };
     let mut depths = Vec::new();
     for &i in &g.indices {
