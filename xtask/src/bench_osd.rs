@@ -139,7 +139,7 @@ pub fn run(root: &Path) -> Result<()> {
     let osd = build_program(root, &target)?;
     crate::run({
         let mut c = crate::cargo();
-        c.args(["build", "--release", "--quiet", "-p", "subdiv-cli"]);
+        c.args(["build", "--release", "-p", "subdiv-cli"]);
         c
     })?;
     let subdiv = target

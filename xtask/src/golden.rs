@@ -1,15 +1,18 @@
-//! `cargo xtask golden [--bless] [--tolerance MEAN,P99] [SCENE...]`: golden-image regression.
+//! `cargo xtask golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]`: golden-image regression.
 //!
 //! Every scene in [`SCENES`] is rendered headless on lavapipe by running the `subdiv render`
 //! binary (so the command line is tested too) and compared with `fixtures/golden/<scene>.png`:
-//! byte-exact by default, or within a mean / 99th-percentile error with `--tolerance`. A mismatch
-//! writes `target/golden/<scene>.actual.png` and `<scene>.diff.png` and fails; `--bless` rewrites
-//! the goldens instead. See `docs/golden.md`.
+//! byte-exact on the pinned Mesa ([`vulkan::PINNED_MESA`], Debian 12), perceptually on any other
+//! Mesa (mean NVIDIA FLIP error within the scene's [`Scene::flip`] threshold), or within a mean /
+//! 99th-percentile channel error with `--tolerance`. A mismatch writes
+//! `target/golden/<scene>.actual.png` and `<scene>.diff.png` and fails; `--bless` rewrites the
+//! goldens instead. See `docs/golden.md`.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 use anyhow::{Context, Result, bail};
+use image::RgbaImage;
 use subdiv_vk::golden::{self, Tolerance, Verdict};
 
 use crate::vulkan;
@@ -22,10 +25,31 @@ pub struct Scene {
     pub input: &'static str,
     /// Further `subdiv render` flags (camera, scheme, depth, shading).
     pub args: &'static [&'static str],
+    /// Largest mean FLIP error (0..1) accepted off the pinned Mesa ([`DEFAULT_FLIP`] unless the
+    /// scene sets its own with [`Scene::flip`]).
+    pub flip: f32,
 }
 
+/// The mean FLIP error a scene may show on another Mesa version: well under what a visible
+/// change (a moved edge, a different shade) gives, above rasterization and LLVM rounding.
+pub const DEFAULT_FLIP: f32 = 0.01;
+
 const fn scene(name: &'static str, input: &'static str, args: &'static [&'static str]) -> Scene {
-    Scene { name, input, args }
+    Scene {
+        name,
+        input,
+        args,
+        flip: DEFAULT_FLIP,
+    }
+}
+
+impl Scene {
+    /// This scene with its own FLIP threshold (e.g. a dense wireframe whose lines shift by a
+    /// pixel between Mesa versions).
+    #[allow(dead_code)]
+    const fn flip(self, flip: f32) -> Scene {
+        Scene { flip, ..self }
+    }
 }
 
 /// Image size of every golden scene (small: quick to render, small to store).
@@ -80,34 +104,53 @@ pub const SCENES: &[Scene] = &[
     scene("helmet40_adaptive", "", &["--scene", "helmet40", "--eye-relative", "0.2,0.6,1.4", "--max-depth", "3", "--shading", "depth"]),
 ];
 
+/// How renders are compared with the goldens.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Mode {
+    /// Byte-exact on the pinned Mesa, perceptual (FLIP) elsewhere.
+    #[default]
+    Auto,
+    /// Byte-exact (`--exact`).
+    Exact,
+    /// Mean FLIP error within each scene's threshold (`--perceptual`).
+    Perceptual,
+    /// Mean and 99th-percentile channel error (`--tolerance MEAN,P99`).
+    Tolerance(Tolerance),
+}
+
 /// Parsed `cargo xtask golden` arguments.
 #[derive(Debug, Default)]
 pub struct Options {
     /// Rewrite the goldens instead of comparing.
     pub bless: bool,
-    /// Compare within this tolerance instead of exactly.
-    pub tolerance: Option<Tolerance>,
+    /// How to compare.
+    pub mode: Mode,
     /// Only these scenes (all when empty).
     pub only: Vec<String>,
 }
 
+const USAGE: &str = "usage: cargo xtask golden [--bless] [--exact | --perceptual | --tolerance MEAN,P99] [SCENE...]";
+
 impl Options {
-    /// Parses `[--bless] [--tolerance MEAN,P99] [SCENE...]`.
+    /// Parses `[--bless] [--exact | --perceptual | --tolerance MEAN,P99] [SCENE...]`.
     pub fn parse(args: &[String]) -> Result<Options> {
         let mut o = Options::default();
         let mut it = args.iter();
         while let Some(a) = it.next() {
             match a.as_str() {
                 "--bless" => o.bless = true,
+                "--exact" | "--perceptual" | "--tolerance" if o.mode != Mode::Auto => {
+                    bail!("give one of --exact, --perceptual and --tolerance; {USAGE}")
+                }
+                "--exact" => o.mode = Mode::Exact,
+                "--perceptual" => o.mode = Mode::Perceptual,
                 "--tolerance" => {
                     let v = it
                         .next()
                         .context("--tolerance needs MEAN,P99 (e.g. 0.5,8)")?;
-                    o.tolerance = Some(parse_tolerance(v)?);
+                    o.mode = Mode::Tolerance(parse_tolerance(v)?);
                 }
-                s if s.starts_with('-') => bail!(
-                    "unknown flag {s}; usage: cargo xtask golden [--bless] [--tolerance MEAN,P99] [SCENE...]"
-                ),
+                s if s.starts_with('-') => bail!("unknown flag {s}; {USAGE}"),
                 s => {
                     if !SCENES.iter().any(|sc| sc.name == s) {
                         let names: Vec<_> = SCENES.iter().map(|sc| sc.name).collect();
@@ -139,23 +182,37 @@ fn parse_tolerance(s: &str) -> Result<Tolerance> {
     Ok(Tolerance { mean, p99 })
 }
 
-/// Builds `subdiv` (dev profile) and returns the path of the binary.
-fn build_subdiv() -> Result<PathBuf> {
-    crate::run({
-        let mut c = crate::cargo();
-        c.args(["build", "--quiet", "-p", "subdiv-cli"]);
-        c
-    })?;
-    Ok(crate::target_dir()
-        .join("debug")
-        .join(format!("subdiv{}", std::env::consts::EXE_SUFFIX)))
-}
-
 /// Renders and compares (or blesses) the scenes; fails when any scene does not match.
 pub fn run(root: &Path, options: &Options) -> Result<()> {
+    crate::step(if options.bless {
+        "golden images (blessing)"
+    } else {
+        "golden images"
+    });
     vulkan::ensure_driver()?;
     let validation = Path::new(vulkan::VALIDATION_LAYER_MANIFEST).exists();
-    let exe = build_subdiv()?;
+    let exe = crate::build_subdiv(false)?;
+    let mode = match options.mode {
+        Mode::Auto => {
+            let mesa = vulkan::mesa_version();
+            if mesa.as_deref() == Some(vulkan::PINNED_MESA) {
+                eprintln!(
+                    "xtask: Mesa {} (pinned): byte-exact comparison",
+                    vulkan::PINNED_MESA
+                );
+                Mode::Exact
+            } else {
+                eprintln!(
+                    "xtask: Mesa {} is not the pinned {}: perceptual comparison (mean FLIP error \
+                     within each scene's threshold; --exact to demand identical bytes)",
+                    mesa.as_deref().unwrap_or("(version unknown)"),
+                    vulkan::PINNED_MESA
+                );
+                Mode::Perceptual
+            }
+        }
+        m => m,
+    };
     let expected_dir = root.join("fixtures/golden");
     let out_dir = root.join("target/golden");
     let rendered_dir = out_dir.join("rendered");
@@ -216,7 +273,17 @@ pub fn run(root: &Path, options: &Options) -> Result<()> {
             );
             continue;
         }
-        match golden::compare_in(&actual, &expected, options.tolerance, &out_dir)? {
+        if mode == Mode::Perceptual {
+            if !compare_perceptual(scene, &actual, &expected, &out_dir)? {
+                failed.push(scene.name.to_string());
+            }
+            continue;
+        }
+        let tolerance = match mode {
+            Mode::Tolerance(t) => Some(t),
+            _ => None,
+        };
+        match golden::compare_in(&actual, &expected, tolerance, &out_dir)? {
             Verdict::Identical => println!("golden {:<34} identical", scene.name),
             Verdict::WithinTolerance(s) => {
                 println!(
@@ -265,6 +332,104 @@ pub fn run(root: &Path, options: &Options) -> Result<()> {
     Ok(())
 }
 
+/// FLIP statistics of a render against its golden.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FlipStats {
+    /// Mean FLIP error over all pixels (0 = identical, 1 = as different as can be).
+    pub mean: f32,
+    /// Largest per-pixel FLIP error.
+    pub max: f32,
+}
+
+/// Runs NVIDIA's FLIP on two images of the same size (alpha ignored; the renders are opaque) and
+/// returns the statistics and the error map coloured with the magma table.
+pub fn flip(actual: &RgbaImage, expected: &RgbaImage) -> (FlipStats, RgbaImage) {
+    let rgb = |img: &RgbaImage| {
+        let data: Vec<u8> = img.pixels().flat_map(|p| [p[0], p[1], p[2]]).collect();
+        nv_flip::FlipImageRgb8::with_data(img.width(), img.height(), &data)
+    };
+    let error = nv_flip::flip(
+        rgb(expected),
+        rgb(actual),
+        nv_flip::DEFAULT_PIXELS_PER_DEGREE,
+    );
+    let pool = nv_flip::FlipPool::from_image(&error);
+    let stats = FlipStats {
+        mean: pool.mean(),
+        max: pool.max_value(),
+    };
+    let map = error.apply_color_lut(&nv_flip::magma_lut());
+    let map = RgbaImage::from_fn(map.width(), map.height(), {
+        let data = map.to_vec();
+        let w = map.width() as usize;
+        move |x, y| {
+            let i = 3 * (y as usize * w + x as usize);
+            image::Rgba([data[i], data[i + 1], data[i + 2], 255])
+        }
+    });
+    (stats, map)
+}
+
+/// Compares one scene perceptually (mean FLIP within [`Scene::flip`]); prints the verdict,
+/// writes `<scene>.actual.png` and the FLIP map as `<scene>.diff.png` on failure, and returns
+/// whether it passed.
+fn compare_perceptual(
+    scene: &Scene,
+    actual: &RgbaImage,
+    expected_path: &Path,
+    out_dir: &Path,
+) -> Result<bool> {
+    let actual_path = out_dir.join(format!("{}.actual.png", scene.name));
+    if !expected_path.exists() {
+        subdiv_vk::write_png(&actual_path, actual)?;
+        println!(
+            "golden {:<34} MISSING {} (actual: {}; accept with `cargo xtask golden --bless {}`)",
+            scene.name,
+            expected_path.display(),
+            actual_path.display(),
+            scene.name
+        );
+        return Ok(false);
+    }
+    let expected = subdiv_vk::read_png(expected_path)?;
+    if expected.as_raw() == actual.as_raw() {
+        println!("golden {:<34} identical", scene.name);
+        return Ok(true);
+    }
+    if expected.dimensions() != actual.dimensions() {
+        subdiv_vk::write_png(&actual_path, actual)?;
+        println!(
+            "golden {:<34} MISMATCH: size {:?} differs from expected {:?}\n    actual: {}",
+            scene.name,
+            actual.dimensions(),
+            expected.dimensions(),
+            actual_path.display()
+        );
+        return Ok(false);
+    }
+    let (stats, map) = flip(actual, &expected);
+    if stats.mean <= scene.flip {
+        println!(
+            "golden {:<34} within FLIP threshold (mean {:.4} <= {}, max {:.3})",
+            scene.name, stats.mean, scene.flip, stats.max
+        );
+        return Ok(true);
+    }
+    let diff_path = out_dir.join(format!("{}.diff.png", scene.name));
+    subdiv_vk::write_png(&actual_path, actual)?;
+    subdiv_vk::write_png(&diff_path, &map)?;
+    println!(
+        "golden {:<34} MISMATCH: mean FLIP {:.4} (allowed {}), max {:.3}\n    actual: {}\n    diff:   {} (FLIP error map)",
+        scene.name,
+        stats.mean,
+        scene.flip,
+        stats.max,
+        actual_path.display(),
+        diff_path.display()
+    );
+    Ok(false)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -296,18 +461,74 @@ mod tests {
     fn parses_arguments() {
         let args = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
         let o = Options::parse(&args(&["--bless", "loop_bunny"])).unwrap();
-        assert!(o.bless && o.tolerance.is_none() && o.only == ["loop_bunny"]);
+        assert!(o.bless && o.mode == Mode::Auto && o.only == ["loop_bunny"]);
         let o = Options::parse(&args(&["--tolerance", "0.5,8"])).unwrap();
         assert_eq!(
-            o.tolerance,
-            Some(Tolerance {
+            o.mode,
+            Mode::Tolerance(Tolerance {
                 mean: 0.5,
                 p99: 8.0
             })
         );
+        assert_eq!(
+            Options::parse(&args(&["--exact"])).unwrap().mode,
+            Mode::Exact
+        );
+        assert_eq!(
+            Options::parse(&args(&["--perceptual"])).unwrap().mode,
+            Mode::Perceptual
+        );
+        assert!(Options::parse(&args(&["--exact", "--perceptual"])).is_err());
         assert!(Options::parse(&args(&["--tolerance", "0.5"])).is_err());
         assert!(Options::parse(&args(&["--tolerance", "-1,2"])).is_err());
         assert!(Options::parse(&args(&["no_such_scene"])).is_err());
         assert!(Options::parse(&args(&["--fast"])).is_err());
+    }
+
+    /// Like a render: a flat background and a shaded object (a smooth gradient) at `shift`.
+    fn picture(shift: u32) -> RgbaImage {
+        RgbaImage::from_fn(160, 120, |x, y| {
+            let inside = (50 + shift..110 + shift).contains(&x) && (30..90).contains(&y);
+            if inside {
+                let g = (90 + x + y / 2) as u8;
+                image::Rgba([g, g / 2 + 40, 60, 255])
+            } else {
+                image::Rgba([40, 40, 48, 255])
+            }
+        })
+    }
+
+    /// `picture(0)` with the object's red and green raised by 1 on every `every`-th pixel
+    /// (shading rounding as another Mesa/LLVM version gives it).
+    fn rounded(every: usize) -> RgbaImage {
+        let mut n = picture(0);
+        for (i, p) in n.pixels_mut().enumerate() {
+            if i % every == 0 && p[2] == 60 {
+                p[0] += 1;
+                p[1] += 1;
+            }
+        }
+        n
+    }
+
+    #[test]
+    fn flip_tells_noise_from_a_change() {
+        let a = picture(0);
+        let (same, map) = flip(&a, &a);
+        assert_eq!(same.mean, 0.0);
+        assert_eq!(map.dimensions(), a.dimensions());
+        // Rounding-sized differences (1/255 in the shading) stay under the threshold...
+        let (n, _) = flip(&rounded(3), &a);
+        assert!(n.mean > 0.0 && n.mean < DEFAULT_FLIP / 2.0, "{n:?}");
+        // ...an object moved by two pixels is over it.
+        let (moved, _) = flip(&picture(2), &a);
+        assert!(moved.mean > DEFAULT_FLIP, "{moved:?}");
+    }
+
+    #[test]
+    fn every_scene_has_a_threshold() {
+        for s in SCENES {
+            assert!(s.flip > 0.0 && s.flip < 0.1, "{}: {}", s.name, s.flip);
+        }
     }
 }

@@ -6,7 +6,7 @@
 //! - `cargo xtask check-architecture`: fails unless the workspace crates' dependencies on each
 //!   other equal the `crate-graph` block of `docs/architecture.md`.
 //! - `cargo xtask figures`: reproduces the papers' tables into `docs/figures.md`.
-//! - `cargo xtask golden [--bless] [--tolerance MEAN,P99] [SCENE...]`: golden-image regression
+//! - `cargo xtask golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]`: golden-image regression
 //!   (see `docs/golden.md`).
 //! - `cargo xtask bench-osd [--install]`: OpenSubdiv 3.5 (libosd-dev) timed beside the slate
 //!   tessellator (see `docs/performance.md`).
@@ -44,6 +44,34 @@ fn cargo() -> Command {
     c
 }
 
+/// Announces one xtask step on stderr (beside cargo's own progress), so a long build or test
+/// run is never silent.
+fn step(what: &str) {
+    eprintln!("xtask: {what}...");
+}
+
+/// Builds the `subdiv` binary (`release` or the dev profile) with cargo's progress shown, and
+/// returns its path.
+fn build_subdiv(release: bool) -> Result<PathBuf> {
+    let profile = if release { "release" } else { "debug" };
+    step(&format!(
+        "building subdiv ({})",
+        if release { "release" } else { "dev" }
+    ));
+    run({
+        let mut c = cargo();
+        c.arg("build");
+        if release {
+            c.arg("--release");
+        }
+        c.args(["-p", "subdiv-cli"]);
+        c
+    })?;
+    Ok(target_dir()
+        .join(profile)
+        .join(format!("subdiv{}", std::env::consts::EXE_SUFFIX)))
+}
+
 fn run(mut cmd: Command) -> Result<()> {
     let shown = format!("{cmd:?}");
     let status = cmd
@@ -57,15 +85,9 @@ fn run(mut cmd: Command) -> Result<()> {
 
 /// Builds the release `subdiv` binary and runs the Catmull-Clark figures with it.
 fn figures_cc_run() -> Result<()> {
+    step("checking the Vulkan driver (lavapipe)");
     vulkan::ensure_driver()?;
-    run({
-        let mut c = cargo();
-        c.args(["build", "--release", "--quiet", "-p", "subdiv-cli"]);
-        c
-    })?;
-    let exe = target_dir()
-        .join("release")
-        .join(format!("subdiv{}", std::env::consts::EXE_SUFFIX));
+    let exe = build_subdiv(true)?;
     // The Vulkan environment of the tests (lavapipe pinned), for the frame-rate runs.
     let mut probe = Command::new("true");
     vulkan::configure(&mut probe, &root());
@@ -83,14 +105,8 @@ fn demo() -> Result<()> {
     std::fs::create_dir_all(&out)?;
     let cage = out.join("demo_cage.obj");
     std::fs::write(&cage, DEMO_CAGE)?;
-    run({
-        let mut c = cargo();
-        c.args(["build", "--release", "--quiet", "-p", "subdiv-cli"]);
-        c
-    })?;
-    let exe = target_dir()
-        .join("release")
-        .join(format!("subdiv{}", std::env::consts::EXE_SUFFIX));
+    let exe = build_subdiv(true)?;
+    step("running the demo");
     println!("== subdiv info (embedded cage: catmark_pawn) ==");
     run({
         let mut c = Command::new(&exe);
@@ -106,6 +122,7 @@ fn demo() -> Result<()> {
             .arg(out.join("demo.obj"));
         c
     })?;
+    step("checking the Vulkan driver (lavapipe)");
     vulkan::ensure_driver()?;
     println!("== subdiv tessellate (adaptive, view-dependent) --stats ==");
     run({
@@ -149,7 +166,9 @@ fn demo() -> Result<()> {
 
 fn test() -> Result<()> {
     // Cheap, and a wrong crate graph is worth knowing before the long run.
+    step("checking the crate graph (docs/architecture.md)");
     architecture::run(&root())?;
+    step("checking the Vulkan driver (lavapipe), validation layer and Xvfb");
     vulkan::ensure_driver()?;
     // With the layer installed, the Vulkan tests run with validation and fail on any message.
     vulkan::ensure_validation_layer();
@@ -168,8 +187,11 @@ fn test() -> Result<()> {
     c.current_dir(root()).args(["test", "--workspace"]);
     c.env("SUBDIV_VK_REQUIRE_DRIVER", "1");
     vulkan::configure(&mut c, &root());
+    step("running cargo tests (cargo test --workspace)");
     run(c)?;
-    golden::run(&root(), &golden::Options::default())
+    golden::run(&root(), &golden::Options::default())?;
+    eprintln!("xtask: all tests passed");
+    Ok(())
 }
 
 fn main() -> Result<()> {
@@ -177,13 +199,21 @@ fn main() -> Result<()> {
     match args.first().map(String::as_str) {
         Some("demo") => demo(),
         Some("test") => test(),
-        Some("check-architecture") => architecture::run(&root()),
-        Some("figures") => figures_doi::run(&root()).and_then(|()| figures_cc_run()),
+        Some("check-architecture") => {
+            step("checking the crate graph (docs/architecture.md)");
+            architecture::run(&root())
+        }
+        Some("figures") => {
+            step("Degree-of-Interest figures");
+            figures_doi::run(&root())?;
+            step("Catmull-Clark figures");
+            figures_cc_run()
+        }
         Some("bench-osd") => bench_osd::run(&root()),
         Some("golden") => golden::Options::parse(&args[1..]).and_then(|o| golden::run(&root(), &o)),
         _ => {
             eprintln!(
-                "usage: cargo xtask <demo|test|check-architecture|figures|golden [--bless] [--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]>"
+                "usage: cargo xtask <demo|test|check-architecture|figures|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]>"
             );
             std::process::exit(2);
         }

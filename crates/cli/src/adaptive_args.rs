@@ -6,21 +6,33 @@ use subdiv::depth::DepthParams;
 use subdiv::rules::Depth;
 use subdiv::stitch::{FanMethod, MAX_ADAPTIVE_DEPTH};
 
-/// Flags of the view-dependent depth assignment.
-#[derive(clap::Args, Debug, Clone)]
+/// Default `--max-depth` (the paper's `maxsd = 5`).
+pub const DEFAULT_MAX_DEPTH: Depth = 5;
+/// Default `--cone-aperture` in degrees.
+pub const DEFAULT_CONE_APERTURE: f32 = 10.0;
+/// Default `--classifier` epsilon.
+pub const DEFAULT_CLASSIFIER: f32 = 0.1;
+/// Default `--projected-size` in pixels.
+pub const DEFAULT_PROJECTED_SIZE: (f32, f32) = (2.0, 8.0);
+
+/// Flags of the view-dependent depth assignment. Every flag is optional so that the commands can
+/// tell which were given: any of them asks for the adaptive tessellation in `tessellate`,
+/// `render` and `view` alike (with the default camera when no camera flag is given), and is
+/// refused next to `--depth`.
+#[derive(clap::Args, Debug, Clone, Default)]
 pub struct AdaptiveArgs {
-    /// Deepest subdivision depth (the paper's `maxsd`).
-    #[arg(long, default_value_t = 5)]
-    pub max_depth: Depth,
-    /// Normal-cone aperture in degrees for the curvature depth.
-    #[arg(long, default_value_t = 10.0)]
-    pub cone_aperture: f32,
-    /// Vertex classifier epsilon (back / front / silhouette).
-    #[arg(long, default_value_t = 0.1)]
-    pub classifier: f32,
-    /// Projected sub-patch radius bounds in pixels.
-    #[arg(long, value_parser = parse_pair, default_value = "2,8")]
-    pub projected_size: (f32, f32),
+    /// Deepest subdivision depth (the paper's `maxsd`) [default: 5].
+    #[arg(long)]
+    pub max_depth: Option<Depth>,
+    /// Normal-cone aperture in degrees for the curvature depth [default: 10].
+    #[arg(long)]
+    pub cone_aperture: Option<f32>,
+    /// Vertex classifier epsilon (back / front / silhouette) [default: 0.1].
+    #[arg(long)]
+    pub classifier: Option<f32>,
+    /// Projected sub-patch radius bounds in pixels [default: 2,8].
+    #[arg(long, value_parser = parse_pair)]
+    pub projected_size: Option<(f32, f32)>,
     /// Choose the least depth whose chord error is at most PX pixels on screen.
     #[arg(long)]
     pub pixel_error: Option<f32>,
@@ -33,24 +45,73 @@ pub struct AdaptiveArgs {
 }
 
 impl AdaptiveArgs {
-    /// The depth parameters these flags describe.
-    pub fn params(&self) -> anyhow::Result<DepthParams> {
-        if self.max_depth > MAX_ADAPTIVE_DEPTH {
-            bail!(
-                "--max-depth {} is too deep (at most {MAX_ADAPTIVE_DEPTH})",
-                self.max_depth
-            );
-        }
-        if let Some(px) = self.pixel_error {
-            if !(px.is_finite() && px > 0.0) {
-                bail!("--pixel-error must be a positive number of pixels");
+    /// The deepest depth (`--max-depth` or its default).
+    pub fn max_depth(&self) -> Depth {
+        self.max_depth.unwrap_or(DEFAULT_MAX_DEPTH)
+    }
+
+    /// The adaptive flags given on the command line, by name.
+    pub fn given(&self) -> Vec<&'static str> {
+        [
+            (self.max_depth.is_some(), "--max-depth"),
+            (self.cone_aperture.is_some(), "--cone-aperture"),
+            (self.classifier.is_some(), "--classifier"),
+            (self.projected_size.is_some(), "--projected-size"),
+            (self.pixel_error.is_some(), "--pixel-error"),
+            (self.cull_back, "--cull-back"),
+            (self.simple_fans, "--simple-fans"),
+        ]
+        .into_iter()
+        .filter_map(|(on, name)| on.then_some(name))
+        .collect()
+    }
+
+    /// The one rule of `tessellate`, `render` and `view`: adaptive when there is no `--depth`
+    /// and a camera flag or an adaptive flag was given (`extra` lists adaptive flags a command
+    /// adds, e.g. `--cull-camera-eye-relative`); adaptive flags next to `--depth` or with Loop
+    /// are refused, never ignored.
+    pub fn wants_adaptive(
+        &self,
+        depth_given: bool,
+        camera_given: bool,
+        catmull_clark: bool,
+        extra: &[&'static str],
+    ) -> anyhow::Result<bool> {
+        let mut given = self.given();
+        given.extend_from_slice(extra);
+        if !given.is_empty() {
+            let flags = given.join(", ");
+            if depth_given {
+                bail!(
+                    "{flags} choose adaptive depths, which --depth N replaces by a uniform one; \
+                     drop one or the other"
+                );
+            }
+            if !catmull_clark {
+                bail!(
+                    "{flags} are for the adaptive Catmull-Clark tessellation (--scheme catmull-clark)"
+                );
             }
         }
+        Ok(!depth_given && catmull_clark && (camera_given || !given.is_empty()))
+    }
+
+    /// The depth parameters these flags describe.
+    pub fn params(&self) -> anyhow::Result<DepthParams> {
+        let max_depth = self.max_depth();
+        if max_depth > MAX_ADAPTIVE_DEPTH {
+            bail!("--max-depth {max_depth} is too deep (at most {MAX_ADAPTIVE_DEPTH})");
+        }
+        if let Some(px) = self.pixel_error
+            && !(px.is_finite() && px > 0.0)
+        {
+            bail!("--pixel-error must be a positive number of pixels");
+        }
         Ok(DepthParams {
-            max_depth: self.max_depth,
-            cone_aperture_deg: self.cone_aperture,
-            classifier_eps: self.classifier,
-            projected_size: Some(self.projected_size),
+            max_depth,
+            cone_aperture_deg: self.cone_aperture.unwrap_or(DEFAULT_CONE_APERTURE),
+            classifier_eps: self.classifier.unwrap_or(DEFAULT_CLASSIFIER),
+            projected_size: Some(self.projected_size.unwrap_or(DEFAULT_PROJECTED_SIZE)),
             pixel_error: self.pixel_error,
             cull_back: self.cull_back,
         })

@@ -61,10 +61,10 @@ fn check(a: &BenchFramerateArgs) -> anyhow::Result<()> {
             a.max_depth
         );
     }
-    if let Some(d) = a.depth {
-        if d > a.max_depth {
-            bail!("--depth {d} exceeds --max-depth {}", a.max_depth);
-        }
+    if let Some(d) = a.depth
+        && d > a.max_depth
+    {
+        bail!("--depth {d} exceeds --max-depth {}", a.max_depth);
     }
     for f in [a.target_fps, a.switch_fps].into_iter().flatten() {
         if !(f.is_finite() && f > 0.0) {

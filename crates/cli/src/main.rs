@@ -62,12 +62,8 @@ fn main() -> ExitCode {
     match result {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("error: {e}");
-            let mut src = e.source();
-            while let Some(s) = src {
-                eprintln!("  caused by: {s}");
-                src = s.source();
-            }
+            // The whole chain on one line, each cause once: `error: FILE: cause: cause`.
+            eprintln!("error: {e:#}");
             ExitCode::FAILURE
         }
     }

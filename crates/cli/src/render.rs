@@ -138,7 +138,7 @@ fn run_adaptive(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     }
     let note = format!(
         "adaptive, max depth {}, patches per depth {histogram}",
-        a.surface.adaptive.max_depth
+        a.surface.adaptive.max_depth()
     );
     draw_and_report(
         a,

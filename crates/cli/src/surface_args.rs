@@ -93,18 +93,23 @@ impl SurfaceArgs {
             .map_err(|e| anyhow::anyhow!("{}: {e}", self.label()))
     }
 
-    /// Whether these flags ask for the adaptive tessellation: Catmull-Clark, no `--depth`, and a
-    /// camera. Adaptive-only flags without it are refused.
+    /// Whether these flags ask for the adaptive tessellation ([`AdaptiveArgs::wants_adaptive`]:
+    /// Catmull-Clark, no `--depth`, and a camera or an adaptive flag; the default camera when no
+    /// camera flag is given). Adaptive flags that cannot apply are refused.
     pub fn is_adaptive(&self, camera: &CameraArgs) -> anyhow::Result<bool> {
-        let adaptive =
-            self.depth.is_none() && camera.has_camera() && self.scheme == SchemeName::CatmullClark;
-        if !adaptive && (self.cull_camera_eye_relative.is_some() || self.face_depths.is_some()) {
-            bail!(
-                "--cull-camera-eye-relative and --face-depths need the adaptive tessellation: \
-                 --scheme catmull-clark, a camera (--eye or --eye-relative) and no --depth"
-            );
+        let mut extra = Vec::new();
+        if self.cull_camera_eye_relative.is_some() {
+            extra.push("--cull-camera-eye-relative");
         }
-        Ok(adaptive)
+        if self.face_depths.is_some() {
+            extra.push("--face-depths");
+        }
+        self.adaptive.wants_adaptive(
+            self.depth.is_some(),
+            camera.has_camera(),
+            self.scheme == SchemeName::CatmullClark,
+            &extra,
+        )
     }
 
     /// The adaptive node for `mesh` with the adaptive flags (fan method, fixed face depths).
@@ -112,7 +117,7 @@ impl SurfaceArgs {
         let faces = mesh.num_faces();
         let mut node = self.adaptive.node(mesh).with_context(|| self.label())?;
         if let Some(spec) = &self.face_depths {
-            let depths = parse_face_depths(spec, self.adaptive.max_depth)?;
+            let depths = parse_face_depths(spec, self.adaptive.max_depth())?;
             if depths.len() != faces {
                 bail!(
                     "--face-depths has {} depths, the cage has {faces} faces",

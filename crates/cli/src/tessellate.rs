@@ -58,15 +58,24 @@ fn cage_doi_parser() -> impl TypedValueParser<Value = DoiName> {
 
 pub fn run(a: &TessellateArgs) -> anyhow::Result<ExitCode> {
     let mesh = crate::load::load_mesh(&a.input, a.split_nonmanifold)?;
+    let catmull_clark = Scheme::from(a.scheme) == Scheme::CatmullClark;
+    let adaptive =
+        a.adaptive
+            .wants_adaptive(a.depth.is_some(), a.camera.has_camera(), catmull_clark, &[])?;
     if let Some(depth) = a.depth {
         return run_uniform(a, &mesh, depth);
     }
-    if !a.camera.has_camera() && a.doi.doi.is_none() {
+    if !adaptive && a.doi.doi.is_none() {
+        if !catmull_clark {
+            bail!(
+                "adaptive tessellation with a camera is for --scheme catmull-clark; use `subdiv refine` for adaptive Loop"
+            );
+        }
         bail!(
-            "give --depth N for a uniform tessellation, or a camera (--eye X,Y,Z or --eye-relative X,Y,Z) for an adaptive one"
+            "give --depth N for a uniform tessellation, or a camera (--eye X,Y,Z or --eye-relative X,Y,Z) or an adaptive flag (--pixel-error PX, ...) for an adaptive one"
         );
     }
-    if Scheme::from(a.scheme) != Scheme::CatmullClark {
+    if !catmull_clark {
         bail!(
             "adaptive tessellation with a camera is for --scheme catmull-clark; use `subdiv refine` for adaptive Loop"
         );
@@ -116,7 +125,7 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh) -> anyhow::Result<ExitCode> {
                 &mesh,
                 camera,
                 a.doi.threshold,
-                a.adaptive.max_depth,
+                a.adaptive.max_depth(),
             )
             .with_context(|| format!("{input}: evaluating the {} DoI", kind.name()))?;
             Some(depths)
@@ -143,7 +152,7 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh) -> anyhow::Result<ExitCode> {
         "tessellated {input}: {} vertices, {} triangles (adaptive, max depth {}) in {ms:.1} ms -> {}",
         pos.len(),
         idx.len() / 3,
-        a.adaptive.max_depth,
+        a.adaptive.max_depth(),
         a.output.display()
     );
     if a.stats {
@@ -161,7 +170,7 @@ fn print_stats(a: &TessellateArgs, node: &DynamicSubdivision, g: &FrameGeometry)
     println!("triangles: {tris}");
     println!(
         "uniform triangles at max depth {}: {uni} (adaptive/uniform = {:.3})",
-        a.adaptive.max_depth,
+        a.adaptive.max_depth(),
         tris as f64 / uni.max(1) as f64
     );
     if a.adaptive.pixel_error.is_some() {

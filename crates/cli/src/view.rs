@@ -147,7 +147,7 @@ fn run_adaptive(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     let title = format!(
         "subdiv view {} (adaptive, max depth {})",
         a.surface.label(),
-        a.surface.adaptive.max_depth
+        a.surface.adaptive.max_depth()
     );
     let mut source = AdaptiveSource::new(a.surface.adaptive_node(cage)?);
     let options = ViewerOptions {

@@ -8,7 +8,7 @@ mod common;
 
 use std::path::PathBuf;
 
-use common::{assert_fails, root, run_ok, tmp};
+use common::{assert_fails, root, run, run_ok, tmp};
 use subdiv_vk::read_png;
 
 fn pawn() -> PathBuf {
@@ -177,5 +177,72 @@ fn bad_adaptive_flag_values_fail_cleanly() {
     assert_fails(
         &["bench", "framerate", "--target-fps=-3", "--frames", "1"],
         "frame rates must be positive",
+    );
+}
+
+/// Issue 12 item 6: an adaptive flag means the same in `tessellate`, `render` and `view`: without
+/// `--depth` it asks for the adaptive tessellation (with the default camera when no camera flag
+/// is given); next to `--depth`, or with Loop, it is refused — never silently ignored.
+#[test]
+fn adaptive_flags_mean_the_same_in_every_command() {
+    let input = root().join("fixtures/scenes/box_8_sharp_edges.obj");
+    let input = input.to_str().unwrap();
+    let png = tmp("flags.png");
+    let png = png.to_str().unwrap();
+    let obj = tmp("flags.obj");
+    let obj = obj.to_str().unwrap();
+    // No camera flag: the default camera, adaptive.
+    if let Some(o) = run_ok(&["render", input, "--pixel-error", "1", "-o", png]) {
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert!(out.contains("adaptive, max depth 5"), "{out}");
+    }
+    let (code, out, err) = run(&[
+        "tessellate",
+        input,
+        "--pixel-error",
+        "1",
+        "--stats",
+        "-o",
+        obj,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("triangles"), "{out}");
+    // Next to --depth, or with Loop: refused, naming the flags.
+    for cmd in ["render", "tessellate", "view"] {
+        let out_file = if cmd == "tessellate" { obj } else { png };
+        let mut args = vec![
+            cmd,
+            input,
+            "--depth",
+            "2",
+            "--pixel-error",
+            "1",
+            "--cull-back",
+        ];
+        if cmd == "view" {
+            args.extend(["--screenshot-after", "1"]);
+        }
+        args.extend(["-o", out_file]);
+        let (code, _, err) = run(&args);
+        assert_eq!(code, 1, "{cmd}: {err}");
+        assert!(
+            err.contains("--pixel-error, --cull-back choose adaptive depths"),
+            "{cmd}: {err}"
+        );
+    }
+    let (code, _, err) = run(&[
+        "render",
+        input,
+        "--scheme",
+        "loop",
+        "--pixel-error",
+        "1",
+        "-o",
+        png,
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("are for the adaptive Catmull-Clark tessellation"),
+        "{err}"
     );
 }

@@ -155,6 +155,9 @@ fn missing_file_and_loop_on_quads() {
     ]);
     assert_ne!(code, 0);
     assert!(err.starts_with("error: /nonexistent/x.obj: "), "{err}");
+    // The I/O cause is printed once (not in the message and again as a `caused by:` line).
+    assert_eq!(err.matches("(os error").count(), 1, "{err}");
+    assert_eq!(err.matches("/nonexistent/x.obj").count(), 1, "{err}");
     let cube = fixtures().join("reference/shapes/catmark_cube.obj");
     let out = tmp("loopcube.obj");
     let (code, _, err) = run(&[

@@ -1,14 +1,15 @@
 //! Per-frame depth assignment (Settgast et al. 2004, Section 3.1): back/front/silhouette
 //! classification of vertices and faces (after Luebke and Erikson 1997), curvature depths for
 //! front faces, the average of `maxsd` and the curvature depth for silhouette faces, then the
-//! projected-size adjustment; or, beyond the paper, the least depth whose chord quads stay within
-//! a pixel error on screen.
+//! projected-size adjustment; or, beyond the paper, the least depth whose drawn triangles stay
+//! within a pixel error on screen ([`crate::pixel_error`]).
 
 use glam::Vec3;
 use subdiv_mesh::{Camera, Mesh};
 
 use crate::Depth;
 use crate::curvature::VertexData;
+use crate::pixel_error::{PatchErrors, pixel_error_depth};
 use crate::sphere::Sphere;
 
 /// The paper's user parameters, plus the pixel-error mode and back-face culling.
@@ -138,13 +139,14 @@ impl Assignment {
     }
 }
 
-/// Assigns a depth to every cage face for `camera`. `deviation[f][l]` (world units) is the chord
-/// error of face `f` at depth `l`, needed only in pixel-error mode.
+/// Assigns a depth to every cage face for `camera`. `errors` (chord errors and normal cones per
+/// face, [`PatchErrors`]) is needed only in pixel-error mode: there every face gets the least
+/// depth within the error bound unless it is provably hidden (see [`crate::pixel_error`]).
 pub fn assign(
     mesh: &Mesh,
     vd: &VertexData,
     spheres: &[Sphere],
-    deviation: Option<&[Vec<f32>]>,
+    errors: Option<&PatchErrors>,
     camera: &Camera,
     p: &DepthParams,
 ) -> Assignment {
@@ -170,13 +172,19 @@ pub fn assign(
             Class::Front => curv,
             Class::Silhouette => (p.max_depth + curv).div_ceil(2),
         };
-        let r = projected_radius(camera, &spheres[f.idx()]);
-        if cls != Class::Back {
-            if let (Some(px), Some(dev)) = (p.pixel_error, deviation) {
-                d = pixel_error_depth(camera, &spheres[f.idx()], &dev[f.idx()], px, p.max_depth);
-            } else if let Some(ps) = p.projected_size {
-                d = adjust_projected(d, r, ps, p.max_depth);
-            }
+        let sphere = &spheres[f.idx()];
+        let r = projected_radius(camera, sphere);
+        if let (Some(px), Some(errs)) = (p.pixel_error, errors) {
+            let e = &errs.faces[f.idx()];
+            d = if errs.closed && e.faces_away(camera, sphere) {
+                0
+            } else {
+                pixel_error_depth(camera, sphere, &e.deviation, px, p.max_depth)
+            };
+        } else if cls != Class::Back
+            && let Some(ps) = p.projected_size
+        {
+            d = adjust_projected(d, r, ps, p.max_depth);
         }
         out.depth.push(d.min(p.max_depth));
         out.active.push(!(p.cull_back && cls == Class::Back));
@@ -185,24 +193,6 @@ pub fn assign(
         out.curvature.push(curv);
     }
     out
-}
-
-/// The least depth whose chord error, projected at the sphere's nearest point, is at most `px`.
-pub fn pixel_error_depth(
-    camera: &Camera,
-    s: &Sphere,
-    dev: &[f32],
-    px: f32,
-    max_depth: Depth,
-) -> Depth {
-    let d = ((s.centre - camera.eye).length() - s.radius).max(1e-6 * s.radius.max(1e-6));
-    let scale = camera.focal_pixels() / d;
-    for (l, &e) in dev.iter().enumerate().take(max_depth as usize + 1) {
-        if e * scale <= px {
-            return l as Depth;
-        }
-    }
-    max_depth
 }
 
 #[cfg(test)]
@@ -302,19 +292,5 @@ mod tests {
         assert!(priority(100.0, 3, 1) > priority(100.0, 3, 2));
         // One level deeper quarters the estimate (size and normal spread both halve).
         assert_eq!(priority(64.0, 2, 3) * 4.0, priority(64.0, 2, 2));
-    }
-
-    #[test]
-    fn pixel_error_depth_is_least_sufficient() {
-        let s = Sphere {
-            centre: Vec3::ZERO,
-            radius: 1.0,
-        };
-        let c = cam(Vec3::new(0.0, 0.0, 10.0));
-        let dev = vec![0.5, 0.12, 0.03, 0.008, 0.002, 0.0005];
-        let scale = c.focal_pixels() / 9.0;
-        let d = pixel_error_depth(&c, &s, &dev, 1.0, 5);
-        assert!(dev[d as usize] * scale <= 1.0);
-        assert!(d == 0 || dev[d as usize - 1] * scale > 1.0);
     }
 }

@@ -33,14 +33,16 @@ mod assign;
 mod controller;
 mod curvature;
 mod doi;
+pub mod pixel_error;
 mod sphere;
 
 pub use assign::{
-    Assignment, Class, DepthParams, adjust_projected, assign, classify_vertex, pixel_error_depth,
-    priority, projected_radius,
+    Assignment, Class, DepthParams, adjust_projected, assign, classify_vertex, priority,
+    projected_radius,
 };
 pub use controller::FrameRateController;
 pub use curvature::VertexData;
 pub use doi::depths_from_face_values;
+pub use pixel_error::{NormalCone, PatchError, PatchErrors, pixel_error_depth, screen_scale};
 pub use sphere::{SPHERE_FACE_BUDGET, SPHERE_LEVELS, Sphere, face_spheres};
 pub use subdiv_rules::{Depth, MAX_DEPTH};

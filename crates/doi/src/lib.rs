@@ -7,7 +7,7 @@
 //!   values to the faces, edges or vertices of a triangle mesh; face values come directly, or
 //!   from edges/vertices by max (default), average or min; a face is refined when its value
 //!   exceeds the threshold. DoIs are evaluated before every step; static DoIs are cached across
-//!   frames by [`Refiner`], view-dependent ones re-evaluated.
+//!   frames by `subdiv::Refiner`, view-dependent ones re-evaluated.
 //! - The DoIs of the paper: [`ViewAngle`] (eq. 1), [`Silhouette`] (eq. 2), [`Dihedral`]
 //!   (eq. 3), [`HapticG1`] (Clough-Tocher G¹ error, eqs. 4–6) and [`HapticPoint`], [`Focus`]
 //!   (eq. 7).

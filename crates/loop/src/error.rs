@@ -49,7 +49,7 @@ pub enum LoopError {
         /// Number of vertex positions.
         count: u32,
     },
-    /// A face that is kept unchanged has a split edge (the closure was not computed by [`close`]).
+    /// A face that is kept unchanged has a split edge (the closure was not computed by [`close`](crate::red_green::close)).
     #[error("face {face} is kept but its edge {edge} is split; the closure is inconsistent")]
     Inconsistent {
         /// The face.

@@ -187,10 +187,14 @@ impl MeshError {
 }
 
 /// An error reading or writing a mesh file: I/O, or a [`MeshError`] located in the file.
+///
+/// Each cause is printed once: `Io` displays only the file and hands the I/O error out through
+/// [`std::error::Error::source`] (print the chain, e.g. `anyhow`'s `{:#}`, to see it); `Invalid`
+/// displays `FILE:LINE: what` in full and has no source.
 #[derive(Debug, Error)]
 pub enum ObjError {
     /// The file could not be read or written.
-    #[error("{path}: {source}")]
+    #[error("{path}")]
     Io {
         /// The file.
         path: String,

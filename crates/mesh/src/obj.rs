@@ -420,6 +420,10 @@ t crease 3/1/0 0 2 3 2.5\nt corner 1/1/0 7 4\nt hole 1/0/0 1\nt creasemethod 0/0
         );
         let e = read_obj(dir.join("missing.obj")).unwrap_err();
         assert!(matches!(e, ObjError::Io { .. }));
+        // The cause is printed once: by `source()`, not repeated in the message.
+        let cause = std::error::Error::source(&e).expect("the I/O error is the source");
+        assert!(e.to_string().ends_with("missing.obj"), "{e}");
+        assert!(!e.to_string().contains(&cause.to_string()), "{e}");
         std::fs::remove_dir_all(&dir).ok();
     }
 }

@@ -244,10 +244,10 @@ impl<'m> RefineKernel<'m> {
                     for side in 0..2 {
                         let h = e.halfedge(side);
                         let cs = self.child_sharp[h.idx()];
-                        if is_sharp(cs) {
-                            if let Some(ch) = child.find_halfedge(mesh.from(h), m) {
-                                child.set_edge_sharpness(ch.edge(), cs);
-                            }
+                        if is_sharp(cs)
+                            && let Some(ch) = child.find_halfedge(mesh.from(h), m)
+                        {
+                            child.set_edge_sharpness(ch.edge(), cs);
                         }
                     }
                 }

@@ -121,7 +121,7 @@ impl Table {
             2 => self.at(i - 1, j),
             _ => self.at(i, j - 1),
         };
-        if d % 2 == 0 {
+        if d.is_multiple_of(2) {
             self.horizontal_sharpness[k] = s
         } else {
             self.vertical_sharpness[k] = s

@@ -3,8 +3,9 @@
 use glam::Vec3;
 use subdiv_mesh::{Mesh, MeshError, parse_obj};
 
-/// Cage file of the built-in `helmet40` scene's model (`catmark_helmet`, 58 faces).
-const HELMET_OBJ: &str = include_str!("../../../fixtures/reference/shapes/catmark_helmet.obj");
+/// Cage file of the built-in `helmet40` scene's model (`catmark_helmet`, 58 faces); `data/` links
+/// to `fixtures/reference/shapes/` so that `cargo package` ships the file inside the crate.
+const HELMET_OBJ: &str = include_str!("../data/catmark_helmet.obj");
 
 /// Why a built-in scene could not be built (only if the embedded cage were broken).
 #[derive(Debug, thiserror::Error)]

@@ -5,15 +5,15 @@
 //! tessellation cache and the user parameters, and turns a camera (and the last frame time,
 //! for frame-rate control) into the frame's geometry.
 
-use glam::Vec3;
-use rayon::prelude::*;
 use subdiv_depth::{
-    Assignment, DepthParams, FrameRateController, Sphere, VertexData, assign, face_spheres,
+    Assignment, DepthParams, FrameRateController, PatchErrors, Sphere, VertexData, assign,
+    face_spheres,
 };
 use subdiv_mesh::{Camera, Mesh};
-use subdiv_slate::{Depth, thread_worker};
-
+use subdiv_slate::Depth;
 use subdiv_stitch::{Assembler, AssemblyError, FanMethod, FrameGeometry};
+
+use crate::patch_errors;
 
 /// View-dependent adaptive Catmull-Clark tessellation with crack-free stitching.
 ///
@@ -36,7 +36,7 @@ pub struct DynamicSubdivision {
     params: DepthParams,
     vertex: VertexData,
     spheres: Vec<Sphere>,
-    deviation: Option<Vec<Vec<f32>>>,
+    errors: Option<PatchErrors>,
     assembler: Assembler,
     controller: Option<FrameRateController>,
     fixed_depths: Option<Vec<Depth>>,
@@ -55,7 +55,7 @@ impl DynamicSubdivision {
             params,
             vertex,
             spheres,
-            deviation: None,
+            errors: None,
             assembler,
             controller: None,
             fixed_depths: None,
@@ -79,7 +79,7 @@ impl DynamicSubdivision {
             || p.max_depth != self.params.max_depth;
         if p.max_depth != self.params.max_depth {
             self.assembler = Assembler::new(&self.mesh, p.max_depth)?;
-            self.deviation = None;
+            self.errors = None;
         }
         self.params = p;
         if recompute {
@@ -112,7 +112,7 @@ impl DynamicSubdivision {
             self.params.max_depth,
         );
         self.spheres = face_spheres(&self.mesh);
-        self.deviation = None;
+        self.errors = None;
         self.assembler = Assembler::new(&self.mesh, self.params.max_depth)?;
         Ok(())
     }
@@ -157,14 +157,14 @@ impl DynamicSubdivision {
     /// Overrides the view-dependent depths with fixed per-face depths (uniform tessellation, or
     /// depths from a Degree-of-Interest function); `None` returns to view-dependent depths.
     pub fn set_face_depths(&mut self, depths: Option<Vec<Depth>>) -> Result<(), AssemblyError> {
-        if let Some(d) = &depths {
-            if d.len() != self.mesh.num_faces() {
-                return Err(AssemblyError::Length {
-                    what: "face depths",
-                    got: d.len(),
-                    want: self.mesh.num_faces(),
-                });
-            }
+        if let Some(d) = &depths
+            && d.len() != self.mesh.num_faces()
+        {
+            return Err(AssemblyError::Length {
+                what: "face depths",
+                got: d.len(),
+                want: self.mesh.num_faces(),
+            });
         }
         self.fixed_depths = depths;
         Ok(())
@@ -194,12 +194,8 @@ impl DynamicSubdivision {
         camera: &Camera,
         last_frame_time: Option<f32>,
     ) -> Result<&FrameGeometry, AssemblyError> {
-        if self.params.pixel_error.is_some() && self.deviation.is_none() {
-            self.deviation = Some(chord_deviations(
-                &self.mesh,
-                &self.assembler,
-                self.params.max_depth,
-            ));
+        if self.params.pixel_error.is_some() {
+            self.patch_errors();
         }
         let mut a = match &self.fixed_depths {
             Some(d) => {
@@ -218,7 +214,7 @@ impl DynamicSubdivision {
                 &self.mesh,
                 &self.vertex,
                 &self.spheres,
-                self.deviation.as_deref(),
+                self.errors.as_ref(),
                 camera,
                 &self.params,
             ),
@@ -245,90 +241,19 @@ impl DynamicSubdivision {
         self.uniform_triangles_at(self.params.max_depth)
     }
 
-    /// Chord deviation per face and depth (world units), computed on first use of the
-    /// pixel-error mode.
-    pub fn deviations(&mut self) -> &[Vec<f32>] {
-        if self.deviation.is_none() {
-            self.deviation = Some(chord_deviations(
-                &self.mesh,
-                &self.assembler,
-                self.params.max_depth,
-            ));
-        }
-        self.deviation.as_deref().unwrap_or(&[])
+    /// What the pixel-error mode knows of each face (chord error per depth, normal cone; see
+    /// [`crate::patch_errors`]), computed on first use.
+    pub fn patch_errors(&mut self) -> &PatchErrors {
+        self.errors
+            .get_or_insert_with(|| patch_errors(&self.mesh, &self.assembler, self.params.max_depth))
     }
-}
-
-/// For each cage face and depth `l <= max_depth`: the largest distance between the limit surface
-/// and the bilinear chord quads of the depth-`l` tessellation, sampled on the depth-`max_depth+1`
-/// grid of every patch of the face.
-pub fn chord_deviations(mesh: &Mesh, asm: &Assembler, max_depth: Depth) -> Vec<Vec<f32>> {
-    let set = asm.patch_set();
-    let fine = max_depth + 1;
-    let per_patch: Vec<Vec<f32>> = set
-        .patches()
-        .par_iter()
-        .map_init(
-            || (thread_worker(fine), Vec::new(), Vec::new()),
-            |(w, pos, nrm), p| {
-                // Level-1 patches are one level coarser than their face.
-                let l_fine = fine - p.level;
-                let n = 1usize << l_fine;
-                pos.resize((n + 1) * (n + 1), [0.0f32; 3]);
-                nrm.resize((n + 1) * (n + 1), [0.0f32; 3]);
-                w.patch_grid(set.source(mesh, p), p.src_face, l_fine, pos, nrm);
-                let at = |i: usize, j: usize| Vec3::from(pos[j * (n + 1) + i]);
-                let mut dev = vec![f32::INFINITY; max_depth as usize + 1];
-                for (ld, dev_ld) in dev.iter_mut().enumerate() {
-                    // Patch depth for face depth `ld`.
-                    let Some(l) = ld.checked_sub(p.level as usize) else {
-                        continue;
-                    };
-                    let step = n >> l;
-                    let mut worst = 0.0f32;
-                    for qj in 0..(1usize << l) {
-                        for qi in 0..(1usize << l) {
-                            let (i0, j0) = (qi * step, qj * step);
-                            let c = [
-                                at(i0, j0),
-                                at(i0 + step, j0),
-                                at(i0 + step, j0 + step),
-                                at(i0, j0 + step),
-                            ];
-                            for j in j0..=j0 + step {
-                                for i in i0..=i0 + step {
-                                    let (u, v) = (
-                                        (i - i0) as f32 / step as f32,
-                                        (j - j0) as f32 / step as f32,
-                                    );
-                                    let b = c[0] * (1.0 - u) * (1.0 - v)
-                                        + c[1] * u * (1.0 - v)
-                                        + c[2] * u * v
-                                        + c[3] * (1.0 - u) * v;
-                                    worst = worst.max((at(i, j) - b).length());
-                                }
-                            }
-                        }
-                    }
-                    *dev_ld = worst;
-                }
-                dev
-            },
-        )
-        .collect();
-    let mut out = vec![vec![0.0f32; max_depth as usize + 1]; mesh.num_faces()];
-    for (p, dev) in set.patches().iter().zip(per_patch) {
-        let f = set.units()[p.unit as usize].face.idx();
-        for (o, d) in out[f].iter_mut().zip(dev) {
-            *o = o.max(d);
-        }
-    }
-    out
 }
 
 #[cfg(test)]
 mod tests {
     use std::collections::HashMap;
+
+    use glam::Vec3;
 
     use subdiv_depth::Class;
     use subdiv_mesh::parse_obj;
@@ -529,9 +454,11 @@ mod tests {
         assert_closed(&g);
         assert_eq!(node.assignment().depth[0], 0, "back face");
         // Deviations shrink with depth on every face.
-        let dev = node.deviations().to_vec();
-        assert_eq!(dev.len(), 6);
-        for d in &dev {
+        let errors = node.patch_errors().clone();
+        assert_eq!(errors.faces.len(), 6);
+        assert!(errors.closed);
+        for f in &errors.faces {
+            let d = &f.deviation;
             assert_eq!(d.len(), 4);
             assert!(d.windows(2).all(|w| w[1] <= w[0]), "{d:?}");
         }

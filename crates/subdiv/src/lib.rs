@@ -19,7 +19,7 @@
 //!
 //! What lives here — everything the `subdiv` command, the viewer and the figures share:
 //! - `dynamic.rs`: [`DynamicSubdivision`] (the paper's per-frame `DynamicSubdivisionCC` node)
-//!   and [`chord_deviations`];
+//!   and [`patch_errors`] (what its pixel-error mode measures once per cage);
 //! - `refine.rs`: DoI-driven refinement ([`refine_adaptive`], [`Refiner`]);
 //! - `doi_setup.rs`: from a DoI choice and its options to a [`Doi`](doi::Doi) and a ready
 //!   refinement ([`DoiKind`], [`DoiOptions`], [`DoiSetup`], [`doi_face_depths`]);
@@ -104,6 +104,7 @@ mod doi_setup;
 mod dynamic;
 mod frame;
 mod frame_sources;
+mod patch_error;
 pub mod quality;
 mod refine;
 mod scene;
@@ -114,9 +115,10 @@ pub use camera::{camera_from_view, orbit_camera, radius_about, view_for};
 pub use doi_setup::{
     DoiKind, DoiOptions, DoiSetup, DoiSetupError, check_doi_options, doi_face_depths, make_doi,
 };
-pub use dynamic::{DynamicSubdivision, chord_deviations};
+pub use dynamic::DynamicSubdivision;
 pub use frame::{depth_histogram, frame_limit};
 pub use frame_sources::{AdaptiveSource, DoiSource, UniformSource};
+pub use patch_error::{SAMPLE_LEVELS, patch_errors};
 pub use refine::{RefineError, RefineOptions, Refined, Refiner, refine_adaptive};
 pub use scene::{Scene, SceneError, uniform_limit};
 pub use silhouettes::Silhouettes;

@@ -5,6 +5,10 @@ use std::path::PathBuf;
 use ash::vk;
 
 /// Everything that can go wrong while setting up Vulkan, rendering or writing images.
+///
+/// Each cause is printed once: variants that wrap another error (`Allocation`, `Io`, `Image`,
+/// `Exr`) do not repeat it in their message but return it from [`std::error::Error::source`];
+/// print the chain (e.g. `anyhow`'s `{:#}`) to see it.
 #[derive(Debug, thiserror::Error)]
 pub enum VkError {
     /// The Vulkan loader library (`libvulkan.so.1`) could not be opened.
@@ -50,7 +54,7 @@ pub enum VkError {
         result: vk::Result,
     },
     /// GPU memory allocation failed.
-    #[error("GPU memory allocation failed: {0}")]
+    #[error("GPU memory allocation failed")]
     Allocation(#[from] gpu_allocator::AllocationError),
     /// The mesh handed to the renderer is inconsistent.
     #[error("invalid render mesh: {0}")]
@@ -66,7 +70,7 @@ pub enum VkError {
         max: u32,
     },
     /// Reading or writing a file failed.
-    #[error("{path}: {source}")]
+    #[error("{path}")]
     Io {
         /// The file.
         path: PathBuf,
@@ -74,7 +78,7 @@ pub enum VkError {
         source: std::io::Error,
     },
     /// PNG encoding or decoding failed.
-    #[error("{path}: {source}")]
+    #[error("{path}")]
     Image {
         /// The file.
         path: PathBuf,
@@ -82,7 +86,7 @@ pub enum VkError {
         source: image::ImageError,
     },
     /// EXR encoding failed.
-    #[error("{path}: {source}")]
+    #[error("{path}")]
     Exr {
         /// The file.
         path: PathBuf,
@@ -108,5 +112,21 @@ pub(crate) trait VkResultExt<T> {
 impl<T> VkResultExt<T> for std::result::Result<T, vk::Result> {
     fn call(self, call: &'static str) -> Result<T> {
         self.map_err(|result| VkError::Vulkan { call, result })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::error::Error as _;
+
+    /// Each cause is printed once: the message names the file, `source()` says what went wrong.
+    #[test]
+    fn io_cause_is_not_repeated() {
+        let path = std::env::temp_dir().join("subdiv-vk-no-such-dir/missing.png");
+        let e = crate::read_png(&path).unwrap_err();
+        let cause = e.source().expect("the I/O or image error is the source");
+        let (message, cause) = (e.to_string(), cause.to_string());
+        assert!(message.ends_with("missing.png"), "{message}");
+        assert!(!message.contains(&cause), "{message} repeats {cause}");
     }
 }

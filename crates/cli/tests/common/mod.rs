@@ -11,7 +11,25 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-pub const LAVAPIPE_ICD: &str = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+/// lavapipe's ICD manifest for this machine's architecture (`lvp_icd.x86_64.json`,
+/// `lvp_icd.aarch64.json`, ...), if installed.
+pub fn lavapipe_icd() -> Option<PathBuf> {
+    let arch = std::env::consts::ARCH;
+    [
+        "/usr/share/vulkan/icd.d",
+        "/usr/local/share/vulkan/icd.d",
+        "/etc/vulkan/icd.d",
+    ]
+    .iter()
+    .flat_map(|d| {
+        [
+            format!("{d}/lvp_icd.{arch}.json"),
+            format!("{d}/lvp_icd.json"),
+        ]
+    })
+    .map(PathBuf::from)
+    .find(|p| p.is_file())
+}
 pub const VALIDATION_LAYER: &str =
     "/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json";
 
@@ -36,8 +54,10 @@ pub fn tmp(name: &str) -> PathBuf {
 /// nothing else was chosen, the shader cache under `target/`, validation when installed.
 pub fn subdiv() -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_subdiv"));
-    if std::env::var_os("VK_DRIVER_FILES").is_none() && Path::new(LAVAPIPE_ICD).exists() {
-        c.env("VK_DRIVER_FILES", LAVAPIPE_ICD);
+    if std::env::var_os("VK_DRIVER_FILES").is_none()
+        && let Some(icd) = lavapipe_icd()
+    {
+        c.env("VK_DRIVER_FILES", icd);
     }
     if std::env::var_os("MESA_SHADER_CACHE_DIR").is_none() {
         c.env(

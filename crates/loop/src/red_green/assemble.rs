@@ -88,7 +88,7 @@ fn pos(positions: &[Vec3], v: u32) -> Vec3 {
     positions.get(v as usize).copied().unwrap_or(Vec3::ZERO)
 }
 
-/// Builds the triangles of the refined mesh from the closure of [`close`] and the midpoint of
+/// Builds the triangles of the refined mesh from the closure of [`close`](super::close) and the midpoint of
 /// every split edge (`edge_mid[e]`, [`VertexId::NONE`] for unsplit edges).
 ///
 /// Faces are emitted in the order of the input faces: a red triangle becomes its four Loop

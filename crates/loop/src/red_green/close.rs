@@ -103,7 +103,7 @@ impl Marker<'_> {
 /// Selected faces are refined; a selected green face merges its family back, and the parent is
 /// refined. Then, until nothing changes: a green face with a split edge merges its family, and a
 /// non-green face with three split edges is refined. Faces left with one or two split edges are
-/// closed green by [`assemble`].
+/// closed green by [`assemble`](super::assemble).
 ///
 /// ```
 /// use subdiv_mesh::{Mesh, PolygonSoup, glam::Vec3};

@@ -25,10 +25,24 @@ pub(super) struct Block {
     pub(super) nrm: Vec<[f32; 3]>,
 }
 
-/// Per-unit topology: its half-edges, in face order.
+/// Per-unit topology: its half-edges, in face order, and which of its corners are pinched.
 #[derive(Clone, Debug)]
 pub(super) struct UnitTopo {
     pub(super) hs: Vec<HalfedgeId>,
+    /// Per corner `k` (the start of `hs[k]`): the cage vertex there is interior with valence 2,
+    /// so the face across side `k` is also the face across side `k - 1` and the two faces'
+    /// corner quads share all three of their border points at that corner.
+    pub(super) pinched: Vec<bool>,
+}
+
+/// Whether the corner at the start of `hs[k]` is an interior cage vertex of valence 2: the
+/// neighbour across `hs[k]` continues, around that vertex, straight into the twin of the
+/// previous half-edge `hs[k - 1]`. (A lone boundary corner, whose twins are both boundary
+/// half-edges, is not pinched: nothing lies across it.)
+fn pinched(mesh: &Mesh, hs: &[HalfedgeId], k: usize) -> bool {
+    let across = hs[k].twin();
+    let prev = hs[(k + hs.len() - 1) % hs.len()];
+    mesh.face(across).is_some() && mesh.next(across) == prev.twin()
 }
 
 /// The adaptive assembler: per-mesh patch structure plus the per-patch block cache.
@@ -66,7 +80,8 @@ impl Assembler {
                     hs.push(h);
                     h = mesh.next(h);
                 }
-                UnitTopo { hs }
+                let pinched = (0..hs.len()).map(|k| pinched(mesh, &hs, k)).collect();
+                UnitTopo { hs, pinched }
             })
             .collect();
         let n = set.patches().len();

@@ -1,5 +1,12 @@
 //! Index-buffer emission: plain quads (two triangles each) and, next to a deeper neighbour,
 //! triangle fans around the limit point of the quad's next-level face point.
+//!
+//! A plain quad is split along the diagonal from its corner `(i, j)` to `(i + 1, j + 1)`, except
+//! a quad at a *pinched* patch corner (an interior cage vertex of valence 2, where the two faces
+//! around the vertex share both of its edges): both faces' corner quads there have the same three
+//! border points, the vertex and its two edge neighbours, so if both were split along the chord
+//! between the two edge neighbours that chord would carry four triangles. Such a quad is split
+//! through the vertex instead, whichever corner of the patch it is.
 
 use rayon::prelude::*;
 use subdiv_slate::PatchRef;
@@ -54,13 +61,28 @@ impl Frame<'_> {
                 || (fans[3] && i == 0)
         };
         let any = fans.iter().any(|&x| x);
+        // Pinched patch corners (level-1 patches: only corner 0 is a cage vertex, and the
+        // default diagonal already runs through it).
+        let pinched = |k: usize| p.level == 0 && self.units[p.unit as usize].pinched[k];
+        // Split quad (i, j) through its corners 1 and 3 instead of 0 and 2?
+        let flip = |i: u32, j: u32| -> bool {
+            let at = |k: usize| {
+                let (ci, cj) = [(0, 0), (n - 1, 0), (n - 1, n - 1), (0, n - 1)][k];
+                i == ci && j == cj && pinched(k)
+            };
+            (at(1) || at(3)) && !(at(0) || at(2))
+        };
         let id = |i: u32, j: u32| self.point_id(pi, p, i, j);
         let mut poly: Vec<u32> = Vec::with_capacity(16);
         for j in 0..n {
             for i in 0..n {
                 if !(any && replaced(i, j)) {
                     let (a, b, c, e) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
-                    out.extend_from_slice(&[a, b, c, a, c, e]);
+                    if flip(i, j) {
+                        out.extend_from_slice(&[a, b, e, b, c, e]);
+                    } else {
+                        out.extend_from_slice(&[a, b, c, a, c, e]);
+                    }
                     continue;
                 }
                 // Fan around the limit point of the quad's next-level face point.
@@ -148,7 +170,9 @@ impl Frame<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::test_util::{Rng, cube, frame, grid, open_edges, prism, split_cube};
+    use super::super::test_util::{
+        Rng, cube, frame, grid, open_edges, pillow, prism, split_cube, valence2_cube,
+    };
     use super::FanMethod;
 
     const METHODS: [FanMethod; 2] = [FanMethod::Subdivided, FanMethod::Simple];
@@ -263,6 +287,47 @@ mod tests {
                     0,
                     "{name} round {round} depths {depth:?} {method:?}"
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn valence_2_vertices_are_watertight_at_any_depth_pair() {
+        // Two quads sharing the two edges of an interior valence-2 vertex, the vertex at every
+        // pair of patch corners: at equal depths their corner quads have the same three border
+        // points, at different depths the shallower one fans; every depth pair must be closed.
+        let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+        for rot in (0..16).map(|r| [r % 4, r / 4]) {
+            let mesh = valence2_cube(rot);
+            let nf = mesh.num_faces();
+            for a in 0..=3u8 {
+                for b in 0..=3u8 {
+                    let mut depth: Vec<u8> = (0..nf).map(|_| rng.below(4) as u8).collect();
+                    depth[0] = a;
+                    depth[1] = b;
+                    for method in METHODS {
+                        let g = frame(&mesh, 3, &depth, &vec![true; nf], method);
+                        assert_eq!(
+                            open_edges(&g),
+                            0,
+                            "rotation {rot:?} depths {depth:?} {method:?}"
+                        );
+                    }
+                }
+            }
+        }
+        // The pillow: four valence-2 ring corners, uniform and random depths.
+        let mesh = pillow();
+        let nf = mesh.num_faces();
+        for round in 0..32 {
+            let depth: Vec<u8> = if round < 4 {
+                vec![round as u8; nf]
+            } else {
+                (0..nf).map(|_| rng.below(5) as u8).collect()
+            };
+            for method in METHODS {
+                let g = frame(&mesh, 4, &depth, &vec![true; nf], method);
+                assert_eq!(open_edges(&g), 0, "pillow depths {depth:?} {method:?}");
             }
         }
     }

@@ -114,3 +114,31 @@ impl Rng {
         self.0 % n
     }
 }
+
+/// The unit cube with its bottom face replaced by two quads around a new vertex 9 that share
+/// the two consecutive edges 1-9 and 9-4: vertex 9 is interior with valence 2. `rot` rotates the
+/// vertex lists of the two quads (by `rot[0]` and `rot[1]` places), which moves vertex 9 to a
+/// different corner of each patch.
+pub(super) fn valence2_cube(rot: [usize; 2]) -> Mesh {
+    let mut quads = [[1, 2, 4, 9], [1, 9, 4, 3]];
+    quads[0].rotate_left(rot[0] % 4);
+    quads[1].rotate_left(rot[1] % 4);
+    let mut obj = String::from(
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\nv 0.6 0.4 -0.1\n",
+    );
+    for q in quads {
+        obj += &format!("f {} {} {} {}\n", q[3], q[2], q[1], q[0]);
+    }
+    obj += "f 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+    Mesh::from_soup(&parse_obj(&obj).unwrap()).unwrap()
+}
+
+/// A pillow: two 2x2 quad sheets glued along their border ring; the four ring corners are
+/// interior vertices of valence 2, each at a different patch corner in its two faces.
+pub(super) fn pillow() -> Mesh {
+    let obj = "v -1 -1 0.1\nv 0 -1 0\nv 1 -1 -0.1\nv 1 0 0.05\nv 1 1 0.1\nv 0 1 0\nv -1 1 -0.05\n\
+               v -1 0 0\nv 0.1 0 0.8\nv 0 -0.1 -0.6\n\
+               f 1 2 9 8\nf 2 3 4 9\nf 9 4 5 6\nf 8 9 6 7\n\
+               f 8 10 2 1\nf 10 4 3 2\nf 6 5 4 10\nf 7 6 10 8\n";
+    Mesh::from_soup(&parse_obj(obj).unwrap()).unwrap()
+}

@@ -237,7 +237,7 @@ mod tests {
                     seed ^= seed >> 17;
                     seed ^= seed << 5;
                     let (x, y) = ((i % w) as f32 - 11.0, (i / w) as f32 - 8.0);
-                    x * x + y * y < (round as f32 * 0.4 + 2.0).powi(2) || seed % 53 == 0
+                    x * x + y * y < (round as f32 * 0.4 + 2.0).powi(2) || seed.is_multiple_of(53)
                 })
                 .collect();
             let fast = silhouette_distance(&mask, w, h);

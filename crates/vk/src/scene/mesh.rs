@@ -42,7 +42,7 @@ impl RenderMesh<'_> {
                 "{n} vertices exceed the u32 index range"
             )));
         }
-        if self.triangles.len() % 3 != 0 {
+        if !self.triangles.len().is_multiple_of(3) {
             return Err(VkError::InvalidMesh(format!(
                 "triangle index count {} is not a multiple of 3",
                 self.triangles.len()
