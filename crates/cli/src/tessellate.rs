@@ -145,7 +145,8 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh) -> anyhow::Result<ExitCode> {
             normals: Some(&nrm),
             face_offsets: &offsets,
             face_indices: &idx,
-            corner_normals: &[],
+            // One to one with the frame's triangle corners.
+            corner_normals: &g.corner_normals,
         },
     )?;
     println!(

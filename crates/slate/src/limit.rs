@@ -62,22 +62,22 @@ impl Worker {
         sided: bool,
     ) -> (Vec3A, Vec3A, Option<Vec3A>) {
         let n = self.t[self.cur].grid_size as i32;
-        if let Some(k) = grid_corner(i, j, n) {
-            if self.corners[k].active {
-                // Corner arrays hold world positions (in f64). The patch's face is ring face
-                // `ih` (the face of the patch's outgoing half-edge at the corner).
-                let mut faces = std::mem::take(&mut self.sided);
-                let c = &mut self.corners[k];
-                let (p, nrm) = if sided {
-                    c.ring.limit_sided(&mut faces)
-                } else {
-                    faces.clear();
-                    c.ring.limit()
-                };
-                let side = faces.get(c.ih).map(|f| Vec3A::from(f.as_vec3()));
-                self.sided = faces;
-                return (Vec3A::from(p.as_vec3()), Vec3A::from(nrm.as_vec3()), side);
-            }
+        if let Some(k) = grid_corner(i, j, n)
+            && self.corners[k].active
+        {
+            // Corner arrays hold world positions (in f64). The patch's face is ring face
+            // `ih` (the face of the patch's outgoing half-edge at the corner).
+            let mut faces = std::mem::take(&mut self.sided);
+            let c = &mut self.corners[k];
+            let (p, nrm) = if sided {
+                c.ring.limit_sided(&mut faces)
+            } else {
+                faces.clear();
+                c.ring.limit()
+            };
+            let side = faces.get(c.ih).map(|f| Vec3A::from(f.as_vec3()));
+            self.sided = faces;
+            return (Vec3A::from(p.as_vec3()), Vec3A::from(nrm.as_vec3()), side);
         }
         let t = &self.t[self.cur];
         if self.regular || t.is_plain(i, j) {
