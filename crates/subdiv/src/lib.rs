@@ -100,6 +100,7 @@
 
 mod builtin;
 mod camera;
+mod crease_normals;
 mod doi_setup;
 mod dynamic;
 mod frame;
