@@ -145,6 +145,8 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh) -> anyhow::Result<ExitCode> {
             normals: Some(&nrm),
             face_offsets: &offsets,
             face_indices: &idx,
+            // One to one with the frame's triangle corners.
+            corner_normals: &g.corner_normals,
         },
     )?;
     println!(

@@ -164,7 +164,8 @@ pub fn read_obj_soup(path: impl AsRef<Path>) -> Result<PolygonSoup, ObjError> {
     parse_obj(&text).map_err(|err| ObjError::Invalid { path: p, err })
 }
 
-/// Surface data to write as OBJ: positions, optional normals (one per position) and polygons.
+/// Surface data to write as OBJ: positions, optional normals (one per position, and one-sided
+/// normals of some face corners) and polygons.
 #[derive(Clone, Copy, Debug)]
 pub struct ObjData<'a> {
     /// Vertex positions.
@@ -175,6 +176,9 @@ pub struct ObjData<'a> {
     pub face_offsets: &'a [u32],
     /// 0-based vertex indices.
     pub face_indices: &'a [u32],
+    /// Normals of single face corners (index into `face_indices`, ascending), written as their
+    /// own `vn` after the per-vertex ones; only with `normals`.
+    pub corner_normals: &'a [(u32, [f32; 3])],
 }
 
 /// Formats surface data as OBJ text.
@@ -183,18 +187,27 @@ pub fn format_obj(data: &ObjData<'_>) -> String {
     for p in data.positions {
         let _ = writeln!(s, "v {} {} {}", p[0], p[1], p[2]);
     }
+    let mut corner_normals: &[(u32, [f32; 3])] = &[];
     if let Some(ns) = data.normals {
-        for n in ns {
+        corner_normals = data.corner_normals;
+        for n in ns.iter().chain(corner_normals.iter().map(|(_, n)| n)) {
             let _ = writeln!(s, "vn {} {} {}", n[0], n[1], n[2]);
         }
     }
+    // 1-based `vn` of the next corner normal.
+    let mut next_vn = data.normals.map_or(0, <[_]>::len) + 1;
     for w in data.face_offsets.windows(2) {
         s.push('f');
-        for &i in &data.face_indices[w[0] as usize..w[1] as usize] {
-            if data.normals.is_some() {
-                let _ = write!(s, " {}//{}", i + 1, i + 1);
-            } else {
+        for c in w[0]..w[1] {
+            let i = data.face_indices[c as usize] as usize;
+            if data.normals.is_none() {
                 let _ = write!(s, " {}", i + 1);
+            } else if corner_normals.first().is_some_and(|&(k, _)| k == c) {
+                let _ = write!(s, " {}//{}", i + 1, next_vn);
+                corner_normals = &corner_normals[1..];
+                next_vn += 1;
+            } else {
+                let _ = write!(s, " {}//{}", i + 1, i + 1);
             }
         }
         s.push('\n');
@@ -333,14 +346,30 @@ t crease 3/1/0 0 2 3 2.5\nt corner 1/1/0 7 4\nt hole 1/0/0 1\nt creasemethod 0/0
         let text = format_obj(&ObjData {
             positions: &pos,
             normals: Some(&pos),
-            face_offsets: &[0, 2],
-            face_indices: &[0, 1],
+            face_offsets: &[0, 2, 4],
+            face_indices: &[0, 1, 1, 0],
+            corner_normals: &[(1, [0.1, -1.0 / 3.0, 0.9]), (3, pos[1])],
         });
         let soup = parse_obj(&text).unwrap();
         for (a, b) in pos.iter().zip(&soup.positions) {
             assert_eq!(a.map(f32::to_bits), b.to_array().map(f32::to_bits));
         }
-        assert!(text.contains("f 1//1 2//2"));
+        assert!(text.contains("f 1//1 2//3\nf 2//2 1//4\n"), "{text}");
+        // The corner normals follow the vertex normals, exact.
+        let vn: Vec<[f32; 3]> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("vn "))
+            .map(|l| {
+                let v: Vec<f32> = l.split(' ').map(|x| x.parse().unwrap()).collect();
+                [v[0], v[1], v[2]]
+            })
+            .collect();
+        assert_eq!(vn.len(), 4);
+        assert_eq!(
+            vn[2].map(f32::to_bits),
+            [0.1f32, -1.0 / 3.0, 0.9].map(f32::to_bits)
+        );
+        assert_eq!(vn[3], pos[1]);
     }
 
     #[test]

@@ -5,20 +5,28 @@ use rayon::prelude::*;
 use subdiv_mesh::{BoundaryInterpolation, Mesh, ObjData, VertexId};
 
 use crate::refine::refine_uniform_levels;
-use crate::ring::{Ring, limit_point_with};
+use crate::ring::Ring;
 use crate::{Depth, RulesError, Scheme};
 
-/// A tessellated limit surface: one limit point and unit normal per vertex, and polygons.
+/// A tessellated limit surface: one limit point and unit normal per vertex, polygons, and
+/// one-sided normals of the face corners where the surface has a crease or a corner.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct LimitMesh {
     /// Limit positions.
     pub positions: Vec<[f32; 3]>,
-    /// Unit limit normals (zero only where the surface is fully degenerate).
+    /// Unit limit normals (zero only where the surface is fully degenerate). At a point on a
+    /// crease or a corner of the limit surface this is the mean of its sides' normals; the faces
+    /// there take theirs from `corner_normals`.
     pub normals: Vec<[f32; 3]>,
     /// Start of each face in `face_indices`, plus a final end offset.
     pub face_offsets: Vec<u32>,
     /// Vertex indices of all faces, counter-clockwise.
     pub face_indices: Vec<u32>,
+    /// One-sided unit normals of face corners, ascending by corner (index into
+    /// `face_indices`): the exact limit normal of the corner's face's side at a point where
+    /// the limit surface has a crease (sharp, or semi-sharp still sharp at the limit) or a
+    /// corner. Every other corner takes its vertex's normal.
+    pub corner_normals: Vec<(u32, [f32; 3])>,
 }
 
 impl LimitMesh {
@@ -29,6 +37,17 @@ impl LimitMesh {
     /// The vertex indices of face `i`.
     pub fn face(&self, i: usize) -> &[u32] {
         &self.face_indices[self.face_offsets[i] as usize..self.face_offsets[i + 1] as usize]
+    }
+    /// The normal of face corner `c` (an index into `face_indices`): its one-sided normal
+    /// where it has one, its vertex's normal otherwise.
+    pub fn corner_normal(&self, c: usize) -> [f32; 3] {
+        match self
+            .corner_normals
+            .binary_search_by_key(&(c as u32), |&(k, _)| k)
+        {
+            Ok(k) => self.corner_normals[k].1,
+            Err(_) => self.normals[self.face_indices[c] as usize],
+        }
     }
     /// Triangle list (each polygon as a fan from its first vertex).
     pub fn triangles(&self) -> Vec<u32> {
@@ -72,6 +91,7 @@ impl LimitMesh {
             normals: Some(&self.normals),
             face_offsets: &self.face_offsets,
             face_indices: &self.face_indices,
+            corner_normals: &self.corner_normals,
         }
     }
 }
@@ -83,25 +103,48 @@ pub fn limit_surface(mesh: &Mesh, scheme: Scheme) -> LimitMesh {
     let mut positions = vec![[0.0f32; 3]; n];
     let mut normals = vec![[0.0f32; 3]; n];
     const CHUNK: usize = 1024;
-    positions
+    // One-sided normals per (vertex, face), for the vertices that have them.
+    let sided: Vec<Vec<(u32, u32, [f32; 3])>> = positions
         .par_chunks_mut(CHUNK)
         .zip(normals.par_chunks_mut(CHUNK))
         .enumerate()
-        .for_each_init(Ring::new, |ring, (c, (ps, ns))| {
-            for k in 0..ps.len() {
-                let v = VertexId((c * CHUNK + k) as u32);
-                let (p, nrm) = limit_point_with(ring, mesh, v, scheme);
-                ps[k] = p.to_array();
-                ns[k] = nrm.to_array();
-            }
-        });
+        .map_init(
+            || (Ring::new(), Vec::new(), Vec::new()),
+            |(ring, hs, faces), (c, (ps, ns))| {
+                let mut sided = Vec::new();
+                for k in 0..ps.len() {
+                    let v = VertexId((c * CHUNK + k) as u32);
+                    if !ring.load_with_halfedges(mesh, v, scheme, hs) {
+                        ps[k] = mesh.position(v).to_array();
+                        continue;
+                    }
+                    let (p, nrm) = ring.limit_sided(faces);
+                    ps[k] = p.as_vec3().to_array();
+                    ns[k] = nrm.as_vec3().to_array();
+                    // Ring face `i` is the face of outgoing half-edge `i`.
+                    for (&h, f) in hs.iter().zip(faces.iter()) {
+                        sided.push((v.0, mesh.face(h).0, f.as_vec3().to_array()));
+                    }
+                }
+                sided
+            },
+        )
+        .collect();
+    let mut sided: Vec<(u32, u32, [f32; 3])> = sided.into_iter().flatten().collect();
+    sided.sort_unstable_by_key(|&(v, f, _)| (v, f));
     let mut face_offsets = vec![0u32];
     let mut face_indices = Vec::with_capacity(mesh.face_lists().1.len());
+    let mut corner_normals = Vec::new();
     for f in mesh.faces() {
         if mesh.is_hole(f) {
             continue;
         }
-        face_indices.extend(mesh.face_vertices(f).iter().map(|v| v.0));
+        for v in mesh.face_vertices(f) {
+            if let Ok(k) = sided.binary_search_by_key(&(v.0, f.0), |&(v, f, _)| (v, f)) {
+                corner_normals.push((face_indices.len() as u32, sided[k].2));
+            }
+            face_indices.push(v.0);
+        }
         face_offsets.push(face_indices.len() as u32);
     }
     LimitMesh {
@@ -109,6 +152,7 @@ pub fn limit_surface(mesh: &Mesh, scheme: Scheme) -> LimitMesh {
         normals,
         face_offsets,
         face_indices,
+        corner_normals,
     }
 }
 

@@ -18,6 +18,11 @@ use subdiv_mesh::{CreaseMethod, Mesh, TriangleSubdivision, VertexId};
 use crate::crease::{Rule, VertexRules, child_edge_sharpness, edge_crease_weight, is_semi_sharp};
 use crate::{Scheme, catmark, loop_scheme};
 
+mod sided;
+mod stencil;
+use sided::{Sides, sided_normals};
+pub use stencil::QuadRingStencil;
+
 /// The neighbourhood of one vertex, refinable in isolation.
 #[derive(Clone, Debug, Default)]
 pub struct Ring {
@@ -345,6 +350,18 @@ impl Ring {
         finish_limit(&parts, self.center, &self.edges, self.num_faces())
     }
 
+    /// [`Ring::limit`], and where the limit surface has a crease or a corner at the vertex (an
+    /// infinitely sharp or still semi-sharp crease that stays sharp in the limit, a corner with
+    /// two or more smooth sectors), the exact one-sided limit normal of each face of the ring
+    /// (face `i` between edges `i` and `i + 1`) in `faces`: the crease tangent crossed with that
+    /// side's cross tangent. `faces` is left empty where the surface has one tangent plane.
+    pub fn limit_sided(&mut self, faces: &mut Vec<DVec3>) -> (DVec3, DVec3) {
+        let parts = self.limit_parts();
+        let nf = self.num_faces();
+        sided_normals(&parts, &parts.sides, self.center, &self.edges, nf, faces);
+        finish_limit(&parts, self.center, &self.edges, nf)
+    }
+
     /// Refines as far as [`Ring::limit`] needs, then evaluates the limit masks: the linear part
     /// of the limit (position and tangents), before the normal is formed.
     fn limit_parts(&mut self) -> LimitParts {
@@ -381,7 +398,14 @@ impl Ring {
             self.rot_diag = diag2;
         }
         self.diag_buf = diag;
-        LimitParts { pos, t1, t2, other }
+        let sides = Sides::new(rule, self.boundary, &self.sharp, self.num_faces());
+        LimitParts {
+            pos,
+            t1,
+            t2,
+            other,
+            sides,
+        }
     }
 
     fn eval_masks(&self, edges: &[DVec3], diag: &[DVec3], rule: Rule) -> (DVec3, DVec3, DVec3) {
@@ -393,13 +417,14 @@ impl Ring {
 }
 
 /// The linear part of a ring's limit: position, the two tangents, and for an interior crease the
-/// tangents of the other side.
-#[derive(Clone, Copy, Debug)]
+/// tangents of the other side, and the sectors of its faces.
+#[derive(Clone, Debug)]
 struct LimitParts {
     pos: DVec3,
     t1: DVec3,
     t2: DVec3,
     other: Option<(DVec3, DVec3)>,
+    sides: Sides,
 }
 
 /// Forms the unit normal from the tangents of [`LimitParts`]: oriented like the faces of the
@@ -443,152 +468,6 @@ fn finish_limit(
     (parts.pos, normal)
 }
 
-/// [`Ring::limit`] of a Catmull-Clark ring of quads, precomputed for one configuration (crease
-/// method, boundary, valence, edge sharpness and far-end information; vertex sharpness 0).
-///
-/// The ring's refinement and its limit masks are linear in the ring's points, with weights that
-/// depend only on the configuration. [`QuadRingStencil::new`] runs the ring once per three basis
-/// points (one per coordinate) and keeps, for every ring point, its weight in the limit position,
-/// the tangents, and the refined ring that orients the normal. [`QuadRingStencil::limit`] applies
-/// them and forms the normal with the same code as [`Ring::limit`]; the result agrees with it up
-/// to rounding. Tessellators keep one per configuration met (semi-sharp creases make few).
-///
-/// ```
-/// use glam::DVec3;
-/// use subdiv_mesh::CreaseMethod;
-/// use subdiv_rules::{QuadRingStencil, Ring};
-/// // A vertex on a crease of sharpness 1.5 (edges 0 and 2), valence 4.
-/// let sharp = [1.5, 0.0, 1.5, 0.0];
-/// let far = [(0.0, 0); 4];
-/// let c = DVec3::new(0.0, 0.0, 0.2);
-/// let e = [DVec3::X, DVec3::Y, -DVec3::X, -DVec3::Y];
-/// let d = [DVec3::new(1.0, 1.0, 0.1), DVec3::new(-1.0, 1.0, 0.0), DVec3::new(-1.0, -1.0, 0.3), DVec3::new(1.0, -1.0, 0.0)];
-/// let st = QuadRingStencil::new(CreaseMethod::Uniform, false, &sharp, &far, d.len());
-/// let mut ring = Ring::new();
-/// ring.load_quads(CreaseMethod::Uniform, c, 0.0, false, &e, &sharp, &far, &d);
-/// let (p0, n0) = ring.limit();
-/// let (p1, n1) = st.limit(c, &e, &d);
-/// assert!((p0 - p1).length() < 1e-12 && (n0 - n1).length() < 1e-12);
-/// ```
-#[derive(Clone, Debug)]
-pub struct QuadRingStencil {
-    /// Edges and diagonals of the rings it applies to.
-    m: usize,
-    nd: usize,
-    num_faces: usize,
-    crease_sides: bool,
-    /// Rows of `1 + m + nd` weights (centre, edges, diagonals): position, t1, t2, u1, u2 (other
-    /// crease side; zero rows otherwise), refined centre, refined edges `0..m`.
-    w: Vec<f64>,
-}
-
-impl QuadRingStencil {
-    const POS: usize = 0;
-    const FIXED_ROWS: usize = 6;
-
-    /// Precomputes the limit of quad rings with edge sharpness `sharp`, far-end semi-sharp
-    /// (sum, count) `far` (Chaikin only) and `num_diag` diagonals (`sharp.len()` for an interior
-    /// vertex, one fewer on a boundary), as [`Ring::load_quads`] takes them.
-    pub fn new(
-        method: CreaseMethod,
-        boundary: bool,
-        sharp: &[f32],
-        far: &[(f32, u32)],
-        num_diag: usize,
-    ) -> QuadRingStencil {
-        let m = sharp.len();
-        let nd = num_diag;
-        let np = 1 + m + nd;
-        let rows = Self::FIXED_ROWS + m;
-        let mut w = vec![0.0; rows * np];
-        let mut ring = Ring::new();
-        let mut edges = vec![DVec3::ZERO; m];
-        let mut diag = vec![DVec3::ZERO; nd];
-        let mut crease_sides = false;
-        let mut num_faces = 0;
-        // Points q, q+1, q+2 at the x, y and z unit vectors: each output coordinate is one weight.
-        for q in (0..np).step_by(3) {
-            let basis = |k: usize| match k.checked_sub(q) {
-                Some(0) => DVec3::X,
-                Some(1) => DVec3::Y,
-                Some(2) => DVec3::Z,
-                _ => DVec3::ZERO,
-            };
-            let center = basis(0);
-            for (i, e) in edges.iter_mut().enumerate() {
-                *e = basis(1 + i);
-            }
-            for (i, d) in diag.iter_mut().enumerate() {
-                *d = basis(1 + m + i);
-            }
-            ring.load_quads(method, center, 0.0, boundary, &edges, sharp, far, &diag);
-            let parts = ring.limit_parts();
-            crease_sides = parts.other.is_some();
-            num_faces = ring.num_faces();
-            let (u1, u2) = parts.other.unwrap_or((DVec3::ZERO, DVec3::ZERO));
-            let mut put = |row: usize, v: DVec3| {
-                for (c, x) in v.to_array().into_iter().enumerate() {
-                    if q + c < np {
-                        w[row * np + q + c] = x;
-                    }
-                }
-            };
-            put(Self::POS, parts.pos);
-            put(1, parts.t1);
-            put(2, parts.t2);
-            put(3, u1);
-            put(4, u2);
-            put(5, ring.center);
-            for i in 0..m {
-                put(Self::FIXED_ROWS + i, ring.edges[i]);
-            }
-        }
-        QuadRingStencil {
-            m,
-            nd,
-            num_faces,
-            crease_sides,
-            w,
-        }
-    }
-
-    /// Limit position and unit normal of the ring `center`, `edges`, `diag` (the configuration's
-    /// sizes), like [`Ring::limit`] on the same ring.
-    pub fn limit(&self, center: DVec3, edges: &[DVec3], diag: &[DVec3]) -> (DVec3, DVec3) {
-        assert!(
-            edges.len() == self.m && diag.len() == self.nd,
-            "ring does not match the stencil's configuration"
-        );
-        let np = 1 + self.m + self.nd;
-        let row = |r: usize| {
-            let w = &self.w[r * np..(r + 1) * np];
-            let mut acc = center * w[0];
-            for (p, &x) in edges.iter().chain(diag).zip(&w[1..]) {
-                acc += *p * x;
-            }
-            acc
-        };
-        let mut refined = [DVec3::ZERO; 16];
-        let mut refined_vec = Vec::new();
-        let refined: &mut [DVec3] = if self.m <= refined.len() {
-            &mut refined[..self.m]
-        } else {
-            refined_vec.resize(self.m, DVec3::ZERO);
-            &mut refined_vec
-        };
-        for (i, e) in refined.iter_mut().enumerate() {
-            *e = row(Self::FIXED_ROWS + i);
-        }
-        let parts = LimitParts {
-            pos: row(Self::POS),
-            t1: row(1),
-            t2: row(2),
-            other: self.crease_sides.then(|| (row(3), row(4))),
-        };
-        finish_limit(&parts, row(5), refined, self.num_faces)
-    }
-}
-
 /// The exact limit position and normal of vertex `v` (for an isolated vertex: its position and
 /// a zero normal).
 ///
@@ -622,77 +501,6 @@ pub fn limit_point_with(ring: &mut Ring, mesh: &Mesh, v: VertexId, scheme: Schem
 mod tests {
     use super::*;
 
-    /// A small deterministic generator (xorshift) for test configurations.
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> f64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-        fn point(&mut self, scale: f64) -> DVec3 {
-            DVec3::new(self.next(), self.next(), self.next()) * scale
-        }
-    }
-
-    /// The stencil gives what the ring gives, for creases of every kind (integer, fractional,
-    /// infinite, Chaikin with far-end information), boundaries and valences 2 to 6.
-    #[test]
-    fn stencil_matches_ring_limit() {
-        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
-        let choices = [0.0f32, 0.0, 0.5, 1.0, 1.5, 2.0, 3.25, 10.0];
-        let mut checked = 0;
-        for case in 0..400 {
-            let method = if case % 2 == 0 {
-                CreaseMethod::Uniform
-            } else {
-                CreaseMethod::Chaikin
-            };
-            let boundary = case % 5 == 0;
-            let m = 2 + (rng.next() * 5.0) as usize;
-            if !boundary && m < 3 {
-                continue;
-            }
-            let nd = if boundary { m - 1 } else { m };
-            let sharp: Vec<f32> = (0..m)
-                .map(|_| choices[(rng.next() * choices.len() as f64) as usize])
-                .collect();
-            let far: Vec<(f32, u32)> = (0..m)
-                .map(|_| {
-                    let c = (rng.next() * 3.0) as u32;
-                    (c as f32 * (0.5 + rng.next() as f32 * 2.0), c)
-                })
-                .collect();
-            // A bumpy ring around the origin.
-            let center = rng.point(0.3);
-            let edges: Vec<DVec3> = (0..m)
-                .map(|i| {
-                    let a = std::f64::consts::TAU * i as f64 / m as f64;
-                    DVec3::new(a.cos(), a.sin(), 0.0) + rng.point(0.2)
-                })
-                .collect();
-            let diag: Vec<DVec3> = (0..nd)
-                .map(|i| {
-                    let a = std::f64::consts::TAU * (i as f64 + 0.5) / m as f64;
-                    DVec3::new(a.cos(), a.sin(), 0.0) * 1.4 + rng.point(0.2)
-                })
-                .collect();
-            let st = QuadRingStencil::new(method, boundary, &sharp, &far, nd);
-            let mut ring = Ring::new();
-            ring.load_quads(method, center, 0.0, boundary, &edges, &sharp, &far, &diag);
-            let (p0, n0) = ring.limit();
-            let (p1, n1) = st.limit(center, &edges, &diag);
-            assert!(
-                (p0 - p1).length() < 1e-12 && (n0 - n1).length() < 1e-9,
-                "case {case}: {method:?} boundary {boundary} sharp {sharp:?}: \
-                 ring ({p0}, {n0}) stencil ({p1}, {n1})"
-            );
-            checked += 1;
-        }
-        assert!(checked > 300);
-    }
-
     /// The pillow of fixtures/reference/shapes: its ring corners 0, 2, 4, 6 are interior
     /// vertices of valence 2.
     const PILLOW: &str = "v -1 -1 0.1\nv 0 -1 0\nv 1 -1 -0.1\nv 1 0 0.05\nv 1 1 0.1\nv 0 1 0\n\
@@ -719,12 +527,5 @@ mod tests {
         // limit_point, and through it the whole-mesh paths, agree.
         let (lp, _) = limit_point(&mesh, VertexId(0), Scheme::CatmullClark);
         assert_eq!(lp.as_dvec3(), p);
-    }
-
-    #[test]
-    #[should_panic(expected = "configuration")]
-    fn stencil_refuses_a_ring_of_another_size() {
-        let st = QuadRingStencil::new(CreaseMethod::Uniform, false, &[0.0; 4], &[(0.0, 0); 4], 4);
-        st.limit(DVec3::ZERO, &[DVec3::X; 3], &[DVec3::Y; 3]);
     }
 }

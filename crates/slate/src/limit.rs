@@ -30,24 +30,54 @@ pub(crate) struct StencilKey {
     far: [(u32, u32); 4],
 }
 
+/// Which corner of a grid of size `n` the point `(i, j)` is, if any.
+#[inline]
+fn grid_corner(i: i32, j: i32, n: i32) -> Option<usize> {
+    match (i, j) {
+        (0, 0) => Some(0),
+        (i, 0) if i == n => Some(1),
+        (i, j) if i == n && j == n => Some(2),
+        (0, j) if j == n => Some(3),
+        _ => None,
+    }
+}
+
 impl Worker {
     /// Limit position and normal of grid point `(i, j)` of the current slate. Each point is
     /// evaluated once per patch (corner arrays are consumed by their evaluation).
     #[inline]
     pub(crate) fn limit(&mut self, i: i32, j: i32) -> (Vec3A, Vec3A) {
+        let (p, n, _) = self.limit_sided(i, j, false);
+        (p, n)
+    }
+
+    /// [`Worker::limit`], and with `sided` where the limit surface has a crease or a corner at
+    /// the point, the one-sided normal of the patch's side (the side of the grid cell towards
+    /// the patch's interior). Only border points can have one: the edges inside a patch are
+    /// never sharp.
+    pub(crate) fn limit_sided(
+        &mut self,
+        i: i32,
+        j: i32,
+        sided: bool,
+    ) -> (Vec3A, Vec3A, Option<Vec3A>) {
         let n = self.t[self.cur].grid_size as i32;
-        if (i == 0 || i == n) && (j == 0 || j == n) {
-            let k = match (i == 0, j == 0) {
-                (true, true) => 0,
-                (false, true) => 1,
-                (false, false) => 2,
-                (true, false) => 3,
+        if let Some(k) = grid_corner(i, j, n)
+            && self.corners[k].active
+        {
+            // Corner arrays hold world positions (in f64). The patch's face is ring face
+            // `ih` (the face of the patch's outgoing half-edge at the corner).
+            let mut faces = std::mem::take(&mut self.sided);
+            let c = &mut self.corners[k];
+            let (p, nrm) = if sided {
+                c.ring.limit_sided(&mut faces)
+            } else {
+                faces.clear();
+                c.ring.limit()
             };
-            if self.corners[k].active {
-                // Corner arrays hold world positions (in f64).
-                let (p, nrm) = self.corners[k].ring.limit();
-                return (Vec3A::from(p.as_vec3()), Vec3A::from(nrm.as_vec3()));
-            }
+            let side = faces.get(c.ih).map(|f| Vec3A::from(f.as_vec3()));
+            self.sided = faces;
+            return (Vec3A::from(p.as_vec3()), Vec3A::from(nrm.as_vec3()), side);
         }
         let t = &self.t[self.cur];
         if self.regular || t.is_plain(i, j) {
@@ -60,10 +90,27 @@ impl Worker {
             let nrm = t1.cross(t2);
             let len = nrm.length();
             if len > 0.0 && len.is_finite() {
-                return (pos + self.origin32, nrm / len);
+                return (pos + self.origin32, nrm / len, None);
             }
         }
-        self.limit_general(i, j)
+        // The cell towards the patch's interior: its i and j directions.
+        let side = sided.then_some((if i < n { 0 } else { 2 }, if j < n { 1 } else { 3 }));
+        self.limit_general(i, j, side)
+    }
+
+    /// `true` if grid point `(i, j)` (on the border) may have one-sided normals: it is on a
+    /// sharp edge or a boundary (an active corner: its ring has a sharp edge or vertex).
+    pub(crate) fn may_be_sided(&self, i: i32, j: i32) -> bool {
+        let n = self.t[self.cur].grid_size as i32;
+        if let Some(k) = grid_corner(i, j, n) {
+            let c = &self.corners[k];
+            if c.active {
+                let r = &c.ring;
+                return r.vertex_sharpness() > 0.0
+                    || (0..r.valence()).any(|e| r.edge_sharpness(e) > 0.0);
+            }
+        }
+        !self.regular && !self.t[self.cur].is_plain(i, j)
     }
 
     /// Limits of all interior grid points `(i, j)`, `1 <= i, j <= n - 1`, of the current slate,
@@ -129,8 +176,15 @@ impl Worker {
         self.bad = bad;
     }
 
-    /// Limit through a ring built from the table (creases, boundaries, degenerate tangents).
-    fn limit_general(&mut self, i: i32, j: i32) -> (Vec3A, Vec3A) {
+    /// Limit through a ring built from the table (creases, boundaries, degenerate tangents), and
+    /// with `side` (the directions of a grid cell at the point) the one-sided normal of that
+    /// cell's face where the limit has more than one.
+    fn limit_general(
+        &mut self,
+        i: i32,
+        j: i32,
+        side: Option<(usize, usize)>,
+    ) -> (Vec3A, Vec3A, Option<Vec3A>) {
         let t = &self.t[self.cur];
         // Counter-clockwise directions, starting after a missing one (boundary).
         self.dirs.clear();
@@ -168,12 +222,30 @@ impl Worker {
         }
         let center = t.positions[t.at(i, j)].as_dvec3();
         let idx = self.stencil_index(boundary);
-        let (p, nrm) = self.stencils[idx]
-            .1
-            .limit(center, &self.r_edges, &self.r_diag);
+        let st = &self.stencils[idx].1;
+        let mut faces = std::mem::take(&mut self.sided);
+        faces.clear();
+        let (p, nrm) = match side {
+            Some(_) if st.is_sided() => {
+                st.limit_sided(center, &self.r_edges, &self.r_diag, &mut faces)
+            }
+            _ => st.limit(center, &self.r_edges, &self.r_diag),
+        };
+        // Ring face `k` lies between directions `dirs[k]` and `dirs[k + 1]`.
+        let one_sided = side.and_then(|(di, dj)| {
+            let m = self.dirs.len();
+            (0..faces.len())
+                .find(|&k| {
+                    let (a, b) = (self.dirs[k], self.dirs[(k + 1) % m]);
+                    (a == di && b == dj) || (a == dj && b == di)
+                })
+                .map(|k| Vec3A::from(faces[k].as_vec3()))
+        });
+        self.sided = faces;
         (
             Vec3A::from((p + self.origin).as_vec3()),
             Vec3A::from(nrm.as_vec3()),
+            one_sided,
         )
     }
 

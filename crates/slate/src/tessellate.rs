@@ -183,12 +183,12 @@ pub fn tessellate_layout_into(
         rest = b;
     }
     let level1 = layout.level1.as_ref();
-    layout
+    let sided: Vec<Vec<(u32, [f32; 3])>> = layout
         .patches
         .par_iter()
         .zip(chunks.into_par_iter())
         .with_min_len(8)
-        .for_each_init(
+        .map_init(
             || thread_worker(max_depth),
             |w, (p, quads)| {
                 let src = if p.level == 0 {
@@ -196,31 +196,54 @@ pub fn tessellate_layout_into(
                 } else {
                     level1.expect("level-1 mesh for level-1 patches")
                 };
-                run_patch(w, src, p, depth - p.level, &out, quads);
+                run_patch(w, src, p, depth - p.level, &out, quads)
             },
-        );
+        )
+        .collect();
+    // Corner normals in patch order: ascending, as each patch's are.
+    result.corner_normals.clear();
+    let mut start = 0u32;
+    for (p, slots) in layout.patches.iter().zip(sided) {
+        result
+            .corner_normals
+            .extend(slots.into_iter().map(|(k, n)| (start + k, n)));
+        start += 4 * quads_of(p) as u32;
+    }
     Ok(())
 }
 
-/// Gathers, subdivides and evaluates one patch; writes the points it owns and its quads.
-fn run_patch(wk: &mut Worker, src: &Mesh, p: &Patch, e: Depth, out: &SharedOut, quads: &mut [u32]) {
+/// Gathers, subdivides and evaluates one patch; writes the points it owns and its quads, and
+/// returns the one-sided normals of its quads' corners (index in `quads`, ascending) at points
+/// where the limit surface has a crease or a corner.
+fn run_patch(
+    wk: &mut Worker,
+    src: &Mesh,
+    p: &Patch,
+    e: Depth,
+    out: &SharedOut,
+    quads: &mut [u32],
+) -> Vec<(u32, [f32; 3])> {
     let w = &mut *wk;
     w.gather(src, p.face);
     for _ in 0..e {
         w.step();
     }
     let n = 1u32 << e;
-    // Corners and sides: only where this patch is the owner.
+    let visible = !quads.is_empty();
+    // Grid points with a one-sided normal of this patch's side.
+    let mut sided: Vec<(u32, u32, Vec3A)> = Vec::new();
+    // Corners and sides: where this patch is the owner, and for a visible patch wherever the
+    // point may lie on a crease (its side's normal is its own, owner or not).
     for (k, (i, j)) in [(0, 0), (n, 0), (n, n), (0, n)].into_iter().enumerate() {
-        if p.corner_owned[k] {
-            let (pos, nrm) = w.limit(i as i32, j as i32);
-            out.write(p.corners[k], pos, nrm);
+        if p.corner_owned[k] || (visible && w.may_be_sided(i as i32, j as i32)) {
+            let (pos, nrm, side) = w.limit_sided(i as i32, j as i32, visible);
+            if p.corner_owned[k] {
+                out.write(p.corners[k], pos, nrm);
+            }
+            sided.extend(side.map(|s| (i, j, s)));
         }
     }
     for (k, side) in p.sides.iter().enumerate() {
-        if !side.owned {
-            continue;
-        }
         for s in 1..n {
             let (i, j) = match k {
                 0 => (s, 0),
@@ -228,8 +251,13 @@ fn run_patch(wk: &mut Worker, src: &Mesh, p: &Patch, e: Depth, out: &SharedOut, 
                 2 => (n - s, n),
                 _ => (0, n - s),
             };
-            let (pos, nrm) = w.limit(i as i32, j as i32);
-            out.write(side.id(s), pos, nrm);
+            if side.owned || (visible && w.may_be_sided(i as i32, j as i32)) {
+                let (pos, nrm, one) = w.limit_sided(i as i32, j as i32, visible);
+                if side.owned {
+                    out.write(side.id(s), pos, nrm);
+                }
+                sided.extend(one.map(|o| (i, j, o)));
+            }
         }
     }
     // Interior: contiguous output rows.
@@ -244,6 +272,32 @@ fn run_patch(wk: &mut Worker, src: &Mesh, p: &Patch, e: Depth, out: &SharedOut, 
             unsafe { out.write_unchecked(k, pos, nrm) }
         });
     }
+    write_quads(wk, p, n, quads);
+    corner_slots(n, &sided)
+}
+
+/// The corners of the quads (row by row, corners counter-clockwise from the cell's lowest)
+/// at the grid points of `sided`, with their normals, ascending.
+fn corner_slots(n: u32, sided: &[(u32, u32, Vec3A)]) -> Vec<(u32, [f32; 3])> {
+    let mut slots = Vec::new();
+    for &(i, j, nrm) in sided {
+        for (ci, cj, corner) in [
+            (i, j, 0),
+            (i.wrapping_sub(1), j, 1),
+            (i.wrapping_sub(1), j.wrapping_sub(1), 2),
+            (i, j.wrapping_sub(1), 3),
+        ] {
+            if ci < n && cj < n {
+                slots.push(((cj * n + ci) * 4 + corner, nrm.to_array()));
+            }
+        }
+    }
+    slots.sort_unstable_by_key(|&(k, _)| k);
+    slots
+}
+
+/// Writes the quads of patch `p` (grid size `n`) into `quads` (nothing for a hidden patch).
+fn write_quads(wk: &mut Worker, p: &Patch, n: u32, quads: &mut [u32]) {
     if !quads.is_empty() {
         // Ids of the whole grid once (border through the layout, interior contiguous), then quads.
         let w = (n + 1) as usize;

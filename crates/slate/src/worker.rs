@@ -53,6 +53,8 @@ pub struct Worker {
     pub(crate) stencils: Vec<(StencilKey, QuadRingStencil)>,
     /// Most recently used entry of `stencils`.
     pub(crate) last_stencil: usize,
+    /// One-sided normals of the faces of the ring last evaluated (`limit_sided`).
+    pub(crate) sided: Vec<DVec3>,
 }
 
 impl Worker {
@@ -87,6 +89,7 @@ impl Worker {
             bad: Vec::new(),
             stencils: Vec::new(),
             last_stencil: 0,
+            sided: Vec::new(),
         }
     }
 
@@ -134,6 +137,23 @@ impl Worker {
         pos: &mut [[f32; 3]],
         nrm: &mut [[f32; 3]],
     ) {
+        self.patch_grid_sided(mesh, face, depth, pos, nrm, &mut Vec::new());
+    }
+
+    /// [`Worker::patch_grid`], and in `sided` (cleared first; grid index ascending) the
+    /// one-sided limit normal of this patch's side at the border points where the limit
+    /// surface has a crease or a corner (see `subdiv_rules::Ring::limit_sided`). Positions and
+    /// `nrm` (the averaged normal there) are the same as [`Worker::patch_grid`]'s.
+    pub fn patch_grid_sided(
+        &mut self,
+        mesh: &Mesh,
+        face: FaceId,
+        depth: Depth,
+        pos: &mut [[f32; 3]],
+        nrm: &mut [[f32; 3]],
+        sided: &mut Vec<(u32, [f32; 3])>,
+    ) {
+        sided.clear();
         let n = 1usize << depth;
         let w = n + 1;
         assert!(
@@ -155,9 +175,12 @@ impl Worker {
                 n.max(1) as usize
             };
             for i in (0..=n).step_by(step) {
-                let (p, q) = self.limit(i, j);
+                let (p, q, side) = self.limit_sided(i, j, true);
                 pos[row + i as usize] = p.to_array();
                 nrm[row + i as usize] = q.to_array();
+                if let Some(s) = side {
+                    sided.push(((row + i as usize) as u32, s.to_array()));
+                }
             }
         }
         self.limit_interior(|i, j, p, q| {

@@ -325,6 +325,8 @@ impl DoiSetup {
             normals: normals.iter().map(|n| n.to_array()).collect(),
             face_offsets: offsets.to_vec(),
             face_indices: indices.iter().map(|v| v.0).collect(),
+            // Sharp edges shade as creases: each sector of a vertex its own normal.
+            corner_normals: crate::crease_normals::sector_corner_normals(m, &normals),
         };
         Ok(Scene::from_limit(limit, scalar))
     }

@@ -102,6 +102,7 @@
 
 mod builtin;
 mod camera;
+mod crease_normals;
 mod doi_setup;
 mod dynamic;
 mod frame;

@@ -1,6 +1,8 @@
 //! The tessellated scene: a limit-surface tessellation packed for the renderer, with one scalar
-//! per vertex (the subdivision depth, or a DoI value), normals split at creases, and what
+//! per vertex (the subdivision depth, or a DoI value), one-sided normals at creases, and what
 //! silhouette extraction needs.
+
+use std::collections::HashMap;
 
 use glam::Vec3;
 use subdiv_mesh::Mesh;
@@ -71,7 +73,7 @@ impl Scene {
             positions: limit.positions.clone(),
             normals: limit.normals.clone(),
         };
-        split_crease_normals(&limit, &mut mesh);
+        split_sided_vertices(&limit, &mut mesh);
         Scene {
             mesh,
             silhouettes,
@@ -96,41 +98,33 @@ impl Scene {
     }
 }
 
-/// Corners whose limit normal is further than this from their face's normal (cosine) get the
-/// face normal instead: 45°.
-const CREASE_NORMAL_COS: f32 = std::f32::consts::FRAC_1_SQRT_2;
-
-/// Triangulates `limit` into `mesh` (a fan per polygon) with split normals along creases.
+/// Triangulates `limit` into `mesh` (a fan per polygon) with the one-sided normals of the
+/// tessellation at creases and corners.
 ///
-/// A vertex on a sharp crease has one limit normal but two one-sided surface normals; shading
-/// the faces on both sides with that one normal smears the crease. A face corner whose limit
-/// normal deviates by more than 45° from the face's normal gets its own vertex with the face
-/// normal (position and scalar copied; edges and silhouettes keep the shared vertices).
-fn split_crease_normals(limit: &LimitMesh, mesh: &mut OwnedMesh) {
-    let p = |i: u32| Vec3::from(limit.positions[i as usize]);
+/// A point on a crease has one normal per side; a face corner with a one-sided normal gets a
+/// vertex of its own per distinct normal (position copied bit for bit, so the surface stays
+/// watertight, and scalar copied; edges and silhouettes keep the shared vertices).
+fn split_sided_vertices(limit: &LimitMesh, mesh: &mut OwnedMesh) {
+    let mut copies: HashMap<(u32, [u32; 3]), u32> = HashMap::new();
+    let mut sided = limit.corner_normals.iter().peekable();
     let mut corner = Vec::new();
     for f in 0..limit.num_faces() {
-        let vs = limit.face(f);
-        // Newell's sum about the first corner: about the origin, the cross products of a small
-        // face far from it cancel in f32 and leave noise for a normal.
-        let o = p(vs[0]);
-        let n: Vec3 = (1..vs.len().saturating_sub(1))
-            .map(|k| (p(vs[k]) - o).cross(p(vs[k + 1]) - o))
-            .sum();
-        let n = n.normalize_or_zero();
         corner.clear();
-        for &v in vs {
-            let limit_normal = Vec3::from(limit.normals[v as usize]);
-            if n == Vec3::ZERO || limit_normal.dot(n) >= CREASE_NORMAL_COS {
+        for c in limit.face_offsets[f]..limit.face_offsets[f + 1] {
+            let v = limit.face_indices[c as usize];
+            let Some(&(_, n)) = sided.next_if(|&&(k, _)| k == c) else {
                 corner.push(v);
-            } else {
-                corner.push(mesh.positions.len() as u32);
+                continue;
+            };
+            let id = *copies.entry((v, n.map(f32::to_bits))).or_insert_with(|| {
                 mesh.positions.push(limit.positions[v as usize]);
-                mesh.normals.push(n.to_array());
+                mesh.normals.push(n);
                 if let Some(s) = mesh.scalars.as_mut() {
                     s.push(s[v as usize]);
                 }
-            }
+                mesh.positions.len() as u32 - 1
+            });
+            corner.push(id);
         }
         for k in 1..corner.len() - 1 {
             mesh.triangles
@@ -145,9 +139,18 @@ mod tests {
     use crate::silhouettes::tests::cube;
 
     #[test]
-    fn crease_corners_get_face_normals() {
-        // The cube's corner normals are 54.7° off every face: all 24 corners are split.
-        let limit = cube();
+    fn corners_with_one_sided_normals_get_their_own_vertices() {
+        // The cube with the normal of its face at every corner: all 24 corners are split, and
+        // corners sharing a vertex and a normal share the copy.
+        let mut limit = cube();
+        let p = |i: u32| Vec3::from(limit.positions[i as usize]);
+        limit.corner_normals = (0..limit.face_indices.len() as u32)
+            .map(|c| {
+                let f = &limit.face_indices[(c / 4 * 4) as usize..][..4];
+                let n = (p(f[1]) - p(f[0])).cross(p(f[2]) - p(f[1])).normalize();
+                (c, n.to_array())
+            })
+            .collect();
         let scene = Scene::from_limit(limit.clone(), vec![1.0; 8]);
         let m = &scene.mesh;
         assert_eq!(m.positions.len(), 8 + 24);
@@ -162,48 +165,62 @@ mod tests {
                 n[0] == n[1] && n[1] == n[2] && n[0].abs().max_element() == 1.0,
                 "{n:?}"
             );
+            // Copies keep the position's bits.
+            for &i in t {
+                assert!(limit.positions.contains(&m.positions[i as usize]));
+            }
         }
         assert_eq!(m.scalars.as_ref().unwrap().len(), m.positions.len());
         assert_eq!(m.edges.as_ref().unwrap().len(), 12);
-        // Normals within 45° of the face normal stay shared: a tilted-normal quad is not split.
-        let quad = LimitMesh {
-            positions: vec![
-                [0.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [1.0, 1.0, 0.0],
-                [0.0, 1.0, 0.0],
-            ],
-            normals: vec![
-                [0.0, 0.6, 0.8],
-                [0.0, 0.0, 1.0],
-                [0.6, 0.0, 0.8],
-                [0.0, 0.0, 1.0],
-            ],
-            face_offsets: vec![0, 4],
-            face_indices: vec![0, 1, 2, 3],
-        };
-        let scene = Scene::from_limit(quad, vec![0.0; 4]);
-        assert_eq!(scene.mesh.positions.len(), 4);
-        assert_eq!(scene.mesh.triangles, [0, 1, 2, 0, 2, 3]);
+        // Without one-sided normals nothing is split, however far the normals lean.
+        limit.corner_normals.clear();
+        let scene = Scene::from_limit(limit, vec![0.0; 8]);
+        assert_eq!(scene.mesh.positions.len(), 8);
+    }
+
+    /// The cage of a cube with every edge infinitely sharp: its limit surface is the cube.
+    fn sharp_cube(scheme: Scheme) -> Mesh {
+        let quads = "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+        let tris = "f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\nf 3 8 4\n\
+                    f 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n";
+        let faces = if scheme == Scheme::Loop { tris } else { quads };
+        let text = format!(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n{faces}"
+        );
+        let mut cage = Mesh::from_soup(&subdiv_mesh::parse_obj(&text).unwrap()).unwrap();
+        for e in 0..cage.num_edges() as u32 {
+            let e = subdiv_mesh::EdgeId(e);
+            let [a, b] = cage.edge_vertices(e);
+            // Cube edges only (not the triangles' diagonals).
+            let d = cage.position(a) - cage.position(b);
+            if d.abs().max_element() == d.length() {
+                cage.set_edge_sharpness(e, 10.0);
+            }
+        }
+        cage
     }
 
     #[test]
-    fn small_faces_far_from_the_origin_keep_their_smooth_normals() {
-        // Quads of 1e-4 around (1.73, -1.22, 0.31), like deep faces of catmark_pawn: about the
-        // origin, the cross products cancel in f32 and the face normal was noise, so corners
-        // were split with a wrong (often flipped) normal.
-        for k in 0..50 {
-            let t = k as f32 * 0.0137;
-            let (x, y, z) = (1.7312345 + t, -1.2187654 - t, 0.3123456 + t);
-            let s = 1e-4f32;
-            let quad = LimitMesh {
-                positions: vec![[x, y, z], [x + s, y, z], [x + s, y + s, z], [x, y + s, z]],
-                normals: vec![[0.0, 0.0, 1.0]; 4],
-                face_offsets: vec![0, 4],
-                face_indices: vec![0, 1, 2, 3],
-            };
-            let scene = Scene::from_limit(quad, vec![6.0; 4]);
-            assert_eq!(scene.mesh.positions.len(), 4, "corner split at offset {t}");
+    fn a_sharp_cube_is_shaded_flat_at_every_depth() {
+        for (scheme, depths) in [(Scheme::CatmullClark, 0..=3), (Scheme::Loop, 0..=2)] {
+            let cage = sharp_cube(scheme);
+            for depth in depths {
+                let m = Scene::uniform(&cage, scheme, depth).unwrap().mesh;
+                for t in m.triangles.chunks(3) {
+                    let p: Vec<Vec3> = t
+                        .iter()
+                        .map(|&i| Vec3::from(m.positions[i as usize]))
+                        .collect();
+                    let flat = (p[1] - p[0]).cross(p[2] - p[0]).normalize();
+                    for &i in t {
+                        let n = Vec3::from(m.normals[i as usize]);
+                        assert!(
+                            n.dot(flat) > 1.0 - 1e-6,
+                            "{scheme:?} depth {depth}: normal {n} on face {flat}"
+                        );
+                    }
+                }
+            }
         }
     }
 

@@ -105,6 +105,7 @@ pub(crate) mod tests {
             normals,
             face_offsets: (0..=6).map(|i| i * 4).collect(),
             face_indices: faces.iter().flatten().copied().collect(),
+            corner_normals: Vec::new(),
         }
     }
 

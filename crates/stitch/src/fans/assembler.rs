@@ -23,6 +23,19 @@ pub(super) struct Block {
     pub(super) depth: Option<Depth>,
     pub(super) pos: Vec<[f32; 3]>,
     pub(super) nrm: Vec<[f32; 3]>,
+    /// The patch's own one-sided limit normals at its border points on creases and corners:
+    /// (index in `pos`, normal), ascending (`Worker::patch_grid_sided`).
+    pub(super) sided: Vec<(u32, [f32; 3])>,
+}
+
+impl Block {
+    /// The patch's own one-sided normal at block index `k`, if the point has one.
+    pub(super) fn sided_at(&self, k: u32) -> Option<[f32; 3]> {
+        self.sided
+            .binary_search_by_key(&k, |&(i, _)| i)
+            .ok()
+            .map(|x| self.sided[x].1)
+    }
 }
 
 /// Per-unit topology: its half-edges, in face order, and which of its corners are pinched.
@@ -164,7 +177,12 @@ impl Assembler {
         );
         self.fill_vertex_depth(&depth, out);
         // Index buffer: each patch's triangles, in parallel, then concatenated in patch order.
-        fr.emit_frame(active, self.method, &mut out.indices);
+        fr.emit_frame(
+            active,
+            self.method,
+            &mut out.indices,
+            &mut out.corner_normals,
+        );
         out.unit_depth = (0..nu)
             .map(|u| if active[u] { depth[u] } else { u8::MAX })
             .collect();
@@ -172,7 +190,9 @@ impl Assembler {
     }
 
     /// Required depth per patch: its own, plus one where it must fan towards a deeper side
-    /// (`None` for inactive patches).
+    /// (`None` for inactive patches). A side fanned towards a deeper unit across a sharp cage
+    /// edge needs the deeper side's resolution: the fans there use this patch's own one-sided
+    /// normals at the deeper points of the crease.
     fn required_depths(&self, mesh: &Mesh, depth: &[Depth], active: &[bool]) -> Vec<Option<Depth>> {
         let fr = Frame::new(
             mesh,
@@ -188,7 +208,16 @@ impl Assembler {
             .iter()
             .map(|p| {
                 active[p.unit as usize].then(|| {
-                    fr.patch_depth(p) as Depth + Depth::from(fr.fans(p).iter().any(|&x| x))
+                    let fans = fr.fans(p);
+                    let own = fr.patch_depth(p) as Depth + Depth::from(fans.iter().any(|&x| x));
+                    let crease = (0..4)
+                        .filter(|&k| fans[k])
+                        .filter_map(|k| fr.side_edge(p, k))
+                        .filter(|e| mesh.edge_sharpness(*e) > 0.0)
+                        .map(|e| fr.edge_res[e.idx()] - p.level)
+                        .max()
+                        .unwrap_or(0);
+                    own.max(crease)
                 })
             })
             .collect()
@@ -228,8 +257,16 @@ impl Assembler {
                         depth: Some(d),
                         pos: vec![[0.0; 3]; n * n],
                         nrm: vec![[0.0; 3]; n * n],
+                        sided: Vec::new(),
                     };
-                    w.patch_grid(set.source(mesh, p), p.src_face, d, &mut b.pos, &mut b.nrm);
+                    w.patch_grid_sided(
+                        set.source(mesh, p),
+                        p.src_face,
+                        d,
+                        &mut b.pos,
+                        &mut b.nrm,
+                        &mut b.sided,
+                    );
                     (i, b)
                 },
             )

@@ -99,6 +99,38 @@ impl<'a> Frame<'a> {
         f
     }
 
+    /// The cage edge along side `k` of patch `p`, if that side lies on one (level-1 patches:
+    /// sides 0 and 3).
+    pub(super) fn side_edge(&self, p: &PatchRef, k: usize) -> Option<subdiv_mesh::EdgeId> {
+        let hs = &self.units[p.unit as usize].hs;
+        if p.level == 0 {
+            return Some(hs[k].edge());
+        }
+        let (n, sub) = (hs.len(), p.sub as usize);
+        match k {
+            0 => Some(hs[sub].edge()),
+            3 => Some(hs[(sub + n - 1) % n].edge()),
+            _ => None,
+        }
+    }
+
+    /// The one-sided normal of patch `pi` at its own block point `own` (an id from
+    /// [`Frame::own`]), if it has one there.
+    #[inline]
+    pub(super) fn own_sided(&self, pi: usize, own: u32) -> Option<[f32; 3]> {
+        let b = &self.blocks[pi];
+        if b.sided.is_empty() {
+            return None;
+        }
+        b.sided_at(own - self.block_start[pi])
+    }
+
+    /// Whether patch `pi`'s block holds its depth-`d` grid.
+    #[inline]
+    pub(super) fn has_depth(&self, pi: usize, d: u32) -> bool {
+        self.blocks[pi].depth.is_some_and(|c| u32::from(c) >= d)
+    }
+
     /// Output id of point `(i, j)` of patch `pi`'s own block at depth-`d` grid coordinates,
     /// where `d` may be the patch depth or one more (for fan centres and subdivided edges):
     /// `scale` = 1 for patch-depth coordinates, 2 for one level finer.

@@ -9,6 +9,10 @@ pub struct FrameGeometry {
     pub normals: Vec<[f32; 3]>,
     /// Triangle list, counter-clockwise.
     pub indices: Vec<u32>,
+    /// Where the limit surface has a crease or a corner: (corner index in `indices`, the exact
+    /// one-sided limit normal of that triangle's side), ascending and sparse. Each patch gives
+    /// its own side's normal at the points of its border; `normals` keeps the averaged one.
+    pub corner_normals: Vec<(u32, [f32; 3])>,
     /// Per vertex: the depth of the patch it belongs to (for depth colouring).
     pub vertex_depth: Vec<f32>,
     /// Depth of each unit (cage face) this frame; `u8::MAX` for units not drawn.

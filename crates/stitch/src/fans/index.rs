@@ -12,7 +12,10 @@ use rayon::prelude::*;
 use subdiv_slate::PatchRef;
 
 use super::edges::Frame;
-use super::grid::side_of_on;
+use super::grid::{side_of_on, side_point};
+
+/// No block point of the patch's own (interior corners, or a block too coarse).
+const NO_OWN: u32 = u32::MAX;
 
 /// How the quads next to a deeper neighbour are closed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -26,30 +29,53 @@ pub enum FanMethod {
 
 impl Frame<'_> {
     /// The frame's index buffer: each active, non-hole patch's triangles, emitted in parallel,
-    /// then concatenated in patch order into `out` (cleared first).
-    pub(super) fn emit_frame(&self, active: &[bool], method: FanMethod, out: &mut Vec<u32>) {
-        let tris: Vec<Vec<u32>> = self
+    /// then concatenated in patch order into `out` (cleared first); and in `corner_normals`
+    /// (cleared first; corner index in `out`, ascending) each patch's own one-sided normal at
+    /// the triangle corners on creases and corners of the limit surface.
+    pub(super) fn emit_frame(
+        &self,
+        active: &[bool],
+        method: FanMethod,
+        out: &mut Vec<u32>,
+        corner_normals: &mut Vec<(u32, [f32; 3])>,
+    ) {
+        type PatchOut = (Vec<u32>, Vec<(u32, [f32; 3])>);
+        let tris: Vec<PatchOut> = self
             .set
             .patches()
             .par_iter()
             .map(|p| {
-                let mut v = Vec::new();
+                let (mut v, mut own) = (Vec::new(), Vec::new());
+                let mut sided = Vec::new();
                 if active[p.unit as usize]
                     && !self.mesh.is_hole(self.set.units()[p.unit as usize].face)
                 {
-                    self.emit_patch(p, method, &mut v);
+                    self.emit_patch(p, method, &mut v, &mut own);
+                    let pi = self.patch_index(p.unit as usize, p.sub as usize);
+                    for (c, &o) in own.iter().enumerate() {
+                        if o != NO_OWN
+                            && let Some(nrm) = self.own_sided(pi, o)
+                        {
+                            sided.push((c as u32, nrm));
+                        }
+                    }
                 }
-                v
+                (v, sided)
             })
             .collect();
         out.clear();
-        for t in tris {
+        corner_normals.clear();
+        for (t, sided) in tris {
+            let start = out.len() as u32;
+            corner_normals.extend(sided.into_iter().map(|(c, n)| (start + c, n)));
             out.extend_from_slice(&t);
         }
     }
 
-    /// The triangles of one patch.
-    fn emit_patch(&self, p: &PatchRef, method: FanMethod, out: &mut Vec<u32>) {
+    /// The triangles of one patch, and parallel to `out` in `own` the patch's own block point
+    /// of each corner on the patch's border ([`NO_OWN`] for interior points, whose normal is
+    /// never one-sided, and for deeper points its block does not hold).
+    fn emit_patch(&self, p: &PatchRef, method: FanMethod, out: &mut Vec<u32>, own: &mut Vec<u32>) {
         let pi = self.patch_index(p.unit as usize, p.sub as usize);
         let d = self.patch_depth(p);
         let n = 1u32 << d;
@@ -72,21 +98,38 @@ impl Frame<'_> {
             };
             (at(1) || at(3)) && !(at(0) || at(2))
         };
-        let id = |i: u32, j: u32| self.point_id(pi, p, i, j);
-        let mut poly: Vec<u32> = Vec::with_capacity(16);
+        // (shared id, own block point or NO_OWN).
+        let id = |i: u32, j: u32| {
+            let border = i == 0 || j == 0 || i == n || j == n;
+            let o = if border {
+                self.own(pi, i, j, d)
+            } else {
+                NO_OWN
+            };
+            (self.point_id(pi, p, i, j), o)
+        };
+        let mut push = |tri: [(u32, u32); 3]| {
+            for (x, o) in tri {
+                out.push(x);
+                own.push(o);
+            }
+        };
+        let mut poly: Vec<(u32, u32)> = Vec::with_capacity(16);
         for j in 0..n {
             for i in 0..n {
                 if !(any && replaced(i, j)) {
                     let (a, b, c, e) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
                     if flip(i, j) {
-                        out.extend_from_slice(&[a, b, e, b, c, e]);
+                        push([a, b, e]);
+                        push([b, c, e]);
                     } else {
-                        out.extend_from_slice(&[a, b, c, a, c, e]);
+                        push([a, b, c]);
+                        push([a, c, e]);
                     }
                     continue;
                 }
                 // Fan around the limit point of the quad's next-level face point.
-                let centre = self.own(pi, 2 * i + 1, 2 * j + 1, d + 1);
+                let centre = (self.own(pi, 2 * i + 1, 2 * j + 1, d + 1), NO_OWN);
                 poly.clear();
                 // The quad's four edges, counter-clockwise: bottom, right, top, left; each from
                 // its start corner (inclusive) to its end corner (exclusive).
@@ -113,18 +156,20 @@ impl Frame<'_> {
                             _ => (i.wrapping_sub(1), j),
                         };
                         if oi < n && oj < n && replaced(oi, oj) {
-                            poly.push(self.own(pi, ci + ni, cj + nj, d + 1));
+                            // An inner edge's midpoint: inside the patch.
+                            poly.push((self.own(pi, ci + ni, cj + nj, d + 1), NO_OWN));
                         }
                     }
                 }
                 for k in 0..poly.len() {
-                    out.extend_from_slice(&[centre, poly[k], poly[(k + 1) % poly.len()]]);
+                    push([centre, poly[k], poly[(k + 1) % poly.len()]]);
                 }
             }
         }
     }
 
-    /// The deeper neighbour's points strictly between two corners of a border quad on side `k`.
+    /// The deeper neighbour's points strictly between two corners of a border quad on side `k`,
+    /// each with this patch's own block point there where its block is that deep.
     #[allow(clippy::too_many_arguments)]
     fn push_fine_points(
         &self,
@@ -134,9 +179,8 @@ impl Frame<'_> {
         a: (u32, u32),
         b: (u32, u32),
         n: u32,
-        poly: &mut Vec<u32>,
+        poly: &mut Vec<(u32, u32)>,
     ) {
-        let _ = pi;
         let u = p.unit as usize;
         let hs = &self.units[u].hs;
         let d = self.patch_depth(p);
@@ -156,13 +200,24 @@ impl Frame<'_> {
         let r = self.edge_res[h.edge().idx()] as u32;
         let delta = r - ud;
         let (t0, t1) = ((offset + sa) << delta, (offset + sb) << delta);
+        // This patch's own copy of the point at `t`: parameter `t - (offset << delta)` along
+        // its side `k` at its own depth `r - level` (sides run the way their half-edges do).
+        let dp = r - u32::from(p.level);
+        let deep = self.has_depth(pi, dp);
+        let own = |t: u32| {
+            if !deep {
+                return NO_OWN;
+            }
+            let (i, j) = side_point(k, t - (offset << delta), 1 << dp);
+            self.own(pi, i, j, dp)
+        };
         if t1 > t0 {
             for t in t0 + 1..t1 {
-                poly.push(self.edge_point_id(h, t, r));
+                poly.push((self.edge_point_id(h, t, r), own(t)));
             }
         } else {
             for t in (t1 + 1..t0).rev() {
-                poly.push(self.edge_point_id(h, t, r));
+                poly.push((self.edge_point_id(h, t, r), own(t)));
             }
         }
     }
