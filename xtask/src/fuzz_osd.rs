@@ -251,7 +251,7 @@ fn run(root: &Path, o: &Options) -> Result<(u64, u64)> {
                             .expect("no panic")
                             .push(Failure { index, level, what });
                     }
-                    if (k + 1) % 1000 == 0 {
+                    if (k + 1).is_multiple_of(1000) {
                         eprintln!(
                             "fuzz-osd: {} cages, {:.0} s",
                             k + 1,
