@@ -58,14 +58,14 @@ impl BenchQualityArgs {
         if self.runs == 0 {
             bail!("--runs must be at least 1");
         }
-        if let Some(r) = self.reference_depth {
-            if r <= self.max_depth {
-                bail!(
-                    "--reference-depth {r} is not deeper than --max-depth {}: the reference \
-                     must be deeper than every configuration",
-                    self.max_depth
-                );
-            }
+        if let Some(r) = self.reference_depth
+            && r <= self.max_depth
+        {
+            bail!(
+                "--reference-depth {r} is not deeper than --max-depth {}: the reference \
+                 must be deeper than every configuration",
+                self.max_depth
+            );
         }
         let (w, h) = self.camera.size;
         let params = QualityParams {
