@@ -5,7 +5,7 @@
 use glam::Vec3;
 use rayon::prelude::*;
 use subdiv_depth::{NormalCone, PatchError, PatchErrors};
-use subdiv_mesh::{Mesh, closest_point_on_triangle};
+use subdiv_mesh::{FaceId, Mesh};
 use subdiv_slate::{Depth, MAX_DEPTH, thread_worker};
 use subdiv_stitch::Assembler;
 
@@ -17,8 +17,9 @@ pub const SAMPLE_LEVELS: Depth = 2;
 
 /// Measures, for each cage face and depth `l <= max_depth`, the largest distance between the
 /// limit surface and the triangles drawn at depth `l` (each grid quad split along its
-/// `(i, j)`–`(i + 1, j + 1)` diagonal, as `subdiv-stitch` draws it; each sample against the
-/// nearer of its quad's two triangles), sampled on the depth
+/// `(i, j)`–`(i + 1, j + 1)` diagonal, as `subdiv-stitch` draws it; the gap along the limit
+/// normal, or the whole gap near the cage's boundary and holes, see `Grid::triangle_deviation`),
+/// sampled on the depth
 /// `max_depth + SAMPLE_LEVELS` grid (at most [`MAX_DEPTH`]) of every patch of the face; and a
 /// cone containing the face's limit normals, widened by the largest angle between neighbouring
 /// samples (normals between samples lean no further than that for a smooth patch).
@@ -38,9 +39,10 @@ pub fn patch_errors(mesh: &Mesh, asm: &Assembler, max_depth: Depth) -> PatchErro
                 nrm.resize((n + 1) * (n + 1), [0.0f32; 3]);
                 w.patch_grid(set.source(mesh, p), p.src_face, l_fine, pos, nrm);
                 let grid = Grid { n, pos, nrm };
+                let outline = touches_outline(mesh, set.units()[p.unit as usize].face);
                 let dev = (0..=max_depth)
                     .map(|ld| match ld.checked_sub(p.level) {
-                        Some(l) if l <= l_fine => grid.triangle_deviation(l_fine - l),
+                        Some(l) if l <= l_fine => grid.triangle_deviation(l_fine - l, outline),
                         _ => f32::INFINITY,
                     })
                     .collect();
@@ -71,6 +73,17 @@ pub fn patch_errors(mesh: &Mesh, asm: &Assembler, max_depth: Depth) -> PatchErro
     PatchErrors { faces, closed }
 }
 
+/// Whether face `f` shares a vertex with the cage's boundary or with a hole (so the surface's
+/// own edge may be an outline on screen near it).
+fn touches_outline(mesh: &Mesh, f: FaceId) -> bool {
+    mesh.face_vertices(f).iter().any(|&v| {
+        mesh.outgoing(v).any(|h| {
+            let g = mesh.face(h);
+            !g.is_some() || mesh.is_hole(g) || !mesh.face(h.twin()).is_some()
+        })
+    })
+}
+
 /// One patch's limit points and normals on an `(n + 1)²` grid.
 struct Grid<'a> {
     n: usize,
@@ -85,9 +98,16 @@ impl Grid<'_> {
     }
 
     /// Largest distance of a sample from the triangles of the coarser grid with `step` samples
-    /// per quad side: quad `(a, b, c, e)` drawn as `(a, b, c)` and `(a, c, e)`.
-    fn triangle_deviation(&self, shift: Depth) -> f32 {
+    /// per quad side: quad `(a, b, c, e)` drawn as `(a, b, c)` and `(a, c, e)`, each sample
+    /// against the triangle point of the same parameters. Inside the surface only the part of
+    /// that gap along the limit normal counts: at a silhouette the normal lies across the line
+    /// of sight, so the outline moves by the normal part, while the part along the surface
+    /// slides points within it and moves nothing on screen. Where the face reaches the cage's
+    /// boundary or a hole (`outline`), the surface's own edge is an outline too, and the whole
+    /// gap counts.
+    fn triangle_deviation(&self, shift: Depth, outline: bool) -> f32 {
         let step = 1usize << shift;
+        let w = self.n + 1;
         let mut worst = 0.0f32;
         for j0 in (0..self.n).step_by(step) {
             for i0 in (0..self.n).step_by(step) {
@@ -97,13 +117,19 @@ impl Grid<'_> {
                 let e = self.at(i0, j0 + step);
                 for j in j0..=j0 + step {
                     for i in i0..=i0 + step {
-                        // Distance to the nearer of the quad's two drawn triangles: the
-                        // geometric gap, without the in-plane (parametric) shift of the
-                        // limit points, which moves nothing on screen.
-                        let p = self.at(i, j);
-                        let d = (p - closest_point_on_triangle(p, a, b, c))
-                            .length()
-                            .min((p - closest_point_on_triangle(p, a, c, e)).length());
+                        let u = (i - i0) as f32 / step as f32;
+                        let v = (j - j0) as f32 / step as f32;
+                        let on = if v <= u {
+                            a * (1.0 - u) + b * (u - v) + c * v
+                        } else {
+                            a * (1.0 - v) + c * u + e * (v - u)
+                        };
+                        let gap = self.at(i, j) - on;
+                        let d = if outline {
+                            gap.length()
+                        } else {
+                            gap.dot(Vec3::from(self.nrm[j * w + i])).abs()
+                        };
                         worst = worst.max(d);
                     }
                 }
