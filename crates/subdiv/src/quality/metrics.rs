@@ -30,6 +30,46 @@ pub fn quantile(values: &[f32], q: f32) -> f32 {
     v[rank - 1]
 }
 
+/// Samples per pixel side behind the coverage masks: a pixel is covered when at least half of
+/// its `SUPERSAMPLE²` samples are, and its normal is the mean of its covered samples' normals.
+/// With one sample per pixel a sheet thinner than a pixel seen edge on rasterises as a dotted
+/// line whose gaps depend on where its triangles fall, so two renders of the same surface could
+/// disagree pixels away from any silhouette; area coverage makes the masks a property of the
+/// surface rather than of its triangulation.
+pub const SUPERSAMPLE: u32 = 3;
+
+/// Area coverage and mean normals of `size` pixels from samples `s` times denser per side
+/// (row-major, `size[0] * s` samples wide).
+pub fn area_coverage(
+    coverage: &[f32],
+    normals: &[[f32; 3]],
+    size: [u32; 2],
+    s: u32,
+) -> (Vec<bool>, Vec<[f32; 3]>) {
+    let [w, h] = [size[0] as usize, size[1] as usize];
+    let (s, big_w) = (s as usize, size[0] as usize * s as usize);
+    let mut mask = Vec::with_capacity(w * h);
+    let mut mean = Vec::with_capacity(w * h);
+    for y in 0..h {
+        for x in 0..w {
+            let mut count = 0;
+            let mut n = glam::Vec3::ZERO;
+            for sy in 0..s {
+                for sx in 0..s {
+                    let k = (y * s + sy) * big_w + x * s + sx;
+                    if coverage[k] > 0.5 {
+                        count += 1;
+                        n += glam::Vec3::from(normals[k]);
+                    }
+                }
+            }
+            mask.push(2 * count >= s * s);
+            mean.push(n.normalize_or_zero().to_array());
+        }
+    }
+    (mask, mean)
+}
+
 /// Compares candidate and reference coverage masks and normals (row-major, `width × height`).
 ///
 /// ```
@@ -246,6 +286,25 @@ mod tests {
                 assert!((a - b).abs() < 1e-4, "round {round}: {a} vs {b}");
             }
         }
+    }
+
+    #[test]
+    fn area_coverage_needs_half_a_pixel() {
+        // 2 x 1 pixels from 3 x 3 samples each: the left pixel has 5 covered samples (covered),
+        // the right one a one-sample-wide line (not covered).
+        let (w, s) = (2usize, 3usize);
+        let mut cov = vec![0.0f32; w * s * s];
+        let mut nrm = vec![[0.0f32; 3]; w * s * s];
+        for (k, (c, n)) in cov.iter_mut().zip(nrm.iter_mut()).enumerate() {
+            let (x, y) = (k % (w * s), k / (w * s));
+            if (x < 3 && (y < 1 || (y == 1 && x < 2))) || x == 4 {
+                *c = 1.0;
+                *n = [0.0, 0.0, 2.0];
+            }
+        }
+        let (mask, normals) = area_coverage(&cov, &nrm, [2, 1], 3);
+        assert_eq!(mask, vec![true, false]);
+        assert_eq!(normals[0], [0.0, 0.0, 1.0]);
     }
 
     #[test]

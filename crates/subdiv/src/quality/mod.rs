@@ -13,6 +13,8 @@ mod run;
 #[cfg(test)]
 mod tests;
 
-pub use metrics::{FrameErrors, compare_frames, quantile, silhouette_distance};
+pub use metrics::{
+    FrameErrors, SUPERSAMPLE, area_coverage, compare_frames, quantile, silhouette_distance,
+};
 pub use orbit::orbit_cameras;
 pub use run::{Config, ConfigQuality, QualityError, QualityParams, QualityRun, measure};

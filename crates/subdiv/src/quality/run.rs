@@ -11,7 +11,7 @@ use subdiv_rules::{Depth, MAX_DEPTH, Scheme};
 use subdiv_stitch::{AssemblyError, MAX_ADAPTIVE_DEPTH};
 use subdiv_vk::{RenderMesh, RenderOptions, Renderer, View, VkError};
 
-use super::metrics::{compare_frames, quantile};
+use super::metrics::{SUPERSAMPLE, area_coverage, compare_frames, quantile};
 use crate::{DynamicSubdivision, Scene, SceneError, frame_limit, uniform_limit, view_for};
 
 /// One tessellation configuration of the comparison.
@@ -537,9 +537,10 @@ fn render_masks(
     view: &View,
     size: [u32; 2],
 ) -> Result<(Vec<bool>, Vec<[f32; 3]>), VkError> {
-    let (_, aux) = renderer.render_with_aux(mesh, view, size, &render_options())?;
-    let coverage = aux.coverage.iter().map(|&c| c > 0.5).collect();
-    Ok((coverage, aux.normals))
+    let s = SUPERSAMPLE;
+    let big = [size[0] * s, size[1] * s];
+    let (_, aux) = renderer.render_with_aux(mesh, view, big, &render_options())?;
+    Ok(area_coverage(&aux.coverage, &aux.normals, size, s))
 }
 
 /// Measures every configuration of [`Config::all`]: [`QualityRun::new`] then
