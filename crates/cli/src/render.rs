@@ -5,6 +5,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::{Context, bail};
+use subdiv::mesh::Camera;
+use subdiv::mesh::glam::Vec3;
 use subdiv::vk::{RenderOptions, Renderer, View};
 use subdiv::{Scene, depth_histogram, frame_limit, view_for};
 
@@ -54,23 +56,45 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     let tessellate_ms = t0.elapsed().as_secs_f64() * 1e3;
     let (lo, hi) = scene.bounds();
     let camera = a.camera.camera(lo, hi);
-    let view = view_for(&camera, lo, hi);
-    if a.style.silhouettes {
-        scene.mesh.lines = Some(scene.silhouette_lines(view.eye));
-    }
     let note = format!(
         "{}, depth {}",
         value_name(&a.surface.scheme),
         a.surface.uniform_depth()
     );
+    draw_seen_from(
+        a,
+        &mut scene,
+        &camera,
+        (lo, hi),
+        &options,
+        &note,
+        tessellate_ms,
+    )
+}
+
+/// Draws `scene` seen from `camera` (with its silhouettes when asked) and reports it: what the
+/// uniform and the DoI renders share.
+fn draw_seen_from(
+    a: &RenderArgs,
+    scene: &mut Scene,
+    camera: &Camera,
+    (lo, hi): (Vec3, Vec3),
+    options: &RenderOptions,
+    note: &str,
+    tessellate_ms: f64,
+) -> anyhow::Result<ExitCode> {
+    let view = view_for(camera, lo, hi);
+    if a.style.silhouettes {
+        scene.mesh.lines = Some(scene.silhouette_lines(view.eye));
+    }
     draw_and_report(
         a,
         &Drawing {
-            scene: &scene,
+            scene,
             view: &view,
             size: [camera.width, camera.height],
-            options: &options,
-            note: &note,
+            options,
+            note,
             tessellate_ms,
         },
     )
@@ -89,20 +113,14 @@ fn run_doi(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     let mut scene = setup.scene(&camera).with_context(|| label.clone())?;
     let note = setup.summary(scene.faces);
     let tessellate_ms = t0.elapsed().as_secs_f64() * 1e3;
-    let view = view_for(&camera, lo, hi);
-    if a.style.silhouettes {
-        scene.mesh.lines = Some(scene.silhouette_lines(view.eye));
-    }
-    draw_and_report(
+    draw_seen_from(
         a,
-        &Drawing {
-            scene: &scene,
-            view: &view,
-            size: [camera.width, camera.height],
-            options: &options,
-            note: &note,
-            tessellate_ms,
-        },
+        &mut scene,
+        &camera,
+        (lo, hi),
+        &options,
+        &note,
+        tessellate_ms,
     )
 }
 
