@@ -54,6 +54,7 @@ enum Command {
     /// Render the limit surface headless with Vulkan to PNG (and EXR).
     Render(render::RenderArgs),
     /// Open the interactive Vulkan viewer on the limit surface.
+    #[command(after_help = subdiv::vk::viewer::KEY_HELP)]
     View(view::ViewArgs),
 }
 

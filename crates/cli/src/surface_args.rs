@@ -194,6 +194,10 @@ pub struct StyleArgs {
     /// Draw the silhouette edges (between front- and back-facing faces) as lines.
     #[arg(long)]
     pub silhouettes: bool,
+    /// Draw the colour legend of the depth or DoI shading (levels and their colours, or the
+    /// heat map with its range) in the top-right corner. The viewer shows it unless --no-hud.
+    #[arg(long)]
+    pub legend: bool,
     /// Set when DoI values are available (`--doi`); not a flag.
     #[arg(skip)]
     pub doi_values: bool,
@@ -213,6 +217,7 @@ impl StyleArgs {
             // Depth-tested like the wireframe (surfaces are drawn with a depth bias), so
             // silhouettes behind the surface stay hidden.
             lines_on_top: false,
+            legend: self.legend,
             ..RenderOptions::default()
         })
     }
@@ -228,6 +233,7 @@ mod tests {
             shading: ShadingName::Doi,
             wire_overlay: false,
             silhouettes: false,
+            legend: false,
             doi_values: false,
         };
         let e = style.render_options().unwrap_err().to_string();
@@ -238,10 +244,11 @@ mod tests {
             shading: ShadingName::Depth,
             wire_overlay: true,
             silhouettes: true,
+            legend: true,
             doi_values: false,
         };
         let o = style.render_options().unwrap();
         assert_eq!(o.shading, Shading::Depth);
-        assert!(o.wire_overlay && o.show_lines);
+        assert!(o.wire_overlay && o.show_lines && o.legend);
     }
 }

@@ -418,3 +418,19 @@ fn quiet_verbose_and_no_progress_bar_when_piped() {
         assert!(!text.contains('\r') && !text.contains('\u{1b}'), "{text:?}");
     }
 }
+
+/// `subdiv view --help` lists the viewer's keys and mouse.
+#[test]
+fn view_help_lists_the_keys() {
+    let (code, stdout, err) = run(&["view", "--help"]);
+    assert_eq!(code, 0, "{err}");
+    for want in [
+        "middle drag, shift + left drag pan",
+        "Home, F",
+        "--up",
+        "--no-hud",
+        "--pan",
+    ] {
+        assert!(stdout.contains(want), "no '{want}' in:\n{stdout}");
+    }
+}

@@ -9,7 +9,9 @@
 //! - [`Renderer`]: headless offscreen rendering with readback to PNG ([`write_png`])
 //!   and depth / normals / scalar to EXR ([`write_exr`]);
 //! - [`viewer`]: an interactive window (winit + swapchain) fed by a [`viewer::FrameSource`];
-//! - [`golden`]: golden-image comparison for regression tests.
+//! - [`golden`]: golden-image comparison for regression tests;
+//! - [`overlay`]: screen-space rectangles and text from an embedded 5×7 bitmap font (the
+//!   viewer's HUD, the colour legends of renders and the viewer).
 //!
 //! # Invariants
 //!
@@ -42,6 +44,7 @@ mod frame;
 mod image_io;
 mod memory;
 mod offscreen;
+pub mod overlay;
 mod pipeline;
 mod scene;
 mod shaders;
