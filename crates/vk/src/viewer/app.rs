@@ -192,11 +192,11 @@ impl App<'_> {
     /// Whether frames are drawn back to back: frame-rate control needs frame times, and a
     /// scripted screenshot waits for its frame count. Otherwise only changes draw.
     fn continuous(&self) -> bool {
-        self.frame_rate_control
-            || self
-                .options
-                .screenshot_after
-                .is_some_and(|n| self.report.frames < u64::from(n))
+        draws_continuously(
+            self.frame_rate_control,
+            self.options.screenshot_after,
+            self.report.frames,
+        )
     }
 
     fn current_view(&self) -> Option<View> {
@@ -420,6 +420,17 @@ impl App<'_> {
     }
 }
 
+/// Whether the viewer draws frames back to back: with frame-rate control on (the controller
+/// needs real frame times), or while a scripted screenshot after `screenshot_after` frames is
+/// still to come; otherwise it waits for events and draws only on changes.
+fn draws_continuously(
+    frame_rate_control: bool,
+    screenshot_after: Option<u32>,
+    frames: u64,
+) -> bool {
+    frame_rate_control || screenshot_after.is_some_and(|n| frames < u64::from(n))
+}
+
 /// `dir/name.png` → `dir/name-0003.png`.
 fn numbered(path: &std::path::Path, n: usize) -> PathBuf {
     let stem = path
@@ -521,5 +532,23 @@ impl ApplicationHandler for App<'_> {
             self.dirty = false;
             window.request_redraw();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn idle_without_frame_rate_control() {
+        assert!(!draws_continuously(false, None, 0));
+        assert!(!draws_continuously(false, None, 1000));
+        assert!(draws_continuously(true, None, 1000));
+        assert!(draws_continuously(false, Some(3), 2));
+        assert!(!draws_continuously(false, Some(3), 3));
+        assert_eq!(
+            numbered(std::path::Path::new("d/shot.png"), 3),
+            PathBuf::from("d/shot-0003.png")
+        );
     }
 }
