@@ -104,6 +104,9 @@ pub const SCENES: &[Scene] = &[
     // Fig. 10: the illustration focus DoI: two dominant objects of different interest (1 and
     // 0.5); the third, between them, gets the fading detail.
     scene("doi_focus_objects", "fixtures/scenes/focus_three_icosahedra.obj", &["--scheme", "loop", "--doi", "focus", "--focus", "focus=1", "--focus", "far=0.5", "--eye-relative", "0,0.5,1.6", "--shading", "flat", "--wire-overlay"]),
+    // Colour legends (`--legend`): the adaptive depths of Fig. 11 and the dihedral DoI heat map.
+    scene("pawn_adaptive_depth_legend", "fixtures/reference/shapes/catmark_pawn.obj", &["--eye-relative", "1.5,-1.7,0.9", "--up", "0,0,1", "--max-depth", "4", "--shading", "depth", "--legend"]),
+    scene("doi_dihedral_teapot_legend", "fixtures/meshes/tri_teapot.obj", &["--split-nonmanifold", "--scheme", "loop", "--doi", "dihedral", "--eye-relative", "0,0.3,2.2", "--shading", "doi", "--legend"]),
     // Fig. 12: the 40-instance scene, adaptive.
     scene("helmet40_adaptive", "", &["--scene", "helmet40", "--eye-relative", "0.2,0.6,1.4", "--max-depth", "3", "--shading", "depth"]),
 ];
