@@ -43,7 +43,7 @@ pub struct FrameRequest {
     /// The camera the frame is rendered with.
     pub view: View,
     /// The camera to cull and choose levels of detail with: equal to `view`
-    /// unless the culling camera is frozen (`F`).
+    /// unless the culling camera is frozen (`Z`).
     pub cull_view: View,
     /// Image size in pixels.
     pub size: [u32; 2],
