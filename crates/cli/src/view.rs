@@ -162,7 +162,7 @@ fn run_adaptive(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     let render = a.style.render_options()?;
     if a.surface.cull_camera_eye_relative.is_some() {
         anyhow::bail!(
-            "subdiv view: freeze the culling camera with F instead of --cull-camera-eye-relative"
+            "subdiv view: freeze the culling camera with Z instead of --cull-camera-eye-relative"
         );
     }
     let cage = a.surface.load_cage()?;
