@@ -89,8 +89,11 @@ impl SurfaceArgs {
     /// Loads the cage and tessellates it uniformly.
     pub fn uniform_scene(&self) -> anyhow::Result<Scene> {
         let cage = self.load_cage()?;
-        Scene::uniform(&cage, self.scheme.into(), self.uniform_depth())
-            .map_err(|e| anyhow::anyhow!("{}: {e}", self.label()))
+        let depth = self.uniform_depth();
+        let spinner = crate::progress::spinner(format!("tessellating at depth {depth}"));
+        let scene = Scene::uniform(&cage, self.scheme.into(), depth);
+        spinner.finish_and_clear();
+        scene.map_err(|e| anyhow::anyhow!("{}: {e}", self.label()))
     }
 
     /// Whether these flags ask for the adaptive tessellation ([`AdaptiveArgs::wants_adaptive`]:
