@@ -15,6 +15,7 @@ use winit::window::{Window, WindowId};
 
 use super::gpu::Gpu;
 use super::hud::{self, HudState};
+use super::input::{Drag, drag, draws_continuously};
 use super::{FrameRequest, FrameSource, ViewerOptions, ViewerReport};
 use crate::error::{Result, VkError};
 use crate::image_io::write_png;
@@ -420,17 +421,6 @@ impl App<'_> {
     }
 }
 
-/// Whether the viewer draws frames back to back: with frame-rate control on (the controller
-/// needs real frame times), or while a scripted screenshot after `screenshot_after` frames is
-/// still to come; otherwise it waits for events and draws only on changes.
-fn draws_continuously(
-    frame_rate_control: bool,
-    screenshot_after: Option<u32>,
-    frames: u64,
-) -> bool {
-    frame_rate_control || screenshot_after.is_some_and(|n| frames < u64::from(n))
-}
-
 /// `dir/name.png` → `dir/name-0003.png`.
 fn numbered(path: &std::path::Path, n: usize) -> PathBuf {
     let stem = path
@@ -494,12 +484,14 @@ impl ApplicationHandler for App<'_> {
             WindowEvent::CursorMoved { position, .. } => {
                 if let Some((x, y)) = self.cursor {
                     let (dx, dy) = ((position.x - x) as f32, (position.y - y) as f32);
-                    if self.middle || (self.left && self.modifiers.shift_key()) {
-                        self.pan(dx, dy);
-                    } else if self.left
-                        && let Some(camera) = self.camera.as_mut()
-                    {
-                        camera.rotate(dx * 0.01, dy * 0.01);
+                    match drag(self.left, self.middle, self.modifiers.shift_key()) {
+                        Some(Drag::Pan) => self.pan(dx, dy),
+                        Some(Drag::Orbit) => {
+                            if let Some(camera) = self.camera.as_mut() {
+                                camera.rotate(dx * 0.01, dy * 0.01);
+                            }
+                        }
+                        None => {}
                     }
                 }
                 self.cursor = Some((position.x, position.y));
@@ -540,12 +532,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn idle_without_frame_rate_control() {
-        assert!(!draws_continuously(false, None, 0));
-        assert!(!draws_continuously(false, None, 1000));
-        assert!(draws_continuously(true, None, 1000));
-        assert!(draws_continuously(false, Some(3), 2));
-        assert!(!draws_continuously(false, Some(3), 3));
+    fn screenshots_are_numbered() {
         assert_eq!(
             numbered(std::path::Path::new("d/shot.png"), 3),
             PathBuf::from("d/shot-0003.png")

@@ -15,6 +15,7 @@
 mod app;
 mod gpu;
 mod hud;
+mod input;
 mod swapchain;
 
 use std::path::PathBuf;
