@@ -16,6 +16,18 @@ const SHADERS: &[(&str, &str, naga::ShaderStage, &[&str])] = &[
     ("mesh.frag", "mesh.frag", naga::ShaderStage::Fragment, &[]),
     ("line.vert", "line.vert", naga::ShaderStage::Vertex, &[]),
     ("line.frag", "line.frag", naga::ShaderStage::Fragment, &[]),
+    (
+        "overlay.vert",
+        "overlay.vert",
+        naga::ShaderStage::Vertex,
+        &[],
+    ),
+    (
+        "overlay.frag",
+        "overlay.frag",
+        naga::ShaderStage::Fragment,
+        &[],
+    ),
 ];
 
 fn main() {

@@ -26,11 +26,13 @@ struct Frame {
 }
 
 fn bench(exe: &Path, args: &[&str]) -> Result<Vec<Frame>> {
+    let spinner = crate::spinner(format!("subdiv bench framerate {}", args.join(" ")));
     let out = Command::new(exe)
         .args(["bench", "framerate"])
         .args(args)
-        .output()
-        .context("running subdiv bench framerate")?;
+        .output();
+    spinner.finish_and_clear();
+    let out = out.context("running subdiv bench framerate")?;
     if !out.status.success() {
         bail!(
             "subdiv bench framerate {args:?} failed: {}",

@@ -179,10 +179,19 @@ fn thousands(n: u64) -> String {
 /// Computes the DoI figures and writes the DoI section of `docs/figures.md`.
 pub fn run(root: &Path) -> Result<()> {
     let t0 = Instant::now();
-    let rows = ["tri_teapot.obj", "tri_bunny_3k.obj"]
+    let models = ["tri_teapot.obj", "tri_bunny_3k.obj"];
+    let bar = crate::progress(models.len() as u64, "figures doi");
+    let rows = models
         .iter()
-        .map(|n| measure(root, n))
-        .collect::<Result<Vec<_>>>()?;
+        .map(|n| {
+            bar.set_message(*n);
+            let row = measure(root, n);
+            bar.inc(1);
+            row
+        })
+        .collect::<Result<Vec<_>>>();
+    bar.finish_and_clear();
+    let rows = rows?;
     let mut s = String::new();
     writeln!(s, "{BEGIN}")?;
     writeln!(

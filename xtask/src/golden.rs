@@ -104,6 +104,9 @@ pub const SCENES: &[Scene] = &[
     // Fig. 10: the illustration focus DoI: two dominant objects of different interest (1 and
     // 0.5); the third, between them, gets the fading detail.
     scene("doi_focus_objects", "fixtures/scenes/focus_three_icosahedra.obj", &["--scheme", "loop", "--doi", "focus", "--focus", "focus=1", "--focus", "far=0.5", "--eye-relative", "0,0.5,1.6", "--shading", "flat", "--wire-overlay"]),
+    // Colour legends (`--legend`): the adaptive depths of Fig. 11 and the dihedral DoI heat map.
+    scene("pawn_adaptive_depth_legend", "fixtures/reference/shapes/catmark_pawn.obj", &["--eye-relative", "1.5,-1.7,0.9", "--up", "0,0,1", "--max-depth", "4", "--shading", "depth", "--legend"]),
+    scene("doi_dihedral_teapot_legend", "fixtures/meshes/tri_teapot.obj", &["--split-nonmanifold", "--scheme", "loop", "--doi", "dihedral", "--eye-relative", "0,0.3,2.2", "--shading", "doi", "--legend"]),
     // Fig. 12: the 40-instance scene, adaptive.
     scene("helmet40_adaptive", "", &["--scene", "helmet40", "--eye-relative", "0.2,0.6,1.4", "--max-depth", "3", "--shading", "depth"]),
 ];
@@ -217,114 +220,17 @@ pub fn run(root: &Path, options: &Options) -> Result<()> {
         }
         m => m,
     };
-    let expected_dir = root.join("fixtures/golden");
-    let out_dir = root.join("target/golden");
-    let rendered_dir = out_dir.join("rendered");
+    let rendered_dir = root.join("target/golden/rendered");
     std::fs::create_dir_all(&rendered_dir)
         .with_context(|| format!("cannot create {}", rendered_dir.display()))?;
-    let mut failed = Vec::new();
-    let scenes = SCENES
+    let scenes: Vec<&Scene> = SCENES
         .iter()
-        .filter(|s| options.only.is_empty() || options.only.iter().any(|o| o == s.name));
-    for scene in scenes {
-        let png = rendered_dir.join(format!("{}.png", scene.name));
-        for stale in [
-            format!("{}.actual.png", scene.name),
-            format!("{}.diff.png", scene.name),
-        ] {
-            let _ = std::fs::remove_file(out_dir.join(stale));
-        }
-        let mut cmd = Command::new(&exe);
-        cmd.arg("render");
-        if !scene.input.is_empty() {
-            // An empty input means a built-in scene (`--scene` in the arguments).
-            cmd.arg(root.join(scene.input));
-        }
-        cmd.args(scene.args).args(["--size", SIZE, "-o"]).arg(&png);
-        vulkan::configure(&mut cmd, root);
-        if validation {
-            cmd.env("SUBDIV_VK_VALIDATION", "1");
-        }
-        let shown = format!(
-            "subdiv render {} {} --size {SIZE}",
-            scene.input,
-            scene.args.join(" ")
-        );
-        let output = cmd
-            .output()
-            .with_context(|| format!("could not run {}", exe.display()))?;
-        let stderr = String::from_utf8_lossy(&output.stderr);
-        if !output.status.success() {
-            bail!(
-                "{}: `{shown}` failed ({}):\n{stderr}",
-                scene.name,
-                output.status
-            );
-        }
-        if stderr.contains("subdiv-vk validation:") {
-            eprintln!("{stderr}");
-            failed.push(format!("{} (validation messages)", scene.name));
-            continue;
-        }
-        let actual = subdiv_vk::read_png(&png)?;
-        let expected = expected_dir.join(format!("{}.png", scene.name));
-        if options.bless {
-            golden::bless(&actual, &expected)?;
-            println!(
-                "golden {:<34} blessed -> {}",
-                scene.name,
-                expected.display()
-            );
-            continue;
-        }
-        if mode == Mode::Perceptual {
-            if !compare_perceptual(scene, &actual, &expected, &out_dir)? {
-                failed.push(scene.name.to_string());
-            }
-            continue;
-        }
-        let tolerance = match mode {
-            Mode::Tolerance(t) => Some(t),
-            _ => None,
-        };
-        match golden::compare_in(&actual, &expected, tolerance, &out_dir)? {
-            Verdict::Identical => println!("golden {:<34} identical", scene.name),
-            Verdict::WithinTolerance(s) => {
-                println!(
-                    "golden {:<34} within tolerance (mean {:.3}, p99 {:.1}, max {})",
-                    scene.name, s.mean, s.p99, s.max
-                )
-            }
-            Verdict::Mismatch {
-                stats,
-                reason,
-                actual,
-                diff,
-            } => {
-                println!(
-                    "golden {:<34} MISMATCH: {reason} (mean {:.3}, p99 {:.1}, max {}, {} pixels differ)\n    actual: {}\n    diff:   {}",
-                    scene.name,
-                    stats.mean,
-                    stats.p99,
-                    stats.max,
-                    stats.differing_pixels,
-                    actual.display(),
-                    diff.map_or_else(|| "-".into(), |d| d.display().to_string()),
-                );
-                failed.push(scene.name.to_string());
-            }
-            Verdict::MissingExpected { actual } => {
-                println!(
-                    "golden {:<34} MISSING {} (actual: {}; accept with `cargo xtask golden --bless {}`)",
-                    scene.name,
-                    expected.display(),
-                    actual.display(),
-                    scene.name
-                );
-                failed.push(scene.name.to_string());
-            }
-        }
-    }
+        .filter(|s| options.only.is_empty() || options.only.iter().any(|o| o == s.name))
+        .collect();
+    let bar = crate::progress(scenes.len() as u64, "golden");
+    let result = render_and_compare(root, &exe, &scenes, (mode, options.bless), validation, &bar);
+    bar.finish_and_clear();
+    let failed = result?;
     if !failed.is_empty() {
         bail!(
             "{} golden scene(s) failed: {}; review target/golden/*.diff.png, and if the change is intended \
@@ -432,6 +338,125 @@ fn compare_perceptual(
         diff_path.display()
     );
     Ok(false)
+}
+
+/// Renders each scene and compares it with its golden (or blesses it); returns the failures.
+fn render_and_compare(
+    root: &Path,
+    exe: &Path,
+    scenes: &[&Scene],
+    (mode, bless): (Mode, bool),
+    validation: bool,
+    bar: &indicatif::ProgressBar,
+) -> Result<Vec<String>> {
+    let expected_dir = root.join("fixtures/golden");
+    let out_dir = root.join("target/golden");
+    let rendered_dir = out_dir.join("rendered");
+    let mut failed = Vec::new();
+    for scene in scenes {
+        bar.set_message(scene.name);
+        bar.inc(1);
+        let png = rendered_dir.join(format!("{}.png", scene.name));
+        for stale in [
+            format!("{}.actual.png", scene.name),
+            format!("{}.diff.png", scene.name),
+        ] {
+            let _ = std::fs::remove_file(out_dir.join(stale));
+        }
+        let mut cmd = Command::new(exe);
+        cmd.arg("render");
+        if !scene.input.is_empty() {
+            // An empty input means a built-in scene (`--scene` in the arguments).
+            cmd.arg(root.join(scene.input));
+        }
+        cmd.args(scene.args).args(["--size", SIZE, "-o"]).arg(&png);
+        vulkan::configure(&mut cmd, root);
+        if validation {
+            cmd.env("SUBDIV_VK_VALIDATION", "1");
+        }
+        let shown = format!(
+            "subdiv render {} {} --size {SIZE}",
+            scene.input,
+            scene.args.join(" ")
+        );
+        let output = cmd
+            .output()
+            .with_context(|| format!("could not run {}", exe.display()))?;
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        if !output.status.success() {
+            bail!(
+                "{}: `{shown}` failed ({}):\n{stderr}",
+                scene.name,
+                output.status
+            );
+        }
+        if stderr.contains("subdiv-vk validation:") {
+            bar.suspend(|| eprintln!("{stderr}"));
+            failed.push(format!("{} (validation messages)", scene.name));
+            continue;
+        }
+        let actual = subdiv_vk::read_png(&png)?;
+        let expected = expected_dir.join(format!("{}.png", scene.name));
+        if bless {
+            golden::bless(&actual, &expected)?;
+            bar.suspend(|| {
+                println!(
+                    "golden {:<34} blessed -> {}",
+                    scene.name,
+                    expected.display()
+                )
+            });
+            continue;
+        }
+        if mode == Mode::Perceptual {
+            if !bar.suspend(|| compare_perceptual(scene, &actual, &expected, &out_dir))? {
+                failed.push(scene.name.to_string());
+            }
+            continue;
+        }
+        let tolerance = match mode {
+            Mode::Tolerance(t) => Some(t),
+            _ => None,
+        };
+        match golden::compare_in(&actual, &expected, tolerance, &out_dir)? {
+            Verdict::Identical => bar.suspend(|| println!("golden {:<34} identical", scene.name)),
+            Verdict::WithinTolerance(s) => bar.suspend(|| {
+                println!(
+                    "golden {:<34} within tolerance (mean {:.3}, p99 {:.1}, max {})",
+                    scene.name, s.mean, s.p99, s.max
+                )
+            }),
+            Verdict::Mismatch {
+                stats,
+                reason,
+                actual,
+                diff,
+            } => {
+                bar.suspend(|| println!(
+                    "golden {:<34} MISMATCH: {reason} (mean {:.3}, p99 {:.1}, max {}, {} pixels differ)\n    actual: {}\n    diff:   {}",
+                    scene.name,
+                    stats.mean,
+                    stats.p99,
+                    stats.max,
+                    stats.differing_pixels,
+                    actual.display(),
+                    diff.map_or_else(|| "-".into(), |d| d.display().to_string()),
+                ));
+                failed.push(scene.name.to_string());
+            }
+            Verdict::MissingExpected { actual } => {
+                bar.suspend(|| println!(
+                    "golden {:<34} MISSING {} (actual: {}; accept with `cargo xtask golden --bless {}`)",
+                    scene.name,
+                    expected.display(),
+                    actual.display(),
+                    scene.name
+                ));
+                failed.push(scene.name.to_string());
+            }
+        }
+    }
+    Ok(failed)
 }
 
 #[cfg(test)]

@@ -58,6 +58,36 @@ fn step(what: &str) {
     eprintln!("xtask: {what}...");
 }
 
+/// A progress bar of `len` steps labelled `what` on stderr, drawn only when stderr is a
+/// terminal (piped output is unchanged). Print through `bar.suspend` while it runs.
+fn progress(len: u64, what: &'static str) -> indicatif::ProgressBar {
+    let style = indicatif::ProgressStyle::with_template(
+        "{prefix} [{bar:30}] {pos}/{len} {msg} {elapsed} (eta {eta})",
+    )
+    .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
+    .progress_chars("=> ");
+    let bar = indicatif::ProgressBar::with_draw_target(
+        Some(len),
+        indicatif::ProgressDrawTarget::stderr(),
+    )
+    .with_style(style)
+    .with_prefix(what);
+    bar.enable_steady_tick(std::time::Duration::from_millis(200));
+    bar
+}
+
+/// A spinner with elapsed time for one long step, like [`progress`] drawn only on a terminal.
+fn spinner(what: String) -> indicatif::ProgressBar {
+    let style = indicatif::ProgressStyle::with_template("{spinner} {msg} {elapsed}")
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner());
+    let bar =
+        indicatif::ProgressBar::with_draw_target(None, indicatif::ProgressDrawTarget::stderr())
+            .with_style(style)
+            .with_message(what);
+    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    bar
+}
+
 /// Builds the `subdiv` binary (`release` or the dev profile) with cargo's progress shown, and
 /// returns its path.
 fn build_subdiv(release: bool) -> Result<PathBuf> {

@@ -75,17 +75,22 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
     // Warm-up, then timed runs into the same output buffers (per-frame steady state). The runs
     // are timed inside the pool, as a renderer thread of that pool would call the tessellator:
     // the hand-off from this thread into the pool (a wake-up and a sleep) is not measured.
-    let (out, times) = pool.install(|| -> anyhow::Result<_> {
+    let bar = crate::progress::bar(a.runs as u64 + 1, "runs");
+    let out_times = pool.install(|| -> anyhow::Result<_> {
         let mut out = tessellate_layout(&mesh, &layout)?;
+        bar.inc(1);
         let mut times = Vec::with_capacity(a.runs);
         for _ in 0..a.runs {
             let t = Instant::now();
             tessellate_layout_into(&mesh, &layout, &mut out)?;
             times.push(t.elapsed().as_secs_f64());
             std::hint::black_box(&out);
+            bar.inc(1);
         }
         Ok((out, times))
-    })?;
+    });
+    bar.finish_and_clear();
+    let (out, times) = out_times?;
     let med = median(times.clone());
     let points = out.positions.len() as f64;
     let patches = layout.num_patches() as f64;

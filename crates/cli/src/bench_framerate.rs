@@ -110,6 +110,7 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
         value_name(&a.scene)
     );
     let mut last: Option<f32> = None;
+    let bar = crate::progress::bar(a.frames as u64, "frames");
     for i in 0..a.frames {
         if let (Some(s), true) = (a.switch_fps, i == a.frames / 2) {
             node.set_target_fps(s);
@@ -146,11 +147,15 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
             .controller()
             .map(|c| c.cap())
             .unwrap_or(a.depth.unwrap_or(a.max_depth));
-        println!(
-            "frame={i} fps={:.3} triangles={tris} maxsd={cap} patches={}",
-            1.0 / dt,
-            per.join(",")
-        );
+        crate::progress::suspend(|| {
+            println!(
+                "frame={i} fps={:.3} triangles={tris} maxsd={cap} patches={}",
+                1.0 / dt,
+                per.join(",")
+            );
+        });
+        bar.inc(1);
     }
+    bar.finish_and_clear();
     Ok(ExitCode::SUCCESS)
 }

@@ -8,7 +8,7 @@ use anyhow::{Context, bail};
 use glam::Vec3;
 use subdiv::BuiltinScene;
 use subdiv::mesh::Camera;
-use subdiv::quality::{QualityParams, QualityRun, orbit_cameras};
+use subdiv::quality::{Config, QualityParams, QualityRun, orbit_cameras};
 use subdiv::rules::Depth;
 use subdiv::vk::Renderer;
 
@@ -113,7 +113,7 @@ pub fn run(a: &BenchQualityArgs) -> anyhow::Result<ExitCode> {
     let cameras = orbit_cameras(&base, a.orbit);
     let mut renderer = Renderer::new()?;
     let [w, h] = params.size;
-    eprintln!(
+    log::info!(
         "{}: {} faces, {w}x{h}, {} camera(s) from eye {:.4},{:.4},{:.4} (up {:.3},{:.3},{:.3}), \
          reference uniform depth {} on {}",
         a.label(),
@@ -128,11 +128,19 @@ pub fn run(a: &BenchQualityArgs) -> anyhow::Result<ExitCode> {
         params.reference_depth(),
         renderer.device_name()
     );
-    let run = QualityRun::new(&mut renderer, &cage, &cameras, params).with_context(|| a.label())?;
-    eprintln!("reference: {} triangles", run.reference_triangles());
-    let results = run
-        .measure_all(&mut renderer, |q| eprintln!("done: {q}"))
-        .with_context(|| a.label())?;
+    let spinner = crate::progress::spinner("rendering the reference");
+    let run = QualityRun::new(&mut renderer, &cage, &cameras, params);
+    spinner.finish_and_clear();
+    let run = run.with_context(|| a.label())?;
+    log::info!("reference: {} triangles", run.reference_triangles());
+    let configs = Config::all(run.params().max_depth).len() as u64;
+    let bar = crate::progress::bar(configs, "configurations");
+    let results = run.measure_all(&mut renderer, |q| {
+        log::info!("done: {q}");
+        bar.inc(1);
+    });
+    bar.finish_and_clear();
+    let results = results.with_context(|| a.label())?;
     for q in &results {
         println!("{q}");
     }

@@ -27,16 +27,22 @@ pub fn load_mesh(path: &Path, split_nonmanifold: bool) -> anyhow::Result<Mesh> {
             split_nonmanifold_vertices: split_nonmanifold,
         },
     )?;
+    log::debug!(
+        "read {}: {} vertices, {} faces",
+        path.display(),
+        mesh.num_vertices(),
+        mesh.num_faces()
+    );
     report_tag_warnings(path, &warnings)?;
     Ok(mesh)
 }
 
-/// Prints `warning: FILE:LINE: tag 't NAME' ignored (why)` on stderr for each tag line that was
-/// not applied; with `--strict`, any such line is an error.
+/// Logs `FILE:LINE: tag 't NAME' ignored (why)` as a warning (printed `warning: ...`, silenced
+/// by `-q`) for each tag line that was not applied; with `--strict`, any such line is an error.
 pub fn report_tag_warnings(path: &Path, warnings: &[TagWarning]) -> anyhow::Result<()> {
     let p = path.display();
     for w in warnings {
-        eprintln!("warning: {p}:{w}");
+        log::warn!("{p}:{w}");
     }
     if strict() && !warnings.is_empty() {
         anyhow::bail!(

@@ -10,6 +10,8 @@ mod choices;
 mod doi_args;
 mod info;
 mod load;
+mod logger;
+mod progress;
 mod refine;
 mod render;
 mod surface_args;
@@ -28,6 +30,12 @@ struct Cli {
     /// instead of warning about them.
     #[arg(long, global = true)]
     strict: bool,
+    /// More messages on stderr: `-v` debug lines, `-vv` trace lines.
+    #[arg(short, long, global = true, action = clap::ArgAction::Count)]
+    verbose: u8,
+    /// Errors only on stderr: no warnings, notes or progress bars.
+    #[arg(short, long, global = true, conflicts_with = "verbose")]
+    quiet: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -46,11 +54,14 @@ enum Command {
     /// Render the limit surface headless with Vulkan to PNG (and EXR).
     Render(render::RenderArgs),
     /// Open the interactive Vulkan viewer on the limit surface.
+    #[command(after_help = subdiv::vk::viewer::KEY_HELP)]
     View(view::ViewArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    logger::init(cli.verbose, cli.quiet);
+    progress::init(cli.quiet);
     load::set_strict(cli.strict);
     let result = match cli.command {
         Command::Info(a) => info::run(&a),

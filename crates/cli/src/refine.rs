@@ -35,9 +35,10 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
     let (lo, hi) = setup.cage.bounds();
     let (mesh, doi, threshold) = (&setup.cage, &setup.doi, setup.opts.threshold);
     let t0 = Instant::now();
-    let r = setup
-        .run(a.camera.camera(lo, hi))
-        .with_context(|| format!("{input}: refining"))?;
+    let spinner = crate::progress::spinner(format!("refining ({} steps)", a.doi.steps));
+    let r = setup.run(a.camera.camera(lo, hi));
+    spinner.finish_and_clear();
+    let r = r.with_context(|| format!("{input}: refining"))?;
     let ms = t0.elapsed().as_secs_f64() * 1e3;
     write_mesh_obj(&a.output, &r.mesh.mesh)?;
     println!(

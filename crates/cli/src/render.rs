@@ -110,7 +110,10 @@ fn run_doi(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     let setup = a.surface.doi.setup(a.surface.load_cage()?, &label)?;
     let (lo, hi) = setup.bounds();
     let camera = a.camera.camera(lo, hi);
-    let mut scene = setup.scene(&camera).with_context(|| label.clone())?;
+    let spinner = crate::progress::spinner(format!("refining ({} steps)", a.surface.doi.steps));
+    let scene = setup.scene(&camera);
+    spinner.finish_and_clear();
+    let mut scene = scene.with_context(|| label.clone())?;
     let note = setup.summary(scene.faces);
     let tessellate_ms = t0.elapsed().as_secs_f64() * 1e3;
     draw_seen_from(
@@ -134,7 +137,10 @@ fn run_adaptive(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     let camera = a.camera.camera(lo, hi);
     let cull = a.surface.cull_camera(&a.camera, &camera, lo, hi);
     let mut node = a.surface.adaptive_node(cage)?;
-    let g = node.update(&cull, None)?;
+    let spinner = crate::progress::spinner("adaptive tessellation");
+    let g = node.update(&cull, None);
+    spinner.finish_and_clear();
+    let g = g?;
     if g.num_triangles() == 0 {
         bail!("{}: nothing to draw (every face culled)", a.surface.label());
     }

@@ -89,8 +89,11 @@ impl SurfaceArgs {
     /// Loads the cage and tessellates it uniformly.
     pub fn uniform_scene(&self) -> anyhow::Result<Scene> {
         let cage = self.load_cage()?;
-        Scene::uniform(&cage, self.scheme.into(), self.uniform_depth())
-            .map_err(|e| anyhow::anyhow!("{}: {e}", self.label()))
+        let depth = self.uniform_depth();
+        let spinner = crate::progress::spinner(format!("tessellating at depth {depth}"));
+        let scene = Scene::uniform(&cage, self.scheme.into(), depth);
+        spinner.finish_and_clear();
+        scene.map_err(|e| anyhow::anyhow!("{}: {e}", self.label()))
     }
 
     /// Whether these flags ask for the adaptive tessellation ([`AdaptiveArgs::wants_adaptive`]:
@@ -194,6 +197,10 @@ pub struct StyleArgs {
     /// Draw the silhouette edges (between front- and back-facing faces) as lines.
     #[arg(long)]
     pub silhouettes: bool,
+    /// Draw the colour legend of the depth or DoI shading (levels and their colours, or the
+    /// heat map with its range) in the top-right corner. The viewer shows it unless --no-hud.
+    #[arg(long)]
+    pub legend: bool,
     /// Set when DoI values are available (`--doi`); not a flag.
     #[arg(skip)]
     pub doi_values: bool,
@@ -213,6 +220,7 @@ impl StyleArgs {
             // Depth-tested like the wireframe (surfaces are drawn with a depth bias), so
             // silhouettes behind the surface stay hidden.
             lines_on_top: false,
+            legend: self.legend,
             ..RenderOptions::default()
         })
     }
@@ -228,6 +236,7 @@ mod tests {
             shading: ShadingName::Doi,
             wire_overlay: false,
             silhouettes: false,
+            legend: false,
             doi_values: false,
         };
         let e = style.render_options().unwrap_err().to_string();
@@ -238,10 +247,11 @@ mod tests {
             shading: ShadingName::Depth,
             wire_overlay: true,
             silhouettes: true,
+            legend: true,
             doi_values: false,
         };
         let o = style.render_options().unwrap();
         assert_eq!(o.shading, Shading::Depth);
-        assert!(o.wire_overlay && o.show_lines);
+        assert!(o.wire_overlay && o.show_lines && o.legend);
     }
 }

@@ -91,8 +91,10 @@ fn run_uniform(
 ) -> anyhow::Result<ExitCode> {
     let input = a.input.display();
     let t0 = Instant::now();
-    let t = subdiv::uniform_limit(mesh, a.scheme.into(), depth)
-        .map_err(|e| anyhow::anyhow!("{input}: {e}"))?;
+    let spinner = crate::progress::spinner(format!("tessellating at depth {depth}"));
+    let t = subdiv::uniform_limit(mesh, a.scheme.into(), depth);
+    spinner.finish_and_clear();
+    let t = t.map_err(|e| anyhow::anyhow!("{input}: {e}"))?;
     let ms = t0.elapsed().as_secs_f64() * 1e3;
     write_obj(&a.output, &t.obj_data())?;
     println!(
@@ -134,7 +136,10 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh) -> anyhow::Result<ExitCode> {
     };
     let mut node = a.adaptive.node(mesh).with_context(|| input.clone())?;
     node.set_face_depths(doi_depths)?;
-    let g = node.update(&camera, None)?;
+    let spinner = crate::progress::spinner("adaptive tessellation");
+    let g = node.update(&camera, None);
+    spinner.finish_and_clear();
+    let g = g?;
     let ms = t0.elapsed().as_secs_f64() * 1e3;
     let (pos, nrm, idx) = g.compact();
     let offsets: Vec<u32> = (0..=idx.len() as u32 / 3).map(|i| i * 3).collect();

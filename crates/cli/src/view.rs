@@ -1,8 +1,6 @@
 //! `subdiv view`: the interactive Vulkan viewer on the limit surface.
 //!
-//! Keys (from `subdiv-vk`): left drag rotates, wheel zooms, `W` wireframe overlay, `D` depth
-//! colours, `H` DoI heat map, `S` silhouettes, `F` freeze the culling camera, `+`/`-` target
-//! frame rate, `C` frame-rate control, `P` screenshot, `Esc`/`Q` quit.
+//! Keys and mouse: `subdiv_vk::viewer::KEY_HELP`, printed at start and in `subdiv view --help`.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -33,6 +31,26 @@ pub struct ViewArgs {
     /// (`shot.png` -> `shot-0001.png`).
     #[arg(short = 'o', long = "output")]
     pub output: Option<PathBuf>,
+    /// Start without the HUD and the colour legend (keys I and L turn them on); screenshots
+    /// then equal `subdiv render`.
+    #[arg(long)]
+    pub no_hud: bool,
+    /// Pan by DX,DY pixels (right, down) before the first frame, as a middle drag does.
+    #[arg(long, value_name = "DX,DY", value_parser = parse_pan, allow_hyphen_values = true)]
+    pub pan: Option<[f32; 2]>,
+}
+
+/// `--pan DX,DY`.
+fn parse_pan(s: &str) -> Result<[f32; 2], String> {
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|t| t.trim().parse::<f32>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("expected DX,DY in pixels: {e}"))?;
+    match v[..] {
+        [dx, dy] if dx.is_finite() && dy.is_finite() => Ok([dx, dy]),
+        _ => Err(format!("expected two finite numbers DX,DY, got '{s}'")),
+    }
 }
 
 /// The initial camera for cage bounds `lo`, `hi` and the orbit camera the viewer starts from
@@ -41,9 +59,7 @@ fn start_camera(a: &ViewArgs, lo: Vec3, hi: Vec3) -> (Camera, OrbitCamera) {
     let camera = a.camera.camera(lo, hi);
     let (orbit, exact) = orbit_camera(&camera, lo, hi);
     if !exact {
-        eprintln!(
-            "note: the viewer orbits about +Y; the camera's --up and vertical views are approximated"
-        );
+        log::warn!("the viewer orbits about the up axis (--up); a view along it is approximated");
     }
     (camera, orbit)
 }
@@ -57,6 +73,10 @@ fn show<S: FrameSource>(
     note: impl FnOnce(&S) -> String,
 ) -> anyhow::Result<ExitCode> {
     options.screenshot_after = a.screenshot_after;
+    options.hud = !a.no_hud;
+    options.render.legend |= !a.no_hud;
+    options.pan = a.pan;
+    log::info!("{}", viewer::KEY_HELP);
     options.screenshot_path = a
         .output
         .clone()
@@ -99,6 +119,8 @@ fn run_doi(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         size: [camera.width, camera.height],
         camera: Some(orbit),
         render,
+        // No frame-rate controller here: draw only when something changes.
+        frame_rate_control: false,
         ..ViewerOptions::default()
     };
     show(a, &mut source, options, |s| s.note().to_string())
@@ -128,6 +150,8 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         size: [camera.width, camera.height],
         camera: Some(orbit),
         render,
+        // A uniform tessellation has no frame-rate controller: draw only when something changes.
+        frame_rate_control: false,
         ..ViewerOptions::default()
     };
     show(a, &mut source, options, |_| String::new())
@@ -138,7 +162,7 @@ fn run_adaptive(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     let render = a.style.render_options()?;
     if a.surface.cull_camera_eye_relative.is_some() {
         anyhow::bail!(
-            "subdiv view: freeze the culling camera with F instead of --cull-camera-eye-relative"
+            "subdiv view: freeze the culling camera with Z instead of --cull-camera-eye-relative"
         );
     }
     let cage = a.surface.load_cage()?;

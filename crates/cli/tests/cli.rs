@@ -359,3 +359,78 @@ fn ignored_tags_warn_and_strict_refuses() {
     assert_eq!(code, 0, "{err}");
     assert!(!err.contains("warning"), "{err}");
 }
+
+/// `-q` silences warnings (errors stay), `-v` adds the libraries' debug lines, and a piped run
+/// carries no progress bar: stdout holds exactly the scripted lines and stderr nothing.
+#[test]
+fn quiet_verbose_and_no_progress_bar_when_piped() {
+    let cage = tmp("quiet_tags.obj");
+    std::fs::write(&cage, format!("{QUAD_HEAD}f 1 2 3 4\nt bogustag 0/0/0\n")).unwrap();
+    let c = cage.to_str().unwrap();
+    let out = tmp("quiet_out.obj");
+    let o = out.to_str().unwrap();
+    let (code, _, err) = run(&["tessellate", c, "--depth", "1", "-o", o]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("warning: "), "{err}");
+    let (code, stdout, err) = run(&["-q", "tessellate", c, "--depth", "1", "-o", o]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "", "-q prints nothing on success");
+    assert!(stdout.starts_with("tessellated "), "{stdout}");
+    let (code, _, err) = run(&["tessellate", c, "-q", "--strict", "--depth", "1", "-o", o]);
+    assert_eq!(code, 1);
+    assert!(
+        err.starts_with("error: ") && !err.contains("warning"),
+        "{err}"
+    );
+
+    let (code, _, err) = run(&["tessellate", "-v", c, "--depth", "1", "-o", o]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains(&format!(
+            "debug: subdiv::load: read {c}: 4 vertices, 1 faces"
+        )),
+        "{err}"
+    );
+    assert!(
+        err.contains("debug: subdiv::scene: uniform CatmullClark depth 1"),
+        "{err}"
+    );
+    assert!(err.contains("warning: "), "-v keeps warnings: {err}");
+    let (code, _, err) = run(&["-q", "-v", "info", c]);
+    assert_eq!(code, 2, "-q and -v conflict: {err}");
+
+    // Work long enough for a bar on a terminal: piped, only the scripted lines.
+    let cube = fixtures().join("reference/shapes/catmark_cube.obj");
+    let cube = cube.to_str().unwrap();
+    let (code, stdout, err) = run(&["tessellate", cube, "--depth", "6", "--stats", "-o", o]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "");
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines.len(), 3, "{stdout}");
+    assert!(lines[0].starts_with(&format!("tessellated {cube}: 24578 vertices, 24576 faces")));
+    assert_eq!(lines[1], "patches per depth: 6:6");
+    assert_eq!(lines[2], "triangles: 49152");
+    let (code, stdout, err) = run(&["bench", "tessellate", cube, "--depth", "4", "--runs", "3"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err, "");
+    assert_eq!(stdout.lines().count(), 2, "{stdout}");
+    for text in [&stdout, &err] {
+        assert!(!text.contains('\r') && !text.contains('\u{1b}'), "{text:?}");
+    }
+}
+
+/// `subdiv view --help` lists the viewer's keys and mouse.
+#[test]
+fn view_help_lists_the_keys() {
+    let (code, stdout, err) = run(&["view", "--help"]);
+    assert_eq!(code, 0, "{err}");
+    for want in [
+        "middle drag, shift + left drag pan",
+        "Home, F",
+        "--up",
+        "--no-hud",
+        "--pan",
+    ] {
+        assert!(stdout.contains(want), "no '{want}' in:\n{stdout}");
+    }
+}

@@ -9,9 +9,8 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
-use common::{assert_clean_failure, root, run_ok, stderr, subdiv, tmp};
+use common::{assert_clean_failure, root, run_ok, stderr, subdiv, tmp, view_command};
 use subdiv_vk::{read_exr, read_png};
 
 fn box_obj() -> PathBuf {
@@ -210,37 +209,6 @@ fn no_vulkan_driver_names_the_package_to_install() {
     assert!(!out.exists());
 }
 
-/// `subdiv` in a window: on the display, or under `xvfb-run`; `None` (test skipped, note
-/// printed) when there is neither and none is required.
-fn view_command() -> Option<Command> {
-    if std::env::var_os("DISPLAY").is_some() {
-        return Some(subdiv());
-    }
-    let xvfb = std::env::var_os("PATH")
-        .is_some_and(|p| std::env::split_paths(&p).any(|d| d.join("xvfb-run").is_file()));
-    if !xvfb {
-        assert!(
-            std::env::var("SUBDIV_VK_REQUIRE_DISPLAY").as_deref() != Ok("1"),
-            "SUBDIV_VK_REQUIRE_DISPLAY=1 but no DISPLAY and no xvfb-run"
-        );
-        eprintln!("skipping: no DISPLAY and no xvfb-run (install xvfb, or run `cargo xtask test`)");
-        return None;
-    }
-    let mut c = Command::new("xvfb-run");
-    c.args([
-        "-a",
-        "-s",
-        "-screen 0 640x480x24",
-        env!("CARGO_BIN_EXE_subdiv"),
-    ]);
-    for (k, v) in subdiv().get_envs() {
-        if let Some(v) = v {
-            c.env(k, v);
-        }
-    }
-    Some(c)
-}
-
 /// `subdiv view --screenshot-after 5` shows exactly what `subdiv render` draws, silhouettes,
 /// wireframe and depth colours included.
 #[test]
@@ -275,7 +243,13 @@ fn view_screenshot_equals_render() {
         .unwrap()
         .args(["view", input.to_str().unwrap()])
         .args(flags)
-        .args(["--screenshot-after", "5", "-o", shot.to_str().unwrap()])
+        .args([
+            "--screenshot-after",
+            "5",
+            "--no-hud",
+            "-o",
+            shot.to_str().unwrap(),
+        ])
         .output()
         .unwrap();
     let err = stderr(&o);
@@ -492,7 +466,13 @@ fn view_doi_screenshot_equals_render() {
         .unwrap()
         .arg("view")
         .args(flags)
-        .args(["--screenshot-after", "3", "-o", shot.to_str().unwrap()])
+        .args([
+            "--screenshot-after",
+            "3",
+            "--no-hud",
+            "-o",
+            shot.to_str().unwrap(),
+        ])
         .output()
         .unwrap();
     let err = stderr(&o);

@@ -2,7 +2,7 @@
 //! renderer's [`View`] / [`OrbitCamera`], so the viewer shows exactly what a headless render
 //! draws.
 
-use glam::Vec3;
+use glam::{Quat, Vec3};
 use subdiv_mesh::Camera;
 use subdiv_vk::{OrbitCamera, View};
 
@@ -22,34 +22,42 @@ pub fn radius_about(lo: Vec3, hi: Vec3, target: Vec3) -> f32 {
         .max(1e-6)
 }
 
-/// The viewer's orbit camera for `camera` (it orbits about +Y), and whether it reproduces the
-/// camera exactly (an up vector along +Y and a view direction that is not vertical). Near and far
-/// planes enclose the box `lo..hi`.
+/// The viewer's orbit camera for `camera`, orbiting about the camera's up vector (the model's
+/// up: `--up`), and whether it reproduces the camera (a view direction within 89° of the up
+/// plane). Near and far planes enclose the box `lo..hi`.
 pub fn orbit_camera(camera: &Camera, lo: Vec3, hi: Vec3) -> (OrbitCamera, bool) {
     let offset = camera.eye - camera.target;
     let distance = offset.length().max(1e-6);
     let dir = offset / distance;
+    let up = camera.up.normalize_or(Vec3::Y);
+    // The direction in the orbit's frame, where `up` is +Y.
+    let local = if up == Vec3::Y {
+        dir
+    } else {
+        Quat::from_rotation_arc(Vec3::Y, up).inverse() * dir
+    };
     let limit = 89f32.to_radians();
-    let pitch = dir.y.clamp(-1.0, 1.0).asin();
+    let pitch = local.y.clamp(-1.0, 1.0).asin();
     let orbit = OrbitCamera {
         target: camera.target,
         distance,
-        yaw: dir.x.atan2(dir.z),
+        yaw: local.x.atan2(local.z),
         pitch: pitch.clamp(-limit, limit),
         fov_y: camera.fov_y_deg.to_radians(),
         radius: radius_about(lo, hi, camera.target),
+        up,
     };
-    let up = camera.up.normalize_or_zero();
-    let exact = up.cross(Vec3::Y).length() < 1e-6 && up.y > 0.0 && pitch.abs() <= limit;
+    let exact = camera.up.length_squared() > 0.0 && pitch.abs() <= limit;
     (orbit, exact)
 }
 
-/// The renderer's view for `camera` with near and far planes around the box `lo..hi`. Cameras the
-/// viewer can orbit go through [`OrbitCamera`], so `subdiv view` shows exactly what `subdiv
-/// render` draws.
+/// The renderer's view for `camera` with near and far planes around the box `lo..hi`. +Y-up
+/// cameras the viewer can orbit go through [`OrbitCamera`], so `subdiv view` shows exactly what
+/// `subdiv render` draws; others use the camera's own matrix (the viewer's orbit about another
+/// up axis gives the same view up to rounding).
 pub fn view_for(camera: &Camera, lo: Vec3, hi: Vec3) -> View {
     let (orbit, exact) = orbit_camera(camera, lo, hi);
-    if exact {
+    if exact && orbit.up == Vec3::Y {
         return orbit.view(camera.aspect());
     }
     let distance = orbit.distance;
@@ -104,10 +112,39 @@ mod tests {
             let ndc = view.view_proj().project_point3(corner);
             assert!(ndc.z > 0.0 && ndc.z < 1.0, "{ndc}");
         }
-        // Looking straight down with +Z up is not an orbit view; the camera's matrix is used.
+        // Looking straight down with +Z up orbits about +Z; renders use the camera's matrix.
         let top = Camera::eye_relative(lo, hi, Vec3::new(0.0, 3.0, 0.0), 45.0, 320, 240);
-        assert!(!orbit_camera(&top, lo, hi).1);
         assert_eq!(view_for(&top, lo, hi).view, top.view_matrix());
+        // A Z-up camera is reproduced by the orbit about +Z.
+        let zup = Camera::new(
+            Vec3::new(2.0, -3.0, 1.5),
+            Vec3::ZERO,
+            Vec3::Z,
+            40.0,
+            320,
+            240,
+        );
+        let (orbit, exact) = orbit_camera(&zup, lo, hi);
+        assert!(exact && orbit.up == Vec3::Z);
+        assert!((orbit.eye() - zup.eye).length() < 1e-4);
+        let m = orbit.view(320.0 / 240.0).view;
+        for (a, b) in m
+            .to_cols_array()
+            .iter()
+            .zip(zup.view_matrix().to_cols_array())
+        {
+            assert!((a - b).abs() < 1e-4, "{m} vs {}", zup.view_matrix());
+        }
+        // Looking along the up axis cannot be an orbit view.
+        let down = Camera::new(
+            Vec3::new(0.0, 0.0, 3.0),
+            Vec3::ZERO,
+            Vec3::Z,
+            40.0,
+            320,
+            240,
+        );
+        assert!(!orbit_camera(&down, lo, hi).1);
     }
 
     #[test]

@@ -32,12 +32,22 @@ pub struct UniformSource {
     lines: Vec<[f32; 3]>,
     faces: String,
     status: String,
+    /// The tessellation's depth (the largest vertex depth).
+    depth: Option<u32>,
 }
 
 impl UniformSource {
     /// The source showing `scene`.
     pub fn new(scene: Scene) -> UniformSource {
+        let depth = scene.mesh.scalars.as_ref().and_then(|s| {
+            s.iter()
+                .copied()
+                .filter(|d| d.is_finite())
+                .reduce(f32::max)
+                .map(|d| d.round().max(0.0) as u32)
+        });
         UniformSource {
+            depth,
             faces: format!("{} faces", scene.faces),
             status: String::new(),
             mesh: scene.mesh,
@@ -70,6 +80,7 @@ impl FrameSource for UniformSource {
             status: &self.status,
             // Positions, normals and depth scalars never change.
             vertex_version: Some(0),
+            depth_cap: self.depth,
         })
     }
 }
@@ -144,6 +155,7 @@ impl FrameSource for AdaptiveSource {
             },
             status: &self.status,
             vertex_version: Some(g.vertex_version),
+            depth_cap: Some(u32::from(cap)),
         })
     }
 }
@@ -218,6 +230,8 @@ impl FrameSource for DoiSource {
             },
             status: &self.status,
             vertex_version: Some(self.version),
+            // DoI refinement is driven by the DoI and its steps, not by a depth cap.
+            depth_cap: None,
         })
     }
 }

@@ -29,10 +29,19 @@ pub enum SceneError {
 /// The uniform limit tessellation of `mesh` at `depth`: Catmull-Clark on the slate tessellator,
 /// Loop on the whole-mesh refinement.
 pub fn uniform_limit(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<LimitMesh, SceneError> {
-    Ok(match scheme {
+    let t0 = std::time::Instant::now();
+    let limit = match scheme {
         Scheme::CatmullClark => subdiv_slate::tessellate(mesh, depth)?,
         Scheme::Loop => tessellate_uniform(mesh, scheme, depth)?,
-    })
+    };
+    log::debug!(
+        "uniform {scheme:?} depth {depth}: {} faces -> {} limit points, {} faces in {:.1} ms",
+        mesh.num_faces(),
+        limit.positions.len(),
+        limit.num_faces(),
+        t0.elapsed().as_secs_f64() * 1e3
+    );
+    Ok(limit)
 }
 
 /// A tessellated surface ready to draw: the render mesh (with per-vertex scalars) and what

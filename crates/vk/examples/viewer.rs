@@ -45,6 +45,7 @@ impl FrameSource for Adaptive {
             mesh: self.mesh.as_render_mesh(),
             status: &self.status,
             vertex_version: None,
+            depth_cap: Some(self.level),
         })
     }
 }

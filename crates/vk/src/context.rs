@@ -90,7 +90,8 @@ unsafe extern "system" fn debug_callback(
         (log, message)
     };
     let text = format!("[{severity:?} {types:?}] {message}");
-    eprintln!("subdiv-vk validation: {text}");
+    // Printed by the program's logger (the CLI: `warning: subdiv-vk validation: ...`).
+    log::warn!("subdiv-vk validation: {text}");
     match log.lock() {
         Ok(mut v) => v.push(text),
         Err(poisoned) => poisoned.into_inner().push(text),
@@ -189,6 +190,11 @@ impl Context {
         partial.device = None;
         partial.instance = None;
         drop(partial);
+        log::debug!(
+            "Vulkan device {} (validation {})",
+            chosen.name,
+            if debug.is_some() { "on" } else { "off" }
+        );
         Ok(Context {
             entry,
             instance,

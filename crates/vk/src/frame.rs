@@ -211,6 +211,7 @@ pub(crate) fn record(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInpu
     begin_rendering(device, cmd, f);
     draw_triangles(device, cmd, f);
     draw_lines(device, cmd, f);
+    draw_overlay(device, cmd, f);
     // SAFETY: `cmd` is recording inside the render pass begun by `begin_rendering`.
     unsafe { device.cmd_end_rendering(cmd) };
     to_transfer_source(device, cmd, f);
@@ -373,6 +374,26 @@ fn draw_lines(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_>)
             device.cmd_bind_vertex_buffers(cmd, 0, &[f.mesh_buffer], &[l.line_vertices]);
             device.cmd_draw(cmd, l.line_count * 2, 1, 0, 0);
         }
+    }
+}
+
+/// Draws the overlay rectangles (HUD, legend) over everything, blended.
+fn draw_overlay(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_>) {
+    let l = f.layout;
+    if l.overlay_vertex_count == 0 {
+        return;
+    }
+    let p = f.pipelines;
+    let stages = vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT;
+    let size = [f.target.extent.width, f.target.extent.height];
+    let push = scene::overlay_push_constants(size);
+    // SAFETY: as in `draw_triangles`; the overlay section of the mesh buffer holds
+    // `overlay_vertex_count` packed vertices at `overlay_vertices`.
+    unsafe {
+        device.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::GRAPHICS, p.overlay);
+        device.cmd_push_constants(cmd, p.layout, stages, 0, &push);
+        device.cmd_bind_vertex_buffers(cmd, 0, &[f.mesh_buffer], &[l.overlay_vertices]);
+        device.cmd_draw(cmd, l.overlay_vertex_count, 1, 0, 0);
     }
 }
 

@@ -9,7 +9,9 @@
 //! - [`Renderer`]: headless offscreen rendering with readback to PNG ([`write_png`])
 //!   and depth / normals / scalar to EXR ([`write_exr`]);
 //! - [`viewer`]: an interactive window (winit + swapchain) fed by a [`viewer::FrameSource`];
-//! - [`golden`]: golden-image comparison for regression tests.
+//! - [`golden`]: golden-image comparison for regression tests;
+//! - [`overlay`]: screen-space rectangles and text from an embedded 5×7 bitmap font (the
+//!   viewer's HUD, the colour legends of renders and the viewer).
 //!
 //! # Invariants
 //!
@@ -28,7 +30,12 @@
 //!   device and allocator, so any number of them can run in parallel threads.
 //! - **One frame recipe.** The headless renderer and the viewer record frames
 //!   with the same code into the same offscreen targets; a viewer screenshot
-//!   equals a headless render of the same camera and size.
+//!   equals a headless render of the same camera, size and options (legend
+//!   included) when the viewer's HUD is off. Overlays (HUD, legend) are drawn
+//!   last, into the colour target only: depth, normals and scalars read back
+//!   for EXR never contain them.
+//! - **Never prints.** Messages go through the `log` crate (validation messages
+//!   as warnings); the program decides what reaches the terminal.
 //! - **Owned teardown.** Every Vulkan object is destroyed by its owner once
 //!   the GPU is done with it (a fence waited on, or the device idle), and
 //!   before the device; each `unsafe` block states why it is sound in a
@@ -42,6 +49,7 @@ mod frame;
 mod image_io;
 mod memory;
 mod offscreen;
+pub mod overlay;
 mod pipeline;
 mod scene;
 mod shaders;

@@ -186,7 +186,12 @@ impl Renderer {
         options: &RenderOptions,
         readback: Readback,
     ) -> Result<()> {
-        let (bytes, layout) = scene::pack(mesh, options)?;
+        let overlay = if options.legend {
+            crate::overlay::legend(options.shading, scene::scalar_range(mesh, options), size)
+        } else {
+            crate::overlay::Overlay::default()
+        };
+        let (bytes, layout) = scene::pack(mesh, options, &overlay)?;
         let extent = vk::Extent2D {
             width: size[0],
             height: size[1],

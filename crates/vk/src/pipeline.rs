@@ -1,4 +1,4 @@
-//! Graphics pipelines (dynamic rendering) for triangles and lines.
+//! Graphics pipelines (dynamic rendering) for triangles, lines and screen-space overlays.
 
 use ash::vk;
 
@@ -23,6 +23,8 @@ pub(crate) struct Pipelines {
     pub fill_depth_only: vk::Pipeline,
     /// Lines into colour only; depth test is dynamic state.
     pub line: vk::Pipeline,
+    /// Screen-space overlay rectangles (HUD, legends): colour only, blended, no depth test.
+    pub overlay: vk::Pipeline,
     /// Line widths are dynamic state (the device has `wideLines`).
     pub dynamic_line_width: bool,
     /// Supported line width range.
@@ -34,6 +36,8 @@ struct Modules {
     mesh_frag: vk::ShaderModule,
     line_vert: vk::ShaderModule,
     line_frag: vk::ShaderModule,
+    overlay_vert: vk::ShaderModule,
+    overlay_frag: vk::ShaderModule,
 }
 
 fn module(ctx: &Context, bytes: &[u8]) -> Result<vk::ShaderModule> {
@@ -61,6 +65,7 @@ impl Pipelines {
             fill: vk::Pipeline::null(),
             fill_depth_only: vk::Pipeline::null(),
             line: vk::Pipeline::null(),
+            overlay: vk::Pipeline::null(),
             dynamic_line_width: ctx.wide_lines,
             line_width_range: if ctx.wide_lines {
                 ctx.limits.line_width_range
@@ -73,6 +78,8 @@ impl Pipelines {
             mesh_frag: vk::ShaderModule::null(),
             line_vert: vk::ShaderModule::null(),
             line_frag: vk::ShaderModule::null(),
+            overlay_vert: vk::ShaderModule::null(),
+            overlay_frag: vk::ShaderModule::null(),
         };
         let result = pipelines.build(ctx, &mut modules);
         // SAFETY: the modules were created by this device and are referenced only
@@ -84,6 +91,8 @@ impl Pipelines {
                 modules.mesh_frag,
                 modules.line_vert,
                 modules.line_frag,
+                modules.overlay_vert,
+                modules.overlay_frag,
             ] {
                 if m != vk::ShaderModule::null() {
                     ctx.device.destroy_shader_module(m, None);
@@ -102,6 +111,8 @@ impl Pipelines {
         modules.mesh_frag = module(ctx, shaders::MESH_FRAG)?;
         modules.line_vert = module(ctx, shaders::LINE_VERT)?;
         modules.line_frag = module(ctx, shaders::LINE_FRAG)?;
+        modules.overlay_vert = module(ctx, shaders::OVERLAY_VERT)?;
+        modules.overlay_frag = module(ctx, shaders::OVERLAY_FRAG)?;
         let all = vk::ColorComponentFlags::RGBA;
         let none = vk::ColorComponentFlags::empty();
         self.fill = self.create(
@@ -123,6 +134,13 @@ impl Pipelines {
             modules.line_vert,
             modules.line_frag,
             Kind::Line,
+            [all, none, none],
+        )?;
+        self.overlay = self.create(
+            ctx,
+            modules.overlay_vert,
+            modules.overlay_frag,
+            Kind::Overlay,
             [all, none, none],
         )?;
         Ok(())
@@ -163,14 +181,14 @@ impl Pipelines {
             attr(2, vk::Format::R32_SFLOAT, 24),
         ];
         let attrs: &[vk::VertexInputAttributeDescription] = match kind {
-            Kind::Fill => &mesh_attrs,
+            Kind::Fill | Kind::Overlay => &mesh_attrs,
             Kind::Line => &mesh_attrs[..1],
         };
         let vertex_input = vk::PipelineVertexInputStateCreateInfo::default()
             .vertex_binding_descriptions(&bindings)
             .vertex_attribute_descriptions(attrs);
         let topology = match kind {
-            Kind::Fill => vk::PrimitiveTopology::TRIANGLE_LIST,
+            Kind::Fill | Kind::Overlay => vk::PrimitiveTopology::TRIANGLE_LIST,
             Kind::Line => vk::PrimitiveTopology::LINE_LIST,
         };
         let input_assembly = vk::PipelineInputAssemblyStateCreateInfo::default().topology(topology);
@@ -181,11 +199,7 @@ impl Pipelines {
         let multisample = vk::PipelineMultisampleStateCreateInfo::default()
             .rasterization_samples(vk::SampleCountFlags::TYPE_1);
         let depth = depth_stencil(kind);
-        let blend_attachments = write_masks.map(|mask| {
-            vk::PipelineColorBlendAttachmentState::default()
-                .blend_enable(false)
-                .color_write_mask(mask)
-        });
+        let blend_attachments = write_masks.map(|mask| blend(kind, mask));
         let blend =
             vk::PipelineColorBlendStateCreateInfo::default().attachments(&blend_attachments);
         let dynamic = dynamic_states(kind, self.dynamic_line_width);
@@ -232,7 +246,7 @@ impl Pipelines {
         // calls this after waiting for the device to be idle (or before any use);
         // null handles are skipped or ignored, and all are nulled below.
         unsafe {
-            for p in [self.fill, self.fill_depth_only, self.line] {
+            for p in [self.fill, self.fill_depth_only, self.line, self.overlay] {
                 if p != vk::Pipeline::null() {
                     ctx.device.destroy_pipeline(p, None);
                 }
@@ -242,6 +256,7 @@ impl Pipelines {
         self.fill = vk::Pipeline::null();
         self.fill_depth_only = vk::Pipeline::null();
         self.line = vk::Pipeline::null();
+        self.overlay = vk::Pipeline::null();
         self.layout = vk::PipelineLayout::null();
     }
 }
@@ -264,14 +279,31 @@ fn rasterization(kind: Kind) -> vk::PipelineRasterizationStateCreateInfo<'static
     }
 }
 
-/// Triangles test and write depth; lines only test it (less-or-equal).
+/// Colour writes of one attachment: overlays blend with straight alpha (colour
+/// `a * src + (1 - a) * dst`), everything else overwrites.
+fn blend(kind: Kind, mask: vk::ColorComponentFlags) -> vk::PipelineColorBlendAttachmentState {
+    let state = vk::PipelineColorBlendAttachmentState::default().color_write_mask(mask);
+    if kind != Kind::Overlay || mask.is_empty() {
+        return state.blend_enable(false);
+    }
+    state
+        .blend_enable(true)
+        .src_color_blend_factor(vk::BlendFactor::SRC_ALPHA)
+        .dst_color_blend_factor(vk::BlendFactor::ONE_MINUS_SRC_ALPHA)
+        .color_blend_op(vk::BlendOp::ADD)
+        .src_alpha_blend_factor(vk::BlendFactor::ONE)
+        .dst_alpha_blend_factor(vk::BlendFactor::ONE_MINUS_SRC_ALPHA)
+        .alpha_blend_op(vk::BlendOp::ADD)
+}
+
+/// Triangles test and write depth; lines only test it (less-or-equal); overlays ignore it.
 fn depth_stencil(kind: Kind) -> vk::PipelineDepthStencilStateCreateInfo<'static> {
     vk::PipelineDepthStencilStateCreateInfo::default()
-        .depth_test_enable(true)
+        .depth_test_enable(kind != Kind::Overlay)
         .depth_write_enable(kind == Kind::Fill)
         .depth_compare_op(match kind {
             Kind::Fill => vk::CompareOp::LESS,
-            Kind::Line => vk::CompareOp::LESS_OR_EQUAL,
+            Kind::Line | Kind::Overlay => vk::CompareOp::LESS_OR_EQUAL,
         })
 }
 
@@ -292,4 +324,5 @@ fn dynamic_states(kind: Kind, dynamic_line_width: bool) -> Vec<vk::DynamicState>
 enum Kind {
     Fill,
     Line,
+    Overlay,
 }

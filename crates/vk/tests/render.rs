@@ -227,6 +227,39 @@ fn depth_mode_uses_the_palette_and_doi_the_heat_map() {
     finish(r);
 }
 
+/// The legend is drawn into the colour image only, in the top-right corner, in the palette's
+/// colour; depth, normals and scalars read back are those of the render without it.
+#[test]
+fn legend_is_in_the_colour_image_only() {
+    let Some(mut r) = renderer() else { return };
+    let size = [160, 120];
+    let view = front_view(160.0 / 120.0);
+    let sq = square(2.0);
+    let plain = RenderOptions {
+        shading: Shading::Depth,
+        ..Default::default()
+    };
+    let legend = RenderOptions {
+        legend: true,
+        ..plain
+    };
+    let (a, aux_a) = r.render_with_aux(&sq.mesh(), &view, size, &plain).unwrap();
+    let (b, aux_b) = r.render_with_aux(&sq.mesh(), &view, size, &legend).unwrap();
+    assert!(aux_a == aux_b, "the legend reached the auxiliary targets");
+    let mut swatch = 0;
+    for (x, y, p) in b.enumerate_pixels() {
+        if p != a.get_pixel(x, y) {
+            assert!(x >= 110 && y < 40, "legend pixel at ({x}, {y})");
+        }
+        // Depth 2's palette colour (0.20, 0.80, 0.25), unlit, as a 7x7 swatch.
+        if p.0 == [51, 204, 64, 255] {
+            swatch += 1;
+        }
+    }
+    assert_eq!(swatch, 49);
+    finish(r);
+}
+
 #[test]
 fn wire_overlay_and_lines_are_drawn() {
     let Some(mut r) = renderer() else { return };

@@ -56,6 +56,7 @@ impl FrameSource for Counting {
             mesh: self.mesh.as_render_mesh(),
             status: "test",
             vertex_version: Some(7),
+            depth_cap: Some(5),
         })
     }
 }
@@ -96,6 +97,8 @@ fn screenshot_after_n_frames_equals_headless_render() {
             render,
             screenshot_after: Some(5),
             screenshot_path: path.clone(),
+            // No HUD: the screenshot must equal the headless render.
+            hud: false,
             context,
             ..Default::default()
         },

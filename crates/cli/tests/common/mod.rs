@@ -130,3 +130,34 @@ pub fn assert_fails(args: &[&str], want: &str) {
     assert!(err.contains(want), "expected '{want}' in:\n{err}");
     assert!(!err.contains("panicked"), "panic:\n{err}");
 }
+
+/// `subdiv` in a window: on the display, or under `xvfb-run`; `None` (test skipped, note
+/// printed) when there is neither and none is required.
+pub fn view_command() -> Option<Command> {
+    if std::env::var_os("DISPLAY").is_some() {
+        return Some(subdiv());
+    }
+    let xvfb = std::env::var_os("PATH")
+        .is_some_and(|p| std::env::split_paths(&p).any(|d| d.join("xvfb-run").is_file()));
+    if !xvfb {
+        assert!(
+            std::env::var("SUBDIV_VK_REQUIRE_DISPLAY").as_deref() != Ok("1"),
+            "SUBDIV_VK_REQUIRE_DISPLAY=1 but no DISPLAY and no xvfb-run"
+        );
+        eprintln!("skipping: no DISPLAY and no xvfb-run (install xvfb, or run `cargo xtask test`)");
+        return None;
+    }
+    let mut c = Command::new("xvfb-run");
+    c.args([
+        "-a",
+        "-s",
+        "-screen 0 640x480x24",
+        env!("CARGO_BIN_EXE_subdiv"),
+    ]);
+    for (k, v) in subdiv().get_envs() {
+        if let Some(v) = v {
+            c.env(k, v);
+        }
+    }
+    Some(c)
+}

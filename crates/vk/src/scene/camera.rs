@@ -1,7 +1,7 @@
 //! Cameras: the [`View`] matrices a frame is drawn with and the [`OrbitCamera`]
 //! that produces them.
 
-use glam::{Mat4, Vec3};
+use glam::{Mat4, Quat, Vec3};
 
 use super::RenderMesh;
 
@@ -114,6 +114,10 @@ impl View {
 
 /// An orbiting camera around a target point; produces [`View`]s.
 ///
+/// Yaw turns about the `up` axis (the model's up: +Y by default, +Z for Z-up
+/// models), pitch tilts towards it. With `up` = +Y, yaw 0 and pitch 0 the eye
+/// lies on +Z of the target.
+///
 /// The viewer and headless renders use the same camera, so a screenshot of the
 /// viewer equals a headless render with the same camera and size.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -122,7 +126,7 @@ pub struct OrbitCamera {
     pub target: Vec3,
     /// Distance from eye to target.
     pub distance: f32,
-    /// Rotation about the world y axis, radians.
+    /// Rotation about `up`, radians.
     pub yaw: f32,
     /// Elevation, radians (clamped to just under ±90°).
     pub pitch: f32,
@@ -130,6 +134,9 @@ pub struct OrbitCamera {
     pub fov_y: f32,
     /// Radius of the scene around `target`; sets the near and far planes.
     pub radius: f32,
+    /// The axis the camera orbits about, kept up in the image (unit length; +Y
+    /// by default).
+    pub up: Vec3,
 }
 
 impl OrbitCamera {
@@ -146,7 +153,42 @@ impl OrbitCamera {
             pitch: 0.45,
             fov_y,
             radius,
+            up: Vec3::Y,
         }
+    }
+
+    /// This camera orbiting about `up` instead (unit length is enforced; a zero
+    /// or non-finite vector keeps the current axis). Yaw and pitch are kept:
+    /// relative to the new axis.
+    pub fn with_up(mut self, up: Vec3) -> Self {
+        if up.is_finite() && up.length_squared() > 1e-12 {
+            self.up = up.normalize();
+        }
+        self
+    }
+
+    /// The rotation taking +Y to `up` (the frame yaw and pitch are measured in).
+    fn frame(&self) -> Quat {
+        Quat::from_rotation_arc(Vec3::Y, self.up.normalize_or(Vec3::Y))
+    }
+
+    /// Unit vectors of the image plane in world space: (right, up).
+    pub fn screen_axes(&self) -> (Vec3, Vec3) {
+        let forward = (self.target - self.eye()).normalize_or(Vec3::NEG_Z);
+        let right = forward.cross(self.up).normalize_or(Vec3::X);
+        (right, right.cross(forward))
+    }
+
+    /// Moves the target (and the eye with it) by a drag of (`dx`, `dy`) pixels in an
+    /// image `height` pixels high: points in the target plane follow the cursor.
+    pub fn pan(&mut self, dx: f32, dy: f32, height: f32) {
+        if !(dx.is_finite() && dy.is_finite() && height > 0.0) {
+            return;
+        }
+        // World units per pixel in the plane through the target.
+        let per_pixel = 2.0 * self.distance * (self.fov_y * 0.5).tan() / height;
+        let (right, up) = self.screen_axes();
+        self.target += (-right * dx + up * dy) * per_pixel;
     }
 
     /// [`OrbitCamera::framing`] for the bounds of `mesh`; a unit box if it is empty.
@@ -161,7 +203,13 @@ impl OrbitCamera {
     pub fn eye(&self) -> Vec3 {
         let (sy, cy) = self.yaw.sin_cos();
         let (sp, cp) = self.pitch.sin_cos();
-        self.target + self.distance * Vec3::new(cp * sy, sp, cp * cy)
+        let local = Vec3::new(cp * sy, sp, cp * cy);
+        let dir = if self.up == Vec3::Y {
+            local // bit-identical to the +Y orbit of earlier versions
+        } else {
+            self.frame() * local
+        };
+        self.target + self.distance * dir
     }
 
     /// The view for an image of the given aspect ratio (width / height).
@@ -178,7 +226,7 @@ impl OrbitCamera {
         View::look_at(
             self.eye(),
             self.target,
-            Vec3::Y,
+            self.up,
             self.fov_y,
             aspect,
             near,
@@ -215,5 +263,36 @@ mod tests {
         // +y in the world is up in the image, i.e. negative NDC y in Vulkan.
         let top = view.view_proj().project_point3(Vec3::new(0.0, 0.5, 0.0));
         assert!(top.y < 0.0);
+    }
+
+    #[test]
+    fn orbit_about_z_keeps_z_up_and_pan_follows_the_cursor() {
+        let cam = OrbitCamera::framing(Vec3::splat(-1.0), Vec3::splat(1.0)).with_up(Vec3::Z);
+        let view = cam.view(1.0);
+        // +Z is up in the image (negative NDC y), and yawing keeps the eye's height along z.
+        let top = view.view_proj().project_point3(Vec3::new(0.0, 0.0, 0.5));
+        assert!(top.y < 0.0 && top.x.abs() < 1e-5, "{top}");
+        let mut turned = cam;
+        turned.rotate(0.7, 0.0);
+        assert!((turned.eye().z - cam.eye().z).abs() < 1e-5);
+        assert!((turned.eye() - cam.eye()).length() > 0.1);
+        // Pitch 0 looks horizontally: the eye is level with the target along z.
+        let level = OrbitCamera { pitch: 0.0, ..cam };
+        assert!((level.eye().z - level.target.z).abs() < 1e-5);
+        // A drag of 40 px right and 30 px down moves the target's image 40 px right and
+        // 30 px down in a 400 px high image.
+        let px = |c: &OrbitCamera, p: Vec3| {
+            let ndc = c.view(1.0).view_proj().project_point3(p);
+            (ndc.x * 200.0, ndc.y * 200.0)
+        };
+        let point = cam.target;
+        let mut panned = cam;
+        panned.pan(40.0, 30.0, 400.0);
+        let (x0, y0) = px(&cam, point);
+        let (x1, y1) = px(&panned, point);
+        assert!(
+            (x1 - x0 - 40.0).abs() < 1e-2 && (y1 - y0 - 30.0).abs() < 1e-2,
+            "{x1} {y1}"
+        );
     }
 }

@@ -13,5 +13,6 @@ pub use camera::{OrbitCamera, View};
 pub use mesh::{OwnedMesh, RenderMesh};
 pub use options::{RenderOptions, Shading};
 pub(crate) use pack::{
-    Layout, VERTEX_STRIDE, line_push_constants, mesh_push_constants, pack, pack_from,
+    Layout, VERTEX_STRIDE, line_push_constants, mesh_push_constants, overlay_push_constants, pack,
+    pack_from, scalar_range,
 };

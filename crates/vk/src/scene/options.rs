@@ -72,6 +72,10 @@ pub struct RenderOptions {
     /// Scalar range mapped onto the heat map for [`Shading::Doi`]; `None`: the
     /// mesh's own minimum and maximum.
     pub scalar_range: Option<(f32, f32)>,
+    /// Draw the colour legend of [`Shading::Depth`] or [`Shading::Doi`] in the top-right
+    /// corner (levels and their colours, or the heat map with its range); nothing for the
+    /// other shadings.
+    pub legend: bool,
 }
 
 impl Default for RenderOptions {
@@ -87,6 +91,7 @@ impl Default for RenderOptions {
             wire_width: 1.0,
             line_width: 2.0,
             scalar_range: None,
+            legend: false,
         }
     }
 }

@@ -5,6 +5,7 @@ use glam::Vec3;
 
 use super::{RenderMesh, RenderOptions, Shading, View};
 use crate::error::{Result, VkError};
+use crate::overlay::Overlay;
 
 /// Bytes per packed vertex: position (3 f32), normal (3 f32), scalar (1 f32).
 pub(crate) const VERTEX_STRIDE: u64 = 28;
@@ -23,6 +24,10 @@ pub(crate) struct Layout {
     pub edge_count: u32,
     pub line_vertices: u64,
     pub line_count: u32,
+    /// Overlay rectangles as triangles: position (pixels), colour in the normal slot, alpha
+    /// in the scalar slot; six vertices per rectangle.
+    pub overlay_vertices: u64,
+    pub overlay_vertex_count: u32,
     pub total: u64,
     /// Heat-map scalar range (min, 1/range).
     pub scalar_min: f32,
@@ -49,8 +54,12 @@ fn count_u32(n: usize, what: &str) -> Result<u32> {
 
 /// Packs `mesh` for drawing with `options` into one byte array (vertices and
 /// u32 indices, 16-byte aligned sections).
-pub(crate) fn pack(mesh: &RenderMesh<'_>, options: &RenderOptions) -> Result<(Vec<u8>, Layout)> {
-    pack_from(mesh, options, true).map(|(bytes, layout, _)| (bytes, layout))
+pub(crate) fn pack(
+    mesh: &RenderMesh<'_>,
+    options: &RenderOptions,
+    overlay: &Overlay,
+) -> Result<(Vec<u8>, Layout)> {
+    pack_from(mesh, options, overlay, true).map(|(bytes, layout, _)| (bytes, layout))
 }
 
 /// [`pack`], optionally leaving out the shared-vertex section at the start
@@ -59,6 +68,7 @@ pub(crate) fn pack(mesh: &RenderMesh<'_>, options: &RenderOptions) -> Result<(Ve
 pub(crate) fn pack_from(
     mesh: &RenderMesh<'_>,
     options: &RenderOptions,
+    overlay: &Overlay,
     with_vertices: bool,
 ) -> Result<(Vec<u8>, Layout, u64)> {
     mesh.validate()?;
@@ -109,6 +119,20 @@ pub(crate) fn pack_from(
             push_vertex(&mut out, *p, [0.0; 3], 0.0);
         }
         layout.line_count = count_u32(lines.len() / 2, "lines")?;
+        pad(&mut out);
+    }
+
+    if !overlay.is_empty() {
+        layout.overlay_vertices = at(&out);
+        for r in &overlay.rects {
+            let [x0, y0] = r.min;
+            let [x1, y1] = r.max;
+            let [red, green, blue, alpha] = r.color;
+            for (x, y) in [(x0, y0), (x1, y0), (x1, y1), (x0, y0), (x1, y1), (x0, y1)] {
+                push_vertex(&mut out, [x, y, 0.0], [red, green, blue], alpha);
+            }
+        }
+        layout.overlay_vertex_count = count_u32(overlay.rects.len() * 6, "overlay rectangles")?;
         pad(&mut out);
     }
 
@@ -179,7 +203,7 @@ fn push_edges(out: &mut Vec<u8>, mesh: &RenderMesh<'_>) -> usize {
 
 /// The heat-map range: `options.scalar_range`, else the finite scalars' own
 /// minimum and maximum, else 0..1.
-fn scalar_range(mesh: &RenderMesh<'_>, options: &RenderOptions) -> (f32, f32) {
+pub(crate) fn scalar_range(mesh: &RenderMesh<'_>, options: &RenderOptions) -> (f32, f32) {
     options.scalar_range.unwrap_or_else(|| {
         mesh.scalars
             .map(|s| {
@@ -219,6 +243,15 @@ pub(crate) fn line_push_constants(view: &View, color: [f32; 4]) -> [u8; 128] {
     to_bytes(&floats)
 }
 
+/// The push-constant block of the overlay shaders: `2 / size` per axis after the (unused)
+/// matrix.
+pub(crate) fn overlay_push_constants(size: [u32; 2]) -> [u8; 128] {
+    let mut floats = [0f32; 32];
+    floats[16] = 2.0 / size[0].max(1) as f32;
+    floats[17] = 2.0 / size[1].max(1) as f32;
+    to_bytes(&floats)
+}
+
 fn to_bytes(floats: &[f32; 32]) -> [u8; 128] {
     let mut out = [0u8; 128];
     for (chunk, f) in out.chunks_exact_mut(4).zip(floats) {
@@ -253,7 +286,7 @@ mod tests {
             wire_overlay: true,
             ..Default::default()
         };
-        let (bytes, layout) = pack(&mesh, &options).unwrap();
+        let (bytes, layout) = pack(&mesh, &options, &Overlay::default()).unwrap();
         assert_eq!(layout.edge_count, 5);
         assert_eq!(layout.tri_count, 2);
         assert!(layout.total as usize == bytes.len() && bytes.len() % 16 == 0);
@@ -261,7 +294,13 @@ mod tests {
             edges: Some(&[[0, 1], [1, 2], [2, 3], [3, 0]]),
             ..mesh
         };
-        assert_eq!(pack(&with_edges, &options).unwrap().1.edge_count, 4);
+        assert_eq!(
+            pack(&with_edges, &options, &Overlay::default())
+                .unwrap()
+                .1
+                .edge_count,
+            4
+        );
     }
 
     #[test]
@@ -279,8 +318,14 @@ mod tests {
                 wire_overlay: true,
                 ..Default::default()
             };
-            let (full, layout, zero) = pack_from(&mesh, &options, true).unwrap();
-            let (tail, tail_layout, offset) = pack_from(&mesh, &options, false).unwrap();
+            let mut overlay = Overlay::default();
+            overlay.text(2.0, 3.0, 1, [1.0; 4], "7");
+            let (full, layout, zero) = pack_from(&mesh, &options, &overlay, true).unwrap();
+            let (tail, tail_layout, offset) = pack_from(&mesh, &options, &overlay, false).unwrap();
+            assert_eq!(
+                layout.overlay_vertex_count as usize,
+                overlay.rects.len() * 6
+            );
             assert_eq!(zero, 0);
             assert_eq!(offset, 96); // 3 vertices * 28 bytes, aligned to 16
             assert_eq!(&full[offset as usize..], &tail[..]);

@@ -13,6 +13,13 @@ pub(crate) const LINE_VERT: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/li
 /// Line fragment shader.
 pub(crate) const LINE_FRAG: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/line.frag.spv"));
 
+/// Overlay (HUD, legend) vertex shader.
+pub(crate) const OVERLAY_VERT: &[u8] =
+    include_bytes!(concat!(env!("OUT_DIR"), "/overlay.vert.spv"));
+/// Overlay fragment shader.
+pub(crate) const OVERLAY_FRAG: &[u8] =
+    include_bytes!(concat!(env!("OUT_DIR"), "/overlay.frag.spv"));
+
 /// The SPIR-V words of an embedded shader.
 pub(crate) fn words(bytes: &[u8]) -> Result<Vec<u32>> {
     ash::util::read_spv(&mut Cursor::new(bytes)).map_err(|e| VkError::Io {

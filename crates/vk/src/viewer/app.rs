@@ -10,10 +10,12 @@ use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
-use winit::keyboard::{Key, NamedKey};
+use winit::keyboard::{Key, ModifiersState, NamedKey};
 use winit::window::{Window, WindowId};
 
 use super::gpu::Gpu;
+use super::hud::{self, HudState};
+use super::input::{Drag, drag, draws_continuously};
 use super::{FrameRequest, FrameSource, ViewerOptions, ViewerReport};
 use crate::error::{Result, VkError};
 use crate::image_io::write_png;
@@ -30,21 +32,28 @@ pub(super) fn run(source: &mut dyn FrameSource, options: ViewerOptions) -> Resul
     let event_loop = builder
         .build()
         .map_err(|e| VkError::Window(e.to_string()))?;
-    event_loop.set_control_flow(ControlFlow::Poll);
+    event_loop.set_control_flow(ControlFlow::Wait);
     let mut app = App {
         gpu: None,
         window: None,
         source,
         camera: options.camera,
+        home: options.camera,
         render: options.render,
         silhouettes: options.render.show_lines,
         target_fps: options.target_fps.max(1.0),
         frame_rate_control: options.frame_rate_control,
+        hud: options.hud,
         frozen: None,
-        dragging: false,
+        left: false,
+        middle: false,
+        modifiers: ModifiersState::empty(),
         cursor: None,
+        pending_pan: options.pan,
+        dirty: true,
         last_frame: None,
         last_frame_time: Duration::ZERO,
+        work_time: Duration::ZERO,
         fps: 0.0,
         last_title: None,
         screenshot_requested: false,
@@ -74,15 +83,27 @@ struct App<'s> {
     source: &'s mut dyn FrameSource,
     options: ViewerOptions,
     camera: Option<OrbitCamera>,
+    /// The camera `Home`/`F` returns to: the initial one (given or fitted).
+    home: Option<OrbitCamera>,
     render: RenderOptions,
     silhouettes: bool,
     target_fps: f32,
     frame_rate_control: bool,
+    hud: bool,
     frozen: Option<View>,
-    dragging: bool,
+    /// Mouse buttons held: left rotates (pans with shift), middle pans.
+    left: bool,
+    middle: bool,
+    modifiers: ModifiersState,
     cursor: Option<(f64, f64)>,
+    /// [`ViewerOptions::pan`], applied once the camera exists.
+    pending_pan: Option<[f32; 2]>,
+    /// Something changed since the last frame: draw one.
+    dirty: bool,
     last_frame: Option<Instant>,
     last_frame_time: Duration,
+    /// CPU time of the last frame (source + drawing), shown when not redrawing continuously.
+    work_time: Duration,
     fps: f32,
     last_title: Option<Instant>,
     screenshot_requested: bool,
@@ -115,6 +136,10 @@ impl App<'_> {
     }
 
     fn key(&mut self, key: &Key) {
+        if matches!(key.as_ref(), Key::Named(NamedKey::Home)) {
+            self.reset_view();
+            return;
+        }
         let Key::Character(c) = key.as_ref() else {
             return;
         };
@@ -130,18 +155,49 @@ impl App<'_> {
             "d" => self.render.shading = toggle(self.render.shading, Shading::Depth),
             "h" => self.render.shading = toggle(self.render.shading, Shading::Doi),
             "s" => self.silhouettes = !self.silhouettes,
-            "f" => {
+            "f" => self.reset_view(),
+            "z" => {
                 self.frozen = match self.frozen {
                     Some(_) => None,
                     None => self.current_view(),
                 }
             }
+            "i" => self.hud = !self.hud,
+            "l" => self.render.legend = !self.render.legend,
             "+" | "=" => self.target_fps = (self.target_fps * 1.25).min(1000.0),
             "-" | "_" => self.target_fps = (self.target_fps / 1.25).max(1.0),
             "c" => self.frame_rate_control = !self.frame_rate_control,
             "p" => self.screenshot_requested = true,
             _ => {}
         }
+    }
+
+    /// Back to the initial camera (`Home`, `F`).
+    fn reset_view(&mut self) {
+        if self.home.is_some() {
+            self.camera = self.home;
+        }
+    }
+
+    /// A pan by (`dx`, `dy`) pixels: middle drag, shift + left drag, [`ViewerOptions::pan`].
+    fn pan(&mut self, dx: f32, dy: f32) {
+        let height = self
+            .window
+            .as_ref()
+            .map_or(self.options.size[1], |w| w.inner_size().height) as f32;
+        if let Some(camera) = self.camera.as_mut() {
+            camera.pan(dx, dy, height);
+        }
+    }
+
+    /// Whether frames are drawn back to back: frame-rate control needs frame times, and a
+    /// scripted screenshot waits for its frame count. Otherwise only changes draw.
+    fn continuous(&self) -> bool {
+        draws_continuously(
+            self.frame_rate_control,
+            self.options.screenshot_after,
+            self.report.frames,
+        )
     }
 
     fn current_view(&self) -> Option<View> {
@@ -157,7 +213,12 @@ impl App<'_> {
         let aspect = extent.width as f32 / extent.height as f32;
         let now = Instant::now();
         self.update_fps(now);
-        let request = self.request(extent, aspect)?;
+        let mut request = self.request(extent, aspect)?;
+        if let Some([dx, dy]) = self.pending_pan.take() {
+            self.pan(dx, dy);
+            request = self.request(extent, aspect)?;
+        }
+        let mut hud_state = self.hud_state();
         let frame = self
             .source
             .frame(&request)
@@ -182,12 +243,25 @@ impl App<'_> {
         let shot = self.screenshot_requested || at_limit;
         let triangles = mesh.triangle_count();
         let status = frame.status.to_string();
+        let size = [extent.width, extent.height];
+        hud_state.triangles = triangles;
+        hud_state.depth_cap = frame.depth_cap;
+        let overlay = hud::overlay(&hud_state, &mesh, &options, size);
         // `swapchain_extent` returned an extent, so the GPU state exists.
         let Some(gpu) = self.gpu.as_mut() else {
             return Ok(());
         };
-        let image = gpu.draw(&mesh, &request.view, &options, frame.vertex_version, shot)?;
+        let vertex_version = frame.vertex_version;
+        let image = gpu.draw(
+            &mesh,
+            &request.view,
+            &options,
+            &overlay,
+            vertex_version,
+            shot,
+        )?;
         self.report.frames += 1;
+        self.work_time = now.elapsed();
 
         if let Some(image) = image
             && self.save_screenshot(&image, at_limit)?
@@ -224,8 +298,31 @@ impl App<'_> {
         gpu.ensure_swapchain(size).map(Some)
     }
 
-    /// Measures the previous frame's time and smooths the frame rate.
+    /// What the HUD shows for this frame (the source's triangles and depth cap to be filled in).
+    fn hud_state(&self) -> HudState {
+        HudState {
+            show: self.hud,
+            fps: self.continuous().then_some(self.fps),
+            work_ms: self.work_time.as_secs_f32() * 1e3,
+            triangles: 0,
+            depth_cap: None,
+            target_fps: self.frame_rate_control.then_some(self.target_fps),
+            shading: self.render.shading,
+            wire: self.render.wire_overlay,
+            silhouettes: self.silhouettes,
+            frozen: self.frozen.is_some(),
+        }
+    }
+
+    /// Measures the previous frame's time and smooths the frame rate (restarting after an
+    /// idle pause, when no frames were drawn).
     fn update_fps(&mut self, now: Instant) {
+        if let Some(last) = self.last_frame
+            && now - last > Duration::from_millis(500)
+        {
+            self.fps = 0.0;
+            self.last_frame = None;
+        }
         if let Some(last) = self.last_frame {
             self.last_frame_time = now - last;
             let instant = 1.0 / self.last_frame_time.as_secs_f32().max(1e-6);
@@ -268,6 +365,7 @@ impl App<'_> {
                 OrbitCamera::framing_mesh(&frame.mesh)
             };
             self.camera = Some(fitted);
+            self.home = Some(fitted);
             request.view = fitted.view(aspect);
             request.cull_view = self.frozen.unwrap_or(request.view);
         }
@@ -286,7 +384,7 @@ impl App<'_> {
             )
         };
         write_png(&path, image)?;
-        eprintln!("screenshot: {}", path.display());
+        log::info!("screenshot: {}", path.display());
         self.report.screenshots.push(path);
         self.screenshot_requested = false;
         Ok(at_limit)
@@ -344,6 +442,15 @@ impl ApplicationHandler for App<'_> {
     }
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        // Resizes, keys, drags and the wheel change what is shown; plain cursor moves do not.
+        let changes = match &event {
+            WindowEvent::Resized(_)
+            | WindowEvent::KeyboardInput { .. }
+            | WindowEvent::MouseWheel { .. } => true,
+            WindowEvent::CursorMoved { .. } => self.left || self.middle,
+            _ => false,
+        };
+        self.dirty |= changes;
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(_) => {
@@ -365,21 +472,27 @@ impl ApplicationHandler for App<'_> {
                     self.key(&event.logical_key);
                 }
             }
-            WindowEvent::MouseInput {
-                state,
-                button: MouseButton::Left,
-                ..
-            } => {
-                self.dragging = state == ElementState::Pressed;
+            WindowEvent::ModifiersChanged(m) => self.modifiers = m.state(),
+            WindowEvent::MouseInput { state, button, .. } => {
+                let pressed = state == ElementState::Pressed;
+                match button {
+                    MouseButton::Left => self.left = pressed,
+                    MouseButton::Middle => self.middle = pressed,
+                    _ => {}
+                }
             }
             WindowEvent::CursorMoved { position, .. } => {
-                if self.dragging
-                    && let (Some((x, y)), Some(camera)) = (self.cursor, self.camera.as_mut())
-                {
-                    camera.rotate(
-                        ((position.x - x) * 0.01) as f32,
-                        ((position.y - y) * 0.01) as f32,
-                    );
+                if let Some((x, y)) = self.cursor {
+                    let (dx, dy) = ((position.x - x) as f32, (position.y - y) as f32);
+                    match drag(self.left, self.middle, self.modifiers.shift_key()) {
+                        Some(Drag::Pan) => self.pan(dx, dy),
+                        Some(Drag::Orbit) => {
+                            if let Some(camera) = self.camera.as_mut() {
+                                camera.rotate(dx * 0.01, dy * 0.01);
+                            }
+                        }
+                        None => {}
+                    }
                 }
                 self.cursor = Some((position.x, position.y));
             }
@@ -396,9 +509,33 @@ impl ApplicationHandler for App<'_> {
         }
     }
 
-    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
-        if let Some(window) = self.window.as_ref() {
+    /// Draws again only when something changed or frames run back to back
+    /// ([`App::continuous`]); otherwise the loop sleeps until the next event.
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        let continuous = self.continuous();
+        event_loop.set_control_flow(if continuous {
+            ControlFlow::Poll
+        } else {
+            ControlFlow::Wait
+        });
+        if (continuous || self.dirty || self.screenshot_requested)
+            && let Some(window) = self.window.as_ref()
+        {
+            self.dirty = false;
             window.request_redraw();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn screenshots_are_numbered() {
+        assert_eq!(
+            numbered(std::path::Path::new("d/shot.png"), 3),
+            PathBuf::from("d/shot-0003.png")
+        );
     }
 }

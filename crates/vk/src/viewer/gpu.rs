@@ -9,6 +9,7 @@ use super::swapchain::{Swapchain, record_blit};
 use crate::context::{Context, ContextOptions};
 use crate::error::{Result, VkError, VkResultExt};
 use crate::frame::{self, FrameInputs, MeshBuffer, Readback, Target};
+use crate::overlay::Overlay;
 use crate::pipeline::Pipelines;
 use crate::scene::{self, Layout, RenderMesh, RenderOptions, View};
 
@@ -44,6 +45,7 @@ pub(super) struct Gpu {
 struct Packed<'a> {
     mesh: &'a RenderMesh<'a>,
     options: &'a RenderOptions,
+    overlay: &'a Overlay,
     /// The packed bytes; without the vertices when `reuse`.
     bytes: Vec<u8>,
     layout: Layout,
@@ -123,12 +125,14 @@ impl Gpu {
             .ok_or(VkError::Window("no surface".into()))
     }
 
-    /// Draws and presents one frame; with `screenshot`, waits for it and returns the image.
+    /// Draws and presents one frame with `overlay` on top; with `screenshot`, waits for it and
+    /// returns the image.
     pub(super) fn draw(
         &mut self,
         mesh: &RenderMesh<'_>,
         view: &View,
         options: &RenderOptions,
+        overlay: &Overlay,
         vertex_version: Option<u64>,
         screenshot: bool,
     ) -> Result<Option<image::RgbaImage>> {
@@ -139,10 +143,11 @@ impl Gpu {
         // CPU work first (overlaps the GPU's previous frame): pack the mesh,
         // without the vertices if this slot's buffer already holds them.
         let reuse = vertex_version.is_some() && self.slots[index].vertex_version == vertex_version;
-        let (bytes, layout, offset) = scene::pack_from(mesh, options, !reuse)?;
+        let (bytes, layout, offset) = scene::pack_from(mesh, options, overlay, !reuse)?;
         let packed = Packed {
             mesh,
             options,
+            overlay,
             bytes,
             layout,
             offset,
@@ -321,7 +326,7 @@ impl Gpu {
         let mesh_buffer = match kept {
             Some(buffer) => buffer,
             None if packed.reuse => {
-                let (all, _) = scene::pack(packed.mesh, packed.options)?;
+                let (all, _) = scene::pack(packed.mesh, packed.options, packed.overlay)?;
                 slot.mesh.upload(&mut self.ctx, &all)?
             }
             None => slot.mesh.upload(&mut self.ctx, &packed.bytes)?,

@@ -5,14 +5,17 @@
 //! into an offscreen image, and blits that image to the swapchain. Screenshots
 //! read the offscreen image back, so they equal a headless render of the same view.
 //!
-//! Controls: left drag rotates, wheel zooms; `W` wireframe overlay, `D` depth
-//! colours, `H` DoI heat map, `S` silhouette lines, `F` freeze the culling camera
-//! (its frustum is drawn), `+`/`-` target frame rate, `C` frame-rate control on/off,
-//! `P` screenshot, `Esc`/`Q` quit. The title shows fps, triangles and the
-//! source's status text.
+//! Controls: see [`KEY_HELP`]. A HUD (frame rate, triangles, depth cap, target
+//! frame rate, mode) and, for the depth and DoI shadings, a colour legend are
+//! drawn over the frame with Vulkan ([`crate::overlay`]); the title shows the
+//! same plus the source's status text. Frames are drawn back to back only while
+//! frame-rate control is on (it needs frame times) or a scripted screenshot
+//! waits for its frame; otherwise the viewer draws when something changes.
 
 mod app;
 mod gpu;
+mod hud;
+mod input;
 mod swapchain;
 
 use std::path::PathBuf;
@@ -22,13 +25,26 @@ use crate::context::ContextOptions;
 use crate::error::Result;
 use crate::scene::{OrbitCamera, OwnedMesh, RenderMesh, RenderOptions, Shading, View};
 
+/// The viewer's keys and mouse, as printed by `subdiv view` at start and in its `--help`.
+pub const KEY_HELP: &str = "\
+Viewer controls:
+  left drag                      orbit about the model's up axis (--up)
+  middle drag, shift + left drag pan
+  wheel                          zoom
+  Home, F                        frame the model again (reset the view)
+  W  wireframe overlay           D  depth colours       H  DoI heat map
+  S  silhouette lines            Z  freeze the culling camera (its frustum is drawn)
+  C  frame-rate control on/off   +, -  target frame rate
+  I  HUD on/off                  L  colour legend on/off
+  P  screenshot                  Esc, Q  quit";
+
 /// What the viewer asks its [`FrameSource`] for, once per frame.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FrameRequest {
     /// The camera the frame is rendered with.
     pub view: View,
     /// The camera to cull and choose levels of detail with: equal to `view`
-    /// unless the culling camera is frozen (`F`).
+    /// unless the culling camera is frozen (`Z`).
     pub cull_view: View,
     /// Image size in pixels.
     pub size: [u32; 2],
@@ -39,7 +55,7 @@ pub struct FrameRequest {
     pub silhouettes: bool,
     /// Target frame rate set with `+`/`-`.
     pub target_fps: f32,
-    /// Whether frame-rate control is on (`C`).
+    /// Whether frame-rate control is on (`C`); while it is, frames are drawn back to back.
     pub frame_rate_control: bool,
     /// Wall time of the previous frame (zero for the first).
     pub last_frame_time: Duration,
@@ -59,6 +75,9 @@ pub struct SourceFrame<'a> {
     /// per-frame device buffers and uploads only indices and lines (e.g. limit
     /// points stay while subdivision depths do not rise). `None`: always upload.
     pub vertex_version: Option<u64>,
+    /// The subdivision depth cap of this frame (the HUD's "depth cap"): the frame-rate
+    /// controller's cap or the maximum depth; `None` where no cap applies.
+    pub depth_cap: Option<u32>,
 }
 
 /// Produces the geometry of each frame (e.g. the adaptive tessellator).
@@ -80,6 +99,7 @@ impl FrameSource for OwnedMesh {
             mesh: self.as_render_mesh(),
             status: "",
             vertex_version: Some(0),
+            depth_cap: None,
         })
     }
 }
@@ -93,8 +113,15 @@ pub struct ViewerOptions {
     pub size: [u32; 2],
     /// Initial camera; `None`: frame the first frame's geometry.
     pub camera: Option<OrbitCamera>,
-    /// Initial render options (shading, overlay, colours).
+    /// Initial render options (shading, overlay, colours); `legend` starts the
+    /// colour legend on (`L`).
     pub render: RenderOptions,
+    /// Whether the HUD starts on (`I`). Screenshots include it: turn it (and the
+    /// legend) off for screenshots that must equal headless renders.
+    pub hud: bool,
+    /// Pan by this many pixels (right, down) before the first frame, exactly as a
+    /// middle drag does (scripted views and tests).
+    pub pan: Option<[f32; 2]>,
     /// Initial target frame rate.
     pub target_fps: f32,
     /// Whether frame-rate control starts on.
@@ -115,6 +142,8 @@ impl Default for ViewerOptions {
             size: [960, 720],
             camera: None,
             render: RenderOptions::default(),
+            hud: true,
+            pan: None,
             target_fps: 30.0,
             frame_rate_control: true,
             screenshot_after: None,

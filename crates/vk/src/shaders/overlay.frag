@@ -1,0 +1,10 @@
+#version 450
+// Overlay pass: flat colour, blended over the frame.
+
+layout(location = 0) in vec4 v_color;
+
+layout(location = 0) out vec4 o_color;
+
+void main() {
+    o_color = v_color;
+}
