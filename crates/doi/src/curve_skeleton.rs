@@ -16,7 +16,8 @@
 //! first band is a cap around the source); a medial curve stops about one radius inside, so
 //! every end branch is cut back to the first node whose distance from the tip is at least its
 //! own radius (the mean distance of its band piece from its centroid): a capsule keeps the
-//! segment between its caps' centres, a sphere shrinks to its centre. An end branch whose tip
+//! segment between its caps' centres; where the two ends meet (a compact object) the skeleton
+//! is the centroid of the object's vertices. An end branch whose tip
 //! lies within 1.5 radii of the node it leaves from is a spur (on a ring, the cap around the
 //! source) and is removed.
 //!
@@ -47,7 +48,7 @@ pub const BANDS: usize = 24;
 /// let p = [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z];
 /// let t = [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]];
 /// let s = curve_skeleton(&p, &t);
-/// assert!(s.iter().flatten().all(|q| q.length() < 0.35));
+/// assert!(s.iter().flatten().all(|q| q.length() < 1e-6));
 /// ```
 pub fn curve_skeleton(positions: &[Vec3], tris: &[[u32; 3]]) -> Vec<[Vec3; 2]> {
     let g = Graph::new(positions, tris);
@@ -204,6 +205,7 @@ impl<'a> Graph<'a> {
         Diagram {
             centre,
             radius,
+            count: nodes.iter().map(|&(_, c)| c).collect(),
             links,
         }
     }
@@ -220,10 +222,12 @@ fn far_vertex(d: &[f32], piece: &[u32], label: u32) -> usize {
     best.1
 }
 
-/// A level-set diagram: nodes (band pieces) at their centroids with their radii, and links.
+/// A level-set diagram: nodes (band pieces) at their centroids with their radii and vertex
+/// counts, and links.
 struct Diagram {
     centre: Vec<Vec3>,
     radius: Vec<f32>,
+    count: Vec<u32>,
     links: Vec<(u32, u32)>,
 }
 
@@ -262,15 +266,10 @@ impl Diagram {
                 } as usize;
                 (prev, cur) = (cur, next);
                 if nb[cur].len() == 1 {
-                    // A whole piece of the diagram is one chain shorter than its radii: keep
-                    // its widest node (a compact object's centre) as a point.
+                    // A whole piece of the diagram is one chain shorter than its radii: a
+                    // compact object, whose skeleton is its centre.
                     path.push(cur);
-                    let keep = path
-                        .iter()
-                        .copied()
-                        .max_by(|&a, &b| self.radius[a].total_cmp(&self.radius[b]))
-                        .unwrap_or(cur);
-                    points.push(keep);
+                    points.push(self.mean(&path));
                     break;
                 }
             }
@@ -302,14 +301,20 @@ impl Diagram {
             .filter(|&&(a, b)| alive[a as usize] && alive[b as usize])
             .map(|&(a, b)| [self.centre[a as usize], self.centre[b as usize]])
             .collect();
-        out.extend(points.iter().map(|&k| [self.centre[k]; 2]));
-        if out.is_empty() {
-            // Everything was cut: the node with the largest radius stands for the object.
-            if let Some(k) = (0..n).max_by(|&a, &b| self.radius[a].total_cmp(&self.radius[b])) {
-                out.push([self.centre[k]; 2]);
-            }
+        out.extend(points.iter().map(|&p| [p; 2]));
+        if out.is_empty() && n > 0 {
+            // Everything was cut (the two ends met): a compact object, its centre.
+            out.push([self.mean(&(0..n).collect::<Vec<_>>()); 2]);
         }
         out
+    }
+
+    /// The centroid of the vertices of the band pieces `nodes`.
+    fn mean(&self, nodes: &[usize]) -> Vec3 {
+        let (sum, count) = nodes.iter().fold((Vec3::ZERO, 0u32), |(s, c), &k| {
+            (s + self.centre[k] * self.count[k] as f32, c + self.count[k])
+        });
+        sum / count.max(1) as f32
     }
 }
 
@@ -466,7 +471,33 @@ mod tests {
             }
         }
         let s = curve_skeleton(&p, &t);
-        assert!(s.iter().flatten().all(|q| q.distance(c) < 0.4), "{s:?}");
+        assert!(s.iter().flatten().all(|q| q.distance(c) < 0.05), "{s:?}");
+        // An icosahedron (the two ends of its diagram meet): its centre.
+        let phi = (1.0 + 5f32.sqrt()) / 2.0;
+        let mut p = Vec::new();
+        for (a, b) in [(1.0, phi), (-1.0, phi), (1.0, -phi), (-1.0, -phi)] {
+            p.extend([
+                Vec3::new(0.0, a, b),
+                Vec3::new(a, b, 0.0),
+                Vec3::new(b, 0.0, a),
+            ]);
+        }
+        let mut t = Vec::new();
+        for i in 0..12u32 {
+            for j in i + 1..12 {
+                for k in j + 1..12 {
+                    let [a, b, d] = [i, j, k].map(|x| p[x as usize]);
+                    let edge = |u: Vec3, v: Vec3| (u.distance(v) - 2.0).abs() < 1e-3;
+                    if edge(a, b) && edge(b, d) && edge(a, d) {
+                        let out = (b - a).cross(d - a).dot(a) > 0.0;
+                        t.push(if out { [i, j, k] } else { [i, k, j] });
+                    }
+                }
+            }
+        }
+        assert_eq!(t.len(), 20);
+        let s = curve_skeleton(&p, &t);
+        assert!(s.iter().flatten().all(|q| q.length() < 1e-5), "{s:?}");
         // Two separate pieces: each its own skeleton; no triangles: none.
         let (p2, mut t2) = tube(4.0, 1.0, TAU, 24, 8);
         let off = p2.len() as u32;
