@@ -431,7 +431,7 @@ fn triangle_quality_does_not_decay_over_steps() {
 }
 
 #[test]
-#[ignore = "known limit: the teapot's lip collapses (see subdiv_loop::loop_step); run with --ignored"]
+#[ignore = "known limit: the lip's strips (3.09°, uniform Loop 2.72°) lose the bound to green bisection and mixed-level smoothing; measured diagnosis in subdiv_loop::loop_step; run with --ignored"]
 fn triangle_quality_on_the_teapot() {
     let (failed, plain_decays) = quality("tri_teapot.obj");
     assert!(failed.is_empty(), "{failed:#?}");
