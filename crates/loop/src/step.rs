@@ -33,8 +33,8 @@
 //!
 //! Known limit, measured on the teapot (`triangle_quality_on_the_teapot` in `tests/tests/doi.rs`,
 //! ignored; the worst triangles found step by step). The lip is a ring of strips 2.8 long and
-//! 0.15 wide: its triangles carry the cage's smallest angle, 3.09°. Uniform Loop keeps 2.72°
-//! there at every level 1 to 5, already below the cage's; a green bisection of such a strip's
+//! 0.15 wide: its triangles carry the cage's smallest angle, 3.09°. Uniform Loop's smallest
+//! angle is 2.72° at every level 1 to 5, already below the cage's; a green bisection of a strip's
 //! small angle gives about half of it (1.48° after one view-angle step, 1.36° for uniform Loop's
 //! strips), so with Loop's positions the bound of half the cage's angle (1.54°) fails as soon as
 //! a green closure cuts a lip strip: the classic bound is one of planar midpoints. And where
