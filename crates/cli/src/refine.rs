@@ -161,7 +161,16 @@ mod tests {
         let bone = temp("bone.txt", "0.5 0.5 -5\n0.5 0.5 -6\n");
         let top = format!("top={}", bone.display());
         let count = |focus: &[&str]| {
-            let mut a = vec![i, "--doi", "focus", "--steps", "4", "--triangulate", "-o", o];
+            let mut a = vec![
+                i,
+                "--doi",
+                "focus",
+                "--steps",
+                "4",
+                "--triangulate",
+                "-o",
+                o,
+            ];
             a.extend_from_slice(focus);
             run(&args(&a)).map(|_| subdiv::mesh::read_obj(&out).unwrap().num_faces())
         };
