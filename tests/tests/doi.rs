@@ -7,9 +7,9 @@ use std::path::PathBuf;
 use glam::Vec3;
 use subdiv::{Balance, RefineError, RefineOptions, refine_adaptive};
 use subdiv_doi::{
-    Aggregate, Curvature, Dihedral, Doi, DoiContext, Domain, Focus, Haptic, HapticPoint,
-    Silhouette, ViewAngle, closest_surface_point, face_values, silhouette_distance,
-    silhouette_segments,
+    Aggregate, Curvature, Dihedral, Doi, DoiContext, Domain, Focus, Haptic, HapticG1, HapticPoint,
+    Silhouette, ViewAngle, closest_surface_point, clough_tocher_patches, face_values,
+    plane_crossing, silhouette_distance, silhouette_segments,
 };
 use subdiv_loop::LoopError;
 use subdiv_mesh::{Camera, Mesh, MeshError, ReadOptions, read_obj_with, triangulate};
@@ -156,6 +156,64 @@ fn aggregates_order_the_triangle_counts() {
         count(Aggregate::Min),
     );
     assert!(max > avg && avg > min, "max {max} avg {avg} min {min}");
+}
+
+#[test]
+fn haptic_honours_the_aggregation() {
+    // The haptic DoI's G1 error is a value per edge (eq. (6)); like every edge DoI its edges are
+    // combined around a face by max, avg or min, then the one-side term (per face) is the floor.
+    let m = load("tri_bunny_3k.obj");
+    let h = Haptic::for_mesh(&m, Haptic::DEFAULT_TOLERANCE);
+    let ctx = DoiContext::default();
+    let mut g1 = Vec::new();
+    HapticG1.evaluate(&m, &ctx, &mut g1).unwrap();
+    let ct = clough_tocher_patches(&m, &subdiv_mesh::vertex_normals(&m));
+    let (mut scratch, mut v, mut counts) = (Vec::new(), Vec::new(), Vec::new());
+    for agg in [Aggregate::Max, Aggregate::Avg, Aggregate::Min] {
+        face_values(&h, &m, &ctx, agg, &mut scratch, &mut v).unwrap();
+        for f in m.faces() {
+            let h0 = m.face_halfedge(f);
+            let edges = [h0, m.next(h0), m.prev(h0)].map(|x| g1[x.edge().idx()]);
+            let p = m
+                .face_vertices(f)
+                .iter()
+                .map(|&x| m.position(x))
+                .collect::<Vec<_>>();
+            let side = plane_crossing(&ct[f.idx()], [p[0], p[1], p[2]]) / h.length;
+            let g = agg.of(edges) / (Haptic::G1_PER_TOLERANCE * h.tolerance);
+            let want = g.max(side);
+            assert!(
+                (v[f.idx()] - want).abs() <= 1e-5 * want.max(1.0),
+                "{agg:?} face {}",
+                f.0
+            );
+        }
+        let opts = RefineOptions {
+            threshold: h.default_threshold(),
+            steps: 2,
+            aggregate: agg,
+            balance: Balance::Vertex,
+        };
+        let r = refine_adaptive(&m, &h, &ctx, &opts).unwrap();
+        assert_conforming(&m, &r.mesh.mesh, "haptic aggregate");
+        counts.push((
+            v.iter().filter(|&&x| x > 1.0).count(),
+            r.mesh.mesh.num_faces(),
+        ));
+    }
+    // The plain evaluation is the paper's default, max.
+    let mut plain = Vec::new();
+    h.evaluate(&m, &ctx, &mut plain).unwrap();
+    face_values(&h, &m, &ctx, Aggregate::Max, &mut scratch, &mut v).unwrap();
+    assert_eq!(plain, v);
+    let [(smax, nmax), (savg, navg), (smin, nmin)] = counts[..] else {
+        unreachable!()
+    };
+    assert!(smax > savg && savg > smin && smin > 0, "{counts:?}");
+    assert!(
+        nmax > navg && navg > nmin && nmin > m.num_faces(),
+        "{counts:?}"
+    );
 }
 
 fn sorted_bits(p: &[Vec3]) -> Vec<[u32; 3]> {
@@ -373,7 +431,7 @@ fn triangle_quality_does_not_decay_over_steps() {
 }
 
 #[test]
-#[ignore = "known limit: the teapot's lip collapses (see subdiv_loop::loop_step); run with --ignored"]
+#[ignore = "known limit: the lip's strips (3.09°, uniform Loop 2.72°) lose the bound to green bisection and mixed-level smoothing; measured diagnosis in subdiv_loop::loop_step; run with --ignored"]
 fn triangle_quality_on_the_teapot() {
     let (failed, plain_decays) = quality("tri_teapot.obj");
     assert!(failed.is_empty(), "{failed:#?}");

@@ -341,7 +341,10 @@ pub fn run(root: &Path) -> Result<()> {
     writeln!(
         s,
         "Plain closure → balanced (level balancing, two split edges refined red, the vertex rule once per \
-         level). The classic red-green bound asks for at least half the input's smallest angle.\n"
+         level). The classic red-green bound asks for at least half the input's smallest angle. The teapot \
+         misses it on its lip, whose strips carry the input's smallest angle: uniform Loop's smallest angle is \
+         2.72° at every level 1 to 5, a green bisection of a strip halves it, and smoothing where levels meet moves a vertex by about a \
+         strip's width (measured diagnosis in `subdiv_loop::loop_step`).\n"
     )?;
     let names: Vec<&str> = rows[0].quality.1.iter().map(|q| q.0).collect();
     writeln!(s, "| model | input (bound) | {} |", names.join(" | "))?;

@@ -34,8 +34,9 @@ pub fn section(root: &Path, s: &mut String) -> Result<()> {
     writeln!(
         s,
         "`{SCENE}`: three separate icosahedra (groups `focus`, `other`, `far`). Dominant objects \
-         `--focus {}` (eq. (7)'s DoI(o)), each measured from its own principal-axis skeleton (no \
-         skeleton file given), interest fading linearly to 0 at half the scene's bounding-box diagonal; \
+         `--focus {}` (eq. (7)'s DoI(o)), each measured from its own computed curve skeleton (the \
+         level-set diagram of Lazarus & Verroust 1999, no skeleton file given; for an icosahedron its \
+         centre), interest fading linearly to 0 at half the scene's bounding-box diagonal; \
          {STEPS} steps, threshold 0: a face gets about `{STEPS} · max_o DoI(o) (1 − d/r)` steps, `d` from \
          the face's nearest point. Equivalent: `subdiv refine {SCENE} --doi focus --focus {} --steps {STEPS}`.\n",
         OBJECTS.join(" --focus "),

@@ -40,7 +40,7 @@ pub struct DoiArgs {
     pub triangulate: bool,
     /// Skeleton polyline for --doi focus (points as `v X Y Z` or `X Y Z` lines): `FILE` for
     /// every focus object, or `NAME=FILE` for one; repeatable. Objects without one are measured
-    /// from their principal-axis segment.
+    /// from their computed curve skeleton (level-set diagram).
     #[arg(long, value_name = "[NAME=]FILE")]
     pub skeleton: Vec<String>,
     /// Haptic interaction point: with --doi haptic, refine the triangle closest to it (the point

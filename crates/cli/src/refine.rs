@@ -156,11 +156,22 @@ mod tests {
         .unwrap_err();
         assert!(e.to_string().contains("--hip needs --doi haptic"));
         // Focus objects with their own interest and skeleton; a bad value names the object.
-        // A bone far below the cube: only the top's own faces stay interesting.
+        // A bone far below the cube: only the top's own faces stay interesting. Four steps: the
+        // top's computed skeleton is its centre, and at interest 0.5 the sides' own steps only
+        // show beyond the two that balancing around the top's refinement gives them anyway.
         let bone = temp("bone.txt", "0.5 0.5 -5\n0.5 0.5 -6\n");
         let top = format!("top={}", bone.display());
         let count = |focus: &[&str]| {
-            let mut a = vec![i, "--doi", "focus", "--triangulate", "-o", o];
+            let mut a = vec![
+                i,
+                "--doi",
+                "focus",
+                "--steps",
+                "4",
+                "--triangulate",
+                "-o",
+                o,
+            ];
             a.extend_from_slice(focus);
             run(&args(&a)).map(|_| subdiv::mesh::read_obj(&out).unwrap().num_faces())
         };

@@ -11,8 +11,9 @@ use glam::Vec3;
 use subdiv_mesh::{Mesh, closest_point_on_triangle};
 
 use crate::DoiError;
+use crate::curve_skeleton::curve_skeleton;
 use crate::framework::{Doi, DoiContext, Domain};
-use crate::skeleton::{polyline_distance, principal_axis_skeleton, triangle_polyline_distance};
+use crate::skeleton::{polyline_distance, triangle_polyline_distance};
 
 /// How the distance to a focus object is measured.
 #[derive(Clone, Debug, PartialEq)]
@@ -22,6 +23,9 @@ pub enum FocusShape {
     /// To the nearest point of a polyline, the object's internal skeleton (a single point is
     /// allowed).
     Skeleton(Vec<Vec3>),
+    /// To the nearest point of a set of segments: a computed curve skeleton, which may branch
+    /// and close loops ([`curve_skeleton`]; a zero-length segment is a point).
+    Segments(Vec<[Vec3; 2]>),
 }
 
 impl FocusShape {
@@ -31,6 +35,10 @@ impl FocusShape {
         match self {
             FocusShape::BoundingCentre(c) => p.distance(*c),
             FocusShape::Skeleton(pts) => polyline_distance(p, pts),
+            FocusShape::Segments(segs) => segs
+                .iter()
+                .map(|s| polyline_distance(p, s))
+                .fold(f32::INFINITY, f32::min),
         }
     }
 
@@ -42,6 +50,10 @@ impl FocusShape {
                 c.distance(closest_point_on_triangle(*c, tri[0], tri[1], tri[2]))
             }
             FocusShape::Skeleton(pts) => triangle_polyline_distance(tri, pts),
+            FocusShape::Segments(segs) => segs
+                .iter()
+                .map(|s| triangle_polyline_distance(tri, s))
+                .fold(f32::INFINITY, f32::min),
         }
     }
 }
@@ -67,7 +79,7 @@ pub struct FocusSpec {
     /// Its interest value `DoI(o)` (finite, not negative).
     pub value: f32,
     /// Its skeleton; `None`: the one shared by all objects, else computed
-    /// ([`principal_axis_skeleton`]).
+    /// ([`curve_skeleton`]).
     pub skeleton: Option<Vec<Vec3>>,
 }
 
@@ -170,8 +182,10 @@ impl Focus {
     }
 
     /// Focus on the objects `specs` of `mesh`. An object's distance is measured from its own
-    /// skeleton if it has one, else from `shared` if given, else from its principal-axis
-    /// skeleton ([`principal_axis_skeleton`] of its vertices). With no objects, `shared` alone
+    /// skeleton if it has one, else from `shared` if given, else from its computed curve
+    /// skeleton ([`curve_skeleton`] of its triangles: the level-set diagram, which follows
+    /// bends, branches and rings, where [`crate::principal_axis_skeleton`] is one straight
+    /// segment). With no objects, `shared` alone
     /// is the focus (interest 1). `radius` is the distance where interest fades to nothing
     /// ([`Focus::default_radius`] is a good default).
     pub fn new(
@@ -210,22 +224,23 @@ impl Focus {
                     name: spec.name.clone(),
                     available: mesh.groups().to_vec(),
                 })? as u32;
-            let mut pts = Vec::new();
+            let mut tris = Vec::new();
             for f in mesh.faces().filter(|&f| mesh.face_group(f) == g) {
-                pts.extend(mesh.face_vertices(f).iter().map(|&v| mesh.position(v)));
+                let v = mesh.face_vertices(f);
+                tris.extend((1..v.len() - 1).map(|k| [v[0].0, v[k].0, v[k + 1].0]));
             }
-            if pts.is_empty() {
+            if tris.is_empty() {
                 return Err(DoiError::EmptyFocus {
                     name: spec.name.clone(),
                 });
             }
-            let skeleton = match (&spec.skeleton, &shared) {
-                (Some(s), _) | (None, Some(s)) if !s.is_empty() => s.clone(),
-                _ => principal_axis_skeleton(&pts).unwrap_or_default(),
+            let shape = match (&spec.skeleton, &shared) {
+                (Some(s), _) | (None, Some(s)) if !s.is_empty() => FocusShape::Skeleton(s.clone()),
+                _ => FocusShape::Segments(curve_skeleton(mesh.positions(), &tris)),
             };
             objects.push(FocusObject {
                 group: Some(g),
-                shape: FocusShape::Skeleton(skeleton),
+                shape,
                 weight: spec.value,
             });
         }

@@ -8,7 +8,7 @@
 //! results."
 
 use glam::Vec3;
-use subdiv_mesh::{Camera, Mesh};
+use subdiv_mesh::{Camera, HalfedgeId, Mesh};
 
 use crate::DoiError;
 
@@ -62,6 +62,31 @@ pub enum Aggregate {
     Avg,
     /// The smallest value around the face.
     Min,
+}
+
+impl Aggregate {
+    /// The aggregate of `values` (at least one, none `NaN`): their largest, mean or smallest.
+    ///
+    /// ```
+    /// use subdiv_doi::Aggregate;
+    /// assert_eq!(Aggregate::Avg.of([1.0, 2.0, 6.0]), 3.0);
+    /// assert_eq!(Aggregate::Min.of([1.0, 2.0, 6.0]), 1.0);
+    /// ```
+    #[inline]
+    pub fn of(self, values: impl IntoIterator<Item = f32>) -> f32 {
+        let (mut lo, mut hi, mut sum, mut n) = (f32::INFINITY, f32::NEG_INFINITY, 0.0f32, 0u32);
+        for x in values {
+            lo = lo.min(x);
+            hi = hi.max(x);
+            sum += x;
+            n += 1;
+        }
+        match self {
+            Aggregate::Max => hi,
+            Aggregate::Min => lo,
+            Aggregate::Avg => sum / n as f32,
+        }
+    }
 }
 
 impl std::str::FromStr for Aggregate {
@@ -134,6 +159,25 @@ pub trait Doi {
     fn default_threshold(&self) -> f32;
     /// Writes one value per element of [`Doi::domain`] of `mesh` into `out` (cleared first).
     fn evaluate(&self, mesh: &Mesh, ctx: &DoiContext, out: &mut Vec<f32>) -> Result<(), DoiError>;
+
+    /// Writes one value per face into `out`: [`Doi::evaluate`] (its values checked: one per
+    /// element, no `NaN`), then edge or vertex values combined around each face with `agg`
+    /// ([`aggregate_to_faces`]). A DoI whose face value combines terms of several domains
+    /// overrides this to aggregate its edge or vertex terms with `agg` (the haptic DoI: per-edge
+    /// G¹ errors, per-face one-side test). `scratch` holds element values.
+    fn evaluate_faces(
+        &self,
+        mesh: &Mesh,
+        ctx: &DoiContext,
+        agg: Aggregate,
+        scratch: &mut Vec<f32>,
+        out: &mut Vec<f32>,
+    ) -> Result<(), DoiError> {
+        self.evaluate(mesh, ctx, scratch)?;
+        check_values(self.name(), self.domain(), mesh, scratch)?;
+        aggregate_to_faces(mesh, self.domain(), scratch, agg, out);
+        Ok(())
+    }
 }
 
 impl<D: Doi + ?Sized> Doi for Box<D> {
@@ -151,6 +195,16 @@ impl<D: Doi + ?Sized> Doi for Box<D> {
     }
     fn evaluate(&self, mesh: &Mesh, ctx: &DoiContext, out: &mut Vec<f32>) -> Result<(), DoiError> {
         (**self).evaluate(mesh, ctx, out)
+    }
+    fn evaluate_faces(
+        &self,
+        mesh: &Mesh,
+        ctx: &DoiContext,
+        agg: Aggregate,
+        scratch: &mut Vec<f32>,
+        out: &mut Vec<f32>,
+    ) -> Result<(), DoiError> {
+        (**self).evaluate_faces(mesh, ctx, agg, scratch, out)
     }
 }
 
@@ -184,27 +238,47 @@ pub fn aggregate_to_faces(
     for f in mesh.faces() {
         let h0 = mesh.face_halfedge(f);
         let mut h = h0;
-        let (mut lo, mut hi, mut sum, mut n) = (f32::INFINITY, f32::NEG_INFINITY, 0.0f32, 0u32);
-        loop {
+        out.push(agg.of(std::iter::from_fn(|| {
+            if h == HalfedgeId::NONE {
+                return None;
+            }
             let x = match domain {
                 Domain::Edges => values[h.edge().idx()],
                 _ => values[mesh.from(h).idx()],
             };
-            lo = lo.min(x);
-            hi = hi.max(x);
-            sum += x;
-            n += 1;
             h = mesh.next(h);
             if h == h0 {
-                break;
+                h = HalfedgeId::NONE;
             }
-        }
-        out.push(match agg {
-            Aggregate::Max => hi,
-            Aggregate::Min => lo,
-            Aggregate::Avg => sum / n as f32,
+            Some(x)
+        })));
+    }
+}
+
+/// Checks that `values` holds one value per element of `domain` of `mesh` and no `NaN`.
+fn check_values(
+    doi: &'static str,
+    domain: Domain,
+    mesh: &Mesh,
+    values: &[f32],
+) -> Result<(), DoiError> {
+    let want = domain.count(mesh);
+    if values.len() != want {
+        return Err(DoiError::ValueCount {
+            doi,
+            got: values.len(),
+            want,
+            domain: domain.plural(),
         });
     }
+    if let Some(i) = values.iter().position(|x| x.is_nan()) {
+        return Err(DoiError::NanValue {
+            doi,
+            domain: domain.singular(),
+            index: i as u32,
+        });
+    }
+    Ok(())
 }
 
 /// Evaluates `doi` on `mesh` and returns its face values (aggregated with `agg`), checking the
@@ -217,26 +291,8 @@ pub fn face_values(
     scratch: &mut Vec<f32>,
     out: &mut Vec<f32>,
 ) -> Result<(), DoiError> {
-    let domain = doi.domain();
-    doi.evaluate(mesh, ctx, scratch)?;
-    let want = domain.count(mesh);
-    if scratch.len() != want {
-        return Err(DoiError::ValueCount {
-            doi: doi.name(),
-            got: scratch.len(),
-            want,
-            domain: domain.plural(),
-        });
-    }
-    if let Some(i) = scratch.iter().position(|x| x.is_nan()) {
-        return Err(DoiError::NanValue {
-            doi: doi.name(),
-            domain: domain.singular(),
-            index: i as u32,
-        });
-    }
-    aggregate_to_faces(mesh, domain, scratch, agg, out);
-    Ok(())
+    doi.evaluate_faces(mesh, ctx, agg, scratch, out)?;
+    check_values(doi.name(), Domain::Faces, mesh, out)
 }
 
 /// The faces to refine: `value > threshold`.

@@ -17,7 +17,7 @@ use subdiv_mesh::{EdgeId, FaceId, Mesh, closest_point_on_triangle, vertex_normal
 
 use crate::DoiError;
 use crate::clough_tocher::{CloughTocher, clough_tocher_patches};
-use crate::framework::{Doi, DoiContext, Domain};
+use crate::framework::{Aggregate, Doi, DoiContext, Domain};
 
 /// The solution of eq. (5) for one first-row control point: `x = v1 q1 + v2 q2 + v3 q3 + r`
 /// with `v1 + v2 + v3 = 1` and `r` perpendicular to the plane of the `q`s.
@@ -211,7 +211,9 @@ pub fn edge_g1_error(mesh: &Mesh, ct: &[CloughTocher], e: EdgeId) -> f32 {
 ///
 /// The tolerance is a length, `tolerance` (relative) times the cage's mean edge length `L`:
 /// - one side: [`plane_crossing`] of the face's patch divided by `tolerance · L`;
-/// - G¹: the largest [`g1_error`] of the face's edges divided by `12 · tolerance`. Why 12: the
+/// - G¹: the [`g1_error`]s of the face's edges, combined with the aggregation (eq. (6) gives
+///   a value per edge; the largest by default, as for every edge DoI, or their mean or
+///   smallest: [`Doi::evaluate_faces`]), divided by `12 · tolerance`. Why 12: the
 ///   error is in units of the control net's spacing `s ≈ L/3`; moving one first-row point by `δ`
 ///   changes its combination by about `δ/s` in two components, each entering eq. (6) twice, so
 ///   an error `e` is a misplacement of about `e·s/4 = e·L/12`, and a misplacement of
@@ -251,13 +253,12 @@ impl Haptic {
         }
     }
 
-    /// The two terms of face `f` (G¹ and one-side, each divided by its tolerance).
-    pub fn terms(&self, mesh: &Mesh, ct: &[CloughTocher], f: FaceId) -> [f32; 2] {
+    /// The two terms of face `f` (G¹ and one-side, each divided by its tolerance); the G¹
+    /// errors of its three edges (eq. (6) is a value per edge) are combined with `agg`.
+    pub fn terms(&self, mesh: &Mesh, ct: &[CloughTocher], f: FaceId, agg: Aggregate) -> [f32; 2] {
         let h0 = mesh.face_halfedge(f);
-        let g1 = [h0, mesh.next(h0), mesh.prev(h0)]
-            .iter()
-            .map(|h| edge_g1_error(mesh, ct, h.edge()))
-            .fold(0.0f32, f32::max);
+        let g1 =
+            agg.of([h0, mesh.next(h0), mesh.prev(h0)].map(|h| edge_g1_error(mesh, ct, h.edge())));
         let v = mesh.face_vertices(f);
         let p = [0, 1, 2].map(|k| mesh.position(v[k]));
         let side = plane_crossing(&ct[f.idx()], p);
@@ -281,13 +282,28 @@ impl Doi for Haptic {
     fn default_threshold(&self) -> f32 {
         1.0
     }
-    fn evaluate(&self, mesh: &Mesh, _ctx: &DoiContext, out: &mut Vec<f32>) -> Result<(), DoiError> {
+    /// The face values with the G¹ errors of each face's edges combined by their maximum (the
+    /// paper's default aggregation; [`Doi::evaluate_faces`] takes any).
+    fn evaluate(&self, mesh: &Mesh, ctx: &DoiContext, out: &mut Vec<f32>) -> Result<(), DoiError> {
+        self.evaluate_faces(mesh, ctx, Aggregate::Max, &mut Vec::new(), out)
+    }
+    /// The G¹ error is a value per edge (eq. (6), "an error value for each line"), the one-side
+    /// criterion one per face: the edges' G¹ errors are combined around each face with `agg`
+    /// (as for every edge DoI), then the larger of the two terms is the face's value.
+    fn evaluate_faces(
+        &self,
+        mesh: &Mesh,
+        _ctx: &DoiContext,
+        agg: Aggregate,
+        _scratch: &mut Vec<f32>,
+        out: &mut Vec<f32>,
+    ) -> Result<(), DoiError> {
         mesh.check_triangles()?;
         let normals = vertex_normals(mesh);
         let ct = clough_tocher_patches(mesh, &normals);
         out.clear();
         out.extend(mesh.faces().map(|f| {
-            let [a, b] = self.terms(mesh, &ct, f);
+            let [a, b] = self.terms(mesh, &ct, f, agg);
             a.max(b)
         }));
         Ok(())
@@ -521,10 +537,13 @@ mod tests {
         let h = Haptic::for_mesh(&m, 0.05);
         assert!((h.length - 0.05 * (2.0 + 2f32.sqrt()) / 3.0).abs() < 1e-6);
         assert_eq!(
-            h.terms(&m, &[twisted], subdiv_mesh::FaceId(0))[1],
+            h.terms(&m, &[twisted], subdiv_mesh::FaceId(0), Aggregate::Max)[1],
             c / h.length
         );
-        assert_eq!(h.terms(&m, &[flat], subdiv_mesh::FaceId(0)), [0.0, 0.0]);
+        assert_eq!(
+            h.terms(&m, &[flat], subdiv_mesh::FaceId(0), Aggregate::Avg),
+            [0.0, 0.0]
+        );
     }
 
     #[test]

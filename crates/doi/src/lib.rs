@@ -40,6 +40,7 @@
 
 mod clough_tocher;
 mod curvature;
+mod curve_skeleton;
 mod dihedral;
 mod error;
 mod focus;
@@ -50,6 +51,7 @@ mod view;
 
 pub use clough_tocher::{CloughTocher, CubicTriangle, bezier_index, clough_tocher_patches};
 pub use curvature::Curvature;
+pub use curve_skeleton::{BANDS, curve_skeleton};
 pub use dihedral::{Dihedral, dihedral_angle_deg};
 pub use error::DoiError;
 pub use focus::{Focus, FocusObject, FocusShape, FocusSpec};

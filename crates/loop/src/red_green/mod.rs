@@ -12,7 +12,8 @@
 //! over many steps, because Loop's vertex rule moves vertices whose rings mix levels; [`balance`]
 //! (on by default in [`crate::loop_step`]) keeps the levels 2:1 balanced across vertices; with it
 //! the smallest angle stays within half of the cage's on the bunny for every DoI over five steps
-//! (the teapot's thin lip still collapses, see [`crate::loop_step`]).
+//! (not on the teapot's lip, whose strips are narrower than one smoothing move and lose half
+//! their angle to any green bisection: measured in [`crate::loop_step`]).
 //!
 //! This module is topology only; where the new vertices go is the caller's business (the
 //! adaptive Loop step, [`crate::loop_step`]). One step is:
