@@ -11,11 +11,14 @@
 //! first), updated in proportion to the remaining error so the steps shrink near the target.
 //! Back faces are never raised.
 //!
-//! **Noise:** a frame time on a loaded machine can be off by a factor of two for one frame (other
-//! processes, the first frame after a depth rise tessellating its new patches). The controller
-//! therefore decides on the median of the last [`WINDOW`] frame times measured *since its last
-//! change* (so every sample shows the current depths), and does nothing until it has them: one
-//! outlier in a window moves nothing, at the cost of acting every [`WINDOW`] frames.
+//! **Noise:** a frame time on a loaded machine can be off by a factor of two or more for one
+//! frame (other processes, the first frame after a depth rise tessellating its new patches). The
+//! controller therefore looks at the last [`WINDOW`] frame times measured *since its last
+//! change* (so every sample shows the current depths), does nothing until it has them, and acts
+//! only when all of them are off the same way (all slower or all faster than the target), by the
+//! one closest to the target: the smallest error the window proves. One outlier moves nothing;
+//! noise that straddles the target moves nothing; a real offset moves by no more than it
+//! certainly is.
 //!
 //! **Cost model** behind the constants: a frame's time is taken as proportional to its
 //! triangles, and a patch at depth `d` has `2 * 4^d` of them, so one level costs a factor
@@ -41,7 +44,8 @@ pub const CAP_RATIO: f32 = 2.0;
 /// which keeps timer noise from reshuffling patches (and the patch cache) every frame.
 pub const TOLERANCE: f32 = 0.025_317_808; // ln(40 / 39)
 
-/// Frame times per decision: the median of 3 rejects one outlier, the smallest window that does.
+/// Frame times per decision: 3, the fewest of which one outlier cannot decide alone (with 2, an
+/// outlier and a frame on the same side of the target would).
 pub const WINDOW: usize = 3;
 
 /// Fraction of the model's correction applied per frame. The share update is a Newton step on
@@ -140,8 +144,9 @@ impl FrameRateController {
     }
 
     /// Feeds the time the last frame took (seconds). Once 3 valid times (`WINDOW`) are in since
-    /// the last change, their median decides, on every later frame over the last 3; a change
-    /// starts a new window.
+    /// the last change, and on every later frame over the last 3: if all are slower than the
+    /// target the fastest of them decides, if all are faster the slowest, else nothing moves; a
+    /// change starts a new window.
     pub fn update(&mut self, frame_time: f32) {
         if !(frame_time.is_finite() && frame_time > 0.0) {
             return;
@@ -153,9 +158,13 @@ impl FrameRateController {
         }
         let mut w = self.recent;
         w.sort_unstable_by(f32::total_cmp);
-        let median = w[WINDOW / 2];
+        let (fastest, slowest) = (w[0], w[WINDOW - 1]);
         let before = (self.cap, self.share);
-        self.decide(median);
+        if fastest > self.target {
+            self.decide(fastest);
+        } else if slowest < self.target {
+            self.decide(slowest);
+        }
         // A change invalidates the window (its frames show the old depths); otherwise slide.
         if (self.cap, self.share) != before {
             self.seen = 0;

@@ -244,7 +244,8 @@ fn one_outlier_per_window_moves_nothing() {
         }
     }
     assert_eq!((c.cap(), c.share()), (5, 0.0));
-    // Without the window the same spikes would have dropped the cap: the median is what decides.
+    // Without the window the same spikes would have dropped the cap: only a window that agrees
+    // decides.
     feed(&mut c, 4.0 / 30.0);
     assert_eq!(c.cap(), 4);
 }
@@ -265,7 +266,7 @@ fn a_change_waits_for_a_full_window_of_new_frames() {
 #[test]
 fn converges_under_timer_noise() {
     // The cost model with a deterministic +-15 % jitter and a 3x spike every 11th frame: from
-    // frame 90 on, the median of every 9 frames lies within 10 % of the target.
+    // frame 90 on, the noise-free rate of the chosen depths lies within 10 % of the target.
     let geo = scene(2320);
     let spt = 1e-7;
     let full = 1.0 / cost(&geo, spt);
@@ -284,4 +285,25 @@ fn converges_under_timer_noise() {
         let ok = fps[90..].iter().all(|f| (f / target - 1.0).abs() <= 0.10);
         assert!(ok, "target {target:.1}: {:?}", &fps[90..100]);
     }
+}
+
+#[test]
+fn a_window_that_straddles_the_target_moves_nothing() {
+    let mut c = FrameRateController::new(30.0, 5);
+    // Noise of +-40 % around the target: never all on one side within a window.
+    for _ in 0..20 {
+        for t in [0.6 / 30.0, 1.4 / 30.0, 1.0 / 30.0] {
+            c.update(t);
+        }
+    }
+    assert_eq!((c.cap(), c.share()), (5, 0.0));
+    // All slower, one of them far slower: the step is the one the least slow frame proves.
+    let mut a = FrameRateController::new(30.0, 5);
+    let mut b = a.clone();
+    for t in [1.2 / 30.0, 1.2 / 30.0, 1.9 / 30.0] {
+        a.update(t);
+    }
+    feed(&mut b, 1.2 / 30.0);
+    assert!(a.share() < 0.0, "{a:?}");
+    assert_eq!((a.cap(), a.share()), (b.cap(), b.share()));
 }
