@@ -1,6 +1,7 @@
 //! `subdiv bench framerate`: the paper's frame-rate experiment (Figs. 5-7) on the Fig. 12 scene,
 //! rendered headless: fixed depths, or adaptive with frame-rate control at a target. Each frame
-//! prints its rate, triangles, cap, patches and quads per depth; with `--error-every K` every K-th
+//! prints its rate, triangles, cap, patches and quads per depth and the controller's share (0
+//! without control); with `--error-every K` every K-th
 //! frame also its image error against the true surface (`subdiv::quality`, untimed).
 
 use std::process::ExitCode;
@@ -196,7 +197,7 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
         let tris = g.num_triangles();
         let per: Vec<String> = g.units_per_depth().iter().map(|n| n.to_string()).collect();
         let mut line = format!(
-            "frame={i} fps={:.3} triangles={tris} maxsd={} patches={} quads={}",
+            "frame={i} fps={:.3} triangles={tris} maxsd={} patches={} quads={} share={:.3}",
             1.0 / dt,
             node.controller()
                 .map(|c| c.cap())
@@ -206,7 +207,8 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
                 .iter()
                 .map(|n| n.to_string())
                 .collect::<Vec<_>>()
-                .join(",")
+                .join(","),
+            node.controller().map_or(0.0, |c| c.share())
         );
         if let (Some(run), Some(r), Some(k)) = (&errors, renderer.as_mut(), a.error_every)
             && i % k == 0
