@@ -379,8 +379,13 @@ fn fig7(d: &CcData, s: &mut String) -> Result<()> {
         let least = range.clone().filter(|&i| cap[i] == 0.0).count();
         let settled = match h.settled_from {
             Some(i) => format!(
-                "every frame from frame {i} on ({} frames after the phase began) is within ±10 %",
-                i - range.start
+                "every frame from frame {i} on ({} frames after the phase began) is within ±10 %{}",
+                i - range.start,
+                if i + 1 == range.end {
+                    " (that is, only the phase's last frame)"
+                } else {
+                    ""
+                }
             ),
             None => format!(
                 "the phase's last frame (frame {}) is outside ±10 %, so no frame from which every frame \
