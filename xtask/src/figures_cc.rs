@@ -1,34 +1,106 @@
 //! `cargo xtask figures`, Catmull-Clark part: the experiment of Settgast et al. 2004, Section 5,
 //! on the paper's test scene (Fig. 12; here 40 instances of `catmark_helmet`) with the camera
-//! orbiting the scene centre. Runs `subdiv bench framerate` and writes CSV, PNG and SVG plots into
-//! `docs/figures/` and a section of `docs/figures.md`:
-//! Fig. 5 (triangles per frame, adaptive vs uniform depths 2, 3, 4), Fig. 6 (patches per depth per
-//! frame), Fig. 7 (frames per second: fixed depths 2, 3, 4 and adaptive with frame-rate control
-//! whose target switches half-way, rendered headless on the Vulkan driver).
+//! orbiting the scene centre. Runs `subdiv bench framerate` and writes the data as CSV and the
+//! plots as PNG and SVG into `docs/figures/`; the section of `docs/figures.md` is generated from
+//! the CSV files by `figures_cc_text.rs`:
+//! Fig. 5 (triangles per frame, adaptive vs uniform depths 2, 3, 4, and their image error against
+//! the true surface every [`ERROR_EVERY`]th frame), Fig. 6 (quads per depth per frame), Fig. 7
+//! (frames per second: uniform depths 2, 3, 4, adaptive without control, and adaptive with
+//! frame-rate control whose target switches half-way to above uniform depth 2's rate; rendered
+//! headless on the Vulkan driver).
 
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use plotters::prelude::*;
 
-const BEGIN: &str = "<!-- figures:cc:begin -->";
-const END: &str = "<!-- figures:cc:end -->";
+use crate::figures_cc_text::{CcData, UNIFORM, median};
+use crate::figures_table::Table;
+
+/// Frame size, camera step and adaptive depths of every run (`subdiv bench framerate`'s
+/// defaults, passed explicitly so `cc_run.csv` states what was run).
+const SIZE: &str = "640x480";
+const ORBIT_STEP_DEG: &str = "2";
+const MAX_DEPTH: &str = "4";
+/// The true surface of the error measurement: one level deeper than the adaptive maximum.
+const REFERENCE_DEPTH: &str = "5";
+/// Frames of the Fig. 5/6 runs: one full orbit at 2° per frame.
+const FRAMES_TESSELLATION: usize = 180;
+/// Frames of the Fig. 7 runs; the controlled run switches targets at half.
+const FRAMES_RENDERED: usize = 200;
+/// Image error of every `ERROR_EVERY`th frame.
+const ERROR_EVERY: usize = 10;
+/// Image size of the error renders (each at 3x3 samples per pixel).
+const ERROR_SIZE: (u32, u32) = (640, 480);
+/// The second target over uniform depth 2's median rate: the paper's 39.5 against 31 fps.
+const HIGH_OVER_DEPTH2: f64 = 39.5 / 31.0;
 
 /// One line of `subdiv bench framerate`.
 #[derive(Clone, Debug, Default)]
 struct Frame {
+    frame: usize,
     fps: f64,
     triangles: u64,
     maxsd: u32,
-    patches: Vec<u64>,
+    share: f64,
+    quads: Vec<u64>,
+    /// `silhouette_px_max`, `silhouette_px_p99`, `shading_deg_p99` of measured frames.
+    error: Option<[f64; 3]>,
+}
+
+fn parse_line(line: &str) -> Result<Frame> {
+    let mut f = Frame::default();
+    let mut e = [f64::NAN; 3];
+    for kv in line.split_whitespace() {
+        let (k, v) = kv.split_once('=').unwrap_or((kv, ""));
+        let num = || {
+            v.parse::<f64>()
+                .with_context(|| format!("{k}={v} in {line:?}"))
+        };
+        match k {
+            "frame" => f.frame = num()? as usize,
+            "fps" => f.fps = num()?,
+            "triangles" => f.triangles = num()? as u64,
+            "maxsd" => f.maxsd = num()? as u32,
+            "share" => f.share = num()?,
+            "quads" => {
+                f.quads = v
+                    .split(',')
+                    .filter(|x| !x.is_empty())
+                    .map(|x| x.parse())
+                    .collect::<Result<_, _>>()?
+            }
+            "silhouette_px_max" => e[0] = num()?,
+            "silhouette_px_p99" => e[1] = num()?,
+            "shading_deg_p99" => e[2] = num()?,
+            _ => {}
+        }
+    }
+    if e.iter().all(|x| x.is_finite()) {
+        f.error = Some(e);
+    }
+    Ok(f)
 }
 
 fn bench(exe: &Path, args: &[&str]) -> Result<Vec<Frame>> {
-    let spinner = crate::spinner(format!("subdiv bench framerate {}", args.join(" ")));
+    let common = [
+        "--size",
+        SIZE,
+        "--orbit-step",
+        ORBIT_STEP_DEG,
+        "--max-depth",
+        MAX_DEPTH,
+    ];
+    let spinner = crate::spinner(format!(
+        "subdiv bench framerate {} {}",
+        common.join(" "),
+        args.join(" ")
+    ));
     let out = Command::new(exe)
         .args(["bench", "framerate"])
+        .args(common)
         .args(args)
         .output();
     spinner.finish_and_clear();
@@ -39,43 +111,28 @@ fn bench(exe: &Path, args: &[&str]) -> Result<Vec<Frame>> {
             String::from_utf8_lossy(&out.stderr)
         );
     }
-    let mut frames = Vec::new();
-    for line in String::from_utf8_lossy(&out.stdout)
+    String::from_utf8_lossy(&out.stdout)
         .lines()
         .filter(|l| l.starts_with("frame="))
-    {
-        let mut f = Frame::default();
-        for kv in line.split_whitespace() {
-            let (k, v) = kv.split_once('=').unwrap_or((kv, ""));
-            match k {
-                "fps" => f.fps = v.parse()?,
-                "triangles" => f.triangles = v.parse()?,
-                "maxsd" => f.maxsd = v.parse()?,
-                "patches" => {
-                    f.patches = v
-                        .split(',')
-                        .filter(|x| !x.is_empty())
-                        .map(|x| x.parse())
-                        .collect::<Result<_, _>>()?
-                }
-                _ => {}
-            }
-        }
-        frames.push(f);
-    }
-    Ok(frames)
+        .map(parse_line)
+        .collect()
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(|a, b| a.total_cmp(b));
-    v[v.len() / 2]
+/// One plotted curve: its name and (x, y) points.
+type Series = (String, Vec<(f64, f64)>);
+
+fn per_frame(name: &str, ys: &[f64]) -> Series {
+    (
+        name.to_string(),
+        ys.iter().enumerate().map(|(i, &y)| (i as f64, y)).collect(),
+    )
 }
 
 /// Plot size in pixels (PNG) and units (SVG).
 const PLOT_SIZE: (u32, u32) = (900, 500);
 
 /// Writes the plot as `STEM.png` (rasterised, text with the DejaVu Sans font) and `STEM.svg`.
-fn plot(stem: &Path, title: &str, y_label: &str, series: &[(String, Vec<f64>)]) -> Result<()> {
+fn plot(stem: &Path, title: &str, y_label: &str, series: &[Series]) -> Result<()> {
     let svg = stem.with_extension("svg");
     draw(
         SVGBackend::new(&svg, PLOT_SIZE).into_drawing_area(),
@@ -103,16 +160,19 @@ fn draw<DB: DrawingBackend>(
     root: DrawingArea<DB, plotters::coord::Shift>,
     title: &str,
     y_label: &str,
-    series: &[(String, Vec<f64>)],
+    series: &[Series],
 ) -> Result<()>
 where
     DB::ErrorType: 'static,
 {
     root.fill(&WHITE)?;
-    let n = series.iter().map(|s| s.1.len()).max().unwrap_or(1);
+    let n = series
+        .iter()
+        .flat_map(|s| s.1.iter().map(|p| p.0 + 1.0))
+        .fold(1.0f64, f64::max);
     let ymax = series
         .iter()
-        .flat_map(|s| s.1.iter().copied())
+        .flat_map(|s| s.1.iter().map(|p| p.1))
         .fold(0.0f64, f64::max)
         * 1.1;
     let mut chart = ChartBuilder::on(&root)
@@ -120,7 +180,7 @@ where
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(80)
-        .build_cartesian_2d(0f64..n as f64, 0f64..ymax.max(1.0))?;
+        .build_cartesian_2d(0f64..n, 0f64..ymax.max(1.0))?;
     chart
         .configure_mesh()
         .x_desc("frame")
@@ -130,10 +190,7 @@ where
     for (k, (name, ys)) in series.iter().enumerate() {
         let c = palette[k % palette.len()];
         chart
-            .draw_series(LineSeries::new(
-                ys.iter().enumerate().map(|(i, &y)| (i as f64, y)),
-                c.stroke_width(2),
-            ))?
+            .draw_series(LineSeries::new(ys.iter().copied(), c.stroke_width(2)))?
             .label(name.as_str())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
     }
@@ -179,221 +236,263 @@ pub(crate) fn register_font() -> Result<()> {
     Ok(())
 }
 
-fn csv(path: &Path, header: &str, cols: &[Vec<f64>]) -> Result<()> {
-    let n = cols.iter().map(|c| c.len()).max().unwrap_or(0);
-    let mut s = format!("frame,{header}\n");
-    for i in 0..n {
-        let row: Vec<String> = cols
-            .iter()
-            .map(|c| c.get(i).map(|v| format!("{v}")).unwrap_or_default())
-            .collect();
-        writeln!(s, "{i},{}", row.join(","))?;
+/// Replaces (or appends) the section between `begin` and `end` of the file `path`.
+pub fn splice_into_doc(path: &Path, begin: &str, end: &str, section: &str) -> Result<()> {
+    let old = std::fs::read_to_string(path).unwrap_or_else(|_| {
+        "# Figures\n\nReproductions of the papers' figures and tables, generated by `cargo xtask figures`.\n"
+            .to_string()
+    });
+    let new = crate::figures_table::splice(&old, begin, end, section);
+    std::fs::write(path, new).with_context(|| format!("writing {}", path.display()))
+}
+
+fn number(x: f64) -> String {
+    format!("{x}")
+}
+
+/// The error rows of one run's measured frames.
+fn push_errors(t: &mut Table, config: &str, frames: &[Frame]) {
+    for f in frames {
+        if let Some(e) = f.error {
+            t.push(vec![
+                f.frame.to_string(),
+                config.to_string(),
+                number(e[0]),
+                number(e[1]),
+                number(e[2]),
+            ]);
+        }
     }
-    std::fs::write(path, s).with_context(|| format!("writing {}", path.display()))
 }
 
 /// Runs the experiment with the release `subdiv` binary `exe` and writes the figures.
 pub fn run(root: &Path, exe: &Path) -> Result<()> {
+    let t0 = Instant::now();
     let dir: PathBuf = root.join("docs/figures");
     std::fs::create_dir_all(&dir)?;
-    register_font()?;
-    let frames = "180";
-    // Figs. 5 and 6: tessellation only, along the orbit.
-    let adaptive = bench(exe, &["--no-render", "--frames", frames])?;
-    let uniform: Vec<(u8, u64)> = [2u8, 3, 4]
+    let (n5, n7) = (FRAMES_TESSELLATION.to_string(), FRAMES_RENDERED.to_string());
+    let every = ERROR_EVERY.to_string();
+    let esize = format!("{}x{}", ERROR_SIZE.0, ERROR_SIZE.1);
+    let measured = |extra: &[&str]| -> Result<Vec<Frame>> {
+        let mut a = vec!["--no-render", "--frames", &n5, "--error-every", &every];
+        a.extend(["--error-size", &esize, "--reference-depth", REFERENCE_DEPTH]);
+        a.extend(extra);
+        bench(exe, &a)
+    };
+    // Figs. 5 and 6: tessellation along one orbit, with the image error of every 10th frame.
+    let adaptive = measured(&[])?;
+    let uniform: Vec<Vec<Frame>> = UNIFORM
         .iter()
-        .map(|&d| {
-            Ok((
-                d,
-                bench(
-                    exe,
-                    &["--no-render", "--frames", "1", "--depth", &d.to_string()],
-                )?[0]
-                    .triangles,
-            ))
-        })
+        .map(|d| measured(&["--depth", &d.to_string()]))
         .collect::<Result<_>>()?;
-    let tri: Vec<f64> = adaptive.iter().map(|f| f.triangles as f64).collect();
-    let mut series = vec![("adaptive (depths 0-4)".to_string(), tri.clone())];
-    for &(d, t) in &uniform {
-        series.push((format!("uniform depth {d}"), vec![t as f64; tri.len()]));
+    // Fig. 7: rendered frame rates (lavapipe).
+    let fixed: Vec<Vec<Frame>> = UNIFORM
+        .iter()
+        .map(|d| bench(exe, &["--frames", &n7, "--depth", &d.to_string()]))
+        .collect::<Result<_>>()?;
+    let free = bench(exe, &["--frames", &n7])?;
+    let fps_of = |v: &[Frame]| median(&v.iter().skip(1).map(|f| f.fps).collect::<Vec<_>>());
+    let (f2, f3, f4) = (fps_of(&fixed[0]), fps_of(&fixed[1]), fps_of(&fixed[2]));
+    // The paper switches from 14-15 fps (between its depths 3 and 4) to 39-40 fps (above depth 2).
+    let t_low = format!("{:.2}", (f3 + f4) / 2.0);
+    let t_high = format!("{:.2}", f2 * HIGH_OVER_DEPTH2);
+    let ctl = bench(
+        exe,
+        &[
+            "--frames",
+            &n7,
+            "--target-fps",
+            &t_low,
+            "--switch-fps",
+            &t_high,
+            "--error-every",
+            &every,
+            "--error-size",
+            &esize,
+            "--reference-depth",
+            REFERENCE_DEPTH,
+        ],
+    )?;
+    let data = tables(
+        &adaptive, &uniform, &fixed, &free, &ctl, &t_low, &t_high, t0,
+    )?;
+    data.write(&dir)?;
+    plots(&dir, &data)?;
+    let md = crate::figures_cc_text::markdown(&data)?;
+    splice_into_doc(
+        &root.join("docs/figures.md"),
+        crate::figures_cc_text::BEGIN,
+        crate::figures_cc_text::END,
+        &md,
+    )?;
+    println!(
+        "figures: wrote docs/figures/{{fig5_triangles,fig5_error,fig6_quads,fig7_framerate}} (.png, .svg), their CSV \
+         files and docs/figures.md in {:.0} s",
+        t0.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// The runs as the tables of [`CcData`].
+#[allow(clippy::too_many_arguments)]
+fn tables(
+    adaptive: &[Frame],
+    uniform: &[Vec<Frame>],
+    fixed: &[Vec<Frame>],
+    free: &[Frame],
+    ctl: &[Frame],
+    t_low: &str,
+    t_high: &str,
+    t0: Instant,
+) -> Result<CcData> {
+    let faces = subdiv::helmet40()?.num_faces();
+    let (w, h) = SIZE.split_once('x').context("SIZE is WxH")?;
+    let mut run = Table::new(&["key", "value"]);
+    for (k, v) in [
+        ("faces", faces.to_string()),
+        ("width", w.into()),
+        ("height", h.into()),
+        ("orbit_step_deg", ORBIT_STEP_DEG.into()),
+        ("max_depth", MAX_DEPTH.into()),
+        ("error_every", ERROR_EVERY.to_string()),
+        ("error_width", ERROR_SIZE.0.to_string()),
+        ("error_height", ERROR_SIZE.1.to_string()),
+        ("reference_depth", REFERENCE_DEPTH.into()),
+        ("switch_frame", (ctl.len() / 2).to_string()),
+        ("seconds", format!("{:.0}", t0.elapsed().as_secs_f64())),
+    ] {
+        run.push(vec![k.to_string(), v]);
+    }
+    let mut triangles = Table::new(&["frame", "adaptive", "uniform2", "uniform3", "uniform4"]);
+    for (i, f) in adaptive.iter().enumerate() {
+        let mut r = vec![i.to_string(), f.triangles.to_string()];
+        r.extend(uniform.iter().map(|u| u[i].triangles.to_string()));
+        triangles.push(r);
+    }
+    let depths = adaptive.iter().map(|f| f.quads.len()).max().unwrap_or(0);
+    let hdr: Vec<String> = (0..depths).map(|d| format!("depth{d}")).collect();
+    let mut h: Vec<&str> = vec!["frame"];
+    h.extend(hdr.iter().map(String::as_str));
+    let mut quads = Table::new(&h);
+    for (i, f) in adaptive.iter().enumerate() {
+        let mut r = vec![i.to_string()];
+        r.extend((0..depths).map(|d| f.quads.get(d).copied().unwrap_or(0).to_string()));
+        quads.push(r);
+    }
+    let mut framerate = Table::new(&[
+        "frame",
+        "uniform2",
+        "uniform3",
+        "uniform4",
+        "adaptive",
+        "controlled",
+        "target",
+        "maxsd",
+        "share",
+        "controlled_triangles",
+    ]);
+    let switch = ctl.len() / 2;
+    for (i, c) in ctl.iter().enumerate() {
+        let mut r = vec![i.to_string()];
+        r.extend(fixed.iter().map(|u| number(u[i].fps)));
+        r.push(number(free[i].fps));
+        r.push(number(c.fps));
+        r.push(if i < switch { t_low } else { t_high }.to_string());
+        r.push(c.maxsd.to_string());
+        r.push(number(c.share));
+        r.push(c.triangles.to_string());
+        framerate.push(r);
+    }
+    let mut error = Table::new(&[
+        "frame",
+        "config",
+        "silhouette_px_max",
+        "silhouette_px_p99",
+        "shading_deg_p99",
+    ]);
+    push_errors(&mut error, "adaptive", adaptive);
+    for (d, u) in UNIFORM.iter().zip(uniform) {
+        push_errors(&mut error, &format!("uniform{d}"), u);
+    }
+    push_errors(&mut error, "controlled", ctl);
+    Ok(CcData {
+        run,
+        triangles,
+        quads,
+        framerate,
+        error,
+    })
+}
+
+/// The plots of the figures, from their tables.
+pub fn plots(dir: &Path, d: &CcData) -> Result<()> {
+    register_font()?;
+    let col = |t: &Table, c: &str| t.f64s(c);
+    let mut s5 = vec![per_frame(
+        "adaptive (depths 0-4)",
+        &col(&d.triangles, "adaptive")?,
+    )];
+    for k in UNIFORM {
+        let name = format!("uniform{k}");
+        s5.push(per_frame(
+            &format!("uniform depth {k}"),
+            &col(&d.triangles, &name)?,
+        ));
     }
     plot(
         &dir.join("fig5_triangles"),
         "Fig. 5: triangles per frame (40 helmets, orbit)",
         "triangles",
-        &series,
+        &s5,
     )?;
-    csv(
-        &dir.join("fig5_triangles.csv"),
-        "adaptive,uniform2,uniform3,uniform4",
-        &series.iter().map(|s| s.1.clone()).collect::<Vec<_>>(),
-    )?;
-    let depths = adaptive.iter().map(|f| f.patches.len()).max().unwrap_or(0);
-    let per_depth: Vec<(String, Vec<f64>)> = (0..depths)
-        .map(|d| {
-            (
-                format!("depth {d}"),
-                adaptive
-                    .iter()
-                    .map(|f| *f.patches.get(d).unwrap_or(&0) as f64)
-                    .collect(),
-            )
-        })
-        .collect();
+    let mut e5 = Vec::new();
+    for (name, label) in [
+        ("adaptive", "adaptive".to_string()),
+        ("uniform2", "uniform depth 2".into()),
+        ("uniform3", "uniform depth 3".into()),
+        ("uniform4", "uniform depth 4".into()),
+    ] {
+        let t = d.error.filter("config", name)?;
+        let pts = col(&t, "frame")?
+            .into_iter()
+            .zip(col(&t, "shading_deg_p99")?)
+            .collect();
+        e5.push((label, pts));
+    }
     plot(
-        &dir.join("fig6_patches"),
-        "Fig. 6: patches per depth per frame",
-        "patches",
-        &per_depth,
+        &dir.join("fig5_error"),
+        "Fig. 5: shading error per frame (99th percentile of the normal angle)",
+        "shading error (degrees)",
+        &e5,
     )?;
-    let hdr: Vec<String> = (0..depths).map(|d| format!("depth{d}")).collect();
-    csv(
-        &dir.join("fig6_patches.csv"),
-        &hdr.join(","),
-        &per_depth.iter().map(|s| s.1.clone()).collect::<Vec<_>>(),
-    )?;
-
-    // Fig. 7: rendered frame rates (lavapipe).
-    let fixed: Vec<(u8, Vec<Frame>)> = [2u8, 3, 4]
+    let s6: Vec<Series> = d
+        .quads
+        .header
         .iter()
-        .map(|&d| {
-            Ok((
-                d,
-                bench(exe, &["--frames", "100", "--depth", &d.to_string()])?,
-            ))
-        })
+        .filter(|h| h.starts_with("depth"))
+        .map(|h| Ok(per_frame(&h.replace("depth", "depth "), &col(&d.quads, h)?)))
         .collect::<Result<_>>()?;
-    let fps_of = |d: u8| {
-        median(
-            fixed
-                .iter()
-                .find(|x| x.0 == d)
-                .map(|x| x.1.iter().skip(1).map(|f| f.fps).collect())
-                .unwrap_or(vec![0.0]),
-        )
-    };
-    let (f2, f3, f4) = (fps_of(2), fps_of(3), fps_of(4));
-    // Targets between the fixed depths, as in the paper (14-15 -> 39-40 fps between 7, 17, 31).
-    let (t_low, t_high) = ((f3 + f4) / 2.0, (f2 + f3) / 2.0);
-    let ctl = bench(
-        exe,
-        &[
-            "--frames",
-            "160",
-            "--target-fps",
-            &format!("{t_low:.2}"),
-            "--switch-fps",
-            &format!("{t_high:.2}"),
-        ],
+    plot(
+        &dir.join("fig6_quads"),
+        "Fig. 6: quads per depth per frame (adaptive)",
+        "quads",
+        &s6,
     )?;
-    let mut s7: Vec<(String, Vec<f64>)> = fixed
-        .iter()
-        .map(|(d, fr)| {
-            (
-                format!("uniform depth {d}"),
-                fr.iter().map(|f| f.fps).collect(),
-            )
-        })
-        .collect();
-    s7.push((
-        format!("adaptive, target {t_low:.1} then {t_high:.1} fps"),
-        ctl.iter().map(|f| f.fps).collect(),
-    ));
+    let mut s7 = Vec::new();
+    for (c, label) in [
+        ("uniform2", "uniform depth 2"),
+        ("uniform3", "uniform depth 3"),
+        ("uniform4", "uniform depth 4"),
+        ("adaptive", "adaptive, no control"),
+        ("controlled", "adaptive, frame-rate control"),
+        ("target", "target"),
+    ] {
+        s7.push(per_frame(label, &col(&d.framerate, c)?));
+    }
     plot(
         &dir.join("fig7_framerate"),
         "Fig. 7: frames per second (lavapipe)",
         "fps",
         &s7,
-    )?;
-    csv(
-        &dir.join("fig7_framerate.csv"),
-        "uniform2,uniform3,uniform4,adaptive",
-        &s7.iter().map(|s| s.1.clone()).collect::<Vec<_>>(),
-    )?;
-    // Frames after the switch until the rate stays within 10 % of the target.
-    let half = ctl.len() / 2;
-    let settle = (half..ctl.len())
-        .find(|&i| {
-            ctl[i..]
-                .iter()
-                .all(|f| (f.fps / t_high - 1.0).abs() <= 0.10)
-        })
-        .map(|i| i - half);
-    let settle_low = (1..half).find(|&i| {
-        ctl[i..half]
-            .iter()
-            .all(|f| (f.fps / t_low - 1.0).abs() <= 0.10)
-    });
-
-    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
-    let mut md = String::new();
-    writeln!(md, "{BEGIN}")?;
-    writeln!(
-        md,
-        "## Adaptive Catmull-Clark tessellation (Settgast et al. 2004, Figs. 5–7)\n"
-    )?;
-    writeln!(
-        md,
-        "Generated by `cargo xtask figures` (data: `subdiv bench framerate`, scene: 40 instances of"
-    )?;
-    writeln!(
-        md,
-        "`catmark_helmet`, 2320 cage faces, camera orbiting the scene centre 2° per frame, 640×480,"
-    )?;
-    writeln!(
-        md,
-        "depths 0–4). Plots as PNG (and the same as SVG beside them: `docs/figures/*.svg`), data as CSV.\n"
-    )?;
-    writeln!(md, "![Fig. 5](figures/fig5_triangles.png)\n")?;
-    writeln!(
-        md,
-        "**Fig. 5** Triangles per frame: adaptive {:.0} on average (min {:.0}, max {:.0}) against uniform depth 2: {}, 3: {}, 4: {} \
-         (the uniform counts include the back faces). The adaptive count is {:.1} % of uniform depth 4.\n",
-        mean(&tri),
-        tri.iter().copied().fold(f64::INFINITY, f64::min),
-        tri.iter().copied().fold(0.0, f64::max),
-        uniform[0].1,
-        uniform[1].1,
-        uniform[2].1,
-        100.0 * mean(&tri) / uniform[2].1 as f64
-    )?;
-    writeln!(md, "![Fig. 6](figures/fig6_patches.png)\n")?;
-    let avg_pd: Vec<String> = per_depth
-        .iter()
-        .map(|(n, v)| format!("{n}: {:.0}", mean(v)))
-        .collect();
-    writeln!(
-        md,
-        "**Fig. 6** Patches per depth per frame (average {}). As in the paper, most patches stay coarse (back faces at depth 0) while silhouettes and near, curved regions go deep.\n",
-        avg_pd.join(", ")
-    )?;
-    writeln!(md, "![Fig. 7](figures/fig7_framerate.png)\n")?;
-    writeln!(
-        md,
-        "**Fig. 7** Frames per second on lavapipe (CPU Vulkan, 2 cores; tessellation + rendering): uniform depth 2: {f2:.1}, 3: {f3:.1}, 4: {f4:.1} fps \
-         (paper, GeForce 4: 31, 17, 7). Adaptive with frame-rate control, target {t_low:.1} fps for 80 frames then {t_high:.1} fps: {}; {}.\n",
-        match settle_low {
-            Some(i) => format!("within 10 % of the first target from frame {i} on"),
-            None => "the first target is not held within 10 % (the adaptive tessellation alone is faster than the target, and the cap cannot add detail beyond depth 4)".to_string(),
-        },
-        match settle {
-            Some(i) => format!("within 10 % of the second target {i} frames after the switch (the paper: within 70 frames)"),
-            None => "the second target is not reached within 10 % by the end of the run".to_string(),
-        }
-    )?;
-    writeln!(md, "{END}")?;
-    let path = root.join("docs/figures.md");
-    let old = std::fs::read_to_string(&path).unwrap_or_else(|_| "# Figures\n".to_string());
-    let new = match (old.find(BEGIN), old.find(END)) {
-        (Some(b), Some(e)) if e > b => {
-            format!("{}{}{}", &old[..b], md.trim_end(), &old[e + END.len()..])
-        }
-        _ => format!("{}\n\n{}", old.trim_end(), md),
-    };
-    std::fs::write(&path, new)?;
-    println!(
-        "figures: wrote docs/figures/fig5_triangles, fig6_patches, fig7_framerate (.png, .svg, .csv) and docs/figures.md"
-    );
-    Ok(())
+    )
 }

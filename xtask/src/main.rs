@@ -6,7 +6,9 @@
 //!   golden images.
 //! - `cargo xtask check-architecture`: fails unless the workspace crates' dependencies on each
 //!   other equal the `crate-graph` block of `docs/architecture.md`.
-//! - `cargo xtask figures`: reproduces the papers' tables into `docs/figures.md`.
+//! - `cargo xtask figures [doi|cc|text]`: reproduces the papers' figures and tables: data into
+//!   `docs/figures/*.csv`, text generated from them into `docs/figures.md` (`doi`, `cc`: only
+//!   that part; `text`: only regenerate text and plots from the CSV files).
 //! - `cargo xtask golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]`: golden-image regression
 //!   (see `docs/golden.md`).
 //! - `cargo xtask bench-osd [--install]`: OpenSubdiv 3.5 (libosd-dev) timed beside the slate
@@ -19,8 +21,13 @@
 mod architecture;
 mod bench_osd;
 mod figures_cc;
+mod figures_cc_text;
+#[cfg(test)]
+mod figures_check;
 mod figures_doi;
+mod figures_doi_text;
 mod figures_focus;
+mod figures_table;
 mod fuzz_osd;
 mod golden;
 mod plot_quality;
@@ -138,6 +145,24 @@ fn figures_cc_run() -> Result<()> {
     figures_cc::run(&root(), &exe)
 }
 
+/// Regenerates both sections of `docs/figures.md` and the Catmull-Clark plots from the CSV
+/// files in `docs/figures/` (no measuring).
+fn figures_text() -> Result<()> {
+    let dir = root().join("docs/figures");
+    let doc = root().join("docs/figures.md");
+    let doi = figures_doi_text::markdown(&figures_doi_text::DoiData::read(&dir)?)?;
+    figures_cc::splice_into_doc(&doc, figures_doi_text::BEGIN, figures_doi_text::END, &doi)?;
+    let data = figures_cc_text::CcData::read(&dir)?;
+    figures_cc::plots(&dir, &data)?;
+    let cc = figures_cc_text::markdown(&data)?;
+    figures_cc::splice_into_doc(&doc, figures_cc_text::BEGIN, figures_cc_text::END, &cc)?;
+    println!(
+        "figures: regenerated {} from docs/figures/*.csv",
+        doc.display()
+    );
+    Ok(())
+}
+
 fn demo() -> Result<()> {
     let out = root().join("out");
     std::fs::create_dir_all(&out)?;
@@ -247,6 +272,14 @@ fn main() -> Result<()> {
             step("Degree-of-Interest figures");
             figures_doi::run(&root())
         }
+        Some("figures") if args.get(1).map(String::as_str) == Some("cc") => {
+            step("Catmull-Clark figures");
+            figures_cc_run()
+        }
+        Some("figures") if args.get(1).map(String::as_str) == Some("text") => {
+            step("figures: text and plots from the CSV files");
+            figures_text()
+        }
         Some("figures") => {
             step("Degree-of-Interest figures");
             figures_doi::run(&root())?;
@@ -261,7 +294,7 @@ fn main() -> Result<()> {
         Some("golden") => golden::Options::parse(&args[1..]).and_then(|o| golden::run(&root(), &o)),
         _ => {
             eprintln!(
-                "usage: cargo xtask <demo|test|check-architecture|figures [doi]|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I]|plot-quality STEM LABEL=FILE...>"
+                "usage: cargo xtask <demo|test|check-architecture|figures [doi|cc|text]|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I]|plot-quality STEM LABEL=FILE...>"
             );
             std::process::exit(2);
         }

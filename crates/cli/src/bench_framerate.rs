@@ -1,5 +1,8 @@
-//! `subdiv bench framerate`: the paper's frame-rate experiment (Fig. 7) on the Fig. 12 scene,
-//! rendered headless: fixed depths, or adaptive with frame-rate control at a target.
+//! `subdiv bench framerate`: the paper's frame-rate experiment (Figs. 5-7) on the Fig. 12 scene,
+//! rendered headless: fixed depths, or adaptive with frame-rate control at a target. Each frame
+//! prints its rate, triangles, cap, patches and quads per depth and the controller's share (0
+//! without control); with `--error-every K` every K-th
+//! frame also its image error against the true surface (`subdiv::quality`, untimed).
 
 use std::process::ExitCode;
 use std::time::Instant;
@@ -7,10 +10,11 @@ use std::time::Instant;
 use anyhow::bail;
 use glam::Vec3;
 use subdiv::depth::DepthParams;
-use subdiv::mesh::Camera;
+use subdiv::mesh::{Camera, Mesh};
+use subdiv::quality::{QualityParams, QualityRun, quantile};
 use subdiv::rules::Depth;
 use subdiv::vk::{RenderMesh, RenderOptions, Renderer};
-use subdiv::{BuiltinScene, DynamicSubdivision, view_for};
+use subdiv::{BuiltinScene, DynamicSubdivision, Scene, frame_limit, view_for};
 
 use crate::camera_args::parse_size;
 use crate::choices::{SceneName, value_name};
@@ -48,6 +52,56 @@ pub struct BenchFramerateArgs {
     /// Drop the per-patch cache before every frame (everything is re-tessellated).
     #[arg(long)]
     pub no_cache: bool,
+    /// Every K-th frame (0, K, 2K, ...), also measure the frame's image error against the true
+    /// surface (uniform depth --reference-depth, rendered from the same camera at --error-size)
+    /// and print `silhouette_px_max= silhouette_px_p99= shading_deg_p99=` (see `bench quality`).
+    /// Not part of the frame time.
+    #[arg(long, value_name = "K")]
+    pub error_every: Option<usize>,
+    /// Image size of the error measurement.
+    #[arg(long, value_parser = parse_size, default_value = "320x240")]
+    pub error_size: (u32, u32),
+    /// Depth of the reference surface for --error-every (default: --max-depth + 1).
+    #[arg(long)]
+    pub reference_depth: Option<Depth>,
+}
+
+/// The camera of frame `i`: it orbits the scene centre about the y axis, looking at it from
+/// above, `orbit_step` degrees per frame.
+fn frame_camera(a: &BenchFramerateArgs, i: usize, lo: Vec3, hi: Vec3) -> Camera {
+    let centre = (lo + hi) * 0.5;
+    let radius = (hi - lo).length() * 0.5;
+    let ang = (i as f32 * a.orbit_step).to_radians();
+    let eye = centre
+        + Vec3::new(
+            ang.cos() * 1.1 * radius,
+            0.55 * radius,
+            ang.sin() * 1.1 * radius,
+        );
+    Camera::new(eye, centre, Vec3::Y, 45.0, a.size.0, a.size.1)
+}
+
+/// The reference renders for `--error-every`: one per measured frame.
+fn error_run<'a>(
+    a: &BenchFramerateArgs,
+    cage: &'a Mesh,
+    renderer: &mut Renderer,
+) -> anyhow::Result<Option<QualityRun<'a>>> {
+    let Some(k) = a.error_every else {
+        return Ok(None);
+    };
+    let (lo, hi) = cage.bounds();
+    let cameras: Vec<Camera> = (0..a.frames)
+        .step_by(k)
+        .map(|i| frame_camera(a, i, lo, hi))
+        .collect();
+    let params = QualityParams {
+        size: [a.error_size.0, a.error_size.1],
+        max_depth: a.max_depth,
+        reference_depth: a.reference_depth,
+        timing_runs: 1,
+    };
+    Ok(Some(QualityRun::new(renderer, cage, &cameras, params)?))
 }
 
 /// Refuses flag values the experiment cannot run with.
@@ -66,6 +120,12 @@ fn check(a: &BenchFramerateArgs) -> anyhow::Result<()> {
     {
         bail!("--depth {d} exceeds --max-depth {}", a.max_depth);
     }
+    if a.error_every == Some(0) {
+        bail!("--error-every must be at least 1");
+    }
+    if a.error_size.0 == 0 || a.error_size.1 == 0 {
+        bail!("--error-size must have pixels");
+    }
     for f in [a.target_fps, a.switch_fps].into_iter().flatten() {
         if !(f.is_finite() && f > 0.0) {
             bail!("frame rates must be positive");
@@ -76,13 +136,11 @@ fn check(a: &BenchFramerateArgs) -> anyhow::Result<()> {
 
 pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
     check(a)?;
-    let mesh = BuiltinScene::from(a.scene).cage()?;
-    let nf = mesh.num_faces();
-    let (lo, hi) = mesh.bounds();
-    let centre = (lo + hi) * 0.5;
-    let radius = (hi - lo).length() * 0.5;
+    let cage = BuiltinScene::from(a.scene).cage()?;
+    let nf = cage.num_faces();
+    let (lo, hi) = cage.bounds();
     let mut node = DynamicSubdivision::new(
-        mesh,
+        cage.clone(),
         DepthParams {
             max_depth: a.max_depth,
             ..Default::default()
@@ -99,10 +157,14 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
         }
         (None, None) => "adaptive, no frame-rate control".to_string(),
     };
-    let mut renderer = if a.no_render {
+    let mut renderer = if a.no_render && a.error_every.is_none() {
         None
     } else {
         Some(Renderer::new()?)
+    };
+    let errors = match renderer.as_mut() {
+        Some(r) => error_run(a, &cage, r)?,
+        None => None,
     };
     let (w, h) = a.size;
     println!(
@@ -116,15 +178,7 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
             node.set_target_fps(s);
         }
         let t0 = Instant::now();
-        // The camera orbits the scene centre about the y axis, looking at it from above.
-        let ang = (i as f32 * a.orbit_step).to_radians();
-        let eye = centre
-            + Vec3::new(
-                ang.cos() * 1.1 * radius,
-                0.55 * radius,
-                ang.sin() * 1.1 * radius,
-            );
-        let camera = Camera::new(eye, centre, Vec3::Y, 45.0, w, h);
+        let camera = frame_camera(a, i, lo, hi);
         if a.no_cache {
             node.clear_cache();
         }
@@ -135,7 +189,7 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
             triangles: &g.indices,
             ..Default::default()
         };
-        if let Some(r) = renderer.as_mut() {
+        if let (Some(r), false) = (renderer.as_mut(), a.no_render) {
             let view = view_for(&camera, lo, hi);
             r.render_discard(&mesh, &view, [w, h], &RenderOptions::default())?;
         }
@@ -143,17 +197,34 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
         last = Some(dt);
         let tris = g.num_triangles();
         let per: Vec<String> = g.units_per_depth().iter().map(|n| n.to_string()).collect();
-        let cap = node
-            .controller()
-            .map(|c| c.cap())
-            .unwrap_or(a.depth.unwrap_or(a.max_depth));
-        crate::progress::suspend(|| {
-            println!(
-                "frame={i} fps={:.3} triangles={tris} maxsd={cap} patches={}",
-                1.0 / dt,
-                per.join(",")
-            );
-        });
+        let mut line = format!(
+            "frame={i} fps={:.3} triangles={tris} maxsd={} patches={} quads={} share={:.3}",
+            1.0 / dt,
+            node.controller()
+                .map(|c| c.cap())
+                .unwrap_or(a.depth.unwrap_or(a.max_depth)),
+            per.join(","),
+            node.quads_per_depth()
+                .iter()
+                .map(|n| n.to_string())
+                .collect::<Vec<_>>()
+                .join(","),
+            node.controller().map_or(0.0, |c| c.share())
+        );
+        if let (Some(run), Some(r), Some(k)) = (&errors, renderer.as_mut(), a.error_every)
+            && i % k == 0
+        {
+            let (limit, depths) = frame_limit(node.geometry());
+            let scene = Scene::from_limit(limit, depths);
+            let e = run.frame_errors(r, &scene, i / k, &format!("frame {i}"))?;
+            let max = e.silhouette_px.iter().copied().fold(0.0f32, f32::max);
+            line.push_str(&format!(
+                " silhouette_px_max={max:.3} silhouette_px_p99={:.3} shading_deg_p99={:.3}",
+                quantile(&e.silhouette_px, 0.99),
+                quantile(&e.shading_deg, 0.99)
+            ));
+        }
+        crate::progress::suspend(|| println!("{line}"));
         bar.inc(1);
     }
     bar.finish_and_clear();

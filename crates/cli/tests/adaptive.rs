@@ -98,6 +98,77 @@ fn bench_framerate_prints_one_line_per_frame() {
         assert!(tris > 0, "{l}");
         let cap: u8 = f[3].strip_prefix("maxsd=").unwrap().parse().unwrap();
         assert!(cap <= 2, "{l}");
+        // The helmets are all quads among quads: a patch at depth d is 4^d quads.
+        let per = |k: usize, key: &str| -> Vec<u64> {
+            f[k].strip_prefix(key)
+                .unwrap()
+                .split(',')
+                .map(|x| x.parse().unwrap())
+                .collect()
+        };
+        let (patches, quads) = (per(4, "patches="), per(5, "quads="));
+        assert_eq!(patches.len(), quads.len(), "{l}");
+        for (d, (p, q)) in patches.iter().zip(&quads).enumerate() {
+            assert_eq!(p * 4u64.pow(d as u32), *q, "{l}");
+        }
+    }
+}
+
+#[test]
+fn bench_framerate_measures_image_error_every_kth_frame() {
+    let run = |depth: &str| {
+        let mut args = vec![
+            "bench",
+            "framerate",
+            "--frames",
+            "3",
+            "--no-render",
+            "--size",
+            "96x64",
+            "--error-size",
+            "160x120",
+            "--error-every",
+            "2",
+            "--max-depth",
+            "2",
+        ];
+        if !depth.is_empty() {
+            args.extend(["--depth", depth]);
+        }
+        let o = run_ok(&args)?;
+        let stdout = String::from_utf8_lossy(&o.stdout).to_string();
+        let lines: Vec<String> = stdout
+            .lines()
+            .filter(|l| l.starts_with("frame="))
+            .map(str::to_string)
+            .collect();
+        assert_eq!(lines.len(), 3, "{stdout}");
+        assert!(!lines[1].contains("silhouette_px_max="), "{stdout}");
+        let value = |l: &str, key: &str| -> f32 {
+            l.split_whitespace()
+                .find_map(|kv| kv.strip_prefix(key))
+                .unwrap_or_else(|| panic!("no {key} in {l}"))
+                .parse()
+                .unwrap()
+        };
+        for l in [&lines[0], &lines[2]] {
+            let max = value(l, "silhouette_px_max=");
+            assert!(max >= value(l, "silhouette_px_p99=") && max >= 0.0, "{l}");
+        }
+        Some([
+            value(&lines[0], "shading_deg_p99="),
+            value(&lines[2], "shading_deg_p99="),
+        ])
+    };
+    let (Some(coarse), Some(fine)) = (run("0"), run("2")) else {
+        return;
+    };
+    // Against the depth-3 reference, the cage's (depth 0) normals are far off, depth 2's close.
+    for k in 0..2 {
+        assert!(
+            coarse[k] > 2.0 * fine[k] && fine[k] > 0.0,
+            "shading p99 {coarse:?} {fine:?}"
+        );
     }
 }
 
@@ -174,6 +245,10 @@ fn bad_adaptive_flag_values_fail_cleanly() {
     assert_fails(&["bench", "framerate", "--frames", "many"], "--frames");
     assert_fails(&["bench", "framerate", "--scene", "teapot"], "teapot");
     assert_fails(&["bench", "framerate", "--size", "0x10"], "size");
+    assert_fails(
+        &["bench", "framerate", "--error-every", "0"],
+        "--error-every",
+    );
     assert_fails(
         &["bench", "framerate", "--target-fps=-3", "--frames", "1"],
         "frame rates must be positive",

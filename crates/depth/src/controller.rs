@@ -5,11 +5,20 @@
 //! depth `maxsd` for rapid adjustment. The amount of adjustment is decreased as the frame rate
 //! gets closer to the target frame rate."
 //!
-//! Two knobs, in that order: the cap (the adjusted `maxsd`), moved one level per frame while
+//! Two knobs, in that order: the cap (the adjusted `maxsd`), moved one level per decision while
 //! the frame time is off by more than [`CAP_RATIO`]; then the movable patches holding a signed
 //! share of their triangles moved one level (up: the highest [`priority`](crate::priority) first; down: the lowest
 //! first), updated in proportion to the remaining error so the steps shrink near the target.
 //! Back faces are never raised.
+//!
+//! **Noise:** a frame time on a loaded machine can be off by a factor of two or more for one
+//! frame (other processes, the first frame after a depth rise tessellating its new patches). The
+//! controller therefore looks at the last [`WINDOW`] frame times measured *since its last
+//! change* (so every sample shows the current depths), does nothing until it has them, and acts
+//! only when all of them are off the same way (all slower or all faster than the target), by the
+//! one closest to the target: the smallest error the window proves. One outlier moves nothing;
+//! noise that straddles the target moves nothing; a real offset moves by no more than it
+//! certainly is.
 //!
 //! **Cost model** behind the constants: a frame's time is taken as proportional to its
 //! triangles, and a patch at depth `d` has `2 * 4^d` of them, so one level costs a factor
@@ -34,6 +43,10 @@ pub const CAP_RATIO: f32 = 2.0;
 /// the paper reports (39-40 fps for a 40 fps target, Section 5). Within it nothing moves,
 /// which keeps timer noise from reshuffling patches (and the patch cache) every frame.
 pub const TOLERANCE: f32 = 0.025_317_808; // ln(40 / 39)
+
+/// Frame times per decision: 3, the fewest of which one outlier cannot decide alone (with 2, an
+/// outlier and a frame on the same side of the target would).
+pub const WINDOW: usize = 3;
 
 /// Fraction of the model's correction applied per frame. The share update is a Newton step on
 /// the cost model; if a share really costs `k` times what the model assumes, the error
@@ -73,6 +86,9 @@ pub struct FrameRateController {
     max_depth: Depth,
     cap: Depth,
     share: f32,
+    /// Frame times fed since the last change (the first `seen` are valid).
+    recent: [f32; WINDOW],
+    seen: usize,
 }
 
 impl FrameRateController {
@@ -81,7 +97,9 @@ impl FrameRateController {
     /// ```
     /// use subdiv_depth::{Assignment, Class, FrameRateController};
     /// let mut c = FrameRateController::new(30.0, 5);
-    /// c.update(0.2); // 5 fps: six times too slow, the cap drops first
+    /// for _ in 0..3 {
+    ///     c.update(0.2); // 5 fps: six times too slow, the cap drops first (after 3 frames)
+    /// }
     /// assert_eq!((c.cap(), c.share()), (4, 0.0));
     /// let mut a = Assignment {
     ///     depth: vec![5, 3, 1],
@@ -99,12 +117,18 @@ impl FrameRateController {
             max_depth,
             cap: max_depth,
             share: 0.0,
+            recent: [0.0; WINDOW],
+            seen: 0,
         }
     }
 
     /// Changes the target frame rate.
     pub fn set_target_fps(&mut self, fps: f32) {
         self.target = 1.0 / fps.max(1e-3);
+    }
+    /// Frame times kept for the next decision (fewer than 3, `WINDOW`).
+    pub fn pending(&self) -> usize {
+        self.seen
     }
     /// The target frame rate.
     pub fn target_fps(&self) -> f32 {
@@ -119,11 +143,39 @@ impl FrameRateController {
         self.share
     }
 
-    /// Feeds the time the last frame took (seconds).
+    /// Feeds the time the last frame took (seconds). Once 3 valid times (`WINDOW`) are in since
+    /// the last change, and on every later frame over the last 3: if all are slower than the
+    /// target the fastest of them decides, if all are faster the slowest, else nothing moves; a
+    /// change starts a new window.
     pub fn update(&mut self, frame_time: f32) {
         if !(frame_time.is_finite() && frame_time > 0.0) {
             return;
         }
+        self.recent[self.seen] = frame_time;
+        self.seen += 1;
+        if self.seen < WINDOW {
+            return;
+        }
+        let mut w = self.recent;
+        w.sort_unstable_by(f32::total_cmp);
+        let (fastest, slowest) = (w[0], w[WINDOW - 1]);
+        let before = (self.cap, self.share);
+        if fastest > self.target {
+            self.decide(fastest);
+        } else if slowest < self.target {
+            self.decide(slowest);
+        }
+        // A change invalidates the window (its frames show the old depths); otherwise slide.
+        if (self.cap, self.share) != before {
+            self.seen = 0;
+        } else {
+            self.recent.copy_within(1.., 0);
+            self.seen = WINDOW - 1;
+        }
+    }
+
+    /// One decision on a (filtered) frame time.
+    fn decide(&mut self, frame_time: f32) {
         let r = frame_time / self.target; // > 1: too slow
         if r.ln().abs() <= TOLERANCE {
             return;

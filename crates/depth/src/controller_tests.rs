@@ -40,6 +40,13 @@ fn cost(a: &Assignment, seconds_per_triangle: f32) -> f32 {
         * seconds_per_triangle
 }
 
+/// Feeds the same frame time for one full window: exactly one decision.
+fn feed(c: &mut FrameRateController, t: f32) {
+    for _ in 0..WINDOW {
+        c.update(t);
+    }
+}
+
 /// Runs `frames` frames; returns the frame rates.
 fn run(geo: &Assignment, c: &mut FrameRateController, spt: f32, frames: usize) -> Vec<f32> {
     let mut fps = Vec::new();
@@ -58,14 +65,14 @@ fn cap_moves_first_while_far_off() {
     let mut c = FrameRateController::new(30.0, 5);
     // Ten times too slow: the cap drops one level per frame, the share stays untouched.
     for cap in [4, 3, 2] {
-        c.update(10.0 / 30.0);
+        feed(&mut c, 10.0 / 30.0);
         assert_eq!((c.cap(), c.share()), (cap, 0.0));
     }
     // Ten times too fast: the cap rises again.
-    c.update(0.1 / 30.0);
+    feed(&mut c, 0.1 / 30.0);
     assert_eq!((c.cap(), c.share()), (3, 0.0));
     // Within a factor CAP_RATIO the cap stays and the share moves.
-    c.update(1.5 / 30.0);
+    feed(&mut c, 1.5 / 30.0);
     assert_eq!(c.cap(), 3);
     assert!(c.share() < 0.0);
 }
@@ -74,7 +81,7 @@ fn cap_moves_first_while_far_off() {
 fn adjustment_shrinks_near_the_target() {
     let step = |ratio: f32| {
         let mut c = FrameRateController::new(50.0, 5);
-        c.update(ratio / 50.0);
+        feed(&mut c, ratio / 50.0);
         c.share().abs()
     };
     let slow: Vec<f32> = [1.9, 1.5, 1.2, 1.05].into_iter().map(step).collect();
@@ -98,7 +105,7 @@ fn saturated_share_moves_the_cap() {
     // Persistently 1.8 times too slow: below the cap threshold, so the share falls to -1 and
     // then the cap takes over.
     for _ in 0..20 {
-        c.update(1.8 / 60.0);
+        feed(&mut c, 1.8 / 60.0);
     }
     assert!(c.cap() < 5, "cap {} share {}", c.cap(), c.share());
 }
@@ -109,7 +116,7 @@ fn back_faces_are_never_raised() {
     let mut c = FrameRateController::new(60.0, 5);
     // Far too fast at the full cap: the whole share goes up.
     for _ in 0..10 {
-        c.update(0.6 / 60.0);
+        feed(&mut c, 0.6 / 60.0);
     }
     assert_eq!(c.share(), 1.0);
     let mut a = geo.clone();
@@ -128,7 +135,7 @@ fn patches_are_chosen_by_priority() {
     let geo = scene(500);
     for ratio in [0.8f32, 1.25] {
         let mut c = FrameRateController::new(60.0, 5);
-        c.update(ratio / 60.0);
+        feed(&mut c, ratio / 60.0);
         let up = c.share() > 0.0;
         let mut a = geo.clone();
         c.apply(&mut a);
@@ -225,4 +232,78 @@ fn deterministic_and_bounded() {
     s.depth = vec![9; 10];
     a.apply(&mut s);
     assert!(s.depth.iter().all(|&x| x <= a.cap()));
+}
+
+#[test]
+fn one_outlier_per_window_moves_nothing() {
+    let mut c = FrameRateController::new(30.0, 5);
+    // On target but for one frame in three that takes four times as long (a loaded machine).
+    for _ in 0..30 {
+        for t in [1.0 / 30.0, 4.0 / 30.0, 1.0 / 30.0] {
+            c.update(t);
+        }
+    }
+    assert_eq!((c.cap(), c.share()), (5, 0.0));
+    // Without the window the same spikes would have dropped the cap: only a window that agrees
+    // decides.
+    feed(&mut c, 4.0 / 30.0);
+    assert_eq!(c.cap(), 4);
+}
+
+#[test]
+fn a_change_waits_for_a_full_window_of_new_frames() {
+    let mut c = FrameRateController::new(30.0, 5);
+    feed(&mut c, 10.0 / 30.0);
+    assert_eq!((c.cap(), c.pending()), (4, 0));
+    // Two frames at the new depths are not enough to decide again, however slow.
+    c.update(10.0 / 30.0);
+    c.update(10.0 / 30.0);
+    assert_eq!((c.cap(), c.pending()), (4, 2));
+    c.update(10.0 / 30.0);
+    assert_eq!((c.cap(), c.pending()), (3, 0));
+}
+
+#[test]
+fn converges_under_timer_noise() {
+    // The cost model with a deterministic +-15 % jitter and a 3x spike every 11th frame: from
+    // frame 90 on, the noise-free rate of the chosen depths lies within 10 % of the target.
+    let geo = scene(2320);
+    let spt = 1e-7;
+    let full = 1.0 / cost(&geo, spt);
+    for target in [full * 1.8, full * 4.0, full * 0.8] {
+        let mut c = FrameRateController::new(target, 4);
+        let mut fps = Vec::new();
+        for i in 0..150usize {
+            let mut a = geo.clone();
+            c.apply(&mut a);
+            let jitter = 1.0 + 0.15 * (((i * 7919) % 21) as f32 / 10.0 - 1.0);
+            let spike = if i % 11 == 5 { 3.0 } else { 1.0 };
+            let t = cost(&a, spt) * jitter * spike;
+            fps.push(1.0 / cost(&a, spt));
+            c.update(t);
+        }
+        let ok = fps[90..].iter().all(|f| (f / target - 1.0).abs() <= 0.10);
+        assert!(ok, "target {target:.1}: {:?}", &fps[90..100]);
+    }
+}
+
+#[test]
+fn a_window_that_straddles_the_target_moves_nothing() {
+    let mut c = FrameRateController::new(30.0, 5);
+    // Noise of +-40 % around the target: never all on one side within a window.
+    for _ in 0..20 {
+        for t in [0.6 / 30.0, 1.4 / 30.0, 1.0 / 30.0] {
+            c.update(t);
+        }
+    }
+    assert_eq!((c.cap(), c.share()), (5, 0.0));
+    // All slower, one of them far slower: the step is the one the least slow frame proves.
+    let mut a = FrameRateController::new(30.0, 5);
+    let mut b = a.clone();
+    for t in [1.2 / 30.0, 1.2 / 30.0, 1.9 / 30.0] {
+        a.update(t);
+    }
+    feed(&mut b, 1.2 / 30.0);
+    assert!(a.share() < 0.0, "{a:?}");
+    assert_eq!((a.cap(), a.share()), (b.cap(), b.share()));
 }

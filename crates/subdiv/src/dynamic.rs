@@ -236,6 +236,12 @@ impl DynamicSubdivision {
         Ok(&self.geometry)
     }
 
+    /// The last frame's quads per depth before gap prevention (Settgast et al. Fig. 6; see
+    /// [`subdiv_stitch::Assembler::quads_per_depth`]).
+    pub fn quads_per_depth(&self) -> Vec<u64> {
+        self.assembler.quads_per_depth(&self.geometry)
+    }
+
     /// Number of triangles of the uniform tessellation at the maximum depth (for comparison).
     pub fn uniform_triangles(&self) -> usize {
         self.uniform_triangles_at(self.params.max_depth)

@@ -130,6 +130,24 @@ impl Assembler {
         self.set.units()[unit].irregular as Depth
     }
 
+    /// Quads of the patch grids per depth in frame `g` (index = depth), before the fans that
+    /// join different depths: what Settgast et al. Fig. 6 counts. A unit at depth `d` has
+    /// `4^d` quads, a level-1 unit of `n` patches `n * 4^(d - 1)`; undrawn units count nothing.
+    pub fn quads_per_depth(&self, g: &FrameGeometry) -> Vec<u64> {
+        let mut v = Vec::new();
+        for (unit, &d) in self.set.units().iter().zip(&g.unit_depth) {
+            if d == u8::MAX {
+                continue;
+            }
+            if v.len() <= d as usize {
+                v.resize(d as usize + 1, 0);
+            }
+            let level = unit.irregular as u32;
+            v[d as usize] += unit.patch_count as u64 * 4u64.pow((d as u32).saturating_sub(level));
+        }
+        v
+    }
+
     /// Drops all cached blocks (e.g. after the mesh's positions changed).
     pub fn invalidate(&mut self) {
         for b in &mut self.blocks {
@@ -337,6 +355,25 @@ impl Assembler {
 mod tests {
     use super::super::test_util::{cube, grid, open_edges, prism, split_cube};
     use super::*;
+
+    #[test]
+    fn quads_per_depth_counts_grid_quads_of_drawn_units() {
+        // Split cube: face 0 a regular patch, faces 1 and 2 triangles (3 level-1 quads each),
+        // faces 3..=6 quads next to them (4 level-1 quads each).
+        let mesh = split_cube();
+        let mut asm = Assembler::new(&mesh, 4).unwrap();
+        let mut g = FrameGeometry::default();
+        let depth = [0, 1, 2, 1, 3, 2, 1];
+        let mut active = [true; 7];
+        active[6] = false;
+        asm.frame(&mesh, &depth, &active, &mut g).unwrap();
+        // depth 0: face 0 (1 quad); depth 1: face 1 (3) + face 3 (4); depth 2: face 2 (3 * 4)
+        // + face 5 (4 * 4); depth 3: face 4 (4 * 16); face 6 not drawn.
+        assert_eq!(asm.quads_per_depth(&g), vec![1, 7, 28, 64]);
+        // Every drawn quad is two triangles unless it was replaced by a fan.
+        let quads: u64 = asm.quads_per_depth(&g).iter().sum();
+        assert!(quads * 2 <= g.num_triangles() as u64 + 4 * 64);
+    }
 
     #[test]
     fn cache_recomputes_only_patches_whose_depth_rose() {

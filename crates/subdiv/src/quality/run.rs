@@ -11,7 +11,7 @@ use subdiv_rules::{Depth, MAX_DEPTH, Scheme};
 use subdiv_stitch::{AssemblyError, MAX_ADAPTIVE_DEPTH};
 use subdiv_vk::{RenderMesh, RenderOptions, Renderer, View, VkError};
 
-use super::metrics::{SUPERSAMPLE, area_coverage, compare_frames, quantile};
+use super::metrics::{FrameErrors, SUPERSAMPLE, area_coverage, compare_frames, quantile};
 use crate::{DynamicSubdivision, Scene, SceneError, frame_limit, uniform_limit, view_for};
 
 /// One tessellation configuration of the comparison.
@@ -477,6 +477,41 @@ impl<'a> QualityRun<'a> {
         Ok(out)
     }
 
+    /// Renders `scene` from camera `i` (at the run's size) and compares it with that camera's
+    /// reference render, untimed: what [`Self::measure`] does per camera, for callers that make
+    /// their own geometry (e.g. the frames of `subdiv bench framerate`).
+    pub fn frame_errors(
+        &self,
+        renderer: &mut Renderer,
+        scene: &Scene,
+        i: usize,
+        name: &str,
+    ) -> Result<FrameErrors, QualityError> {
+        let f = self.frames.get(i).ok_or(QualityError::NoCameras)?;
+        let mesh = scene.mesh.as_render_mesh();
+        if mesh.triangle_count() == 0 {
+            return Err(QualityError::EmptyFrame {
+                config: name.to_string(),
+                camera: i,
+            });
+        }
+        let (coverage, normals) = render_masks(renderer, &mesh, &f.view, self.params.size)
+            .map_err(|source| QualityError::Render {
+                config: name.to_string(),
+                camera: i,
+                source,
+            })?;
+        let [w, h] = self.params.size;
+        Ok(compare_frames(
+            &coverage,
+            &normals,
+            &f.coverage,
+            &f.normals,
+            w as usize,
+            h as usize,
+        ))
+    }
+
     /// Renders `scene` from camera `i`, compares it with the reference and times the render.
     fn compare(
         &self,
@@ -486,30 +521,8 @@ impl<'a> QualityRun<'a> {
         name: &str,
         tally: &mut Tally,
     ) -> Result<(), QualityError> {
-        let f = &self.frames[i];
+        let e = self.frame_errors(renderer, scene, i, name)?;
         let mesh = scene.mesh.as_render_mesh();
-        if mesh.triangle_count() == 0 {
-            return Err(QualityError::EmptyFrame {
-                config: name.to_string(),
-                camera: i,
-            });
-        }
-        let render_err = |source| QualityError::Render {
-            config: name.to_string(),
-            camera: i,
-            source,
-        };
-        let (coverage, normals) =
-            render_masks(renderer, &mesh, &f.view, self.params.size).map_err(render_err)?;
-        let [w, h] = self.params.size;
-        let e = compare_frames(
-            &coverage,
-            &normals,
-            &f.coverage,
-            &f.normals,
-            w as usize,
-            h as usize,
-        );
         tally.triangles = tally.triangles.max(mesh.triangle_count());
         tally.silhouette_max = e
             .silhouette_px
@@ -522,8 +535,12 @@ impl<'a> QualityRun<'a> {
         for _ in 0..self.params.timing_runs {
             let t = Instant::now();
             renderer
-                .render_discard(&mesh, &f.view, self.params.size, &options)
-                .map_err(render_err)?;
+                .render_discard(&mesh, &self.frames[i].view, self.params.size, &options)
+                .map_err(|source| QualityError::Render {
+                    config: name.to_string(),
+                    camera: i,
+                    source,
+                })?;
             tally.render_ms.push(elapsed_ms(t));
         }
         Ok(())
