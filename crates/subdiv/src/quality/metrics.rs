@@ -262,7 +262,10 @@ pub fn sample_silhouette_distance(
     s: u32,
     contours: &[[[f32; 2]; 2]],
 ) -> Vec<f32> {
-    assert!(s % 2 == 1, "the middle sample of a pixel needs an odd supersampling");
+    assert!(
+        s % 2 == 1,
+        "the middle sample of a pixel needs an odd supersampling"
+    );
     let [w, h, s] = [size[0] as usize, size[1] as usize, s as usize];
     let mask: Vec<bool> = coverage.iter().map(|&c| c > 0.5).collect();
     let mut grid = HalfGrid::new(w * s, h * s);
@@ -411,27 +414,34 @@ mod tests {
                 .collect()
         };
         let half: Vec<bool> = (0..w * h).map(|i| i % w < 4).collect();
-        let fine = sample_silhouette_distance(&upsample(&half), [w as u32, h as u32], s as u32, &[]);
+        let fine =
+            sample_silhouette_distance(&upsample(&half), [w as u32, h as u32], s as u32, &[]);
         for (a, b) in fine.iter().zip(silhouette_distance(&half, w, h)) {
             assert!((a - b).abs() < 1e-5, "{a} vs {b}");
         }
         let disc: Vec<bool> = (0..w * h)
             .map(|i| ((i % w) as i32 - 4).pow(2) + ((i / w) as i32 - 3).pow(2) < 7)
             .collect();
-        let fine = sample_silhouette_distance(&upsample(&disc), [w as u32, h as u32], s as u32, &[]);
+        let fine =
+            sample_silhouette_distance(&upsample(&disc), [w as u32, h as u32], s as u32, &[]);
         for (a, b) in fine.iter().zip(silhouette_distance(&disc, w, h)) {
             assert!(*a <= b + 1e-5 && b <= a + 0.5, "{a} vs {b}");
         }
         // A sheet one sample wide down the middle of pixel 1 of three: no pixel is covered by
         // area, but the silhouette runs through pixel 1 (1/6 px from its centre) and 5/6 px
         // from the centres of pixels 0 and 2.
-        let line: Vec<f32> = (0..9 * 3).map(|k| f32::from(u8::from(k % 9 == 4))).collect();
+        let line: Vec<f32> = (0..9 * 3)
+            .map(|k| f32::from(u8::from(k % 9 == 4)))
+            .collect();
         let d = sample_silhouette_distance(&line, [3, 1], 3, &[]);
         let want = [5.0 / 6.0, 1.0 / 6.0, 5.0 / 6.0];
         for (a, b) in d.iter().zip(want) {
             assert!((a - b).abs() < 1e-5, "{d:?}");
         }
-        assert_eq!(area_coverage(&line, &[[0.0; 3]; 27], [3, 1], 3).0, [false; 3]);
+        assert_eq!(
+            area_coverage(&line, &[[0.0; 3]; 27], [3, 1], 3).0,
+            [false; 3]
+        );
         // A contour inside a covered area: a vertical fold at x = 4.5 px of a 9 × 5 image
         // covered everywhere. The pixels' distances are to the fold (the image's edge is the
         // mask's silhouette too).

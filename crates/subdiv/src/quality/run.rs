@@ -66,6 +66,9 @@ pub struct QualityParams {
     pub reference_depth: Option<Depth>,
     /// Timed `render_discard` calls per camera and configuration (the median is reported).
     pub timing_runs: usize,
+    /// The pixel-error configurations' normal tolerance
+    /// ([`DepthParams::shading_error_deg`]).
+    pub shading_error_deg: f32,
 }
 
 impl Default for QualityParams {
@@ -75,6 +78,7 @@ impl Default for QualityParams {
             max_depth: 5,
             reference_depth: None,
             timing_runs: 3,
+            shading_error_deg: DEFAULT_SHADING_ERROR_DEG,
         }
     }
 }
@@ -112,6 +116,11 @@ impl QualityParams {
         }
         if self.timing_runs == 0 {
             return Err(QualityError::NoTimingRuns);
+        }
+        if !(self.shading_error_deg > 0.0 && self.shading_error_deg <= 180.0) {
+            return Err(QualityError::ShadingError {
+                degrees: self.shading_error_deg,
+            });
         }
         Ok(())
     }
@@ -153,6 +162,12 @@ pub enum QualityError {
         width: u32,
         /// Height asked for.
         height: u32,
+    },
+    /// A normal tolerance outside `(0, 180]` degrees.
+    #[error("shading error {degrees}° is not an angle in (0, 180] degrees")]
+    ShadingError {
+        /// The tolerance asked for.
+        degrees: f32,
     },
     /// No timed renders asked for.
     #[error("at least one timed render per camera is needed")]
@@ -360,13 +375,11 @@ impl<'a> QualityRun<'a> {
                 ..*c
             };
             let view = view_for(&camera, lo, hi);
-            let (coverage, normals, samples) =
-                render_masks(renderer, &mesh, &view, params.size).map_err(|source| {
-                    QualityError::Render {
-                        config: "reference".to_string(),
-                        camera: i,
-                        source,
-                    }
+            let (coverage, normals, samples) = render_masks(renderer, &mesh, &view, params.size)
+                .map_err(|source| QualityError::Render {
+                    config: "reference".to_string(),
+                    camera: i,
+                    source,
                 })?;
             let contours = projected_contours(&scene, &camera);
             let distance =
@@ -449,6 +462,7 @@ impl<'a> QualityRun<'a> {
                         Config::PixelError(px) => Some(px),
                         _ => None,
                     },
+                    shading_error_deg: self.params.shading_error_deg,
                     ..DepthParams::default()
                 };
                 let mut node =
