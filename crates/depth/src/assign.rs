@@ -31,9 +31,10 @@ pub struct DepthParams {
     pub projected_size: Option<(f32, f32)>,
     /// Screen-space error bound in pixels (replaces curvature and projected size when set).
     pub pixel_error: Option<f32>,
-    /// With `pixel_error`: the largest angle in degrees between the limit normal and the normal
-    /// interpolated across the drawn triangles ([`crate::pixel_error`], "Shading"); 180 bounds
-    /// silhouettes only. Default [`DEFAULT_SHADING_ERROR_DEG`].
+    /// With `pixel_error`: the angle in degrees between the limit normal and the normal
+    /// interpolated across the drawn triangles that 99 % of each patch must stay within
+    /// ([`crate::pixel_error`], "Shading"); 180 bounds silhouettes only. Default
+    /// [`DEFAULT_SHADING_ERROR_DEG`].
     pub shading_error_deg: f32,
     /// Leave back faces out instead of drawing them at depth 0.
     pub cull_back: bool,
