@@ -37,7 +37,8 @@ pub struct AdaptiveArgs {
     #[arg(long)]
     pub pixel_error: Option<f32>,
     /// With --pixel-error: also keep the normals interpolated across the drawn triangles within
-    /// DEG degrees of the limit normals (180: silhouettes only) [default: 2].
+    /// DEG degrees of the limit normals on 99 % of each patch (180: silhouettes only)
+    /// [default: 2].
     #[arg(long, value_name = "DEG", requires = "pixel_error")]
     pub shading_error: Option<f32>,
     /// Leave out back faces instead of drawing them at depth 0.
