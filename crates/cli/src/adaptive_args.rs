@@ -2,7 +2,7 @@
 
 use anyhow::bail;
 use subdiv::DynamicSubdivision;
-use subdiv::depth::DepthParams;
+use subdiv::depth::{DEFAULT_SHADING_ERROR_DEG, DepthParams};
 use subdiv::rules::Depth;
 use subdiv::stitch::{FanMethod, MAX_ADAPTIVE_DEPTH};
 
@@ -36,6 +36,11 @@ pub struct AdaptiveArgs {
     /// Choose the least depth whose chord error is at most PX pixels on screen.
     #[arg(long)]
     pub pixel_error: Option<f32>,
+    /// With --pixel-error: also keep the normals interpolated across the drawn triangles within
+    /// DEG degrees of the limit normals on 99 % of each patch (180: silhouettes only)
+    /// [default: 2].
+    #[arg(long, value_name = "DEG", requires = "pixel_error")]
+    pub shading_error: Option<f32>,
     /// Leave out back faces instead of drawing them at depth 0.
     #[arg(long)]
     pub cull_back: bool,
@@ -58,6 +63,7 @@ impl AdaptiveArgs {
             (self.classifier.is_some(), "--classifier"),
             (self.projected_size.is_some(), "--projected-size"),
             (self.pixel_error.is_some(), "--pixel-error"),
+            (self.shading_error.is_some(), "--shading-error"),
             (self.cull_back, "--cull-back"),
             (self.simple_fans, "--simple-fans"),
         ]
@@ -107,12 +113,17 @@ impl AdaptiveArgs {
         {
             bail!("--pixel-error must be a positive number of pixels");
         }
+        let shading_error_deg = self.shading_error.unwrap_or(DEFAULT_SHADING_ERROR_DEG);
+        if !(shading_error_deg > 0.0 && shading_error_deg <= 180.0) {
+            bail!("--shading-error must be an angle in (0, 180] degrees");
+        }
         Ok(DepthParams {
             max_depth,
             cone_aperture_deg: self.cone_aperture.unwrap_or(DEFAULT_CONE_APERTURE),
             classifier_eps: self.classifier.unwrap_or(DEFAULT_CLASSIFIER),
             projected_size: Some(self.projected_size.unwrap_or(DEFAULT_PROJECTED_SIZE)),
             pixel_error: self.pixel_error,
+            shading_error_deg,
             cull_back: self.cull_back,
         })
     }

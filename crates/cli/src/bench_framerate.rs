@@ -100,6 +100,7 @@ fn error_run<'a>(
         max_depth: a.max_depth,
         reference_depth: a.reference_depth,
         timing_runs: 1,
+        ..QualityParams::default()
     };
     Ok(Some(QualityRun::new(renderer, cage, &cameras, params)?))
 }

@@ -7,6 +7,7 @@ use std::process::ExitCode;
 use anyhow::{Context, bail};
 use glam::Vec3;
 use subdiv::BuiltinScene;
+use subdiv::depth::DEFAULT_SHADING_ERROR_DEG;
 use subdiv::mesh::Camera;
 use subdiv::quality::{Config, QualityParams, QualityRun, orbit_cameras};
 use subdiv::rules::Depth;
@@ -44,6 +45,11 @@ pub struct BenchQualityArgs {
     /// Timed renders per camera and configuration (the median is reported).
     #[arg(long, default_value_t = 3)]
     pub runs: usize,
+    /// The pixel-error configurations' normal tolerance in degrees: the angle between the limit
+    /// normal and the normal interpolated across the drawn triangles that 99 % of each patch
+    /// stays within (180: silhouettes only).
+    #[arg(long, value_name = "DEG", default_value_t = DEFAULT_SHADING_ERROR_DEG)]
+    pub shading_error: f32,
     /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
     #[arg(long)]
     pub split_nonmanifold: bool,
@@ -73,6 +79,7 @@ impl BenchQualityArgs {
             max_depth: self.max_depth,
             reference_depth: self.reference_depth,
             timing_runs: self.runs,
+            shading_error_deg: self.shading_error,
         };
         params.check()?;
         Ok(params)

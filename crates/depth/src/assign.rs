@@ -12,6 +12,12 @@ use crate::curvature::VertexData;
 use crate::pixel_error::{PatchErrors, pixel_error_depth};
 use crate::sphere::Sphere;
 
+/// Default [`DepthParams::shading_error_deg`]: 2°. A normal off by `θ` moves diffuse intensity
+/// `n · l` by at most `sin θ` of full scale: 3.5 % (9 of 255 levels) at 2°, about the step
+/// smooth shading shows as a visible facet edge on a gradient; the pawn and helmet40 tables of
+/// docs/performance.md show the triangles each tolerance costs.
+pub const DEFAULT_SHADING_ERROR_DEG: f32 = 2.0;
+
 /// The paper's user parameters, plus the pixel-error mode and back-face culling.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DepthParams {
@@ -25,6 +31,11 @@ pub struct DepthParams {
     pub projected_size: Option<(f32, f32)>,
     /// Screen-space error bound in pixels (replaces curvature and projected size when set).
     pub pixel_error: Option<f32>,
+    /// With `pixel_error`: the angle in degrees between the limit normal and the normal
+    /// interpolated across the drawn triangles that 99 % of each patch must stay within
+    /// ([`crate::pixel_error`], "Shading"); 180 bounds silhouettes only. Default
+    /// [`DEFAULT_SHADING_ERROR_DEG`].
+    pub shading_error_deg: f32,
     /// Leave back faces out instead of drawing them at depth 0.
     pub cull_back: bool,
 }
@@ -37,6 +48,7 @@ impl Default for DepthParams {
             classifier_eps: 0.1,
             projected_size: Some((2.0, 8.0)),
             pixel_error: None,
+            shading_error_deg: DEFAULT_SHADING_ERROR_DEG,
             cull_back: false,
         }
     }
@@ -179,7 +191,8 @@ pub fn assign(
             d = if errs.closed && e.faces_away(camera, sphere) {
                 0
             } else {
-                pixel_error_depth(camera, sphere, &e.deviation, px, p.max_depth)
+                let max_angle = p.shading_error_deg.to_radians();
+                pixel_error_depth(camera, sphere, e, px, max_angle, p.max_depth)
             };
         } else if cls != Class::Back
             && let Some(ps) = p.projected_size

@@ -37,8 +37,8 @@ pub mod pixel_error;
 mod sphere;
 
 pub use assign::{
-    Assignment, Class, DepthParams, adjust_projected, assign, classify_vertex, priority,
-    projected_radius,
+    Assignment, Class, DEFAULT_SHADING_ERROR_DEG, DepthParams, adjust_projected, assign,
+    classify_vertex, priority, projected_radius,
 };
 pub use controller::FrameRateController;
 pub use curvature::VertexData;

@@ -11,6 +11,18 @@
 //!   (centre `c`, radius `r`) that is at most `f (|c − eye| + r) / (Z_c − r)²`
 //!   ([`screen_scale`]); on the axis this is the familiar `f / Z`, off-axis it grows with the
 //!   secant of the angle, which a plain `f / distance` would miss.
+//! - **Shading.** The silhouette bound says nothing of the normals the renderer interpolates
+//!   across a patch's triangles, and shading follows the normals: a patch drawn at depth 1 can
+//!   keep its outline within a pixel and still be shaded as a few flat-ish facets. Each patch
+//!   therefore also records, per depth, the angle between its limit normal and the normal
+//!   interpolated across the drawn triangles from their vertices' limit normals that 99 % of its
+//!   samples stay within ([`PatchError::normal_error`]; the 99th percentile, as the quality
+//!   benchmark's `shading_deg_p99`, because the largest angle sits in strips along semi-sharp
+//!   creases narrower than any drawn depth), and the mode takes the least depth that meets both
+//!   the pixel error and an angle tolerance
+//!   ([`DepthParams::shading_error_deg`](crate::DepthParams)).
+//!   Diffuse intensity `n · l` moves by at most `sin θ` of full scale when the normal turns by
+//!   `θ`, whatever the view, so the tolerance is an angle, not a number of pixels.
 //! - **Hidden patches.** A patch is drawn at depth 0 without error only when it is provably
 //!   invisible: the mesh is closed (no boundary, no holes, so every ray that meets a back-facing
 //!   point first meets a front-facing one) and every normal of the patch faces away from every
@@ -67,6 +79,10 @@ pub struct PatchError {
     /// Per depth `0..=max_depth`: the largest distance (world units) between the limit surface
     /// and the triangles drawn for the face at that depth.
     pub deviation: Vec<f32>,
+    /// Per depth `0..=max_depth`: the 99th percentile over the patch's samples of the angle
+    /// (radians) between the limit normal and the normal interpolated across the triangles
+    /// drawn at that depth from their vertices' limit normals (what the renderer shades with).
+    pub normal_error: Vec<f32>,
     /// A cone containing every limit normal of the face's patch(es).
     pub normals: NormalCone,
 }
@@ -114,18 +130,21 @@ pub fn screen_scale(camera: &Camera, sphere: &Sphere) -> f32 {
     camera.focal_pixels() * reach / (z * z)
 }
 
-/// The least depth whose chord error `dev[l]`, projected by [`screen_scale`], is at most `px`
-/// pixels; `max_depth` when none is.
+/// The least depth whose chord error `e.deviation[l]`, projected by [`screen_scale`], is at most
+/// `px` pixels and whose normal error `e.normal_error[l]` is at most `max_angle` radians;
+/// `max_depth` when none is.
 pub fn pixel_error_depth(
     camera: &Camera,
     s: &Sphere,
-    dev: &[f32],
+    e: &PatchError,
     px: f32,
+    max_angle: f32,
     max_depth: Depth,
 ) -> Depth {
     let scale = screen_scale(camera, s);
-    for (l, &e) in dev.iter().enumerate().take(max_depth as usize + 1) {
-        if e * scale <= px {
+    let levels = e.deviation.iter().zip(&e.normal_error);
+    for (l, (&dev, &angle)) in levels.enumerate().take(max_depth as usize + 1) {
+        if dev * scale <= px && angle <= max_angle {
             return l as Depth;
         }
     }
@@ -190,12 +209,28 @@ mod tests {
         };
         let c = cam(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO);
         let dev = vec![0.5, 0.12, 0.03, 0.008, 0.002, 0.0005];
+        let e = PatchError {
+            deviation: dev.clone(),
+            normal_error: vec![0.4, 0.2, 0.1, 0.05, 0.025, 0.0125],
+            normals: NormalCone::ANY,
+        };
         let scale = screen_scale(&c, &s);
-        let d = pixel_error_depth(&c, &s, &dev, 1.0, 5);
+        let open = std::f32::consts::PI;
+        let d = pixel_error_depth(&c, &s, &e, 1.0, open, 5);
         assert!(dev[d as usize] * scale <= 1.0);
         assert!(d == 0 || dev[d as usize - 1] * scale > 1.0);
         // Never beyond the cap, even when no depth suffices.
-        assert_eq!(pixel_error_depth(&c, &s, &dev, 1e-9, 3), 3);
+        assert_eq!(pixel_error_depth(&c, &s, &e, 1e-9, open, 3), 3);
+        // The normal tolerance deepens where the chord error alone would not.
+        assert_eq!(pixel_error_depth(&c, &s, &e, 1e9, open, 5), 0);
+        assert_eq!(pixel_error_depth(&c, &s, &e, 1e9, 0.06, 5), 3);
+        assert_eq!(pixel_error_depth(&c, &s, &e, 1e9, 0.05, 5), 3);
+        assert_eq!(pixel_error_depth(&c, &s, &e, 1e9, 0.0, 5), 5);
+        // Both bounds hold at the chosen depth, and not both one level up.
+        let d = pixel_error_depth(&c, &s, &e, 1.0, 0.15, 5);
+        assert!(dev[d as usize] * scale <= 1.0 && e.normal_error[d as usize] <= 0.15);
+        let l = d as usize;
+        assert!(d == 0 || dev[l - 1] * scale > 1.0 || e.normal_error[l - 1] > 0.15);
     }
 
     #[test]
@@ -207,6 +242,7 @@ mod tests {
         };
         let patch = |axis: Vec3, half_deg: f32| PatchError {
             deviation: vec![0.0],
+            normal_error: vec![0.0],
             normals: NormalCone {
                 axis,
                 cos: half_deg.to_radians().cos(),
@@ -224,6 +260,7 @@ mod tests {
         // No bound: never hidden.
         let any = PatchError {
             deviation: vec![0.0],
+            normal_error: vec![0.0],
             normals: NormalCone::ANY,
         };
         assert!(!any.faces_away(&c, &s));

@@ -10,6 +10,8 @@ use subdiv_rules::LimitMesh;
 pub struct Silhouettes {
     /// Interior edges (vertex pairs) and their two faces.
     edges: Vec<([u32; 2], [u32; 2])>,
+    /// Boundary edges (of one face).
+    boundary: Vec<[u32; 2]>,
     face_normal: Vec<Vec3>,
     face_centre: Vec<Vec3>,
 }
@@ -41,6 +43,7 @@ impl Silhouettes {
         }
         keyed.sort_unstable();
         let mut edges = Vec::with_capacity(keyed.len() / 2);
+        let mut boundary = Vec::new();
         let mut i = 0;
         while i < keyed.len() {
             let mut j = i + 1;
@@ -49,11 +52,14 @@ impl Silhouettes {
             }
             if j - i == 2 {
                 edges.push((keyed[i].0, [keyed[i].1, keyed[i + 1].1]));
+            } else if j - i == 1 {
+                boundary.push(keyed[i].0);
             }
             i = j;
         }
         Silhouettes {
             edges,
+            boundary,
             face_normal,
             face_centre,
         }
@@ -69,6 +75,16 @@ impl Silhouettes {
                 out.push(positions[a as usize]);
                 out.push(positions[b as usize]);
             }
+        }
+    }
+
+    /// Every contour of the surface seen from `eye`, hidden or not, as line segments: the
+    /// silhouette edges ([`Silhouettes::lines_into`]) and the boundary edges, into `out`.
+    pub fn contours_into(&self, positions: &[[f32; 3]], eye: Vec3, out: &mut Vec<[f32; 3]>) {
+        self.lines_into(positions, eye, out);
+        for &[a, b] in &self.boundary {
+            out.push(positions[a as usize]);
+            out.push(positions[b as usize]);
         }
     }
 }
@@ -123,5 +139,16 @@ pub(crate) mod tests {
         // Seen from a corner direction, three faces face the eye: six silhouette edges.
         s.lines_into(&limit.positions, Vec3::new(10.0, 11.0, 12.0), &mut lines);
         assert_eq!(lines.len(), 12);
+        // Closed: the contours are the silhouette edges.
+        s.contours_into(&limit.positions, Vec3::new(10.0, 11.0, 12.0), &mut lines);
+        assert_eq!(lines.len(), 12);
+        // Without the -z face the cube is open: its four edges are contours from anywhere.
+        let mut open = limit.clone();
+        open.face_indices.drain(0..4);
+        open.face_offsets = (0..=5).map(|f| 4 * f).collect();
+        let s = Silhouettes::new(&open);
+        assert_eq!((s.edges.len(), s.boundary.len()), (8, 4));
+        s.contours_into(&open.positions, Vec3::new(0.0, 0.0, 100.0), &mut lines);
+        assert_eq!(lines.len(), 8 + 8, "{lines:?}");
     }
 }

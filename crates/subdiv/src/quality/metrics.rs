@@ -3,10 +3,15 @@
 //!
 //! - **Silhouette.** Coverage masks of candidate and reference are compared pixel by pixel; for
 //!   every pixel where they disagree the error is the Euclidean distance from its centre to the
-//!   reference silhouette, taken as the midpoints of the pixel edges between a covered and an
-//!   uncovered pixel of the reference mask (so a pixel wrongly covered right next to the
-//!   silhouette counts 0.5 px, one a pixel further 1.5 px). Distances are exact (Felzenszwalb &
-//!   Huttenlocher's linear-time Euclidean distance transform on a grid of half pixels).
+//!   reference silhouette, taken as the midpoints of the edges between a covered and an
+//!   uncovered cell of the reference (so a pixel wrongly covered right next to the silhouette
+//!   counts 0.5 px, one a pixel further 1.5 px). Distances are exact (Felzenszwalb &
+//!   Huttenlocher's linear-time Euclidean distance transform on a grid of half cells). The
+//!   cells are pixels in [`compare_frames`]; a quality run locates the reference silhouette
+//!   among its supersamples ([`sample_silhouette_distance`]): a sheet seen edge on that is
+//!   thinner than the area-coverage threshold is absent from the reference's pixel mask, and a
+//!   candidate pixel covering it would otherwise count as far from a silhouette that in truth
+//!   runs through that very pixel.
 //! - **Shading.** Inside both masks, the angle between the candidate's and the reference's
 //!   interpolated unit normals.
 
@@ -91,12 +96,30 @@ pub fn compare_frames(
     width: usize,
     height: usize,
 ) -> FrameErrors {
-    let n = width * height;
+    let distance = silhouette_distance(reference, width, height);
+    compare_with_distance(
+        candidate,
+        candidate_normals,
+        reference,
+        reference_normals,
+        &distance,
+    )
+}
+
+/// [`compare_frames`] with the reference's silhouette distance per pixel given (for example
+/// [`sample_silhouette_distance`], computed once per reference frame).
+pub fn compare_with_distance(
+    candidate: &[bool],
+    candidate_normals: &[[f32; 3]],
+    reference: &[bool],
+    reference_normals: &[[f32; 3]],
+    distance: &[f32],
+) -> FrameErrors {
+    let n = distance.len();
     assert!(
         candidate.len() == n && reference.len() == n,
         "mask sizes must be width × height"
     );
-    let distance = silhouette_distance(reference, width, height);
     let mut out = FrameErrors::default();
     for i in 0..n {
         if candidate[i] != reference[i] {
@@ -124,46 +147,137 @@ fn angle_deg(a: [f32; 3], b: [f32; 3]) -> f32 {
 /// edge between a covered and an uncovered pixel of `mask`; `f32::INFINITY` for every pixel
 /// when the mask has no such edge. Pixels outside the image count as uncovered.
 pub fn silhouette_distance(mask: &[bool], width: usize, height: usize) -> Vec<f32> {
-    // A grid of half pixels: pixel (x, y) has its centre at (2x + 1, 2y + 1); the edge between
-    // (x, y) and (x + 1, y) has its midpoint at (2x + 2, 2y + 1).
-    let (gw, gh) = (2 * width + 1, 2 * height + 1);
-    let covered = |x: isize, y: isize| {
-        x >= 0
-            && y >= 0
-            && (x as usize) < width
-            && (y as usize) < height
-            && mask[y as usize * width + x as usize]
-    };
-    let mut grid = vec![f64::INFINITY; gw * gh];
-    let mut any = false;
-    for y in 0..height as isize {
-        for x in -1..width as isize {
-            if covered(x, y) != covered(x + 1, y) {
-                grid[(2 * y as usize + 1) * gw + (2 * x + 2) as usize] = 0.0;
-                any = true;
-            }
-        }
-    }
-    for y in -1..height as isize {
-        for x in 0..width as isize {
-            if covered(x, y) != covered(x, y + 1) {
-                grid[(2 * y + 2) as usize * gw + 2 * x as usize + 1] = 0.0;
-                any = true;
-            }
-        }
-    }
-    if !any {
+    let mut grid = HalfGrid::new(width, height);
+    if !grid.mark_boundary(mask) {
         return vec![f32::INFINITY; width * height];
     }
-    edt_2d(&mut grid, gw, gh);
-    let mut out = Vec::with_capacity(width * height);
-    for y in 0..height {
-        for x in 0..width {
-            // Squared distance in half pixels → pixels.
-            out.push((grid[(2 * y + 1) * gw + 2 * x + 1].sqrt() / 2.0) as f32);
+    grid.distances(1)
+}
+
+/// A grid of half cells over a `width × height` image of cells (pixels or samples): cell
+/// `(x, y)` has its centre at `(2x + 1, 2y + 1)`, the edge between `(x, y)` and `(x + 1, y)`
+/// its midpoint at `(2x + 2, 2y + 1)`. Sites hold 0, other nodes infinity, until
+/// [`HalfGrid::distances`] turns them into squared distances.
+struct HalfGrid {
+    width: usize,
+    height: usize,
+    gw: usize,
+    gh: usize,
+    grid: Vec<f64>,
+}
+
+impl HalfGrid {
+    fn new(width: usize, height: usize) -> HalfGrid {
+        let (gw, gh) = (2 * width + 1, 2 * height + 1);
+        HalfGrid {
+            width,
+            height,
+            gw,
+            gh,
+            grid: vec![f64::INFINITY; gw * gh],
         }
     }
-    out
+
+    /// Marks the midpoint of every edge between a covered and an uncovered cell of `mask`
+    /// (cells outside count as uncovered); `false` when there is none.
+    fn mark_boundary(&mut self, mask: &[bool]) -> bool {
+        let (width, height, gw) = (self.width, self.height, self.gw);
+        let covered = |x: isize, y: isize| {
+            x >= 0
+                && y >= 0
+                && (x as usize) < width
+                && (y as usize) < height
+                && mask[y as usize * width + x as usize]
+        };
+        let mut any = false;
+        for y in 0..height as isize {
+            for x in -1..width as isize {
+                if covered(x, y) != covered(x + 1, y) {
+                    self.grid[(2 * y as usize + 1) * gw + (2 * x + 2) as usize] = 0.0;
+                    any = true;
+                }
+            }
+        }
+        for y in -1..height as isize {
+            for x in 0..width as isize {
+                if covered(x, y) != covered(x, y + 1) {
+                    self.grid[(2 * y + 2) as usize * gw + 2 * x as usize + 1] = 0.0;
+                    any = true;
+                }
+            }
+        }
+        any
+    }
+
+    /// Marks the grid nodes nearest to points at most a quarter cell apart along the segment
+    /// `a`–`b` (in cells, `(0, 0)` the image's corner), inside the image; `false` when none is.
+    fn mark_segment(&mut self, a: [f32; 2], b: [f32; 2]) -> bool {
+        let (a, b) = (glam::Vec2::from(a) * 2.0, glam::Vec2::from(b) * 2.0);
+        let steps = ((b - a).length() * 2.0).ceil().clamp(1.0, 1e6) as usize;
+        let mut any = false;
+        for k in 0..=steps {
+            let p = (a + (b - a) * (k as f32 / steps as f32)).round();
+            if p.x >= 0.0 && p.y >= 0.0 && (p.x as usize) < self.gw && (p.y as usize) < self.gh {
+                self.grid[p.y as usize * self.gw + p.x as usize] = 0.0;
+                any = true;
+            }
+        }
+        any
+    }
+
+    /// Distance from the centre of every `s × s` block's middle cell (`s` odd) to the nearest
+    /// site, in blocks (pixels when the cells are samples `s` to a pixel side).
+    fn distances(mut self, s: usize) -> Vec<f32> {
+        edt_2d(&mut self.grid, self.gw, self.gh);
+        let (w, h) = (self.width / s, self.height / s);
+        let mut out = Vec::with_capacity(w * h);
+        for y in 0..h {
+            for x in 0..w {
+                let (cx, cy) = (x * s + s / 2, y * s + s / 2);
+                // Squared distance in half cells → cells → blocks.
+                let d2 = self.grid[(2 * cy + 1) * self.gw + 2 * cx + 1];
+                out.push((d2.sqrt() / 2.0 / s as f64) as f32);
+            }
+        }
+        out
+    }
+}
+
+/// Per pixel of a `size` image: the distance in pixels from its centre to the reference
+/// silhouette located among `coverage`'s samples (`s` per pixel side, `s` odd, row-major,
+/// `size[0] * s` wide; a sample is covered above 0.5) — the edges between covered and uncovered
+/// samples, measured from the sample in the middle of each pixel, whose centre is the pixel's —
+/// and on `contours`: segments in pixel coordinates (`(0, 0)` the image's top left corner),
+/// marked at the nearest half-sample grid node every quarter sample (so within
+/// `1 / (2 √2 s)` px). A pixel next to a silhouette along pixel edges gets 0.5 px as with
+/// [`silhouette_distance`]; one whose neighbour holds a sheet thinner than a pixel gets the
+/// distance to that sheet's samples, not to the next pixel the area coverage counts as covered;
+/// one next to a contour hidden inside the covered area (a fold or a boundary in front of or
+/// behind another layer of the surface) gets the distance to that contour, for the gap a
+/// candidate opens there is a silhouette error no larger than the contour's displacement.
+/// Infinite everywhere when there is no silhouette at all.
+pub fn sample_silhouette_distance(
+    coverage: &[f32],
+    size: [u32; 2],
+    s: u32,
+    contours: &[[[f32; 2]; 2]],
+) -> Vec<f32> {
+    assert!(
+        s % 2 == 1,
+        "the middle sample of a pixel needs an odd supersampling"
+    );
+    let [w, h, s] = [size[0] as usize, size[1] as usize, s as usize];
+    let mask: Vec<bool> = coverage.iter().map(|&c| c > 0.5).collect();
+    let mut grid = HalfGrid::new(w * s, h * s);
+    let mut any = grid.mark_boundary(&mask);
+    for &[a, b] in contours {
+        let scale = |p: [f32; 2]| [p[0] * s as f32, p[1] * s as f32];
+        any |= grid.mark_segment(scale(a), scale(b));
+    }
+    if !any {
+        return vec![f32::INFINITY; w * h];
+    }
+    grid.distances(s)
 }
 
 /// In-place squared Euclidean distance transform of a grid holding 0 at sites and infinity
@@ -286,6 +400,65 @@ mod tests {
                 assert!((a - b).abs() < 1e-4, "round {round}: {a} vs {b}");
             }
         }
+    }
+
+    #[test]
+    fn sample_distance_finds_sheets_thinner_than_a_pixel() {
+        // Pixel-aligned shapes: a straight silhouette gives the pixel mask's distances; around
+        // corners the samples' edge midpoints lie closer than the pixels' (at most half a
+        // pixel closer).
+        let (w, h, s) = (9usize, 7usize, 3usize);
+        let upsample = |mask: &[bool]| -> Vec<f32> {
+            (0..w * s * h * s)
+                .map(|k| f32::from(u8::from(mask[(k / (w * s)) / s * w + (k % (w * s)) / s])))
+                .collect()
+        };
+        let half: Vec<bool> = (0..w * h).map(|i| i % w < 4).collect();
+        let fine =
+            sample_silhouette_distance(&upsample(&half), [w as u32, h as u32], s as u32, &[]);
+        for (a, b) in fine.iter().zip(silhouette_distance(&half, w, h)) {
+            assert!((a - b).abs() < 1e-5, "{a} vs {b}");
+        }
+        let disc: Vec<bool> = (0..w * h)
+            .map(|i| ((i % w) as i32 - 4).pow(2) + ((i / w) as i32 - 3).pow(2) < 7)
+            .collect();
+        let fine =
+            sample_silhouette_distance(&upsample(&disc), [w as u32, h as u32], s as u32, &[]);
+        for (a, b) in fine.iter().zip(silhouette_distance(&disc, w, h)) {
+            assert!(*a <= b + 1e-5 && b <= a + 0.5, "{a} vs {b}");
+        }
+        // A sheet one sample wide down the middle of pixel 1 of three: no pixel is covered by
+        // area, but the silhouette runs through pixel 1 (1/6 px from its centre) and 5/6 px
+        // from the centres of pixels 0 and 2.
+        let line: Vec<f32> = (0..9 * 3)
+            .map(|k| f32::from(u8::from(k % 9 == 4)))
+            .collect();
+        let d = sample_silhouette_distance(&line, [3, 1], 3, &[]);
+        let want = [5.0 / 6.0, 1.0 / 6.0, 5.0 / 6.0];
+        for (a, b) in d.iter().zip(want) {
+            assert!((a - b).abs() < 1e-5, "{d:?}");
+        }
+        assert_eq!(
+            area_coverage(&line, &[[0.0; 3]; 27], [3, 1], 3).0,
+            [false; 3]
+        );
+        // A contour inside a covered area: a vertical fold at x = 4.5 px of a 9 × 5 image
+        // covered everywhere. The pixels' distances are to the fold (the image's edge is the
+        // mask's silhouette too).
+        let (w, h) = (9usize, 5usize);
+        let full = vec![1.0f32; w * 3 * h * 3];
+        let fold = [[[4.5f32, -1.0], [4.5, 6.0]]];
+        let d = sample_silhouette_distance(&full, [w as u32, h as u32], 3, &fold);
+        for (i, v) in d.iter().enumerate() {
+            let x = (i % w) as f32 + 0.5;
+            let y = (i / w) as f32 + 0.5;
+            let edge = x.min(w as f32 - x).min(y).min(h as f32 - y);
+            let want = (x - 4.5).abs().min(edge);
+            assert!((v - want).abs() <= 0.12, "pixel {i}: {v} vs {want}");
+        }
+        // Without any silhouette: infinite.
+        let none = sample_silhouette_distance(&[0.0; 9], [1, 1], 3, &[]);
+        assert!(none[0].is_infinite());
     }
 
     #[test]

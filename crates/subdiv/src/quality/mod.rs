@@ -14,7 +14,8 @@ mod run;
 mod tests;
 
 pub use metrics::{
-    FrameErrors, SUPERSAMPLE, area_coverage, compare_frames, quantile, silhouette_distance,
+    FrameErrors, SUPERSAMPLE, area_coverage, compare_frames, compare_with_distance, quantile,
+    sample_silhouette_distance, silhouette_distance,
 };
 pub use orbit::orbit_cameras;
 pub use run::{Config, ConfigQuality, QualityError, QualityParams, QualityRun, measure};

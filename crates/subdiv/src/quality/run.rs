@@ -5,13 +5,16 @@
 use std::fmt;
 use std::time::Instant;
 
-use subdiv_depth::DepthParams;
+use subdiv_depth::{DEFAULT_SHADING_ERROR_DEG, DepthParams};
 use subdiv_mesh::{Camera, Mesh};
 use subdiv_rules::{Depth, MAX_DEPTH, Scheme};
 use subdiv_stitch::{AssemblyError, MAX_ADAPTIVE_DEPTH};
 use subdiv_vk::{RenderMesh, RenderOptions, Renderer, View, VkError};
 
-use super::metrics::{FrameErrors, SUPERSAMPLE, area_coverage, compare_frames, quantile};
+use super::metrics::{
+    FrameErrors, SUPERSAMPLE, area_coverage, compare_with_distance, quantile,
+    sample_silhouette_distance,
+};
 use crate::{DynamicSubdivision, Scene, SceneError, frame_limit, uniform_limit, view_for};
 
 /// One tessellation configuration of the comparison.
@@ -64,6 +67,9 @@ pub struct QualityParams {
     pub reference_depth: Option<Depth>,
     /// Timed `render_discard` calls per camera and configuration (the median is reported).
     pub timing_runs: usize,
+    /// The pixel-error configurations' normal tolerance
+    /// ([`DepthParams::shading_error_deg`]).
+    pub shading_error_deg: f32,
 }
 
 impl Default for QualityParams {
@@ -73,6 +79,7 @@ impl Default for QualityParams {
             max_depth: 5,
             reference_depth: None,
             timing_runs: 3,
+            shading_error_deg: DEFAULT_SHADING_ERROR_DEG,
         }
     }
 }
@@ -110,6 +117,11 @@ impl QualityParams {
         }
         if self.timing_runs == 0 {
             return Err(QualityError::NoTimingRuns);
+        }
+        if !(self.shading_error_deg > 0.0 && self.shading_error_deg <= 180.0) {
+            return Err(QualityError::ShadingError {
+                degrees: self.shading_error_deg,
+            });
         }
         Ok(())
     }
@@ -151,6 +163,12 @@ pub enum QualityError {
         width: u32,
         /// Height asked for.
         height: u32,
+    },
+    /// A normal tolerance outside `(0, 180]` degrees.
+    #[error("shading error {degrees}° is not an angle in (0, 180] degrees")]
+    ShadingError {
+        /// The tolerance asked for.
+        degrees: f32,
     },
     /// No timed renders asked for.
     #[error("at least one timed render per camera is needed")]
@@ -248,6 +266,8 @@ struct ReferenceFrame {
     view: View,
     coverage: Vec<bool>,
     normals: Vec<[f32; 3]>,
+    /// Per pixel: distance to the reference's silhouette (supersampled mask and contours).
+    distance: Vec<f32>,
 }
 
 /// What the cameras of one configuration add up to.
@@ -356,14 +376,15 @@ impl<'a> QualityRun<'a> {
                 ..*c
             };
             let view = view_for(&camera, lo, hi);
-            let (coverage, normals) =
-                render_masks(renderer, &mesh, &view, params.size).map_err(|source| {
-                    QualityError::Render {
-                        config: "reference".to_string(),
-                        camera: i,
-                        source,
-                    }
+            let (coverage, normals, samples) = render_masks(renderer, &mesh, &view, params.size)
+                .map_err(|source| QualityError::Render {
+                    config: "reference".to_string(),
+                    camera: i,
+                    source,
                 })?;
+            let contours = projected_contours(&scene, &camera);
+            let distance =
+                sample_silhouette_distance(&samples, params.size, SUPERSAMPLE, &contours);
             if !coverage.contains(&true) {
                 return Err(QualityError::EmptyReference { camera: i });
             }
@@ -372,6 +393,7 @@ impl<'a> QualityRun<'a> {
                 view,
                 coverage,
                 normals,
+                distance,
             });
         }
         Ok(QualityRun {
@@ -441,6 +463,7 @@ impl<'a> QualityRun<'a> {
                         Config::PixelError(px) => Some(px),
                         _ => None,
                     },
+                    shading_error_deg: self.params.shading_error_deg,
                     ..DepthParams::default()
                 };
                 let mut node =
@@ -495,20 +518,18 @@ impl<'a> QualityRun<'a> {
                 camera: i,
             });
         }
-        let (coverage, normals) = render_masks(renderer, &mesh, &f.view, self.params.size)
+        let (coverage, normals, _) = render_masks(renderer, &mesh, &f.view, self.params.size)
             .map_err(|source| QualityError::Render {
                 config: name.to_string(),
                 camera: i,
                 source,
             })?;
-        let [w, h] = self.params.size;
-        Ok(compare_frames(
+        Ok(compare_with_distance(
             &coverage,
             &normals,
             &f.coverage,
             &f.normals,
-            w as usize,
-            h as usize,
+            &f.distance,
         ))
     }
 
@@ -547,17 +568,40 @@ impl<'a> QualityRun<'a> {
     }
 }
 
-/// Renders `mesh` and returns its coverage mask and per-pixel normals.
+/// Every contour of `scene` seen by `camera` ([`crate::Silhouettes::contours_into`]: silhouette
+/// and boundary edges, hidden or not), projected to pixels; segments reaching behind the eye are
+/// left out.
+fn projected_contours(scene: &Scene, camera: &Camera) -> Vec<[[f32; 2]; 2]> {
+    let mut lines = Vec::new();
+    scene
+        .silhouettes
+        .contours_into(&scene.mesh.positions, camera.eye, &mut lines);
+    lines
+        .chunks_exact(2)
+        .filter_map(|ab| {
+            let a = camera.project(glam::Vec3::from(ab[0]))?;
+            let b = camera.project(glam::Vec3::from(ab[1]))?;
+            Some([a.to_array(), b.to_array()])
+        })
+        .collect()
+}
+
+/// The area-coverage mask and mean normals of a render (see [`area_coverage`]), and its
+/// [`SUPERSAMPLE`]d coverage.
+type Masks = (Vec<bool>, Vec<[f32; 3]>, Vec<f32>);
+
+/// Renders `mesh` and returns its coverage mask, per-pixel normals and sample coverage.
 fn render_masks(
     renderer: &mut Renderer,
     mesh: &RenderMesh<'_>,
     view: &View,
     size: [u32; 2],
-) -> Result<(Vec<bool>, Vec<[f32; 3]>), VkError> {
+) -> Result<Masks, VkError> {
     let s = SUPERSAMPLE;
     let big = [size[0] * s, size[1] * s];
     let (_, aux) = renderer.render_with_aux(mesh, view, big, &render_options())?;
-    Ok(area_coverage(&aux.coverage, &aux.normals, size, s))
+    let (mask, normals) = area_coverage(&aux.coverage, &aux.normals, size, s);
+    Ok((mask, normals, aux.coverage))
 }
 
 /// Measures every configuration of [`Config::all`]: [`QualityRun::new`] then

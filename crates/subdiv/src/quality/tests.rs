@@ -72,6 +72,16 @@ fn configurations_and_parameter_checks() {
         empty.check(),
         Err(QualityError::EmptyImage { .. })
     ));
+    for degrees in [0.0, -1.0, 181.0, f32::NAN] {
+        let bad = QualityParams {
+            shading_error_deg: degrees,
+            ..p
+        };
+        assert!(matches!(
+            bad.check(),
+            Err(QualityError::ShadingError { .. })
+        ));
+    }
 }
 
 #[test]
@@ -88,6 +98,7 @@ fn deeper_uniform_tessellations_come_closer_to_the_reference() {
         max_depth: 2,
         reference_depth: None,
         timing_runs: 1,
+        ..QualityParams::default()
     };
     let run = QualityRun::new(&mut renderer, &cage, &cameras, params).unwrap();
     assert_eq!(run.reference_triangles(), 6 * 64 * 2);
