@@ -13,7 +13,7 @@ use subdiv_mesh::CreaseMethod;
 use subdiv_rules::catmark;
 use subdiv_rules::crease::{self, VertexRules, edge_crease_weight, is_semi_sharp};
 
-use crate::table::{Corner, DI, DJ, Table, corner_frame, far_info, ring_index_of_dir};
+use crate::table::{Corner, DI, DJ, Table, band, corner_frame, far_info, ring_index_of_dir};
 use crate::worker::Worker;
 
 impl Worker {
@@ -58,6 +58,37 @@ impl Worker {
             write_corner(dst, c, ci, cj, d, d2, self.origin);
         }
         self.cur = 1 - self.cur;
+        if !self.regular && self.method != CreaseMethod::Chaikin {
+            self.regular = self.table_is_regular();
+        }
+    }
+
+    /// `true` if the current table would have made [`Worker::gather`] choose the regular rules:
+    /// no sharp edge, no missing point but the diagonal spots of corner arrays, no boundary or
+    /// sharp vertex at a corner array (Uniform creases; Chaikin keeps the general rules).
+    ///
+    /// A patch whose sharp edges all run along its outer ring has none left after one step (their
+    /// children lie beyond the table), and from then on the general step computes exactly what the
+    /// regular one does: no point is dirty but the neighbours of the corner arrays' diagonal spots,
+    /// whose general edge points `write_corner` replaces. So such a patch switches to the regular
+    /// rules for its remaining steps and its limits, with bit-identical results.
+    fn table_is_regular(&self) -> bool {
+        if self
+            .corners
+            .iter()
+            .any(|c| c.active && (c.boundary || c.ring.vertex_sharpness() > 0.0))
+        {
+            return false;
+        }
+        let t = &self.t[self.cur];
+        let n = t.grid_size as i32;
+        band(t.grid_size).all(|(i, j)| {
+            let k = t.at(i, j);
+            let diag_spot = (i == -1 || i == n + 1) && (j == -1 || j == n + 1);
+            t.horizontal_sharpness[k] == 0.0
+                && t.vertical_sharpness[k] == 0.0
+                && (t.exists[k] || diag_spot)
+        })
     }
 }
 
@@ -163,6 +194,31 @@ struct General<'a> {
     src: &'a Table,
     corners: &'a [Corner; 4],
     method: CreaseMethod,
+    /// Every point of `src` exists (no boundary, no corner array's diagonal spot left empty):
+    /// then an edge or face exists exactly when it lies inside the table.
+    all_exist: bool,
+}
+
+impl General<'_> {
+    /// [`Table::face_exists`] of the source table.
+    #[inline]
+    fn face_exists(&self, i: i32, j: i32) -> bool {
+        if self.all_exist {
+            self.src.inside(i, j) && self.src.inside(i + 1, j + 1)
+        } else {
+            self.src.face_exists(i, j)
+        }
+    }
+
+    /// [`Table::edge_exists`] of the source table.
+    #[inline]
+    fn edge_exists(&self, i: i32, j: i32, d: usize) -> bool {
+        if self.all_exist {
+            self.src.inside(i + DI[d], j + DJ[d])
+        } else {
+            self.src.edge_exists(i, j, d)
+        }
+    }
 }
 
 /// General step: creases, boundaries, fractional sharpness, Chaikin.
@@ -174,14 +230,15 @@ fn step_general(
     mut sc: Scratch<'_>,
 ) {
     let n = src.grid_size as i32;
+    // The smooth regular rules everywhere first; then the general rules where they differ.
+    step_regular(src, dst, sc.split);
+    let missing = src.mark_dirty(sc.dirty, sc.dirty_list);
     let g = General {
         src,
         corners,
         method,
+        all_exist: !missing,
     };
-    // The smooth regular rules everywhere first; then the general rules where they differ.
-    step_regular(src, dst, sc.split);
-    let missing = src.mark_dirty(sc.dirty, sc.dirty_list);
     if missing {
         // Missing points lie on the outer ring, so only faces touching it can be missing.
         for j in -1..=n {
@@ -266,7 +323,7 @@ fn general_vertex_point(
     sc.e_sh.clear();
     sc.f_pts.clear();
     for d in 0..4 {
-        if src.edge_exists(i, j, d) {
+        if g.edge_exists(i, j, d) {
             sc.dirs.push(d);
             sc.e_pts.push(src.positions[src.at(i + DI[d], j + DJ[d])]);
             sc.e_sh.push(src.edge_sharp(i, j, d));
@@ -275,7 +332,7 @@ fn general_vertex_point(
     for d in 0..4 {
         let d2 = (d + 1) % 4;
         let (fi, fj) = (i + (DI[d] + DI[d2] - 1) / 2, j + (DJ[d] + DJ[d2] - 1) / 2);
-        if src.face_exists(fi, fj) {
+        if g.face_exists(fi, fj) {
             sc.f_pts.push(dst.positions[dst.at(2 * fi + 1, 2 * fj + 1)]);
         }
     }
@@ -301,7 +358,7 @@ fn general_edge_point(g: General<'_>, dst: &mut Table, dirty: &[bool], i: i32, j
     if !(dirty[src.at(i, j)] || dirty[src.at(bi, bj)]) {
         return;
     }
-    if !src.edge_exists(i, j, dir) {
+    if !g.edge_exists(i, j, dir) {
         let k = dst.at(i + bi, j + bj);
         dst.exists[k] = false;
         return;
@@ -314,8 +371,8 @@ fn general_edge_point(g: General<'_>, dst: &mut Table, dirty: &[bool], i: i32, j
         [(i - 1, j), (i, j)]
     };
     if s == 0.0
-        && src.face_exists(sides[0].0, sides[0].1)
-        && src.face_exists(sides[1].0, sides[1].1)
+        && g.face_exists(sides[0].0, sides[0].1)
+        && g.face_exists(sides[1].0, sides[1].1)
     {
         // A smooth edge between two faces: the regular pass computed it alike.
         return;
@@ -340,7 +397,7 @@ fn general_edge_point(g: General<'_>, dst: &mut Table, dirty: &[bool], i: i32, j
     let mut faces = [Vec3A::ZERO; 2];
     let mut nf = 0;
     for (fi, fj) in sides {
-        if src.face_exists(fi, fj) {
+        if g.face_exists(fi, fj) {
             faces[nf] = dst.positions[dst.at(2 * fi + 1, 2 * fj + 1)];
             nf += 1;
         }

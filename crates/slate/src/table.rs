@@ -178,15 +178,15 @@ impl Table {
             dirty[k as usize] = false;
         }
         list.clear();
-        let mut set = |k: usize| {
-            if !dirty[k] {
-                dirty[k] = true;
-                list.push(k as u32);
-            }
-        };
         let mut missing = false;
-        for (i, j) in band(self.grid_size) {
-            let k = self.at(i, j);
+        let n = self.grid_size;
+        let mut visit = |k: usize| {
+            let mut set = |k: usize| {
+                if !dirty[k] {
+                    dirty[k] = true;
+                    list.push(k as u32);
+                }
+            };
             if self.horizontal_sharpness[k] != 0.0 {
                 set(k);
                 if k + 1 < len {
@@ -201,6 +201,7 @@ impl Table {
             }
             if !self.exists[k] {
                 missing = true;
+                let (i, j) = ((k % s) as i32 - 1, (k / s) as i32 - 1);
                 for dj in -1..=1 {
                     for di in -1..=1 {
                         if self.inside(i + di, j + dj) {
@@ -208,6 +209,18 @@ impl Table {
                         }
                     }
                 }
+            }
+        };
+        // The band (see [`band`], same order): storage rows of `j = -1, 0, n, n + 1` whole, then
+        // the columns `i = -1, 0, n, n + 1` of the rows between.
+        for r in [0, 1, n + 1, n + 2] {
+            for k in r * s..(r + 1) * s {
+                visit(k);
+            }
+        }
+        for r in 2..=n {
+            for c in [0, 1, n + 1, n + 2] {
+                visit(r * s + c);
             }
         }
         missing

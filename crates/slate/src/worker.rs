@@ -55,6 +55,8 @@ pub struct Worker {
     pub(crate) last_stencil: usize,
     /// One-sided normals of the faces of the ring last evaluated (`limit_sided`).
     pub(crate) sided: Vec<DVec3>,
+    /// Grid points `(i, j)` of the last patch with a one-sided normal of its side.
+    pub(crate) sided_points: Vec<(u32, u32, Vec3A)>,
 }
 
 impl Worker {
@@ -90,6 +92,7 @@ impl Worker {
             stencils: Vec::new(),
             last_stencil: 0,
             sided: Vec::new(),
+            sided_points: Vec::new(),
         }
     }
 
