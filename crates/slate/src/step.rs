@@ -26,7 +26,11 @@ impl Worker {
             (&b[0], &mut a[0])
         };
         let n = src.grid_size as i32;
-        dst.reset(src.grid_size * 2, self.regular);
+        dst.reset(
+            src.grid_size * 2,
+            self.regular,
+            self.method == CreaseMethod::Chaikin,
+        );
         for c in self.corners.iter_mut() {
             if c.active {
                 c.ring.refine();
@@ -81,13 +85,14 @@ impl Worker {
             return false;
         }
         let t = &self.t[self.cur];
-        let n = t.grid_size as i32;
-        band(t.grid_size).all(|(i, j)| {
-            let k = t.at(i, j);
-            let diag_spot = (i == -1 || i == n + 1) && (j == -1 || j == n + 1);
+        let (n, s) = (t.grid_size, t.stride);
+        // Sharp edges and missing points can only be on the band; the diagonal spots are the
+        // corners of the storage square.
+        band(n, |k| {
+            let spot = k == 0 || k == s - 1 || k == s * (s - 1) || k == s * s - 1;
             t.horizontal_sharpness[k] == 0.0
                 && t.vertical_sharpness[k] == 0.0
-                && (t.exists[k] || diag_spot)
+                && (t.exists[k] || spot)
         })
     }
 }
@@ -370,10 +375,7 @@ fn general_edge_point(g: General<'_>, dst: &mut Table, dirty: &[bool], i: i32, j
     } else {
         [(i - 1, j), (i, j)]
     };
-    if s == 0.0
-        && g.face_exists(sides[0].0, sides[0].1)
-        && g.face_exists(sides[1].0, sides[1].1)
-    {
+    if s == 0.0 && g.face_exists(sides[0].0, sides[0].1) && g.face_exists(sides[1].0, sides[1].1) {
         // A smooth edge between two faces: the regular pass computed it alike.
         return;
     }

@@ -60,30 +60,24 @@ impl Table {
 
     /// Prepares the table for grid size `n`. A table for the regular step needs no clearing
     /// (it overwrites every point); sharpness is cleared only if a general step left some, and
-    /// then only on the band where it can be (see [`band`]).
-    pub(crate) fn reset(&mut self, n: usize, regular: bool) {
+    /// then only on the band where it can be (see [`band`]). The Chaikin far information is only
+    /// read under the Chaikin rule (`chaikin`), and then cleared for every table.
+    pub(crate) fn reset(&mut self, n: usize, regular: bool, chaikin: bool) {
         debug_assert!(
             (n + 3) * (n + 3) <= self.positions.len(),
             "slate too small for grid {n}"
         );
         if self.dirty && self.stride > 0 {
-            // Rows -1, 0, n, n + 1 whole; columns -1, 0, n, n + 1 of the rows between.
-            let (n, s) = (self.grid_size, self.stride);
-            for r in [0, 1, n + 1, n + 2] {
-                self.horizontal_sharpness[r * s..(r + 1) * s].fill(0.0);
-                self.vertical_sharpness[r * s..(r + 1) * s].fill(0.0);
-            }
-            for r in 2..=n {
-                for c in [0, 1, n + 1, n + 2] {
-                    self.horizontal_sharpness[r * s + c] = 0.0;
-                    self.vertical_sharpness[r * s + c] = 0.0;
-                }
-            }
+            let (hs, vs) = (&mut self.horizontal_sharpness, &mut self.vertical_sharpness);
+            band(self.grid_size, |k| {
+                hs[k] = 0.0;
+                vs[k] = 0.0;
+                true
+            });
         }
-        let was_dirty = self.dirty;
         self.grid_size = n;
         self.stride = n + 3;
-        if !regular || was_dirty {
+        if chaikin {
             for f in &mut self.far_semi_sharp {
                 f[..=n].fill((0.0, 0));
             }
@@ -211,18 +205,10 @@ impl Table {
                 }
             }
         };
-        // The band (see [`band`], same order): storage rows of `j = -1, 0, n, n + 1` whole, then
-        // the columns `i = -1, 0, n, n + 1` of the rows between.
-        for r in [0, 1, n + 1, n + 2] {
-            for k in r * s..(r + 1) * s {
-                visit(k);
-            }
-        }
-        for r in 2..=n {
-            for c in [0, 1, n + 1, n + 2] {
-                visit(r * s + c);
-            }
-        }
+        band(n, |k| {
+            visit(k);
+            true
+        });
         missing
     }
 
@@ -259,13 +245,29 @@ impl Table {
 /// band); a step only makes the children of band edges sharp, and only face and edge points of
 /// the outer ring missing, so the band of level `l` refines into the band of level `l + 1`. Every
 /// general-table loop runs over the band alone; debug builds check the invariant.
-pub(crate) fn band(n: usize) -> impl Iterator<Item = (i32, i32)> {
-    let n = n as i32;
-    let lines = [-1, 0, n, n + 1];
-    lines
-        .into_iter()
-        .flat_map(move |j| (-1..=n + 1).map(move |i| (i, j)))
-        .chain((1..n).flat_map(move |j| lines.into_iter().map(move |i| (i, j))))
+///
+/// `band(n, f)` calls `f` with the storage index (`(j + 1) * (n + 3) + i + 1`) of every band point,
+/// rows `j = -1, 0, n, n + 1` whole first, then columns `i = -1, 0, n, n + 1` of the rows between,
+/// and stops at the first `false`; it returns whether none was.
+#[inline]
+pub(crate) fn band(n: usize, mut f: impl FnMut(usize) -> bool) -> bool {
+    let s = n + 3;
+    let lines = [0, 1, n + 1, n + 2];
+    for r in lines {
+        for k in r * s..(r + 1) * s {
+            if !f(k) {
+                return false;
+            }
+        }
+    }
+    for r in 2..=n {
+        for c in lines {
+            if !f(r * s + c) {
+                return false;
+            }
+        }
+    }
+    true
 }
 
 /// A patch corner kept as a full ring (the slate's corner array).
