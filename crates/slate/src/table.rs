@@ -68,12 +68,19 @@ impl Table {
             "slate too small for grid {n}"
         );
         if self.dirty && self.stride > 0 {
-            let (hs, vs) = (&mut self.horizontal_sharpness, &mut self.vertical_sharpness);
-            band(self.grid_size, |k| {
-                hs[k] = 0.0;
-                vs[k] = 0.0;
-                true
-            });
+            // The band (see [`band`]), its rows as slices: rows -1, 0, n, n + 1 whole; columns
+            // -1, 0, n, n + 1 of the rows between.
+            let (n, s) = (self.grid_size, self.stride);
+            for r in [0, 1, n + 1, n + 2] {
+                self.horizontal_sharpness[r * s..(r + 1) * s].fill(0.0);
+                self.vertical_sharpness[r * s..(r + 1) * s].fill(0.0);
+            }
+            for r in 2..=n {
+                for c in [0, 1, n + 1, n + 2] {
+                    self.horizontal_sharpness[r * s + c] = 0.0;
+                    self.vertical_sharpness[r * s + c] = 0.0;
+                }
+            }
         }
         self.grid_size = n;
         self.stride = n + 3;
