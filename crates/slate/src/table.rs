@@ -170,8 +170,6 @@ impl Table {
     pub(crate) fn mark_dirty(&self, dirty: &mut Vec<bool>, list: &mut Vec<u32>) -> bool {
         #[cfg(debug_assertions)]
         self.check_band_invariant();
-        let s = self.stride;
-        let len = s * s;
         if dirty.len() < self.positions.len() {
             dirty.resize(self.positions.len(), false);
         }
@@ -180,43 +178,53 @@ impl Table {
         }
         list.clear();
         let mut missing = false;
-        let n = self.grid_size;
-        let mut visit = |k: usize| {
-            let mut set = |k: usize| {
-                if !dirty[k] {
-                    dirty[k] = true;
-                    list.push(k as u32);
-                }
-            };
-            if self.horizontal_sharpness[k] != 0.0 {
-                set(k);
-                if k + 1 < len {
-                    set(k + 1);
-                }
+        band(self.grid_size, |k| {
+            if self.horizontal_sharpness[k] != 0.0
+                || self.vertical_sharpness[k] != 0.0
+                || !self.exists[k]
+            {
+                missing |= self.mark_point(k, dirty, list);
             }
-            if self.vertical_sharpness[k] != 0.0 {
-                set(k);
-                if k + s < len {
-                    set(k + s);
-                }
-            }
-            if !self.exists[k] {
-                missing = true;
-                let (i, j) = ((k % s) as i32 - 1, (k / s) as i32 - 1);
-                for dj in -1..=1 {
-                    for di in -1..=1 {
-                        if self.inside(i + di, j + dj) {
-                            set(self.at(i + di, j + dj));
-                        }
-                    }
-                }
-            }
-        };
-        band(n, |k| {
-            visit(k);
             true
         });
         missing
+    }
+
+    /// [`Table::mark_dirty`] at one band point (storage index `k`) that has a sharp edge or is
+    /// missing; returns `true` if it is missing.
+    fn mark_point(&self, k: usize, dirty: &mut [bool], list: &mut Vec<u32>) -> bool {
+        let s = self.stride;
+        let len = s * s;
+        let mut set = |k: usize| {
+            if !dirty[k] {
+                dirty[k] = true;
+                list.push(k as u32);
+            }
+        };
+        if self.horizontal_sharpness[k] != 0.0 {
+            set(k);
+            if k + 1 < len {
+                set(k + 1);
+            }
+        }
+        if self.vertical_sharpness[k] != 0.0 {
+            set(k);
+            if k + s < len {
+                set(k + s);
+            }
+        }
+        if self.exists[k] {
+            return false;
+        }
+        let (i, j) = ((k % s) as i32 - 1, (k / s) as i32 - 1);
+        for dj in -1..=1 {
+            for di in -1..=1 {
+                if self.inside(i + di, j + dj) {
+                    set(self.at(i + di, j + dj));
+                }
+            }
+        }
+        true
     }
 
     /// Checks what [`band`] relies on: every point off the band is plain (it exists, its eight
