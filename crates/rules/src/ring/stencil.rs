@@ -148,7 +148,8 @@ impl QuadRingStencil {
         let np = 1 + self.m + self.nd;
         // The ring's points in weight order, contiguous (a plain indexed loop per row: the same
         // sums in the same order as over the chained slices, at a fraction of the instructions).
-        let mut buf = [DVec3::ZERO; 33];
+        // A table ring has at most 4 edges and 4 diagonals: 9 points on the stack.
+        let mut buf = [DVec3::ZERO; 9];
         let mut buf_vec = Vec::new();
         let pts: &mut [DVec3] = if np <= buf.len() {
             &mut buf[..np]
@@ -168,7 +169,7 @@ impl QuadRingStencil {
             }
             acc
         };
-        let mut refined = [DVec3::ZERO; 16];
+        let mut refined = [DVec3::ZERO; 8];
         let mut refined_vec = Vec::new();
         let refined: &mut [DVec3] = if self.m <= refined.len() {
             &mut refined[..self.m]
