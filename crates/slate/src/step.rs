@@ -43,13 +43,6 @@ impl Worker {
                 dirty: &mut self.dirty,
                 dirty_list: &mut self.dirty_list,
                 split: &mut self.split,
-                vertex: VertexScratch {
-                    e_pts: &mut self.e_pts,
-                    f_pts: &mut self.f_pts,
-                    e_sh: &mut self.e_sh,
-                    c_sh: &mut self.c_sh,
-                    dirs: &mut self.dirs,
-                },
             };
             step_general(src, dst, &self.corners, self.method, scratch);
         }
@@ -179,17 +172,6 @@ struct Scratch<'a> {
     dirty: &'a mut Vec<bool>,
     dirty_list: &'a mut Vec<u32>,
     split: &'a mut Vec<Vec3A>,
-    vertex: VertexScratch<'a>,
-}
-
-/// Scratch of one general vertex point: its edge directions, edge and face points, and the
-/// sharpness of its edges and of their children.
-struct VertexScratch<'a> {
-    e_pts: &'a mut Vec<Vec3A>,
-    f_pts: &'a mut Vec<Vec3A>,
-    e_sh: &'a mut Vec<f32>,
-    c_sh: &'a mut Vec<f32>,
-    dirs: &'a mut Vec<usize>,
 }
 
 /// What the general rules of one step read: the source table, the refined corner arrays and the
@@ -232,7 +214,7 @@ fn step_general(
     dst: &mut Table,
     corners: &[Corner; 4],
     method: CreaseMethod,
-    mut sc: Scratch<'_>,
+    sc: Scratch<'_>,
 ) {
     let n = src.grid_size as i32;
     // The smooth regular rules everywhere first; then the general rules where they differ.
@@ -284,7 +266,7 @@ fn step_general(
         if (i == 0 || i == n) && (j == 0 || j == n) && is_corner(i, j).is_some() {
             continue;
         }
-        general_vertex_point(g, dst, i, j, &mut sc.vertex);
+        general_vertex_point(g, dst, i, j);
     }
     // Every edge with a dirty end, once: from its dirty end with the lower index. Horizontal edges
     // of rows 0..=n and vertical edges of columns 0..=n (the outer ring's own edges have no
@@ -315,41 +297,38 @@ fn step_general(
 /// Vertex point of patch point `(i, j)` by the general rules, and the child sharpness of its
 /// edges.
 #[inline]
-fn general_vertex_point(
-    g: General<'_>,
-    dst: &mut Table,
-    i: i32,
-    j: i32,
-    sc: &mut VertexScratch<'_>,
-) {
+fn general_vertex_point(g: General<'_>, dst: &mut Table, i: i32, j: i32) {
     let src = g.src;
-    sc.dirs.clear();
-    sc.e_pts.clear();
-    sc.e_sh.clear();
-    sc.f_pts.clear();
+    // At most four edges and faces: on the stack.
+    let mut dirs = [0usize; 4];
+    let mut e_pts = [Vec3A::ZERO; 4];
+    let mut e_sh = [0.0f32; 4];
+    let mut f_pts = [Vec3A::ZERO; 4];
+    let (mut ne, mut nf) = (0, 0);
     for d in 0..4 {
         if g.edge_exists(i, j, d) {
-            sc.dirs.push(d);
-            sc.e_pts.push(src.positions[src.at(i + DI[d], j + DJ[d])]);
-            sc.e_sh.push(src.edge_sharp(i, j, d));
+            dirs[ne] = d;
+            e_pts[ne] = src.positions[src.at(i + DI[d], j + DJ[d])];
+            e_sh[ne] = src.edge_sharp(i, j, d);
+            ne += 1;
         }
     }
     for d in 0..4 {
         let d2 = (d + 1) % 4;
         let (fi, fj) = (i + (DI[d] + DI[d2] - 1) / 2, j + (DJ[d] + DJ[d2] - 1) / 2);
         if g.face_exists(fi, fj) {
-            sc.f_pts.push(dst.positions[dst.at(2 * fi + 1, 2 * fj + 1)]);
+            f_pts[nf] = dst.positions[dst.at(2 * fi + 1, 2 * fj + 1)];
+            nf += 1;
         }
     }
-    sc.c_sh.clear();
-    sc.c_sh.resize(sc.e_sh.len(), 0.0);
-    let rules = VertexRules::new(g.method, 0.0, sc.e_sh, sc.c_sh);
+    let mut c_sh = [0.0f32; 4];
+    let rules = VertexRules::new(g.method, 0.0, &e_sh[..ne], &mut c_sh[..ne]);
     let v = src.positions[src.at(i, j)];
     let k = dst.at(2 * i, 2 * j);
-    dst.positions[k] = catmark::vertex_point(v, sc.e_pts, sc.f_pts, &rules);
+    dst.positions[k] = catmark::vertex_point(v, &e_pts[..ne], &f_pts[..nf], &rules);
     dst.exists[k] = true;
-    for (x, &d) in sc.dirs.iter().enumerate() {
-        dst.set_edge_sharp(2 * i, 2 * j, d, sc.c_sh[x]);
+    for (&d, &c) in dirs[..ne].iter().zip(&c_sh[..ne]) {
+        dst.set_edge_sharp(2 * i, 2 * j, d, c);
     }
 }
 

@@ -25,11 +25,7 @@ pub struct Worker {
     pub(crate) origin: DVec3,
     pub(crate) origin32: Vec3A,
     pub(crate) hes: Vec<HalfedgeId>,
-    // scratch for general rules
-    pub(crate) e_pts: Vec<Vec3A>,
-    pub(crate) f_pts: Vec<Vec3A>,
-    pub(crate) e_sh: Vec<f32>,
-    pub(crate) c_sh: Vec<f32>,
+    // scratch of `limit_general` (ring directions and points)
     pub(crate) dirs: Vec<usize>,
     pub(crate) r_edges: Vec<DVec3>,
     pub(crate) r_sharp: Vec<f32>,
@@ -72,10 +68,6 @@ impl Worker {
             origin: DVec3::ZERO,
             origin32: Vec3A::ZERO,
             hes: Vec::with_capacity(16),
-            e_pts: Vec::with_capacity(4),
-            f_pts: Vec::with_capacity(4),
-            e_sh: Vec::with_capacity(4),
-            c_sh: Vec::with_capacity(4),
             dirs: Vec::with_capacity(4),
             r_edges: Vec::with_capacity(4),
             r_sharp: Vec::with_capacity(4),
