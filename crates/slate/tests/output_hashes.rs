@@ -3,8 +3,9 @@
 //! the hashes recorded in `output_hashes.txt`.
 //!
 //! Speed work on the slates must not change a single bit of the output (issue 14, item 5). The
-//! recorded hashes were computed by the code before that work (commit c0aba42). Bits depend on
-//! IEEE `f32`/`f64` arithmetic (the same everywhere: Rust never contracts to FMA) and on the
+//! recorded hashes were computed by the code before that work (commit c0aba42, x86_64 Linux,
+//! glibc). Bits depend on IEEE `f32`/`f64` arithmetic (Rust never contracts to FMA; glam's SIMD
+//! and scalar paths sum in the same order, which this test cannot check elsewhere) and on the
 //! platform's `sin`/`cos`, which the limit masks of extraordinary vertices use; the file records
 //! a fingerprint of those, and on a platform whose fingerprint differs the test compares the
 //! thread counts and a repeated run with each other only, and says so.
