@@ -437,12 +437,16 @@ fn finish_limit(
     num_faces: usize,
 ) -> (DVec3, DVec3) {
     let n_edges = edges.len();
-    let mut area = DVec3::ZERO;
-    for i in 0..num_faces {
-        let a = edges[i] - center;
-        let b = edges[(i + 1) % n_edges] - center;
-        area += a.cross(b);
-    }
+    // Only needed where the tangents are degenerate: computed there.
+    let area = || {
+        let mut area = DVec3::ZERO;
+        for i in 0..num_faces {
+            let a = edges[i] - center;
+            let b = edges[(i + 1) % n_edges] - center;
+            area += a.cross(b);
+        }
+        area
+    };
     let scale = edges
         .iter()
         .map(|e| (*e - center).length_squared())
@@ -455,7 +459,7 @@ fn finish_limit(
         if len > 1e-12 * scale.max(f64::MIN_POSITIVE) && len.is_finite() {
             n / len
         } else {
-            area.normalize_or_zero()
+            area().normalize_or_zero()
         }
     };
     let mut normal = orient(parts.t1.cross(parts.t2));

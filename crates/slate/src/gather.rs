@@ -48,7 +48,7 @@ impl Worker {
         let origin32 = self.origin32;
         let t = &mut self.t[0];
         t.dirty = true;
-        t.reset(1, false);
+        t.reset(1, false, self.method == CreaseMethod::Chaikin);
         let h0 = mesh.face_halfedge(f);
         let hs = [h0, mesh.next(h0), mesh.next(mesh.next(h0)), mesh.prev(h0)];
         let mut vid = face_and_edge_neighbours(mesh, &hs);

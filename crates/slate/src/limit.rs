@@ -6,7 +6,7 @@
 //! configuration — [`Ring::limit`](subdiv_rules::Ring::limit) precomputed, so a semi-sharp crease
 //! still gets its true limit at any depth.
 
-use glam::Vec3A;
+use glam::{DVec3, Vec3A};
 use subdiv_mesh::CreaseMethod;
 use subdiv_rules::QuadRingStencil;
 use subdiv_rules::catmark;
@@ -28,6 +28,20 @@ pub(crate) struct StencilKey {
     diag: u8,
     sharp: [u32; 4],
     far: [(u32, u32); 4],
+}
+
+/// The ring of a table point for [`Worker::limit_general`], on the stack: its edge directions
+/// (counter-clockwise, from after a missing one), edge neighbours with their sharpness and far-end
+/// information, and diagonals (`m` edges, `nd` diagonals; at most 4 of each).
+#[derive(Clone, Copy, Default)]
+struct TableRing {
+    dirs: [usize; 4],
+    edges: [DVec3; 4],
+    sharp: [f32; 4],
+    far: [(f32, u32); 4],
+    diag: [DVec3; 4],
+    m: usize,
+    nd: usize,
 }
 
 /// Which corner of a grid of size `n` the point `(i, j)` is, if any.
@@ -187,56 +201,52 @@ impl Worker {
     ) -> (Vec3A, Vec3A, Option<Vec3A>) {
         let t = &self.t[self.cur];
         // Counter-clockwise directions, starting after a missing one (boundary).
-        self.dirs.clear();
         let present: [bool; 4] = std::array::from_fn(|d| t.edge_exists(i, j, d));
         let start = (0..4)
             .find(|&d| !present[(d + 3) % 4] && present[d])
             .unwrap_or(0);
+        let mut r = TableRing::default();
         for k in 0..4 {
             let d = (start + k) % 4;
             if present[d] {
-                self.dirs.push(d);
+                r.dirs[r.m] = d;
+                r.m += 1;
             }
         }
-        let boundary = self.dirs.len() < 4;
+        let boundary = r.m < 4;
         let chaikin = self.method == CreaseMethod::Chaikin;
-        self.r_edges.clear();
-        self.r_sharp.clear();
-        self.r_far.clear();
-        self.r_diag.clear();
-        for (k, &d) in self.dirs.iter().enumerate() {
+        for k in 0..r.m {
+            let d = r.dirs[k];
             let (ni, nj) = (i + DI[d], j + DJ[d]);
-            self.r_edges.push(t.positions[t.at(ni, nj)].as_dvec3());
-            self.r_sharp.push(t.edge_sharp(i, j, d));
+            r.edges[k] = t.positions[t.at(ni, nj)].as_dvec3();
+            r.sharp[k] = t.edge_sharp(i, j, d);
             // Far-end information only matters to the Chaikin rule.
-            self.r_far.push(if chaikin {
-                far_info(t, &self.corners, ni, nj, (d + 2) % 4)
-            } else {
-                (0.0, 0)
-            });
-            if !boundary || k + 1 < self.dirs.len() {
+            if chaikin {
+                r.far[k] = far_info(t, &self.corners, ni, nj, (d + 2) % 4);
+            }
+            if !boundary || k + 1 < r.m {
                 let d2 = (d + 1) % 4;
-                self.r_diag
-                    .push(t.positions[t.at(i + DI[d] + DI[d2], j + DJ[d] + DJ[d2])].as_dvec3());
+                r.diag[r.nd] = t.positions[t.at(i + DI[d] + DI[d2], j + DJ[d] + DJ[d2])].as_dvec3();
+                r.nd += 1;
             }
         }
         let center = t.positions[t.at(i, j)].as_dvec3();
-        let idx = self.stencil_index(boundary);
+        let idx = self.stencil_index(&r, boundary);
         let st = &self.stencils[idx].1;
         let mut faces = std::mem::take(&mut self.sided);
         faces.clear();
         let (p, nrm) = match side {
             Some(_) if st.is_sided() => {
-                st.limit_sided(center, &self.r_edges, &self.r_diag, &mut faces)
+                st.limit_sided(center, &r.edges[..r.m], &r.diag[..r.nd], &mut faces)
             }
-            _ => st.limit(center, &self.r_edges, &self.r_diag),
+            _ => st.limit(center, &r.edges[..r.m], &r.diag[..r.nd]),
         };
         // Ring face `k` lies between directions `dirs[k]` and `dirs[k + 1]`.
         let one_sided = side.and_then(|(di, dj)| {
-            let m = self.dirs.len();
+            let m = r.m;
             (0..faces.len())
                 .find(|&k| {
-                    let (a, b) = (self.dirs[k], self.dirs[(k + 1) % m]);
+                    let (a, b) = (r.dirs[k], r.dirs[(k + 1) % m]);
                     (a == di && b == dj) || (a == dj && b == di)
                 })
                 .map(|k| Vec3A::from(faces[k].as_vec3()))
@@ -249,21 +259,21 @@ impl Worker {
         )
     }
 
-    /// Index in the stencil cache of the limit stencil of the ring in `r_edges`, `r_sharp`,
-    /// `r_far` and `r_diag`, computed and cached on first use.
+    /// Index in the stencil cache of the limit stencil of the table ring `r`, computed and cached
+    /// on first use.
     ///
     /// The ring's limit is linear in its points with weights fixed by its configuration: one
     /// stencil per configuration, computed by the ring's own refinement on first use.
-    fn stencil_index(&mut self, boundary: bool) -> usize {
+    fn stencil_index(&mut self, r: &TableRing, boundary: bool) -> usize {
         let mut key = StencilKey {
             method: self.method,
             boundary,
-            valence: self.r_edges.len() as u8,
-            diag: self.r_diag.len() as u8,
+            valence: r.m as u8,
+            diag: r.nd as u8,
             sharp: [0; 4],
             far: [(0, 0); 4],
         };
-        for (k, (&s, &(fs, fc))) in self.r_sharp.iter().zip(&self.r_far).enumerate() {
+        for (k, (&s, &(fs, fc))) in r.sharp[..r.m].iter().zip(&r.far[..r.m]).enumerate() {
             key.sharp[k] = s.to_bits();
             key.far[k] = (fs.to_bits(), fc);
         }
@@ -272,13 +282,8 @@ impl Worker {
             _ => self.stencils.iter().position(|(k, _)| *k == key),
         };
         let idx = hit.unwrap_or_else(|| {
-            let st = QuadRingStencil::new(
-                self.method,
-                boundary,
-                &self.r_sharp,
-                &self.r_far,
-                self.r_diag.len(),
-            );
+            let st =
+                QuadRingStencil::new(self.method, boundary, &r.sharp[..r.m], &r.far[..r.m], r.nd);
             if self.stencils.len() < MAX_STENCILS {
                 self.stencils.push((key, st));
                 self.stencils.len() - 1

@@ -13,7 +13,7 @@ use subdiv_mesh::CreaseMethod;
 use subdiv_rules::catmark;
 use subdiv_rules::crease::{self, VertexRules, edge_crease_weight, is_semi_sharp};
 
-use crate::table::{Corner, DI, DJ, Table, corner_frame, far_info, ring_index_of_dir};
+use crate::table::{Corner, DI, DJ, Table, band, corner_frame, far_info, ring_index_of_dir};
 use crate::worker::Worker;
 
 impl Worker {
@@ -26,7 +26,11 @@ impl Worker {
             (&b[0], &mut a[0])
         };
         let n = src.grid_size as i32;
-        dst.reset(src.grid_size * 2, self.regular);
+        dst.reset(
+            src.grid_size * 2,
+            self.regular,
+            self.method == CreaseMethod::Chaikin,
+        );
         for c in self.corners.iter_mut() {
             if c.active {
                 c.ring.refine();
@@ -39,13 +43,6 @@ impl Worker {
                 dirty: &mut self.dirty,
                 dirty_list: &mut self.dirty_list,
                 split: &mut self.split,
-                vertex: VertexScratch {
-                    e_pts: &mut self.e_pts,
-                    f_pts: &mut self.f_pts,
-                    e_sh: &mut self.e_sh,
-                    c_sh: &mut self.c_sh,
-                    dirs: &mut self.dirs,
-                },
             };
             step_general(src, dst, &self.corners, self.method, scratch);
         }
@@ -58,6 +55,38 @@ impl Worker {
             write_corner(dst, c, ci, cj, d, d2, self.origin);
         }
         self.cur = 1 - self.cur;
+        if !self.regular && self.method != CreaseMethod::Chaikin {
+            self.regular = self.table_is_regular();
+        }
+    }
+
+    /// `true` if the current table would have made [`Worker::gather`] choose the regular rules:
+    /// no sharp edge, no missing point but the diagonal spots of corner arrays, no boundary or
+    /// sharp vertex at a corner array (Uniform creases; Chaikin keeps the general rules).
+    ///
+    /// A patch whose sharp edges all run along its outer ring has none left after one step (their
+    /// children lie beyond the table), and from then on the general step computes exactly what the
+    /// regular one does: no point is dirty but the neighbours of the corner arrays' diagonal spots,
+    /// whose general edge points `write_corner` replaces. So such a patch switches to the regular
+    /// rules for its remaining steps and its limits, with bit-identical results.
+    fn table_is_regular(&self) -> bool {
+        if self
+            .corners
+            .iter()
+            .any(|c| c.active && (c.boundary || c.ring.vertex_sharpness() > 0.0))
+        {
+            return false;
+        }
+        let t = &self.t[self.cur];
+        let (n, s) = (t.grid_size, t.stride);
+        // Sharp edges and missing points can only be on the band; the diagonal spots are the
+        // corners of the storage square.
+        band(n, |k| {
+            let spot = k == 0 || k == s - 1 || k == s * (s - 1) || k == s * s - 1;
+            t.horizontal_sharpness[k] == 0.0
+                && t.vertical_sharpness[k] == 0.0
+                && (t.exists[k] || spot)
+        })
     }
 }
 
@@ -143,17 +172,6 @@ struct Scratch<'a> {
     dirty: &'a mut Vec<bool>,
     dirty_list: &'a mut Vec<u32>,
     split: &'a mut Vec<Vec3A>,
-    vertex: VertexScratch<'a>,
-}
-
-/// Scratch of one general vertex point: its edge directions, edge and face points, and the
-/// sharpness of its edges and of their children.
-struct VertexScratch<'a> {
-    e_pts: &'a mut Vec<Vec3A>,
-    f_pts: &'a mut Vec<Vec3A>,
-    e_sh: &'a mut Vec<f32>,
-    c_sh: &'a mut Vec<f32>,
-    dirs: &'a mut Vec<usize>,
 }
 
 /// What the general rules of one step read: the source table, the refined corner arrays and the
@@ -163,6 +181,31 @@ struct General<'a> {
     src: &'a Table,
     corners: &'a [Corner; 4],
     method: CreaseMethod,
+    /// Every point of `src` exists (no boundary, no corner array's diagonal spot left empty):
+    /// then an edge or face exists exactly when it lies inside the table.
+    all_exist: bool,
+}
+
+impl General<'_> {
+    /// [`Table::face_exists`] of the source table.
+    #[inline]
+    fn face_exists(&self, i: i32, j: i32) -> bool {
+        if self.all_exist {
+            self.src.inside(i, j) && self.src.inside(i + 1, j + 1)
+        } else {
+            self.src.face_exists(i, j)
+        }
+    }
+
+    /// [`Table::edge_exists`] of the source table.
+    #[inline]
+    fn edge_exists(&self, i: i32, j: i32, d: usize) -> bool {
+        if self.all_exist {
+            self.src.inside(i + DI[d], j + DJ[d])
+        } else {
+            self.src.edge_exists(i, j, d)
+        }
+    }
 }
 
 /// General step: creases, boundaries, fractional sharpness, Chaikin.
@@ -171,17 +214,18 @@ fn step_general(
     dst: &mut Table,
     corners: &[Corner; 4],
     method: CreaseMethod,
-    mut sc: Scratch<'_>,
+    sc: Scratch<'_>,
 ) {
     let n = src.grid_size as i32;
+    // The smooth regular rules everywhere first; then the general rules where they differ.
+    step_regular(src, dst, sc.split);
+    let missing = src.mark_dirty(sc.dirty, sc.dirty_list);
     let g = General {
         src,
         corners,
         method,
+        all_exist: !missing,
     };
-    // The smooth regular rules everywhere first; then the general rules where they differ.
-    step_regular(src, dst, sc.split);
-    let missing = src.mark_dirty(sc.dirty, sc.dirty_list);
     if missing {
         // Missing points lie on the outer ring, so only faces touching it can be missing.
         for j in -1..=n {
@@ -222,7 +266,7 @@ fn step_general(
         if (i == 0 || i == n) && (j == 0 || j == n) && is_corner(i, j).is_some() {
             continue;
         }
-        general_vertex_point(g, dst, i, j, &mut sc.vertex);
+        general_vertex_point(g, dst, i, j);
     }
     // Every edge with a dirty end, once: from its dirty end with the lower index. Horizontal edges
     // of rows 0..=n and vertical edges of columns 0..=n (the outer ring's own edges have no
@@ -253,41 +297,38 @@ fn step_general(
 /// Vertex point of patch point `(i, j)` by the general rules, and the child sharpness of its
 /// edges.
 #[inline]
-fn general_vertex_point(
-    g: General<'_>,
-    dst: &mut Table,
-    i: i32,
-    j: i32,
-    sc: &mut VertexScratch<'_>,
-) {
+fn general_vertex_point(g: General<'_>, dst: &mut Table, i: i32, j: i32) {
     let src = g.src;
-    sc.dirs.clear();
-    sc.e_pts.clear();
-    sc.e_sh.clear();
-    sc.f_pts.clear();
+    // At most four edges and faces: on the stack.
+    let mut dirs = [0usize; 4];
+    let mut e_pts = [Vec3A::ZERO; 4];
+    let mut e_sh = [0.0f32; 4];
+    let mut f_pts = [Vec3A::ZERO; 4];
+    let (mut ne, mut nf) = (0, 0);
     for d in 0..4 {
-        if src.edge_exists(i, j, d) {
-            sc.dirs.push(d);
-            sc.e_pts.push(src.positions[src.at(i + DI[d], j + DJ[d])]);
-            sc.e_sh.push(src.edge_sharp(i, j, d));
+        if g.edge_exists(i, j, d) {
+            dirs[ne] = d;
+            e_pts[ne] = src.positions[src.at(i + DI[d], j + DJ[d])];
+            e_sh[ne] = src.edge_sharp(i, j, d);
+            ne += 1;
         }
     }
     for d in 0..4 {
         let d2 = (d + 1) % 4;
         let (fi, fj) = (i + (DI[d] + DI[d2] - 1) / 2, j + (DJ[d] + DJ[d2] - 1) / 2);
-        if src.face_exists(fi, fj) {
-            sc.f_pts.push(dst.positions[dst.at(2 * fi + 1, 2 * fj + 1)]);
+        if g.face_exists(fi, fj) {
+            f_pts[nf] = dst.positions[dst.at(2 * fi + 1, 2 * fj + 1)];
+            nf += 1;
         }
     }
-    sc.c_sh.clear();
-    sc.c_sh.resize(sc.e_sh.len(), 0.0);
-    let rules = VertexRules::new(g.method, 0.0, sc.e_sh, sc.c_sh);
+    let mut c_sh = [0.0f32; 4];
+    let rules = VertexRules::new(g.method, 0.0, &e_sh[..ne], &mut c_sh[..ne]);
     let v = src.positions[src.at(i, j)];
     let k = dst.at(2 * i, 2 * j);
-    dst.positions[k] = catmark::vertex_point(v, sc.e_pts, sc.f_pts, &rules);
+    dst.positions[k] = catmark::vertex_point(v, &e_pts[..ne], &f_pts[..nf], &rules);
     dst.exists[k] = true;
-    for (x, &d) in sc.dirs.iter().enumerate() {
-        dst.set_edge_sharp(2 * i, 2 * j, d, sc.c_sh[x]);
+    for (&d, &c) in dirs[..ne].iter().zip(&c_sh[..ne]) {
+        dst.set_edge_sharp(2 * i, 2 * j, d, c);
     }
 }
 
@@ -301,7 +342,7 @@ fn general_edge_point(g: General<'_>, dst: &mut Table, dirty: &[bool], i: i32, j
     if !(dirty[src.at(i, j)] || dirty[src.at(bi, bj)]) {
         return;
     }
-    if !src.edge_exists(i, j, dir) {
+    if !g.edge_exists(i, j, dir) {
         let k = dst.at(i + bi, j + bj);
         dst.exists[k] = false;
         return;
@@ -313,10 +354,7 @@ fn general_edge_point(g: General<'_>, dst: &mut Table, dirty: &[bool], i: i32, j
     } else {
         [(i - 1, j), (i, j)]
     };
-    if s == 0.0
-        && src.face_exists(sides[0].0, sides[0].1)
-        && src.face_exists(sides[1].0, sides[1].1)
-    {
+    if s == 0.0 && g.face_exists(sides[0].0, sides[0].1) && g.face_exists(sides[1].0, sides[1].1) {
         // A smooth edge between two faces: the regular pass computed it alike.
         return;
     }
@@ -340,7 +378,7 @@ fn general_edge_point(g: General<'_>, dst: &mut Table, dirty: &[bool], i: i32, j
     let mut faces = [Vec3A::ZERO; 2];
     let mut nf = 0;
     for (fi, fj) in sides {
-        if src.face_exists(fi, fj) {
+        if g.face_exists(fi, fj) {
             faces[nf] = dst.positions[dst.at(2 * fi + 1, 2 * fj + 1)];
             nf += 1;
         }

@@ -60,14 +60,16 @@ impl Table {
 
     /// Prepares the table for grid size `n`. A table for the regular step needs no clearing
     /// (it overwrites every point); sharpness is cleared only if a general step left some, and
-    /// then only on the band where it can be (see [`band`]).
-    pub(crate) fn reset(&mut self, n: usize, regular: bool) {
+    /// then only on the band where it can be (see [`band`]). The Chaikin far information is only
+    /// read under the Chaikin rule (`chaikin`), and then cleared for every table.
+    pub(crate) fn reset(&mut self, n: usize, regular: bool, chaikin: bool) {
         debug_assert!(
             (n + 3) * (n + 3) <= self.positions.len(),
             "slate too small for grid {n}"
         );
         if self.dirty && self.stride > 0 {
-            // Rows -1, 0, n, n + 1 whole; columns -1, 0, n, n + 1 of the rows between.
+            // The band (see [`band`]), its rows as slices: rows -1, 0, n, n + 1 whole; columns
+            // -1, 0, n, n + 1 of the rows between.
             let (n, s) = (self.grid_size, self.stride);
             for r in [0, 1, n + 1, n + 2] {
                 self.horizontal_sharpness[r * s..(r + 1) * s].fill(0.0);
@@ -80,10 +82,9 @@ impl Table {
                 }
             }
         }
-        let was_dirty = self.dirty;
         self.grid_size = n;
         self.stride = n + 3;
-        if !regular || was_dirty {
+        if chaikin {
             for f in &mut self.far_semi_sharp {
                 f[..=n].fill((0.0, 0));
             }
@@ -169,8 +170,6 @@ impl Table {
     pub(crate) fn mark_dirty(&self, dirty: &mut Vec<bool>, list: &mut Vec<u32>) -> bool {
         #[cfg(debug_assertions)]
         self.check_band_invariant();
-        let s = self.stride;
-        let len = s * s;
         if dirty.len() < self.positions.len() {
             dirty.resize(self.positions.len(), false);
         }
@@ -178,39 +177,54 @@ impl Table {
             dirty[k as usize] = false;
         }
         list.clear();
+        let mut missing = false;
+        band(self.grid_size, |k| {
+            if self.horizontal_sharpness[k] != 0.0
+                || self.vertical_sharpness[k] != 0.0
+                || !self.exists[k]
+            {
+                missing |= self.mark_point(k, dirty, list);
+            }
+            true
+        });
+        missing
+    }
+
+    /// [`Table::mark_dirty`] at one band point (storage index `k`) that has a sharp edge or is
+    /// missing; returns `true` if it is missing.
+    fn mark_point(&self, k: usize, dirty: &mut [bool], list: &mut Vec<u32>) -> bool {
+        let s = self.stride;
+        let len = s * s;
         let mut set = |k: usize| {
             if !dirty[k] {
                 dirty[k] = true;
                 list.push(k as u32);
             }
         };
-        let mut missing = false;
-        for (i, j) in band(self.grid_size) {
-            let k = self.at(i, j);
-            if self.horizontal_sharpness[k] != 0.0 {
-                set(k);
-                if k + 1 < len {
-                    set(k + 1);
-                }
+        if self.horizontal_sharpness[k] != 0.0 {
+            set(k);
+            if k + 1 < len {
+                set(k + 1);
             }
-            if self.vertical_sharpness[k] != 0.0 {
-                set(k);
-                if k + s < len {
-                    set(k + s);
-                }
+        }
+        if self.vertical_sharpness[k] != 0.0 {
+            set(k);
+            if k + s < len {
+                set(k + s);
             }
-            if !self.exists[k] {
-                missing = true;
-                for dj in -1..=1 {
-                    for di in -1..=1 {
-                        if self.inside(i + di, j + dj) {
-                            set(self.at(i + di, j + dj));
-                        }
-                    }
+        }
+        if self.exists[k] {
+            return false;
+        }
+        let (i, j) = ((k % s) as i32 - 1, (k / s) as i32 - 1);
+        for dj in -1..=1 {
+            for di in -1..=1 {
+                if self.inside(i + di, j + dj) {
+                    set(self.at(i + di, j + dj));
                 }
             }
         }
-        missing
+        true
     }
 
     /// Checks what [`band`] relies on: every point off the band is plain (it exists, its eight
@@ -246,13 +260,29 @@ impl Table {
 /// band); a step only makes the children of band edges sharp, and only face and edge points of
 /// the outer ring missing, so the band of level `l` refines into the band of level `l + 1`. Every
 /// general-table loop runs over the band alone; debug builds check the invariant.
-pub(crate) fn band(n: usize) -> impl Iterator<Item = (i32, i32)> {
-    let n = n as i32;
-    let lines = [-1, 0, n, n + 1];
-    lines
-        .into_iter()
-        .flat_map(move |j| (-1..=n + 1).map(move |i| (i, j)))
-        .chain((1..n).flat_map(move |j| lines.into_iter().map(move |i| (i, j))))
+///
+/// `band(n, f)` calls `f` with the storage index (`(j + 1) * (n + 3) + i + 1`) of every band point,
+/// rows `j = -1, 0, n, n + 1` whole first, then columns `i = -1, 0, n, n + 1` of the rows between,
+/// and stops at the first `false`; it returns whether none was.
+#[inline]
+pub(crate) fn band(n: usize, mut f: impl FnMut(usize) -> bool) -> bool {
+    let s = n + 3;
+    let lines = [0, 1, n + 1, n + 2];
+    for r in lines {
+        for k in r * s..(r + 1) * s {
+            if !f(k) {
+                return false;
+            }
+        }
+    }
+    for r in 2..=n {
+        for c in lines {
+            if !f(r * s + c) {
+                return false;
+            }
+        }
+    }
+    true
 }
 
 /// A patch corner kept as a full ring (the slate's corner array).

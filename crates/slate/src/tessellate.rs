@@ -174,55 +174,58 @@ pub fn tessellate_layout_into(
         nrm: result.normals.as_mut_ptr(),
         len: np,
     };
-    // Split the index buffer into one chunk per patch.
+    // Split the index buffer into one chunk per patch; `starts[k]`: patch `k`'s first corner.
     let mut chunks: Vec<&mut [u32]> = Vec::with_capacity(layout.patches.len());
+    let mut starts: Vec<u32> = Vec::with_capacity(layout.patches.len());
     let mut rest: &mut [u32] = &mut result.face_indices;
+    let mut start = 0u32;
     for p in &layout.patches {
         let (a, b) = rest.split_at_mut(quads_of(p) * 4);
+        starts.push(start);
+        start += a.len() as u32;
         chunks.push(a);
         rest = b;
     }
     let level1 = layout.level1.as_ref();
-    let sided: Vec<Vec<(u32, [f32; 3])>> = layout
+    // One-sided corner normals `(patch, corner in the patch's quads, normal)`, gathered per
+    // rayon task (no allocation per patch), in patch order within a task and tasks in order.
+    let sided: Vec<Vec<(u32, u32, [f32; 3])>> = layout
         .patches
         .par_iter()
         .zip(chunks.into_par_iter())
+        .enumerate()
         .with_min_len(8)
-        .map_init(
-            || thread_worker(max_depth),
-            |w, (p, quads)| {
+        .fold(
+            || (thread_worker(max_depth), Vec::new()),
+            |(mut w, mut acc), (k, (p, quads))| {
                 let src = if p.level == 0 {
                     mesh
                 } else {
                     level1.expect("level-1 mesh for level-1 patches")
                 };
-                run_patch(w, src, p, depth - p.level, &out, quads)
+                let visible = !quads.is_empty();
+                let e = depth - p.level;
+                run_patch(&mut w, src, p, e, &out, quads);
+                if visible {
+                    corner_slots(1 << e, &w.sided_points, k as u32, &mut acc);
+                }
+                (w, acc)
             },
         )
+        .map(|(_, acc)| acc)
         .collect();
     // Corner normals in patch order: ascending, as each patch's are.
     result.corner_normals.clear();
-    let mut start = 0u32;
-    for (p, slots) in layout.patches.iter().zip(sided) {
-        result
-            .corner_normals
-            .extend(slots.into_iter().map(|(k, n)| (start + k, n)));
-        start += 4 * quads_of(p) as u32;
+    for (k, slot, n) in sided.into_iter().flatten() {
+        result.corner_normals.push((starts[k as usize] + slot, n));
     }
     Ok(())
 }
 
 /// Gathers, subdivides and evaluates one patch; writes the points it owns and its quads, and
-/// returns the one-sided normals of its quads' corners (index in `quads`, ascending) at points
-/// where the limit surface has a crease or a corner.
-fn run_patch(
-    wk: &mut Worker,
-    src: &Mesh,
-    p: &Patch,
-    e: Depth,
-    out: &SharedOut,
-    quads: &mut [u32],
-) -> Vec<(u32, [f32; 3])> {
+/// leaves in the worker's `sided_points` the grid points where the limit surface has a crease or
+/// a corner, with the one-sided normal of this patch's side (visible patches only).
+fn run_patch(wk: &mut Worker, src: &Mesh, p: &Patch, e: Depth, out: &SharedOut, quads: &mut [u32]) {
     let w = &mut *wk;
     w.gather(src, p.face);
     for _ in 0..e {
@@ -231,7 +234,8 @@ fn run_patch(
     let n = 1u32 << e;
     let visible = !quads.is_empty();
     // Grid points with a one-sided normal of this patch's side.
-    let mut sided: Vec<(u32, u32, Vec3A)> = Vec::new();
+    let mut sided = std::mem::take(&mut w.sided_points);
+    sided.clear();
     // Corners and sides: where this patch is the owner, and for a visible patch wherever the
     // point may lie on a crease (its side's normal is its own, owner or not).
     for (k, (i, j)) in [(0, 0), (n, 0), (n, n), (0, n)].into_iter().enumerate() {
@@ -272,14 +276,20 @@ fn run_patch(
             unsafe { out.write_unchecked(k, pos, nrm) }
         });
     }
+    w.sided_points = sided;
     write_quads(wk, p, n, quads);
-    corner_slots(n, &sided)
 }
 
-/// The corners of the quads (row by row, corners counter-clockwise from the cell's lowest)
-/// at the grid points of `sided`, with their normals, ascending.
-fn corner_slots(n: u32, sided: &[(u32, u32, Vec3A)]) -> Vec<(u32, [f32; 3])> {
-    let mut slots = Vec::new();
+/// Appends to `slots` the corners of the quads of patch `patch` (row by row, corners
+/// counter-clockwise from the cell's lowest) at the grid points of `sided`, with their normals,
+/// ascending by corner.
+fn corner_slots(
+    n: u32,
+    sided: &[(u32, u32, Vec3A)],
+    patch: u32,
+    slots: &mut Vec<(u32, u32, [f32; 3])>,
+) {
+    let first = slots.len();
     for &(i, j, nrm) in sided {
         for (ci, cj, corner) in [
             (i, j, 0),
@@ -288,12 +298,11 @@ fn corner_slots(n: u32, sided: &[(u32, u32, Vec3A)]) -> Vec<(u32, [f32; 3])> {
             (i, j.wrapping_sub(1), 3),
         ] {
             if ci < n && cj < n {
-                slots.push(((cj * n + ci) * 4 + corner, nrm.to_array()));
+                slots.push((patch, (cj * n + ci) * 4 + corner, nrm.to_array()));
             }
         }
     }
-    slots.sort_unstable_by_key(|&(k, _)| k);
-    slots
+    slots[first..].sort_unstable_by_key(|&(_, k, _)| k);
 }
 
 /// Writes the quads of patch `p` (grid size `n`) into `quads` (nothing for a hidden patch).

@@ -25,16 +25,6 @@ pub struct Worker {
     pub(crate) origin: DVec3,
     pub(crate) origin32: Vec3A,
     pub(crate) hes: Vec<HalfedgeId>,
-    // scratch for general rules
-    pub(crate) e_pts: Vec<Vec3A>,
-    pub(crate) f_pts: Vec<Vec3A>,
-    pub(crate) e_sh: Vec<f32>,
-    pub(crate) c_sh: Vec<f32>,
-    pub(crate) dirs: Vec<usize>,
-    pub(crate) r_edges: Vec<DVec3>,
-    pub(crate) r_sharp: Vec<f32>,
-    pub(crate) r_far: Vec<(f32, u32)>,
-    pub(crate) r_diag: Vec<DVec3>,
     pub(crate) maxn: usize,
     /// Scratch for output ids of a patch grid.
     pub(crate) ids: Vec<u32>,
@@ -55,6 +45,8 @@ pub struct Worker {
     pub(crate) last_stencil: usize,
     /// One-sided normals of the faces of the ring last evaluated (`limit_sided`).
     pub(crate) sided: Vec<DVec3>,
+    /// Grid points `(i, j)` of the last patch with a one-sided normal of its side.
+    pub(crate) sided_points: Vec<(u32, u32, Vec3A)>,
 }
 
 impl Worker {
@@ -70,15 +62,6 @@ impl Worker {
             origin: DVec3::ZERO,
             origin32: Vec3A::ZERO,
             hes: Vec::with_capacity(16),
-            e_pts: Vec::with_capacity(4),
-            f_pts: Vec::with_capacity(4),
-            e_sh: Vec::with_capacity(4),
-            c_sh: Vec::with_capacity(4),
-            dirs: Vec::with_capacity(4),
-            r_edges: Vec::with_capacity(4),
-            r_sharp: Vec::with_capacity(4),
-            r_far: Vec::with_capacity(4),
-            r_diag: Vec::with_capacity(4),
             maxn,
             ids: Vec::new(),
             dirty: Vec::new(),
@@ -90,6 +73,7 @@ impl Worker {
             stencils: Vec::new(),
             last_stencil: 0,
             sided: Vec::new(),
+            sided_points: Vec::new(),
         }
     }
 

@@ -146,15 +146,30 @@ impl QuadRingStencil {
             "ring does not match the stencil's configuration"
         );
         let np = 1 + self.m + self.nd;
+        // The ring's points in weight order, contiguous (a plain indexed loop per row: the same
+        // sums in the same order as over the chained slices, at a fraction of the instructions).
+        // A table ring has at most 4 edges and 4 diagonals: 9 points on the stack.
+        let mut buf = [DVec3::ZERO; 9];
+        let mut buf_vec = Vec::new();
+        let pts: &mut [DVec3] = if np <= buf.len() {
+            &mut buf[..np]
+        } else {
+            buf_vec.resize(np, DVec3::ZERO);
+            &mut buf_vec
+        };
+        pts[0] = center;
+        pts[1..1 + self.m].copy_from_slice(edges);
+        pts[1 + self.m..].copy_from_slice(diag);
+        let pts = &*pts;
         let row = |r: usize| {
             let w = &self.w[r * np..(r + 1) * np];
-            let mut acc = center * w[0];
-            for (p, &x) in edges.iter().chain(diag).zip(&w[1..]) {
-                acc += *p * x;
+            let mut acc = pts[0] * w[0];
+            for k in 1..np {
+                acc += pts[k] * w[k];
             }
             acc
         };
-        let mut refined = [DVec3::ZERO; 16];
+        let mut refined = [DVec3::ZERO; 8];
         let mut refined_vec = Vec::new();
         let refined: &mut [DVec3] = if self.m <= refined.len() {
             &mut refined[..self.m]

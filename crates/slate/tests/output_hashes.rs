@@ -1,0 +1,176 @@
+//! The slate tessellator's output, bit for bit: a hash of the positions, normals, quads and
+//! one-sided corner normals of every fixture cage at depths 0..=6, on 1 and 2 threads, against
+//! the hashes recorded in `output_hashes.txt`.
+//!
+//! Speed work on the slates must not change a single bit of the output (issue 14, item 5). The
+//! recorded hashes were computed by the code before that work (commit c0aba42, x86_64 Linux,
+//! glibc). Bits depend on IEEE `f32`/`f64` arithmetic (Rust never contracts to FMA; glam's SIMD
+//! and scalar paths sum in the same order, which this test cannot check elsewhere) and on the
+//! platform's `sin`/`cos`, which the limit masks of extraordinary vertices use; the file records
+//! a fingerprint of those, and on a platform whose fingerprint differs the test compares the
+//! thread counts and a repeated run with each other only, and says so.
+//!
+//! `SLATE_HASHES_BLESS=1 cargo test -p subdiv-slate --test output_hashes` rewrites the file.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use subdiv_rules::LimitMesh;
+use subdiv_slate::{PatchLayout, tessellate, tessellate_layout_into};
+
+/// Deepest depth checked.
+const MAX_DEPTH: subdiv_rules::Depth = 6;
+
+/// 64-bit FNV-1a over bytes.
+struct Fnv(u64);
+
+impl Fnv {
+    fn new() -> Fnv {
+        Fnv(0xcbf2_9ce4_8422_2325)
+    }
+    fn bytes(&mut self, b: &[u8]) {
+        for &x in b {
+            self.0 ^= x as u64;
+            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    fn u32(&mut self, x: u32) {
+        self.bytes(&x.to_le_bytes());
+    }
+    fn f32s(&mut self, v: &[f32]) {
+        for &x in v {
+            self.u32(x.to_bits());
+        }
+    }
+}
+
+fn hash(t: &LimitMesh) -> u64 {
+    let mut h = Fnv::new();
+    h.u32(t.positions.len() as u32);
+    h.f32s(t.positions.as_flattened());
+    h.f32s(t.normals.as_flattened());
+    h.u32(t.face_offsets.len() as u32);
+    for &x in t.face_offsets.iter().chain(&t.face_indices) {
+        h.u32(x);
+    }
+    h.u32(t.corner_normals.len() as u32);
+    for (k, n) in &t.corner_normals {
+        h.u32(*k);
+        h.f32s(n);
+    }
+    h.0
+}
+
+/// The platform's `sin` and `cos` at the angles the limit masks use (`2 pi i / n`).
+fn trig_fingerprint() -> u64 {
+    let mut h = Fnv::new();
+    for n in 3..=64u32 {
+        let th = 2.0 * std::f64::consts::PI / n as f64;
+        for i in 0..=n {
+            let (s, c) = (th * i as f64).sin_cos();
+            h.bytes(&s.to_bits().to_le_bytes());
+            h.bytes(&c.to_bits().to_le_bytes());
+        }
+        let x = 1.0 + th.cos() + (th * 0.5).cos() * (2.0 * (9.0 + th.cos())).sqrt();
+        h.bytes(&x.to_bits().to_le_bytes());
+    }
+    h.0
+}
+
+fn fixtures() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures")
+}
+
+/// Every fixture cage (OpenSubdiv's shapes of both schemes and the real meshes), by file stem.
+fn cages() -> Vec<(String, subdiv_mesh::Mesh)> {
+    let mut paths = Vec::new();
+    for dir in ["reference/shapes", "meshes"] {
+        for e in std::fs::read_dir(fixtures().join(dir)).expect("fixtures directory") {
+            let p = e.expect("directory entry").path();
+            if p.extension().is_some_and(|x| x == "obj") {
+                paths.push(p);
+            }
+        }
+    }
+    paths.sort();
+    let opts = subdiv_mesh::ReadOptions {
+        split_nonmanifold_vertices: true,
+    };
+    paths
+        .into_iter()
+        .map(|p| {
+            let m = subdiv_mesh::read_obj_with(&p, opts).unwrap_or_else(|e| panic!("{e}"));
+            let name = p.file_stem().unwrap_or_default().to_string_lossy().into();
+            (name, m)
+        })
+        .collect()
+}
+
+/// One line per case: `name depth points hash`, hashes of 1 and 2 threads and of a second run
+/// into the same buffers on reused workers required equal.
+fn lines() -> String {
+    let pools: Vec<rayon::ThreadPool> = [1, 2]
+        .map(|t| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(t)
+                .build()
+                .expect("thread pool")
+        })
+        .into();
+    let mut out = String::new();
+    for (name, mesh) in cages() {
+        // The largest case, tri_bunny_3k at depth 6, has 9.4 M points.
+        for depth in 0..=MAX_DEPTH {
+            let mut hashes = Vec::new();
+            for pool in &pools {
+                pool.install(|| {
+                    let t = tessellate(&mesh, depth).expect("tessellation");
+                    hashes.push((hash(&t), t.positions.len()));
+                    if depth >= 1 {
+                        let layout = PatchLayout::new(&mesh, depth).expect("layout");
+                        let mut again = t.clone();
+                        tessellate_layout_into(&mesh, &layout, &mut again).expect("tessellation");
+                        hashes.push((hash(&again), again.positions.len()));
+                    }
+                });
+            }
+            assert!(
+                hashes.iter().all(|h| *h == hashes[0]),
+                "{name} depth {depth}: output depends on the thread count or on reuse: {hashes:x?}"
+            );
+            let (h, points) = hashes[0];
+            writeln!(out, "{name} {depth} {points} {h:016x}").expect("write to a string");
+        }
+    }
+    out
+}
+
+#[test]
+fn output_is_bit_identical_to_the_recorded_hashes() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/output_hashes.txt");
+    let fingerprint = format!("trig {:016x}\n", trig_fingerprint());
+    let now = lines();
+    if std::env::var_os("SLATE_HASHES_BLESS").is_some() {
+        std::fs::write(&file, format!("{fingerprint}{now}")).expect("write output_hashes.txt");
+        return;
+    }
+    let recorded = std::fs::read_to_string(&file).expect("read output_hashes.txt");
+    let (head, cases) = recorded.split_at(recorded.find('\n').map_or(0, |i| i + 1));
+    if head != fingerprint {
+        eprintln!(
+            "output_hashes: this platform's sin/cos differ from the recording's ({} vs {}): \
+             only thread-count and reuse independence were checked",
+            fingerprint.trim(),
+            head.trim()
+        );
+        return;
+    }
+    let mut bad = Vec::new();
+    for (want, got) in cases.lines().zip(now.lines()) {
+        if want != got {
+            bad.push(format!("recorded {want}\n     now {got}"));
+        }
+    }
+    assert_eq!(cases.lines().count(), now.lines().count(), "case count");
+    assert!(bad.is_empty(), "output changed:\n{}", bad.join("\n"));
+}
