@@ -240,7 +240,7 @@ pub enum UsdError {
         path: String,
     },
     /// The prim asked for is not a mesh of the stage.
-    #[error("{path}: prim {prim} is {found} (meshes: {meshes})")]
+    #[error("{path}: prim {prim}: {found} (meshes: {meshes})")]
     NoSuchMesh {
         /// The file.
         path: String,

@@ -94,7 +94,7 @@ fn one_prim_by_path_and_typed_errors_for_other_paths() {
     let msg = e.to_string();
     assert!(matches!(e, UsdError::NoSuchMesh { .. }), "{e:?}");
     assert!(
-        msg.contains("/World is a Xform prim, not a Mesh") && msg.contains("/World/Cube"),
+        msg.contains("prim /World: a Xform prim, not a Mesh") && msg.contains("/World/Cube"),
         "{msg}"
     );
     // The inactive mesh is not part of the stage's meshes.
