@@ -144,7 +144,7 @@ impl SurfaceExport {
         if self.triangles.is_empty() {
             return Err("no triangles to write".into());
         }
-        if self.triangles.len() % 3 != 0 {
+        if !self.triangles.len().is_multiple_of(3) {
             return Err(format!("{} triangle indices", self.triangles.len()));
         }
         if let Some(&i) = self.triangles.iter().find(|&&i| i as usize >= n) {
