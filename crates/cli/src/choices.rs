@@ -21,6 +21,15 @@ pub enum SchemeName {
     Loop,
 }
 
+impl From<Scheme> for SchemeName {
+    fn from(s: Scheme) -> SchemeName {
+        match s {
+            Scheme::CatmullClark => SchemeName::CatmullClark,
+            Scheme::Loop => SchemeName::Loop,
+        }
+    }
+}
+
 impl From<SchemeName> for Scheme {
     fn from(s: SchemeName) -> Scheme {
         match s {

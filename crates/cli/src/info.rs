@@ -6,13 +6,16 @@ use std::process::ExitCode;
 
 use subdiv::mesh::{
     BoundaryInterpolation, CreaseMethod, Mesh, MeshStats, ObjError, TriangleSubdivision,
-    read_obj_soup,
+    is_usd_path, read_obj_soup, read_usd_soup,
 };
 
 #[derive(clap::Args, Debug)]
 pub struct InfoArgs {
-    /// Input cage (OBJ with optional OpenSubdiv tags).
+    /// Input cage: OBJ with optional OpenSubdiv tags, or USD (.usda, .usdc, .usdz).
     pub input: PathBuf,
+    /// The USD mesh prim to read (e.g. /World/Body); every Mesh prim merged without it.
+    #[arg(long, value_name = "PATH")]
+    pub prim: Option<String>,
     /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
     #[arg(long)]
     pub split_nonmanifold: bool,
@@ -28,9 +31,17 @@ fn histogram(h: &std::collections::BTreeMap<usize, usize>) -> String {
 /// Prints the report; exits 1 (after the report) when the mesh would be refused.
 pub fn run(a: &InfoArgs) -> anyhow::Result<ExitCode> {
     let path = a.input.display().to_string();
-    let mut soup = read_obj_soup(&a.input)?;
     let mut out = String::new();
     writeln!(out, "file: {path}")?;
+    let mut soup = if is_usd_path(&a.input) {
+        let usd = read_usd_soup(&a.input, a.prim.as_deref())?;
+        writeln!(out, "prims: {}", usd.prims.join(" "))?;
+        writeln!(out, "subdivisionScheme: {}", usd.scheme.token())?;
+        usd.soup
+    } else {
+        anyhow::ensure!(a.prim.is_none(), "{path}: --prim is for USD input");
+        read_obj_soup(&a.input)?
+    };
     // Tag lines read but not applied: on stderr, in the report, and refused with --strict.
     let ignored = crate::load::report_tag_warnings(&a.input, &soup.warnings);
     if !soup.warnings.is_empty() {

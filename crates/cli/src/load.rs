@@ -1,9 +1,11 @@
-//! Reading input cages.
+//! Reading input cages (OBJ, or USD by extension).
 
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use subdiv::mesh::{Mesh, ReadOptions, TagWarning, read_obj_with_warnings};
+use anyhow::anyhow;
+use subdiv::mesh::{Cage, CageOptions, Mesh, TagWarning, read_cage};
+use subdiv::rules::Scheme;
 
 /// `--strict` (a global flag): tag lines that are read but not applied are errors.
 static STRICT: AtomicBool = AtomicBool::new(false);
@@ -18,23 +20,49 @@ pub fn strict() -> bool {
     STRICT.load(Ordering::Relaxed)
 }
 
-/// Reads and validates a cage; errors read `FILE:LINE: what`. Tag lines that are not applied
-/// are reported by [`report_tag_warnings`].
+/// Reads and validates a cage (every mesh of a USD stage, merged); errors read
+/// `FILE:LINE: what` (OBJ) or `FILE: PRIM: ATTRIBUTE: what` (USD). Tag lines that are not
+/// applied are reported by [`report_tag_warnings`].
 pub fn load_mesh(path: &Path, split_nonmanifold: bool) -> anyhow::Result<Mesh> {
-    let (mesh, warnings) = read_obj_with_warnings(
+    Ok(load_cage(path, split_nonmanifold, None)?.mesh)
+}
+
+/// [`load_mesh`] with the USD mesh prim to read (`--prim`), and what the file says about its
+/// subdivision.
+pub fn load_cage(path: &Path, split_nonmanifold: bool, prim: Option<&str>) -> anyhow::Result<Cage> {
+    let cage = read_cage(
         path,
-        ReadOptions {
+        &CageOptions {
             split_nonmanifold_vertices: split_nonmanifold,
+            prim: prim.map(str::to_string),
         },
     )?;
     log::debug!(
         "read {}: {} vertices, {} faces",
         path.display(),
-        mesh.num_vertices(),
-        mesh.num_faces()
+        cage.mesh.num_vertices(),
+        cage.mesh.num_faces()
     );
-    report_tag_warnings(path, &warnings)?;
-    Ok(mesh)
+    report_tag_warnings(path, &cage.warnings)?;
+    Ok(cage)
+}
+
+/// The scheme to subdivide `cage` with: `--scheme` when given, else the USD
+/// `subdivisionScheme`, else Catmull-Clark. USD's `bilinear` and `none` need `--scheme`.
+pub fn cage_scheme(path: &Path, cage: &Cage, requested: Option<Scheme>) -> anyhow::Result<Scheme> {
+    match (requested, cage.scheme) {
+        (Some(s), _) => Ok(s),
+        (None, None) => Ok(Scheme::CatmullClark),
+        (None, Some(u)) => Scheme::from_usd(u).ok_or_else(|| {
+            anyhow!(
+                "{}: {}: subdivisionScheme is {}; subdiv subdivides catmullClark and loop surfaces \
+                 (give --scheme to subdivide it anyway)",
+                path.display(),
+                cage.prims.join(" "),
+                u.token()
+            )
+        }),
+    }
 }
 
 /// Logs `FILE:LINE: tag 't NAME' ignored (why)` as a warning (printed `warning: ...`, silenced

@@ -45,7 +45,8 @@ enum Command {
     /// Counts, face sizes, valences, boundaries, creases and genus of a cage, and whether (and
     /// why) it would be refused.
     Info(info::InfoArgs),
-    /// Tessellate the limit surface and write it as OBJ (limit points and limit normals).
+    /// Tessellate the limit surface and write it as OBJ, glTF or PLY (limit points and limit
+    /// normals; the format by the extension of -o).
     Tessellate(tessellate::TessellateArgs),
     /// Adaptive Loop subdivision driven by a Degree-of-Interest function (Isenberg et al. 2003).
     Refine(refine::RefineArgs),

@@ -6,6 +6,7 @@ use std::time::Instant;
 
 use anyhow::Context;
 use subdiv::mesh::write_mesh_obj;
+use subdiv::{OutputFormat, SurfaceExport, VertexScalar, write_export};
 
 use crate::camera_args::CameraArgs;
 use crate::choices::value_name;
@@ -14,13 +15,19 @@ use crate::doi_args::DoiArgs;
 #[derive(clap::Args, Debug)]
 #[command(mut_arg("doi", |a| a.required(true)))]
 pub struct RefineArgs {
-    /// Input mesh (OBJ; triangles, or any polygons with --triangulate).
+    /// Input mesh: OBJ or USD (.usda, .usdc, .usdz); triangles, or any polygons with
+    /// --triangulate.
     pub input: PathBuf,
+    /// The USD mesh prim to read (e.g. /World/Body); every Mesh prim merged without it.
+    #[arg(long, value_name = "PATH")]
+    pub prim: Option<String>,
     #[command(flatten)]
     pub doi: DoiArgs,
     #[command(flatten)]
     pub camera: CameraArgs,
-    /// Output OBJ.
+    /// Output file, its format by extension: .obj (the refined mesh with its tags), .gltf (+
+    /// .bin) or .glb (glTF 2.0), .ply (binary); glTF and PLY hold the refined triangles with
+    /// vertex normals and each vertex's largest DoI over its faces (_DOI, doi).
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
     /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
@@ -30,17 +37,25 @@ pub struct RefineArgs {
 
 pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
     let input = a.input.display().to_string();
-    let mesh = crate::load::load_mesh(&a.input, a.split_nonmanifold)?;
-    let setup = a.doi.setup(mesh, &input)?;
+    let format = OutputFormat::from_path(&a.output)?;
+    let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, a.prim.as_deref())?;
+    let setup = a.doi.setup(cage.mesh, &input)?;
     let (lo, hi) = setup.cage.bounds();
     let (mesh, doi, threshold) = (&setup.cage, &setup.doi, setup.opts.threshold);
+    let camera = a.camera.camera(lo, hi);
     let t0 = Instant::now();
     let spinner = crate::progress::spinner(format!("refining ({} steps)", a.doi.steps));
-    let r = setup.run(a.camera.camera(lo, hi));
+    let r = setup.run(camera);
     spinner.finish_and_clear();
     let r = r.with_context(|| format!("{input}: refining"))?;
     let ms = t0.elapsed().as_secs_f64() * 1e3;
-    write_mesh_obj(&a.output, &r.mesh.mesh)?;
+    if format == OutputFormat::Obj {
+        write_mesh_obj(&a.output, &r.mesh.mesh)?;
+    } else {
+        let (limit, dois) = setup.refined_surface(&r, &camera)?;
+        let surface = SurfaceExport::from_limit(&limit, Some((VertexScalar::Doi, dois)));
+        write_export(&a.output, &surface)?;
+    }
     println!(
         "refined {input} with the {} DoI (threshold {threshold}, {} steps, {}): {} -> {} triangles in {ms:.1} ms -> {}",
         doi.name(),

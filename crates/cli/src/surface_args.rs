@@ -22,9 +22,13 @@ use crate::doi_args::DoiArgs;
      Degree-of-Interest function, seen from the camera (`--shading doi` colours it by the DoI)"
 )))]
 pub struct SurfaceArgs {
-    /// Input cage (OBJ with optional OpenSubdiv tags).
+    /// Input cage: OBJ with optional OpenSubdiv tags, or USD (.usda, .usdc, .usdz; every Mesh
+    /// prim merged unless --prim names one).
     #[arg(required_unless_present = "scene")]
     pub input: Option<PathBuf>,
+    /// The USD mesh prim to read (e.g. /World/Body).
+    #[arg(long, value_name = "PATH", conflicts_with = "scene")]
+    pub prim: Option<String>,
     /// A built-in scene instead of an input file: helmet40 (paper Fig. 12: 40 instances of
     /// catmark_helmet on an 8x5 grid).
     #[arg(long, conflicts_with = "input")]
@@ -76,7 +80,10 @@ impl SurfaceArgs {
     pub fn load_cage(&self) -> anyhow::Result<Mesh> {
         match (&self.scene, &self.input) {
             (Some(s), _) => Ok(BuiltinScene::from(*s).cage()?),
-            (None, Some(p)) => crate::load::load_mesh(p, self.split_nonmanifold),
+            (None, Some(p)) => {
+                crate::load::load_cage(p, self.split_nonmanifold, self.prim.as_deref())
+                    .map(|c| c.mesh)
+            }
             (None, None) => bail!("give an input cage or --scene helmet40"),
         }
     }

@@ -6,10 +6,13 @@ use std::time::Instant;
 
 use anyhow::{Context, bail};
 use clap::builder::{PossibleValuesParser, TypedValueParser};
-use subdiv::mesh::{Mesh, ObjData, write_obj};
+use subdiv::mesh::Mesh;
 use subdiv::rules::Scheme;
 use subdiv::stitch::FrameGeometry;
-use subdiv::{DoiKind, DynamicSubdivision, depth_histogram, doi_face_depths, make_doi};
+use subdiv::{
+    DoiKind, DynamicSubdivision, OutputFormat, VertexScalar, depth_histogram, doi_face_depths,
+    frame_limit, make_doi, write_surface,
+};
 
 use crate::adaptive_args::AdaptiveArgs;
 use crate::camera_args::CameraArgs;
@@ -24,11 +27,15 @@ use crate::doi_args::{DoiChoice, doi_error};
     )
     .value_parser(cage_doi_parser())))]
 pub struct TessellateArgs {
-    /// Input cage (OBJ with optional OpenSubdiv tags).
+    /// Input cage: OBJ with optional OpenSubdiv tags, or USD (.usda, .usdc, .usdz; every Mesh
+    /// prim merged unless --prim names one).
     pub input: PathBuf,
-    /// Subdivision scheme.
-    #[arg(long, value_enum, default_value = "catmull-clark")]
-    pub scheme: SchemeName,
+    /// The USD mesh prim to read (e.g. /World/Body).
+    #[arg(long, value_name = "PATH")]
+    pub prim: Option<String>,
+    /// Subdivision scheme [default: the USD subdivisionScheme, else catmull-clark].
+    #[arg(long, value_enum)]
+    pub scheme: Option<SchemeName>,
     /// Uniform subdivision depth (without it, a camera makes the tessellation adaptive).
     #[arg(long)]
     pub depth: Option<subdiv::rules::Depth>,
@@ -41,7 +48,9 @@ pub struct TessellateArgs {
     pub stats: bool,
     #[command(flatten)]
     pub doi: DoiChoice,
-    /// Output OBJ (limit positions, limit normals, faces).
+    /// Output file, its format by extension: .obj (limit positions, limit normals, faces),
+    /// .gltf (+ .bin) or .glb (glTF 2.0), .ply (binary); glTF and PLY also carry each vertex's
+    /// subdivision depth (_DEPTH, depth).
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
     /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
@@ -57,13 +66,16 @@ fn cage_doi_parser() -> impl TypedValueParser<Value = DoiName> {
 }
 
 pub fn run(a: &TessellateArgs) -> anyhow::Result<ExitCode> {
-    let mesh = crate::load::load_mesh(&a.input, a.split_nonmanifold)?;
-    let catmull_clark = Scheme::from(a.scheme) == Scheme::CatmullClark;
+    OutputFormat::from_path(&a.output)?;
+    let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, a.prim.as_deref())?;
+    let scheme = crate::load::cage_scheme(&a.input, &cage, a.scheme.map(Scheme::from))?;
+    let mesh = cage.mesh;
+    let catmull_clark = scheme == Scheme::CatmullClark;
     let adaptive =
         a.adaptive
             .wants_adaptive(a.depth.is_some(), a.camera.has_camera(), catmull_clark, &[])?;
     if let Some(depth) = a.depth {
-        return run_uniform(a, &mesh, depth);
+        return run_uniform(a, &mesh, scheme, depth);
     }
     if !adaptive && a.doi.doi.is_none() {
         if !catmull_clark {
@@ -87,21 +99,23 @@ pub fn run(a: &TessellateArgs) -> anyhow::Result<ExitCode> {
 fn run_uniform(
     a: &TessellateArgs,
     mesh: &Mesh,
+    scheme: Scheme,
     depth: subdiv::rules::Depth,
 ) -> anyhow::Result<ExitCode> {
     let input = a.input.display();
     let t0 = Instant::now();
     let spinner = crate::progress::spinner(format!("tessellating at depth {depth}"));
-    let t = subdiv::uniform_limit(mesh, a.scheme.into(), depth);
+    let t = subdiv::uniform_limit(mesh, scheme, depth);
     spinner.finish_and_clear();
     let t = t.map_err(|e| anyhow::anyhow!("{input}: {e}"))?;
     let ms = t0.elapsed().as_secs_f64() * 1e3;
-    write_obj(&a.output, &t.obj_data())?;
+    let depths = vec![depth as f32; t.positions.len()];
+    write_surface(&a.output, &t, Some((VertexScalar::Depth, depths)))?;
     println!(
         "tessellated {input}: {} vertices, {} faces ({}, depth {depth}) in {ms:.1} ms -> {}",
         t.positions.len(),
         t.num_faces(),
-        value_name(&a.scheme),
+        value_name(&SchemeName::from(scheme)),
         a.output.display()
     );
     if a.stats {
@@ -141,23 +155,14 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh) -> anyhow::Result<ExitCode> {
     spinner.finish_and_clear();
     let g = g?;
     let ms = t0.elapsed().as_secs_f64() * 1e3;
-    let (pos, nrm, idx) = g.compact();
-    let offsets: Vec<u32> = (0..=idx.len() as u32 / 3).map(|i| i * 3).collect();
-    write_obj(
-        &a.output,
-        &ObjData {
-            positions: &pos,
-            normals: Some(&nrm),
-            face_offsets: &offsets,
-            face_indices: &idx,
-            // One to one with the frame's triangle corners.
-            corner_normals: &g.corner_normals,
-        },
-    )?;
+    // The referenced vertices, the triangles with their one-sided corner normals, and the
+    // depth of each vertex's patch.
+    let (limit, depths) = frame_limit(g);
+    write_surface(&a.output, &limit, Some((VertexScalar::Depth, depths)))?;
     println!(
         "tessellated {input}: {} vertices, {} triangles (adaptive, max depth {}) in {ms:.1} ms -> {}",
-        pos.len(),
-        idx.len() / 3,
+        limit.positions.len(),
+        limit.face_indices.len() / 3,
         a.adaptive.max_depth(),
         a.output.display()
     );

@@ -211,3 +211,81 @@ pub enum ObjError {
         err: MeshError,
     },
 }
+
+/// An error reading a USD stage: every variant names the file, and the prim and attribute when
+/// there is one. Each cause is printed once (`Io` hands the I/O error out as its source).
+#[derive(Debug, Error)]
+pub enum UsdError {
+    /// The file could not be read.
+    #[error("{path}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The I/O error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The stage could not be opened or composed (the `openusd` reader's message).
+    #[error("{path}: cannot read the USD stage: {msg}")]
+    Open {
+        /// The file.
+        path: String,
+        /// What the reader said.
+        msg: String,
+    },
+    /// The stage has no active `Mesh` prim.
+    #[error("{path}: the stage has no Mesh prim")]
+    NoMesh {
+        /// The file.
+        path: String,
+    },
+    /// The prim asked for is not a mesh of the stage.
+    #[error("{path}: prim {prim}: {found} (meshes: {meshes})")]
+    NoSuchMesh {
+        /// The file.
+        path: String,
+        /// The prim asked for.
+        prim: String,
+        /// What is at that path.
+        found: String,
+        /// The mesh prims of the stage.
+        meshes: String,
+    },
+    /// An attribute with a wrong type, an unsupported value or inconsistent counts.
+    #[error("{path}: {prim}: {attr}: {msg}")]
+    Attribute {
+        /// The file.
+        path: String,
+        /// The prim.
+        prim: String,
+        /// The attribute.
+        attr: String,
+        /// What is wrong.
+        msg: String,
+    },
+    /// The prim's topology or tags are refused by validation (faces and vertices are the
+    /// prim's own).
+    #[error("{path}: {prim}: {attr}: {err}")]
+    Invalid {
+        /// The file.
+        path: String,
+        /// The prim (the prims, space-separated, when the merged cage is refused).
+        prim: String,
+        /// The attribute the error is about.
+        attr: &'static str,
+        /// What is wrong.
+        err: MeshError,
+    },
+    /// Merged prims disagree on an attribute that subdiv keeps per mesh.
+    #[error("{path}: {attr} differs between {a} and {b}; read one mesh with --prim")]
+    Mixed {
+        /// The file.
+        path: String,
+        /// The attribute.
+        attr: &'static str,
+        /// The first prim and its value.
+        a: String,
+        /// The disagreeing prim and its value.
+        b: String,
+    },
+}

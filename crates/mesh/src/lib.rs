@@ -19,7 +19,8 @@
 //! - **properties as arrays indexed by handle**: `handle.idx()` indexes every per-element array.
 //!
 //! Meshes are built from a [`PolygonSoup`] — usually read from an OBJ file with OpenSubdiv's
-//! crease/corner/hole tags by [`read_obj`] — and every defect of the input is a [`MeshError`]
+//! crease/corner/hole tags by [`read_obj`], or from the `UsdGeomMesh` prims of a USD stage by
+//! [`read_usd`] ([`read_cage`] picks by extension) — and every defect of the input is a [`MeshError`]
 //! naming the face, vertex or tag and its line.
 //!
 //! ```
@@ -32,6 +33,7 @@
 //! # Ok::<(), subdiv_mesh::MeshError>(())
 //! ```
 
+mod cage;
 mod camera;
 mod error;
 mod geometry;
@@ -42,9 +44,11 @@ mod options;
 mod soup;
 mod stats;
 mod tags;
+mod usd;
 
+pub use cage::{Cage, CageError, CageOptions, read_cage};
 pub use camera::Camera;
-pub use error::{MeshError, ObjError};
+pub use error::{MeshError, ObjError, UsdError};
 pub use geometry::{
     Vector3, closest_point_on_triangle, face_normals, newell_area, newell_normal, triangulate,
     vertex_normals,
@@ -61,5 +65,9 @@ pub use options::{
 pub use soup::{CornerTag, CreaseTag, HoleTag, PolygonSoup};
 pub use stats::MeshStats;
 pub use tags::{IgnoredTagKind, TagWarning};
+pub use usd::{
+    FaceVaryingLinear, UsdCage, UsdMesh, UsdReadOptions, UsdScheme, is_usd_path, read_usd,
+    read_usd_soup,
+};
 
 pub use glam;

@@ -59,6 +59,18 @@ pub enum Scheme {
     Loop,
 }
 
+impl Scheme {
+    /// The scheme of a USD mesh's `subdivisionScheme`; `None` for `bilinear` and `none`, which
+    /// subdiv has no scheme for.
+    pub fn from_usd(s: subdiv_mesh::UsdScheme) -> Option<Scheme> {
+        match s {
+            subdiv_mesh::UsdScheme::CatmullClark => Some(Scheme::CatmullClark),
+            subdiv_mesh::UsdScheme::Loop => Some(Scheme::Loop),
+            subdiv_mesh::UsdScheme::Bilinear | subdiv_mesh::UsdScheme::None => None,
+        }
+    }
+}
+
 impl std::str::FromStr for Scheme {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {

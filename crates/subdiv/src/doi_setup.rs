@@ -301,6 +301,18 @@ impl DoiSetup {
     /// limit, with vertex normals) with each vertex's largest DoI over its faces as the scalar.
     pub fn scene(&self, camera: &Camera) -> Result<Scene, DoiSetupError> {
         let r = self.run(*camera).map_err(DoiSetupError::Refine)?;
+        let (limit, scalar) = self.refined_surface(&r, camera)?;
+        Ok(Scene::from_limit(limit, scalar))
+    }
+
+    /// A refinement of this set-up for `camera` as a surface to draw or write: the refined mesh
+    /// (not pushed to the limit) with vertex normals, one-sided normals along sharp edges, and
+    /// each vertex's largest DoI over its faces.
+    pub fn refined_surface(
+        &self,
+        r: &Refined,
+        camera: &Camera,
+    ) -> Result<(LimitMesh, Vec<f32>), DoiSetupError> {
         let m = &r.mesh.mesh;
         let ctx = self.context(*camera);
         let (mut scratch, mut values) = (Vec::new(), Vec::new());
@@ -328,7 +340,7 @@ impl DoiSetup {
             // Sharp edges shade as creases: each sector of a vertex its own normal.
             corner_normals: crate::crease_normals::sector_corner_normals(m, &normals),
         };
-        Ok(Scene::from_limit(limit, scalar))
+        Ok((limit, scalar))
     }
 
     /// One line about a refinement of this set-up to `triangles` triangles:

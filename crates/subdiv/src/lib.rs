@@ -105,6 +105,7 @@ mod camera;
 mod crease_normals;
 mod doi_setup;
 mod dynamic;
+mod export;
 mod frame;
 mod frame_sources;
 mod patch_error;
@@ -119,6 +120,9 @@ pub use doi_setup::{
     DoiKind, DoiOptions, DoiSetup, DoiSetupError, check_doi_options, doi_face_depths, make_doi,
 };
 pub use dynamic::DynamicSubdivision;
+pub use export::{
+    ExportError, OutputFormat, SurfaceExport, VertexScalar, write_export, write_surface,
+};
 pub use frame::{depth_histogram, frame_limit};
 pub use frame_sources::{AdaptiveSource, DoiSource, UniformSource};
 pub use patch_error::{SAMPLE_LEVELS, patch_errors};

@@ -113,7 +113,7 @@ impl Scene {
 /// A point on a crease has one normal per side; a face corner with a one-sided normal gets a
 /// vertex of its own per distinct normal (position copied bit for bit, so the surface stays
 /// watertight, and scalar copied; edges and silhouettes keep the shared vertices).
-fn split_sided_vertices(limit: &LimitMesh, mesh: &mut OwnedMesh) {
+pub(crate) fn split_sided_vertices(limit: &LimitMesh, mesh: &mut OwnedMesh) {
     let mut copies: HashMap<(u32, [u32; 3]), u32> = HashMap::new();
     let mut sided = limit.corner_normals.iter().peekable();
     let mut corner = Vec::new();

@@ -1,0 +1,151 @@
+//! USD input and glTF/PLY output through the `subdiv` binary: the scheme a stage names, `--prim`,
+//! the output format chosen by `-o`'s extension, and typed errors (never a panic).
+
+mod common;
+
+use common::{assert_fails, fixtures, run, tmp};
+
+fn usd(name: &str) -> String {
+    fixtures().join("usd").join(name).display().to_string()
+}
+
+#[test]
+fn tessellate_usd_to_gltf_and_ply() {
+    // The stage says loop: no --scheme needed.
+    let glb = tmp("tetra.glb");
+    let (code, stdout, err) = run(&[
+        "tessellate",
+        &usd("tetra_loop.usda"),
+        "--depth",
+        "2",
+        "-o",
+        glb.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("(loop, depth 2)"), "{stdout}");
+    let bytes = std::fs::read(&glb).unwrap();
+    assert_eq!(&bytes[..4], b"glTF");
+    assert!(String::from_utf8_lossy(&bytes).contains("\"_DEPTH\""));
+
+    let ply = tmp("cube.ply");
+    let (code, stdout, err) = run(&[
+        "tessellate",
+        &usd("scene.usdc"),
+        "--prim",
+        "/World/Cube",
+        "--depth",
+        "1",
+        "-o",
+        ply.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("(catmull-clark, depth 1)"), "{stdout}");
+    let bytes = std::fs::read(&ply).unwrap();
+    assert!(bytes.starts_with(b"ply\nformat binary_little_endian 1.0\n"));
+
+    // Adaptive, with a camera: glTF JSON and its .bin.
+    let gltf = tmp("scene.gltf");
+    let (code, _, err) = run(&[
+        "tessellate",
+        &usd("open_lefthanded.usdz"),
+        "--eye-relative",
+        "0.5,0.5,2",
+        "-o",
+        gltf.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(gltf.with_extension("bin").exists());
+    let text = std::fs::read_to_string(&gltf).unwrap();
+    assert!(
+        text.contains("\"NORMAL\"") && text.contains("\"_DEPTH\""),
+        "{text}"
+    );
+}
+
+#[test]
+fn refine_usd_writes_doi_attribute() {
+    let out = tmp("refined.glb");
+    let (code, _, err) = run(&[
+        "refine",
+        &usd("tetra_loop.usda"),
+        "--doi",
+        "dihedral",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(String::from_utf8_lossy(&std::fs::read(&out).unwrap()).contains("\"_DOI\""));
+}
+
+#[test]
+fn usd_and_output_errors_are_typed() {
+    let o = tmp("x.glb");
+    let o = o.to_str().unwrap();
+    assert_fails(
+        &[
+            "tessellate",
+            &usd("scene.usda"),
+            "--prim",
+            "/World",
+            "--depth",
+            "1",
+            "-o",
+            o,
+        ],
+        "scene.usda: prim /World: a Xform prim, not a Mesh (meshes: /World/Cube, /World/Props/Holder/Grid)",
+    );
+    let cube = fixtures().join("reference/shapes/catmark_cube.obj");
+    assert_fails(
+        &[
+            "tessellate",
+            cube.to_str().unwrap(),
+            "--prim",
+            "/A",
+            "--depth",
+            "1",
+            "-o",
+            o,
+        ],
+        "a prim (/A) can only be chosen in a USD file",
+    );
+    let stl = tmp("x.stl");
+    assert_fails(
+        &[
+            "tessellate",
+            cube.to_str().unwrap(),
+            "--depth",
+            "1",
+            "-o",
+            stl.to_str().unwrap(),
+        ],
+        "unknown output format",
+    );
+    // bilinear and none need an explicit scheme.
+    let bilinear = tmp("bilinear.usda");
+    std::fs::write(
+        &bilinear,
+        "#usda 1.0\ndef Mesh \"Q\"\n{\n    uniform token subdivisionScheme = \"bilinear\"\n    \
+         int[] faceVertexCounts = [4]\n    int[] faceVertexIndices = [0, 1, 2, 3]\n    \
+         point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]\n}\n",
+    )
+    .unwrap();
+    let b = bilinear.to_str().unwrap();
+    assert_fails(
+        &["tessellate", b, "--depth", "1", "-o", o],
+        "/Q: subdivisionScheme is bilinear; subdiv subdivides catmullClark and loop surfaces",
+    );
+    let (code, _, err) = run(&[
+        "tessellate",
+        b,
+        "--scheme",
+        "catmull-clark",
+        "--depth",
+        "1",
+        "-o",
+        o,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let (code, stdout, _) = run(&["info", b]);
+    assert_eq!(code, 0);
+    assert!(stdout.contains("subdivisionScheme: bilinear"), "{stdout}");
+}

@@ -1,0 +1,101 @@
+//! Reading a cage from any supported file, by extension: USD (`.usd`, `.usda`, `.usdc`,
+//! `.usdz`; [`crate::read_usd`]) or OBJ (anything else; [`crate::read_obj_with_warnings`]).
+
+use std::path::Path;
+
+use thiserror::Error;
+
+use crate::error::{ObjError, UsdError};
+use crate::mesh::Mesh;
+use crate::obj::{ReadOptions, read_obj_with_warnings};
+use crate::tags::TagWarning;
+use crate::usd::{FaceVaryingLinear, UsdReadOptions, UsdScheme, is_usd_path, read_usd};
+
+/// Options of [`read_cage`].
+#[derive(Clone, Debug, Default)]
+pub struct CageOptions {
+    /// Repair non-manifold vertices instead of refusing them.
+    pub split_nonmanifold_vertices: bool,
+    /// USD only: the mesh prim to read (every mesh, merged, without it).
+    pub prim: Option<String>,
+}
+
+/// A cage and what its file says beyond the mesh.
+#[derive(Clone, Debug)]
+pub struct Cage {
+    /// The validated cage.
+    pub mesh: Mesh,
+    /// OBJ tag lines read but not applied (always empty for USD).
+    pub warnings: Vec<TagWarning>,
+    /// USD only: the `subdivisionScheme` the file asks for.
+    pub scheme: Option<UsdScheme>,
+    /// USD only: the `faceVaryingLinearInterpolation`.
+    pub face_varying: Option<FaceVaryingLinear>,
+    /// USD only: the mesh prims read.
+    pub prims: Vec<String>,
+}
+
+/// An error of [`read_cage`].
+#[derive(Debug, Error)]
+pub enum CageError {
+    /// Reading an OBJ file.
+    #[error(transparent)]
+    Obj(#[from] ObjError),
+    /// Reading a USD stage.
+    #[error(transparent)]
+    Usd(#[from] UsdError),
+    /// A prim was asked for, but the file is not USD.
+    #[error("{path}: a prim ({prim}) can only be chosen in a USD file")]
+    PrimNotUsd {
+        /// The file.
+        path: String,
+        /// The prim asked for.
+        prim: String,
+    },
+}
+
+/// Reads a cage from an OBJ or USD file, chosen by the extension.
+///
+/// ```no_run
+/// use subdiv_mesh::{CageOptions, read_cage};
+/// let cage = read_cage("cage.usdz", &CageOptions::default()).unwrap();
+/// println!("{} faces", cage.mesh.num_faces());
+/// ```
+pub fn read_cage(path: impl AsRef<Path>, opts: &CageOptions) -> Result<Cage, CageError> {
+    let path = path.as_ref();
+    if is_usd_path(path) {
+        let usd = read_usd(
+            path,
+            &UsdReadOptions {
+                prim: opts.prim.clone(),
+                split_nonmanifold_vertices: opts.split_nonmanifold_vertices,
+            },
+        )?;
+        return Ok(Cage {
+            mesh: usd.mesh,
+            warnings: Vec::new(),
+            scheme: Some(usd.scheme),
+            face_varying: Some(usd.face_varying),
+            prims: usd.prims,
+        });
+    }
+    if let Some(prim) = &opts.prim {
+        return Err(CageError::PrimNotUsd {
+            path: path.display().to_string(),
+            prim: prim.clone(),
+        });
+    }
+    let (mesh, warnings) = read_obj_with_warnings(
+        path,
+        ReadOptions {
+            split_nonmanifold_vertices: opts.split_nonmanifold_vertices,
+        },
+    )?;
+    Ok(Cage {
+        mesh,
+        warnings,
+        scheme: None,
+        face_varying: None,
+        prims: Vec::new(),
+    })
+}

@@ -1,0 +1,270 @@
+//! glTF and PLY output re-read by independent readers (the `gltf` crate, which also validates
+//! the document, and `ply-rs-bw`): every accessor's count, type and bounds (min/max), and every
+//! value, against what was written — for uniform, adaptive and DoI-refined surfaces, with and
+//! without texture coordinates.
+
+use std::path::{Path, PathBuf};
+
+use subdiv::mesh::{Camera, glam::Vec3, read_obj};
+use subdiv::rules::Scheme;
+use subdiv::{
+    DoiKind, DoiOptions, DoiSetup, DynamicSubdivision, OutputFormat, SurfaceExport, VertexScalar,
+    frame_limit, uniform_limit, write_export, write_surface,
+};
+
+fn shape(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fixtures/reference/shapes")
+        .join(name)
+}
+
+fn out_dir() -> PathBuf {
+    let d = std::env::temp_dir().join(format!("subdiv-export-test-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Uniform (creases: one-sided normals), adaptive (per-vertex depths), DoI-refined (per-vertex
+/// DoI) surfaces, and one with texture coordinates.
+fn surfaces() -> Vec<(&'static str, SurfaceExport)> {
+    let cube = read_obj(shape("catmark_single_crease.obj")).unwrap();
+    let t = uniform_limit(&cube, Scheme::CatmullClark, 2).unwrap();
+    let depths = vec![2.0; t.positions.len()];
+    let uniform = SurfaceExport::from_limit(&t, Some((VertexScalar::Depth, depths)));
+    assert!(
+        uniform.positions.len() > t.positions.len(),
+        "crease corners get vertices of their own"
+    );
+
+    let pawn = read_obj(shape("catmark_pawn.obj")).unwrap();
+    let (lo, hi) = pawn.bounds();
+    let mut node = DynamicSubdivision::new(pawn, subdiv::depth::DepthParams::default()).unwrap();
+    // Close to the pawn: near patches deep, far ones shallow.
+    let camera = Camera::eye_relative(lo, hi, Vec3::new(0.3, -0.9, 0.6), 45.0, 640, 480);
+    let g = node.update(&camera, None).unwrap();
+    let (limit, depths) = frame_limit(g);
+    let adaptive = SurfaceExport::from_limit(&limit, Some((VertexScalar::Depth, depths)));
+    let (dmin, dmax) = min_max(&adaptive.scalar.as_ref().unwrap().1);
+    assert!(
+        dmin < dmax,
+        "the adaptive frame mixes depths: {dmin}..{dmax}"
+    );
+
+    let tetra = read_obj(shape("loop_tetrahedron.obj")).unwrap();
+    let setup = DoiSetup::new(tetra, &DoiOptions::new(DoiKind::Dihedral)).unwrap();
+    let r = setup.run(camera).unwrap();
+    let (limit, dois) = setup.refined_surface(&r, &camera).unwrap();
+    let refined = SurfaceExport::from_limit(&limit, Some((VertexScalar::Doi, dois)));
+
+    let mut textured = uniform.clone();
+    textured.uvs = Some(
+        textured
+            .positions
+            .iter()
+            .map(|p| [p[0], p[1] * 0.5])
+            .collect(),
+    );
+    textured.scalar = None;
+    vec![
+        ("uniform", uniform),
+        ("adaptive", adaptive),
+        ("refined", refined),
+        ("textured", textured),
+    ]
+}
+
+fn min_max(v: &[f32]) -> (f32, f32) {
+    v.iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        })
+}
+
+/// The per-component bounds of `data`.
+fn bounds<const N: usize>(data: &[[f32; N]]) -> (Vec<f32>, Vec<f32>) {
+    let mut lo = vec![f32::INFINITY; N];
+    let mut hi = vec![f32::NEG_INFINITY; N];
+    for v in data {
+        for k in 0..N {
+            lo[k] = lo[k].min(v[k]);
+            hi[k] = hi[k].max(v[k]);
+        }
+    }
+    (lo, hi)
+}
+
+/// An accessor's `min` or `max` (JSON numbers written as the shortest decimal of the `f32`,
+/// so they read back as the same `f32`).
+fn json_vec(v: Option<gltf::json::Value>) -> Vec<f32> {
+    v.expect("bounds written")
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap() as f32)
+        .collect()
+}
+
+/// Checks one accessor: count, dimensions, and min/max equal to the data's.
+fn check_accessor<const N: usize>(a: &gltf::Accessor, data: &[[f32; N]], what: &str) {
+    assert_eq!(a.count(), data.len(), "{what}");
+    assert_eq!(a.dimensions().multiplicity(), N, "{what}");
+    assert_eq!(a.data_type(), gltf::accessor::DataType::F32, "{what}");
+    let (lo, hi) = bounds(data);
+    assert_eq!(json_vec(a.min()), lo, "{what}: min");
+    assert_eq!(json_vec(a.max()), hi, "{what}: max");
+}
+
+fn check_gltf(path: &Path, s: &SurfaceExport, what: &str) {
+    // `open` validates the document (indices, byte ranges, required bounds).
+    let doc = gltf::Gltf::open(path).unwrap_or_else(|e| panic!("{what}: {e}"));
+    let buffers: Vec<Vec<u8>> = doc
+        .buffers()
+        .map(|b| match b.source() {
+            gltf::buffer::Source::Bin => doc.blob.clone().expect("GLB BIN chunk"),
+            gltf::buffer::Source::Uri(u) => std::fs::read(path.with_file_name(u)).unwrap(),
+        })
+        .collect();
+    assert_eq!(doc.meshes().count(), 1, "{what}");
+    let prim = doc.meshes().next().unwrap().primitives().next().unwrap();
+    assert_eq!(prim.mode(), gltf::mesh::Mode::Triangles, "{what}");
+    let reader = prim.reader(|b| Some(&buffers[b.index()][..]));
+    let pos: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+    assert_eq!(pos, s.positions, "{what}");
+    let nrm: Vec<[f32; 3]> = reader.read_normals().unwrap().collect();
+    assert_eq!(nrm, s.normals, "{what}");
+    let idx: Vec<u32> = reader.read_indices().unwrap().into_u32().collect();
+    assert_eq!(idx, s.triangles, "{what}");
+    let uv = reader
+        .read_tex_coords(0)
+        .map(|t| t.into_f32().collect::<Vec<_>>());
+    assert_eq!(uv, s.uvs, "{what}");
+    let ia = prim.indices().unwrap();
+    assert_eq!(ia.count(), s.triangles.len(), "{what}");
+    let (lo, hi) = (
+        s.triangles.iter().min().unwrap(),
+        s.triangles.iter().max().unwrap(),
+    );
+    let index_bound = |v: Option<gltf::json::Value>| v.unwrap()[0].as_u64().unwrap();
+    assert_eq!(index_bound(ia.min()), u64::from(*lo), "{what}");
+    assert_eq!(index_bound(ia.max()), u64::from(*hi), "{what}");
+    let mut custom = Vec::new();
+    for (semantic, a) in prim.attributes() {
+        match semantic {
+            gltf::Semantic::Positions => check_accessor(&a, &s.positions, what),
+            gltf::Semantic::Normals => check_accessor(&a, &s.normals, what),
+            gltf::Semantic::TexCoords(0) => check_accessor(&a, s.uvs.as_ref().unwrap(), what),
+            gltf::Semantic::Extras(name) => {
+                let values: Vec<f32> =
+                    gltf::accessor::Iter::<f32>::new(a.clone(), |b| Some(&buffers[b.index()][..]))
+                        .unwrap()
+                        .collect();
+                let one: Vec<[f32; 1]> = values.iter().map(|&v| [v]).collect();
+                check_accessor(&a, &one, what);
+                custom.push((format!("_{name}"), values));
+            }
+            other => panic!("{what}: unexpected attribute {other:?}"),
+        }
+    }
+    let want: Vec<(String, Vec<f32>)> = s
+        .scalar
+        .iter()
+        .map(|(k, v)| (k.gltf_attribute().to_string(), v.clone()))
+        .collect();
+    assert_eq!(custom, want, "{what}");
+}
+
+fn check_ply(path: &Path, s: &SurfaceExport, what: &str) {
+    use ply_rs_bw::ply::{DefaultElement, Encoding, Property};
+    let mut f = std::fs::File::open(path).unwrap();
+    let ply = ply_rs_bw::parser::Parser::<DefaultElement>::new()
+        .read_ply(&mut f)
+        .unwrap_or_else(|e| panic!("{what}: {e}"));
+    assert!(
+        matches!(ply.header.encoding, Encoding::BinaryLittleEndian),
+        "{what}"
+    );
+    let float = |e: &DefaultElement, k: &str| match e.get(k) {
+        Some(Property::Float(x)) => *x,
+        other => panic!("{what}: property {k}: {other:?}"),
+    };
+    let verts = &ply.payload["vertex"];
+    assert_eq!(verts.len(), s.positions.len(), "{what}");
+    for (i, v) in verts.iter().enumerate() {
+        assert_eq!(
+            [float(v, "x"), float(v, "y"), float(v, "z")],
+            s.positions[i],
+            "{what}"
+        );
+        assert_eq!(
+            [float(v, "nx"), float(v, "ny"), float(v, "nz")],
+            s.normals[i],
+            "{what}"
+        );
+        if let Some(uv) = &s.uvs {
+            assert_eq!([float(v, "s"), float(v, "t")], uv[i], "{what}");
+        }
+        if let Some((k, values)) = &s.scalar {
+            assert_eq!(float(v, k.ply_property()), values[i], "{what}");
+        }
+    }
+    let faces = &ply.payload["face"];
+    let idx: Vec<u32> = faces
+        .iter()
+        .flat_map(|f| match f.get("vertex_indices") {
+            Some(Property::ListUInt(l)) => l.clone(),
+            other => panic!("{what}: {other:?}"),
+        })
+        .collect();
+    assert_eq!(faces.len() * 3, idx.len(), "{what}: triangles only");
+    assert_eq!(idx, s.triangles, "{what}");
+}
+
+#[test]
+fn gltf_and_ply_files_reread_exactly() {
+    let dir = out_dir();
+    for (name, s) in surfaces() {
+        for ext in ["glb", "gltf", "ply"] {
+            let path = dir.join(format!("{name}.{ext}"));
+            write_export(&path, &s).unwrap();
+            let what = format!("{name}.{ext}");
+            match OutputFormat::from_path(&path).unwrap() {
+                OutputFormat::Ply => check_ply(&path, &s, &what),
+                _ => check_gltf(&path, &s, &what),
+            }
+        }
+    }
+}
+
+#[test]
+fn output_format_follows_the_extension() {
+    let dir = out_dir();
+    let cube = read_obj(shape("catmark_cube.obj")).unwrap();
+    let t = uniform_limit(&cube, Scheme::CatmullClark, 1).unwrap();
+    for (ext, format) in [
+        ("obj", OutputFormat::Obj),
+        ("GLB", OutputFormat::Glb),
+        ("gltf", OutputFormat::Gltf),
+        ("ply", OutputFormat::Ply),
+    ] {
+        let p = dir.join(format!("cube.{ext}"));
+        assert_eq!(write_surface(&p, &t, None).unwrap(), format);
+        assert!(p.exists());
+    }
+    // OBJ keeps the polygons; glTF and PLY hold their triangles.
+    assert_eq!(read_obj(dir.join("cube.obj")).unwrap().num_faces(), 24);
+    assert!(dir.join("cube.bin").exists(), "the .gltf data beside it");
+    let e = write_surface(dir.join("cube.stl"), &t, None).unwrap_err();
+    assert!(e.to_string().contains("unknown output format"), "{e}");
+    let bad = SurfaceExport {
+        positions: vec![[0.0; 3]; 3],
+        normals: vec![[0.0, 0.0, 1.0]; 3],
+        triangles: vec![0, 1, 3],
+        ..Default::default()
+    };
+    let e = write_export(dir.join("bad.glb"), &bad).unwrap_err();
+    assert!(
+        e.to_string()
+            .ends_with("bad.glb: triangle index 3 for 3 positions"),
+        "{e}"
+    );
+}
