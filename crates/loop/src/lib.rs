@@ -35,8 +35,8 @@
 //! ```
 
 mod error;
-pub mod red_green;
 mod pass;
+pub mod red_green;
 mod step;
 
 pub use error::LoopError;

@@ -84,7 +84,8 @@ fn inside_family(mesh: &Mesh, green: &GreenState, h: HalfedgeId) -> bool {
 }
 
 /// Applies `closure` to `cur`: vertex and edge points read from `at` (one position per vertex,
-/// the level being refined; `None`: the current positions), moved vertices and new midpoints
+/// the level being refined, and rings without green-internal edges; `None`: the current
+/// positions and rings, the paper's plain closure), moved vertices and new midpoints
 /// written, the conforming triangles assembled. Returns the refined mesh and, per new face, the
 /// face of `cur` it comes from.
 pub(crate) fn pass(
@@ -93,6 +94,9 @@ pub(crate) fn pass(
     at: Option<Vec<Vec3>>,
 ) -> Result<(AdaptiveMesh, Vec<u32>), LoopError> {
     let mesh = &cur.mesh;
+    // Balanced passes read the level's ring (green-internal edges left out); the plain closure
+    // reads the current mesh, as the paper does.
+    let by_level = at.is_some();
     let shifted;
     let kmesh = match at {
         Some(p) => {
@@ -123,7 +127,8 @@ pub(crate) fn pass(
     previous.extend_from_slice(&cur.previous);
     for v in mesh.vertices() {
         if need[v.idx()] {
-            let p = kernel.vertex_point_without(v, &[], |h| inside_family(mesh, &cur.green, h));
+            let p = kernel
+                .vertex_point_without(v, &[], |h| by_level && inside_family(mesh, &cur.green, h));
             if closure.moves[v.idx()] {
                 previous[v.idx()] = positions[v.idx()];
                 positions[v.idx()] = p;
