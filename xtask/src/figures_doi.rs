@@ -34,6 +34,10 @@ const EYE_RELATIVE: Vec3 = Vec3::new(0.0, 0.0, 3.0);
 const FOV: f32 = 45.0;
 const SIZE: (u32, u32) = (800, 600);
 
+/// One DoI after 5 steps: its name, the smallest angle and the triangle count, each for the
+/// plain closure and balanced.
+type Quality = (&'static str, [f32; 2], [usize; 2]);
+
 struct Row {
     model: String,
     input: usize,
@@ -46,9 +50,8 @@ struct Row {
     silhouette: [f32; 6],
     /// Haptic, haptic point, curvature max / avg / min.
     others: [usize; 5],
-    /// Smallest angle of the input, then per DoI after 5 steps: (plain, balanced) angles and
-    /// triangle counts.
-    quality: (f32, Vec<(&'static str, [f32; 2], [usize; 2])>),
+    /// Smallest angle of the input, then per DoI after 5 steps.
+    quality: (f32, Vec<Quality>),
 }
 
 fn load(root: &Path, name: &str) -> Result<Mesh> {
