@@ -23,6 +23,10 @@ use crate::figures_table::Table;
 /// "In both cases the model is viewed directly from the front."
 const EYE_RELATIVE: Vec3 = Vec3::new(0.0, 0.0, 3.0);
 
+/// One DoI after 5 steps: its name, the smallest angle and the triangle count, each for the
+/// plain closure and balanced.
+type Quality = (&'static str, [f32; 2], [usize; 2]);
+
 struct Row {
     model: String,
     input: usize,
@@ -36,7 +40,7 @@ struct Row {
     /// Haptic, haptic point, curvature max / avg / min.
     others: [usize; 5],
     /// Smallest angle of the input, then per DoI after 5 steps: (plain, balanced).
-    quality: (f32, Vec<(&'static str, f32, f32)>),
+    quality: (f32, Vec<Quality>),
 }
 
 fn load(root: &Path, name: &str) -> Result<Mesh> {
@@ -103,8 +107,12 @@ fn measure(root: &Path, name: &str) -> Result<Row> {
         &Curvature,
     ];
     for doi in dois {
-        let angle = |b| Ok::<_, anyhow::Error>(min_angle(&go(doi, 5, Aggregate::Max, b)?.2));
-        quality.push((doi.name(), angle(Balance::None)?, angle(Balance::Vertex)?));
+        let angle = |b| {
+            let m = go(doi, 5, Aggregate::Max, b)?.2;
+            Ok::<_, anyhow::Error>((min_angle(&m), m.num_faces()))
+        };
+        let (p, b) = (angle(Balance::None)?, angle(Balance::Vertex)?);
+        quality.push((doi.name(), [p.0, b.0], [p.1, b.1]));
     }
 
     // Fig. 5: silhouettes of the adaptive and the uniform mesh, in pixels.
@@ -178,7 +186,14 @@ fn tables(rows: &[Row], focus: Table) -> DoiData {
         "segments_adaptive",
         "segments_uniform",
     ]);
-    let mut angles = Table::new(&["model", "doi", "plain_deg", "balanced_deg"]);
+    let mut angles = Table::new(&[
+        "model",
+        "doi",
+        "plain_deg",
+        "balanced_deg",
+        "plain_triangles",
+        "balanced_triangles",
+    ]);
     for r in rows {
         let mut c = vec![r.model.clone(), n(r.input), n(r.uniform)];
         for k in 0..3 {
@@ -203,13 +218,17 @@ fn tables(rows: &[Row], focus: Table) -> DoiData {
             "input".into(),
             input.to_string(),
             input.to_string(),
+            r.input.to_string(),
+            r.input.to_string(),
         ]);
-        for (name, p, b) in q {
+        for (name, [p, b], [tp, tb]) in q {
             angles.push(vec![
                 r.model.clone(),
                 name.to_string(),
                 p.to_string(),
                 b.to_string(),
+                tp.to_string(),
+                tb.to_string(),
             ]);
         }
     }

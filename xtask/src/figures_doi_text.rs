@@ -169,7 +169,7 @@ fn counts_section(d: &DoiData, s: &mut String) -> Result<()> {
         let cell = |doi: &str| -> Result<String> {
             let (p, b) = (num(&format!("{doi}_plain"))?, num(doi)?);
             Ok(format!(
-                "{} ({}) / {} (+{:.0} %)",
+                "{} ({}) / {} ({:+.0} %)",
                 thousands(p),
                 pct(p, u),
                 thousands(b),
@@ -287,11 +287,13 @@ fn angles_section(d: &DoiData, s: &mut String) -> Result<()> {
     writeln!(s, "\n### Smallest triangle angle after 5 steps\n")?;
     writeln!(
         s,
-        "Plain closure → balanced (level balancing, two split edges refined red, the vertex rule once per \
-         level). The classic red-green bound asks for at least half the input's smallest angle. The teapot \
-         misses it on its lip, whose strips carry the input's smallest angle: uniform Loop's smallest angle is \
-         2.72° at every level 1 to 5, a green bisection of a strip halves it, and smoothing where levels meet moves a vertex by about a \
-         strip's width (measured diagnosis in `subdiv_loop::loop_step`).\n"
+        "Plain closure → balanced (the default: level balancing, two split edges refined red, no green \
+         bisection below the input's smallest angle unless it is an exact bisection of a fat triangle, one \
+         pass per level reading every vertex at that level, so vertices sit at their uniform Loop positions; \
+         `subdiv_loop::loop_step`). The classic red-green bound asks for at least half the input's smallest \
+         angle. The teapot's lip is a ring of strips holding the input's smallest angle (uniform Loop: 2.72° \
+         at every level 1 to 5): a green bisection of a strip's short edge halves its angle, and smoothing \
+         vertices over rings that mix levels moves them by about a strip's width; the plain closure does both.\n"
     )?;
     let models = models(d)?;
     let first = d.angles.filter("model", &models[0])?;
@@ -323,6 +325,29 @@ fn angles_section(d: &DoiData, s: &mut String) -> Result<()> {
             (input as f32) * 0.5,
             cells.join(" | ")
         )?;
+    }
+    writeln!(
+        s,
+        "\nTriangles after the same 5 steps, plain closure → balanced (the cost of the quality bound):\n"
+    )?;
+    writeln!(s, "| model | {} |", names.join(" | "))?;
+    writeln!(s, "|---|{}", "---:|".repeat(names.len()))?;
+    for m in &models {
+        let t = d.angles.filter("model", m)?;
+        let cells = names
+            .iter()
+            .map(|n| {
+                let p = t.number("doi", n, "plain_triangles")?;
+                let b = t.number("doi", n, "balanced_triangles")?;
+                Ok(format!(
+                    "{} → {} ({:+.0} %)",
+                    thousands(p as u64),
+                    thousands(b as u64),
+                    100.0 * (b / p - 1.0)
+                ))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        writeln!(s, "| {m} | {} |", cells.join(" | "))?;
     }
     Ok(())
 }

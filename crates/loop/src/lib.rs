@@ -13,6 +13,8 @@
 //!   edge has two triangles, the boundary stays the cage's boundary.
 //! - Green triangles are never split again: a green triangle that must be refined, or gets a new
 //!   vertex on an edge, merges its family back into the parent first.
+//! - Balanced steps (the default) keep faces sharing a vertex within one level, and every vertex
+//!   where uniform Loop puts it at its level (the highest level of the faces around it).
 //! - The rules are `subdiv-rules`' one refinement kernel ([`subdiv_rules::RefineKernel`]): with
 //!   every face selected a step is bit-identical to `subdiv_rules::refine_uniform`.
 //!
@@ -33,6 +35,7 @@
 //! ```
 
 mod error;
+mod pass;
 pub mod red_green;
 mod step;
 

@@ -20,48 +20,43 @@
 //!
 //! Triangle quality. Moving vertices by the vertex rule over a one-ring whose neighbours are at
 //! different levels (as the paper prescribes) distorts the fine triangles beside long coarse
-//! edges, and without care the distortion accumulates: on `tri_bunny_3k` with the view-angle
-//! DoI the smallest angle falls from 13.2° to 0.4° in five steps, on the teapot with the
-//! silhouette DoI to 0°. [`loop_step`] therefore balances the levels first
-//! ([`red_green::balance`]: faces sharing a vertex differ by at most one level, and a face with
-//! two split edges is refined red) and applies the vertex rule once per level (a vertex moves
-//! only when a face at its finest level is refined). On the bunny this keeps the smallest angle
-//! above half the cage's (≥ 9.5° against 6.6°) for every DoI over five steps. Reading each
-//! vertex at the level being refined (its previous position when it is one level ahead) was
-//! tried and made the bunny worse (4.6°), the extra smoothing being what keeps its triangles
-//! round.
+//! edges, and green bisections halve angles; without care the distortion accumulates: on
+//! `tri_bunny_3k` with the view-angle DoI the smallest angle falls from 13.2° to 0.4° in five
+//! steps, on the teapot with the silhouette DoI to 0°. [`loop_step`] ([`Balance::Vertex`])
+//! therefore keeps three rules of the red-green literature (Bank, Sherman & Weiser):
 //!
-//! Known limit, measured on the teapot (`triangle_quality_on_the_teapot` in `tests/tests/doi.rs`,
-//! ignored; the worst triangles found step by step). The lip is a ring of strips 2.8 long and 0.15
-//! wide: its triangles carry the cage's smallest angle, 3.09°. Uniform Loop's smallest angle is
-//! 2.72° at every level 1 to 5, already below the cage's, and a green bisection of a strip's small
-//! angle leaves about half of it: 1.48° after one view-angle step; the dihedral, haptic, focus and
-//! curvature DoIs all fall at step 3 from 2.79° to 1.41°-1.49°, one green bisection each. So the
-//! bound of half the cage's angle (1.54°) fails as soon as a green closure cuts a lip strip. Even
-//! in the plane: a median does not halve an angle exactly, and bisecting one of the cage's own
-//! strips at its exact midpoint (the triangle of vertices 118, 146 and 148, 1-based) leaves 1.530°,
-//! below 1.543°. And where levels meet on the lip one smoothing moves a vertex by about a strip's
-//! width, so red children of a late-refined face (one corner smoothed a level ahead) and green
-//! corner children of merged families fall below it, and the distortion compounds (silhouette DoI:
-//! 0.77° after two steps, 0.21° after four, 0.00° after five). Tried, smallest angle after five
-//! steps for the silhouette / view-angle / dihedral DoIs (today 0.00° / 0.98° / 1.41°): moving a
-//! vertex only when every face around it is refined, 0.78° / 0.47° / 0.86°; a guard re-planning the
-//! step (refine red instead of closing green below the bound, refine every face around a bad red
-//! child), 0.00° / 0.14° / 1.42°; both, 0.91° / 0.35° / 1.49°; the vertex rule over the ring at the
-//! vertex's own level (new edge points standing in for the coarser side's neighbours), teapot 0.11°
-//! / 0.45° / 1.05° and the bunny down to 2.35°. Holding the bound needs a closure that never
-//! bisects a strip's small angle (refining red instead, and deferring the refinement that would
-//! split a merged family's corner child again) together with every triangle's corners at one
-//! level's exact Loop positions. [`loop_step_with`] with
-//! [`Balance::None`] is the paper's plain closure.
+//! 1. levels are balanced ([`red_green::balance`]): faces sharing a vertex differ by at most one
+//!    level, a face with two split edges is refined red;
+//! 2. no green bisection cuts a small angle: a triangle whose bisection would make an angle
+//!    below the cage's smallest (or, for a fat triangle, worse than an exact bisection of its
+//!    own smallest angle) is refined red instead, which propagates;
+//! 3. every vertex is read at the level being refined: the step runs one pass per level,
+//!    coarsest first (`pass.rs`), each reading every vertex's position at that level (the
+//!    current one, or [`AdaptiveMesh::previous`] for a vertex one level ahead) and leaving out
+//!    of a vertex's ring the edges inside green families. With 1. every face around a refined
+//!    face's corners then has the pass's level, so the vertex and edge points are exactly uniform
+//!    Loop's: every vertex sits where uniform Loop puts it at its level (the highest level of the
+//!    faces around it), and each is smoothed once per level.
+//!
+//! Measured (`triangle_quality_*` in `tests/tests/doi.rs`: smallest angle after five steps,
+//! seven DoIs): the teapot's lip is a ring of strips 2.8 long and 0.15 wide holding the cage's
+//! smallest angle, 3.09° (uniform Loop: 2.72° at levels 1 to 5). Before these rules the
+//! view-angle / silhouette / dihedral DoIs ended at 0.98° / 0.00° / 1.41°; with 1. and 3. only,
+//! 1.38° / 1.54° / 1.42° (green bisections of the strips' small angles); with 1. and 2. only
+//! (2. at three quarters of the cage's angle), 0.05° / 0.20° / 2.26° (mixed-level smoothing
+//! moves lip vertices by a strip's width); with all three every DoI stays at or above 1.98°
+//! (bound 1.54°), and the bunny at or above 11.1° (bound 6.6°), for 8% more triangles than
+//! before on the teapot's view-angle DoI (436 434 against 404 064) and 3% on the bunny's
+//! (1 123 340 against 1 094 084; docs/figures.md). [`loop_step_with`] with [`Balance::None`] is the paper's
+//! plain closure, the vertex rule over the current mesh.
 
 use glam::Vec3;
-use subdiv_mesh::{HalfedgeId, Mesh, PolygonSoup, VertexId};
-use subdiv_rules::{RefineKernel, Scheme};
+use subdiv_mesh::Mesh;
 
 use crate::LoopError;
 use crate::error::check_len;
-use crate::red_green::{self, GreenState, NO_FAMILY};
+use crate::pass::{level_positions, once_per_level, pass};
+use crate::red_green::{self, GreenState};
 
 /// Most triangles an adaptive refinement may produce.
 pub const MAX_TRIANGLES: u64 = 1 << 26;
@@ -77,6 +72,15 @@ pub struct AdaptiveMesh {
     /// Per face: its refinement level (0 in the cage, +1 per red split; green triangles have
     /// their parent's level).
     pub level: Vec<u8>,
+    /// Per vertex: its position one level before its current one (a vertex's level is the
+    /// highest level of the faces around it); its current position for a vertex that has not
+    /// moved since it was made. A balanced step reads it for vertices one level ahead of the
+    /// faces it refines.
+    pub previous: Vec<Vec3>,
+    /// The cage's smallest angle (radians). A balanced step refines red a triangle whose green
+    /// bisection would cut an angle too small for it ([`red_green::balance`]); 0 allows every
+    /// bisection.
+    pub cage_angle: f32,
 }
 
 impl AdaptiveMesh {
@@ -85,7 +89,22 @@ impl AdaptiveMesh {
         mesh.check_triangles()?;
         let green = GreenState::new(mesh.num_faces());
         let level = vec![0; mesh.num_faces()];
-        Ok(AdaptiveMesh { mesh, green, level })
+        let previous = mesh.positions().to_vec();
+        let cage_angle = mesh
+            .faces()
+            .map(|f| {
+                let v = mesh.face_vertices(f);
+                let p = |k: usize| mesh.position(v[k]);
+                red_green::smallest_angle(p(0), p(1), p(2))
+            })
+            .fold(std::f32::consts::PI, f32::min);
+        Ok(AdaptiveMesh {
+            mesh,
+            green,
+            level,
+            previous,
+            cage_angle,
+        })
     }
 }
 
@@ -127,14 +146,20 @@ pub enum Balance {
 /// mesh and the step's counts (without timings).
 ///
 /// ```
-/// use subdiv_loop::{loop_step, AdaptiveMesh};
+/// use subdiv_loop::{loop_step, loop_step_with, AdaptiveMesh, Balance};
 /// use subdiv_mesh::{parse_obj, Mesh};
 /// let tet = Mesh::from_soup(&parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n")?)?;
 /// let a = AdaptiveMesh::new(tet)?;
-/// // Refine one face: it becomes 4, its three neighbours get one split edge each (2 triangles).
-/// let (b, stats) = loop_step(&a, &[true, false, false, false])?;
+/// // Refine one face: with the paper's closure it becomes 4, its three neighbours get one split
+/// // edge each (2 triangles).
+/// let (b, stats) = loop_step_with(&a, &[true, false, false, false], Balance::None)?;
 /// assert_eq!((b.mesh.num_faces(), stats.refined), (4 + 3 * 2, 1));
 /// assert!(b.mesh.edges().all(|e| !b.mesh.is_boundary_edge(e)));
+/// // Balanced, the neighbours are refined red: two because bisecting a leg of their right
+/// // angle would make an 18.4° angle, below the cage's smallest (45°), the third because its
+/// // three edges are then split.
+/// let (b, stats) = loop_step(&a, &[true, false, false, false])?;
+/// assert_eq!((b.mesh.num_faces(), stats.refined, stats.balanced), (16, 4, 2));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn loop_step(
@@ -153,169 +178,86 @@ pub fn loop_step_with(
     let mesh = &cur.mesh;
     mesh.check_triangles()?;
     check_len("face levels", cur.level.len(), mesh.num_faces())?;
-    let (grown, closure) = match balance {
-        Balance::Vertex => {
-            let (grown, mut c) = red_green::balance(mesh, &cur.green, &cur.level, selected)?;
-            once_per_level(mesh, &cur.level, &mut c);
-            (grown, c)
-        }
-        Balance::None => (Vec::new(), red_green::close(mesh, &cur.green, selected)?),
-    };
-    let pos = mesh.positions();
-
-    // Vertex rules for moved vertices and for the ends of split edges (their child edge
-    // sharpness gives the crease weight of the edge point); only moved vertices move.
-    let mut need = closure.moves.clone();
-    for e in mesh.edges() {
-        if closure.split_edge[e.idx()] {
-            let [a, b] = mesh.edge_vertices(e);
-            need[a.idx()] = true;
-            need[b.idx()] = true;
-        }
-    }
-    let mut kernel = RefineKernel::new(mesh, Scheme::Loop);
-    let mut positions: Vec<Vec3> =
-        Vec::with_capacity(mesh.num_vertices() + closure.num_split_edges());
-    positions.extend_from_slice(pos);
-    for v in mesh.vertices() {
-        if need[v.idx()] {
-            let p = kernel.vertex_point(v, &[]);
-            if closure.moves[v.idx()] {
-                positions[v.idx()] = p;
-            }
-        }
-    }
-
-    // Edge points, numbered in edge order after the existing vertices. For the edge of a merged
-    // family's parent, the opposite vertex on that side is the parent's opposite corner.
-    let mut edge_mid = vec![VertexId::NONE; mesh.num_edges()];
-    for e in mesh.edges() {
-        if closure.split_edge[e.idx()] {
-            edge_mid[e.idx()] = VertexId(positions.len() as u32);
-            positions.push(kernel.edge_point(e, |h| pos[opposite(cur, &closure.merged, h).idx()]));
-        }
-    }
-
-    let asm = red_green::assemble(mesh, &cur.green, &closure, &edge_mid, &positions)?;
-    let faces = asm.triangles.len() as u64;
-    if faces > MAX_TRIANGLES {
-        return Err(LoopError::TooLarge {
-            faces,
-            limit: MAX_TRIANGLES,
-        });
-    }
-    let mut soup = PolygonSoup {
-        positions,
-        options: mesh.options(),
-        ..Default::default()
-    };
-    soup.face_offsets.reserve(asm.triangles.len() + 1);
-    soup.face_indices.reserve(asm.triangles.len() * 3);
-    soup.face_offsets.push(0);
-    for t in &asm.triangles {
-        soup.face_indices.extend(t.iter().map(|&i| i as i64));
-        soup.face_offsets.push(soup.face_indices.len() as u32);
-    }
-    let mut child = Mesh::from_soup(&soup).map_err(LoopError::Internal)?;
-    child.set_holes(
-        asm.source_face
-            .iter()
-            .map(|&f| mesh.holes()[f as usize])
-            .collect(),
-    );
-    child.set_groups(
-        mesh.groups().to_vec(),
-        asm.source_face
-            .iter()
-            .map(|&f| mesh.face_groups()[f as usize])
-            .collect(),
-    );
-
-    // Sharpness: halves of split crease edges get the decayed value, kept edges keep theirs;
-    // moved vertices decay, kept ones keep theirs.
-    kernel.transfer_sharpness(
-        &mut child,
-        |e| Some(edge_mid[e.idx()]).filter(|m| m.is_some()),
-        |v| closure.moves[v.idx()] || mesh.is_isolated(v),
-    );
-
-    let level = asm
-        .source_face
-        .iter()
-        .map(|&f| cur.level[f as usize].saturating_add(u8::from(closure.red_face[f as usize])))
-        .collect();
+    check_len(
+        "previous positions",
+        cur.previous.len(),
+        mesh.num_vertices(),
+    )?;
     let count = |s: &[bool]| s.iter().filter(|&&x| x).count();
     let selected_n = count(selected);
-    let stats = StepStats {
+    let mut stats = StepStats {
         selected: selected_n,
-        balanced: if grown.is_empty() {
-            0
-        } else {
-            count(&grown) - selected_n
-        },
-        refined: closure.red_face.iter().filter(|&&r| r).count(),
-        merged: closure.merged.iter().filter(|&&m| m).count(),
-        triangles: child.num_faces(),
-        green: asm.state.num_green_faces(),
         ..Default::default()
     };
-    Ok((
-        AdaptiveMesh {
-            mesh: child,
-            green: asm.state,
-            level,
-        },
-        stats,
-    ))
+    let next = match balance {
+        Balance::None => {
+            let c = red_green::close(mesh, &cur.green, selected)?;
+            stats.refined = count(&c.red_face);
+            stats.merged = count(&c.merged);
+            pass(cur, &c, None)?.0
+        }
+        Balance::Vertex => {
+            let (grown, plan) =
+                red_green::balance(mesh, &cur.green, &cur.level, selected, cur.cage_angle)?;
+            stats.balanced = count(&grown) - selected_n;
+            by_level(cur, &plan.red_face, &mut stats)?
+        }
+    };
+    stats.triangles = next.mesh.num_faces();
+    stats.green = next.green.num_green_faces();
+    Ok((next, stats))
 }
 
-/// Keeps the vertex rule to vertices at the level being refined: a vertex moves only when a
-/// face refined in this step has the highest level among the faces around it. As in uniform
-/// Loop, every vertex is then smoothed once per level: a vertex whose finer side was refined in
-/// an earlier step is not smoothed again (over its coarser ring) when the coarser side catches
-/// up. Moving it again would pull it, by a fraction of the coarse edges' length, across the fine
-/// triangles beside it; step after step this is what made thin triangles.
-fn once_per_level(mesh: &Mesh, level: &[u8], c: &mut red_green::Closure) {
-    let mut top = vec![0u8; mesh.num_vertices()];
-    for f in mesh.faces() {
-        for v in mesh.face_vertices(f) {
-            top[v.idx()] = top[v.idx()].max(level[f.idx()]);
+/// Refines the faces flagged in `plan` (a balanced closure: every face around a refined
+/// level-`l` face reaches level `l` in the step) one level at a time, coarsest first, each pass
+/// reading the vertices at its level ([`pass`]). Counts refined faces and merged families.
+fn by_level(
+    cur: &AdaptiveMesh,
+    plan: &[bool],
+    stats: &mut StepStats,
+) -> Result<AdaptiveMesh, LoopError> {
+    let planned = || cur.mesh.faces().filter(|f| plan[f.idx()]);
+    let (Some(lo), Some(hi)) = (
+        planned().map(|f| cur.level[f.idx()]).min(),
+        planned().map(|f| cur.level[f.idx()]).max(),
+    ) else {
+        return Ok(cur.clone());
+    };
+    let mut a = cur.clone();
+    // Per face of `a`: the face of `cur` it comes from, and whether it was refined this step.
+    let mut origin: Vec<u32> = (0..cur.mesh.num_faces() as u32).collect();
+    let mut done = vec![false; cur.mesh.num_faces()];
+    let mut sel = Vec::new();
+    for l in lo..=hi {
+        sel.clear();
+        sel.extend(
+            a.mesh
+                .faces()
+                .map(|f| !done[f.idx()] && a.level[f.idx()] == l && plan[origin[f.idx()] as usize]),
+        );
+        if !sel.contains(&true) {
+            continue;
         }
+        let mut c = red_green::close(&a.mesh, &a.green, &sel)?;
+        once_per_level(&a.mesh, &a.level, &mut c);
+        stats.refined += c.red_face.iter().filter(|&&r| r).count();
+        stats.merged += c.merged.iter().filter(|&&m| m).count();
+        let at = level_positions(&a, l);
+        let (b, source) = pass(&a, &c, Some(at))?;
+        origin = source.iter().map(|&s| origin[s as usize]).collect();
+        done = source
+            .iter()
+            .map(|&s| done[s as usize] || c.red_face[s as usize])
+            .collect();
+        a = b;
     }
-    let mut keep = vec![false; mesh.num_vertices()];
-    for f in mesh.faces().filter(|f| c.red_face[f.idx()]) {
-        for v in mesh.face_vertices(f) {
-            keep[v.idx()] |= level[f.idx()] == top[v.idx()];
-        }
-    }
-    for (m, k) in c.moves.iter_mut().zip(keep) {
-        *m &= k;
-    }
-}
-
-/// The vertex opposite half-edge `h` in its face, or, for an edge of the parent of a merged
-/// green family, the parent's opposite corner.
-#[inline]
-fn opposite(cur: &AdaptiveMesh, merged: &[bool], h: HalfedgeId) -> VertexId {
-    let mesh = &cur.mesh;
-    let f = mesh.face(h);
-    let fam = cur.green.family_of_face[f.idx()];
-    if fam != NO_FAMILY && merged[fam as usize] {
-        let g = &cur.green.families[fam as usize];
-        let (a, b) = (mesh.from(h), mesh.to(h));
-        for k in 0..3 {
-            if g.parent[k] == a && g.parent[(k + 1) % 3] == b {
-                return g.parent[(k + 2) % 3];
-            }
-        }
-    }
-    mesh.to(mesh.next(h))
+    Ok(a)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use subdiv_mesh::parse_obj;
+    use subdiv_mesh::{PolygonSoup, VertexId, parse_obj};
     use subdiv_rules::{Scheme, refine_uniform};
 
     const OCTAHEDRON: &str = "v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n\
@@ -438,6 +380,90 @@ mod tests {
                 assert_eq!(added, 0);
             }
         }
+    }
+
+    #[test]
+    fn vertices_sit_at_their_uniform_positions() {
+        // Balanced steps read every vertex at the level being refined, so each cage vertex sits
+        // exactly where uniform Loop puts it at its level (the highest level around it).
+        let ico = icosahedron_perturbed();
+        for mesh in [ico, open_fan_with_crease()] {
+            let mut uniform = vec![mesh.clone()];
+            for l in 0..4 {
+                uniform.push(refine_uniform(&uniform[l], Scheme::Loop).unwrap());
+            }
+            let mut a = AdaptiveMesh::new(mesh.clone()).unwrap();
+            let target = mesh.position(VertexId(1)) * 1.1 + Vec3::new(0.0, 0.05, 0.02);
+            for _ in 0..4 {
+                let sel: Vec<bool> = a
+                    .mesh
+                    .faces()
+                    .map(|f| a.mesh.face_centroid(f).distance(target) < 0.9)
+                    .collect();
+                a = loop_step(&a, &sel).unwrap().0;
+            }
+            let top = crate::pass::vertex_levels(&a.mesh, &a.level);
+            let mut levels = [0; 5];
+            for v in mesh.vertices() {
+                let l = top[v.idx()] as usize;
+                levels[l] += 1;
+                let want = uniform[l].positions()[v.idx()];
+                let got = a.mesh.positions()[v.idx()];
+                assert!(
+                    got.distance(want) < 1e-5,
+                    "vertex {v:?} level {l}: {got} != {want}"
+                );
+            }
+            assert!(
+                levels[0] + levels[1] > 0 && levels[3] + levels[4] > 0,
+                "{levels:?}"
+            );
+        }
+    }
+
+    /// An icosahedron with its vertices moved off the sphere (irregular triangles).
+    fn icosahedron_perturbed() -> Mesh {
+        let t = (1.0 + 5f32.sqrt()) / 2.0;
+        let mut p = vec![
+            Vec3::new(-1.0, t, 0.0),
+            Vec3::new(1.0, t, 0.0),
+            Vec3::new(-1.0, -t, 0.0),
+            Vec3::new(1.0, -t, 0.0),
+            Vec3::new(0.0, -1.0, t),
+            Vec3::new(0.0, 1.0, t),
+            Vec3::new(0.0, -1.0, -t),
+            Vec3::new(0.0, 1.0, -t),
+            Vec3::new(t, 0.0, -1.0),
+            Vec3::new(t, 0.0, 1.0),
+            Vec3::new(-t, 0.0, -1.0),
+            Vec3::new(-t, 0.0, 1.0),
+        ];
+        for (i, q) in p.iter_mut().enumerate() {
+            *q *= 0.5 + 0.07 * (i % 5) as f32;
+        }
+        let f: [[u32; 3]; 20] = [
+            [0, 11, 5],
+            [0, 5, 1],
+            [0, 1, 7],
+            [0, 7, 10],
+            [0, 10, 11],
+            [1, 5, 9],
+            [5, 11, 4],
+            [11, 10, 2],
+            [10, 7, 6],
+            [7, 1, 8],
+            [3, 9, 4],
+            [3, 4, 2],
+            [3, 2, 6],
+            [3, 6, 8],
+            [3, 8, 9],
+            [4, 9, 5],
+            [2, 4, 11],
+            [6, 2, 10],
+            [8, 6, 7],
+            [9, 8, 1],
+        ];
+        Mesh::from_soup(&PolygonSoup::from_faces(p, &f)).unwrap()
     }
 
     #[test]

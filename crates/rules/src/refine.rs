@@ -145,13 +145,28 @@ impl<'m> RefineKernel<'m> {
     /// boundary rules), recording the child sharpness of each edge at `v`. `face_points` holds
     /// the Catmull-Clark face points by face (unused for Loop). An isolated vertex stays.
     pub fn vertex_point(&mut self, v: VertexId, face_points: &[Vec3]) -> Vec3 {
+        self.vertex_point_without(v, face_points, |_| false)
+    }
+
+    /// [`RefineKernel::vertex_point`] over the ring of `v` without the edges whose outgoing
+    /// half-edge `skip` names: for adaptive Loop, the edges from a corner of a green triangle
+    /// to the midpoint of the opposite parent edge, which are not edges of the level the vertex
+    /// rule reads (the parent triangle is). Skipped edges must be smooth; their child
+    /// sharpness is 0.
+    pub fn vertex_point_without(
+        &mut self,
+        v: VertexId,
+        face_points: &[Vec3],
+        skip: impl Fn(HalfedgeId) -> bool,
+    ) -> Vec3 {
         let mesh = self.mesh;
         let pos = mesh.positions();
         if mesh.is_isolated(v) {
             return pos[v.idx()];
         }
         self.halfedges.clear();
-        self.halfedges.extend(mesh.outgoing(v));
+        self.halfedges
+            .extend(mesh.outgoing(v).filter(|&h| !skip(h)));
         self.edge_ends.clear();
         self.face_points.clear();
         self.edge_sharpness.clear();

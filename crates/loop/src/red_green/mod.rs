@@ -9,16 +9,18 @@
 //! later step, or gets a new vertex on one of its edges, its family is first merged back into the
 //! parent, which is then refined regularly (red). Green triangles are therefore never split
 //! again: the topology never nests green splits. That alone does not keep the triangles' shape
-//! over many steps, because Loop's vertex rule moves vertices whose rings mix levels; [`balance`]
-//! (on by default in [`crate::loop_step`]) keeps the levels 2:1 balanced across vertices; with it
-//! the smallest angle stays within half of the cage's on the bunny for every DoI over five steps
-//! (not on the teapot's lip, whose strips are narrower than one smoothing move and lose half
-//! their angle to any green bisection: measured in [`crate::loop_step`]).
+//! over many steps, because Loop's vertex rule moves vertices whose rings mix levels and green
+//! bisections halve angles; [`balance`] (on by default in [`crate::loop_step`]) keeps the levels
+//! 2:1 balanced across vertices and refines red instead of bisecting a small angle green; with
+//! it, and every vertex read at the level being refined ([`crate::loop_step`]), the smallest
+//! angle stays above half of the cage's on the bunny and the teapot for every DoI over five
+//! steps (measured in [`crate::loop_step`]).
 //!
 //! This module is topology only; where the new vertices go is the caller's business (the
 //! adaptive Loop step, [`crate::loop_step`]). One step is:
 //!
-//! 0. [`balance`] (optional): grow the selection until the levels stay 2:1 balanced;
+//! 0. [`balance`] (optional): grow the selection until the levels stay 2:1 balanced and no green
+//!    bisection cuts a small angle;
 //! 1. [`close`]: from the selected faces, find every face refined in this step (selected faces,
 //!    families merged back, triangles whose three edges are split) and every edge that gets a
 //!    new midpoint;
@@ -38,5 +40,6 @@ mod tests;
 
 pub use assemble::{Assembly, assemble, split_triangle};
 pub use balance::balance;
+pub(crate) use balance::smallest_angle;
 pub use close::{Closure, close};
 pub use green::{GreenFamily, GreenState, NO_FAMILY};

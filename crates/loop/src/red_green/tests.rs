@@ -200,3 +200,43 @@ fn bad_input() {
         })
     ));
 }
+
+#[test]
+fn balance_refuses_green_bisections_of_a_small_angle() {
+    // A fat triangle 0 between two thin ones (2.8 × 0.15, as the teapot's lip strips): thin
+    // triangle 1 shares its short edge with 0, thin triangle 2 its long edge.
+    let p = vec![
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(0.15, 0.0, 0.0),
+        Vec3::new(0.075, -0.3, 0.0),
+        Vec3::new(0.075, 2.8, 0.0),
+        Vec3::new(1.0, -0.2, 0.0),
+    ];
+    let faces = [[0u32, 2, 1], [0, 1, 3], [2, 4, 1]];
+    let mesh = Mesh::from_soup(&PolygonSoup::from_faces(p, &faces)).unwrap();
+    let state = GreenState::new(3);
+    let angle = |f: usize| {
+        let v = faces[f].map(|i| mesh.position(VertexId(i)));
+        smallest_angle(v[0], v[1], v[2])
+    };
+    let cage = (0..3).map(angle).fold(f32::MAX, f32::min);
+    assert!(
+        (cage.to_degrees() - 3.07).abs() < 0.05,
+        "{}",
+        cage.to_degrees()
+    );
+    // Refining face 0: the plain closure bisects face 1's short edge, which halves its 3°
+    // angle; balance refines it red instead. Face 2 has no split edge.
+    let sel = [true, false, false];
+    let c = close(&mesh, &state, &sel).unwrap();
+    assert_eq!(c.red_face, vec![true, false, false]);
+    let (grown, c) = balance(&mesh, &state, &[0; 3], &sel, cage).unwrap();
+    assert_eq!(grown, vec![true, true, false]);
+    assert_eq!(c.red_face, vec![true, true, false]);
+    // Without the bound (0) the green bisection stays.
+    let (grown, _) = balance(&mesh, &state, &[0; 3], &sel, 0.0).unwrap();
+    assert_eq!(grown, vec![true, false, false]);
+    // Refining face 1 splits face 0's short edge only and face 2 is untouched.
+    let (grown, _) = balance(&mesh, &state, &[0; 3], &[false, true, false], cage).unwrap();
+    assert_eq!(grown, vec![false, true, false]);
+}
