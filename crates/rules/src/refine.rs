@@ -198,11 +198,7 @@ impl<'m> RefineKernel<'m> {
         let a = pos[mesh.from(h0).idx()];
         let b = pos[mesh.to(h0).idx()];
         let s = mesh.edge_sharpness(e);
-        let w = edge_crease_weight(
-            self.method,
-            s,
-            [self.child_sharp[h0.idx()], self.child_sharp[h1.idx()]],
-        );
+        let w = edge_crease_weight(s, [self.child_sharp[h0.idx()], self.child_sharp[h1.idx()]]);
         let mut adj = [Vec3::ZERO; 2];
         let mut k = 0;
         for h in [h0, h1] {

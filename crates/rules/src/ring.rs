@@ -336,10 +336,7 @@ impl Ring {
     fn edge_weights(&self, i: usize) -> (f32, f32) {
         let s = self.sharp[i];
         let far_child = child_edge_sharpness(self.method, s, self.far[i]);
-        (
-            far_child,
-            edge_crease_weight(self.method, s, [self.cs[i], far_child]),
-        )
+        (far_child, edge_crease_weight(s, [self.cs[i], far_child]))
     }
 
     /// The exact limit position and unit limit normal of the ring's vertex. Refines the ring
