@@ -30,6 +30,7 @@ impl Worker {
         for c in self.corners.iter_mut() {
             if c.active {
                 c.ring.refine();
+                c.keep_sharpness();
             }
         }
         if self.regular {
