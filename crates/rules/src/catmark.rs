@@ -64,7 +64,7 @@ pub fn edge_point_weighted<P: Point>(
     face_weight: f64,
 ) -> P {
     let mid = a.add(b).scale(0.5);
-    if crease_weight >= 1.0 || faces.len() < 2 {
+    if crease_weight == 1.0 || faces.len() < 2 {
         return mid;
     }
     let smooth = if faces.len() == 2 && face_weight == 0.25 {

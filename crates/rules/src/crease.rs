@@ -79,14 +79,18 @@ pub fn semi_sharp_sum(s: &[f32]) -> (f32, u32) {
         .fold((0.0, 0), |(a, n), &x| (a + x, n + 1))
 }
 
-/// Weight of the sharp (midpoint) rule for the point inserted on an edge: 0 is the smooth rule,
-/// 1 the crease rule, anything between a linear blend. `child` holds the sharpness of the two
-/// child edges (only consulted by the Chaikin method).
+/// Weight of the sharp (midpoint) rule for the point inserted on an edge of sharpness `s` whose
+/// two child edges get the sharpness `child`: 0 is the smooth rule; 1 the crease rule, when both
+/// children are sharp (the edge point's own rule is then a crease); otherwise the transition
+/// blend with weight `s` itself, as OpenSubdiv 3.5 `Sdc::Scheme::ComputeEdgeVertexMask` does
+/// when the child rule is smooth or a dart. That weight is not clamped: under the Chaikin method
+/// an edge of sharpness `s > 1` whose child decays to smooth at one end extrapolates past the
+/// midpoint (weight `s`, smooth mask weight `1 - s < 0`), and so does OpenSubdiv.
 #[inline]
-pub fn edge_crease_weight(method: CreaseMethod, s: f32, child: [f32; 2]) -> f32 {
+pub fn edge_crease_weight(s: f32, child: [f32; 2]) -> f32 {
     if is_smooth(s) {
         0.0
-    } else if s >= 1.0 || (method == CreaseMethod::Chaikin && child[0] > 0.0 && child[1] > 0.0) {
+    } else if is_sharp(child[0]) && is_sharp(child[1]) {
         1.0
     } else {
         s
@@ -284,25 +288,22 @@ mod tests {
 
     #[test]
     fn edge_weights() {
+        assert_eq!(edge_crease_weight(0.0, [0.0; 2]), 0.0);
+        assert_eq!(edge_crease_weight(0.4, [0.0; 2]), 0.4);
+        // Uniform: sharpness 1 decays to 0 at both ends, a full crease this step.
+        assert_eq!(edge_crease_weight(1.0, [0.0; 2]), 1.0);
+        assert_eq!(edge_crease_weight(2.0, [1.0; 2]), 1.0);
+        assert_eq!(edge_crease_weight(0.9, [0.1, 0.2]), 1.0);
+        assert_eq!(edge_crease_weight(0.9, [0.1, 0.0]), 0.9);
+        // Chaikin: sharpness 1.25 next to a crease of 0.25 decays to smooth at that end
+        // (0.75 * 1.25 + 0.25 * 0.25 - 1 = 0): OpenSubdiv blends with the unclamped weight 1.25.
+        let mut c = [0.0; 3];
+        child_edge_sharpness_around(CreaseMethod::Chaikin, &[1.25, 0.25, 0.0], &mut c);
+        assert_eq!(c, [0.0, 0.0, 0.0]);
+        assert_eq!(edge_crease_weight(1.25, [c[0], 0.5]), 1.25);
         assert_eq!(
-            edge_crease_weight(CreaseMethod::Uniform, 0.0, [0.0; 2]),
-            0.0
-        );
-        assert_eq!(
-            edge_crease_weight(CreaseMethod::Uniform, 0.4, [0.0; 2]),
-            0.4
-        );
-        assert_eq!(
-            edge_crease_weight(CreaseMethod::Uniform, 1.0, [0.0; 2]),
+            edge_crease_weight(SHARPNESS_INFINITE, [SHARPNESS_INFINITE; 2]),
             1.0
-        );
-        assert_eq!(
-            edge_crease_weight(CreaseMethod::Chaikin, 0.9, [0.1, 0.2]),
-            1.0
-        );
-        assert_eq!(
-            edge_crease_weight(CreaseMethod::Chaikin, 0.9, [0.1, 0.0]),
-            0.9
         );
     }
 }

@@ -1,10 +1,10 @@
 //! Limit surfaces of whole meshes: push-to-limit and the uniform depth-N tessellation.
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 use subdiv_mesh::{BoundaryInterpolation, Mesh, ObjData, VertexId};
 
-use crate::refine::refine_uniform_levels;
+use crate::refine::refine_uniform_levels_f64;
 use crate::ring::Ring;
 use crate::{Depth, RulesError, Scheme};
 
@@ -99,6 +99,15 @@ impl LimitMesh {
 /// Push-to-limit: the exact limit point and normal of every vertex of `mesh`, and its visible
 /// faces (holes left out), in parallel.
 pub fn limit_surface(mesh: &Mesh, scheme: Scheme) -> LimitMesh {
+    limit_surface_from(mesh, scheme, |w| mesh.position(w).as_dvec3())
+}
+
+/// [`limit_surface`] with the vertex positions `pos(w)` instead of the mesh's.
+fn limit_surface_from(
+    mesh: &Mesh,
+    scheme: Scheme,
+    pos: impl Fn(VertexId) -> DVec3 + Sync,
+) -> LimitMesh {
     let n = mesh.num_vertices();
     let mut positions = vec![[0.0f32; 3]; n];
     let mut normals = vec![[0.0f32; 3]; n];
@@ -114,8 +123,10 @@ pub fn limit_surface(mesh: &Mesh, scheme: Scheme) -> LimitMesh {
                 let mut sided = Vec::new();
                 for k in 0..ps.len() {
                     let v = VertexId((c * CHUNK + k) as u32);
-                    if !ring.load_with_halfedges(mesh, v, scheme, hs) {
-                        ps[k] = mesh.position(v).to_array();
+                    hs.clear();
+                    hs.extend(mesh.outgoing(v));
+                    if !ring.load_at(mesh, &pos, v, scheme) {
+                        ps[k] = pos(v).as_vec3().to_array();
                         continue;
                     }
                     let (p, nrm) = ring.limit_sided(faces);
@@ -194,8 +205,8 @@ pub fn tessellate_uniform(
     } else {
         mesh
     };
-    let refined = refine_uniform_levels(base, scheme, depth)?;
-    Ok(limit_surface(&refined, scheme))
+    let (refined, pos) = refine_uniform_levels_f64(base, scheme, depth)?;
+    Ok(limit_surface_from(&refined, scheme, |w| pos[w.idx()]))
 }
 
 #[cfg(test)]

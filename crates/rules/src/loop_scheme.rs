@@ -30,7 +30,7 @@ pub fn beta(n: usize) -> f64 {
 #[inline]
 pub fn edge_point<P: Point>(a: P, b: P, opposite: &[P], crease_weight: f32) -> P {
     let mid = a.add(b).scale(0.5);
-    if crease_weight >= 1.0 || opposite.len() < 2 {
+    if crease_weight == 1.0 || opposite.len() < 2 {
         return mid;
     }
     let smooth = a

@@ -6,13 +6,13 @@
 //! `(v_k, e_k, f, e_(k-1))`; Loop splits a triangle into four. Child edges inherit decayed
 //! sharpness, child faces the hole flag and group of their parent.
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 use subdiv_mesh::{
     CreaseMethod, EdgeId, HalfedgeId, Mesh, PolygonSoup, TriangleSubdivision, VertexId,
 };
 
 use crate::crease::{VertexRules, decrement, edge_crease_weight, is_sharp};
-use crate::{Depth, RulesError, Scheme, catmark, loop_scheme};
+use crate::{Depth, Point, RulesError, Scheme, catmark, loop_scheme};
 
 /// One uniform refinement step of the whole mesh.
 ///
@@ -30,27 +30,14 @@ pub fn refine_uniform(mesh: &Mesh, scheme: Scheme) -> Result<Mesh, RulesError> {
         check_doubled_triangles(mesh)?;
     }
     let nv = mesh.num_vertices();
-    let pos = mesh.positions();
     let fp: Vec<Vec3> = if scheme == Scheme::CatmullClark {
         mesh.faces().map(|f| mesh.face_centroid(f)).collect()
     } else {
         Vec::new()
     };
-
     let mut kernel = RefineKernel::new(mesh, scheme);
-    let mut positions: Vec<Vec3> = Vec::with_capacity(nv + fp.len() + mesh.num_edges());
-    for v in mesh.vertices() {
-        positions.push(kernel.vertex_point(v, &fp));
-    }
-    positions.extend_from_slice(&fp);
-    let edge_base = positions.len() as u32;
-    for e in mesh.edges() {
-        positions.push(kernel.edge_point(e, |h| match scheme {
-            Scheme::CatmullClark => fp[mesh.face(h).idx()],
-            // The vertex of the triangle opposite the edge.
-            Scheme::Loop => pos[mesh.to(mesh.next(h)).idx()],
-        }));
-    }
+    let positions = kernel.refine_points(&fp);
+    let edge_base = (nv + fp.len()) as u32;
 
     // Child faces.
     let mut soup = PolygonSoup {
@@ -109,26 +96,41 @@ pub fn refine_uniform(mesh: &Mesh, scheme: Scheme) -> Result<Mesh, RulesError> {
 /// Call [`RefineKernel::vertex_point`] for both ends of an edge before its
 /// [`RefineKernel::edge_point`]: the vertex rules decide the child sharpness of the edge at each
 /// end (OpenSubdiv's `Sdc::Crease`), which the edge's crease weight needs.
+///
+/// The kernel is generic over the point type: `RefineKernel::new` refines the mesh's own `f32`
+/// positions; [`RefineKernel::with_positions`] refines other positions of the same mesh (the
+/// `f64` positions of [`refine_uniform_levels_f64`]) with the same rules.
 #[derive(Debug)]
-pub struct RefineKernel<'m> {
+pub struct RefineKernel<'m, P: Point = Vec3> {
     mesh: &'m Mesh,
+    pos: &'m [P],
     scheme: Scheme,
     method: CreaseMethod,
     triangles: TriangleSubdivision,
     /// Child sharpness of each edge at the origin of each half-edge.
     child_sharp: Vec<f32>,
     halfedges: Vec<HalfedgeId>,
-    edge_ends: Vec<Vec3>,
-    face_points: Vec<Vec3>,
+    edge_ends: Vec<P>,
+    face_points: Vec<P>,
     edge_sharpness: Vec<f32>,
     child_edge_sharpness: Vec<f32>,
 }
 
-impl<'m> RefineKernel<'m> {
-    /// A kernel for one step of `scheme` on `mesh`.
-    pub fn new(mesh: &'m Mesh, scheme: Scheme) -> RefineKernel<'m> {
+impl<'m> RefineKernel<'m, Vec3> {
+    /// A kernel for one step of `scheme` on `mesh` and its positions.
+    pub fn new(mesh: &'m Mesh, scheme: Scheme) -> RefineKernel<'m, Vec3> {
+        RefineKernel::with_positions(mesh, scheme, mesh.positions())
+    }
+}
+
+impl<'m, P: Point> RefineKernel<'m, P> {
+    /// A kernel for one step of `scheme` on `mesh`'s topology and sharpness with the vertex
+    /// positions `pos` (one per vertex of `mesh`).
+    pub fn with_positions(mesh: &'m Mesh, scheme: Scheme, pos: &'m [P]) -> RefineKernel<'m, P> {
+        debug_assert_eq!(pos.len(), mesh.num_vertices());
         RefineKernel {
             mesh,
+            pos,
             scheme,
             method: mesh.options().crease,
             triangles: mesh.options().triangles,
@@ -144,7 +146,7 @@ impl<'m> RefineKernel<'m> {
     /// The vertex point of `v` (Catmull-Clark or Loop vertex rule with crease, corner and
     /// boundary rules), recording the child sharpness of each edge at `v`. `face_points` holds
     /// the Catmull-Clark face points by face (unused for Loop). An isolated vertex stays.
-    pub fn vertex_point(&mut self, v: VertexId, face_points: &[Vec3]) -> Vec3 {
+    pub fn vertex_point(&mut self, v: VertexId, face_points: &[P]) -> P {
         self.vertex_point_without(v, face_points, |_| false)
     }
 
@@ -156,11 +158,11 @@ impl<'m> RefineKernel<'m> {
     pub fn vertex_point_without(
         &mut self,
         v: VertexId,
-        face_points: &[Vec3],
+        face_points: &[P],
         skip: impl Fn(HalfedgeId) -> bool,
-    ) -> Vec3 {
+    ) -> P {
         let mesh = self.mesh;
-        let pos = mesh.positions();
+        let pos = self.pos;
         if mesh.is_isolated(v) {
             return pos[v.idx()];
         }
@@ -206,19 +208,15 @@ impl<'m> RefineKernel<'m> {
 
     /// The edge point of `e`. `side(h)` gives, for each half-edge of `e` with a face, the point
     /// on that side: the face point (Catmull-Clark) or the vertex opposite the edge (Loop).
-    pub fn edge_point(&self, e: EdgeId, side: impl Fn(HalfedgeId) -> Vec3) -> Vec3 {
+    pub fn edge_point(&self, e: EdgeId, side: impl Fn(HalfedgeId) -> P) -> P {
         let mesh = self.mesh;
-        let pos = mesh.positions();
+        let pos = self.pos;
         let (h0, h1) = (e.halfedge(0), e.halfedge(1));
         let a = pos[mesh.from(h0).idx()];
         let b = pos[mesh.to(h0).idx()];
         let s = mesh.edge_sharpness(e);
-        let w = edge_crease_weight(
-            self.method,
-            s,
-            [self.child_sharp[h0.idx()], self.child_sharp[h1.idx()]],
-        );
-        let mut adj = [Vec3::ZERO; 2];
+        let w = edge_crease_weight(s, [self.child_sharp[h0.idx()], self.child_sharp[h1.idx()]]);
+        let mut adj = [a; 2];
         let mut k = 0;
         for h in [h0, h1] {
             if mesh.face(h).is_some() {
@@ -235,6 +233,27 @@ impl<'m> RefineKernel<'m> {
             Scheme::CatmullClark => catmark::edge_point(a, b, &adj[..k], w),
             Scheme::Loop => loop_scheme::edge_point(a, b, &adj[..k], w),
         }
+    }
+
+    /// The points of the whole refined mesh in [`refine_uniform`]'s numbering: vertex points,
+    /// the face points `fp` (Catmull-Clark; empty for Loop), edge points.
+    pub fn refine_points(&mut self, fp: &[P]) -> Vec<P> {
+        let mesh = self.mesh;
+        let pos = self.pos;
+        let scheme = self.scheme;
+        let mut points = Vec::with_capacity(mesh.num_vertices() + fp.len() + mesh.num_edges());
+        for v in mesh.vertices() {
+            points.push(self.vertex_point(v, fp));
+        }
+        points.extend_from_slice(fp);
+        for e in mesh.edges() {
+            points.push(self.edge_point(e, |h| match scheme {
+                Scheme::CatmullClark => fp[mesh.face(h).idx()],
+                // The vertex of the triangle opposite the edge.
+                Scheme::Loop => pos[mesh.to(mesh.next(h)).idx()],
+            }));
+        }
+        points
     }
 
     /// Carries sharpness to `child`, whose vertex `i` descends from the parent's vertex `i`.
@@ -349,6 +368,39 @@ pub fn refine_uniform_levels(
     Ok(m)
 }
 
+/// [`refine_uniform_levels`], and the refined mesh's positions computed in `f64` alongside (the
+/// same rules through [`RefineKernel::with_positions`], from the cage's positions): the
+/// reference path keeps limit normals exact where `f32` rounding of deep levels would turn them
+/// (nearly degenerate tangents, e.g. at interior valence-2 vertices).
+pub fn refine_uniform_levels_f64(
+    mesh: &Mesh,
+    scheme: Scheme,
+    depth: Depth,
+) -> Result<(Mesh, Vec<DVec3>), RulesError> {
+    check_coordinates(mesh)?;
+    check_size(mesh, scheme, depth)?;
+    let mut m = mesh.clone();
+    let mut pos: Vec<DVec3> = m.positions().iter().map(|p| p.as_dvec3()).collect();
+    let mut corners: Vec<DVec3> = Vec::new();
+    for _ in 0..depth {
+        let child = refine_uniform(&m, scheme)?;
+        let fp: Vec<DVec3> = if scheme == Scheme::CatmullClark {
+            m.faces()
+                .map(|f| {
+                    corners.clear();
+                    corners.extend(m.face_vertices(f).iter().map(|v| pos[v.idx()]));
+                    catmark::face_point(&corners)
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        pos = RefineKernel::with_positions(&m, scheme, &pos).refine_points(&fp);
+        m = child;
+    }
+    Ok((m, pos))
+}
+
 /// Maximum number of faces a uniform refinement may produce.
 pub const MAX_REFINED_FACES: u64 = 1 << 26;
 
@@ -407,6 +459,27 @@ mod tests {
         let fan = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 3 2 4\n";
         let m = Mesh::from_soup(&parse_obj(fan).unwrap()).unwrap();
         assert_eq!(refine_uniform(&m, Scheme::Loop).unwrap().num_faces(), 8);
+    }
+
+    /// The `f64` positions follow the same rules as the `f32` mesh: on a cage with creases,
+    /// a corner, n-gons, a boundary and Chaikin decay, every level-3 point agrees with the `f32`
+    /// refinement to `f32` rounding, for both schemes.
+    #[test]
+    fn f64_positions_follow_the_f32_refinement() {
+        let text = "v 0 0 0\nv 1 0 0.2\nv 2 0 0\nv 0 1 0.1\nv 1 1 0.7\nv 2 1 0\nv 0 2 0\nv 1 2 0.3\n\
+                    v 2 2 0\nf 1 2 5 4\nf 2 3 6 5\nf 4 5 8 7\nf 5 6 9 8\nt crease 2/1/0 3 4 1.5\n\
+                    t crease 2/1/0 4 5 0.75\nt corner 1/1/0 0 2.5\nt creasemethod 0/0/1 chaikin\n";
+        let cage = Mesh::from_soup(&parse_obj(text).unwrap()).unwrap();
+        let tri = subdiv_mesh::triangulate(&cage).unwrap();
+        for (m, scheme) in [(&cage, Scheme::CatmullClark), (&tri, Scheme::Loop)] {
+            let (r, pos) = refine_uniform_levels_f64(m, scheme, 3).unwrap();
+            let r32 = refine_uniform_levels(m, scheme, 3).unwrap();
+            assert_eq!(r.positions(), r32.positions());
+            assert_eq!(pos.len(), r.num_vertices());
+            for (p, q) in pos.iter().zip(r.positions()) {
+                assert!((*p - q.as_dvec3()).length() < 1e-5, "{scheme:?}: {p} {q}");
+            }
+        }
     }
 
     /// Found by fuzzing: finite coordinates near `f32::MAX` overflowed to infinite points (an

@@ -56,10 +56,22 @@ impl Ring {
     /// Loads the ring of vertex `v` of `mesh`. Returns `false` (and leaves the ring empty) for an
     /// isolated vertex.
     pub fn load(&mut self, mesh: &Mesh, v: VertexId, scheme: Scheme) -> bool {
+        self.load_at(mesh, |w| mesh.position(w).as_dvec3(), v, scheme)
+    }
+
+    /// [`Ring::load`] with the vertex positions `pos(w)` instead of the mesh's (the `f64`
+    /// positions of `refine_uniform_levels_f64`).
+    pub fn load_at(
+        &mut self,
+        mesh: &Mesh,
+        pos: impl Fn(VertexId) -> DVec3,
+        v: VertexId,
+        scheme: Scheme,
+    ) -> bool {
         self.scheme = scheme;
         self.method = mesh.options().crease;
         self.triangles = mesh.options().triangles;
-        self.center = mesh.position(v).as_dvec3();
+        self.center = pos(v);
         self.vertex_sharpness = mesh.vertex_sharpness(v);
         self.boundary = mesh.is_boundary_vertex(v);
         self.edges.clear();
@@ -74,7 +86,7 @@ impl Ring {
         let chaikin = self.method == CreaseMethod::Chaikin;
         for h in mesh.outgoing(v) {
             let w = mesh.to(h);
-            self.edges.push(mesh.position(w).as_dvec3());
+            self.edges.push(pos(w));
             self.sharp.push(mesh.edge_sharpness(h.edge()));
             let far = if chaikin {
                 let mut sum = 0.0f32;
@@ -96,7 +108,7 @@ impl Ring {
                 let stop = mesh.from(mesh.prev(h));
                 let mut g = mesh.next(h);
                 while mesh.to(g) != stop {
-                    self.inner.push(mesh.position(mesh.to(g)).as_dvec3());
+                    self.inner.push(pos(mesh.to(g)));
                     g = mesh.next(g);
                 }
                 self.inner_off.push(self.inner.len() as u32);
@@ -336,10 +348,7 @@ impl Ring {
     fn edge_weights(&self, i: usize) -> (f32, f32) {
         let s = self.sharp[i];
         let far_child = child_edge_sharpness(self.method, s, self.far[i]);
-        (
-            far_child,
-            edge_crease_weight(self.method, s, [self.cs[i], far_child]),
-        )
+        (far_child, edge_crease_weight(s, [self.cs[i], far_child]))
     }
 
     /// The exact limit position and unit limit normal of the ring's vertex. Refines the ring

@@ -113,6 +113,7 @@ impl Worker {
                     .load_with_halfedges(mesh, v, Scheme::CatmullClark, &mut self.hes);
                 c.valence = self.hes.len();
                 c.ih = self.hes.iter().position(|&h| h == hs[k]).unwrap_or(0);
+                c.keep_sharpness();
                 if boundary || c.ring.vertex_sharpness() > 0.0 {
                     self.regular = false;
                 }

@@ -34,6 +34,7 @@ impl Worker {
         for c in self.corners.iter_mut() {
             if c.active {
                 c.ring.refine();
+                c.keep_sharpness();
             }
         }
         if self.regular {
@@ -374,7 +375,7 @@ fn general_edge_point(g: General<'_>, dst: &mut Table, dirty: &[bool], i: i32, j
     };
     let c0 = child_at(i, j, dir);
     let c1 = child_at(bi, bj, (dir + 2) % 4);
-    let w = edge_crease_weight(method, s, [c0, c1]);
+    let w = edge_crease_weight(s, [c0, c1]);
     let mut faces = [Vec3A::ZERO; 2];
     let mut nf = 0;
     for (fi, fj) in sides {

@@ -290,10 +290,24 @@ pub(crate) fn band(n: usize, mut f: impl FnMut(usize) -> bool) -> bool {
 pub(crate) struct Corner {
     pub active: bool,
     pub ring: Ring,
+    /// The ring's edge sharpness at the table's level, kept apart from `ring` because the limit
+    /// evaluation of the corner refines `ring` in place, while the Chaikin rule at neighbouring
+    /// points still needs it afterwards ([`far_info`]).
+    pub sharp: Vec<f32>,
     /// Ring index of the edge along the patch side leaving this corner.
     pub ih: usize,
     pub valence: usize,
     pub boundary: bool,
+}
+
+impl Corner {
+    /// Records the ring's edge sharpness in `sharp`; called whenever the ring is loaded or
+    /// refined.
+    pub(crate) fn keep_sharpness(&mut self) {
+        self.sharp.clear();
+        self.sharp
+            .extend((0..self.ring.valence()).map(|r| self.ring.edge_sharpness(r)));
+    }
 }
 
 /// Table position and the two patch directions of corner `k` (grid size `n`): the side leaving
@@ -356,7 +370,7 @@ pub(crate) fn far_info(
             let mut sum = 0.0;
             let mut cnt = 0;
             for r in 0..m {
-                let s = c.ring.edge_sharpness(r);
+                let s = c.sharp[r];
                 if r != excl_idx && is_semi_sharp(s) {
                     sum += s;
                     cnt += 1;
