@@ -34,6 +34,7 @@
 
 mod camera;
 mod error;
+mod fvar;
 mod geometry;
 mod handle;
 mod mesh;
@@ -45,6 +46,7 @@ mod tags;
 
 pub use camera::Camera;
 pub use error::{MeshError, ObjError};
+pub use fvar::{FVarLinearInterpolation, FaceVarying};
 pub use geometry::{
     Vector3, closest_point_on_triangle, face_normals, newell_area, newell_normal, triangulate,
     vertex_normals,

@@ -8,7 +8,7 @@
 
 use glam::Vec3;
 use subdiv_mesh::{
-    CreaseMethod, EdgeId, HalfedgeId, Mesh, PolygonSoup, TriangleSubdivision, VertexId,
+    CreaseMethod, EdgeId, FaceId, HalfedgeId, Mesh, PolygonSoup, TriangleSubdivision, VertexId,
 };
 
 use crate::crease::{VertexRules, decrement, edge_crease_weight, is_sharp};
@@ -93,6 +93,11 @@ pub fn refine_uniform(mesh: &Mesh, scheme: Scheme) -> Result<Mesh, RulesError> {
             }
         }
     }
+    if let Some(fv) = mesh.uv() {
+        let child_fv = crate::fvar::refine_face_varying(&mut kernel, fv);
+        soup.uvs = child_fv.values;
+        soup.uv_indices = child_fv.indices.iter().map(|&i| i64::from(i)).collect();
+    }
     let mut child = Mesh::from_soup(&soup).map_err(RulesError::Internal)?;
     child.set_holes(holes);
     child.set_groups(mesh.groups().to_vec(), groups);
@@ -144,11 +149,32 @@ impl<'m> RefineKernel<'m> {
     /// The vertex point of `v` (Catmull-Clark or Loop vertex rule with crease, corner and
     /// boundary rules), recording the child sharpness of each edge at `v`. `face_points` holds
     /// the Catmull-Clark face points by face (unused for Loop). An isolated vertex stays.
+    #[inline]
     pub fn vertex_point(&mut self, v: VertexId, face_points: &[Vec3]) -> Vec3 {
         let mesh = self.mesh;
         let pos = mesh.positions();
+        self.vertex_point_with(
+            v,
+            pos[v.idx()],
+            |h| pos[mesh.to(h).idx()],
+            |f| face_points[f.idx()],
+        )
+    }
+
+    /// [`RefineKernel::vertex_point`] of other data than the positions (face-varying values
+    /// where they are continuous around `v`): `centre` at `v`, `end(h)` at the other end of
+    /// each out half-edge `h`, `face_point(f)` the Catmull-Clark face point of face `f`.
+    #[inline]
+    pub fn vertex_point_with(
+        &mut self,
+        v: VertexId,
+        centre: Vec3,
+        end: impl Fn(HalfedgeId) -> Vec3,
+        face_point: impl Fn(FaceId) -> Vec3,
+    ) -> Vec3 {
+        let mesh = self.mesh;
         if mesh.is_isolated(v) {
-            return pos[v.idx()];
+            return centre;
         }
         self.halfedges.clear();
         self.halfedges.extend(mesh.outgoing(v));
@@ -156,11 +182,11 @@ impl<'m> RefineKernel<'m> {
         self.face_points.clear();
         self.edge_sharpness.clear();
         for &h in &self.halfedges {
-            self.edge_ends.push(pos[mesh.to(h).idx()]);
+            self.edge_ends.push(end(h));
             self.edge_sharpness.push(mesh.edge_sharpness(h.edge()));
             let f = mesh.face(h);
             if f.is_some() && self.scheme == Scheme::CatmullClark {
-                self.face_points.push(face_points[f.idx()]);
+                self.face_points.push(face_point(f));
             }
         }
         self.child_edge_sharpness.clear();
@@ -176,9 +202,9 @@ impl<'m> RefineKernel<'m> {
         }
         match self.scheme {
             Scheme::CatmullClark => {
-                catmark::vertex_point(pos[v.idx()], &self.edge_ends, &self.face_points, &rules)
+                catmark::vertex_point(centre, &self.edge_ends, &self.face_points, &rules)
             }
-            Scheme::Loop => loop_scheme::vertex_point(pos[v.idx()], &self.edge_ends, &rules),
+            Scheme::Loop => loop_scheme::vertex_point(centre, &self.edge_ends, &rules),
         }
     }
 
@@ -191,12 +217,27 @@ impl<'m> RefineKernel<'m> {
 
     /// The edge point of `e`. `side(h)` gives, for each half-edge of `e` with a face, the point
     /// on that side: the face point (Catmull-Clark) or the vertex opposite the edge (Loop).
+    #[inline]
     pub fn edge_point(&self, e: EdgeId, side: impl Fn(HalfedgeId) -> Vec3) -> Vec3 {
+        let pos = self.mesh.positions();
+        let h0 = e.halfedge(0);
+        let a = pos[self.mesh.from(h0).idx()];
+        let b = pos[self.mesh.to(h0).idx()];
+        self.edge_point_with(e, a, b, side)
+    }
+
+    /// [`RefineKernel::edge_point`] of other data than the positions: `a` and `b` at the
+    /// origin and the end of the edge's half-edge 0.
+    #[inline]
+    pub fn edge_point_with(
+        &self,
+        e: EdgeId,
+        a: Vec3,
+        b: Vec3,
+        side: impl Fn(HalfedgeId) -> Vec3,
+    ) -> Vec3 {
         let mesh = self.mesh;
-        let pos = mesh.positions();
         let (h0, h1) = (e.halfedge(0), e.halfedge(1));
-        let a = pos[mesh.from(h0).idx()];
-        let b = pos[mesh.to(h0).idx()];
         let s = mesh.edge_sharpness(e);
         let w = edge_crease_weight(
             self.method,
@@ -220,6 +261,18 @@ impl<'m> RefineKernel<'m> {
             Scheme::CatmullClark => catmark::edge_point(a, b, &adj[..k], w),
             Scheme::Loop => loop_scheme::edge_point(a, b, &adj[..k], w),
         }
+    }
+
+    /// The mesh this kernel refines.
+    #[inline]
+    pub fn mesh(&self) -> &'m Mesh {
+        self.mesh
+    }
+
+    /// The scheme this kernel applies.
+    #[inline]
+    pub fn scheme(&self) -> Scheme {
+        self.scheme
     }
 
     /// Carries sharpness to `child`, whose vertex `i` descends from the parent's vertex `i`.
