@@ -152,6 +152,8 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh) -> anyhow::Result<ExitCode> {
             face_indices: &idx,
             // One to one with the frame's triangle corners.
             corner_normals: &g.corner_normals,
+            uvs: &[],
+            uv_indices: &[],
         },
     )?;
     println!(

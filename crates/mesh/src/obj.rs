@@ -252,6 +252,11 @@ pub struct ObjData<'a> {
     /// Normals of single face corners (index into `face_indices`, ascending), written as their
     /// own `vn` after the per-vertex ones; only with `normals`.
     pub corner_normals: &'a [(u32, [f32; 3])],
+    /// Texture coordinates, written as `vt`; see `uv_indices`.
+    pub uvs: &'a [[f32; 2]],
+    /// The texture coordinate of every face corner (aligned with `face_indices`), written as
+    /// `f v/vt` or `f v/vt/vn`; empty: no texture coordinates.
+    pub uv_indices: &'a [u32],
 }
 
 /// Formats surface data as OBJ text.
@@ -267,20 +272,32 @@ pub fn format_obj(data: &ObjData<'_>) -> String {
             let _ = writeln!(s, "vn {} {} {}", n[0], n[1], n[2]);
         }
     }
+    let with_uv = !data.uv_indices.is_empty();
+    if with_uv {
+        for t in data.uvs {
+            let _ = writeln!(s, "vt {} {}", t[0], t[1]);
+        }
+    }
     // 1-based `vn` of the next corner normal.
     let mut next_vn = data.normals.map_or(0, <[_]>::len) + 1;
     for w in data.face_offsets.windows(2) {
         s.push('f');
         for c in w[0]..w[1] {
             let i = data.face_indices[c as usize] as usize;
+            let _ = write!(s, " {}", i + 1);
+            if with_uv {
+                let _ = write!(s, "/{}", data.uv_indices[c as usize] + 1);
+            }
             if data.normals.is_none() {
-                let _ = write!(s, " {}", i + 1);
-            } else if corner_normals.first().is_some_and(|&(k, _)| k == c) {
-                let _ = write!(s, " {}//{}", i + 1, next_vn);
+                continue;
+            }
+            let slash = if with_uv { "/" } else { "//" };
+            if corner_normals.first().is_some_and(|&(k, _)| k == c) {
+                let _ = write!(s, "{slash}{next_vn}");
                 corner_normals = &corner_normals[1..];
                 next_vn += 1;
             } else {
-                let _ = write!(s, " {}//{}", i + 1, i + 1);
+                let _ = write!(s, "{slash}{}", i + 1);
             }
         }
         s.push('\n');
@@ -523,6 +540,8 @@ vt 0 0\nvt 0.5 0\nvt 0.5 1\nvt 0 1\nvt 0.6 0\nvt 1 0\nvt 1 1\nvt 0.6 1\n";
             face_offsets: &[0, 2, 4],
             face_indices: &[0, 1, 1, 0],
             corner_normals: &[(1, [0.1, -1.0 / 3.0, 0.9]), (3, pos[1])],
+            uvs: &[],
+            uv_indices: &[],
         });
         let soup = parse_obj(&text).unwrap();
         for (a, b) in pos.iter().zip(&soup.positions) {
@@ -544,6 +563,35 @@ vt 0 0\nvt 0.5 0\nvt 0.5 1\nvt 0 1\nvt 0.6 0\nvt 1 0\nvt 1 1\nvt 0.6 1\n";
             [0.1f32, -1.0 / 3.0, 0.9].map(f32::to_bits)
         );
         assert_eq!(vn[3], pos[1]);
+
+        // With texture coordinates: `v/vt/vn` corners, and the `vt` re-read bit-identical.
+        let uvs = [[0.25f32, 1.0 / 3.0], [7.654321e-12, 1.0]];
+        let text = format_obj(&ObjData {
+            positions: &pos,
+            normals: Some(&pos),
+            face_offsets: &[0, 2, 4],
+            face_indices: &[0, 1, 1, 0],
+            corner_normals: &[(1, [0.1, -1.0 / 3.0, 0.9])],
+            uvs: &uvs,
+            uv_indices: &[1, 0, 0, 1],
+        });
+        assert!(text.contains("f 1/2/1 2/1/3\nf 2/1/2 1/2/1\n"), "{text}");
+        let soup = parse_obj(&text).unwrap();
+        assert_eq!(soup.uv_indices, vec![1, 0, 0, 1]);
+        for (a, b) in uvs.iter().zip(&soup.uvs) {
+            assert_eq!(a.map(f32::to_bits), b.to_array().map(f32::to_bits));
+        }
+        // Without normals: `v/vt`.
+        let text = format_obj(&ObjData {
+            positions: &pos,
+            normals: None,
+            face_offsets: &[0, 2, 4],
+            face_indices: &[0, 1, 1, 0],
+            corner_normals: &[],
+            uvs: &uvs,
+            uv_indices: &[1, 0, 0, 1],
+        });
+        assert!(text.contains("f 1/2 2/1\n"), "{text}");
     }
 
     #[test]
