@@ -94,8 +94,8 @@ fn face_varying_refinement_matches_opensubdiv() {
     let files = fixture_files("reference/fvar", "txt");
     assert_eq!(
         files.len(),
-        72,
-        "4 shape/scheme pairs x 6 options x 3 levels"
+        90,
+        "5 shape/scheme pairs x 6 options x 3 levels"
     );
     let mut failures = Vec::new();
     let mut corners = 0;

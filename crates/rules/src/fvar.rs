@@ -14,14 +14,17 @@
 //! and both siblings where one is a corner, `boundaries` every sibling on a seam or boundary,
 //! `all` everything (bilinear). The tags are recomputed at every level from that level's
 //! topology, which for infinitely sharp seams gives OpenSubdiv's inherited tags.
-//! Not modelled: OpenSubdiv's fractional (semi-sharp) blending of a crease sibling at a vertex
-//! whose own sharpness or span edges are semi-sharp (such siblings use the crease rule).
+//! A crease sibling whose span (or vertex) is semi-sharp stays put while the child is still
+//! semi-sharp there and blends crease and corner by the fractional weight in the step where it
+//! runs out, as OpenSubdiv does. Not modelled: OpenSubdiv's *dependent* sharpness
+//! (`cornersPlus1`/`cornersPlus2` at a vertex with two siblings of which only one is
+//! semi-sharp, where the other follows it); that sibling is refined as a plain crease.
 
 use glam::{Vec2, Vec3};
 use subdiv_mesh::{FVarLinearInterpolation, FaceId, FaceVarying, HalfedgeId, Mesh, VertexId};
 
 use crate::Scheme;
-use crate::crease::is_infinite;
+use crate::crease::{decrement, fractional_weight, is_infinite, is_semi_sharp};
 use crate::refine::RefineKernel;
 
 /// The options of `Vtr::FVarLevel::completeTopologyFromFaceValues`, as flags.
@@ -62,6 +65,8 @@ struct Span {
     size: usize,
     start: usize,
     disjoint: i32,
+    /// Semi-sharp edges inside the span.
+    semi: u32,
 }
 
 /// The channel and the topology it needs: the corner of every half-edge with a face and which
@@ -189,14 +194,7 @@ pub(crate) fn refine_face_varying(kernel: &mut RefineKernel<'_>, fv: &FaceVaryin
                 centre
             } else {
                 let span = spans(&ch, &hs, &sib, uniq.len())[s];
-                let n = hs.len();
-                let (first, last) = (
-                    hs[span.start % n],
-                    hs[(span.start + n - 1 + span.size.max(1)) % n],
-                );
-                let e0 = ch.value(mesh.next(first));
-                let e1 = ch.value(mesh.prev(last));
-                centre * 0.75 + (e0 + e1) * 0.125
+                crease_value(&ch, kernel, v, &hs, span, centre)
             };
             push(&mut out, p);
         }
@@ -278,6 +276,45 @@ pub(crate) fn refine_face_varying(kernel: &mut RefineKernel<'_>, fv: &FaceVaryin
     out
 }
 
+/// The value of a crease sibling at `v` (OpenSubdiv's `PrimvarRefiner::interpFVarFromVerts`):
+/// `3/4` itself and `1/8` each of the values that end its span. A sibling whose span (or
+/// vertex) is still semi-sharp in the child stays put; one whose semi-sharpness runs out in
+/// this step blends the two by the fractional weight of the span's edges.
+fn crease_value(
+    ch: &Channel<'_>,
+    kernel: &RefineKernel<'_>,
+    v: VertexId,
+    hs: &[HalfedgeId],
+    span: Span,
+    centre: Vec3,
+) -> Vec3 {
+    let mesh = ch.mesh;
+    let n = hs.len();
+    let first = hs[span.start % n];
+    let last = hs[(span.start + n - 1 + span.size.max(1)) % n];
+    let ends = ch.value(mesh.next(first)) + ch.value(mesh.prev(last));
+    let vs = mesh.vertex_sharpness(v);
+    let mut w_corner = 0.0f32;
+    if span.semi > 0 || is_semi_sharp(vs) {
+        // Edges inside the span: edge `i` lies between faces `i - 1` and `i`.
+        let inner = (1..span.size).map(|j| hs[(span.start + j) % n]);
+        if inner
+            .clone()
+            .any(|h| is_semi_sharp(kernel.child_sharpness(h)))
+        {
+            return centre;
+        }
+        let parent: Vec<f32> = inner
+            .clone()
+            .map(|h| mesh.edge_sharpness(h.edge()))
+            .collect();
+        let child: Vec<f32> = inner.map(|h| kernel.child_sharpness(h)).collect();
+        w_corner = fractional_weight(mesh.options().crease, vs, decrement(vs), &parent, &child);
+    }
+    let w_crease = 1.0 - w_corner;
+    centre * (w_crease * 0.75 + w_corner) + ends * (w_crease * 0.125)
+}
+
 /// The sibling of each face around a vertex (`hs`: its out half-edges with a face, in order),
 /// numbered in order of first appearance; `uniq` gets the distinct value indices.
 fn siblings(ch: &Channel<'_>, hs: &[HalfedgeId], sib: &mut Vec<usize>, uniq: &mut Vec<u32>) {
@@ -318,6 +355,7 @@ fn spans(ch: &Channel<'_>, hs: &[HalfedgeId], sib: &[usize], count: usize) -> Ve
     let v = mesh.from(hs[0]);
     let boundary = mesh.is_boundary_vertex(v);
     let sharp = |h: HalfedgeId| is_infinite(mesh.edge_sharpness(h.edge()));
+    let semi = |h: HalfedgeId| is_semi_sharp(mesh.edge_sharpness(h.edge()));
     let mut sp = vec![Span::default(); count];
     if count == 1 {
         // Every edge, the boundary's last one included.
@@ -333,13 +371,19 @@ fn spans(ch: &Channel<'_>, hs: &[HalfedgeId], sib: &[usize], count: usize) -> Ve
             } else if sharp(h) {
                 sp[0].disjoint = 1;
                 break;
+            } else if semi(h) {
+                sp[0].semi += 1;
             }
         }
         return sp;
     }
     sp[0].size = 1;
-    if !boundary && sib[n - 1] == 0 && (ch.seam[hs[0].edge().idx()] || sharp(hs[0])) {
-        sp[0].disjoint = 1;
+    if !boundary && sib[n - 1] == 0 {
+        if ch.seam[hs[0].edge().idx()] || sharp(hs[0]) {
+            sp[0].disjoint = 1;
+        } else if semi(hs[0]) {
+            sp[0].semi += 1;
+        }
     }
     for i in 1..n {
         let s = sib[i];
@@ -348,6 +392,8 @@ fn spans(ch: &Channel<'_>, hs: &[HalfedgeId], sib: &[usize], count: usize) -> Ve
                 sp[s].disjoint += 1;
             } else if sharp(hs[i]) {
                 sp[s].disjoint = 1;
+            } else if semi(hs[i]) {
+                sp[s].semi += 1;
             }
         } else {
             if sp[s].size > 0 {
