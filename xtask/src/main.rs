@@ -13,7 +13,7 @@
 //!   tessellator (see `docs/performance.md`).
 //! - `cargo xtask plot-quality STEM LABEL=FILE...`: triangles against silhouette error from
 //!   saved `subdiv bench quality` output (see `docs/performance.md`).
-//! - `cargo xtask fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I]`: random cages
+//! - `cargo xtask fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I] [--fvar]`: random cages
 //!   against OpenSubdiv 3.5 (see `docs/testing.md`).
 
 mod architecture;
@@ -261,7 +261,7 @@ fn main() -> Result<()> {
         Some("golden") => golden::Options::parse(&args[1..]).and_then(|o| golden::run(&root(), &o)),
         _ => {
             eprintln!(
-                "usage: cargo xtask <demo|test|check-architecture|figures [doi]|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I]|plot-quality STEM LABEL=FILE...>"
+                "usage: cargo xtask <demo|test|check-architecture|figures [doi]|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I] [--fvar]|plot-quality STEM LABEL=FILE...>"
             );
             std::process::exit(2);
         }

@@ -171,6 +171,12 @@ pub(crate) fn refine_face_varying(kernel: &mut RefineKernel<'_>, fv: &FaceVaryin
         if hs.is_empty() {
             continue;
         }
+        // OpenSubdiv walks an interior vertex's faces from its lowest-numbered one.
+        if !mesh.is_boundary_vertex(v)
+            && let Some(k) = (0..hs.len()).min_by_key(|&k| mesh.face(hs[k]).0)
+        {
+            hs.rotate_left(k);
+        }
         siblings(&ch, &hs, &mut sib, &mut uniq);
         if !vertex_mismatch(&ch, v) {
             let centre = ch.value(hs[0]);
@@ -316,20 +322,35 @@ fn crease_value(
 }
 
 /// The sibling of each face around a vertex (`hs`: its out half-edges with a face, in order),
-/// numbered in order of first appearance; `uniq` gets the distinct value indices.
+/// exactly as `Vtr::FVarLevel::completeTopologyFromFaceValues` numbers them; `uniq` gets the
+/// value index of each sibling. A value met again after two others, with the second differing
+/// from the first, becomes a new sibling (OpenSubdiv compares with the first sibling only
+/// there), so a value in disjoint runs may count as several siblings, each refined on its own.
 fn siblings(ch: &Channel<'_>, hs: &[HalfedgeId], sib: &mut Vec<usize>, uniq: &mut Vec<u32>) {
     sib.clear();
     uniq.clear();
+    let mut prev = u32::MAX;
     for &h in hs {
         let i = ch.index(h);
-        let s = match uniq.iter().position(|&u| u == i) {
-            Some(s) => s,
-            None => {
-                uniq.push(i);
-                uniq.len() - 1
+        let s = if uniq.is_empty() {
+            uniq.push(i);
+            0
+        } else if i == prev {
+            sib[sib.len() - 1]
+        } else if uniq.len() == 1 || (uniq.len() == 2 && uniq[0] != i) {
+            uniq.push(i);
+            uniq.len() - 1
+        } else {
+            match uniq.iter().position(|&u| u == i) {
+                Some(s) => s,
+                None => {
+                    uniq.push(i);
+                    uniq.len() - 1
+                }
             }
         };
         sib.push(s);
+        prev = i;
     }
 }
 
