@@ -17,6 +17,8 @@
 //! - **explicit boundary half-edges**: every edge has two half-edges; the side without a face is
 //!   a boundary half-edge ([`FaceId::NONE`]), linked into closed boundary loops;
 //! - **properties as arrays indexed by handle**: `handle.idx()` indexes every per-element array.
+//! - **face-varying data** ([`FaceVarying`], OBJ `vt`): when present, one value index per face
+//!   corner in face order, every index in range (a bad `vt` index is a [`MeshError`] with its line).
 //!
 //! Meshes are built from a [`PolygonSoup`] — usually read from an OBJ file with OpenSubdiv's
 //! crease/corner/hole tags by [`read_obj`] — and every defect of the input is a [`MeshError`]
