@@ -142,10 +142,7 @@ pub(crate) fn refine_face_varying(kernel: &mut RefineKernel<'_>, fv: &FaceVaryin
         }
     }
     let mut out = FaceVarying::default();
-    let push = |out: &mut FaceVarying, p: Vec3| {
-        out.values.push(Vec2::new(p.x, p.y));
-        (out.values.len() - 1) as u32
-    };
+    let push = push_value;
 
     // Face values (Catmull-Clark): the centroid of the corners.
     let mut face_value = Vec::new();
@@ -244,11 +241,32 @@ pub(crate) fn refine_face_varying(kernel: &mut RefineKernel<'_>, fv: &FaceVaryin
         edge_child[h1.idx()] = i;
     }
 
-    // Child corners, in the child face order of `refine_uniform`.
+    child_corners(
+        &ch,
+        scheme,
+        face_value,
+        &vertex_child,
+        &edge_child,
+        &mut out,
+    );
+    out
+}
+
+/// Appends the Catmull-Clark face values to `out` and the value of every child face corner, in
+/// the child face order of [`refine_uniform`](crate::refine_uniform).
+fn child_corners(
+    ch: &Channel<'_>,
+    scheme: Scheme,
+    face_value: Vec<Vec3>,
+    vertex_child: &[u32],
+    edge_child: &[u32],
+    out: &mut FaceVarying,
+) {
+    let mesh = ch.mesh;
     let face_base = out.values.len() as u32;
     if scheme == Scheme::CatmullClark {
         for p in face_value {
-            push(&mut out, p);
+            push_value(out, p);
         }
     }
     let vc = |h: HalfedgeId| vertex_child[ch.corner[h.idx()] as usize];
@@ -279,7 +297,13 @@ pub(crate) fn refine_face_varying(kernel: &mut RefineKernel<'_>, fv: &FaceVaryin
             }
         }
     }
-    out
+}
+
+/// Appends a value (the `x`, `y` of `p`); its index.
+#[inline]
+fn push_value(out: &mut FaceVarying, p: Vec3) -> u32 {
+    out.values.push(Vec2::new(p.x, p.y));
+    (out.values.len() - 1) as u32
 }
 
 /// The value of a crease sibling at `v` (OpenSubdiv's `PrimvarRefiner::interpFVarFromVerts`):
