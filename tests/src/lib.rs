@@ -212,4 +212,5 @@ pub mod fuzz_lines;
 pub mod fuzz_topo;
 pub mod osd_cage;
 pub mod osd_compare;
+pub mod osd_fvar;
 pub mod osd_gen;

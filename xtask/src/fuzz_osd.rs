@@ -1,4 +1,4 @@
-//! `cargo xtask fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I]`: differential
+//! `cargo xtask fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I] [--fvar]`: differential
 //! testing against OpenSubdiv 3.5 (Debian `libosd-dev`) on random cages.
 //!
 //! Compiles `xtask/osd/ref_osd.cpp` once into `<target>/osd/`, generates cages with
@@ -11,6 +11,10 @@
 //! and tags dropped while it still disagrees) and written to
 //! `<target>/fuzz-osd/failing-<seed>-<index>.obj`; the smallest also to `failing-<seed>.obj`.
 //! The last line is `fuzz-osd: <passed>/<total> cages agree`; any disagreement exits non-zero.
+//! With `--fvar` each cage also gets random UV seams and a random face-varying option
+//! (`subdiv_tests::osd_fvar::cage_obj_with_uvs`), compared with `xtask/osd/ref_fvar.cpp`
+//! (OpenSubdiv's `InterpolateFaceVarying`) at every level; not in the `cargo xtask test` round
+//! while the known disagreements (docs/testing.md) remain.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -22,6 +26,7 @@ use anyhow::{Context, Result, bail};
 use subdiv_tests::Reference;
 use subdiv_tests::osd_cage::OsdCage;
 use subdiv_tests::osd_compare::{Tessellator, compare};
+use subdiv_tests::osd_fvar::{cage_obj_with_uvs, compare_fvar, parse_fvar};
 use subdiv_tests::osd_gen::random_cage;
 
 use crate::bench_osd::{INSTALL, osd_present};
@@ -34,6 +39,7 @@ pub const SHORT_ROUND: Options = Options {
     seed: 1,
     levels: (1, 4),
     index: None,
+    fvar: false,
 };
 
 /// Command-line options.
@@ -44,6 +50,8 @@ pub struct Options {
     levels: (u32, u32),
     /// Only this cage (replay).
     index: Option<u64>,
+    /// Also compare face-varying refinement (random UV seams and option per cage, `ref_fvar`).
+    fvar: bool,
 }
 
 impl Options {
@@ -59,6 +67,7 @@ impl Options {
                 "--cages" => o.cages = value()?.parse().context("--cages N")?,
                 "--seed" => o.seed = value()?.parse().context("--seed S")?,
                 "--index" => o.index = Some(value()?.parse().context("--index I")?),
+                "--fvar" => o.fvar = true,
                 "--levels" => {
                     let v = value()?;
                     let (a, b) = v.split_once("..").unwrap_or((v, v));
@@ -124,10 +133,10 @@ pub fn short_round(root: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Compiles `ref_osd` unless the binary is newer than its source.
-fn build_harness(root: &Path) -> Result<PathBuf> {
-    let src = root.join("xtask/osd/ref_osd.cpp");
-    let exe = crate::target_dir().join("osd/ref_osd");
+/// Compiles `xtask/osd/<name>.cpp` unless the binary is newer than its source.
+fn build_harness(root: &Path, name: &str) -> Result<PathBuf> {
+    let src = root.join(format!("xtask/osd/{name}.cpp"));
+    let exe = crate::target_dir().join(format!("osd/{name}"));
     let modified = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
     if modified(&exe).is_some_and(|e| modified(&src).is_some_and(|s| e >= s)) {
         return Ok(exe);
@@ -141,12 +150,14 @@ fn build_harness(root: &Path) -> Result<PathBuf> {
             .arg(&src)
             .arg("-losdCPU"),
     )
-    .context("compiling ref_osd (is g++ installed? apt-get install -y g++)")?;
+    .with_context(|| format!("compiling {name} (is g++ installed? apt-get install -y g++)"))?;
     Ok(exe)
 }
 
 struct Harness {
     exe: PathBuf,
+    /// `ref_fvar`, the face-varying reference (with `--fvar`).
+    fvar_exe: Option<PathBuf>,
     dir: PathBuf,
     seed: u64,
 }
@@ -178,6 +189,52 @@ impl Harness {
             compare(&mesh, depth, &reference, Tessellator::Slate, NORMAL_DEG)
                 .map_err(|e| format!("slate: {e}"))?;
         }
+        if self.fvar_exe.is_some() {
+            self.check_fvar(cage, path, level)
+                .map_err(|e| format!("face-varying: {e}"))?;
+        }
+        Ok(())
+    }
+
+    /// The cage with random UV seams and option (`cage_obj_with_uvs`, seeded by the cage's
+    /// text) against `ref_fvar` at `level`.
+    fn check_fvar(&self, cage: &OsdCage, path: &Path, level: u32) -> Result<(), String> {
+        let text = cage.to_obj();
+        let seed = text.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+            (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3)
+        });
+        let uv_text = cage_obj_with_uvs(cage, seed);
+        let uv_path = path.with_extension("uv.obj");
+        std::fs::write(&uv_path, &uv_text).map_err(|e| format!("{}: {e}", uv_path.display()))?;
+        let Some(exe) = &self.fvar_exe else {
+            return Ok(());
+        };
+        let out = Command::new(exe)
+            .arg(&uv_path)
+            .arg(level.to_string())
+            .arg(cage.scheme_name())
+            .output()
+            .map_err(|e| format!("could not run ref_fvar: {e}"))?;
+        if !out.status.success() {
+            return Err(format!(
+                "ref_fvar failed: {}",
+                String::from_utf8_lossy(&out.stderr).trim()
+            ));
+        }
+        let soup = subdiv_mesh::parse_obj(&uv_text).map_err(|e| e.to_string())?;
+        let mesh = subdiv_mesh::Mesh::from_soup(&soup).map_err(|e| e.to_string())?;
+        let scheme = if cage.loop_scheme {
+            subdiv_rules::Scheme::Loop
+        } else {
+            subdiv_rules::Scheme::CatmullClark
+        };
+        let depth = level as subdiv_rules::Depth;
+        let refined =
+            subdiv_rules::refine_uniform_levels(&mesh, scheme, depth).map_err(|e| e.to_string())?;
+        let faces = parse_fvar(&String::from_utf8_lossy(&out.stdout));
+        compare_fvar(&mesh, scheme, depth, &refined, &faces)
+            .map_err(|e| format!("option {}: {e}", soup.options.fvar.name()))?;
+        let _ = std::fs::remove_file(&uv_path);
         Ok(())
     }
 
@@ -215,7 +272,12 @@ impl Harness {
 /// Runs the round; returns (agreeing cages, cages).
 fn run(root: &Path, o: &Options) -> Result<(u64, u64)> {
     let harness = Harness {
-        exe: build_harness(root)?,
+        exe: build_harness(root, "ref_osd")?,
+        fvar_exe: if o.fvar {
+            Some(build_harness(root, "ref_fvar")?)
+        } else {
+            None
+        },
         dir: crate::target_dir().join("fuzz-osd"),
         seed: o.seed,
     };

@@ -15,8 +15,8 @@
 //!   tessellator (see `docs/performance.md`).
 //! - `cargo xtask plot-quality [--shading] STEM LABEL=FILE...`: triangles against silhouette
 //!   (or shading) error from saved `subdiv bench quality` output (see `docs/performance.md`).
-//! - `cargo xtask fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I]`: random cages
-//!   against OpenSubdiv 3.5 (see `docs/testing.md`).
+//! - `cargo xtask fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I] [--fvar]`: random
+//!   cages against OpenSubdiv 3.5 (see `docs/testing.md`).
 
 mod architecture;
 mod bench_osd;
@@ -294,7 +294,7 @@ fn main() -> Result<()> {
         Some("golden") => golden::Options::parse(&args[1..]).and_then(|o| golden::run(&root(), &o)),
         _ => {
             eprintln!(
-                "usage: cargo xtask <demo|test|check-architecture|figures [doi|cc|text]|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I]|plot-quality [--shading] STEM LABEL=FILE...>"
+                "usage: cargo xtask <demo|test|check-architecture|figures [doi|cc|text]|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I] [--fvar]|plot-quality [--shading] STEM LABEL=FILE...>"
             );
             std::process::exit(2);
         }

@@ -106,6 +106,24 @@ fn located_error_cases() -> Vec<(&'static str, String, &'static str, u32)> {
             "face index 0 is invalid",
             5,
         ),
+        (
+            "texture-index-out-of-range",
+            format!("{QUAD_HEAD}vt 0 0\nvt 1 0\nf 1/1 2/2 3/3 4/1\n"),
+            "texture index 3 in '3/3' is out of range",
+            7,
+        ),
+        (
+            "texture-index-mixed",
+            format!("{QUAD_HEAD}vt 0 0\nf 1/1 2/1 3 4/1\n"),
+            "some corners of the face have a texture index",
+            6,
+        ),
+        (
+            "fvar-option",
+            format!("{QUAD_HEAD}f 1 2 3 4\nt facevaryinginterpolateboundary 1/0/0 9\n"),
+            "expected 0 (none) to 5 (all)",
+            6,
+        ),
     ]
 }
 
@@ -198,6 +216,46 @@ fn tessellate_writes_limit_obj() {
     // The written limit surface re-reads as a valid closed mesh.
     let m = subdiv_mesh::read_obj(&out).unwrap();
     assert_eq!(subdiv_mesh::MeshStats::of(&m).boundary_loops, 0);
+}
+
+/// UVs go through the uniform tessellation of both schemes: `vt` and `f v/vt/vn` corners, the
+/// cage's seams kept (a corner of the cube's unwrap keeps its value at every depth).
+#[test]
+fn tessellate_writes_texture_coordinates() {
+    for (cage, scheme, faces) in [("cube_uv", "catmull-clark", 96), ("tri_seam", "loop", 128)] {
+        let input = fixtures().join(format!("meshes/fvar/{cage}.obj"));
+        let out = tmp(&format!("{cage}.uv.obj"));
+        let (code, _, err) = run(&[
+            "tessellate",
+            input.to_str().unwrap(),
+            "--scheme",
+            scheme,
+            "--depth",
+            "2",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let m = subdiv_mesh::read_obj(&out).unwrap();
+        assert_eq!(m.num_faces(), faces);
+        let fv = m.uv().expect("texture coordinates written");
+        let text = std::fs::read_to_string(&out).unwrap();
+        let corner = text.lines().find(|l| l.starts_with("f ")).unwrap();
+        assert_eq!(
+            corner.split(' ').nth(1).unwrap().split('/').count(),
+            3,
+            "{corner}"
+        );
+        // Every value stays inside the cage's UV range; the unwrap's corners are kept.
+        assert!(
+            fv.values
+                .iter()
+                .all(|t| t.x >= -0.1 && t.x <= 1.0 && t.y >= -0.1 && t.y <= 1.0)
+        );
+        if cage == "cube_uv" {
+            assert!(fv.values.contains(&glam::Vec2::new(0.25, 0.0)));
+        }
+    }
 }
 
 #[test]

@@ -157,6 +157,40 @@ pub enum MeshError {
         /// 1-based line of the tag, if known.
         line: Option<u32>,
     },
+    /// A face corner names a texture coordinate (`vt`) that does not exist.
+    #[error(
+        "face {face}: the texture index {index} of vertex {vertex} is out of range (the mesh has {count} texture coordinates)"
+    )]
+    UvIndexOutOfRange {
+        /// Face index (0-based).
+        face: u32,
+        /// The vertex of the corner (0-based, as written).
+        vertex: i64,
+        /// The bad texture index (0-based).
+        index: i64,
+        /// Number of texture coordinates.
+        count: u32,
+        /// 1-based line, if known.
+        line: Option<u32>,
+    },
+    /// Face-varying indices were given for some face corners but not all.
+    #[error("{indices} face-varying indices for {corners} face corners (need one per corner)")]
+    UvCount {
+        /// Number of face-varying indices.
+        indices: u64,
+        /// Number of face corners.
+        corners: u64,
+    },
+    /// A texture coordinate that is NaN or infinite.
+    #[error("texture coordinate {index} is not finite ({u}, {v})")]
+    NonFiniteUv {
+        /// Its index (0-based).
+        index: u32,
+        /// As given.
+        u: f32,
+        /// As given.
+        v: f32,
+    },
     /// Too many elements for 32-bit handles.
     #[error("the mesh is too large: {what}")]
     TooLarge {
@@ -170,7 +204,11 @@ impl MeshError {
     pub fn line(&self) -> Option<u32> {
         match self {
             MeshError::Parse { line, .. } => Some(*line),
-            MeshError::Empty | MeshError::TooLarge { .. } | MeshError::NotTriangles { .. } => None,
+            MeshError::Empty
+            | MeshError::TooLarge { .. }
+            | MeshError::NotTriangles { .. }
+            | MeshError::UvCount { .. }
+            | MeshError::NonFiniteUv { .. } => None,
             MeshError::IndexOutOfRange { line, .. }
             | MeshError::FaceTooSmall { line, .. }
             | MeshError::RepeatedVertex { line, .. }
@@ -181,7 +219,8 @@ impl MeshError {
             | MeshError::TagMissingEdge { line, .. }
             | MeshError::TagMissingVertex { line, .. }
             | MeshError::TagMissingFace { line, .. }
-            | MeshError::BadSharpness { line, .. } => *line,
+            | MeshError::BadSharpness { line, .. }
+            | MeshError::UvIndexOutOfRange { line, .. } => *line,
         }
     }
 }

@@ -17,6 +17,8 @@
 //! - **explicit boundary half-edges**: every edge has two half-edges; the side without a face is
 //!   a boundary half-edge ([`FaceId::NONE`]), linked into closed boundary loops;
 //! - **properties as arrays indexed by handle**: `handle.idx()` indexes every per-element array.
+//! - **face-varying data** ([`FaceVarying`], OBJ `vt`): when present, one value index per face
+//!   corner in face order, every index in range (a bad `vt` index is a [`MeshError`] with its line).
 //!
 //! Meshes are built from a [`PolygonSoup`] — usually read from an OBJ file with OpenSubdiv's
 //! crease/corner/hole tags by [`read_obj`], or from the `UsdGeomMesh` prims of a USD stage by
@@ -36,6 +38,7 @@
 mod cage;
 mod camera;
 mod error;
+mod fvar;
 mod geometry;
 mod handle;
 mod mesh;
@@ -49,6 +52,7 @@ mod usd;
 pub use cage::{Cage, CageError, CageOptions, read_cage};
 pub use camera::Camera;
 pub use error::{MeshError, ObjError, UsdError};
+pub use fvar::{FVarLinearInterpolation, FaceVarying};
 pub use geometry::{
     Vector3, closest_point_on_triangle, face_normals, newell_area, newell_normal, triangulate,
     vertex_normals,

@@ -45,6 +45,7 @@ pub struct Mesh {
     face_group: Vec<u32>,
     groups: Vec<String>,
     options: SchemeOptions,
+    uv: Option<crate::FaceVarying>,
 }
 
 impl Mesh {
@@ -138,6 +139,15 @@ impl Mesh {
     #[inline]
     pub fn options(&self) -> SchemeOptions {
         self.options
+    }
+    /// The face-varying channel (UVs), if the mesh has one.
+    #[inline]
+    pub fn uv(&self) -> Option<&crate::FaceVarying> {
+        self.uv.as_ref()
+    }
+    /// Drops the face-varying channel.
+    pub fn clear_uv(&mut self) {
+        self.uv = None;
     }
     /// `true` if face `f` is a hole.
     #[inline]

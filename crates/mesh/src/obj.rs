@@ -12,8 +12,12 @@
 //! t creasemethod 0/0/1 chaikin|uniform     t smoothtriangles 0/0/1 smooth|catmark
 //! ```
 //!
-//! Other statements (`vt`, `vn`, `s`, `usemtl`, ...) are ignored. Other tag lines (unknown
-//! names, OpenSubdiv's hierarchical edits such as `vertexedit`, face-varying options) are not
+//! `vt` lines with `f v/vt` or `f v/vt/vn` corners give the face-varying channel
+//! ([`crate::FaceVarying`]; either every face has texture indices or none has), and
+//! `t facevaryinginterpolateboundary 1/0/0 k` its linear interpolation option (0 none,
+//! 1 cornersOnly, 2 cornersPlus1, 3 cornersPlus2, 4 boundaries, 5 all, as OpenSubdiv reads it).
+//! Other statements (`vn`, `s`, `usemtl`, ...) are ignored. Other tag lines (unknown
+//! names, OpenSubdiv's hierarchical edits such as `vertexedit`, other face-varying options) are not
 //! applied: each leaves a [`TagWarning`] naming its line in [`PolygonSoup::warnings`] (see
 //! [`read_obj_with_warnings`]).
 //! (`tobj` is not used for reading: it renumbers vertices per object in order of first use and
@@ -63,24 +67,42 @@ pub fn parse_obj(text: &str) -> Result<PolygonSoup, MeshError> {
                 soup.positions.push(Vec3::from(c));
                 soup.vertex_lines.push(line);
             }
+            "vt" => {
+                let mut c = [0.0f32; 2];
+                for (k, slot) in c.iter_mut().enumerate() {
+                    let t = toks.next().ok_or_else(|| {
+                        perr(format!("texture vertex needs 2 coordinates, found {k}"))
+                    })?;
+                    *slot = t
+                        .parse::<f32>()
+                        .ok()
+                        .filter(|x| x.is_finite())
+                        .ok_or_else(|| perr(format!("invalid texture coordinate '{t}'")))?;
+                }
+                soup.uvs.push(glam::Vec2::from(c));
+            }
             "f" => {
-                let nv = soup.positions.len() as i64;
-                let mut idx = Vec::new();
-                for t in toks {
-                    let first = t.split('/').next().unwrap_or("");
-                    let i: i64 = first
-                        .parse()
-                        .map_err(|_| perr(format!("invalid face index '{t}'")))?;
-                    let i = match i {
-                        0 => {
-                            return Err(perr(
-                                "face index 0 is invalid (OBJ indices start at 1)".into(),
-                            ));
-                        }
-                        i if i > 0 => i - 1,
-                        i => nv + i,
-                    };
-                    idx.push(i);
+                let face = soup.num_faces();
+                let (idx, uv) = parse_face(toks, soup.positions.len(), soup.uvs.len(), line)?;
+                // The first face decides whether faces carry `vt`.
+                let with_uv = if face == 0 {
+                    uv.is_some()
+                } else {
+                    !soup.uv_indices.is_empty()
+                };
+                match (uv, with_uv) {
+                    (Some(uv), true) => soup.uv_indices.extend(uv),
+                    (None, false) => {}
+                    (Some(_), false) => {
+                        return Err(perr(format!(
+                            "face {face} has texture indices (v/vt) but earlier faces have none"
+                        )));
+                    }
+                    (None, true) => {
+                        return Err(perr(format!(
+                            "face {face} has no texture indices (v/vt) but earlier faces have them"
+                        )));
+                    }
                 }
                 soup.push_face(idx);
                 soup.face_lines.push(line);
@@ -109,6 +131,57 @@ pub fn parse_obj(text: &str) -> Result<PolygonSoup, MeshError> {
         soup.face_groups.clear();
     }
     Ok(soup)
+}
+
+/// Resolves a 1-based or negative (relative) OBJ index against `count` elements; 0 is refused.
+fn obj_index(t: &str, count: usize, what: &str, line: u32) -> Result<i64, MeshError> {
+    let perr = |msg: String| MeshError::Parse { line, msg };
+    let i: i64 = t
+        .parse()
+        .map_err(|_| perr(format!("invalid {what} index '{t}'")))?;
+    match i {
+        0 => Err(perr(format!(
+            "{what} index 0 is invalid (OBJ indices start at 1)"
+        ))),
+        i if i > 0 => Ok(i - 1),
+        i => Ok(count as i64 + i),
+    }
+}
+
+/// The vertex indices of an `f` line and, when every corner has one (`v/vt`, `v/vt/vn`), its
+/// texture indices. A texture index outside the `vt` lines read so far is an error naming the
+/// line; corners that mix `v` and `v/vt` are too.
+fn parse_face<'a>(
+    toks: impl Iterator<Item = &'a str>,
+    nv: usize,
+    nvt: usize,
+    line: u32,
+) -> Result<(Vec<i64>, Option<Vec<i64>>), MeshError> {
+    let perr = |msg: String| MeshError::Parse { line, msg };
+    let mut idx = Vec::new();
+    let mut uv = Vec::new();
+    let mut corners_with_uv = 0;
+    for t in toks {
+        let mut parts = t.split('/');
+        idx.push(obj_index(parts.next().unwrap_or(""), nv, "face", line)?);
+        if let Some(vt) = parts.next().filter(|s| !s.is_empty()) {
+            let k = obj_index(vt, nvt, "texture", line)?;
+            if k < 0 || k >= nvt as i64 {
+                return Err(perr(format!(
+                    "texture index {vt} in '{t}' is out of range ({nvt} vt lines before it)"
+                )));
+            }
+            uv.push(k);
+            corners_with_uv += 1;
+        }
+    }
+    match corners_with_uv {
+        0 => Ok((idx, None)),
+        n if n == idx.len() => Ok((idx, Some(uv))),
+        _ => Err(perr(
+            "some corners of the face have a texture index (v/vt) and some not".into(),
+        )),
+    }
 }
 
 /// Reads an OBJ file and builds a validated mesh.
@@ -179,6 +252,11 @@ pub struct ObjData<'a> {
     /// Normals of single face corners (index into `face_indices`, ascending), written as their
     /// own `vn` after the per-vertex ones; only with `normals`.
     pub corner_normals: &'a [(u32, [f32; 3])],
+    /// Texture coordinates, written as `vt`; see `uv_indices`.
+    pub uvs: &'a [[f32; 2]],
+    /// The texture coordinate of every face corner (aligned with `face_indices`), written as
+    /// `f v/vt` or `f v/vt/vn`; empty: no texture coordinates.
+    pub uv_indices: &'a [u32],
 }
 
 /// Formats surface data as OBJ text.
@@ -194,20 +272,32 @@ pub fn format_obj(data: &ObjData<'_>) -> String {
             let _ = writeln!(s, "vn {} {} {}", n[0], n[1], n[2]);
         }
     }
+    let with_uv = !data.uv_indices.is_empty();
+    if with_uv {
+        for t in data.uvs {
+            let _ = writeln!(s, "vt {} {}", t[0], t[1]);
+        }
+    }
     // 1-based `vn` of the next corner normal.
     let mut next_vn = data.normals.map_or(0, <[_]>::len) + 1;
     for w in data.face_offsets.windows(2) {
         s.push('f');
         for c in w[0]..w[1] {
             let i = data.face_indices[c as usize] as usize;
+            let _ = write!(s, " {}", i + 1);
+            if with_uv {
+                let _ = write!(s, "/{}", data.uv_indices[c as usize] + 1);
+            }
             if data.normals.is_none() {
-                let _ = write!(s, " {}", i + 1);
-            } else if corner_normals.first().is_some_and(|&(k, _)| k == c) {
-                let _ = write!(s, " {}//{}", i + 1, next_vn);
+                continue;
+            }
+            let slash = if with_uv { "/" } else { "//" };
+            if corner_normals.first().is_some_and(|&(k, _)| k == c) {
+                let _ = write!(s, "{slash}{next_vn}");
                 corner_normals = &corner_normals[1..];
                 next_vn += 1;
             } else {
-                let _ = write!(s, " {}//{}", i + 1, i + 1);
+                let _ = write!(s, "{slash}{}", i + 1);
             }
         }
         s.push('\n');
@@ -237,7 +327,13 @@ pub fn format_mesh_obj(mesh: &Mesh) -> String {
     for p in mesh.positions() {
         let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);
     }
+    if let Some(fv) = mesh.uv() {
+        for t in &fv.values {
+            let _ = writeln!(s, "vt {} {}", t.x, t.y);
+        }
+    }
     let mut group = u32::MAX;
+    let (offsets, _) = mesh.face_lists();
     for f in mesh.faces() {
         let g = mesh.face_group(f);
         if g != group && (g as usize) < mesh.groups().len() {
@@ -245,8 +341,16 @@ pub fn format_mesh_obj(mesh: &Mesh) -> String {
             group = g;
         }
         s.push('f');
-        for v in mesh.face_vertices(f) {
-            let _ = write!(s, " {}", v.0 + 1);
+        for (k, v) in mesh.face_vertices(f).iter().enumerate() {
+            match mesh.uv() {
+                Some(fv) => {
+                    let t = fv.indices[offsets[f.idx()] as usize + k];
+                    let _ = write!(s, " {}/{}", v.0 + 1, t + 1);
+                }
+                None => {
+                    let _ = write!(s, " {}", v.0 + 1);
+                }
+            }
         }
         s.push('\n');
     }
@@ -262,6 +366,13 @@ pub fn format_mesh_obj(mesh: &Mesh) -> String {
     }
     if opts.triangles == TriangleSubdivision::Smooth {
         let _ = writeln!(s, "t smoothtriangles 0/0/1 smooth");
+    }
+    if opts.fvar != crate::FVarLinearInterpolation::default() {
+        let _ = writeln!(
+            s,
+            "t facevaryinginterpolateboundary 1/0/0 {}",
+            opts.fvar.tag()
+        );
     }
     for e in mesh.edges() {
         let sh = mesh.edge_sharpness(e);
@@ -299,7 +410,7 @@ mod tests {
     use crate::handle::{FaceId, VertexId};
 
     const CUBE: &str = "# cube\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
-g lid\nf 1 3 4 2\nf 5/1 6/2 8/3 7/4\ng sides\nf 1//1 2//1 6//1 5//1\nf 3 7 8 4\nf 1 5 7 3\nf -7 -5 -1 -3\n\
+g lid\nf 1 3 4 2\nf 5//1 6//2 8//3 7//4\ng sides\nf 1//1 2//1 6//1 5//1\nf 3 7 8 4\nf 1 5 7 3\nf -7 -5 -1 -3\n\
 t crease 3/1/0 0 2 3 2.5\nt corner 1/1/0 7 4\nt hole 1/0/0 1\nt creasemethod 0/0/1 chaikin\n";
 
     #[test]
@@ -317,6 +428,86 @@ t crease 3/1/0 0 2 3 2.5\nt corner 1/1/0 7 4\nt hole 1/0/0 1\nt creasemethod 0/0
         assert_eq!(m.edge_sharpness(e), 2.5);
         assert_eq!(m.vertex_sharpness(VertexId(7)), 4.0);
         assert!(m.is_hole(FaceId(1)));
+    }
+
+    const UV_QUADS: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n\
+vt 0 0\nvt 0.5 0\nvt 0.5 1\nvt 0 1\nvt 0.6 0\nvt 1 0\nvt 1 1\nvt 0.6 1\n";
+
+    #[test]
+    fn texture_coordinates_make_a_face_varying_channel_with_seams() {
+        // Two quads sharing the edge 2-3, with different vt on each side: a seam.
+        let text = format!(
+            "{UV_QUADS}f 1/1 2/2 3/3 4/4\nf 2/5/1 5/6/1 6/-2/1 3/-1/1\n\
+             t facevaryinginterpolateboundary 1/0/0 4\n"
+        );
+        let m = Mesh::from_soup(&parse_obj(&text).unwrap()).unwrap();
+        let fv = m.uv().unwrap();
+        assert_eq!(fv.values.len(), 8);
+        assert_eq!(fv.indices, vec![0, 1, 2, 3, 4, 5, 6, 7]);
+        assert_eq!(fv.corner(6), glam::Vec2::new(1.0, 1.0));
+        assert_eq!(m.options().fvar, crate::FVarLinearInterpolation::Boundaries);
+        // The cage writer keeps the channel and the option.
+        let back = Mesh::from_soup(&parse_obj(&format_mesh_obj(&m)).unwrap()).unwrap();
+        assert_eq!(back.uv(), m.uv());
+        assert_eq!(back.options().fvar, m.options().fvar);
+        // Without vt the mesh has no channel.
+        assert!(
+            Mesh::from_soup(&parse_obj(CUBE).unwrap())
+                .unwrap()
+                .uv()
+                .is_none()
+        );
+    }
+
+    #[test]
+    fn bad_texture_indices_are_errors_with_their_line() {
+        let cases = [
+            ("f 1/1 2/2 3/9 4/4\n", 15, "texture index 9"),
+            ("f 1/1 2/2 3/0 4/4\n", 15, "texture index 0"),
+            ("f 1/1 2/-9 3/3 4/4\n", 15, "texture index -9"),
+            ("f 1/1 2/x 3/3 4/4\n", 15, "invalid texture index 'x'"),
+            ("f 1/1 2 3/3 4/4\n", 15, "some corners"),
+            (
+                "f 1/1 2/2 3/3 4/4\nf 2 5 6 3\n",
+                16,
+                "face 1 has no texture",
+            ),
+            ("f 1 2 3 4\nf 2/5 5/6 6/7 3/8\n", 16, "face 1 has texture"),
+            (
+                "t facevaryinginterpolateboundary 1/0/0 6\n",
+                15,
+                "0 (none) to 5 (all)",
+            ),
+        ];
+        for (tail, line, what) in cases {
+            let e = parse_obj(&format!("{UV_QUADS}{tail}")).unwrap_err();
+            assert_eq!(e.line(), Some(line), "{tail}: {e}");
+            assert!(e.to_string().contains(what), "{tail}: {e}");
+        }
+        let e = parse_obj("v 0 0 0\nvt 0 nan\n").unwrap_err();
+        assert_eq!(e.line(), Some(2), "{e}");
+        // A soup made in code is checked when the mesh is built.
+        let mut soup = parse_obj(&format!("{UV_QUADS}f 1/1 2/2 3/3 4/4\n")).unwrap();
+        soup.uv_indices[2] = 8;
+        let e = Mesh::from_soup(&soup).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                MeshError::UvIndexOutOfRange {
+                    face: 0,
+                    vertex: 2,
+                    index: 8,
+                    count: 8,
+                    line: Some(15)
+                }
+            ),
+            "{e:?}"
+        );
+        soup.uv_indices.pop();
+        assert!(matches!(
+            Mesh::from_soup(&soup).unwrap_err(),
+            MeshError::UvCount { .. }
+        ));
     }
 
     #[test]
@@ -349,6 +540,8 @@ t crease 3/1/0 0 2 3 2.5\nt corner 1/1/0 7 4\nt hole 1/0/0 1\nt creasemethod 0/0
             face_offsets: &[0, 2, 4],
             face_indices: &[0, 1, 1, 0],
             corner_normals: &[(1, [0.1, -1.0 / 3.0, 0.9]), (3, pos[1])],
+            uvs: &[],
+            uv_indices: &[],
         });
         let soup = parse_obj(&text).unwrap();
         for (a, b) in pos.iter().zip(&soup.positions) {
@@ -370,6 +563,35 @@ t crease 3/1/0 0 2 3 2.5\nt corner 1/1/0 7 4\nt hole 1/0/0 1\nt creasemethod 0/0
             [0.1f32, -1.0 / 3.0, 0.9].map(f32::to_bits)
         );
         assert_eq!(vn[3], pos[1]);
+
+        // With texture coordinates: `v/vt/vn` corners, and the `vt` re-read bit-identical.
+        let uvs = [[0.25f32, 1.0 / 3.0], [7.654321e-12, 1.0]];
+        let text = format_obj(&ObjData {
+            positions: &pos,
+            normals: Some(&pos),
+            face_offsets: &[0, 2, 4],
+            face_indices: &[0, 1, 1, 0],
+            corner_normals: &[(1, [0.1, -1.0 / 3.0, 0.9])],
+            uvs: &uvs,
+            uv_indices: &[1, 0, 0, 1],
+        });
+        assert!(text.contains("f 1/2/1 2/1/3\nf 2/1/2 1/2/1\n"), "{text}");
+        let soup = parse_obj(&text).unwrap();
+        assert_eq!(soup.uv_indices, vec![1, 0, 0, 1]);
+        for (a, b) in uvs.iter().zip(&soup.uvs) {
+            assert_eq!(a.map(f32::to_bits), b.to_array().map(f32::to_bits));
+        }
+        // Without normals: `v/vt`.
+        let text = format_obj(&ObjData {
+            positions: &pos,
+            normals: None,
+            face_offsets: &[0, 2, 4],
+            face_indices: &[0, 1, 1, 0],
+            corner_normals: &[],
+            uvs: &uvs,
+            uv_indices: &[1, 0, 0, 1],
+        });
+        assert!(text.contains("f 1/2 2/1\n"), "{text}");
     }
 
     #[test]

@@ -42,6 +42,8 @@ pub struct SchemeOptions {
     pub crease: CreaseMethod,
     /// Catmull-Clark edge rule next to triangles.
     pub triangles: TriangleSubdivision,
+    /// Face-varying linear interpolation (how UVs are refined at seams and boundaries).
+    pub fvar: crate::FVarLinearInterpolation,
 }
 
 /// Sharpness at or above this value is infinite (OpenSubdiv `SHARPNESS_INFINITE`).

@@ -70,6 +70,11 @@ pub struct PolygonSoup {
     pub face_lines: Vec<u32>,
     /// Tag lines read but not applied, in file order (see [`crate::TagWarning`]).
     pub warnings: Vec<crate::TagWarning>,
+    /// Face-varying values (OBJ `vt`); see [`PolygonSoup::uv_indices`].
+    pub uvs: Vec<glam::Vec2>,
+    /// The value of every face corner (aligned with `face_indices`, 0-based, signed so that bad
+    /// input survives until validation), or empty when the faces carry no face-varying data.
+    pub uv_indices: Vec<i64>,
 }
 
 impl PolygonSoup {

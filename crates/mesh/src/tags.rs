@@ -22,7 +22,8 @@ pub enum IgnoredTagKind {
     /// One of OpenSubdiv's hierarchical edits (`vertexedit`, `edgeedit`, `faceedit`), which
     /// subdiv does not implement.
     HierarchicalEdit,
-    /// A face-varying option (subdiv reads no face-varying data).
+    /// A face-varying option other than `facevaryinginterpolateboundary` (e.g. OpenSubdiv 2's
+    /// `facevaryingpropagatecorners`), which subdiv does not apply.
     FaceVarying,
 }
 
@@ -50,7 +51,7 @@ impl fmt::Display for TagWarning {
         let why = match self.kind {
             IgnoredTagKind::Unknown => "unknown tag",
             IgnoredTagKind::HierarchicalEdit => "hierarchical edits are not supported",
-            IgnoredTagKind::FaceVarying => "face-varying data is not read",
+            IgnoredTagKind::FaceVarying => "this face-varying option is not applied",
         };
         write!(f, "{}: tag 't {}' ignored ({why})", self.line, self.name)
     }
@@ -73,6 +74,7 @@ pub(crate) fn parse_tag(
         "interpolateboundary" => soup.options.boundary = boundary_option(&args, line)?,
         "creasemethod" => soup.options.crease = crease_option(&args, line)?,
         "smoothtriangles" => soup.options.triangles = triangles_option(&args, line)?,
+        "facevaryinginterpolateboundary" => soup.options.fvar = fvar_option(&args, line)?,
         name => soup.warnings.push(TagWarning {
             line,
             name: name.to_string(),
@@ -249,6 +251,23 @@ fn triangles_option(args: &TagArgs<'_>, line: u32) -> Result<TriangleSubdivision
     }
 }
 
+/// `t facevaryinginterpolateboundary 1/0/0 k`: OpenSubdiv's face-varying linear
+/// interpolation, 0 none .. 5 all (see [`crate::FVarLinearInterpolation`]).
+fn fvar_option(args: &TagArgs<'_>, line: u32) -> Result<crate::FVarLinearInterpolation, MeshError> {
+    args.ints
+        .first()
+        .and_then(|&k| crate::FVarLinearInterpolation::from_tag(k))
+        .ok_or_else(|| {
+            perr(
+                line,
+                format!(
+                    "facevaryinginterpolateboundary: expected 0 (none) to 5 (all), got {:?}",
+                    args.ints.first()
+                ),
+            )
+        })
+}
+
 /// Why a tag named `name` (not one of the applied ones) is ignored.
 fn ignored_kind(name: &str) -> IgnoredTagKind {
     match name {
@@ -292,7 +311,7 @@ mod tests {
     fn tags_not_applied_warn_with_their_lines() {
         let text = format!(
             "{QUAD}t bogustag 0/0/0\nt crease 2/1/0 0 1 2\nt vertexedit 1/3/2 0 1 2 3 value set\n\
-             t facevaryinginterpolateboundary 1/0/0 1\nt faceedit 0/0/0\nt edgeedit 0/0/0\n"
+             t facevaryingpropagatecorners 1/0/0 1\nt faceedit 0/0/0\nt edgeedit 0/0/0\n"
         );
         let s = parse_obj(&text).unwrap();
         let got: Vec<(u32, &str, IgnoredTagKind)> = s
@@ -307,7 +326,7 @@ mod tests {
                 (8, "vertexedit", IgnoredTagKind::HierarchicalEdit),
                 (
                     9,
-                    "facevaryinginterpolateboundary",
+                    "facevaryingpropagatecorners",
                     IgnoredTagKind::FaceVarying
                 ),
                 (10, "faceedit", IgnoredTagKind::HierarchicalEdit),

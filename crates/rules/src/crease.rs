@@ -151,6 +151,40 @@ impl Rule {
     }
 }
 
+/// The weight of the parent mask in a fractional sharpness transition: the average parent
+/// sharpness of the vertex and the edges (parent `edges`, child `child_edges`) that become
+/// smooth in this step, at most 1 (OpenSubdiv's `Sdc::Crease::ComputeFractionalWeightAtVertex`);
+/// 0 when nothing becomes smooth.
+pub fn fractional_weight(
+    method: CreaseMethod,
+    vertex_sharpness: f32,
+    child_vertex_sharpness: f32,
+    edges: &[f32],
+    child_edges: &[f32],
+) -> f32 {
+    let mut sum = 0.0f32;
+    let mut count = 0u32;
+    if is_sharp(vertex_sharpness) && is_smooth(child_vertex_sharpness) {
+        sum += vertex_sharpness;
+        count += 1;
+    }
+    for (&p, &c) in edges.iter().zip(child_edges.iter()) {
+        let transition = match method {
+            CreaseMethod::Uniform => is_sharp(p) && p <= 1.0,
+            CreaseMethod::Chaikin => is_sharp(p) && is_smooth(c),
+        };
+        if transition {
+            sum += p;
+            count += 1;
+        }
+    }
+    if count == 0 {
+        0.0
+    } else {
+        (sum / count as f32).min(1.0)
+    }
+}
+
 /// The rules that move one vertex in one refinement step: the parent rule, the child rule and the
 /// weight of the parent mask when they differ (a fractional sharpness transition).
 #[derive(Clone, Copy, PartialEq, Debug)]
@@ -190,28 +224,13 @@ impl VertexRules {
                 parent_weight: 1.0,
             };
         }
-        // Fractional weight: the average parent sharpness of everything that became smooth.
-        let mut sum = 0.0f32;
-        let mut count = 0u32;
-        if is_sharp(vertex_sharpness) && is_smooth(child_vs) {
-            sum += vertex_sharpness;
-            count += 1;
-        }
-        for (&p, &c) in edge_sharpness.iter().zip(child_edges.iter()) {
-            let transition = match method {
-                CreaseMethod::Uniform => is_sharp(p) && p <= 1.0,
-                CreaseMethod::Chaikin => is_sharp(p) && is_smooth(c),
-            };
-            if transition {
-                sum += p;
-                count += 1;
-            }
-        }
-        let w = if count == 0 {
-            0.0
-        } else {
-            (sum / count as f32).min(1.0)
-        };
+        let w = fractional_weight(
+            method,
+            vertex_sharpness,
+            child_vs,
+            edge_sharpness,
+            child_edges,
+        );
         VertexRules {
             parent,
             child,

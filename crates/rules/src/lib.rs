@@ -24,12 +24,14 @@
 
 pub mod catmark;
 pub mod crease;
+mod fvar;
 mod limit;
 pub mod loop_scheme;
 mod point;
 mod refine;
 mod ring;
 
+pub use fvar::face_uvs;
 pub use limit::{LimitMesh, limit_surface, tessellate_uniform};
 pub use point::{Point, centroid};
 pub use refine::{

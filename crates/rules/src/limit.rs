@@ -27,6 +27,12 @@ pub struct LimitMesh {
     /// the limit surface has a crease (sharp, or semi-sharp still sharp at the limit) or a
     /// corner. Every other corner takes its vertex's normal.
     pub corner_normals: Vec<(u32, [f32; 3])>,
+    /// Face-varying values (UVs) of the refined mesh the tessellation is made from, when the
+    /// cage has them (refined values, not their limit); see `uv_indices`.
+    pub uvs: Vec<[f32; 2]>,
+    /// The value in `uvs` of every face corner (aligned with `face_indices`); empty when the
+    /// cage has no face-varying data.
+    pub uv_indices: Vec<u32>,
 }
 
 impl LimitMesh {
@@ -92,6 +98,8 @@ impl LimitMesh {
             face_offsets: &self.face_offsets,
             face_indices: &self.face_indices,
             corner_normals: &self.corner_normals,
+            uvs: &self.uvs,
+            uv_indices: &self.uv_indices,
         }
     }
 }
@@ -146,9 +154,15 @@ fn limit_surface_from(
     let mut face_offsets = vec![0u32];
     let mut face_indices = Vec::with_capacity(mesh.face_lists().1.len());
     let mut corner_normals = Vec::new();
+    let mut uv_indices = Vec::new();
+    let (offsets, _) = mesh.face_lists();
     for f in mesh.faces() {
         if mesh.is_hole(f) {
             continue;
+        }
+        if let Some(fv) = mesh.uv() {
+            let r = offsets[f.idx()] as usize..offsets[f.idx() + 1] as usize;
+            uv_indices.extend_from_slice(&fv.indices[r]);
         }
         for v in mesh.face_vertices(f) {
             if let Ok(k) = sided.binary_search_by_key(&(v.0, f.0), |&(v, f, _)| (v, f)) {
@@ -164,6 +178,11 @@ fn limit_surface_from(
         face_offsets,
         face_indices,
         corner_normals,
+        uvs: mesh
+            .uv()
+            .map(|fv| fv.values.iter().map(|t| t.to_array()).collect())
+            .unwrap_or_default(),
+        uv_indices,
     }
 }
 

@@ -8,7 +8,7 @@
 
 use glam::{DVec3, Vec3};
 use subdiv_mesh::{
-    CreaseMethod, EdgeId, HalfedgeId, Mesh, PolygonSoup, TriangleSubdivision, VertexId,
+    CreaseMethod, EdgeId, FaceId, HalfedgeId, Mesh, PolygonSoup, TriangleSubdivision, VertexId,
 };
 
 use crate::crease::{VertexRules, decrement, edge_crease_weight, is_sharp};
@@ -80,6 +80,11 @@ pub fn refine_uniform(mesh: &Mesh, scheme: Scheme) -> Result<Mesh, RulesError> {
             }
         }
     }
+    if let Some(fv) = mesh.uv() {
+        let child_fv = crate::fvar::refine_face_varying(&mut kernel, fv);
+        soup.uvs = child_fv.values;
+        soup.uv_indices = child_fv.indices.iter().map(|&i| i64::from(i)).collect();
+    }
     let mut child = Mesh::from_soup(&soup).map_err(RulesError::Internal)?;
     child.set_holes(holes);
     child.set_groups(mesh.groups().to_vec(), groups);
@@ -146,6 +151,7 @@ impl<'m, P: Point> RefineKernel<'m, P> {
     /// The vertex point of `v` (Catmull-Clark or Loop vertex rule with crease, corner and
     /// boundary rules), recording the child sharpness of each edge at `v`. `face_points` holds
     /// the Catmull-Clark face points by face (unused for Loop). An isolated vertex stays.
+    #[inline]
     pub fn vertex_point(&mut self, v: VertexId, face_points: &[P]) -> P {
         self.vertex_point_without(v, face_points, |_| false)
     }
@@ -163,8 +169,42 @@ impl<'m, P: Point> RefineKernel<'m, P> {
     ) -> P {
         let mesh = self.mesh;
         let pos = self.pos;
+        self.vertex_point_over(
+            v,
+            pos[v.idx()],
+            |h| pos[mesh.to(h).idx()],
+            |f| face_points[f.idx()],
+            skip,
+        )
+    }
+
+    /// [`RefineKernel::vertex_point`] of other data than the positions (face-varying values
+    /// where they are continuous around `v`): `centre` at `v`, `end(h)` at the other end of
+    /// each out half-edge `h`, `face_point(f)` the Catmull-Clark face point of face `f`.
+    #[inline]
+    pub fn vertex_point_with(
+        &mut self,
+        v: VertexId,
+        centre: P,
+        end: impl Fn(HalfedgeId) -> P,
+        face_point: impl Fn(FaceId) -> P,
+    ) -> P {
+        self.vertex_point_over(v, centre, end, face_point, |_| false)
+    }
+
+    /// The one vertex rule behind [`RefineKernel::vertex_point_without`] and
+    /// [`RefineKernel::vertex_point_with`].
+    fn vertex_point_over(
+        &mut self,
+        v: VertexId,
+        centre: P,
+        end: impl Fn(HalfedgeId) -> P,
+        face_point: impl Fn(FaceId) -> P,
+        skip: impl Fn(HalfedgeId) -> bool,
+    ) -> P {
+        let mesh = self.mesh;
         if mesh.is_isolated(v) {
-            return pos[v.idx()];
+            return centre;
         }
         self.halfedges.clear();
         self.halfedges
@@ -173,11 +213,11 @@ impl<'m, P: Point> RefineKernel<'m, P> {
         self.face_points.clear();
         self.edge_sharpness.clear();
         for &h in &self.halfedges {
-            self.edge_ends.push(pos[mesh.to(h).idx()]);
+            self.edge_ends.push(end(h));
             self.edge_sharpness.push(mesh.edge_sharpness(h.edge()));
             let f = mesh.face(h);
             if f.is_some() && self.scheme == Scheme::CatmullClark {
-                self.face_points.push(face_points[f.idx()]);
+                self.face_points.push(face_point(f));
             }
         }
         self.child_edge_sharpness.clear();
@@ -193,9 +233,9 @@ impl<'m, P: Point> RefineKernel<'m, P> {
         }
         match self.scheme {
             Scheme::CatmullClark => {
-                catmark::vertex_point(pos[v.idx()], &self.edge_ends, &self.face_points, &rules)
+                catmark::vertex_point(centre, &self.edge_ends, &self.face_points, &rules)
             }
-            Scheme::Loop => loop_scheme::vertex_point(pos[v.idx()], &self.edge_ends, &rules),
+            Scheme::Loop => loop_scheme::vertex_point(centre, &self.edge_ends, &rules),
         }
     }
 
@@ -208,12 +248,22 @@ impl<'m, P: Point> RefineKernel<'m, P> {
 
     /// The edge point of `e`. `side(h)` gives, for each half-edge of `e` with a face, the point
     /// on that side: the face point (Catmull-Clark) or the vertex opposite the edge (Loop).
+    #[inline]
     pub fn edge_point(&self, e: EdgeId, side: impl Fn(HalfedgeId) -> P) -> P {
         let mesh = self.mesh;
         let pos = self.pos;
-        let (h0, h1) = (e.halfedge(0), e.halfedge(1));
+        let h0 = e.halfedge(0);
         let a = pos[mesh.from(h0).idx()];
         let b = pos[mesh.to(h0).idx()];
+        self.edge_point_with(e, a, b, side)
+    }
+
+    /// [`RefineKernel::edge_point`] of other data than the positions: `a` and `b` at the
+    /// origin and the end of the edge's half-edge 0.
+    #[inline]
+    pub fn edge_point_with(&self, e: EdgeId, a: P, b: P, side: impl Fn(HalfedgeId) -> P) -> P {
+        let mesh = self.mesh;
+        let (h0, h1) = (e.halfedge(0), e.halfedge(1));
         let s = mesh.edge_sharpness(e);
         let w = edge_crease_weight(s, [self.child_sharp[h0.idx()], self.child_sharp[h1.idx()]]);
         let mut adj = [a; 2];
@@ -254,6 +304,18 @@ impl<'m, P: Point> RefineKernel<'m, P> {
             }));
         }
         points
+    }
+
+    /// The mesh this kernel refines.
+    #[inline]
+    pub fn mesh(&self) -> &'m Mesh {
+        self.mesh
+    }
+
+    /// The scheme this kernel applies.
+    #[inline]
+    pub fn scheme(&self) -> Scheme {
+        self.scheme
     }
 
     /// Carries sharpness to `child`, whose vertex `i` descends from the parent's vertex `i`.

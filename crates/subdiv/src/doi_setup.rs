@@ -339,6 +339,7 @@ impl DoiSetup {
             face_indices: indices.iter().map(|v| v.0).collect(),
             // Sharp edges shade as creases: each sector of a vertex its own normal.
             corner_normals: crate::crease_normals::sector_corner_normals(m, &normals),
+            ..Default::default()
         };
         Ok((limit, scalar))
     }

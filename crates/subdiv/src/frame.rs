@@ -14,6 +14,7 @@ pub fn frame_limit(g: &FrameGeometry) -> (LimitMesh, Vec<f32>) {
         face_indices: Vec::with_capacity(g.indices.len()),
         // Triangle corners index `indices` one to one.
         corner_normals: g.corner_normals.clone(),
+        ..Default::default()
     };
     let mut depths = Vec::new();
     for &i in &g.indices {

@@ -128,6 +128,7 @@ impl FrameSource for AdaptiveSource {
                 face_offsets: (0..=g.indices.len() as u32 / 3).map(|i| i * 3).collect(),
                 face_indices: g.indices.clone(),
                 corner_normals: Vec::new(),
+                ..Default::default()
             };
             Silhouettes::new(&limit).lines_into(
                 &g.positions,

@@ -27,12 +27,13 @@ pub enum SceneError {
 }
 
 /// The uniform limit tessellation of `mesh` at `depth`: Catmull-Clark on the slate tessellator,
-/// Loop on the whole-mesh refinement.
+/// Loop on the whole-mesh refinement. A cage with face-varying data (UVs) takes the whole-mesh
+/// refinement for both schemes, which carries the UVs (the slates do not yet).
 pub fn uniform_limit(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<LimitMesh, SceneError> {
     let t0 = std::time::Instant::now();
     let limit = match scheme {
-        Scheme::CatmullClark => subdiv_slate::tessellate(mesh, depth)?,
-        Scheme::Loop => tessellate_uniform(mesh, scheme, depth)?,
+        Scheme::CatmullClark if mesh.uv().is_none() => subdiv_slate::tessellate(mesh, depth)?,
+        _ => tessellate_uniform(mesh, scheme, depth)?,
     };
     log::debug!(
         "uniform {scheme:?} depth {depth}: {} faces -> {} limit points, {} faces in {:.1} ms",

@@ -122,6 +122,7 @@ pub(crate) mod tests {
             face_offsets: (0..=6).map(|i| i * 4).collect(),
             face_indices: faces.iter().flatten().copied().collect(),
             corner_normals: Vec::new(),
+            ..Default::default()
         }
     }
 

@@ -78,7 +78,9 @@ pub(super) fn build(soup: &PolygonSoup) -> Result<Mesh, MeshError> {
         he_face,
         ..
     } = edges;
+    let uv = validate::face_varying(soup)?;
     let mut mesh = assemble(soup, faces, he_to, he_face, cycles, vertex_out);
+    mesh.uv = uv;
 
     manifold::check_vertex_fans(&mesh, &corner_count, soup)?;
     tags::apply_tags(&mut mesh, soup, &edge_map)?;
@@ -119,5 +121,6 @@ fn assemble(
         },
         groups: soup.groups.clone(),
         options: soup.options,
+        uv: None,
     }
 }

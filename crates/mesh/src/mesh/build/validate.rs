@@ -97,3 +97,46 @@ fn check_face(
     }
     Ok(())
 }
+
+/// The face-varying channel of the soup, if it has one: one index per face corner, each naming
+/// one of its finite values.
+pub(super) fn face_varying(soup: &PolygonSoup) -> Result<Option<crate::FaceVarying>, MeshError> {
+    if soup.uv_indices.is_empty() {
+        return Ok(None);
+    }
+    if soup.uv_indices.len() != soup.face_indices.len() {
+        return Err(MeshError::UvCount {
+            indices: soup.uv_indices.len() as u64,
+            corners: soup.face_indices.len() as u64,
+        });
+    }
+    let count = to_u32(soup.uvs.len(), "texture coordinates")?;
+    let mut indices = Vec::with_capacity(soup.uv_indices.len());
+    for f in 0..soup.num_faces() {
+        let start = soup.face_offsets[f] as usize;
+        for (k, &i) in soup.face(f).iter().enumerate() {
+            let index = soup.uv_indices[start + k];
+            if index < 0 || index >= i64::from(count) {
+                return Err(MeshError::UvIndexOutOfRange {
+                    face: f as u32,
+                    vertex: i,
+                    index,
+                    count,
+                    line: soup.face_line(f),
+                });
+            }
+            indices.push(index as u32);
+        }
+    }
+    if let Some(u) = soup.uvs.iter().position(|p| !p.is_finite()) {
+        return Err(MeshError::NonFiniteUv {
+            index: u as u32,
+            u: soup.uvs[u].x,
+            v: soup.uvs[u].y,
+        });
+    }
+    Ok(Some(crate::FaceVarying {
+        values: soup.uvs.clone(),
+        indices,
+    }))
+}

@@ -1,0 +1,500 @@
+//! Face-varying refinement: one uniform step of a [`FaceVarying`] channel (UVs) alongside the
+//! positions, with OpenSubdiv 3.5's face-varying linear interpolation options
+//! ([`FVarLinearInterpolation`]; semantics of `Vtr::FVarLevel` and
+//! `Far::PrimvarRefiner::InterpolateFaceVarying`).
+//!
+//! Where the values around a vertex and along its edges agree (no seam) the value is refined
+//! with the same rules as the positions (the [`RefineKernel`], crease sharpness included).
+//! Where they do not, every distinct value around the vertex (a *sibling*) is refined on its
+//! own: as a *corner* (kept) or as a *crease* (`3/4` itself plus `1/8` each of the two values
+//! along the seam or boundary that bound its span of faces); values on a seam edge are the
+//! midpoints of each side's ends. The options decide which siblings are corners:
+//! `none` none but infinitely sharp vertices, `cornersOnly` siblings that span one face,
+//! `cornersPlus1` also every sibling of a vertex with three or more, `cornersPlus2` also darts
+//! and both siblings where one is a corner, `boundaries` every sibling on a seam or boundary,
+//! `all` everything (bilinear). The tags are recomputed at every level from that level's
+//! topology, which for infinitely sharp seams gives OpenSubdiv's inherited tags.
+//! A crease sibling whose span (or vertex) is semi-sharp stays put while the child is still
+//! semi-sharp there and blends crease and corner by the fractional weight in the step where it
+//! runs out, as OpenSubdiv does. Not modelled: OpenSubdiv's *dependent* sharpness
+//! (`cornersPlus1`/`cornersPlus2` at a vertex with two siblings of which only one is
+//! semi-sharp, where the other follows it); that sibling is refined as a plain crease.
+
+use glam::{Vec2, Vec3};
+use subdiv_mesh::{FVarLinearInterpolation, FaceId, FaceVarying, HalfedgeId, Mesh, VertexId};
+
+use crate::Scheme;
+use crate::crease::{decrement, fractional_weight, is_infinite, is_semi_sharp};
+use crate::refine::RefineKernel;
+
+/// The options of `Vtr::FVarLevel::completeTopologyFromFaceValues`, as flags.
+#[derive(Clone, Copy, Debug)]
+struct Flags {
+    linear_all: bool,
+    linear_boundaries: bool,
+    dependent: bool,
+    corners_sharp: bool,
+    smooth_corners_sharp: bool,
+    both_if_one_corner: bool,
+    darts: bool,
+}
+
+impl Flags {
+    fn new(mesh: &Mesh) -> Flags {
+        use FVarLinearInterpolation as F;
+        let o = mesh.options().fvar;
+        let linear_boundaries = matches!(o, F::All | F::Boundaries);
+        let corners_sharp = o != F::None;
+        let geom_corners_smooth =
+            mesh.options().boundary != subdiv_mesh::BoundaryInterpolation::EdgeAndCorner;
+        Flags {
+            linear_all: o == F::All,
+            linear_boundaries,
+            dependent: matches!(o, F::CornersPlus1 | F::CornersPlus2),
+            corners_sharp,
+            smooth_corners_sharp: geom_corners_smooth && corners_sharp,
+            both_if_one_corner: o == F::CornersPlus2,
+            darts: o == F::CornersPlus2 || linear_boundaries,
+        }
+    }
+}
+
+/// The faces of one sibling value around a vertex (`Vtr::FVarLevel::ValueSpan`).
+#[derive(Clone, Copy, Debug, Default)]
+struct Span {
+    size: usize,
+    start: usize,
+    disjoint: i32,
+    /// Semi-sharp edges inside the span.
+    semi: u32,
+}
+
+/// The channel and the topology it needs: the corner of every half-edge with a face and which
+/// edges are seams.
+struct Channel<'a> {
+    mesh: &'a Mesh,
+    fv: &'a FaceVarying,
+    /// Face corner of each half-edge's origin in its face (`u32::MAX` for boundary half-edges).
+    corner: Vec<u32>,
+    /// Edges whose faces disagree at either end.
+    seam: Vec<bool>,
+    flags: Flags,
+}
+
+impl Channel<'_> {
+    /// Value index of `h`'s face at `h`'s origin.
+    #[inline]
+    fn index(&self, h: HalfedgeId) -> u32 {
+        self.fv.indices[self.corner[h.idx()] as usize]
+    }
+    /// Value of `h`'s face at `h`'s origin.
+    #[inline]
+    fn value(&self, h: HalfedgeId) -> Vec3 {
+        self.fv.values[self.index(h) as usize].extend(0.0)
+    }
+    /// Value at the end of `h` in a face of its edge.
+    #[inline]
+    fn end_value(&self, h: HalfedgeId) -> Vec3 {
+        if self.mesh.face(h).is_some() {
+            self.value(self.mesh.next(h))
+        } else {
+            self.value(h.twin())
+        }
+    }
+    /// Edge with linear face-varying interpolation: a seam or, with linear boundaries, a
+    /// boundary edge.
+    #[inline]
+    fn linear_edge(&self, h: HalfedgeId) -> bool {
+        self.seam[h.edge().idx()]
+            || (self.flags.linear_boundaries && self.mesh.is_boundary_edge(h.edge()))
+    }
+}
+
+/// One uniform refinement step of `fv` on the kernel's mesh, whose vertex points the kernel has
+/// already computed (so its child sharpness is known). The child channel numbers corners as
+/// [`refine_uniform`](crate::refine_uniform) numbers the child faces.
+pub(crate) fn refine_face_varying(kernel: &mut RefineKernel<'_>, fv: &FaceVarying) -> FaceVarying {
+    let mesh = kernel.mesh();
+    let scheme = kernel.scheme();
+    let mut corner = vec![u32::MAX; mesh.num_halfedges()];
+    let (offsets, _) = mesh.face_lists();
+    for f in mesh.faces() {
+        let verts = mesh.face_vertices(f);
+        let mut h = mesh.face_halfedge(f);
+        for _ in 0..verts.len() {
+            let k = verts.iter().position(|&v| v == mesh.from(h)).unwrap_or(0);
+            corner[h.idx()] = offsets[f.idx()] + k as u32;
+            h = mesh.next(h);
+        }
+    }
+    let mut ch = Channel {
+        mesh,
+        fv,
+        corner,
+        seam: vec![false; mesh.num_edges()],
+        flags: Flags::new(mesh),
+    };
+    for e in mesh.edges() {
+        let (h0, h1) = (e.halfedge(0), e.halfedge(1));
+        if mesh.face(h0).is_some() && mesh.face(h1).is_some() {
+            ch.seam[e.idx()] =
+                ch.index(h0) != ch.index(mesh.next(h1)) || ch.index(mesh.next(h0)) != ch.index(h1);
+        }
+    }
+    let mut out = FaceVarying::default();
+    let push = push_value;
+
+    // Face values (Catmull-Clark): the centroid of the corners.
+    let mut face_value = Vec::new();
+    if scheme == Scheme::CatmullClark {
+        face_value = mesh
+            .faces()
+            .map(|f| {
+                let r = offsets[f.idx()] as usize..offsets[f.idx() + 1] as usize;
+                let n = r.len() as f32;
+                r.map(|c| fv.corner(c).extend(0.0)).sum::<Vec3>() / n
+            })
+            .collect::<Vec<Vec3>>();
+    }
+
+    // Vertex values: child value index of every face corner.
+    let mut vertex_child = vec![0u32; fv.indices.len()];
+    let mut hs = Vec::new();
+    let mut sib = Vec::new();
+    let mut uniq = Vec::new();
+    for v in mesh.vertices() {
+        hs.clear();
+        hs.extend(mesh.outgoing(v).filter(|&h| mesh.face(h).is_some()));
+        if hs.is_empty() {
+            continue;
+        }
+        // OpenSubdiv walks an interior vertex's faces from its lowest-numbered one.
+        if !mesh.is_boundary_vertex(v)
+            && let Some(k) = (0..hs.len()).min_by_key(|&k| mesh.face(hs[k]).0)
+        {
+            hs.rotate_left(k);
+        }
+        siblings(&ch, &hs, &mut sib, &mut uniq);
+        if !vertex_mismatch(&ch, v) {
+            let centre = ch.value(hs[0]);
+            let p = if ch.flags.linear_all {
+                centre
+            } else {
+                kernel.vertex_point_with(v, centre, |h| ch.end_value(h), |f| face_value[f.idx()])
+            };
+            let i = push(&mut out, p);
+            for &h in &hs {
+                vertex_child[ch.corner[h.idx()] as usize] = i;
+            }
+            continue;
+        }
+        let corners = sibling_corners(&ch, v, &hs, &sib, uniq.len());
+        let base = out.values.len() as u32;
+        for (s, &is_corner) in corners.iter().enumerate() {
+            let first = sib.iter().position(|&x| x == s).unwrap_or(0);
+            let centre = ch.value(hs[first]);
+            let p = if is_corner || ch.flags.linear_all {
+                centre
+            } else {
+                let span = spans(&ch, &hs, &sib, uniq.len())[s];
+                crease_value(&ch, kernel, v, &hs, span, centre)
+            };
+            push(&mut out, p);
+        }
+        for (k, &h) in hs.iter().enumerate() {
+            vertex_child[ch.corner[h.idx()] as usize] = base + sib[k] as u32;
+        }
+    }
+
+    // Edge values: one per edge, or one per side of a linear edge.
+    let mut edge_child = vec![0u32; mesh.num_halfedges()];
+    for e in mesh.edges() {
+        let (h0, h1) = (e.halfedge(0), e.halfedge(1));
+        if ch.linear_edge(h0) || ch.flags.linear_all {
+            let mut shared = None;
+            for h in [h0, h1] {
+                if mesh.face(h).is_some() {
+                    let mid = (ch.value(h) + ch.value(mesh.next(h))) * 0.5;
+                    // Without a seam both sides agree: one value.
+                    let i = match shared {
+                        Some(i) if !ch.seam[e.idx()] => i,
+                        _ => push(&mut out, mid),
+                    };
+                    shared = Some(i);
+                    edge_child[h.idx()] = i;
+                }
+            }
+            continue;
+        }
+        let h = if mesh.face(h0).is_some() { h0 } else { h1 };
+        let (a, b) = if h == h0 {
+            (ch.value(h0), ch.value(mesh.next(h0)))
+        } else {
+            (ch.value(mesh.next(h1)), ch.value(h1))
+        };
+        let p = kernel.edge_point_with(e, a, b, |h| match scheme {
+            Scheme::CatmullClark => face_value[mesh.face(h).idx()],
+            Scheme::Loop => ch.value(mesh.prev(h)),
+        });
+        let i = push(&mut out, p);
+        edge_child[h0.idx()] = i;
+        edge_child[h1.idx()] = i;
+    }
+
+    child_corners(
+        &ch,
+        scheme,
+        face_value,
+        &vertex_child,
+        &edge_child,
+        &mut out,
+    );
+    out
+}
+
+/// Appends the Catmull-Clark face values to `out` and the value of every child face corner, in
+/// the child face order of [`refine_uniform`](crate::refine_uniform).
+fn child_corners(
+    ch: &Channel<'_>,
+    scheme: Scheme,
+    face_value: Vec<Vec3>,
+    vertex_child: &[u32],
+    edge_child: &[u32],
+    out: &mut FaceVarying,
+) {
+    let mesh = ch.mesh;
+    let face_base = out.values.len() as u32;
+    if scheme == Scheme::CatmullClark {
+        for p in face_value {
+            push_value(out, p);
+        }
+    }
+    let vc = |h: HalfedgeId| vertex_child[ch.corner[h.idx()] as usize];
+    for f in mesh.faces() {
+        let h0 = mesh.face_halfedge(f);
+        match scheme {
+            Scheme::CatmullClark => {
+                let mut h = h0;
+                let mut hp = mesh.prev(h0);
+                for _ in 0..mesh.face_size(f) {
+                    out.indices.extend([
+                        vc(h),
+                        edge_child[h.idx()],
+                        face_base + f.0,
+                        edge_child[hp.idx()],
+                    ]);
+                    hp = h;
+                    h = mesh.next(h);
+                }
+            }
+            Scheme::Loop => {
+                let (ha, hb, hc) = (h0, mesh.next(h0), mesh.prev(h0));
+                let ev = |h: HalfedgeId| edge_child[h.idx()];
+                out.indices.extend([vc(ha), ev(ha), ev(hc)]);
+                out.indices.extend([vc(hb), ev(hb), ev(ha)]);
+                out.indices.extend([vc(hc), ev(hc), ev(hb)]);
+                out.indices.extend([ev(ha), ev(hb), ev(hc)]);
+            }
+        }
+    }
+}
+
+/// Appends a value (the `x`, `y` of `p`); its index.
+#[inline]
+fn push_value(out: &mut FaceVarying, p: Vec3) -> u32 {
+    out.values.push(Vec2::new(p.x, p.y));
+    (out.values.len() - 1) as u32
+}
+
+/// The value of a crease sibling at `v` (OpenSubdiv's `PrimvarRefiner::interpFVarFromVerts`):
+/// `3/4` itself and `1/8` each of the values that end its span. A sibling whose span (or
+/// vertex) is still semi-sharp in the child stays put; one whose semi-sharpness runs out in
+/// this step blends the two by the fractional weight of the span's edges.
+fn crease_value(
+    ch: &Channel<'_>,
+    kernel: &RefineKernel<'_>,
+    v: VertexId,
+    hs: &[HalfedgeId],
+    span: Span,
+    centre: Vec3,
+) -> Vec3 {
+    let mesh = ch.mesh;
+    let n = hs.len();
+    let first = hs[span.start % n];
+    let last = hs[(span.start + n - 1 + span.size.max(1)) % n];
+    let ends = ch.value(mesh.next(first)) + ch.value(mesh.prev(last));
+    let vs = mesh.vertex_sharpness(v);
+    let mut w_corner = 0.0f32;
+    if span.semi > 0 || is_semi_sharp(vs) {
+        // Edges inside the span: edge `i` lies between faces `i - 1` and `i`.
+        let inner = (1..span.size).map(|j| hs[(span.start + j) % n]);
+        if inner
+            .clone()
+            .any(|h| is_semi_sharp(kernel.child_sharpness(h)))
+        {
+            return centre;
+        }
+        let parent: Vec<f32> = inner
+            .clone()
+            .map(|h| mesh.edge_sharpness(h.edge()))
+            .collect();
+        let child: Vec<f32> = inner.map(|h| kernel.child_sharpness(h)).collect();
+        w_corner = fractional_weight(mesh.options().crease, vs, decrement(vs), &parent, &child);
+    }
+    let w_crease = 1.0 - w_corner;
+    centre * (w_crease * 0.75 + w_corner) + ends * (w_crease * 0.125)
+}
+
+/// The sibling of each face around a vertex (`hs`: its out half-edges with a face, in order),
+/// exactly as `Vtr::FVarLevel::completeTopologyFromFaceValues` numbers them; `uniq` gets the
+/// value index of each sibling. A value met again after two others, with the second differing
+/// from the first, becomes a new sibling (OpenSubdiv compares with the first sibling only
+/// there), so a value in disjoint runs may count as several siblings, each refined on its own.
+fn siblings(ch: &Channel<'_>, hs: &[HalfedgeId], sib: &mut Vec<usize>, uniq: &mut Vec<u32>) {
+    sib.clear();
+    uniq.clear();
+    let mut prev = u32::MAX;
+    for &h in hs {
+        let i = ch.index(h);
+        let s = if uniq.is_empty() {
+            uniq.push(i);
+            0
+        } else if i == prev {
+            sib[sib.len() - 1]
+        } else if uniq.len() == 1 || (uniq.len() == 2 && uniq[0] != i) {
+            uniq.push(i);
+            uniq.len() - 1
+        } else {
+            match uniq.iter().position(|&u| u == i) {
+                Some(s) => s,
+                None => {
+                    uniq.push(i);
+                    uniq.len() - 1
+                }
+            }
+        };
+        sib.push(s);
+        prev = i;
+    }
+}
+
+/// Whether the values at `v` are refined apart from the vertex rules: a seam ends at `v`, or a
+/// boundary vertex is made linear (linear boundaries, or a one-face corner made sharp).
+fn vertex_mismatch(ch: &Channel<'_>, v: VertexId) -> bool {
+    let mesh = ch.mesh;
+    if mesh.outgoing(v).any(|h| ch.seam[h.edge().idx()]) {
+        return true;
+    }
+    if !mesh.is_boundary_vertex(v) {
+        return false;
+    }
+    let faces = mesh.outgoing(v).filter(|&h| mesh.face(h).is_some()).count();
+    ch.flags.linear_boundaries || (faces == 1 && ch.flags.smooth_corners_sharp)
+}
+
+/// The spans of the siblings around a vertex (`Vtr::FVarLevel::gatherValueSpans`): edge `i`
+/// lies between faces `i - 1` and `i`.
+fn spans(ch: &Channel<'_>, hs: &[HalfedgeId], sib: &[usize], count: usize) -> Vec<Span> {
+    let mesh = ch.mesh;
+    let n = hs.len();
+    let v = mesh.from(hs[0]);
+    let boundary = mesh.is_boundary_vertex(v);
+    let sharp = |h: HalfedgeId| is_infinite(mesh.edge_sharpness(h.edge()));
+    let semi = |h: HalfedgeId| is_semi_sharp(mesh.edge_sharpness(h.edge()));
+    let mut sp = vec![Span::default(); count];
+    if count == 1 {
+        // Every edge, the boundary's last one included.
+        for h in mesh.outgoing(v) {
+            let i = hs.iter().position(|&x| x == h).unwrap_or(n);
+            if ch.seam[h.edge().idx()] {
+                if sp[0].size > 0 {
+                    sp[0].disjoint = 1;
+                    break;
+                }
+                sp[0].size = n;
+                sp[0].start = i % n;
+            } else if sharp(h) {
+                sp[0].disjoint = 1;
+                break;
+            } else if semi(h) {
+                sp[0].semi += 1;
+            }
+        }
+        return sp;
+    }
+    sp[0].size = 1;
+    if !boundary && sib[n - 1] == 0 {
+        if ch.seam[hs[0].edge().idx()] || sharp(hs[0]) {
+            sp[0].disjoint = 1;
+        } else if semi(hs[0]) {
+            sp[0].semi += 1;
+        }
+    }
+    for i in 1..n {
+        let s = sib[i];
+        if s == sib[i - 1] {
+            if ch.seam[hs[i].edge().idx()] {
+                sp[s].disjoint += 1;
+            } else if sharp(hs[i]) {
+                sp[s].disjoint = 1;
+            } else if semi(hs[i]) {
+                sp[s].semi += 1;
+            }
+        } else {
+            if sp[s].size > 0 {
+                sp[s].disjoint += 1;
+            }
+            sp[s].start = i;
+        }
+        sp[s].size += 1;
+    }
+    if sib[n - 1] == 0 && !boundary {
+        sp[0].disjoint -= 1;
+    }
+    sp
+}
+
+/// Which siblings around `v` are corners (kept) rather than creases, by the options
+/// (`Vtr::FVarLevel::completeTopologyFromFaceValues`).
+fn sibling_corners(
+    ch: &Channel<'_>,
+    v: VertexId,
+    hs: &[HalfedgeId],
+    sib: &[usize],
+    count: usize,
+) -> Vec<bool> {
+    let mesh = ch.mesh;
+    let fl = ch.flags;
+    let boundary = mesh.is_boundary_vertex(v);
+    let all = fl.linear_boundaries
+        || is_infinite(mesh.vertex_sharpness(v))
+        || (fl.dependent && count > 2)
+        || (fl.darts && count == 1 && !boundary);
+    if all {
+        return vec![true; count];
+    }
+    let sp = spans(ch, hs, sib, count);
+    if fl.dependent && count == 2 {
+        let mut all = sp[0].disjoint != 0 || sp[1].disjoint != 0;
+        if fl.both_if_one_corner {
+            all |= sp[0].size == 1 || sp[1].size == 1;
+        }
+        if all {
+            return vec![true; count];
+        }
+    }
+    sp.iter()
+        .map(|s| s.disjoint != 0 || (s.size == 1 && fl.corners_sharp))
+        .collect()
+}
+
+/// The face-varying value of every corner of face `f` (for tests and writers).
+pub fn face_uvs(mesh: &Mesh, f: FaceId) -> Option<Vec<Vec2>> {
+    let fv = mesh.uv()?;
+    let (offsets, _) = mesh.face_lists();
+    Some(
+        (offsets[f.idx()]..offsets[f.idx() + 1])
+            .map(|c| fv.corner(c as usize))
+            .collect(),
+    )
+}

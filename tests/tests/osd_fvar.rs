@@ -1,0 +1,62 @@
+//! Face-varying refinement (UVs) against OpenSubdiv 3.5: for every cage in
+//! `fixtures/meshes/fvar` (UV seams, darts, junctions, a semi-sharp crease away from the seams),
+//! every face-varying linear interpolation option and levels 1-3, uniform Catmull-Clark and
+//! Loop refinement give the values of `PrimvarRefiner::InterpolateFaceVarying` at every corner
+//! of every refined face, within 1e-5. References: `fixtures/reference/fvar/
+//! <shape>.<scheme>.o<option>.L<level>.txt`, printed by `xtask/osd/ref_fvar.cpp`.
+
+use subdiv_mesh::{FVarLinearInterpolation, Mesh, parse_obj};
+use subdiv_rules::{Scheme, refine_uniform_levels};
+
+use subdiv_tests::osd_fvar::{compare_fvar, parse_fvar};
+use subdiv_tests::{fixture_files, fixtures};
+
+/// Compares one reference file; returns the number of corners compared.
+fn check(path: &std::path::Path) -> Result<usize, String> {
+    let name = path.file_name().unwrap().to_string_lossy().to_string();
+    let parts: Vec<&str> = name.split('.').collect();
+    let [shape, scheme, option, level, "txt"] = parts[..] else {
+        return Err(format!("{name}: not <shape>.<scheme>.o<k>.L<l>.txt"));
+    };
+    let scheme = match scheme {
+        "catmark" => Scheme::CatmullClark,
+        "loop" => Scheme::Loop,
+        s => return Err(format!("{name}: scheme {s}")),
+    };
+    let option = FVarLinearInterpolation::from_tag(option[1..].parse().unwrap()).unwrap();
+    let level: u8 = level[1..].parse().unwrap();
+    let text =
+        std::fs::read_to_string(fixtures().join(format!("meshes/fvar/{shape}.obj"))).unwrap();
+    let mut soup = parse_obj(&text).map_err(|e| e.to_string())?;
+    soup.options.fvar = option;
+    let mesh = Mesh::from_soup(&soup).map_err(|e| e.to_string())?;
+    let refined = refine_uniform_levels(&mesh, scheme, level).map_err(|e| e.to_string())?;
+    let faces = parse_fvar(&std::fs::read_to_string(path).unwrap());
+    compare_fvar(&mesh, scheme, level, &refined, &faces).map_err(|e| format!("{name}: {e}"))
+}
+
+#[test]
+fn face_varying_refinement_matches_opensubdiv() {
+    let files = fixture_files("reference/fvar", "txt");
+    assert_eq!(
+        files.len(),
+        90,
+        "5 shape/scheme pairs x 6 options x 3 levels"
+    );
+    let mut failures = Vec::new();
+    let mut corners = 0;
+    for path in &files {
+        match check(path) {
+            Ok(n) => corners += n,
+            Err(e) => failures.push(e),
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {} differ:\n{}",
+        failures.len(),
+        files.len(),
+        failures.join("\n")
+    );
+    assert!(corners > 10_000, "{corners}");
+}
