@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use glam::Vec3;
 use subdiv_mesh::Mesh;
-use subdiv_rules::{Depth, LimitMesh, RulesError, Scheme, tessellate_uniform};
+use subdiv_rules::{Depth, LimitMesh, RulesError, Scheme};
 use subdiv_slate::SlateError;
 use subdiv_vk::OwnedMesh;
 
@@ -26,12 +26,16 @@ pub enum SceneError {
     Empty,
 }
 
-/// The uniform limit tessellation of `mesh` at `depth`: Catmull-Clark on the slate tessellator,
-/// Loop on the whole-mesh refinement.
+/// The uniform limit tessellation of `mesh` at `depth` on the slate tessellators: quad slates
+/// for Catmull-Clark, triangular slates for Loop.
 pub fn uniform_limit(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<LimitMesh, SceneError> {
     Ok(match scheme {
         Scheme::CatmullClark => subdiv_slate::tessellate(mesh, depth)?,
-        Scheme::Loop => tessellate_uniform(mesh, scheme, depth)?,
+        // A cage Loop refuses (not triangles, a doubled triangle) is a rules error, as before.
+        Scheme::Loop => subdiv_slate::tessellate_loop(mesh, depth).map_err(|e| match e {
+            SlateError::Rules(r) => SceneError::Rules(r),
+            e => SceneError::Slate(e),
+        })?,
     })
 }
 
