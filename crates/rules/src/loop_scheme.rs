@@ -113,26 +113,56 @@ pub fn regular_limit<P: Point>(v: P, e: [P; 6]) -> (P, P, P) {
     (pos, t1, t2)
 }
 
+/// Loop's smooth interior limit masks for one valence `n >= 3`: position weight
+/// `chi = 1 / (n + 3/(8 beta))` and the tangent weights `cos(2 pi i/n)`, `sin(2 pi i/n)`, computed
+/// once so that tessellators meeting a valence many times skip the trigonometry.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SmoothLimitMask {
+    chi: f64,
+    cos: Vec<f64>,
+    sin: Vec<f64>,
+}
+
+impl SmoothLimitMask {
+    /// The masks of valence `n`.
+    pub fn new(n: usize) -> SmoothLimitMask {
+        let b = beta(n);
+        let th = 2.0 * PI / n as f64;
+        let (sin, cos) = (0..n).map(|i| (th * i as f64).sin_cos()).unzip();
+        SmoothLimitMask {
+            chi: 1.0 / (n as f64 + 3.0 / (8.0 * b)),
+            cos,
+            sin,
+        }
+    }
+
+    /// The valence the masks are for.
+    #[inline]
+    pub fn valence(&self) -> usize {
+        self.cos.len()
+    }
+
+    /// Limit position and tangents of `v` with its `n` edge neighbours (counter-clockwise).
+    #[inline]
+    pub fn apply<P: Point>(&self, v: P, edges: &[P]) -> (P, P, P) {
+        let mut pos = v.scale(1.0 - self.chi * edges.len() as f64);
+        let mut t1 = P::ZERO;
+        let mut t2 = P::ZERO;
+        for ((e, &c), &s) in edges.iter().zip(&self.cos).zip(&self.sin) {
+            pos = pos.madd(*e, self.chi);
+            t1 = t1.madd(*e, c);
+            t2 = t2.madd(*e, s);
+        }
+        (pos, t1, t2)
+    }
+}
+
 /// Limit position and two tangents of vertex `v` with edge neighbours `edges` (counter-clockwise;
 /// for a boundary vertex edge 0 and the last edge are the boundary) under its stationary `rule`.
 pub fn limit<P: Point>(v: P, edges: &[P], rule: Rule, boundary: bool) -> (P, P, P) {
     let n = edges.len();
     match rule {
-        Rule::Smooth | Rule::Dart if !boundary && n >= 3 => {
-            let b = beta(n);
-            let chi = 1.0 / (n as f64 + 3.0 / (8.0 * b));
-            let mut pos = v.scale(1.0 - chi * n as f64);
-            let mut t1 = P::ZERO;
-            let mut t2 = P::ZERO;
-            let th = 2.0 * PI / n as f64;
-            for (i, e) in edges.iter().enumerate() {
-                pos = pos.madd(*e, chi);
-                let (s, c) = (th * i as f64).sin_cos();
-                t1 = t1.madd(*e, c);
-                t2 = t2.madd(*e, s);
-            }
-            (pos, t1, t2)
-        }
+        Rule::Smooth | Rule::Dart if !boundary && n >= 3 => SmoothLimitMask::new(n).apply(v, edges),
         Rule::Crease([c0, c1]) => {
             let pos = v
                 .scale(2.0 / 3.0)

@@ -4,7 +4,7 @@
 
 use glam::{DVec3, Vec3A};
 use subdiv_rules::crease::is_semi_sharp;
-use subdiv_rules::loop_scheme::regular_limit;
+use subdiv_rules::loop_scheme::{SmoothLimitMask, regular_limit};
 
 use super::worker::{TriWorker, side_ring};
 
@@ -20,6 +20,9 @@ pub(crate) struct LimitScratch {
     faces: Vec<DVec3>,
     sharp: Vec<f32>,
     far: Vec<(f32, u32)>,
+    masks: Vec<Option<SmoothLimitMask>>,
+    /// Output ids of the patch's lattice points (row by row).
+    pub(crate) ids: Vec<u32>,
 }
 
 #[inline(always)]
@@ -112,6 +115,19 @@ impl TriWorker {
         let origin = self.origin.as_dvec3();
         let method = self.method;
         let corner = &mut self.corners[c];
+        if corner.fast {
+            let v = corner.valence;
+            if s.masks.len() <= v {
+                s.masks.resize(v + 1, None);
+            }
+            let mask = s.masks[v].get_or_insert_with(|| SmoothLimitMask::new(v));
+            let (p, t1, t2) = mask.apply(corner.center, &corner.edges);
+            let nrm = t1.cross(t2);
+            // A degenerate ring falls through to the exact ring (its area fallback).
+            if nrm.length_squared() > 1e-30 * (t1.length_squared() * t2.length_squared()) {
+                return (p + self.origin, nrm.normalize(), None);
+            }
+        }
         let (p, nrm, sided) = if corner.fast {
             s.edges.clear();
             s.edges.extend(corner.edges.iter().map(|e| e.as_dvec3() + origin));

@@ -184,7 +184,7 @@ fn run_patch(
         });
     }
     if visible {
-        write_triangles(p, n, tris);
+        write_triangles(p, n, tris, &mut scratch.ids);
     }
     corner_slots(n, &sided)
 }
@@ -197,17 +197,30 @@ fn up_index(n: u32, a: u32, b: u32) -> u32 {
     2 * n * b - b * b + 2 * a
 }
 
-/// Writes the `n^2` triangles of patch `p`.
-fn write_triangles(p: &TriPatch, n: u32, tris: &mut [u32]) {
-    let id = |i: u32, j: u32| TriLayout::point_id(p, n, i, j).0;
-    let mut k = 0;
+/// Writes the `n^2` triangles of patch `p` (`ids`: scratch for the lattice's output ids).
+fn write_triangles(p: &TriPatch, n: u32, tris: &mut [u32], ids: &mut Vec<u32>) {
+    // Row `b` of the lattice starts at `row(b)` and holds `n + 1 - b` points.
+    let row = |b: u32| (b * (2 * n + 3) - b * b) / 2;
+    ids.clear();
+    for j in 0..=n {
+        for i in 0..=n - j {
+            ids.push(TriLayout::point_id(p, n, i, j).0);
+        }
+    }
+    let mut out = tris.chunks_exact_mut(3);
     for b in 0..n {
-        for a in 0..n - b {
-            tris[k..k + 3].copy_from_slice(&[id(a, b), id(a + 1, b), id(a, b + 1)]);
-            k += 3;
-            if a + 1 < n - b {
-                tris[k..k + 3].copy_from_slice(&[id(a + 1, b), id(a + 1, b + 1), id(a, b + 1)]);
-                k += 3;
+        let (lo, hi) = (row(b) as usize, row(b + 1) as usize);
+        let len = (n - b) as usize;
+        for a in 0..len {
+            out.next()
+                .expect("n^2 triangles")
+                .copy_from_slice(&[ids[lo + a], ids[lo + a + 1], ids[hi + a]]);
+            if a + 1 < len {
+                out.next().expect("n^2 triangles").copy_from_slice(&[
+                    ids[lo + a + 1],
+                    ids[hi + a + 1],
+                    ids[hi + a],
+                ]);
             }
         }
     }
@@ -305,7 +318,7 @@ mod tests {
             interior: 100,
             visible: true,
         };
-        write_triangles(&p, n, &mut tris);
+        write_triangles(&p, n, &mut tris, &mut Vec::new());
         for j in 0..=n {
             for i in 0..=n - j {
                 let slots = corner_slots(n, &[(i, j, Vec3A::X)]);
