@@ -216,18 +216,21 @@ pub fn loop_cages() -> Vec<(String, subdiv_mesh::Mesh)> {
                 .is_some_and(|n| n.to_string_lossy().starts_with("loop_"))
         })
         .collect();
-    v.extend(
-        fixture_files("meshes", "obj")
-            .into_iter()
-            .filter(|p| p.file_name().is_some_and(|n| n.to_string_lossy().starts_with("tri_"))),
-    );
+    v.extend(fixture_files("meshes", "obj").into_iter().filter(|p| {
+        p.file_name()
+            .is_some_and(|n| n.to_string_lossy().starts_with("tri_"))
+    }));
     v.into_iter()
         .map(|p| {
             let opts = subdiv_mesh::ReadOptions {
                 split_nonmanifold_vertices: true,
             };
             let m = subdiv_mesh::read_obj_with(&p, opts).unwrap_or_else(|e| panic!("{e}"));
-            let name = p.file_stem().unwrap_or_default().to_string_lossy().to_string();
+            let name = p
+                .file_stem()
+                .unwrap_or_default()
+                .to_string_lossy()
+                .to_string();
             (name, m)
         })
         .collect()

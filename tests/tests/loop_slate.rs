@@ -69,7 +69,11 @@ fn compare(a: &LimitMesh, b: &LimitMesh, tol: f64) -> Result<(f64, f64), String>
             let want = dv(&corner_of[&(v, canonical_face(&f))]);
             let got = dv(&a.corner_normal(base + k));
             if want.length() > 0.5 && got.length() > 0.5 {
-                let deg = want.normalize().dot(got.normalize()).clamp(-1.0, 1.0).acos();
+                let deg = want
+                    .normalize()
+                    .dot(got.normalize())
+                    .clamp(-1.0, 1.0)
+                    .acos();
                 max_deg = max_deg.max(deg.to_degrees());
             }
         }
@@ -120,7 +124,10 @@ fn loop_slates_are_thread_count_independent() {
         };
         let one = run(1);
         for threads in [2, 3, 8] {
-            assert!(one == run(threads), "{name}: {threads} threads differ from one");
+            assert!(
+                one == run(threads),
+                "{name}: {threads} threads differ from one"
+            );
         }
     }
 }
@@ -141,12 +148,45 @@ fn loop_slates_are_watertight() {
                 assert_ne!(a, b, "{name}: degenerate triangle {i}");
             }
         }
-        let open = count.keys().filter(|&&(a, b)| !count.contains_key(&(b, a))).count();
-        assert!(count.values().all(|&c| c == 1), "{name}: an edge used twice in one direction");
+        let open = count
+            .keys()
+            .filter(|&&(a, b)| !count.contains_key(&(b, a)))
+            .count();
+        assert!(
+            count.values().all(|&c| c == 1),
+            "{name}: an edge used twice in one direction"
+        );
         let holes = mesh.faces().any(|f| mesh.is_hole(f));
         let cage_open = mesh.edges().filter(|&e| mesh.is_boundary_edge(e)).count();
         if !holes {
             assert_eq!(open, cage_open << depth, "{name}: open edges");
+        }
+    }
+}
+
+/// Open cages under each boundary interpolation (`interpolateboundary 0`: faces at the boundary
+/// are not drawn; 1 and 2 move the boundary corners differently) against the whole-mesh path.
+#[test]
+fn loop_slates_follow_boundary_interpolation() {
+    let path = subdiv_tests::fixtures().join("reference/shapes/loop_saddle_edgecorner.obj");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let text: String = text
+        .lines()
+        .filter(|l| !l.starts_with("t interpolateboundary"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    for k in 0..=2 {
+        let soup = subdiv_mesh::parse_obj(&format!("{text}t interpolateboundary 1/0/0 {k}\n"));
+        let mesh = subdiv_mesh::Mesh::from_soup(&soup.unwrap()).unwrap();
+        let (lo, hi) = mesh.bounds();
+        let diag = (hi - lo).length() as f64;
+        for depth in 0..=3 {
+            let s = subdiv_slate::tessellate_loop(&mesh, depth).unwrap();
+            let r = tessellate_uniform(&mesh, Scheme::Loop, depth).unwrap();
+            assert!(s.num_faces() > 0 || k == 0);
+            if let Err(e) = compare(&s, &r, 1e-6 * diag) {
+                panic!("interpolateboundary {k} depth {depth}: {e}");
+            }
         }
     }
 }

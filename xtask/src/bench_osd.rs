@@ -16,8 +16,16 @@ use anyhow::{Context, Result, bail};
 /// all-triangle cages (the stencil locations use ptex face = cage face). A cage outside the
 /// repository (`../shared/...`) is skipped when absent.
 const CAGES: &[(&str, &str, std::ops::RangeInclusive<u32>)] = &[
-    ("fixtures/reference/shapes/catmark_pawn.obj", "catmull-clark", 2..=5),
-    ("fixtures/reference/shapes/catmark_helmet.obj", "catmull-clark", 2..=5),
+    (
+        "fixtures/reference/shapes/catmark_pawn.obj",
+        "catmull-clark",
+        2..=5,
+    ),
+    (
+        "fixtures/reference/shapes/catmark_helmet.obj",
+        "catmull-clark",
+        2..=5,
+    ),
     ("fixtures/meshes/cc_3torus.obj", "catmull-clark", 2..=5),
     ("fixtures/meshes/tri_bunny_3k.obj", "loop", 2..=5),
     ("../shared/meshes/tri_armadillo_52k.obj", "loop", 2..=3),

@@ -132,7 +132,7 @@ fn bench_loop(
     let mut out = pool
         .install(|| tessellate_loop(mesh, a.depth))
         .map_err(|e| anyhow::anyhow!("{}: {e}", a.input.display()))?;
-    let layout = TriLayout::new(mesh, a.depth);
+    let layout = TriLayout::new(mesh, a.depth)?;
     let setup = t0.elapsed().as_secs_f64();
     let times = pool.install(|| -> anyhow::Result<_> {
         let mut times = Vec::with_capacity(a.runs);

@@ -34,8 +34,7 @@ pub use limit::{LimitMesh, limit_surface, tessellate_uniform};
 pub use point::{Point, centroid};
 pub use refine::{
     MAX_COORDINATE, MAX_REFINED_FACES, RefineKernel, check_coordinates, check_doubled_triangles,
-    refine_uniform,
-    refine_uniform_levels, refined_face_count,
+    refine_uniform, refine_uniform_levels, refined_face_count,
 };
 pub use ring::{QuadRingStencil, Ring, limit_point, limit_point_with};
 

@@ -7,8 +7,8 @@
 //! boundary vertex its leading edge), a cage edge by the face of its even half-edge or, on the
 //! boundary, by its one face; every triangle owns its interior.
 
-use subdiv_mesh::{HalfedgeId, Mesh, VertexId};
-use subdiv_rules::Depth;
+use subdiv_mesh::{BoundaryInterpolation, EdgeId, HalfedgeId, Mesh, VertexId};
+use subdiv_rules::{Depth, RulesError};
 
 /// One side of a triangular patch: the cage edge from corner `k` to corner `k + 1`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,8 +47,15 @@ pub struct TriPatch {
     pub sides: [TriSide; 3],
     /// Id of the first interior point.
     pub interior: u32,
-    /// `false` for a hole: its points are computed (where owned) but it has no triangles.
+    /// `false` for a hole (or, with `interpolateboundary none`, a face at the boundary): its points
+    /// are computed (where owned) but it has no triangles.
     pub visible: bool,
+    /// The cage edge of each side.
+    pub edges: [EdgeId; 3],
+    /// The vertex beyond each side (of the triangle across it), `u32::MAX` on the boundary.
+    pub beyond: [u32; 3],
+    /// At each corner, the index in its [`TriLayout::ring`] of the edge along side `k`.
+    pub r0: [u32; 3],
 }
 
 /// The numbering of the level-`depth` Loop tessellation of a cage of triangles.
@@ -61,16 +68,44 @@ pub struct TriLayout {
     /// Vertices in no face: output at their cage position with a zero normal.
     pub isolated: Vec<VertexId>,
     num_points: usize,
+    ring_offsets: Vec<u32>,
+    ring_verts: Vec<u32>,
+    fast: Vec<bool>,
 }
 
 impl TriLayout {
-    /// The layout of `mesh` (triangles only: checked by the caller) at `depth >= 1`.
-    pub fn new(mesh: &Mesh, depth: Depth) -> TriLayout {
+    /// The layout of `mesh` at `depth >= 1`; refuses what Loop cannot refine (faces that are not
+    /// triangles, doubled triangles, huge coordinates).
+    pub fn new(mesh: &Mesh, depth: Depth) -> Result<TriLayout, RulesError> {
+        super::tessellate::check_loop_cage(mesh)?;
         let n = 1u32 << depth;
         let nv = mesh.num_vertices() as u32;
         let ne = mesh.num_edges() as u32;
         let per_face = (n - 1) * (n.saturating_sub(2)) / 2;
         let interior0 = nv + ne * (n - 1);
+        // Every vertex's edge neighbours in `outgoing` order, and whether it is a smooth interior
+        // vertex (no sharpness at it or its edges, valence >= 3).
+        let mut ring_offsets = Vec::with_capacity(mesh.num_vertices() + 1);
+        let mut ring_verts = Vec::with_capacity(2 * mesh.num_edges());
+        let mut fast = Vec::with_capacity(mesh.num_vertices());
+        ring_offsets.push(0);
+        for v in mesh.vertices() {
+            let mut smooth = mesh.vertex_sharpness(v) <= 0.0 && !mesh.is_isolated(v);
+            for h in mesh.outgoing(v) {
+                ring_verts.push(mesh.to(h).0);
+                smooth &= mesh.edge_sharpness(h.edge()) <= 0.0 && mesh.face(h).is_some();
+            }
+            let valence = ring_verts.len() - *ring_offsets.last().expect("starts at 0") as usize;
+            ring_offsets.push(ring_verts.len() as u32);
+            fast.push(smooth && valence >= 3);
+        }
+        // `interpolateboundary none`: faces at the boundary are not drawn (as OpenSubdiv does).
+        let no_boundary = mesh.options().boundary == BoundaryInterpolation::None;
+        let at_boundary = |f| {
+            mesh.face_vertices(f)
+                .iter()
+                .any(|&v| mesh.is_boundary_vertex(v))
+        };
         let mut patches = Vec::with_capacity(mesh.num_faces());
         for f in mesh.faces() {
             let h0 = mesh.face_halfedge(f);
@@ -97,16 +132,47 @@ impl TriLayout {
                 corner_owned,
                 sides,
                 interior: interior0 + f.0 * per_face,
-                visible: !mesh.is_hole(f),
+                visible: !(mesh.is_hole(f) || (no_boundary && at_boundary(f))),
+                edges: hs.map(|h| h.edge()),
+                beyond: hs.map(|h| {
+                    let t = h.twin();
+                    if mesh.face(t).is_some() {
+                        mesh.to(mesh.next(t)).0
+                    } else {
+                        u32::MAX
+                    }
+                }),
+                r0: hs.map(|h| {
+                    mesh.outgoing(mesh.from(h))
+                        .position(|g| g == h)
+                        .unwrap_or(0) as u32
+                }),
             });
         }
         let isolated = mesh.vertices().filter(|&v| mesh.is_isolated(v)).collect();
-        TriLayout {
+        Ok(TriLayout {
             depth,
             patches,
             isolated,
             num_points: (interior0 + mesh.num_faces() as u32 * per_face) as usize,
-        }
+            ring_offsets,
+            ring_verts,
+            fast,
+        })
+    }
+
+    /// The edge neighbours of cage vertex `v` in `Mesh::outgoing` order.
+    #[inline]
+    pub fn ring(&self, v: u32) -> &[u32] {
+        let v = v as usize;
+        &self.ring_verts[self.ring_offsets[v] as usize..self.ring_offsets[v + 1] as usize]
+    }
+
+    /// `true` for a smooth interior cage vertex (valence 3 or more, no sharpness at it or its
+    /// edges): its corners are refined by the fast smooth rules.
+    #[inline]
+    pub fn is_fast(&self, v: u32) -> bool {
+        self.fast[v as usize]
     }
 
     /// Number of output points.
@@ -142,10 +208,11 @@ mod tests {
 
     #[test]
     fn every_point_has_one_owner() {
-        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 2 0 0\nv 5 5 5\nf 1 2 3\nf 2 4 3\nf 2 5 4\n";
+        let text =
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 2 0 0\nv 5 5 5\nf 1 2 3\nf 2 4 3\nf 2 5 4\n";
         let mesh = Mesh::from_soup(&subdiv_mesh::parse_obj(text).unwrap()).unwrap();
         for depth in 1..=4 {
-            let layout = TriLayout::new(&mesh, depth);
+            let layout = TriLayout::new(&mesh, depth).unwrap();
             let n = 1u32 << depth;
             let mut count = vec![0u32; layout.num_points()];
             for v in &layout.isolated {

@@ -42,7 +42,14 @@ impl TriWorker {
         for j in 1..n.saturating_sub(1) {
             for i in 1..n - j {
                 let c = (j + 1) * w + i + 1;
-                let e = [t[c + 1], t[c + w], t[c + w - 1], t[c - 1], t[c - w], t[c - w + 1]];
+                let e = [
+                    t[c + 1],
+                    t[c + w],
+                    t[c + w - 1],
+                    t[c - 1],
+                    t[c - w],
+                    t[c - w + 1],
+                ];
                 let (p, t1, t2) = regular_limit(t[c], e);
                 f(i as u32, j as u32, p + o, normal(t1, t2));
             }
@@ -130,7 +137,8 @@ impl TriWorker {
         }
         let (p, nrm, sided) = if corner.fast {
             s.edges.clear();
-            s.edges.extend(corner.edges.iter().map(|e| e.as_dvec3() + origin));
+            s.edges
+                .extend(corner.edges.iter().map(|e| e.as_dvec3() + origin));
             let v = corner.valence;
             s.sharp.clear();
             s.sharp.resize(v, 0.0);

@@ -7,7 +7,7 @@ use glam::Vec3A;
 use rayon::prelude::*;
 use subdiv_mesh::Mesh;
 use subdiv_rules::{
-    Depth, LimitMesh, MAX_DEPTH, RulesError, Scheme, check_doubled_triangles, limit_surface,
+    Depth, LimitMesh, MAX_DEPTH, RulesError, Scheme, check_doubled_triangles, tessellate_uniform,
 };
 
 use super::layout::{TriLayout, TriPatch, interior_offset};
@@ -32,7 +32,8 @@ use crate::tessellate::{MAX_POINTS, SharedOut, SlateError};
 pub fn tessellate_loop(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateError> {
     check_loop_cage(mesh)?;
     if depth == 0 {
-        return Ok(limit_surface(mesh, Scheme::Loop));
+        // The cage's own limit points (with `interpolateboundary none` hiding boundary faces).
+        return Ok(tessellate_uniform(mesh, Scheme::Loop, 0)?);
     }
     if depth > MAX_DEPTH {
         return Err(SlateError::TooDeep {
@@ -47,14 +48,14 @@ pub fn tessellate_loop(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateErro
             points: estimate,
         });
     }
-    let layout = TriLayout::new(mesh, depth);
+    let layout = TriLayout::new(mesh, depth)?;
     let mut out = LimitMesh::default();
     tessellate_loop_layout_into(mesh, &layout, &mut out)?;
     Ok(out)
 }
 
 /// What every Loop path refuses: non-triangles, doubled triangles, huge coordinates.
-fn check_loop_cage(mesh: &Mesh) -> Result<(), RulesError> {
+pub(crate) fn check_loop_cage(mesh: &Mesh) -> Result<(), RulesError> {
     subdiv_rules::check_coordinates(mesh)?;
     mesh.check_triangles()?;
     check_doubled_triangles(mesh)
@@ -68,7 +69,8 @@ pub fn tessellate_loop_layout_into(
     result: &mut LimitMesh,
 ) -> Result<(), SlateError> {
     let depth = layout.depth;
-    check_loop_cage(mesh)?;
+    // The topology was checked with the layout; the positions may have moved since.
+    subdiv_rules::check_coordinates(mesh)?;
     if depth == 0 || depth > MAX_DEPTH {
         return Err(SlateError::TooDeep {
             depth,
@@ -112,7 +114,7 @@ pub fn tessellate_loop_layout_into(
         .with_min_len(16)
         .map_init(tri_thread_worker, |w, (p, tris)| {
             let (wk, scratch) = &mut **w;
-            run_patch(wk, scratch, mesh, p, depth, &out, tris)
+            run_patch(wk, scratch, mesh, layout, p, depth, &out, tris)
         })
         .collect();
     result.corner_normals.clear();
@@ -128,17 +130,19 @@ pub fn tessellate_loop_layout_into(
 
 /// Gathers, subdivides and evaluates one patch; writes the points it owns and its triangles, and
 /// returns the one-sided normals of its triangles' corners (ascending) at crease points.
+#[allow(clippy::too_many_arguments)]
 fn run_patch(
     w: &mut TriWorker,
     scratch: &mut LimitScratch,
     mesh: &Mesh,
+    layout: &TriLayout,
     p: &TriPatch,
     depth: Depth,
     out: &SharedOut,
     tris: &mut [u32],
 ) -> Vec<(u32, [f32; 3])> {
     let n = 1u32 << depth;
-    w.gather(mesh, p.halfedge, n);
+    w.gather(mesh, layout, p, n);
     for _ in 0..depth {
         w.step();
     }
@@ -212,9 +216,11 @@ fn write_triangles(p: &TriPatch, n: u32, tris: &mut [u32], ids: &mut Vec<u32>) {
         let (lo, hi) = (row(b) as usize, row(b + 1) as usize);
         let len = (n - b) as usize;
         for a in 0..len {
-            out.next()
-                .expect("n^2 triangles")
-                .copy_from_slice(&[ids[lo + a], ids[lo + a + 1], ids[hi + a]]);
+            out.next().expect("n^2 triangles").copy_from_slice(&[
+                ids[lo + a],
+                ids[lo + a + 1],
+                ids[hi + a],
+            ]);
             if a + 1 < len {
                 out.next().expect("n^2 triangles").copy_from_slice(&[
                     ids[lo + a + 1],
@@ -233,17 +239,24 @@ fn corner_slots(n: u32, sided: &[(u32, u32, Vec3A)]) -> Vec<(u32, [f32; 3])> {
     let up = |a: u32, b: u32| a + b < n;
     let down = |a: u32, b: u32| a + b + 1 < n;
     for &(i, j, nrm) in sided {
-        let (im, jm) = (i.wrapping_sub(1), j.wrapping_sub(1));
+        // (triangle's lower-left lattice point, down triangle?, corner), where they exist.
+        let (i, j) = (i as i64, j as i64);
         let cands = [
-            (i < n && up(i, j), up_index(n, i, j), 0),
-            (i >= 1 && up(im, j), up_index(n, im, j), 1),
-            (j >= 1 && up(i, jm), up_index(n, i, jm), 2),
-            (i >= 1 && down(im, j), up_index(n, im, j) + 1, 0),
-            (i >= 1 && j >= 1 && down(im, jm), up_index(n, im, jm) + 1, 1),
-            (j >= 1 && down(i, jm), up_index(n, i, jm) + 1, 2),
+            (i, j, false, 0),
+            (i - 1, j, false, 1),
+            (i, j - 1, false, 2),
+            (i - 1, j, true, 0),
+            (i - 1, j - 1, true, 1),
+            (i, j - 1, true, 2),
         ];
-        for (ok, t, corner) in cands {
-            if ok {
+        for (a, b, is_down, corner) in cands {
+            if a < 0 || b < 0 {
+                continue;
+            }
+            let (a, b) = (a as u32, b as u32);
+            let exists = if is_down { down(a, b) } else { up(a, b) };
+            if exists {
+                let t = up_index(n, a, b) + is_down as u32;
                 slots.push((3 * t + corner, nrm.to_array()));
             }
         }
@@ -317,6 +330,9 @@ mod tests {
             }; 3],
             interior: 100,
             visible: true,
+            edges: [subdiv_mesh::EdgeId(0); 3],
+            beyond: [u32::MAX; 3],
+            r0: [0; 3],
         };
         write_triangles(&p, n, &mut tris, &mut Vec::new());
         for j in 0..=n {

@@ -9,7 +9,9 @@
 //! minus four *extras*) live in the corner's own array.
 
 use glam::{DVec3, Vec3A};
-use subdiv_mesh::{CreaseMethod, HalfedgeId, Mesh, VertexId};
+use subdiv_mesh::{CreaseMethod, Mesh, VertexId};
+
+use super::layout::{TriLayout, TriPatch};
 use subdiv_rules::crease::{
     VertexRules, child_edge_sharpness_around, edge_crease_weight, is_semi_sharp,
 };
@@ -36,7 +38,6 @@ pub(crate) struct Corner {
     tmp: Vec<Vec3A>,
     /// General corners: the ring (absolute, `f64`).
     pub ring: Ring,
-    halfedges: Vec<HalfedgeId>,
     /// Child sharpness of the two patch sides at this corner (towards corner `c + 1`, `c + 2`).
     child_sides: [f32; 2],
     scratch: Vec<f32>,
@@ -135,9 +136,9 @@ impl TriWorker {
         self.betas[valence]
     }
 
-    /// Collects the level-0 patch of the triangle whose first half-edge is `h0`: its corners,
-    /// the vertices beyond its sides, the corner rings and the sides' sharpness.
-    pub fn gather(&mut self, mesh: &Mesh, h0: HalfedgeId, max_n: u32) {
+    /// Collects the level-0 patch `p` of `layout`: its corners, the vertices beyond its sides, the
+    /// corner rings and the sides' sharpness.
+    pub fn gather(&mut self, mesh: &Mesh, layout: &TriLayout, p: &TriPatch, max_n: u32) {
         self.ensure(max_n);
         if cfg!(debug_assertions) {
             // Debug builds poison the slates: a point read before it is written shows as NaN.
@@ -148,54 +149,39 @@ impl TriWorker {
         self.cur = 0;
         self.n = 1;
         self.method = mesh.options().crease;
-        let hs = [h0, mesh.next(h0), mesh.prev(h0)];
-        self.origin = mesh.position(mesh.from(h0)).into();
+        let positions = mesh.positions();
+        self.origin = positions[p.corners[0] as usize].into();
         let origin = self.origin;
-        let pos = |v: VertexId| Vec3A::from(mesh.position(v)) - origin;
-        for (c, &h) in hs.iter().enumerate() {
+        let pos = |v: u32| Vec3A::from(positions[v as usize]) - origin;
+        for c in 0..3 {
             let t = &mut self.tables[0];
-            t[Self::lidx(1, c, 0, 0)] = pos(mesh.from(h));
-            let twin = h.twin();
+            t[Self::lidx(1, c, 0, 0)] = pos(p.corners[c]);
             let side = &mut self.sides[c];
-            side.interior = mesh.face(twin).is_some();
+            side.interior = p.beyond[c] != u32::MAX;
             if side.interior {
-                t[Self::lidx(1, c, 1, -1)] = pos(mesh.to(mesh.next(twin)));
+                t[Self::lidx(1, c, 1, -1)] = pos(p.beyond[c]);
             }
-            let s = mesh.edge_sharpness(h.edge());
+            let s = mesh.edge_sharpness(p.edges[c]);
             side.sharp.clear();
             side.sharp.push(s);
             side.smooth = side.interior && s <= 0.0;
         }
         for c in 0..3 {
-            self.gather_corner(mesh, c, hs[c]);
-        }
-    }
-
-    fn gather_corner(&mut self, mesh: &Mesh, c: usize, h: HalfedgeId) {
-        let v = mesh.from(h);
-        let corner = &mut self.corners[c];
-        corner.halfedges.clear();
-        corner.halfedges.extend(mesh.outgoing(v));
-        let valence = corner.halfedges.len();
-        corner.valence = valence;
-        corner.r0 = corner.halfedges.iter().position(|&g| g == h).unwrap_or(0);
-        corner.fast = valence >= 3
-            && !mesh.is_boundary_vertex(v)
-            && mesh.vertex_sharpness(v) <= 0.0
-            && corner
-                .halfedges
-                .iter()
-                .all(|g| mesh.edge_sharpness(g.edge()) <= 0.0);
-        if corner.fast {
-            let o = self.origin;
-            corner.center = Vec3A::from(mesh.position(v)) - o;
-            corner.edges.clear();
-            for t in 0..valence {
-                let g = corner.halfedges[(corner.r0 + t) % valence];
-                corner.edges.push(Vec3A::from(mesh.position(mesh.to(g))) - o);
+            let v = p.corners[c];
+            let ring = layout.ring(v);
+            let corner = &mut self.corners[c];
+            let valence = ring.len();
+            corner.valence = valence;
+            corner.r0 = p.r0[c] as usize;
+            corner.fast = layout.is_fast(v);
+            if corner.fast {
+                corner.center = pos(v);
+                corner.edges.clear();
+                let (a, b) = ring.split_at(corner.r0);
+                corner.edges.extend(b.iter().chain(a).map(|&w| pos(w)));
+            } else {
+                corner.ring.load(mesh, VertexId(v), Scheme::Loop);
             }
-        } else {
-            corner.ring.load(mesh, v, Scheme::Loop);
         }
     }
 
@@ -325,8 +311,8 @@ fn regular_step(src: &[Vec3A], dst: &mut [Vec3A], n: u32) {
         let len = n - b;
         for a in 0..=len {
             let c = p(a, b);
-            let sum = src[c + 1] + src[c + w] + src[c + w - 1] + src[c - 1] + src[c - w]
-                + src[c - w + 1];
+            let sum =
+                src[c + 1] + src[c + w] + src[c + w - 1] + src[c - 1] + src[c - w] + src[c - w + 1];
             dst[row + 2 * a] = regular_vertex_point(src[c], sum);
             if a < len {
                 dst[row + 2 * a + 1] =
@@ -341,7 +327,8 @@ fn regular_step(src: &[Vec3A], dst: &mut [Vec3A], n: u32) {
         for a in 0..len {
             let c = p(a, b);
             dst[row + 2 * a] = smooth_edge_point(src[c], src[c + w], src[c + w - 1], src[c + 1]);
-            dst[row + 2 * a + 1] = smooth_edge_point(src[c + 1], src[c + w], src[c], src[c + w + 1]);
+            dst[row + 2 * a + 1] =
+                smooth_edge_point(src[c + 1], src[c + w], src[c], src[c + w + 1]);
         }
     }
 }
@@ -365,6 +352,7 @@ fn ring_row(src: &[Vec3A], dst: &mut [Vec3A], n: u32, c: usize) {
 /// The ring of the side point at corner `c`'s local `(a, 0)`, `0 < a < n`, in ring order (edge 0
 /// along the side towards corner `c + 1`), its edges' sharpness and, for the Chaikin rule, the
 /// semi-sharp (sum, count) at their far ends; four edges on a boundary side.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn side_ring(
     table: &[Vec3A],
     n: u32,
@@ -398,7 +386,14 @@ pub(crate) fn side_ring(
     } else {
         far_ends[0]
     };
-    *far = [far_ahead, (0.0, 0), (0.0, 0), far_behind, (0.0, 0), (0.0, 0)];
+    *far = [
+        far_ahead,
+        (0.0, 0),
+        (0.0, 0),
+        far_behind,
+        (0.0, 0),
+        (0.0, 0),
+    ];
     if side.interior { 6 } else { 4 }
 }
 
@@ -426,7 +421,15 @@ fn general_side(
     let mut cs = [0.0f32; 6];
     for a in 1..n as i32 {
         let k = side_ring(
-            src, n, c, a, side, [(0.0, 0); 2], &mut edges, &mut sharp, &mut far,
+            src,
+            n,
+            c,
+            a,
+            side,
+            [(0.0, 0); 2],
+            &mut edges,
+            &mut sharp,
+            &mut far,
         );
         let rules = VertexRules::new(method, 0.0, &sharp[..k], &mut cs[..k]);
         dst[TriWorker::lidx(n2, c, 2 * a, 0)] =
