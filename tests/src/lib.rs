@@ -206,6 +206,36 @@ pub fn catmull_clark_cages() -> Vec<(String, subdiv_mesh::Mesh)> {
         .collect()
 }
 
+/// Every Loop fixture cage (OpenSubdiv's `loop_*` shapes and the triangle meshes), read with
+/// non-manifold vertices split, with its file stem.
+pub fn loop_cages() -> Vec<(String, subdiv_mesh::Mesh)> {
+    let mut v: Vec<PathBuf> = fixture_files("reference/shapes", "obj")
+        .into_iter()
+        .filter(|p| {
+            p.file_name()
+                .is_some_and(|n| n.to_string_lossy().starts_with("loop_"))
+        })
+        .collect();
+    v.extend(fixture_files("meshes", "obj").into_iter().filter(|p| {
+        p.file_name()
+            .is_some_and(|n| n.to_string_lossy().starts_with("tri_"))
+    }));
+    v.into_iter()
+        .map(|p| {
+            let opts = subdiv_mesh::ReadOptions {
+                split_nonmanifold_vertices: true,
+            };
+            let m = subdiv_mesh::read_obj_with(&p, opts).unwrap_or_else(|e| panic!("{e}"));
+            let name = p
+                .file_stem()
+                .unwrap_or_default()
+                .to_string_lossy()
+                .to_string();
+            (name, m)
+        })
+        .collect()
+}
+
 pub mod fuzz;
 pub mod fuzz_check;
 pub mod fuzz_lines;

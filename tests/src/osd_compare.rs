@@ -22,7 +22,8 @@ use crate::{PointGrid, Reference, canonical_face};
 pub enum Tessellator {
     /// `subdiv_rules::tessellate_uniform` (the whole-mesh path; Catmull-Clark and Loop).
     Uniform,
-    /// `subdiv_slate::tessellate` (Catmull-Clark only).
+    /// The slate tessellators: `subdiv_slate::tessellate` (Catmull-Clark) or
+    /// `subdiv_slate::tessellate_loop` (Loop), by the reference's scheme.
     Slate,
 }
 
@@ -57,7 +58,11 @@ pub fn compare(
 ) -> Result<Outcome, String> {
     let scheme = reference_scheme(reference);
     let t = match which {
-        Tessellator::Slate => subdiv_slate::tessellate(mesh, level).map_err(|e| e.to_string())?,
+        Tessellator::Slate => match scheme {
+            Scheme::CatmullClark => subdiv_slate::tessellate(mesh, level),
+            Scheme::Loop => subdiv_slate::tessellate_loop(mesh, level),
+        }
+        .map_err(|e| e.to_string())?,
         Tessellator::Uniform => {
             tessellate_uniform(mesh, scheme, level).map_err(|e| e.to_string())?
         }

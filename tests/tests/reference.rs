@@ -11,7 +11,7 @@ fn check(shape: &str, level: subdiv_rules::Depth) -> Result<Outcome, String> {
     check_with(shape, level, Tessellator::Uniform)
 }
 
-/// Catmull-Clark shapes again, through the slate tessellator.
+/// Catmull-Clark and Loop shapes again, through the slate tessellators.
 fn check_slate(shape: &str, level: subdiv_rules::Depth) -> Result<Outcome, String> {
     check_with(shape, level, Tessellator::Slate)
 }
@@ -82,4 +82,30 @@ fn slate_tessellation_matches_opensubdiv() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     assert!(checked >= 60, "only {checked} checked");
+}
+
+/// Every Loop reference shape at levels 1-3 through the triangular slates.
+#[test]
+fn loop_slate_tessellation_matches_opensubdiv() {
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for file in fixture_files("reference/limit", "txt") {
+        let name = file.file_stem().unwrap().to_string_lossy().to_string();
+        if !name.starts_with("loop_") {
+            continue;
+        }
+        let (shape, lv) = name.rsplit_once(".L").unwrap();
+        match check_slate(shape, lv.parse().unwrap()) {
+            Ok(o) => {
+                checked += 1;
+                eprintln!(
+                    "loop slate {name}: max position error {:.2e} x diag, normals within {:.4} deg",
+                    o.max_pos_err, o.max_normal_deg
+                );
+            }
+            Err(e) => failures.push(format!("{name}: {e}")),
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    assert!(checked >= 27, "only {checked} checked");
 }

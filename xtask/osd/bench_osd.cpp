@@ -1,6 +1,9 @@
 // bench_osd: times OpenSubdiv 3.5 (Far, CPU, float) on an OBJ cage with OpenSubdiv's tag lines.
 //
-//   bench_osd INPUT.obj DEPTH [RUNS]
+//   bench_osd INPUT.obj DEPTH [RUNS] [catmark|loop]
+//
+// The scheme is Catmull-Clark unless the fourth argument is `loop` (then the cage must be all
+// triangles).
 //
 // Two ways of getting the limit position and normal of every level-DEPTH vertex:
 //
@@ -13,8 +16,8 @@
 //          eval: UpdateValues + UpdateDerivs on the cage positions (positions + tangents), and
 //          eval+n: the same plus normalize(du x dv).
 //
-// Each figure is the median of RUNS runs (after one warm-up run). The cage must be all quads (the
-// stencil locations use ptex face = cage face). The last line is machine-readable:
+// Each figure is the median of RUNS runs (after one warm-up run). The cage must be all quads for
+// Catmull-Clark, all triangles for Loop (the stencil locations use ptex face = cage face). The last line is machine-readable:
 //   osd points=<n> cold_pts_per_s=<f> stencil_setup_ms=<f> stencil_eval_pts_per_s=<f>
 //   stencil_evaln_pts_per_s=<f>
 
@@ -54,6 +57,7 @@ struct Cage {
     std::vector<int> corners;
     std::vector<float> cornerWeights;
     Sdc::Options options;
+    Sdc::SchemeType scheme = Sdc::SCHEME_CATMARK;
 };
 
 static void fail(std::string const &what) {
@@ -140,7 +144,7 @@ static Far::TopologyRefiner *createRefiner(Cage const &c) {
     d.cornerVertexIndices = c.corners.data();
     d.cornerWeights = c.cornerWeights.data();
     Far::TopologyRefiner *r = Far::TopologyRefinerFactory<Descriptor>::Create(
-        d, Far::TopologyRefinerFactory<Descriptor>::Options(Sdc::SCHEME_CATMARK, c.options));
+        d, Far::TopologyRefinerFactory<Descriptor>::Options(c.scheme, c.options));
     if (!r) fail("TopologyRefinerFactory::Create failed");
     return r;
 }
@@ -183,8 +187,8 @@ static size_t cold(Cage const &c, int depth, std::vector<Vec3> &pos, std::vector
 
 // Every level-depth vertex once: per quad face its interior grid, the inner points of the edges
 // it is the first face of, and the cage vertices it is the first face of (u: v0->v1, v: v0->v3).
-static void locations(Far::TopologyRefiner const &r, int depth, std::vector<std::vector<float> > &us,
-                      std::vector<std::vector<float> > &vs) {
+static void locations(Far::TopologyRefiner const &r, int depth, bool triangles,
+                      std::vector<std::vector<float> > &us, std::vector<std::vector<float> > &vs) {
     Far::TopologyLevel const &base = r.GetLevel(0);
     int R = 1 << depth;
     float inv = 1.0f / (float)R;
@@ -192,6 +196,32 @@ static void locations(Far::TopologyRefiner const &r, int depth, std::vector<std:
     vs.assign(base.GetNumFaces(), std::vector<float>());
     for (int f = 0; f < base.GetNumFaces(); ++f) {
         Far::ConstIndexArray fv = base.GetFaceVertices(f), fe = base.GetFaceEdges(f);
+        if (triangles) {
+            if (fv.size() != 3) fail("bench_osd loop needs an all-triangle cage");
+            bool firstE[3], firstV[3];
+            for (int k = 0; k < 3; ++k) {
+                firstE[k] = base.GetEdgeFaces(fe[k])[0] == f;
+                firstV[k] = base.GetVertexFaces(fv[k])[0] == f;
+            }
+            // Loop's ptex triangle: corner 0 at (0, 0), 1 at (1, 0), 2 at (0, 1).
+            for (int j = 0; j <= R; ++j) {
+                for (int i = 0; i + j <= R; ++i) {
+                    bool keep;
+                    if (i == 0 && j == 0) keep = firstV[0];
+                    else if (i == R) keep = firstV[1];
+                    else if (j == R) keep = firstV[2];
+                    else if (j == 0) keep = firstE[0];
+                    else if (i + j == R) keep = firstE[1];
+                    else if (i == 0) keep = firstE[2];
+                    else keep = true;
+                    if (keep) {
+                        us[f].push_back(i * inv);
+                        vs[f].push_back(j * inv);
+                    }
+                }
+            }
+            continue;
+        }
         if (fv.size() != 4) fail("bench_osd needs an all-quad cage");
         bool firstE[4], firstV[4];
         for (int k = 0; k < 4; ++k) {
@@ -223,12 +253,13 @@ static double median(std::vector<double> v) {
 
 int main(int argc, char **argv) {
     if (argc < 3) {
-        std::fprintf(stderr, "usage: bench_osd INPUT.obj DEPTH [RUNS]\n");
+        std::fprintf(stderr, "usage: bench_osd INPUT.obj DEPTH [RUNS] [catmark|loop]\n");
         return 2;
     }
     Cage c = readObj(argv[1]);
     int depth = std::atoi(argv[2]);
     int runs = argc > 3 ? std::atoi(argv[3]) : 7;
+    if (argc > 4 && std::string(argv[4]) == "loop") c.scheme = Sdc::SCHEME_LOOP;
     if (depth < 1 || depth > 10 || runs < 1) fail("DEPTH must be 1..10 and RUNS >= 1");
 
     std::vector<Vec3> pos, nrm;
@@ -248,7 +279,7 @@ int main(int argc, char **argv) {
         Clock::time_point t = Clock::now();
         Far::TopologyRefiner *r = createRefiner(c);
         r->RefineAdaptive(Far::TopologyRefiner::AdaptiveOptions(depth));
-        locations(*r, depth, us, vs);
+        locations(*r, depth, c.scheme == Sdc::SCHEME_LOOP, us, vs);
         Far::LimitStencilTableFactory::LocationArrayVec locs(us.size());
         for (size_t f = 0; f < us.size(); ++f) {
             locs[f].ptexIdx = (int)f;

@@ -1,24 +1,35 @@
 //! `cargo xtask bench-osd [--install]`: OpenSubdiv 3.5 (Debian `libosd-dev`) beside the slates.
 //!
 //! Compiles `xtask/osd/bench_osd.cpp` with g++ against `/usr/include/opensubdiv` and `-losdCPU`
-//! into `<target>/osd/`, runs it on the benchmark cages at depths 2..=5 (OpenSubdiv cold uniform
-//! refine + limit with tangents, limit-stencil setup and evaluation; see the program's header),
-//! runs `subdiv bench tessellate` (release build, `--threads 1` and `2`) on the same cages and
-//! depths, and prints both side by side. Without libosd-dev it prints how to install it and
-//! exits successfully; `--install` installs it with apt when running as root.
+//! into `<target>/osd/`, runs it on the benchmark cages of `CAGES` (Catmull-Clark and Loop) at
+//! their depths (OpenSubdiv cold uniform refine + limit with tangents, limit-stencil setup and
+//! evaluation; see the program's header), runs `subdiv bench tessellate --scheme ..` (release
+//! build, `--threads 1` and `2`) on the same cages and depths, and prints both side by side.
+//! Without libosd-dev it prints how to install it and exits successfully; `--install` installs it with apt when running as root.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use anyhow::{Context, Result, bail};
 
-/// The cages of the benchmark (all quads: the stencil locations use ptex face = cage face).
-const CAGES: &[&str] = &[
-    "fixtures/reference/shapes/catmark_pawn.obj",
-    "fixtures/reference/shapes/catmark_helmet.obj",
-    "fixtures/meshes/cc_3torus.obj",
+/// The cages of the benchmark, their scheme and depths: Catmull-Clark on all-quad cages, Loop on
+/// all-triangle cages (the stencil locations use ptex face = cage face). A cage outside the
+/// repository (`../shared/...`) is skipped when absent.
+const CAGES: &[(&str, &str, std::ops::RangeInclusive<u32>)] = &[
+    (
+        "fixtures/reference/shapes/catmark_pawn.obj",
+        "catmull-clark",
+        2..=5,
+    ),
+    (
+        "fixtures/reference/shapes/catmark_helmet.obj",
+        "catmull-clark",
+        2..=5,
+    ),
+    ("fixtures/meshes/cc_3torus.obj", "catmull-clark", 2..=5),
+    ("fixtures/meshes/tri_bunny_3k.obj", "loop", 2..=5),
+    ("../shared/meshes/tri_armadillo_52k.obj", "loop", 2..=3),
 ];
-const DEPTHS: std::ops::RangeInclusive<u32> = 2..=5;
 const HEADER: &str = "/usr/include/opensubdiv/far/topologyRefiner.h";
 pub const INSTALL: &str = "apt-get install -y libosd-dev";
 
@@ -147,15 +158,21 @@ pub fn run(root: &Path) -> Result<()> {
         .join(format!("subdiv{}", std::env::consts::EXE_SUFFIX));
 
     let mut rows = Vec::new();
-    for cage in CAGES {
+    for (cage, scheme, depths) in CAGES {
         let path = root.join(cage);
-        for depth in DEPTHS {
+        if !path.exists() {
+            eprintln!("bench-osd: {} is absent: skipped", path.display());
+            continue;
+        }
+        let osd_scheme = if *scheme == "loop" { "loop" } else { "catmark" };
+        for depth in depths.clone() {
             let runs = if depth >= 5 { "5" } else { "9" };
             let o = output(
                 Command::new(&osd)
                     .arg(&path)
                     .arg(depth.to_string())
-                    .arg(runs),
+                    .arg(runs)
+                    .arg(osd_scheme),
             )?;
             let o = fields(&o, "osd ")?;
             let mut slate = [(0.0, 0.0); 2];
@@ -165,7 +182,8 @@ pub fn run(root: &Path) -> Result<()> {
                     Command::new(&subdiv)
                         .args(["bench", "tessellate"])
                         .arg(&path)
-                        .args(["--depth", &depth.to_string(), "--threads", threads]),
+                        .args(["--depth", &depth.to_string(), "--threads", threads])
+                        .args(["--scheme", scheme]),
                 )?;
                 let s = fields(&s, "limit_points_per_s=")?;
                 slate[i] = (
@@ -178,7 +196,11 @@ pub fn run(root: &Path) -> Result<()> {
                 .file_stem()
                 .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
             let row = Row {
-                cage: name,
+                cage: if *scheme == "loop" {
+                    format!("{name} (Loop)")
+                } else {
+                    name
+                },
                 depth,
                 points: field(&o, "points")?,
                 slate,

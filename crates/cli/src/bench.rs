@@ -4,9 +4,13 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
+use subdiv::rules::Scheme;
 use subdiv::slate::{
-    PatchLayout, slate_bytes_per_thread, tessellate_layout, tessellate_layout_into,
+    PatchLayout, TriLayout, slate_bytes_per_thread, tessellate_layout, tessellate_layout_into,
+    tessellate_loop, tessellate_loop_layout_into, tri_slate_bytes_per_thread,
 };
+
+use crate::choices::SchemeName;
 
 #[derive(clap::Args, Debug)]
 pub struct BenchArgs {
@@ -36,6 +40,9 @@ pub struct BenchTessellateArgs {
     /// Uniform depth.
     #[arg(long, default_value_t = 5)]
     pub depth: subdiv::rules::Depth,
+    /// Subdivision scheme: Catmull-Clark on the quad slates, Loop on the triangular slates.
+    #[arg(long, value_enum, default_value_t = SchemeName::CatmullClark)]
+    pub scheme: SchemeName,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -68,6 +75,9 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()?;
+    if Scheme::from(a.scheme) == Scheme::Loop {
+        return bench_loop(a, &mesh, &pool);
+    }
     let t0 = Instant::now();
     let layout = PatchLayout::new(&mesh, a.depth)
         .map_err(|e| anyhow::anyhow!("{}: {e}", a.input.display()))?;
@@ -111,6 +121,53 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
         points / med,
         patches / med,
         slate_bytes_per_thread(a.depth, layout.max_valence())
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `bench tessellate --scheme loop`: the triangular slates, the same lines with `triangles=`.
+fn bench_loop(
+    a: &BenchTessellateArgs,
+    mesh: &subdiv::mesh::Mesh,
+    pool: &rayon::ThreadPool,
+) -> anyhow::Result<ExitCode> {
+    let threads = pool.current_num_threads();
+    let t0 = Instant::now();
+    // Validates the cage (triangles, no doubled triangle) and warms the workers.
+    let mut out = pool
+        .install(|| tessellate_loop(mesh, a.depth))
+        .map_err(|e| anyhow::anyhow!("{}: {e}", a.input.display()))?;
+    let layout = TriLayout::new(mesh, a.depth)?;
+    let setup = t0.elapsed().as_secs_f64();
+    let times = pool.install(|| -> anyhow::Result<_> {
+        let mut times = Vec::with_capacity(a.runs);
+        for _ in 0..a.runs {
+            let t = Instant::now();
+            tessellate_loop_layout_into(mesh, &layout, &mut out)?;
+            times.push(t.elapsed().as_secs_f64());
+            std::hint::black_box(&out);
+        }
+        Ok(times)
+    })?;
+    let med = median(times.clone());
+    let patches = layout.patches.len();
+    println!(
+        "input={} scheme=loop depth={} threads={} patches={} limit_points={} triangles={} setup_ms={:.3} median_ms={:.3} min_ms={:.3}",
+        a.input.display(),
+        a.depth,
+        threads,
+        patches,
+        out.positions.len(),
+        out.num_faces(),
+        setup * 1e3,
+        med * 1e3,
+        times.iter().copied().fold(f64::INFINITY, f64::min) * 1e3
+    );
+    println!(
+        "limit_points_per_s={:.0} patches_per_s={:.0} slate_bytes_per_thread={}",
+        out.positions.len() as f64 / med,
+        patches as f64 / med,
+        tri_slate_bytes_per_thread(a.depth, mesh.max_valence())
     );
     Ok(ExitCode::SUCCESS)
 }

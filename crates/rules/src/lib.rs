@@ -35,8 +35,8 @@ pub use fvar::face_uvs;
 pub use limit::{LimitMesh, limit_surface, tessellate_uniform};
 pub use point::{Point, centroid};
 pub use refine::{
-    MAX_COORDINATE, MAX_REFINED_FACES, RefineKernel, check_coordinates, refine_uniform,
-    refine_uniform_levels, refine_uniform_levels_f64, refined_face_count,
+    MAX_COORDINATE, MAX_REFINED_FACES, RefineKernel, check_coordinates, check_doubled_triangles,
+    refine_uniform, refine_uniform_levels, refine_uniform_levels_f64, refined_face_count,
 };
 pub use ring::{QuadRingStencil, Ring, limit_point, limit_point_with};
 

@@ -57,19 +57,103 @@ pub fn vertex_point<P: Point>(v: P, edges: &[P], rules: &VertexRules) -> P {
     p.scale(w).add(c.scale(1.0 - w))
 }
 
+/// The smooth vertex point of `v` with edge neighbours `edges` and Loop's weight `b`
+/// (`beta(edges.len())`, passed in so that tessellators meeting one valence many times compute it
+/// once): `(1 - n b) v + b sum`.
+#[inline]
+pub fn smooth_vertex_point<P: Point>(v: P, edges: &[P], b: f64) -> P {
+    let mut s = P::ZERO;
+    for e in edges {
+        s = s.add(*e);
+    }
+    v.scale(1.0 - b * edges.len() as f64).add(s.scale(b))
+}
+
 #[inline]
 fn apply_vertex_rule<P: Point>(v: P, edges: &[P], rule: Rule) -> P {
     match rule {
-        Rule::Smooth | Rule::Dart => {
-            let b = beta(edges.len());
-            let mut s = P::ZERO;
-            for e in edges {
-                s = s.add(*e);
-            }
-            v.scale(1.0 - b * edges.len() as f64).add(s.scale(b))
-        }
+        Rule::Smooth | Rule::Dart => smooth_vertex_point(v, edges, beta(edges.len())),
         Rule::Crease([i, j]) => v.scale(0.75).add(edges[i].add(edges[j]).scale(0.125)),
         Rule::Corner => v,
+    }
+}
+
+/// The smooth edge point of edge `a`-`b` with opposite vertices `c`, `d`: [`edge_point`] with
+/// crease weight 0, in the form the slates' regular interiors use (`3/8 (a + b) + 1/8 (c + d)`).
+#[inline(always)]
+pub fn smooth_edge_point<P: Point>(a: P, b: P, c: P, d: P) -> P {
+    a.add(b).scale(0.375).add(c.add(d).scale(0.125))
+}
+
+/// The smooth vertex point of a valence-6 vertex `v` whose six neighbours sum to `sum`:
+/// [`vertex_point`] under the smooth rule with `beta(6) = 1/16` (`5/8 v + 1/16 sum`).
+#[inline(always)]
+pub fn regular_vertex_point<P: Point>(v: P, sum: P) -> P {
+    v.scale(0.625).add(sum.scale(1.0 / 16.0))
+}
+
+/// [`limit`] of a smooth valence-6 vertex `v` with neighbours `e` (counter-clockwise): the
+/// quartic box spline's limit `1/2 v + 1/12 sum`, and the cos/sin tangent masks with their
+/// exact weights (`cos(k pi/3)` in `{1, 1/2, -1/2, -1, -1/2, 1/2}`, `sin(k pi/3)` in
+/// `{0, s, s, 0, -s, -s}`, `s = sqrt(3)/2`), as sums instead of six trigonometric products.
+#[inline(always)]
+pub fn regular_limit<P: Point>(v: P, e: [P; 6]) -> (P, P, P) {
+    let s01 = e[0].add(e[1]);
+    let s23 = e[2].add(e[3]);
+    let s45 = e[4].add(e[5]);
+    let pos = v.scale(0.5).add(s01.add(s23).add(s45).scale(1.0 / 12.0));
+    let t1 = e[0]
+        .sub(e[3])
+        .add(e[1].sub(e[2]).sub(e[4]).add(e[5]).scale(0.5));
+    let t2 = e[1]
+        .add(e[2])
+        .sub(e[4])
+        .sub(e[5])
+        .scale(0.866_025_403_784_438_6);
+    (pos, t1, t2)
+}
+
+/// Loop's smooth interior limit masks for one valence `n >= 3`: position weight
+/// `chi = 1 / (n + 3/(8 beta))` and the tangent weights `cos(2 pi i/n)`, `sin(2 pi i/n)`, computed
+/// once so that tessellators meeting a valence many times skip the trigonometry.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SmoothLimitMask {
+    chi: f64,
+    cos: Vec<f64>,
+    sin: Vec<f64>,
+}
+
+impl SmoothLimitMask {
+    /// The masks of valence `n`.
+    pub fn new(n: usize) -> SmoothLimitMask {
+        let b = beta(n);
+        let th = 2.0 * PI / n as f64;
+        let (sin, cos) = (0..n).map(|i| (th * i as f64).sin_cos()).unzip();
+        SmoothLimitMask {
+            chi: 1.0 / (n as f64 + 3.0 / (8.0 * b)),
+            cos,
+            sin,
+        }
+    }
+
+    /// The valence the masks are for.
+    #[inline]
+    pub fn valence(&self) -> usize {
+        self.cos.len()
+    }
+
+    /// Limit position and tangents of `v` with its `n` edge neighbours (counter-clockwise).
+    #[inline]
+    pub fn apply<P: Point>(&self, v: P, edges: &[P]) -> (P, P, P) {
+        let mut pos = v.scale(1.0 - self.chi * edges.len() as f64);
+        let mut t1 = P::ZERO;
+        let mut t2 = P::ZERO;
+        for ((e, &c), &s) in edges.iter().zip(&self.cos).zip(&self.sin) {
+            pos = pos.madd(*e, self.chi);
+            t1 = t1.madd(*e, c);
+            t2 = t2.madd(*e, s);
+        }
+        (pos, t1, t2)
     }
 }
 
@@ -78,21 +162,7 @@ fn apply_vertex_rule<P: Point>(v: P, edges: &[P], rule: Rule) -> P {
 pub fn limit<P: Point>(v: P, edges: &[P], rule: Rule, boundary: bool) -> (P, P, P) {
     let n = edges.len();
     match rule {
-        Rule::Smooth | Rule::Dart if !boundary && n >= 3 => {
-            let b = beta(n);
-            let chi = 1.0 / (n as f64 + 3.0 / (8.0 * b));
-            let mut pos = v.scale(1.0 - chi * n as f64);
-            let mut t1 = P::ZERO;
-            let mut t2 = P::ZERO;
-            let th = 2.0 * PI / n as f64;
-            for (i, e) in edges.iter().enumerate() {
-                pos = pos.madd(*e, chi);
-                let (s, c) = (th * i as f64).sin_cos();
-                t1 = t1.madd(*e, c);
-                t2 = t2.madd(*e, s);
-            }
-            (pos, t1, t2)
-        }
+        Rule::Smooth | Rule::Dart if !boundary && n >= 3 => SmoothLimitMask::new(n).apply(v, edges),
         Rule::Crease([c0, c1]) => {
             let pos = v
                 .scale(2.0 / 3.0)
@@ -179,6 +249,21 @@ mod tests {
         let o = [DVec3::new(4.0, 4.0, 8.0), DVec3::new(4.0, -4.0, 0.0)];
         assert_eq!(edge_point(a, b, &o, 0.0), DVec3::new(4.0, 0.0, 1.0));
         assert_eq!(edge_point(a, b, &o, 1.0), DVec3::new(4.0, 0.0, 0.0));
+    }
+
+    #[test]
+    fn regular_forms_equal_the_general_rules() {
+        let (v, e) = hex_ring(|x, y| (1.3 * x - 0.2).sin() + y * y * x + 0.1 * y);
+        let (p, t1, t2) = limit(v, &e, Rule::Smooth, false);
+        let (q, u1, u2) = regular_limit(v, [e[0], e[1], e[2], e[3], e[4], e[5]]);
+        assert!((p - q).length() < 1e-14 && (t1 - u1).length() < 1e-14);
+        assert!((t2 - u2).length() < 1e-14);
+        let mut c = [0.0; 6];
+        let r = VertexRules::new(CreaseMethod::Uniform, 0.0, &[0.0; 6], &mut c);
+        let sum = e.iter().fold(DVec3::ZERO, |s, x| s + *x);
+        assert!((vertex_point(v, &e, &r) - regular_vertex_point(v, sum)).length() < 1e-15);
+        let smooth = smooth_edge_point(v, e[0], e[1], e[5]);
+        assert!((edge_point(v, e[0], &[e[1], e[5]], 0.0) - smooth).length() < 1e-15);
     }
 
     #[test]

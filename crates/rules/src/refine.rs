@@ -369,7 +369,9 @@ impl<'m, P: Point> RefineKernel<'m, P> {
 /// of every triangle; for such a pair it would connect the same three edge points twice (parallel
 /// edges, which a [`Mesh`] cannot hold). Such triangles always share an edge, so checking each
 /// face against its neighbours finds them. Refinement never creates new pairs.
-fn check_doubled_triangles(mesh: &Mesh) -> Result<(), RulesError> {
+/// Refuses two triangles on the same three vertices ([`RulesError::DoubledTriangle`]): Loop
+/// refinement cannot refine such a two-face pillow. Every Loop path calls it before refining.
+pub fn check_doubled_triangles(mesh: &Mesh) -> Result<(), RulesError> {
     let sorted = |f| {
         let mut k: Vec<u32> = mesh.face_vertices(f).iter().map(|v| v.0).collect();
         k.sort_unstable();

@@ -166,6 +166,43 @@ impl Ring {
         self.inner_off.extend(0..=diag.len() as u32);
     }
 
+    /// Loads a Loop ring of triangles from parts: edge neighbours `edges` (counter-clockwise;
+    /// for a boundary vertex edge 0 and the last edge are the boundary, and there is one triangle
+    /// fewer than edges), their sharpness and far-end semi-sharp (sum, count) for the Chaikin
+    /// rule. Triangle `i` is spanned by the centre and edges `i`, `i + 1`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn load_triangles(
+        &mut self,
+        method: CreaseMethod,
+        center: DVec3,
+        vertex_sharpness: f32,
+        boundary: bool,
+        edges: &[DVec3],
+        sharp: &[f32],
+        far: &[(f32, u32)],
+    ) {
+        self.scheme = Scheme::Loop;
+        self.method = method;
+        self.triangles = TriangleSubdivision::Catmark;
+        self.center = center;
+        self.vertex_sharpness = vertex_sharpness;
+        self.boundary = boundary;
+        self.edges.clear();
+        self.edges.extend_from_slice(edges);
+        self.sharp.clear();
+        self.sharp.extend_from_slice(sharp);
+        self.far.clear();
+        self.far.extend_from_slice(far);
+        self.inner.clear();
+        self.inner_off.clear();
+        let faces = if boundary {
+            edges.len().saturating_sub(1)
+        } else {
+            edges.len()
+        };
+        self.inner_off.resize(faces + 1, 0);
+    }
+
     /// The centre point.
     #[inline]
     pub fn center(&self) -> DVec3 {

@@ -33,6 +33,8 @@
 //!
 //! # Modules
 //!
+//! Loop runs on triangular slates by the same design (module `tri`, see [`tessellate_loop`]).
+//!
 //! `table` (a slate's storage), `gather` (a patch's 1-neighbourhood into slate 0), `step` (one
 //! subdivision step), `limit` (limit points and normals), `worker` (a thread's slates and the
 //! pipeline of one patch), `pool` (the per-thread workers), `patches` and `layout` (per-mesh
@@ -56,6 +58,7 @@ mod table;
 mod tessellate;
 #[cfg(test)]
 mod test_meshes;
+mod tri;
 mod worker;
 
 pub use layout::PatchLayout;
@@ -65,5 +68,9 @@ pub use subdiv_rules::{Depth, MAX_DEPTH};
 pub use tessellate::{
     DEFAULT_MAX_DEPTH, MAX_POINTS, SlateError, slate_bytes_per_thread, tessellate,
     tessellate_layout, tessellate_layout_into,
+};
+pub use tri::{
+    TriLayout, TriPatch, TriSide, TriWorker, tessellate_loop, tessellate_loop_layout_into,
+    tri_slate_bytes_per_thread,
 };
 pub use worker::Worker;

@@ -41,10 +41,10 @@ pub const DEFAULT_MAX_DEPTH: Depth = 5;
 
 /// Output pointers shared by the patch tasks. Each output point has exactly one owner patch
 /// (see [`PatchLayout`]), so no two tasks ever write the same element.
-struct SharedOut {
-    pos: *mut [f32; 3],
-    nrm: *mut [f32; 3],
-    len: usize,
+pub(crate) struct SharedOut {
+    pub(crate) pos: *mut [f32; 3],
+    pub(crate) nrm: *mut [f32; 3],
+    pub(crate) len: usize,
 }
 // SAFETY: the pointers are only written through `write` and `write_unchecked`, at indices
 // below `len` (asserted, or checked by `check_range`), and the tasks sharing a `SharedOut` write
@@ -57,7 +57,7 @@ unsafe impl Send for SharedOut {}
 
 impl SharedOut {
     #[inline]
-    fn write(&self, id: u32, p: Vec3A, n: Vec3A) {
+    pub(crate) fn write(&self, id: u32, p: Vec3A, n: Vec3A) {
         let i = id as usize;
         assert!(i < self.len, "output index out of range");
         // SAFETY: in bounds (asserted); no other task writes index `i` (single owner).
@@ -65,14 +65,14 @@ impl SharedOut {
     }
 
     #[inline]
-    fn check_range(&self, first: usize, count: usize) {
+    pub(crate) fn check_range(&self, first: usize, count: usize) {
         assert!(first + count <= self.len, "output range out of bounds");
     }
 
     /// # Safety
     /// `i < len` (see [`SharedOut::check_range`]) and no other task writes index `i`.
     #[inline(always)]
-    unsafe fn write_unchecked(&self, i: usize, p: Vec3A, n: Vec3A) {
+    pub(crate) unsafe fn write_unchecked(&self, i: usize, p: Vec3A, n: Vec3A) {
         // SAFETY: the caller guarantees `i < len`, so both writes stay inside the `len`-element
         // buffers `pos` and `nrm` point to, and that no other task writes index `i`, so the
         // writes race with nothing.

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use glam::Vec3;
 use subdiv_mesh::Mesh;
-use subdiv_rules::{Depth, LimitMesh, RulesError, Scheme, tessellate_uniform};
+use subdiv_rules::{Depth, LimitMesh, RulesError, Scheme};
 use subdiv_slate::SlateError;
 use subdiv_vk::OwnedMesh;
 
@@ -26,14 +26,19 @@ pub enum SceneError {
     Empty,
 }
 
-/// The uniform limit tessellation of `mesh` at `depth`: Catmull-Clark on the slate tessellator,
-/// Loop on the whole-mesh refinement. A cage with face-varying data (UVs) takes the whole-mesh
-/// refinement for both schemes, which carries the UVs (the slates do not yet).
+/// The uniform limit tessellation of `mesh` at `depth` on the slate tessellators: quad slates
+/// for Catmull-Clark, triangular slates for Loop. A cage with face-varying data (UVs) takes the
+/// whole-mesh refinement for both schemes, which carries the UVs (the slates do not yet).
 pub fn uniform_limit(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<LimitMesh, SceneError> {
     let t0 = std::time::Instant::now();
     let limit = match scheme {
-        Scheme::CatmullClark if mesh.uv().is_none() => subdiv_slate::tessellate(mesh, depth)?,
-        _ => tessellate_uniform(mesh, scheme, depth)?,
+        _ if mesh.uv().is_some() => subdiv_rules::tessellate_uniform(mesh, scheme, depth)?,
+        Scheme::CatmullClark => subdiv_slate::tessellate(mesh, depth)?,
+        // A cage Loop refuses (not triangles, a doubled triangle) is a rules error, as before.
+        Scheme::Loop => subdiv_slate::tessellate_loop(mesh, depth).map_err(|e| match e {
+            SlateError::Rules(r) => SceneError::Rules(r),
+            e => SceneError::Slate(e),
+        })?,
     };
     log::debug!(
         "uniform {scheme:?} depth {depth}: {} faces -> {} limit points, {} faces in {:.1} ms",

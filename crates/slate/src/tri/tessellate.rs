@@ -1,0 +1,353 @@
+//! The parallel driver for Loop: every cage triangle on its own worker's slates, results placed
+//! by the [`TriLayout`].
+
+use std::cell::Cell;
+
+use glam::Vec3A;
+use rayon::prelude::*;
+use subdiv_mesh::Mesh;
+use subdiv_rules::{
+    Depth, LimitMesh, MAX_DEPTH, RulesError, Scheme, check_doubled_triangles, tessellate_uniform,
+};
+
+use super::layout::{TriLayout, TriPatch, interior_offset};
+use super::limit::LimitScratch;
+use super::worker::TriWorker;
+use crate::tessellate::{MAX_POINTS, SharedOut, SlateError};
+
+/// Tessellates the Loop limit surface of `mesh` (triangles only) uniformly at `depth` with the
+/// triangular slates: every triangle of the level-`depth` refinement, with the exact limit points
+/// and limit normals as vertices. Runs on the current rayon pool; the output is bit-identical
+/// for any thread count.
+///
+/// ```
+/// use subdiv_mesh::{parse_obj, Mesh};
+/// let tet = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n";
+/// let mesh = Mesh::from_soup(&parse_obj(tet)?)?;
+/// let t = subdiv_slate::tessellate_loop(&mesh, 3).unwrap();
+/// assert_eq!(t.num_faces(), 4 * 64);
+/// assert_eq!(t.positions.len(), 4 * 64 / 2 + 2);
+/// # Ok::<(), subdiv_mesh::MeshError>(())
+/// ```
+pub fn tessellate_loop(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateError> {
+    check_loop_cage(mesh)?;
+    if depth == 0 {
+        // The cage's own limit points (with `interpolateboundary none` hiding boundary faces).
+        return Ok(tessellate_uniform(mesh, Scheme::Loop, 0)?);
+    }
+    if depth > MAX_DEPTH {
+        return Err(SlateError::TooDeep {
+            depth,
+            max: MAX_DEPTH,
+        });
+    }
+    let estimate = (mesh.num_faces() as u64).saturating_mul(1u64 << (2 * depth)) / 2;
+    if estimate > MAX_POINTS {
+        return Err(SlateError::TooLarge {
+            depth,
+            points: estimate,
+        });
+    }
+    let layout = TriLayout::new(mesh, depth)?;
+    let mut out = LimitMesh::default();
+    tessellate_loop_layout_into(mesh, &layout, &mut out)?;
+    Ok(out)
+}
+
+/// What every Loop path refuses: non-triangles, doubled triangles, huge coordinates.
+pub(crate) fn check_loop_cage(mesh: &Mesh) -> Result<(), RulesError> {
+    subdiv_rules::check_coordinates(mesh)?;
+    mesh.check_triangles()?;
+    check_doubled_triangles(mesh)
+}
+
+/// [`tessellate_loop`] with a precomputed layout into a reused output (buffers are resized, not
+/// reallocated, when the sizes match).
+pub fn tessellate_loop_layout_into(
+    mesh: &Mesh,
+    layout: &TriLayout,
+    result: &mut LimitMesh,
+) -> Result<(), SlateError> {
+    let depth = layout.depth;
+    // The topology was checked with the layout; the positions may have moved since.
+    subdiv_rules::check_coordinates(mesh)?;
+    if depth == 0 || depth > MAX_DEPTH {
+        return Err(SlateError::TooDeep {
+            depth,
+            max: MAX_DEPTH,
+        });
+    }
+    let n = 1u32 << depth;
+    let np = layout.num_points();
+    result.positions.resize(np, [0.0; 3]);
+    result.normals.resize(np, [0.0; 3]);
+    for &v in &layout.isolated {
+        result.positions[v.idx()] = mesh.position(v).to_array();
+        result.normals[v.idx()] = [0.0; 3];
+    }
+    let per_patch = (n * n) as usize;
+    let tris_of = |p: &TriPatch| if p.visible { per_patch } else { 0 };
+    let total: usize = layout.patches.iter().map(tris_of).sum();
+    result.face_indices.resize(total * 3, 0);
+    if result.face_offsets.len() != total + 1 {
+        result.face_offsets.clear();
+        result
+            .face_offsets
+            .extend((0..=total as u32).map(|i| i * 3));
+    }
+    let out = SharedOut {
+        pos: result.positions.as_mut_ptr(),
+        nrm: result.normals.as_mut_ptr(),
+        len: np,
+    };
+    let mut chunks: Vec<&mut [u32]> = Vec::with_capacity(layout.patches.len());
+    let mut rest: &mut [u32] = &mut result.face_indices;
+    for p in &layout.patches {
+        let (a, b) = rest.split_at_mut(tris_of(p) * 3);
+        chunks.push(a);
+        rest = b;
+    }
+    let sided: Vec<Vec<(u32, [f32; 3])>> = layout
+        .patches
+        .par_iter()
+        .zip(chunks.into_par_iter())
+        .with_min_len(16)
+        .map_init(tri_thread_worker, |w, (p, tris)| {
+            let (wk, scratch) = &mut **w;
+            run_patch(wk, scratch, mesh, layout, p, depth, &out, tris)
+        })
+        .collect();
+    result.corner_normals.clear();
+    let mut start = 0u32;
+    for (p, slots) in layout.patches.iter().zip(sided) {
+        result
+            .corner_normals
+            .extend(slots.into_iter().map(|(k, nrm)| (start + k, nrm)));
+        start += 3 * tris_of(p) as u32;
+    }
+    Ok(())
+}
+
+/// Gathers, subdivides and evaluates one patch; writes the points it owns and its triangles, and
+/// returns the one-sided normals of its triangles' corners (ascending) at crease points.
+#[allow(clippy::too_many_arguments)]
+fn run_patch(
+    w: &mut TriWorker,
+    scratch: &mut LimitScratch,
+    mesh: &Mesh,
+    layout: &TriLayout,
+    p: &TriPatch,
+    depth: Depth,
+    out: &SharedOut,
+    tris: &mut [u32],
+) -> Vec<(u32, [f32; 3])> {
+    let n = 1u32 << depth;
+    w.gather(mesh, layout, p, n);
+    for _ in 0..depth {
+        w.step();
+    }
+    let visible = !tris.is_empty();
+    let mut sided: Vec<(u32, u32, Vec3A)> = Vec::new();
+    for c in 0..3 {
+        if p.corner_owned[c] || (visible && !w.corners[c].fast) {
+            let (pos, nrm, side) = w.limit_corner(scratch, c);
+            if p.corner_owned[c] {
+                out.write(p.corners[c], pos, nrm);
+            }
+            if let (true, Some(s)) = (visible, side) {
+                let (i, j) = TriWorker::local(n, c, 0, 0);
+                sided.push((i as u32, j as u32, s));
+            }
+        }
+    }
+    for c in 0..3 {
+        let side = p.sides[c];
+        if !(side.owned || (visible && !w.sides[c].smooth)) {
+            continue;
+        }
+        for a in 1..n {
+            let (pos, nrm, one) = w.limit_side(scratch, c, a);
+            if side.owned {
+                out.write(side.id(n, a), pos, nrm);
+            }
+            if let (true, Some(s)) = (visible, one) {
+                let (i, j) = TriWorker::local(n, c, a as i32, 0);
+                sided.push((i as u32, j as u32, s));
+            }
+        }
+    }
+    if n > 2 {
+        let m = ((n - 1) * (n - 2) / 2) as usize;
+        let first = p.interior as usize;
+        out.check_range(first, m);
+        w.limit_interior(|i, j, pos, nrm| {
+            let k = first + (interior_offset(n, j) + i - 1) as usize;
+            // SAFETY: `i, j >= 1`, `i + j <= n - 1`: `k` lies in this patch's interior range,
+            // checked above, which only this patch writes.
+            unsafe { out.write_unchecked(k, pos, nrm) }
+        });
+    }
+    if visible {
+        write_triangles(p, n, tris, &mut scratch.ids);
+    }
+    corner_slots(n, &sided)
+}
+
+/// Index of the triangle `up(a, b)` = `(a, b), (a + 1, b), (a, b + 1)` in a patch's list; the
+/// triangle `down(a, b)` = `(a + 1, b), (a + 1, b + 1), (a, b + 1)` follows it. Rows of `b`,
+/// up and down triangles interleaved.
+#[inline]
+fn up_index(n: u32, a: u32, b: u32) -> u32 {
+    2 * n * b - b * b + 2 * a
+}
+
+/// Writes the `n^2` triangles of patch `p` (`ids`: scratch for the lattice's output ids).
+fn write_triangles(p: &TriPatch, n: u32, tris: &mut [u32], ids: &mut Vec<u32>) {
+    // Row `b` of the lattice starts at `row(b)` and holds `n + 1 - b` points.
+    let row = |b: u32| (b * (2 * n + 3) - b * b) / 2;
+    ids.clear();
+    for j in 0..=n {
+        for i in 0..=n - j {
+            ids.push(TriLayout::point_id(p, n, i, j).0);
+        }
+    }
+    let mut out = tris.chunks_exact_mut(3);
+    for b in 0..n {
+        let (lo, hi) = (row(b) as usize, row(b + 1) as usize);
+        let len = (n - b) as usize;
+        for a in 0..len {
+            out.next().expect("n^2 triangles").copy_from_slice(&[
+                ids[lo + a],
+                ids[lo + a + 1],
+                ids[hi + a],
+            ]);
+            if a + 1 < len {
+                out.next().expect("n^2 triangles").copy_from_slice(&[
+                    ids[lo + a + 1],
+                    ids[hi + a + 1],
+                    ids[hi + a],
+                ]);
+            }
+        }
+    }
+}
+
+/// The triangle corners (index into the patch's `3 n^2` corners) at the lattice points of
+/// `sided`, with their normals, ascending.
+fn corner_slots(n: u32, sided: &[(u32, u32, Vec3A)]) -> Vec<(u32, [f32; 3])> {
+    let mut slots = Vec::new();
+    let up = |a: u32, b: u32| a + b < n;
+    let down = |a: u32, b: u32| a + b + 1 < n;
+    for &(i, j, nrm) in sided {
+        // (triangle's lower-left lattice point, down triangle?, corner), where they exist.
+        let (i, j) = (i as i64, j as i64);
+        let cands = [
+            (i, j, false, 0),
+            (i - 1, j, false, 1),
+            (i, j - 1, false, 2),
+            (i - 1, j, true, 0),
+            (i - 1, j - 1, true, 1),
+            (i, j - 1, true, 2),
+        ];
+        for (a, b, is_down, corner) in cands {
+            if a < 0 || b < 0 {
+                continue;
+            }
+            let (a, b) = (a as u32, b as u32);
+            let exists = if is_down { down(a, b) } else { up(a, b) };
+            if exists {
+                let t = up_index(n, a, b) + is_down as u32;
+                slots.push((3 * t + corner, nrm.to_array()));
+            }
+        }
+    }
+    slots.sort_unstable_by_key(|&(k, _)| k);
+    slots
+}
+
+thread_local! {
+    static TRI_WORKER: Cell<Option<Box<(TriWorker, LimitScratch)>>> = const { Cell::new(None) };
+}
+
+/// A thread's triangular worker, lent by [`tri_thread_worker`] and returned on drop, so that
+/// repeated tessellation allocates no slates.
+pub(crate) struct TriGuard(Option<Box<(TriWorker, LimitScratch)>>);
+
+impl std::ops::Deref for TriGuard {
+    type Target = (TriWorker, LimitScratch);
+    fn deref(&self) -> &Self::Target {
+        self.0.as_deref().expect("worker present until drop")
+    }
+}
+
+impl std::ops::DerefMut for TriGuard {
+    fn deref_mut(&mut self) -> &mut Self::Target {
+        self.0.as_deref_mut().expect("worker present until drop")
+    }
+}
+
+impl Drop for TriGuard {
+    fn drop(&mut self) {
+        if let Some(w) = self.0.take() {
+            let _ = TRI_WORKER.try_with(|c| c.set(Some(w)));
+        }
+    }
+}
+
+/// The calling thread's triangular worker (a fresh one when the thread's is lent out). Reuse
+/// cannot change results: every patch starts with a fresh gather.
+pub(crate) fn tri_thread_worker() -> TriGuard {
+    let w = TRI_WORKER
+        .with(|c| c.take())
+        .unwrap_or_else(|| Box::new((TriWorker::new(), LimitScratch::default())));
+    TriGuard(Some(w))
+}
+
+/// Bytes of slate memory one worker uses for Loop at depth `depth`: two tables and the three
+/// corner arrays (fast: two rings of `f32` points; general: a `subdiv-rules` ring of about ten
+/// `f64` values per edge), which grow with the largest valence.
+pub fn tri_slate_bytes_per_thread(depth: Depth, max_valence: usize) -> usize {
+    TriWorker::table_bytes(depth)
+        + 3 * max_valence * (2 * std::mem::size_of::<Vec3A>() + 10 * std::mem::size_of::<f64>())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn corner_slots_name_every_triangle_at_a_point() {
+        let n = 4;
+        let mut tris = vec![0u32; 3 * (n * n) as usize];
+        let p = TriPatch {
+            halfedge: subdiv_mesh::HalfedgeId(0),
+            corners: [0, 1, 2],
+            corner_owned: [true; 3],
+            sides: [super::super::layout::TriSide {
+                base: 3,
+                reversed: false,
+                owned: true,
+            }; 3],
+            interior: 100,
+            visible: true,
+            edges: [subdiv_mesh::EdgeId(0); 3],
+            beyond: [u32::MAX; 3],
+            r0: [0; 3],
+        };
+        write_triangles(&p, n, &mut tris, &mut Vec::new());
+        for j in 0..=n {
+            for i in 0..=n - j {
+                let slots = corner_slots(n, &[(i, j, Vec3A::X)]);
+                let id = TriLayout::point_id(&p, n, i, j).0;
+                let want = tris.iter().filter(|&&x| x == id).count();
+                // Sides share ids in this synthetic patch; interior points are unique.
+                if i > 0 && j > 0 && i + j < n {
+                    assert_eq!(slots.len(), want, "({i}, {j})");
+                }
+                for (k, _) in slots {
+                    assert_eq!(tris[k as usize], id, "({i}, {j}) slot {k}");
+                }
+            }
+        }
+    }
+}
