@@ -13,6 +13,7 @@
 mod gltf;
 mod ply;
 
+use std::collections::HashMap;
 use std::path::Path;
 
 use subdiv_mesh::{ObjError, write_obj};
@@ -98,11 +99,15 @@ pub struct SurfaceExport {
 impl SurfaceExport {
     /// Triangulates `limit` (a fan per polygon), a vertex of its own for every distinct
     /// one-sided corner normal (position and scalar copied), with `scalar` one per vertex of
-    /// `limit`.
+    /// `limit`. When `limit` carries face-varying values (UVs), each vertex is also split by
+    /// its distinct values, so seams keep their texture coordinates on both sides.
     pub fn from_limit(
         limit: &LimitMesh,
         scalar: Option<(VertexScalar, Vec<f32>)>,
     ) -> SurfaceExport {
+        if !limit.uv_indices.is_empty() {
+            return Self::from_limit_with_uvs(limit, scalar);
+        }
         let (kind, values) = match scalar {
             Some((k, v)) => (Some(k), Some(v)),
             None => (None, None),
@@ -123,6 +128,49 @@ impl SurfaceExport {
             triangles: m.triangles,
             scalar: kind.zip(m.scalars),
         }
+    }
+
+    /// [`SurfaceExport::from_limit`] of a surface with UVs: one output vertex per distinct
+    /// (vertex, one-sided normal, UV index) of the face corners.
+    fn from_limit_with_uvs(
+        limit: &LimitMesh,
+        scalar: Option<(VertexScalar, Vec<f32>)>,
+    ) -> SurfaceExport {
+        let mut out = SurfaceExport {
+            uvs: Some(Vec::new()),
+            scalar: scalar.as_ref().map(|(k, _)| (*k, Vec::new())),
+            ..SurfaceExport::default()
+        };
+        let mut copies: HashMap<(u32, Option<[u32; 3]>, u32), u32> = HashMap::new();
+        let mut sided = limit.corner_normals.iter().peekable();
+        let mut corner = Vec::new();
+        for f in 0..limit.num_faces() {
+            corner.clear();
+            for c in limit.face_offsets[f]..limit.face_offsets[f + 1] {
+                let v = limit.face_indices[c as usize];
+                let n = sided.next_if(|&&(k, _)| k == c).map(|&(_, n)| n);
+                let uv = limit.uv_indices[c as usize];
+                let key = (v, n.map(|n| n.map(f32::to_bits)), uv);
+                let id = *copies.entry(key).or_insert_with(|| {
+                    out.positions.push(limit.positions[v as usize]);
+                    out.normals.push(n.unwrap_or(limit.normals[v as usize]));
+                    if let Some(uvs) = out.uvs.as_mut() {
+                        uvs.push(limit.uvs[uv as usize]);
+                    }
+                    if let (Some((_, dst)), Some((_, src))) = (out.scalar.as_mut(), scalar.as_ref())
+                    {
+                        dst.push(src[v as usize]);
+                    }
+                    out.positions.len() as u32 - 1
+                });
+                corner.push(id);
+            }
+            for k in 1..corner.len().saturating_sub(1) {
+                out.triangles
+                    .extend_from_slice(&[corner[0], corner[k], corner[k + 1]]);
+            }
+        }
+        out
     }
 
     /// Checks that every per-vertex array has one entry per position and every index is in

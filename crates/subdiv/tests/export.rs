@@ -268,3 +268,52 @@ fn output_format_follows_the_extension() {
         "{e}"
     );
 }
+
+/// A cage with UVs (`vt`, a cube's cross unwrap with seams): the export gives every vertex the
+/// UV of each face corner it stands for, splitting vertices on seams, and every triangle corner
+/// keeps the position and the UV of its face corner in the tessellation.
+#[test]
+fn uvs_of_a_tessellated_cage_reach_the_export() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/meshes/fvar/cube_uv.obj");
+    let cube = read_obj(path).unwrap();
+    let t = uniform_limit(&cube, Scheme::CatmullClark, 2).unwrap();
+    assert_eq!(t.uv_indices.len(), t.face_indices.len(), "UVs per corner");
+    let s = SurfaceExport::from_limit(
+        &t,
+        Some((VertexScalar::Depth, vec![2.0; t.positions.len()])),
+    );
+    let uvs = s.uvs.as_ref().expect("the export carries the UVs");
+    assert_eq!(uvs.len(), s.positions.len());
+    assert!(
+        s.positions.len() > t.positions.len(),
+        "seams split vertices: {} -> {}",
+        t.positions.len(),
+        s.positions.len()
+    );
+    s.check().unwrap();
+    // Walk the faces as the export fans them and compare corner by corner.
+    let mut tri = s.triangles.chunks(3);
+    for f in 0..t.num_faces() {
+        let c: Vec<usize> = (t.face_offsets[f]..t.face_offsets[f + 1])
+            .map(|c| c as usize)
+            .collect();
+        for k in 1..c.len() - 1 {
+            let out = tri.next().expect("one triangle per fan step");
+            for (&o, &corner) in out.iter().zip(&[c[0], c[k], c[k + 1]]) {
+                let v = t.face_indices[corner] as usize;
+                assert_eq!(s.positions[o as usize], t.positions[v]);
+                assert_eq!(uvs[o as usize], t.uvs[t.uv_indices[corner] as usize]);
+            }
+        }
+    }
+    assert!(tri.next().is_none());
+    // And the file: a .glb re-read by the gltf crate holds TEXCOORD_0 as exported.
+    let glb = out_dir().join("cube_uv.glb");
+    write_surface(
+        &glb,
+        &t,
+        Some((VertexScalar::Depth, vec![2.0; t.positions.len()])),
+    )
+    .unwrap();
+    check_gltf(&glb, &s, "cube_uv.glb");
+}
