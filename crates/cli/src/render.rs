@@ -58,7 +58,7 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     let camera = a.camera.camera(lo, hi);
     let note = format!(
         "{}, depth {}",
-        value_name(&a.surface.scheme),
+        value_name(&a.surface.scheme()),
         a.surface.uniform_depth()
     );
     draw_seen_from(

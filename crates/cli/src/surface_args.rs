@@ -33,9 +33,10 @@ pub struct SurfaceArgs {
     /// catmark_helmet on an 8x5 grid).
     #[arg(long, conflicts_with = "input")]
     pub scene: Option<SceneName>,
-    /// Subdivision scheme.
-    #[arg(long, value_enum, default_value = "catmull-clark")]
-    pub scheme: SchemeName,
+    /// Subdivision scheme [default: catmull-clark; a USD stage that names another scheme needs
+    /// it given].
+    #[arg(long, value_enum)]
+    pub scheme: Option<SchemeName>,
     /// Uniform subdivision depth. Without it, a camera (--eye or --eye-relative) makes the
     /// Catmull-Clark tessellation adaptive; otherwise the default is depth 3.
     #[arg(long)]
@@ -76,13 +77,30 @@ impl SurfaceArgs {
         }
     }
 
-    /// Reads the cage (or builds the built-in scene).
+    /// The scheme: `--scheme`, else Catmull-Clark.
+    pub fn scheme(&self) -> SchemeName {
+        self.scheme.unwrap_or(SchemeName::CatmullClark)
+    }
+
+    /// Reads the cage (or builds the built-in scene). A USD stage whose `subdivisionScheme` is
+    /// not Catmull-Clark is refused unless `--scheme` is given, never drawn as another surface.
     pub fn load_cage(&self) -> anyhow::Result<Mesh> {
         match (&self.scene, &self.input) {
             (Some(s), _) => Ok(BuiltinScene::from(*s).cage()?),
             (None, Some(p)) => {
-                crate::load::load_cage(p, self.split_nonmanifold, self.prim.as_deref())
-                    .map(|c| c.mesh)
+                let cage = crate::load::load_cage(p, self.split_nonmanifold, self.prim.as_deref())?;
+                let named = crate::load::cage_scheme(p, &cage, self.scheme.map(Into::into))?;
+                if self.scheme.is_none() && named != subdiv::rules::Scheme::CatmullClark {
+                    bail!(
+                        "{}: the stage's subdivisionScheme is {}; give --scheme {} (this command \
+                         decides adaptive tessellation before reading the file, so it does not \
+                         follow the stage's scheme by itself)",
+                        p.display(),
+                        value_name(&SchemeName::from(named)),
+                        value_name(&SchemeName::from(named))
+                    );
+                }
+                Ok(cage.mesh)
             }
             (None, None) => bail!("give an input cage or --scene helmet40"),
         }
@@ -98,7 +116,7 @@ impl SurfaceArgs {
         let cage = self.load_cage()?;
         let depth = self.uniform_depth();
         let spinner = crate::progress::spinner(format!("tessellating at depth {depth}"));
-        let scene = Scene::uniform(&cage, self.scheme.into(), depth);
+        let scene = Scene::uniform(&cage, self.scheme().into(), depth);
         spinner.finish_and_clear();
         scene.map_err(|e| anyhow::anyhow!("{}: {e}", self.label()))
     }
@@ -117,7 +135,7 @@ impl SurfaceArgs {
         self.adaptive.wants_adaptive(
             self.depth.is_some(),
             camera.has_camera(),
-            self.scheme == SchemeName::CatmullClark,
+            self.scheme() == SchemeName::CatmullClark,
             &extra,
         )
     }

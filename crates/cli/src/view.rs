@@ -141,7 +141,7 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     let title = format!(
         "subdiv view {} ({}, depth {})",
         a.surface.label(),
-        value_name(&a.surface.scheme),
+        value_name(&a.surface.scheme()),
         a.surface.uniform_depth()
     );
     let mut source = UniformSource::new(scene);

@@ -149,3 +149,23 @@ fn usd_and_output_errors_are_typed() {
     assert_eq!(code, 0);
     assert!(stdout.contains("subdivisionScheme: bilinear"), "{stdout}");
 }
+
+/// `render` and `view` decide on adaptive tessellation before reading the file, so a stage
+/// naming Loop is refused without `--scheme` (never drawn as a Catmull-Clark surface).
+#[test]
+fn render_of_a_loop_stage_needs_the_scheme() {
+    let png = tmp("tetra_loop.png");
+    assert_fails(
+        &[
+            "render",
+            &usd("tetra_loop.usda"),
+            "--depth",
+            "1",
+            "--size",
+            "64x48",
+            "-o",
+            png.to_str().unwrap(),
+        ],
+        "the stage's subdivisionScheme is loop; give --scheme loop",
+    );
+}
