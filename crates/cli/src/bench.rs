@@ -40,9 +40,10 @@ pub struct BenchTessellateArgs {
     /// Uniform depth.
     #[arg(long, default_value_t = 5)]
     pub depth: subdiv::rules::Depth,
-    /// Subdivision scheme: Catmull-Clark on the quad slates, Loop on the triangular slates.
-    #[arg(long, value_enum, default_value_t = SchemeName::CatmullClark)]
-    pub scheme: SchemeName,
+    /// Subdivision scheme: Catmull-Clark on the quad slates, Loop on the triangular slates
+    /// [default: the USD subdivisionScheme, else catmull-clark].
+    #[arg(long, value_enum)]
+    pub scheme: Option<SchemeName>,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -68,14 +69,16 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
-    let mesh = crate::load::load_mesh(&a.input, a.split_nonmanifold)?;
+    let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, None)?;
+    let scheme = crate::load::cage_scheme(&a.input, &cage, a.scheme.map(Scheme::from))?;
+    let mesh = cage.mesh;
     anyhow::ensure!(a.depth >= 1, "--depth must be at least 1");
     anyhow::ensure!(a.runs >= 1, "--runs must be at least 1");
     let threads = a.threads.unwrap_or_else(rayon::current_num_threads);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()?;
-    if Scheme::from(a.scheme) == Scheme::Loop {
+    if scheme == Scheme::Loop {
         return bench_loop(a, &mesh, &pool);
     }
     let t0 = Instant::now();

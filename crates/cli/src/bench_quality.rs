@@ -112,7 +112,21 @@ pub fn run(a: &BenchQualityArgs) -> anyhow::Result<ExitCode> {
     let params = a.params()?;
     let cage = match (&a.scene, &a.input) {
         (Some(s), _) => BuiltinScene::from(*s).cage()?,
-        (None, Some(p)) => crate::load::load_mesh(p, a.split_nonmanifold)?,
+        (None, Some(p)) => {
+            let cage = crate::load::load_cage(p, a.split_nonmanifold, None)?;
+            // The configurations are Catmull-Clark (slates, adaptive); a stage naming another
+            // scheme is refused rather than measured as a different surface.
+            let scheme = crate::load::cage_scheme(p, &cage, None)?;
+            if scheme != subdiv::rules::Scheme::CatmullClark {
+                bail!(
+                    "{}: the stage's subdivisionScheme is {}; bench quality measures \
+                     Catmull-Clark tessellations",
+                    p.display(),
+                    crate::choices::value_name(&crate::choices::SchemeName::from(scheme))
+                );
+            }
+            cage.mesh
+        }
         (None, None) => bail!("give an input cage or --scene helmet40"),
     };
     let (lo, hi) = cage.bounds();

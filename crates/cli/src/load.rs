@@ -4,7 +4,7 @@ use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::anyhow;
-use subdiv::mesh::{Cage, CageOptions, Mesh, TagWarning, read_cage};
+use subdiv::mesh::{Cage, CageOptions, TagWarning, read_cage};
 use subdiv::rules::Scheme;
 
 /// `--strict` (a global flag): tag lines that are read but not applied are errors.
@@ -20,15 +20,10 @@ pub fn strict() -> bool {
     STRICT.load(Ordering::Relaxed)
 }
 
-/// Reads and validates a cage (every mesh of a USD stage, merged); errors read
-/// `FILE:LINE: what` (OBJ) or `FILE: PRIM: ATTRIBUTE: what` (USD). Tag lines that are not
-/// applied are reported by [`report_tag_warnings`].
-pub fn load_mesh(path: &Path, split_nonmanifold: bool) -> anyhow::Result<Mesh> {
-    Ok(load_cage(path, split_nonmanifold, None)?.mesh)
-}
-
-/// [`load_mesh`] with the USD mesh prim to read (`--prim`), and what the file says about its
-/// subdivision.
+/// Reads and validates a cage (the USD mesh prim `prim` (`--prim`), else every mesh of a USD
+/// stage, merged), with what the file says about its subdivision; errors read `FILE:LINE: what`
+/// (OBJ) or `FILE: PRIM: ATTRIBUTE: what` (USD). Tag lines that are not applied are reported
+/// by [`report_tag_warnings`].
 pub fn load_cage(path: &Path, split_nonmanifold: bool, prim: Option<&str>) -> anyhow::Result<Cage> {
     let cage = read_cage(
         path,

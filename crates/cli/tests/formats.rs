@@ -169,3 +169,32 @@ fn render_of_a_loop_stage_needs_the_scheme() {
         "the stage's subdivisionScheme is loop; give --scheme loop",
     );
 }
+
+/// `bench tessellate` follows the stage's scheme (Loop on the triangular slates, its line says
+/// so); `bench quality`, which measures Catmull-Clark tessellations, refuses a Loop stage.
+#[test]
+fn bench_follows_or_refuses_the_stage_scheme() {
+    let (code, out, err) = run(&[
+        "bench",
+        "tessellate",
+        &usd("tetra_loop.usda"),
+        "--depth",
+        "2",
+        "--runs",
+        "1",
+        "--threads",
+        "1",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("scheme=loop"), "{out}");
+    assert_fails(
+        &[
+            "bench",
+            "quality",
+            &usd("tetra_loop.usda"),
+            "--size",
+            "64x48",
+        ],
+        "the stage's subdivisionScheme is loop; bench quality measures Catmull-Clark",
+    );
+}
