@@ -3,10 +3,12 @@
 //!
 //! - `metrics.rs`: per-pixel silhouette distance and shading angle of one frame against its
 //!   reference ([`compare_frames`], [`quantile`]);
+//! - `config.rs`: the configurations, parameters, errors and result line of a run;
 //! - `run.rs`: a whole run — reference renders per camera, then every configuration
 //!   ([`QualityRun`], [`measure`], [`Config`]);
 //! - `orbit.rs`: cameras evenly around the model ([`orbit_cameras`]).
 
+mod config;
 mod metrics;
 mod orbit;
 mod run;
@@ -18,4 +20,5 @@ pub use metrics::{
     sample_silhouette_distance, silhouette_distance,
 };
 pub use orbit::orbit_cameras;
-pub use run::{Config, ConfigQuality, QualityError, QualityParams, QualityRun, measure};
+pub use config::{Config, ConfigQuality, QualityError, QualityParams};
+pub use run::{QualityRun, measure};

@@ -1,0 +1,255 @@
+//! What a quality run compares and reports: the configurations ([`Config`]), the run's
+//! parameters ([`QualityParams`]), its errors ([`QualityError`]) and the result line of one
+//! configuration ([`ConfigQuality`]).
+
+use std::fmt;
+
+use subdiv_depth::DEFAULT_SHADING_ERROR_DEG;
+use subdiv_rules::{Depth, MAX_DEPTH};
+use subdiv_stitch::{AssemblyError, MAX_ADAPTIVE_DEPTH};
+use subdiv_vk::VkError;
+
+use crate::SceneError;
+
+/// One tessellation configuration of the comparison.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Config {
+    /// Uniform slate tessellation at this depth (`uniform-<d>`).
+    Uniform(Depth),
+    /// [`DynamicSubdivision`] with the [`DepthParams`] defaults for the run's max depth:
+    /// curvature, classification and projected size (`curvature`).
+    Curvature,
+    /// [`DynamicSubdivision`] with `pixel_error = Some(px)` (`pixel-error-<px>`).
+    PixelError(f32),
+}
+
+impl Config {
+    /// The configuration's name as `subdiv bench quality` prints it: `uniform-3`, `curvature`,
+    /// `pixel-error-0.5`.
+    pub fn name(&self) -> String {
+        match self {
+            Config::Uniform(d) => format!("uniform-{d}"),
+            Config::Curvature => "curvature".to_string(),
+            Config::PixelError(px) => format!("pixel-error-{px}"),
+        }
+    }
+
+    /// The configurations of `subdiv bench quality`: `uniform-0` .. `uniform-<max_depth>`,
+    /// `curvature`, `pixel-error-2`, `pixel-error-1`, `pixel-error-0.5`.
+    pub fn all(max_depth: Depth) -> Vec<Config> {
+        (0..=max_depth)
+            .map(Config::Uniform)
+            .chain([
+                Config::Curvature,
+                Config::PixelError(2.0),
+                Config::PixelError(1.0),
+                Config::PixelError(0.5),
+            ])
+            .collect()
+    }
+}
+
+/// Size, depths and timing repetitions of a run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct QualityParams {
+    /// Image size in pixels; every camera is used at this size.
+    pub size: [u32; 2],
+    /// Deepest depth of the configurations (uniform depths `0..=max_depth`, the adaptive
+    /// modes' `maxsd`).
+    pub max_depth: Depth,
+    /// Depth of the reference tessellation; `None`: `max_depth + 1`.
+    pub reference_depth: Option<Depth>,
+    /// Timed `render_discard` calls per camera and configuration (the median is reported).
+    pub timing_runs: usize,
+    /// The pixel-error configurations' normal tolerance
+    /// ([`DepthParams::shading_error_deg`]).
+    pub shading_error_deg: f32,
+}
+
+impl Default for QualityParams {
+    fn default() -> Self {
+        QualityParams {
+            size: [800, 600],
+            max_depth: 5,
+            reference_depth: None,
+            timing_runs: 3,
+            shading_error_deg: DEFAULT_SHADING_ERROR_DEG,
+        }
+    }
+}
+
+impl QualityParams {
+    /// The reference depth: the given one, else `max_depth + 1`.
+    pub fn reference_depth(&self) -> Depth {
+        self.reference_depth
+            .unwrap_or(self.max_depth.saturating_add(1))
+    }
+
+    /// Refuses parameters a run cannot use.
+    pub fn check(&self) -> Result<(), QualityError> {
+        let [w, h] = self.size;
+        if w == 0 || h == 0 {
+            return Err(QualityError::EmptyImage {
+                width: w,
+                height: h,
+            });
+        }
+        if self.max_depth > MAX_ADAPTIVE_DEPTH {
+            return Err(QualityError::MaxDepthTooDeep {
+                max_depth: self.max_depth,
+            });
+        }
+        let reference = self.reference_depth();
+        if reference <= self.max_depth {
+            return Err(QualityError::ReferenceNotDeeper {
+                reference,
+                max_depth: self.max_depth,
+            });
+        }
+        if reference > MAX_DEPTH {
+            return Err(QualityError::ReferenceTooDeep { reference });
+        }
+        if self.timing_runs == 0 {
+            return Err(QualityError::NoTimingRuns);
+        }
+        if !(self.shading_error_deg > 0.0 && self.shading_error_deg <= 180.0) {
+            return Err(QualityError::ShadingError {
+                degrees: self.shading_error_deg,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Why a quality run could not be made.
+#[derive(Debug, thiserror::Error)]
+pub enum QualityError {
+    /// The reference is not deeper than every configuration.
+    #[error(
+        "reference depth {reference} is not deeper than the deepest configuration \
+         (max depth {max_depth}); use a reference depth of at least {}",
+        *max_depth as u16 + 1
+    )]
+    ReferenceNotDeeper {
+        /// The reference depth asked for.
+        reference: Depth,
+        /// The configurations' max depth.
+        max_depth: Depth,
+    },
+    /// The reference depth exceeds what the tessellator supports.
+    #[error("reference depth {reference} is too deep (at most {MAX_DEPTH})")]
+    ReferenceTooDeep {
+        /// The reference depth asked for.
+        reference: Depth,
+    },
+    /// The max depth exceeds what the adaptive tessellation supports.
+    #[error(
+        "max depth {max_depth} is too deep for the adaptive tessellation (at most {MAX_ADAPTIVE_DEPTH})"
+    )]
+    MaxDepthTooDeep {
+        /// The max depth asked for.
+        max_depth: Depth,
+    },
+    /// An image without pixels.
+    #[error("image size {width}x{height} has no pixels")]
+    EmptyImage {
+        /// Width asked for.
+        width: u32,
+        /// Height asked for.
+        height: u32,
+    },
+    /// A normal tolerance outside `(0, 180]` degrees.
+    #[error("shading error {degrees}° is not an angle in (0, 180] degrees")]
+    ShadingError {
+        /// The tolerance asked for.
+        degrees: f32,
+    },
+    /// No timed renders asked for.
+    #[error("at least one timed render per camera is needed")]
+    NoTimingRuns,
+    /// No cameras given.
+    #[error("no cameras to measure from")]
+    NoCameras,
+    /// The reference surface is not in view of a camera.
+    #[error("camera {camera}: the reference surface covers no pixel (is the model in view?)")]
+    EmptyReference {
+        /// Index of the camera.
+        camera: usize,
+    },
+    /// A configuration produced nothing to draw.
+    #[error("{config}, camera {camera}: the tessellation has no triangles")]
+    EmptyFrame {
+        /// The configuration's name.
+        config: String,
+        /// Index of the camera.
+        camera: usize,
+    },
+    /// The uniform tessellation of the reference or of a configuration failed.
+    #[error("{config}: uniform tessellation")]
+    Scene {
+        /// `reference` or the configuration's name.
+        config: String,
+        /// What the tessellator said.
+        #[source]
+        source: SceneError,
+    },
+    /// The adaptive tessellation failed.
+    #[error("{config}: adaptive tessellation")]
+    Adaptive {
+        /// The configuration's name.
+        config: String,
+        /// What the adaptive node said.
+        #[source]
+        source: AssemblyError,
+    },
+    /// The renderer failed.
+    #[error("{config}, camera {camera}: rendering")]
+    Render {
+        /// `reference` or the configuration's name.
+        config: String,
+        /// Index of the camera.
+        camera: usize,
+        /// What the renderer said.
+        #[source]
+        source: VkError,
+    },
+}
+
+/// The result of one configuration over all cameras.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ConfigQuality {
+    /// The configuration.
+    pub config: Config,
+    /// Triangles drawn (the most over the cameras).
+    pub triangles: usize,
+    /// Largest silhouette error over all cameras, in pixels (0 when no pixel disagrees).
+    pub silhouette_px_max: f32,
+    /// 99th percentile of the silhouette error over the disagreeing pixels of all cameras.
+    pub silhouette_px_p99: f32,
+    /// 99th percentile of the shading angle over the pixels covered by both, all cameras, in
+    /// degrees.
+    pub shading_deg_p99: f32,
+    /// Median time to produce the geometry, in milliseconds.
+    pub update_ms: f64,
+    /// Median `render_discard` time, in milliseconds.
+    pub render_ms: f64,
+}
+
+impl fmt::Display for ConfigQuality {
+    /// `config=<name> triangles=<n> silhouette_px_max=<f> silhouette_px_p99=<f>
+    /// shading_deg_p99=<f> update_ms=<f> render_ms=<f>`
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "config={} triangles={} silhouette_px_max={:.3} silhouette_px_p99={:.3} \
+             shading_deg_p99={:.3} update_ms={:.3} render_ms={:.3}",
+            self.config.name(),
+            self.triangles,
+            self.silhouette_px_max,
+            self.silhouette_px_p99,
+            self.shading_deg_p99,
+            self.update_ms,
+            self.render_ms
+        )
+    }
+}
