@@ -27,8 +27,10 @@ pub struct LimitMesh {
     /// the limit surface has a crease (sharp, or semi-sharp still sharp at the limit) or a
     /// corner. Every other corner takes its vertex's normal.
     pub corner_normals: Vec<(u32, [f32; 3])>,
-    /// Face-varying values (UVs) of the refined mesh the tessellation is made from, when the
-    /// cage has them (refined values, not their limit); see `uv_indices`.
+    /// Face-varying values (UVs), when the cage has them: the face-varying *limit* at each
+    /// limit point ([`limit_face_varying`](crate::limit_face_varying), OpenSubdiv's
+    /// `LimitFaceVarying`), one per side of a seam; see `uv_indices`. (Refined meshes, e.g.
+    /// `subdiv refine`, carry refined values instead: they are not limit surfaces.)
     pub uvs: Vec<[f32; 2]>,
     /// The value in `uvs` of every face corner (aligned with `face_indices`); empty when the
     /// cage has no face-varying data.
@@ -156,11 +158,12 @@ fn limit_surface_from(
     let mut corner_normals = Vec::new();
     let mut uv_indices = Vec::new();
     let (offsets, _) = mesh.face_lists();
+    let limit_uv = crate::limit_face_varying(mesh, scheme);
     for f in mesh.faces() {
         if mesh.is_hole(f) {
             continue;
         }
-        if let Some(fv) = mesh.uv() {
+        if let Some(fv) = &limit_uv {
             let r = offsets[f.idx()] as usize..offsets[f.idx() + 1] as usize;
             uv_indices.extend_from_slice(&fv.indices[r]);
         }
@@ -178,8 +181,7 @@ fn limit_surface_from(
         face_offsets,
         face_indices,
         corner_normals,
-        uvs: mesh
-            .uv()
+        uvs: limit_uv
             .map(|fv| fv.values.iter().map(|t| t.to_array()).collect())
             .unwrap_or_default(),
         uv_indices,
