@@ -59,6 +59,7 @@ mod tessellate;
 #[cfg(test)]
 mod test_meshes;
 mod tri;
+mod uv;
 mod worker;
 
 pub use layout::PatchLayout;
