@@ -28,7 +28,7 @@ use crate::crease::{decrement, fractional_weight, is_infinite, is_semi_sharp};
 use crate::refine::RefineKernel;
 
 mod limit;
-pub use limit::limit_face_varying;
+pub use limit::{limit_face_varying, limit_face_varying_exact, semi_sharp_levels};
 
 /// The options of `Vtr::FVarLevel::completeTopologyFromFaceValues`, as flags.
 #[derive(Clone, Copy, Debug)]

@@ -28,8 +28,9 @@ pub struct LimitMesh {
     /// corner. Every other corner takes its vertex's normal.
     pub corner_normals: Vec<(u32, [f32; 3])>,
     /// Face-varying values (UVs), when the cage has them: the face-varying *limit* at each
-    /// limit point ([`limit_face_varying`](crate::limit_face_varying), OpenSubdiv's
-    /// `LimitFaceVarying`), one per side of a seam; see `uv_indices`. (Refined meshes, e.g.
+    /// limit point ([`limit_face_varying_exact`](crate::limit_face_varying_exact): OpenSubdiv's
+    /// `LimitFaceVarying` once no semi-sharp feature is left), one per side of a seam; see
+    /// `uv_indices`. (Refined meshes, e.g.
     /// `subdiv refine`, carry refined values instead: they are not limit surfaces.)
     pub uvs: Vec<[f32; 2]>,
     /// The value in `uvs` of every face corner (aligned with `face_indices`); empty when the
@@ -158,7 +159,9 @@ fn limit_surface_from(
     let mut corner_normals = Vec::new();
     let mut uv_indices = Vec::new();
     let (offsets, _) = mesh.face_lists();
-    let limit_uv = crate::limit_face_varying(mesh, scheme);
+    // The exact limit; if the refinement it takes is refused (too large), OpenSubdiv's.
+    let limit_uv = crate::limit_face_varying_exact(mesh, scheme)
+        .unwrap_or_else(|_| crate::limit_face_varying(mesh, scheme));
     for f in mesh.faces() {
         if mesh.is_hole(f) {
             continue;

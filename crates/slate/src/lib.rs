@@ -74,4 +74,5 @@ pub use tri::{
     TriLayout, TriPatch, TriSide, TriWorker, tessellate_loop, tessellate_loop_layout_into,
     tri_slate_bytes_per_thread,
 };
+pub use uv::LevelUvs;
 pub use worker::Worker;

@@ -1,29 +1,28 @@
 //! Face-varying values (UVs) of a uniform slate tessellation (issue 16).
 //!
 //! Design (the simple one the issue allows, kept apart from the slates so the position path is
-//! untouched): the cage's channel is refined uniformly to the tessellation's depth by
-//! `subdiv-rules` (`refine_uniform_levels`, OpenSubdiv's face-varying rules and options) and its
-//! face-varying *limit* taken there (`limit_face_varying`, OpenSubdiv's `LimitFaceVarying`), so
-//! every output corner gets the limit value of the corner of the level-`depth` face it is: the
-//! values of `tessellate_uniform`, seams kept (a corner takes its own face's side). Each
-//! output face is found by descending the child-face order of `refine_uniform` from its cage
-//! face (Catmull-Clark child `k` of a face starts at its corner `k`, runs along its edge `k`, and
-//! holds the quadrant there; Loop children `0..3` at the corners, `3` the middle), which is also
-//! how a patch's grid lies on its face (grid corner `(0, 0)` at the face's first corner, `i`
-//! along its first edge). Cost: one whole-mesh refinement per call, only for cages with UVs.
+//! untouched): the cage's channel is refined uniformly by `subdiv-rules`
+//! (`refine_uniform_levels`, OpenSubdiv's face-varying rules and options) to the
+//! tessellation's depth, or deeper while semi-sharp features remain, and its face-varying
+//! *limit* taken there (`limit_face_varying`, OpenSubdiv's `LimitFaceVarying`) — see
+//! [`LevelUvs`]. Every output corner gets the value of the corner of a face of that level at
+//! the same point and inside the same patch, so seams keep both sides. Faces are found by
+//! descending the child-face order of `refine_uniform` from the cage face (Catmull-Clark child
+//! `k` of a face starts at its corner `k`, runs along its edge `k`, and holds the quadrant
+//! there; Loop children `0..3` at the corners, `3` the middle), which is also how a patch's
+//! grid lies on its face (grid point `(0, 0)` at the face's first corner, `i` along its first
+//! edge). Cost: one whole-mesh refinement per call, only for cages with UVs; the no-UV path
+//! only clears two empty vectors.
 
-use subdiv_mesh::{FaceVarying, Mesh};
-use subdiv_rules::{LimitMesh, Scheme, limit_face_varying, refine_uniform_levels};
+use subdiv_mesh::{FaceId, Mesh};
+use subdiv_rules::{
+    Depth, LimitMesh, RulesError, Scheme, limit_face_varying, refine_uniform_levels,
+    semi_sharp_levels,
+};
 
 use crate::layout::PatchLayout;
 use crate::tessellate::SlateError;
 use crate::tri::TriLayout;
-
-/// The limit face-varying values of the level-`depth` refinement of `mesh` (which has UVs).
-fn refined_limit(mesh: &Mesh, scheme: Scheme, depth: u8) -> Result<FaceVarying, SlateError> {
-    let refined = refine_uniform_levels(mesh, scheme, depth)?;
-    Ok(limit_face_varying(&refined, scheme).unwrap_or_default())
-}
 
 /// Sets `out.uvs` and `out.uv_indices` for the Catmull-Clark slate output of `layout` (cleared
 /// when the cage has no UVs).
@@ -34,43 +33,136 @@ pub(crate) fn quad_uvs(
 ) -> Result<(), SlateError> {
     out.uvs.clear();
     out.uv_indices.clear();
-    if mesh.uv().is_none() {
-        return Ok(());
-    }
     let depth = layout.depth;
-    let lim = refined_limit(mesh, Scheme::CatmullClark, depth)?;
-    let (offsets, _) = mesh.face_lists();
+    let Some(lev) = LevelUvs::new(mesh, Scheme::CatmullClark, depth)? else {
+        return Ok(());
+    };
     out.uv_indices.reserve(out.face_indices.len());
     let mut k = 0usize;
     for f in mesh.faces() {
-        let p = &layout.patches[k];
         // A regular quad is one level-0 patch; any other face one level-1 patch per corner.
-        let roots: Vec<(u32, bool)> = if p.level == 0 {
-            vec![(f.0, true)]
+        let count = if layout.patches[k].level == 0 {
+            1
         } else {
-            (0..mesh.face_size(f) as u32)
-                .map(|c| (offsets[f.idx()] + c, false))
-                .collect()
+            mesh.face_size(f) as u32
         };
-        for (root, at_cage) in roots {
+        for sub in 0..count {
             let p = &layout.patches[k];
             k += 1;
             if !p.visible {
                 continue;
             }
-            let n = 1u32 << (depth - p.level);
+            let e = depth - p.level;
+            let n = 1u32 << e;
             for j in 0..n {
                 for i in 0..n {
-                    let (face, corners) = quad_cell(offsets, root, at_cage, n, i, j);
-                    for c in corners {
-                        out.uv_indices.push(lim.indices[4 * face as usize + c]);
+                    for (x, y) in [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)] {
+                        out.uv_indices.push(lev.value_at(p.level, sub, f, x, y, e));
                     }
                 }
             }
         }
     }
-    out.uvs = lim.values.iter().map(|v| v.to_array()).collect();
+    out.uvs = lev.values;
     Ok(())
+}
+
+/// The face-varying limit values of a mesh's uniform refinement at one level, addressed by
+/// the grid points of its patches: what the slates and the adaptive assembler
+/// (`subdiv-stitch`) give every output corner, whatever the depth of the patch it belongs to.
+/// The level is at least the deepest grid looked up and deep enough that no semi-sharp
+/// feature is left ([`subdiv_rules::semi_sharp_levels`]); a point of a coarser grid is a
+/// vertex there too, and the face-varying limit there does not depend on the level it is taken
+/// at once no semi-sharp feature is left, so patches of different depths agree on the values of
+/// the points they share (and with `tessellate_uniform`, which takes
+/// [`subdiv_rules::limit_face_varying_exact`]).
+#[derive(Clone, Debug, Default)]
+pub struct LevelUvs {
+    level: Depth,
+    /// The distinct values.
+    pub values: Vec<[f32; 2]>,
+    /// The value of every corner of the level-`level` faces.
+    indices: Vec<u32>,
+    /// The cage's face offsets (its faces' first children, Catmull-Clark).
+    offsets: Vec<u32>,
+}
+
+impl LevelUvs {
+    /// The values of `mesh`'s UVs for grids down to level `level` (in cage terms); `None`
+    /// without UVs.
+    pub fn new(mesh: &Mesh, scheme: Scheme, level: Depth) -> Result<Option<LevelUvs>, RulesError> {
+        if mesh.uv().is_none() {
+            return Ok(None);
+        }
+        let level = level.max(semi_sharp_levels(mesh)).max(1);
+        let refined = refine_uniform_levels(mesh, scheme, level)?;
+        let lim = limit_face_varying(&refined, scheme).unwrap_or_default();
+        Ok(Some(LevelUvs {
+            level,
+            values: lim.values.iter().map(|v| v.to_array()).collect(),
+            indices: lim.indices,
+            offsets: mesh.face_lists().0.to_vec(),
+        }))
+    }
+
+    /// The level the values were taken at.
+    pub fn level(&self) -> Depth {
+        self.level
+    }
+
+    /// The value (index into `values`) at grid point `(i, j)` of the `2^e` grid of the
+    /// Catmull-Clark patch on cage face `face` (`patch_level` 0: the face itself; 1: its
+    /// level-1 quad `sub`), on that patch's side of any seam. `e + patch_level` must not
+    /// exceed [`LevelUvs::level`].
+    pub fn value_at(
+        &self,
+        patch_level: u8,
+        sub: u32,
+        face: FaceId,
+        i: u32,
+        j: u32,
+        e: Depth,
+    ) -> u32 {
+        let lp = self.level - patch_level;
+        debug_assert!(e <= lp, "grid level {e} beyond the values' level {lp}");
+        let n = 1u32 << lp;
+        let shift = lp.saturating_sub(e);
+        let (x, y) = (i << shift, j << shift);
+        let (ci, cj) = (x.min(n - 1), y.min(n - 1));
+        let cell_corner = match (x > ci, y > cj) {
+            (false, false) => 0,
+            (true, false) => 1,
+            (true, true) => 2,
+            (false, true) => 3,
+        };
+        let (root, at_cage) = if patch_level == 0 {
+            (face.0, true)
+        } else {
+            (self.offsets[face.idx()] + sub, false)
+        };
+        let (f, corners) = quad_cell(&self.offsets, root, at_cage, n, ci, cj);
+        self.indices[4 * f as usize + corners[cell_corner]]
+    }
+
+    /// The value at lattice point `(i, j)` (`(0, 0)` at corner 0, `(2^e, 0)` at corner 1,
+    /// `(0, 2^e)` at corner 2) of Loop cage triangle `face`, on its side of any seam.
+    pub fn tri_value_at(&self, face: FaceId, i: u32, j: u32, e: Depth) -> u32 {
+        debug_assert!(e <= self.level, "lattice level {e} beyond {}", self.level);
+        let n = 1u32 << self.level;
+        let shift = self.level.saturating_sub(e);
+        let (x, y) = (i << shift, j << shift);
+        // A triangle with the point as a corner: up(x, y) below the far side, else one of the
+        // last row's.
+        let (a, b, c) = if x + y < n {
+            (x, y, 0)
+        } else if x > 0 {
+            (x - 1, y, 1)
+        } else {
+            (0, n - 1, 2)
+        };
+        let (f, corners) = tri_cell(face.0, n, a, b, true);
+        self.indices[3 * f as usize + corners[c]]
+    }
 }
 
 /// The level-`depth` face holding cell `(i, j)` of an `n x n` grid on face `root` (of the cage
@@ -150,34 +242,32 @@ pub(crate) fn tri_uvs(
 ) -> Result<(), SlateError> {
     out.uvs.clear();
     out.uv_indices.clear();
-    if mesh.uv().is_none() {
-        return Ok(());
-    }
     let depth = layout.depth;
-    let lim = refined_limit(mesh, Scheme::Loop, depth)?;
+    let Some(lev) = LevelUvs::new(mesh, Scheme::Loop, depth)? else {
+        return Ok(());
+    };
     let n = 1u32 << depth;
     out.uv_indices.reserve(out.face_indices.len());
-    for (f, p) in layout.patches.iter().enumerate() {
+    for (f, p) in mesh.faces().zip(&layout.patches) {
         if !p.visible {
             continue;
         }
         // The order of the slate's triangles: rows `b`, up and down triangles interleaved.
+        let mut emit = |pts: [(u32, u32); 3]| {
+            for (x, y) in pts {
+                out.uv_indices.push(lev.tri_value_at(f, x, y, depth));
+            }
+        };
         for b in 0..n {
             for a in 0..n - b {
-                let mut emit = |up: bool| {
-                    let (face, corners) = tri_cell(f as u32, n, a, b, up);
-                    for c in corners {
-                        out.uv_indices.push(lim.indices[3 * face as usize + c]);
-                    }
-                };
-                emit(true);
+                emit([(a, b), (a + 1, b), (a, b + 1)]);
                 if a + 1 < n - b {
-                    emit(false);
+                    emit([(a + 1, b), (a + 1, b + 1), (a, b + 1)]);
                 }
             }
         }
     }
-    out.uvs = lim.values.iter().map(|v| v.to_array()).collect();
+    out.uvs = lev.values;
     Ok(())
 }
 

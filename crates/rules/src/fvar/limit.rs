@@ -16,7 +16,7 @@ use subdiv_mesh::{FaceVarying, HalfedgeId, Mesh, VertexId};
 
 use super::{Channel, Span, sibling_corners, siblings, spans, vertex_mismatch};
 use crate::crease::{Rule, is_semi_sharp};
-use crate::{Scheme, catmark, loop_scheme};
+use crate::{Depth, MAX_DEPTH, RulesError, Scheme, catmark, loop_scheme};
 
 /// The limit face-varying values of `mesh`'s UVs (`None` without UVs), one value per distinct
 /// (vertex, sibling); `indices` aligned with the mesh's face corners, as in the input channel.
@@ -79,6 +79,67 @@ pub fn limit_face_varying(mesh: &Mesh, scheme: Scheme) -> Option<FaceVarying> {
         }
     }
     Some(out)
+}
+
+/// Levels of uniform refinement after which `mesh` has no semi-sharp edge or vertex left
+/// (sharpness decays by at least one per level under both crease rules).
+pub fn semi_sharp_levels(mesh: &Mesh) -> Depth {
+    mesh.edge_sharpnesses()
+        .iter()
+        .chain(mesh.vertex_sharpnesses())
+        .filter(|&&s| is_semi_sharp(s))
+        .map(|&s| s.ceil().min(f32::from(MAX_DEPTH)) as Depth)
+        .max()
+        .unwrap_or(0)
+}
+
+/// The face-varying limit of `mesh`'s UVs taken where no semi-sharp feature is left: like the
+/// limit positions ([`Ring::limit`](crate::Ring::limit)), the mesh is refined (uniformly,
+/// [`semi_sharp_levels`] times) and [`limit_face_varying`] taken there, each corner of `mesh`
+/// reading the value of the corner of its descendant face at the same vertex. Without
+/// semi-sharp features this is [`limit_face_varying`] itself (OpenSubdiv's values); with them
+/// it does not depend on the level it is taken at, so tessellations of any depth (and the
+/// adaptive ones, whose patches mix depths) agree on every point's value, where OpenSubdiv's
+/// `LimitFaceVarying` approximates until the sharpness has run out.
+pub fn limit_face_varying_exact(
+    mesh: &Mesh,
+    scheme: Scheme,
+) -> Result<Option<FaceVarying>, RulesError> {
+    let levels = semi_sharp_levels(mesh);
+    if levels == 0 || mesh.uv().is_none() {
+        return Ok(limit_face_varying(mesh, scheme));
+    }
+    let deep = crate::refine_uniform_levels(mesh, scheme, levels)?;
+    let Some(lim) = limit_face_varying(&deep, scheme) else {
+        return Ok(None);
+    };
+    let (offsets, _) = mesh.face_lists();
+    let (per, loop_scheme) = match scheme {
+        Scheme::CatmullClark => (4usize, false),
+        Scheme::Loop => (3usize, true),
+    };
+    let mut remap = vec![u32::MAX; lim.values.len()];
+    let mut out = FaceVarying::default();
+    for f in mesh.faces() {
+        for k in 0..mesh.face_size(f) as u32 {
+            // Child `k` of a face starts at its corner `k` (its vertex child); then child 0.
+            let mut child = if loop_scheme {
+                4 * f.0 + k
+            } else {
+                offsets[f.idx()] + k
+            };
+            for _ in 1..levels {
+                child *= 4;
+            }
+            let i = lim.indices[per * child as usize] as usize;
+            if remap[i] == u32::MAX {
+                remap[i] = out.values.len() as u32;
+                out.values.push(lim.values[i]);
+            }
+            out.indices.push(remap[i]);
+        }
+    }
+    Ok(Some(out))
 }
 
 /// The sum of the two values that end a sibling's span (OpenSubdiv's
