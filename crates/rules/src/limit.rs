@@ -93,6 +93,21 @@ impl LimitMesh {
             },
         )
     }
+    /// Drops the values of `uvs` no corner references (renumbering `uv_indices` in order of
+    /// first use).
+    pub fn compact_uvs(&mut self) {
+        let mut map = vec![u32::MAX; self.uvs.len()];
+        let mut uvs = Vec::new();
+        for i in &mut self.uv_indices {
+            let m = &mut map[*i as usize];
+            if *m == u32::MAX {
+                *m = uvs.len() as u32;
+                uvs.push(self.uvs[*i as usize]);
+            }
+            *i = *m;
+        }
+        self.uvs = uvs;
+    }
     /// A view for [`subdiv_mesh::write_obj`].
     pub fn obj_data(&self) -> ObjData<'_> {
         ObjData {

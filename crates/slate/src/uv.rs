@@ -64,6 +64,7 @@ pub(crate) fn quad_uvs(
         }
     }
     out.uvs = lev.values;
+    out.compact_uvs();
     Ok(())
 }
 
@@ -268,6 +269,7 @@ pub(crate) fn tri_uvs(
         }
     }
     out.uvs = lev.values;
+    out.compact_uvs();
     Ok(())
 }
 

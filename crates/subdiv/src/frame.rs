@@ -30,6 +30,7 @@ pub fn frame_limit(g: &FrameGeometry) -> (LimitMesh, Vec<f32>) {
         }
         limit.face_indices.push(*m);
     }
+    limit.compact_uvs();
     (limit, depths)
 }
 
