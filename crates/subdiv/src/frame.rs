@@ -17,7 +17,6 @@ pub fn frame_limit(g: &FrameGeometry) -> (LimitMesh, Vec<f32>) {
         corner_normals: g.corner_normals.clone(),
         uvs: g.uvs.clone(),
         uv_indices: g.uv_indices.clone(),
-        ..Default::default()
     };
     let mut depths = Vec::new();
     for &i in &g.indices {
