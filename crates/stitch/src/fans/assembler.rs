@@ -156,7 +156,7 @@ impl Assembler {
         for b in &mut self.blocks {
             b.depth = None;
         }
-        self.uvs = None;
+        // The face-varying values do not depend on the positions: kept.
     }
 
     /// Builds a frame: `depth[u]` per unit (cage face; clamped to `min_depth..=max_depth`) and
