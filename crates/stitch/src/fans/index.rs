@@ -21,6 +21,24 @@ const NO_OWN: u32 = u32::MAX;
 /// patch's `2^e` grid, `(i, j, e)` (for its face-varying value, [`LevelUvs::value_at`]).
 type Loc = (u32, u32, u8);
 
+/// Where [`Frame::emit_patch`] puts the corners' [`Loc`]s: a `Vec`, or nowhere (`()`: the
+/// no-UV path, where the places are never computed once inlined).
+trait LocSink {
+    fn put(&mut self, l: Loc);
+}
+
+impl LocSink for () {
+    #[inline(always)]
+    fn put(&mut self, _: Loc) {}
+}
+
+impl LocSink for Vec<Loc> {
+    #[inline(always)]
+    fn put(&mut self, l: Loc) {
+        self.push(l);
+    }
+}
+
 /// How the quads next to a deeper neighbour are closed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum FanMethod {
@@ -59,8 +77,11 @@ impl Frame<'_> {
                 let mut uv = Vec::new();
                 let face = self.set.units()[p.unit as usize].face;
                 if active[p.unit as usize] && !self.mesh.is_hole(face) {
-                    let want = uvs.is_some().then_some(&mut locs);
-                    self.emit_patch(p, method, &mut v, &mut own, want);
+                    if uvs.is_some() {
+                        self.emit_patch(p, method, &mut v, &mut own, &mut locs);
+                    } else {
+                        self.emit_patch(p, method, &mut v, &mut own, &mut ());
+                    }
                     let pi = self.patch_index(p.unit as usize, p.sub as usize);
                     for (c, &o) in own.iter().enumerate() {
                         if o != NO_OWN
@@ -100,7 +121,7 @@ impl Frame<'_> {
         method: FanMethod,
         out: &mut Vec<u32>,
         own: &mut Vec<u32>,
-        mut locs: Option<&mut Vec<Loc>>,
+        locs: &mut impl LocSink,
     ) {
         let pi = self.patch_index(p.unit as usize, p.sub as usize);
         let d = self.patch_depth(p);
@@ -138,9 +159,7 @@ impl Frame<'_> {
             for (x, o, l) in tri {
                 out.push(x);
                 own.push(o);
-                if let Some(locs) = locs.as_deref_mut() {
-                    locs.push(l);
-                }
+                locs.put(l);
             }
         };
         let mut poly: Vec<(u32, u32, Loc)> = Vec::with_capacity(16);
