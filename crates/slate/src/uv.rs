@@ -90,13 +90,22 @@ pub struct LevelUvs {
 
 impl LevelUvs {
     /// The values of `mesh`'s UVs for grids down to level `level` (in cage terms); `None`
-    /// without UVs.
+    /// without UVs. Errors when the level-`level` refinement is refused (too many faces).
     pub fn new(mesh: &Mesh, scheme: Scheme, level: Depth) -> Result<Option<LevelUvs>, RulesError> {
         if mesh.uv().is_none() {
             return Ok(None);
         }
-        let level = level.max(semi_sharp_levels(mesh)).max(1);
-        let refined = refine_uniform_levels(mesh, scheme, level)?;
+        let want = level.max(1);
+        let mut level = want.max(semi_sharp_levels(mesh));
+        // Refused deeper levels (a high semi-sharpness on a large cage): OpenSubdiv's values
+        // at the level asked for instead.
+        let refined = match refine_uniform_levels(mesh, scheme, level) {
+            Err(_) if level > want => {
+                level = want;
+                refine_uniform_levels(mesh, scheme, want)?
+            }
+            r => r?,
+        };
         let lim = limit_face_varying(&refined, scheme).unwrap_or_default();
         Ok(Some(LevelUvs {
             level,
