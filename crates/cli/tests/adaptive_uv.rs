@@ -79,7 +79,10 @@ fn usd_texture_coordinates_reach_the_output() {
     let obj = fixtures().join("meshes/fvar/cube_uv.obj");
     for (what, flags) in [
         ("uniform", vec!["--depth", "3"]),
-        ("adaptive", vec!["--eye-relative", "0.8,0.5,2.2", "--max-depth", "3"]),
+        (
+            "adaptive",
+            vec!["--eye-relative", "0.8,0.5,2.2", "--max-depth", "3"],
+        ),
     ] {
         let mut files = Vec::new();
         for (name, input) in [("usd", &usda), ("obj", &obj)] {
