@@ -186,3 +186,14 @@ fn corner_of(g: &FrameGeometry, side: (usize, usize), v: u32) -> usize {
         side.1
     }
 }
+
+#[test]
+fn frames_of_a_cage_without_uvs_carry_none() {
+    let (_, mut mesh) = uv_cages().swap_remove(0);
+    mesh.clear_uv();
+    let g = frame(&mesh, &[0, 1, 2, 3, 2, 1]);
+    assert!(g.num_triangles() > 0);
+    assert!(g.uvs.is_empty() && g.uv_indices.is_empty());
+    let s = subdiv_slate::tessellate(&mesh, 2).unwrap();
+    assert!(s.uvs.is_empty() && s.uv_indices.is_empty());
+}
