@@ -4,7 +4,7 @@
 
 use std::fmt::Write as _;
 
-use subdiv_mesh::Mesh;
+use subdiv_mesh::{FaceVarying, Mesh};
 use subdiv_rules::{Depth, Scheme, face_uvs};
 
 use crate::fuzz::Rng;
@@ -20,11 +20,6 @@ pub fn parse_fvar(text: &str) -> Vec<Vec<f64>> {
 
 /// Compares the UVs of `refined` (the level-`level` uniform refinement of `cage`) with
 /// OpenSubdiv's `faces`, within 1e-5; returns the number of corners compared.
-///
-/// Child faces of each cage face are contiguous in both, but OpenSubdiv rotates the children
-/// of quads (and the middle child of a triangle) so that their corners follow the parent's,
-/// which also reorders their descendants: each face is matched to an unused reference face of
-/// the same cage face, up to rotation.
 pub fn compare_fvar(
     cage: &Mesh,
     scheme: Scheme,
@@ -32,18 +27,56 @@ pub fn compare_fvar(
     refined: &Mesh,
     faces: &[Vec<f64>],
 ) -> Result<usize, String> {
-    let mesh = cage;
-    if faces.len() != refined.num_faces() {
-        return Err(format!(
-            "{} faces, OpenSubdiv has {}",
-            refined.num_faces(),
-            faces.len()
-        ));
-    }
     let got: Vec<Vec<glam::Vec2>> = refined
         .faces()
         .map(|f| face_uvs(refined, f).unwrap_or_default())
         .collect();
+    compare_corner_values(cage, scheme, level, &got, faces)
+}
+
+/// Compares the face-varying values `uvs` of `refined`'s corners (e.g. its limit values,
+/// [`subdiv_rules::limit_face_varying`]) with OpenSubdiv's `faces`, as [`compare_fvar`].
+pub fn compare_fvar_values(
+    cage: &Mesh,
+    scheme: Scheme,
+    level: Depth,
+    refined: &Mesh,
+    uvs: &FaceVarying,
+    faces: &[Vec<f64>],
+) -> Result<usize, String> {
+    let (offsets, _) = refined.face_lists();
+    let got: Vec<Vec<glam::Vec2>> = refined
+        .faces()
+        .map(|f| {
+            (offsets[f.idx()]..offsets[f.idx() + 1])
+                .map(|c| uvs.corner(c as usize))
+                .collect()
+        })
+        .collect();
+    compare_corner_values(cage, scheme, level, &got, faces)
+}
+
+/// The comparison of [`compare_fvar`] on the corner values `got` of every refined face.
+///
+/// Child faces of each cage face are contiguous in both, but OpenSubdiv rotates the children
+/// of quads (and the middle child of a triangle) so that their corners follow the parent's,
+/// which also reorders their descendants: each face is matched to an unused reference face of
+/// the same cage face, up to rotation.
+fn compare_corner_values(
+    cage: &Mesh,
+    scheme: Scheme,
+    level: Depth,
+    got: &[Vec<glam::Vec2>],
+    faces: &[Vec<f64>],
+) -> Result<usize, String> {
+    let mesh = cage;
+    if faces.len() != got.len() {
+        return Err(format!(
+            "{} faces, OpenSubdiv has {}",
+            got.len(),
+            faces.len()
+        ));
+    }
     let same = |g: &[glam::Vec2], w: &[f64], r: usize| {
         let n = g.len();
         w.len() == 2 * n

@@ -1,6 +1,6 @@
 // ref_fvar: reference face-varying refinement from OpenSubdiv 3.5 (Far, CPU, double precision).
 //
-//   ref_fvar INPUT.obj LEVEL [catmark|loop] [FVAR]  > shape.fvar.L<LEVEL>.txt
+//   ref_fvar INPUT.obj LEVEL [catmark|loop] [FVAR] [limit]  > shape.fvar.L<LEVEL>.txt
 //
 // Reads an OBJ cage with `vt` and `f v/vt` corners and OpenSubdiv's tag lines (crease, corner,
 // hole, interpolateboundary, creasemethod, smoothtriangles, facevaryinginterpolateboundary),
@@ -11,6 +11,9 @@
 //
 //   fvar LEVEL=<l> faces=<n> option=<k>
 //   f u0 v0 u1 v1 ...
+//
+// With `limit`, the values printed are the face-varying limits of the level-LEVEL values
+// (PrimvarRefinerReal<double>::LimitFaceVarying), and the header says `fvar-limit`.
 //
 // Build: g++ -O2 -std=c++14 ref_fvar.cpp -I/usr/include -losdCPU -o ref_fvar
 
@@ -136,11 +139,12 @@ static Cage readObj(char const *path) {
 }
 
 int main(int argc, char **argv) {
-    if (argc < 3) fail("usage: ref_fvar INPUT.obj LEVEL [catmark|loop] [FVAR]");
+    if (argc < 3) fail("usage: ref_fvar INPUT.obj LEVEL [catmark|loop] [FVAR] [limit]");
     Cage c = readObj(argv[1]);
     int level = std::atoi(argv[2]);
     Sdc::SchemeType scheme = Sdc::SCHEME_CATMARK;
     if (argc > 3 && std::string(argv[3]) == "loop") scheme = Sdc::SCHEME_LOOP;
+    bool limit = argc > 5 && std::string(argv[5]) == "limit";
     if (argc > 4) {
         int k = std::atoi(argv[4]);
         if (k < 0 || k > 5) fail("FVAR: 0..5");
@@ -180,8 +184,16 @@ int main(int argc, char **argv) {
         pr.InterpolateFaceVarying(l, src, dst, 0);
         cur.swap(next);
     }
+    if (limit) {
+        std::vector<Uv> lim(cur.size());
+        Uv const *src = cur.data();
+        Uv *dst = lim.data();
+        pr.LimitFaceVarying(src, dst, 0);
+        cur.swap(lim);
+    }
     Far::TopologyLevel const &last = r->GetLevel(level);
-    std::printf("fvar LEVEL=%d faces=%d option=%d\n", level, last.GetNumFaces(),
+    std::printf("%s LEVEL=%d faces=%d option=%d\n", limit ? "fvar-limit" : "fvar", level,
+                last.GetNumFaces(),
                 (int)c.options.GetFVarLinearInterpolation());
     for (int f = 0; f < last.GetNumFaces(); ++f) {
         Far::ConstIndexArray fv = last.GetFaceFVarValues(f, 0);

@@ -13,7 +13,8 @@
 //! The last line is `fuzz-osd: <passed>/<total> cages agree`; any disagreement exits non-zero.
 //! With `--fvar` each cage also gets random UV seams and a random face-varying option
 //! (`subdiv_tests::osd_fvar::cage_obj_with_uvs`), compared with `xtask/osd/ref_fvar.cpp`
-//! (OpenSubdiv's `InterpolateFaceVarying`) at every level; not in the `cargo xtask test` round
+//! (OpenSubdiv's `InterpolateFaceVarying`, then `LimitFaceVarying` of the refined values against
+//! `subdiv_rules::limit_face_varying`) at every level; not in the `cargo xtask test` round
 //! while the known disagreements (docs/testing.md) remain.
 
 use std::path::{Path, PathBuf};
@@ -26,7 +27,7 @@ use anyhow::{Context, Result, bail};
 use subdiv_tests::Reference;
 use subdiv_tests::osd_cage::OsdCage;
 use subdiv_tests::osd_compare::{Tessellator, compare};
-use subdiv_tests::osd_fvar::{cage_obj_with_uvs, compare_fvar, parse_fvar};
+use subdiv_tests::osd_fvar::{cage_obj_with_uvs, compare_fvar, compare_fvar_values, parse_fvar};
 use subdiv_tests::osd_gen::random_cage;
 
 use crate::bench_osd::{INSTALL, osd_present};
@@ -209,19 +210,27 @@ impl Harness {
         let Some(exe) = &self.fvar_exe else {
             return Ok(());
         };
-        let out = Command::new(exe)
-            .arg(&uv_path)
-            .arg(level.to_string())
-            .arg(cage.scheme_name())
-            .output()
-            .map_err(|e| format!("could not run ref_fvar: {e}"))?;
-        if !out.status.success() {
-            return Err(format!(
-                "ref_fvar failed: {}",
-                String::from_utf8_lossy(&out.stderr).trim()
-            ));
-        }
         let soup = subdiv_mesh::parse_obj(&uv_text).map_err(|e| e.to_string())?;
+        let run = |limit: bool| -> Result<Vec<Vec<f64>>, String> {
+            let mut cmd = Command::new(exe);
+            cmd.arg(&uv_path)
+                .arg(level.to_string())
+                .arg(cage.scheme_name())
+                .arg(soup.options.fvar.tag().to_string());
+            if limit {
+                cmd.arg("limit");
+            }
+            let out = cmd
+                .output()
+                .map_err(|e| format!("could not run ref_fvar: {e}"))?;
+            if !out.status.success() {
+                return Err(format!(
+                    "ref_fvar failed: {}",
+                    String::from_utf8_lossy(&out.stderr).trim()
+                ));
+            }
+            Ok(parse_fvar(&String::from_utf8_lossy(&out.stdout)))
+        };
         let mesh = subdiv_mesh::Mesh::from_soup(&soup).map_err(|e| e.to_string())?;
         let scheme = if cage.loop_scheme {
             subdiv_rules::Scheme::Loop
@@ -231,9 +240,11 @@ impl Harness {
         let depth = level as subdiv_rules::Depth;
         let refined =
             subdiv_rules::refine_uniform_levels(&mesh, scheme, depth).map_err(|e| e.to_string())?;
-        let faces = parse_fvar(&String::from_utf8_lossy(&out.stdout));
-        compare_fvar(&mesh, scheme, depth, &refined, &faces)
+        compare_fvar(&mesh, scheme, depth, &refined, &run(false)?)
             .map_err(|e| format!("option {}: {e}", soup.options.fvar.name()))?;
+        let limit = subdiv_rules::limit_face_varying(&refined, scheme).unwrap_or_default();
+        compare_fvar_values(&mesh, scheme, depth, &refined, &limit, &run(true)?)
+            .map_err(|e| format!("option {} (limit): {e}", soup.options.fvar.name()))?;
         let _ = std::fs::remove_file(&uv_path);
         Ok(())
     }

@@ -286,6 +286,16 @@ fn merge(cage: &mut UsdCage, one: prim::PrimMesh, file: &str) -> Result<(), UsdE
                 format!("{:?}", b.triangles),
             ));
         }
+        if cage.soup.uv_indices.is_empty() != one.soup.uv_indices.is_empty() {
+            let has = |s: &PolygonSoup| {
+                if s.uv_indices.is_empty() {
+                    "no primvars:st".to_string()
+                } else {
+                    "primvars:st".to_string()
+                }
+            };
+            return Err(disagree("primvars:st", has(&cage.soup), has(&one.soup)));
+        }
         if cage.face_varying != one.face_varying {
             let (a, b) = (cage.face_varying.token(), one.face_varying.token());
             return Err(disagree(
@@ -304,6 +314,14 @@ fn merge(cage: &mut UsdCage, one: prim::PrimMesh, file: &str) -> Result<(), UsdE
     let group = out.groups.len() as u32;
     out.groups.push(prim.clone());
     out.positions.extend_from_slice(&one.soup.positions);
+    let bt = out.uvs.len() as i64;
+    out.uvs.extend_from_slice(&one.soup.uvs);
+    out.uv_indices.extend(
+        one.soup
+            .uv_indices
+            .iter()
+            .map(|&t| if t < 0 { t } else { t + bt }),
+    );
     for f in 0..one.soup.num_faces() {
         out.push_face(one.soup.face(f).iter().map(|&i| i + bv));
         out.face_groups.push(group);
@@ -332,6 +350,8 @@ fn attribute_of(err: &MeshError) -> &'static str {
         MeshError::TagMissingFace { .. } => "holeIndices",
         MeshError::BadSharpness { tag, .. } if *tag == "corner" => "cornerSharpnesses",
         MeshError::BadSharpness { .. } => "creaseSharpnesses",
+        MeshError::UvIndexOutOfRange { .. } | MeshError::UvCount { .. } => "primvars:st:indices",
+        MeshError::NonFiniteUv { .. } => "primvars:st",
         _ => "faceVertexIndices",
     }
 }

@@ -27,6 +27,9 @@ use crate::Scheme;
 use crate::crease::{decrement, fractional_weight, is_infinite, is_semi_sharp};
 use crate::refine::RefineKernel;
 
+mod limit;
+pub use limit::{limit_face_varying, limit_face_varying_exact, semi_sharp_levels};
+
 /// The options of `Vtr::FVarLevel::completeTopologyFromFaceValues`, as flags.
 #[derive(Clone, Copy, Debug)]
 struct Flags {
@@ -81,7 +84,36 @@ struct Channel<'a> {
     flags: Flags,
 }
 
-impl Channel<'_> {
+impl<'a> Channel<'a> {
+    /// The channel `fv` of `mesh` with its corners and seams.
+    fn new(mesh: &'a Mesh, fv: &'a FaceVarying) -> Channel<'a> {
+        let mut corner = vec![u32::MAX; mesh.num_halfedges()];
+        let (offsets, _) = mesh.face_lists();
+        for f in mesh.faces() {
+            let verts = mesh.face_vertices(f);
+            let mut h = mesh.face_halfedge(f);
+            for _ in 0..verts.len() {
+                let k = verts.iter().position(|&v| v == mesh.from(h)).unwrap_or(0);
+                corner[h.idx()] = offsets[f.idx()] + k as u32;
+                h = mesh.next(h);
+            }
+        }
+        let mut ch = Channel {
+            mesh,
+            fv,
+            corner,
+            seam: vec![false; mesh.num_edges()],
+            flags: Flags::new(mesh),
+        };
+        for e in mesh.edges() {
+            let (h0, h1) = (e.halfedge(0), e.halfedge(1));
+            if mesh.face(h0).is_some() && mesh.face(h1).is_some() {
+                ch.seam[e.idx()] = ch.index(h0) != ch.index(mesh.next(h1))
+                    || ch.index(mesh.next(h0)) != ch.index(h1);
+            }
+        }
+        ch
+    }
     /// Value index of `h`'s face at `h`'s origin.
     #[inline]
     fn index(&self, h: HalfedgeId) -> u32 {
@@ -116,31 +148,8 @@ impl Channel<'_> {
 pub(crate) fn refine_face_varying(kernel: &mut RefineKernel<'_>, fv: &FaceVarying) -> FaceVarying {
     let mesh = kernel.mesh();
     let scheme = kernel.scheme();
-    let mut corner = vec![u32::MAX; mesh.num_halfedges()];
     let (offsets, _) = mesh.face_lists();
-    for f in mesh.faces() {
-        let verts = mesh.face_vertices(f);
-        let mut h = mesh.face_halfedge(f);
-        for _ in 0..verts.len() {
-            let k = verts.iter().position(|&v| v == mesh.from(h)).unwrap_or(0);
-            corner[h.idx()] = offsets[f.idx()] + k as u32;
-            h = mesh.next(h);
-        }
-    }
-    let mut ch = Channel {
-        mesh,
-        fv,
-        corner,
-        seam: vec![false; mesh.num_edges()],
-        flags: Flags::new(mesh),
-    };
-    for e in mesh.edges() {
-        let (h0, h1) = (e.halfedge(0), e.halfedge(1));
-        if mesh.face(h0).is_some() && mesh.face(h1).is_some() {
-            ch.seam[e.idx()] =
-                ch.index(h0) != ch.index(mesh.next(h1)) || ch.index(mesh.next(h0)) != ch.index(h1);
-        }
-    }
+    let ch = Channel::new(mesh, fv);
     let mut out = FaceVarying::default();
     let push = push_value;
 
@@ -320,9 +329,7 @@ fn crease_value(
 ) -> Vec3 {
     let mesh = ch.mesh;
     let n = hs.len();
-    let first = hs[span.start % n];
-    let last = hs[(span.start + n - 1 + span.size.max(1)) % n];
-    let ends = ch.value(mesh.next(first)) + ch.value(mesh.prev(last));
+    let ends = limit::span_ends(ch, hs, span);
     let vs = mesh.vertex_sharpness(v);
     let mut w_corner = 0.0f32;
     if span.semi > 0 || is_semi_sharp(vs) {

@@ -31,7 +31,7 @@ mod point;
 mod refine;
 mod ring;
 
-pub use fvar::face_uvs;
+pub use fvar::{face_uvs, limit_face_varying, limit_face_varying_exact, semi_sharp_levels};
 pub use limit::{LimitMesh, limit_surface, tessellate_uniform};
 pub use point::{Point, centroid};
 pub use refine::{

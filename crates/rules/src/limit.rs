@@ -27,8 +27,11 @@ pub struct LimitMesh {
     /// the limit surface has a crease (sharp, or semi-sharp still sharp at the limit) or a
     /// corner. Every other corner takes its vertex's normal.
     pub corner_normals: Vec<(u32, [f32; 3])>,
-    /// Face-varying values (UVs) of the refined mesh the tessellation is made from, when the
-    /// cage has them (refined values, not their limit); see `uv_indices`.
+    /// Face-varying values (UVs), when the cage has them: the face-varying *limit* at each
+    /// limit point ([`limit_face_varying_exact`](crate::limit_face_varying_exact): OpenSubdiv's
+    /// `LimitFaceVarying` once no semi-sharp feature is left), one per side of a seam; see
+    /// `uv_indices`. (Refined meshes, e.g.
+    /// `subdiv refine`, carry refined values instead: they are not limit surfaces.)
     pub uvs: Vec<[f32; 2]>,
     /// The value in `uvs` of every face corner (aligned with `face_indices`); empty when the
     /// cage has no face-varying data.
@@ -89,6 +92,21 @@ impl LimitMesh {
                 (lo.min(p), hi.max(p))
             },
         )
+    }
+    /// Drops the values of `uvs` no corner references (renumbering `uv_indices` in order of
+    /// first use).
+    pub fn compact_uvs(&mut self) {
+        let mut map = vec![u32::MAX; self.uvs.len()];
+        let mut uvs = Vec::new();
+        for i in &mut self.uv_indices {
+            let m = &mut map[*i as usize];
+            if *m == u32::MAX {
+                *m = uvs.len() as u32;
+                uvs.push(self.uvs[*i as usize]);
+            }
+            *i = *m;
+        }
+        self.uvs = uvs;
     }
     /// A view for [`subdiv_mesh::write_obj`].
     pub fn obj_data(&self) -> ObjData<'_> {
@@ -156,11 +174,14 @@ fn limit_surface_from(
     let mut corner_normals = Vec::new();
     let mut uv_indices = Vec::new();
     let (offsets, _) = mesh.face_lists();
+    // The exact limit; if the refinement it takes is refused (too large), OpenSubdiv's.
+    let limit_uv = crate::limit_face_varying_exact(mesh, scheme)
+        .unwrap_or_else(|_| crate::limit_face_varying(mesh, scheme));
     for f in mesh.faces() {
         if mesh.is_hole(f) {
             continue;
         }
-        if let Some(fv) = mesh.uv() {
+        if let Some(fv) = &limit_uv {
             let r = offsets[f.idx()] as usize..offsets[f.idx() + 1] as usize;
             uv_indices.extend_from_slice(&fv.indices[r]);
         }
@@ -178,8 +199,7 @@ fn limit_surface_from(
         face_offsets,
         face_indices,
         corner_normals,
-        uvs: mesh
-            .uv()
+        uvs: limit_uv
             .map(|fv| fv.values.iter().map(|t| t.to_array()).collect())
             .unwrap_or_default(),
         uv_indices,

@@ -59,6 +59,7 @@ mod tessellate;
 #[cfg(test)]
 mod test_meshes;
 mod tri;
+mod uv;
 mod worker;
 
 pub use layout::PatchLayout;
@@ -73,4 +74,5 @@ pub use tri::{
     TriLayout, TriPatch, TriSide, TriWorker, tessellate_loop, tessellate_loop_layout_into,
     tri_slate_bytes_per_thread,
 };
+pub use uv::LevelUvs;
 pub use worker::Worker;

@@ -219,7 +219,8 @@ pub fn tessellate_layout_into(
     for (k, slot, n) in sided.into_iter().flatten() {
         result.corner_normals.push((starts[k as usize] + slot, n));
     }
-    Ok(())
+    // Face-varying limit values, only for a cage with UVs (`uv.rs`).
+    crate::uv::quad_uvs(mesh, layout, result)
 }
 
 /// Gathers, subdivides and evaluates one patch; writes the points it owns and its quads, and

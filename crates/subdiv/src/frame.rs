@@ -3,8 +3,9 @@
 use subdiv_rules::LimitMesh;
 use subdiv_stitch::FrameGeometry;
 
-/// The triangles of an adaptive frame as a [`LimitMesh`] (referenced vertices only, and the
-/// frame's one-sided corner normals at creases) and the per-vertex depths of their patches.
+/// The triangles of an adaptive frame as a [`LimitMesh`] (referenced vertices only, the
+/// frame's one-sided corner normals at creases and its UVs) and the per-vertex depths of their
+/// patches.
 pub fn frame_limit(g: &FrameGeometry) -> (LimitMesh, Vec<f32>) {
     let mut map = vec![u32::MAX; g.positions.len()];
     let mut limit = LimitMesh {
@@ -14,7 +15,8 @@ pub fn frame_limit(g: &FrameGeometry) -> (LimitMesh, Vec<f32>) {
         face_indices: Vec::with_capacity(g.indices.len()),
         // Triangle corners index `indices` one to one.
         corner_normals: g.corner_normals.clone(),
-        ..Default::default()
+        uvs: g.uvs.clone(),
+        uv_indices: g.uv_indices.clone(),
     };
     let mut depths = Vec::new();
     for &i in &g.indices {
@@ -27,6 +29,7 @@ pub fn frame_limit(g: &FrameGeometry) -> (LimitMesh, Vec<f32>) {
         }
         limit.face_indices.push(*m);
     }
+    limit.compact_uvs();
     (limit, depths)
 }
 

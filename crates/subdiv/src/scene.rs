@@ -27,12 +27,11 @@ pub enum SceneError {
 }
 
 /// The uniform limit tessellation of `mesh` at `depth` on the slate tessellators: quad slates
-/// for Catmull-Clark, triangular slates for Loop. A cage with face-varying data (UVs) takes the
-/// whole-mesh refinement for both schemes, which carries the UVs (the slates do not yet).
+/// for Catmull-Clark, triangular slates for Loop. A cage with face-varying data (UVs) gets its
+/// face-varying limit values at every corner (`LimitMesh::uvs`).
 pub fn uniform_limit(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<LimitMesh, SceneError> {
     let t0 = std::time::Instant::now();
     let limit = match scheme {
-        _ if mesh.uv().is_some() => subdiv_rules::tessellate_uniform(mesh, scheme, depth)?,
         Scheme::CatmullClark => subdiv_slate::tessellate(mesh, depth)?,
         // A cage Loop refuses (not triangles, a doubled triangle) is a rules error, as before.
         Scheme::Loop => subdiv_slate::tessellate_loop(mesh, depth).map_err(|e| match e {

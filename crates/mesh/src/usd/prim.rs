@@ -11,6 +11,8 @@ use crate::error::UsdError;
 use crate::options::{BoundaryInterpolation, SchemeOptions, TriangleSubdivision};
 use crate::soup::{CornerTag, CreaseTag, HoleTag, PolygonSoup};
 
+mod primvar;
+
 /// One mesh prim read: its soup (world space, no groups) and its subdivision attributes.
 #[derive(Clone, Debug)]
 pub(crate) struct PrimMesh {
@@ -36,6 +38,7 @@ pub(crate) fn read_mesh_prim(stage: &Stage, file: &str, path: &str) -> Result<Pr
     soup.positions = points.iter().map(|&p| transform(&world, p)).collect();
     let left = at.token("orientation", &["rightHanded", "leftHanded"], 0)? == 1;
     at.faces(&mut soup, left != mirrored)?;
+    at.texture_coordinates(&mut soup, left != mirrored)?;
     at.creases(&mut soup)?;
     let corners = at.ints("cornerIndices")?;
     let sharp = at.floats("cornerSharpnesses")?;
@@ -83,6 +86,11 @@ pub(crate) fn read_mesh_prim(stage: &Stage, file: &str, path: &str) -> Result<Pr
         &FV.map(FaceVaryingLinear::token),
         2,
     )?;
+    // The option the face-varying refinement of `primvars:st` follows (same order; a cage
+    // without it keeps the default, as an OBJ cage does).
+    if !soup.uv_indices.is_empty() {
+        soup.options.fvar = crate::FVarLinearInterpolation::ALL[fv];
+    }
     Ok(PrimMesh {
         path: path.to_string(),
         soup,

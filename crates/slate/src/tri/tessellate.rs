@@ -125,7 +125,8 @@ pub fn tessellate_loop_layout_into(
             .extend(slots.into_iter().map(|(k, nrm)| (start + k, nrm)));
         start += 3 * tris_of(p) as u32;
     }
-    Ok(())
+    // Face-varying limit values, only for a cage with UVs (`uv.rs`).
+    crate::uv::tri_uvs(mesh, layout, result)
 }
 
 /// Gathers, subdivides and evaluates one patch; writes the points it owns and its triangles, and

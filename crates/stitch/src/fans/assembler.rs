@@ -5,7 +5,7 @@
 
 use rayon::prelude::*;
 use subdiv_mesh::{HalfedgeId, Mesh};
-use subdiv_slate::{Depth, MAX_DEPTH, PatchSet, thread_worker};
+use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, PatchSet, thread_worker};
 
 use super::edges::Frame;
 use super::geometry::FrameGeometry;
@@ -68,6 +68,8 @@ pub struct Assembler {
     version: u64,
     max_depth: Depth,
     method: FanMethod,
+    /// The cage's face-varying limit values, at the deepest level a frame has needed so far.
+    uvs: Option<LevelUvs>,
 }
 
 impl Assembler {
@@ -112,6 +114,7 @@ impl Assembler {
             version: 0,
             max_depth,
             method: FanMethod::Subdivided,
+            uvs: None,
         })
     }
 
@@ -153,6 +156,7 @@ impl Assembler {
         for b in &mut self.blocks {
             b.depth = None;
         }
+        // The face-varying values do not depend on the positions: kept.
     }
 
     /// Builds a frame: `depth[u]` per unit (cage face; clamped to `min_depth..=max_depth`) and
@@ -194,12 +198,32 @@ impl Assembler {
             &self.block_start,
         );
         self.fill_vertex_depth(&depth, out);
+        // Face-varying values: every corner's point lies on a grid at most one level below the
+        // deepest drawn unit (fan centres, subdivided edges).
+        let deepest = (0..nu).filter(|&u| active[u]).map(|u| depth[u]).max();
+        let uvs = match (mesh.uv().is_some(), deepest) {
+            (true, Some(d)) => {
+                let level = d + 1;
+                if self.uvs.as_ref().is_none_or(|u| u.level() < level) {
+                    self.uvs = LevelUvs::new(mesh, subdiv_rules::Scheme::CatmullClark, level)?;
+                    out.uvs.clear();
+                }
+                let u = self.uvs.as_ref();
+                if out.uvs.is_empty() {
+                    out.uvs = u.map(|u| u.values.clone()).unwrap_or_default();
+                }
+                u
+            }
+            _ => None,
+        };
         // Index buffer: each patch's triangles, in parallel, then concatenated in patch order.
         fr.emit_frame(
             active,
             self.method,
+            uvs,
             &mut out.indices,
             &mut out.corner_normals,
+            &mut out.uv_indices,
         );
         out.unit_depth = (0..nu)
             .map(|u| if active[u] { depth[u] } else { u8::MAX })

@@ -13,6 +13,12 @@ pub struct FrameGeometry {
     /// one-sided limit normal of that triangle's side), ascending and sparse. Each patch gives
     /// its own side's normal at the points of its border; `normals` keeps the averaged one.
     pub corner_normals: Vec<(u32, [f32; 3])>,
+    /// Face-varying limit values (UVs) when the cage has them (`subdiv_slate::LevelUvs`).
+    pub uvs: Vec<[f32; 2]>,
+    /// The value in `uvs` of every triangle corner (parallel to `indices`; empty without UVs):
+    /// the value on the corner's own patch's side of a seam, so a shared point carries one value
+    /// per side and patches of different depths agree on it.
+    pub uv_indices: Vec<u32>,
     /// Per vertex: the depth of the patch it belongs to (for depth colouring).
     pub vertex_depth: Vec<f32>,
     /// Depth of each unit (cage face) this frame; `u8::MAX` for units not drawn.

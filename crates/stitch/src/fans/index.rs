@@ -9,13 +9,35 @@
 //! through the vertex instead, whichever corner of the patch it is.
 
 use rayon::prelude::*;
-use subdiv_slate::PatchRef;
+use subdiv_slate::{LevelUvs, PatchRef};
 
 use super::edges::Frame;
 use super::grid::{side_of_on, side_point};
 
 /// No block point of the patch's own (interior corners, or a block too coarse).
 const NO_OWN: u32 = u32::MAX;
+
+/// Where a triangle corner lies in its own patch's parameters: grid point `(i, j)` of the
+/// patch's `2^e` grid, `(i, j, e)` (for its face-varying value, [`LevelUvs::value_at`]).
+type Loc = (u32, u32, u8);
+
+/// Where [`Frame::emit_patch`] puts the corners' [`Loc`]s: a `Vec`, or nowhere (`()`: the
+/// no-UV path, where the places are never computed once inlined).
+trait LocSink {
+    fn put(&mut self, l: Loc);
+}
+
+impl LocSink for () {
+    #[inline(always)]
+    fn put(&mut self, _: Loc) {}
+}
+
+impl LocSink for Vec<Loc> {
+    #[inline(always)]
+    fn put(&mut self, l: Loc) {
+        self.push(l);
+    }
+}
 
 /// How the quads next to a deeper neighbour are closed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -31,15 +53,19 @@ impl Frame<'_> {
     /// The frame's index buffer: each active, non-hole patch's triangles, emitted in parallel,
     /// then concatenated in patch order into `out` (cleared first); and in `corner_normals`
     /// (cleared first; corner index in `out`, ascending) each patch's own one-sided normal at
-    /// the triangle corners on creases and corners of the limit surface.
+    /// the triangle corners on creases and corners of the limit surface. With `uvs`, the
+    /// face-varying value of every triangle corner on its own patch's side goes to
+    /// `uv_indices` (cleared first; parallel to `out`).
     pub(super) fn emit_frame(
         &self,
         active: &[bool],
         method: FanMethod,
+        uvs: Option<&LevelUvs>,
         out: &mut Vec<u32>,
         corner_normals: &mut Vec<(u32, [f32; 3])>,
+        uv_indices: &mut Vec<u32>,
     ) {
-        type PatchOut = (Vec<u32>, Vec<(u32, [f32; 3])>);
+        type PatchOut = (Vec<u32>, Vec<(u32, [f32; 3])>, Vec<u32>);
         let tris: Vec<PatchOut> = self
             .set
             .patches()
@@ -47,10 +73,15 @@ impl Frame<'_> {
             .map(|p| {
                 let (mut v, mut own) = (Vec::new(), Vec::new());
                 let mut sided = Vec::new();
-                if active[p.unit as usize]
-                    && !self.mesh.is_hole(self.set.units()[p.unit as usize].face)
-                {
-                    self.emit_patch(p, method, &mut v, &mut own);
+                let mut locs = Vec::new();
+                let mut uv = Vec::new();
+                let face = self.set.units()[p.unit as usize].face;
+                if active[p.unit as usize] && !self.mesh.is_hole(face) {
+                    if uvs.is_some() {
+                        self.emit_patch(p, method, &mut v, &mut own, &mut locs);
+                    } else {
+                        self.emit_patch(p, method, &mut v, &mut own, &mut ());
+                    }
                     let pi = self.patch_index(p.unit as usize, p.sub as usize);
                     for (c, &o) in own.iter().enumerate() {
                         if o != NO_OWN
@@ -59,23 +90,39 @@ impl Frame<'_> {
                             sided.push((c as u32, nrm));
                         }
                     }
+                    if let Some(u) = uvs {
+                        uv.extend(
+                            locs.iter()
+                                .map(|&(i, j, e)| u.value_at(p.level, p.sub, face, i, j, e)),
+                        );
+                    }
                 }
-                (v, sided)
+                (v, sided, uv)
             })
             .collect();
         out.clear();
         corner_normals.clear();
-        for (t, sided) in tris {
+        uv_indices.clear();
+        for (t, sided, uv) in tris {
             let start = out.len() as u32;
             corner_normals.extend(sided.into_iter().map(|(c, n)| (start + c, n)));
             out.extend_from_slice(&t);
+            uv_indices.extend_from_slice(&uv);
         }
     }
 
     /// The triangles of one patch, and parallel to `out` in `own` the patch's own block point
     /// of each corner on the patch's border ([`NO_OWN`] for interior points, whose normal is
-    /// never one-sided, and for deeper points its block does not hold).
-    fn emit_patch(&self, p: &PatchRef, method: FanMethod, out: &mut Vec<u32>, own: &mut Vec<u32>) {
+    /// never one-sided, and for deeper points its block does not hold); with `locs`, where each
+    /// corner lies in the patch's parameters.
+    fn emit_patch(
+        &self,
+        p: &PatchRef,
+        method: FanMethod,
+        out: &mut Vec<u32>,
+        own: &mut Vec<u32>,
+        locs: &mut impl LocSink,
+    ) {
         let pi = self.patch_index(p.unit as usize, p.sub as usize);
         let d = self.patch_depth(p);
         let n = 1u32 << d;
@@ -98,7 +145,7 @@ impl Frame<'_> {
             };
             (at(1) || at(3)) && !(at(0) || at(2))
         };
-        // (shared id, own block point or NO_OWN).
+        // (shared id, own block point or NO_OWN, place in the patch).
         let id = |i: u32, j: u32| {
             let border = i == 0 || j == 0 || i == n || j == n;
             let o = if border {
@@ -106,15 +153,16 @@ impl Frame<'_> {
             } else {
                 NO_OWN
             };
-            (self.point_id(pi, p, i, j), o)
+            (self.point_id(pi, p, i, j), o, (i, j, d as u8))
         };
-        let mut push = |tri: [(u32, u32); 3]| {
-            for (x, o) in tri {
+        let mut push = |tri: [(u32, u32, Loc); 3]| {
+            for (x, o, l) in tri {
                 out.push(x);
                 own.push(o);
+                locs.put(l);
             }
         };
-        let mut poly: Vec<(u32, u32)> = Vec::with_capacity(16);
+        let mut poly: Vec<(u32, u32, Loc)> = Vec::with_capacity(16);
         for j in 0..n {
             for i in 0..n {
                 if !(any && replaced(i, j)) {
@@ -129,7 +177,8 @@ impl Frame<'_> {
                     continue;
                 }
                 // Fan around the limit point of the quad's next-level face point.
-                let centre = (self.own(pi, 2 * i + 1, 2 * j + 1, d + 1), NO_OWN);
+                let (ci, cj) = (2 * i + 1, 2 * j + 1);
+                let centre = (self.own(pi, ci, cj, d + 1), NO_OWN, (ci, cj, d as u8 + 1));
                 poly.clear();
                 // The quad's four edges, counter-clockwise: bottom, right, top, left; each from
                 // its start corner (inclusive) to its end corner (exclusive).
@@ -157,7 +206,8 @@ impl Frame<'_> {
                         };
                         if oi < n && oj < n && replaced(oi, oj) {
                             // An inner edge's midpoint: inside the patch.
-                            poly.push((self.own(pi, ci + ni, cj + nj, d + 1), NO_OWN));
+                            let (mi, mj) = (ci + ni, cj + nj);
+                            poly.push((self.own(pi, mi, mj, d + 1), NO_OWN, (mi, mj, d as u8 + 1)));
                         }
                     }
                 }
@@ -179,7 +229,7 @@ impl Frame<'_> {
         a: (u32, u32),
         b: (u32, u32),
         n: u32,
-        poly: &mut Vec<(u32, u32)>,
+        poly: &mut Vec<(u32, u32, Loc)>,
     ) {
         let u = p.unit as usize;
         let hs = &self.units[u].hs;
@@ -204,20 +254,18 @@ impl Frame<'_> {
         // its side `k` at its own depth `r - level` (sides run the way their half-edges do).
         let dp = r - u32::from(p.level);
         let deep = self.has_depth(pi, dp);
-        let own = |t: u32| {
-            if !deep {
-                return NO_OWN;
-            }
+        let point = |t: u32| {
             let (i, j) = side_point(k, t - (offset << delta), 1 << dp);
-            self.own(pi, i, j, dp)
+            let o = if deep { self.own(pi, i, j, dp) } else { NO_OWN };
+            (self.edge_point_id(h, t, r), o, (i, j, dp as u8))
         };
         if t1 > t0 {
             for t in t0 + 1..t1 {
-                poly.push((self.edge_point_id(h, t, r), own(t)));
+                poly.push(point(t));
             }
         } else {
             for t in (t1 + 1..t0).rev() {
-                poly.push((self.edge_point_id(h, t, r), own(t)));
+                poly.push(point(t));
             }
         }
     }
