@@ -93,7 +93,7 @@ impl ShadingError {
     fn scale(&self, e: &AreaElement, density: f32) -> usize {
         // A pixel's footprint is 1 / sqrt(density) world units on a side.
         let cells = 1.0 / (density.sqrt() * e.cell);
-        if !(cells >= 2.0) {
+        if cells.is_nan() || cells < 2.0 {
             return 0;
         }
         (cells.log2().floor() as usize).min(self.scales.saturating_sub(1))
@@ -445,6 +445,37 @@ mod tests {
             closed: true,
             shading_tolerance: 0.0,
         }
+    }
+
+    #[test]
+    fn outliers_are_read_at_the_pixel_footprint() {
+        // 100 clean faces and one whose outliers show per sample cell (scale 0) but vanish when
+        // averaged over 2 × 2 cells (scale 1), as a strip far narrower than a pixel does.
+        let c = cam();
+        let mut faces: Vec<PatchError> = (0..100)
+            .map(|i| face(-1.0 + i as f32 * 0.02, [0.0; 4]))
+            .collect();
+        faces.push(face(0.1, [0.0; 4]));
+        let o = 0.05 * 101.0;
+        for f in &mut faces {
+            let sh = &mut f.shading;
+            sh.scales = 2;
+            sh.outlier_area = vec![0.0; 8];
+        }
+        faces[100].shading.outlier_area[0] = o; // depth 0, scale 0
+        let active = vec![true; faces.len()];
+        // Cells of 1 mm: a pixel (about 2 cm at this distance) holds many, so scale 1 is read
+        // and nothing is raised.
+        let mut depth = vec![0u8; faces.len()];
+        raise_for_shading(&c, &closed(faces.clone()), &active, &mut depth, 3);
+        assert!(depth.iter().all(|&d| d == 0), "{depth:?}");
+        // Cells of 10 cm are larger than a pixel: scale 0 is read and the face is raised.
+        for f in &mut faces {
+            f.shading.elements[0].cell = 0.1;
+        }
+        let mut depth = vec![0u8; faces.len()];
+        raise_for_shading(&c, &closed(faces), &active, &mut depth, 3);
+        assert_eq!(depth[100], 1);
     }
 
     #[test]

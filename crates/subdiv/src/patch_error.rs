@@ -74,31 +74,12 @@ pub fn patch_errors(
                     .map(|ld| shift_of(ld).map_or(f32::INFINITY, |s| grid.triangle_deviation(s, outline)))
                     .collect();
                 let elements = grid.elements();
-                // Element-major, then depth, then footprint scale; a depth the patch cannot be
-                // drawn at (a level-1 patch at depth 0) counts the whole element.
-                let per = depths * scales;
-                let mut outlier = vec![0.0f32; elements.len() * per];
-                let mut at_depth = vec![0.0f32; elements.len() * scales];
-                for ld in 0..=max_depth {
-                    match shift_of(ld) {
-                        Some(shift) => grid.outlier_areas(
-                            shift,
-                            shading_tolerance,
-                            scales,
-                            &mut scratch.borrow_mut(),
-                            &mut at_depth,
-                        ),
-                        None => {
-                            for (o, k) in at_depth.iter_mut().zip((0..).map(|x| x / scales)) {
-                                *o = elements[k].area;
-                            }
-                        }
-                    }
-                    for (k, e) in at_depth.chunks(scales).enumerate() {
-                        let at = k * per + ld as usize * scales;
-                        outlier[at..at + scales].copy_from_slice(e);
-                    }
-                }
+                let table = ShadingTable {
+                    max_depth,
+                    tolerance: shading_tolerance,
+                    scales,
+                };
+                let outlier = table.measure(&grid, &elements, &shift_of, &mut scratch.borrow_mut());
                 PatchMeasure {
                     deviation,
                     elements,
@@ -139,6 +120,48 @@ pub fn patch_errors(
         faces,
         closed,
         shading_tolerance,
+    }
+}
+
+/// How [`patch_errors`] lays out a patch's outlier areas ([`ShadingError::outlier_area`]).
+struct ShadingTable {
+    max_depth: Depth,
+    tolerance: f32,
+    scales: usize,
+}
+
+impl ShadingTable {
+    /// The outlier areas of `grid`'s `elements`: element-major, then depth, then footprint
+    /// scale. `shift_of(depth)` is how many grid levels lie below a drawn depth (`None`: the
+    /// patch cannot be drawn there, a level-1 patch at depth 0, and the whole element counts).
+    fn measure(
+        &self,
+        grid: &Grid<'_>,
+        elements: &[AreaElement],
+        shift_of: &dyn Fn(Depth) -> Option<Depth>,
+        scratch: &mut Scratch,
+    ) -> Vec<f32> {
+        let scales = self.scales;
+        let per = (self.max_depth as usize + 1) * scales;
+        let mut outlier = vec![0.0f32; elements.len() * per];
+        let mut at_depth = vec![0.0f32; elements.len() * scales];
+        for ld in 0..=self.max_depth {
+            match shift_of(ld) {
+                Some(shift) => {
+                    grid.outlier_areas(shift, self.tolerance, scales, scratch, &mut at_depth)
+                }
+                None => {
+                    for (o, k) in at_depth.iter_mut().zip((0..).map(|x| x / scales)) {
+                        *o = elements[k].area;
+                    }
+                }
+            }
+            for (k, e) in at_depth.chunks(scales).enumerate() {
+                let at = k * per + ld as usize * scales;
+                outlier[at..at + scales].copy_from_slice(e);
+            }
+        }
+        outlier
     }
 }
 
