@@ -37,7 +37,7 @@ pub struct AdaptiveArgs {
     #[arg(long)]
     pub pixel_error: Option<f32>,
     /// With --pixel-error: also keep the normals interpolated across the drawn triangles within
-    /// DEG degrees of the limit normals on 99 % of each patch (180: silhouettes only)
+    /// DEG degrees of the limit normals on 99 % of the visible pixels (180: silhouettes only)
     /// [default: 2].
     #[arg(long, value_name = "DEG", requires = "pixel_error")]
     pub shading_error: Option<f32>,

@@ -46,8 +46,8 @@ pub struct BenchQualityArgs {
     #[arg(long, default_value_t = 3)]
     pub runs: usize,
     /// The pixel-error configurations' normal tolerance in degrees: the angle between the limit
-    /// normal and the normal interpolated across the drawn triangles that 99 % of each patch
-    /// stays within (180: silhouettes only).
+    /// normal and the normal interpolated across the drawn triangles that 99 % of the visible
+    /// pixels stay within (180: silhouettes only).
     #[arg(long, value_name = "DEG", default_value_t = DEFAULT_SHADING_ERROR_DEG)]
     pub shading_error: f32,
     /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.

@@ -10,6 +10,7 @@ use subdiv_mesh::{Camera, Mesh};
 use crate::Depth;
 use crate::curvature::VertexData;
 use crate::pixel_error::{PatchErrors, pixel_error_depth};
+use crate::shading::raise_for_shading;
 use crate::sphere::Sphere;
 
 /// Default [`DepthParams::shading_error_deg`]: 2°. A normal off by `θ` moves diffuse intensity
@@ -32,8 +33,8 @@ pub struct DepthParams {
     /// Screen-space error bound in pixels (replaces curvature and projected size when set).
     pub pixel_error: Option<f32>,
     /// With `pixel_error`: the angle in degrees between the limit normal and the normal
-    /// interpolated across the drawn triangles that 99 % of each patch must stay within
-    /// ([`crate::pixel_error`], "Shading"); 180 bounds silhouettes only. Default
+    /// interpolated across the drawn triangles that 99 % of the visible pixels must stay within
+    /// ([`crate::shading`]); 180 bounds silhouettes only. Default
     /// [`DEFAULT_SHADING_ERROR_DEG`].
     pub shading_error_deg: f32,
     /// Leave back faces out instead of drawing them at depth 0.
@@ -191,8 +192,7 @@ pub fn assign(
             d = if errs.closed && e.faces_away(camera, sphere) {
                 0
             } else {
-                let max_angle = p.shading_error_deg.to_radians();
-                pixel_error_depth(camera, sphere, e, px, max_angle, p.max_depth)
+                pixel_error_depth(camera, sphere, e, px, p.max_depth)
             };
         } else if cls != Class::Back
             && let Some(ps) = p.projected_size
@@ -204,6 +204,9 @@ pub fn assign(
         out.class.push(cls);
         out.radius.push(r);
         out.curvature.push(curv);
+    }
+    if let (Some(_), Some(errs)) = (p.pixel_error, errors) {
+        raise_for_shading(camera, errs, &out.active, &mut out.depth, p.max_depth);
     }
     out
 }

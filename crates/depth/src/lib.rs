@@ -3,7 +3,8 @@
 //! Settgast, Müller, Fünfzig and Fellner, "Adaptive Tessellation of Subdivision Surfaces",
 //! Section 3.1: a curvature depth per cage vertex from the cone of normals, computed once per
 //! mesh ([`VertexData`]); per frame a back/front/silhouette classification and a projected-size
-//! adjustment ([`assign`]), or the least depth within a screen-space error ([`DepthParams::pixel_error`]);
+//! adjustment ([`assign`]), or the least depth within a screen-space error ([`DepthParams::pixel_error`])
+//! raised where shading needs it over the whole image ([`shading`]);
 //! and frame-rate control by feedback ([`FrameRateController`]). A Degree of Interest can drive
 //! the depths instead ([`depths_from_face_values`]).
 //!
@@ -34,6 +35,7 @@ mod controller;
 mod curvature;
 mod doi;
 pub mod pixel_error;
+pub mod shading;
 mod sphere;
 
 pub use assign::{
@@ -44,5 +46,6 @@ pub use controller::FrameRateController;
 pub use curvature::VertexData;
 pub use doi::depths_from_face_values;
 pub use pixel_error::{NormalCone, PatchError, PatchErrors, pixel_error_depth, screen_scale};
+pub use shading::{AreaElement, ScreenArea, ShadingError, raise_for_shading};
 pub use sphere::{SPHERE_FACE_BUDGET, SPHERE_LEVELS, Sphere, face_spheres};
 pub use subdiv_rules::{Depth, MAX_DEPTH};

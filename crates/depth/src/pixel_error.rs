@@ -13,16 +13,14 @@
 //!   secant of the angle, which a plain `f / distance` would miss.
 //! - **Shading.** The silhouette bound says nothing of the normals the renderer interpolates
 //!   across a patch's triangles, and shading follows the normals: a patch drawn at depth 1 can
-//!   keep its outline within a pixel and still be shaded as a few flat-ish facets. Each patch
-//!   therefore also records, per depth, the angle between its limit normal and the normal
-//!   interpolated across the drawn triangles from their vertices' limit normals that 99 % of its
-//!   samples stay within ([`PatchError::normal_error`]; the 99th percentile, as the quality
-//!   benchmark's `shading_deg_p99`, because the largest angle sits in strips along semi-sharp
-//!   creases narrower than any drawn depth), and the mode takes the least depth that meets both
-//!   the pixel error and an angle tolerance
-//!   ([`DepthParams::shading_error_deg`](crate::DepthParams)).
-//!   Diffuse intensity `n · l` moves by at most `sin θ` of full scale when the normal turns by
-//!   `θ`, whatever the view, so the tolerance is an angle, not a number of pixels.
+//!   keep its outline within a pixel and still be shaded as a few flat-ish facets. Each face
+//!   therefore also records where, at each depth, the interpolated normal turns further than a
+//!   tolerance from the limit normal ([`PatchError::shading`]), and after the silhouette depths
+//!   the faces are raised until at most 1 % of the visible pixels (the benchmark's
+//!   `shading_deg_p99`) are beyond it, the tolerance spent over the whole image rather than per
+//!   patch ([`crate::shading`]). Diffuse intensity `n · l` moves by at most `sin θ` of full
+//!   scale when the normal turns by `θ`, whatever the view, so the tolerance is an angle
+//!   ([`DepthParams::shading_error_deg`](crate::DepthParams)), not a number of pixels.
 //! - **Hidden patches.** A patch is drawn at depth 0 without error only when it is provably
 //!   invisible: the mesh is closed (no boundary, no holes, so every ray that meets a back-facing
 //!   point first meets a front-facing one) and every normal of the patch faces away from every
@@ -34,6 +32,7 @@ use glam::Vec3;
 use subdiv_mesh::Camera;
 
 use crate::Depth;
+use crate::shading::ShadingError;
 use crate::sphere::Sphere;
 
 /// A cone bounding a set of unit normals: every normal `n` satisfies `n · axis >= cos`.
@@ -79,10 +78,9 @@ pub struct PatchError {
     /// Per depth `0..=max_depth`: the largest distance (world units) between the limit surface
     /// and the triangles drawn for the face at that depth.
     pub deviation: Vec<f32>,
-    /// Per depth `0..=max_depth`: the 99th percentile over the patch's samples of the angle
-    /// (radians) between the limit normal and the normal interpolated across the triangles
-    /// drawn at that depth from their vertices' limit normals (what the renderer shades with).
-    pub normal_error: Vec<f32>,
+    /// Where the normal interpolated across the triangles drawn at each depth (what the
+    /// renderer shades with) turns further than the tolerance from the limit normal.
+    pub shading: ShadingError,
     /// A cone containing every limit normal of the face's patch(es).
     pub normals: NormalCone,
 }
@@ -115,6 +113,8 @@ pub struct PatchErrors {
     pub faces: Vec<PatchError>,
     /// No boundary edges and no holes.
     pub closed: bool,
+    /// The shading tolerance (radians) that [`PatchError::shading`] was measured for.
+    pub shading_tolerance: f32,
 }
 
 /// Largest number of pixels a world displacement of length 1 inside `sphere` can move on
@@ -131,20 +131,17 @@ pub fn screen_scale(camera: &Camera, sphere: &Sphere) -> f32 {
 }
 
 /// The least depth whose chord error `e.deviation[l]`, projected by [`screen_scale`], is at most
-/// `px` pixels and whose normal error `e.normal_error[l]` is at most `max_angle` radians;
-/// `max_depth` when none is.
+/// `px` pixels; `max_depth` when none is.
 pub fn pixel_error_depth(
     camera: &Camera,
     s: &Sphere,
     e: &PatchError,
     px: f32,
-    max_angle: f32,
     max_depth: Depth,
 ) -> Depth {
     let scale = screen_scale(camera, s);
-    let levels = e.deviation.iter().zip(&e.normal_error);
-    for (l, (&dev, &angle)) in levels.enumerate().take(max_depth as usize + 1) {
-        if dev * scale <= px && angle <= max_angle {
+    for (l, &dev) in e.deviation.iter().enumerate().take(max_depth as usize + 1) {
+        if dev * scale <= px {
             return l as Depth;
         }
     }
@@ -211,26 +208,16 @@ mod tests {
         let dev = vec![0.5, 0.12, 0.03, 0.008, 0.002, 0.0005];
         let e = PatchError {
             deviation: dev.clone(),
-            normal_error: vec![0.4, 0.2, 0.1, 0.05, 0.025, 0.0125],
+            shading: ShadingError::default(),
             normals: NormalCone::ANY,
         };
         let scale = screen_scale(&c, &s);
-        let open = std::f32::consts::PI;
-        let d = pixel_error_depth(&c, &s, &e, 1.0, open, 5);
+        let d = pixel_error_depth(&c, &s, &e, 1.0, 5);
         assert!(dev[d as usize] * scale <= 1.0);
         assert!(d == 0 || dev[d as usize - 1] * scale > 1.0);
         // Never beyond the cap, even when no depth suffices.
-        assert_eq!(pixel_error_depth(&c, &s, &e, 1e-9, open, 3), 3);
-        // The normal tolerance deepens where the chord error alone would not.
-        assert_eq!(pixel_error_depth(&c, &s, &e, 1e9, open, 5), 0);
-        assert_eq!(pixel_error_depth(&c, &s, &e, 1e9, 0.06, 5), 3);
-        assert_eq!(pixel_error_depth(&c, &s, &e, 1e9, 0.05, 5), 3);
-        assert_eq!(pixel_error_depth(&c, &s, &e, 1e9, 0.0, 5), 5);
-        // Both bounds hold at the chosen depth, and not both one level up.
-        let d = pixel_error_depth(&c, &s, &e, 1.0, 0.15, 5);
-        assert!(dev[d as usize] * scale <= 1.0 && e.normal_error[d as usize] <= 0.15);
-        let l = d as usize;
-        assert!(d == 0 || dev[l - 1] * scale > 1.0 || e.normal_error[l - 1] > 0.15);
+        assert_eq!(pixel_error_depth(&c, &s, &e, 1e-9, 3), 3);
+        assert_eq!(pixel_error_depth(&c, &s, &e, 1e9, 5), 0);
     }
 
     #[test]
@@ -242,7 +229,7 @@ mod tests {
         };
         let patch = |axis: Vec3, half_deg: f32| PatchError {
             deviation: vec![0.0],
-            normal_error: vec![0.0],
+            shading: ShadingError::default(),
             normals: NormalCone {
                 axis,
                 cos: half_deg.to_radians().cos(),
@@ -260,7 +247,7 @@ mod tests {
         // No bound: never hidden.
         let any = PatchError {
             deviation: vec![0.0],
-            normal_error: vec![0.0],
+            shading: ShadingError::default(),
             normals: NormalCone::ANY,
         };
         assert!(!any.faces_away(&c, &s));

@@ -247,11 +247,21 @@ impl DynamicSubdivision {
         self.uniform_triangles_at(self.params.max_depth)
     }
 
-    /// What the pixel-error mode knows of each face (chord error per depth, normal cone; see
-    /// [`crate::patch_errors`]), computed on first use.
+    /// What the pixel-error mode knows of each face (chord error per depth, shading outliers
+    /// for the current tolerance, normal cone; see [`crate::patch_errors`]), computed on first
+    /// use and again when the shading tolerance changes.
     pub fn patch_errors(&mut self) -> &PatchErrors {
-        self.errors
-            .get_or_insert_with(|| patch_errors(&self.mesh, &self.assembler, self.params.max_depth))
+        let tolerance = self.params.shading_error_deg.to_radians();
+        if self
+            .errors
+            .as_ref()
+            .is_some_and(|e| e.shading_tolerance != tolerance)
+        {
+            self.errors = None;
+        }
+        self.errors.get_or_insert_with(|| {
+            patch_errors(&self.mesh, &self.assembler, self.params.max_depth, tolerance)
+        })
     }
 }
 

@@ -1,13 +1,14 @@
 //! What the pixel-error mode measures once per cage ([`subdiv_depth::PatchErrors`]): for every
 //! cage face and depth, how far the triangles drawn at that depth stray from the limit surface
-//! and how far the normals interpolated across them turn from the limit normals, and a cone
-//! bounding the face's limit normals.
+//! and where the normals interpolated across them turn further than the shading tolerance from
+//! the limit normals (per area element, [`subdiv_depth::ShadingError`]), and a cone bounding the
+//! face's limit normals.
 
 use std::cell::RefCell;
 
 use glam::Vec3;
 use rayon::prelude::*;
-use subdiv_depth::{NormalCone, PatchError, PatchErrors};
+use subdiv_depth::{AreaElement, NormalCone, PatchError, PatchErrors, ShadingError};
 use subdiv_mesh::{FaceId, Mesh};
 use subdiv_slate::{Depth, MAX_DEPTH, thread_worker};
 use subdiv_stitch::Assembler;
@@ -18,35 +19,40 @@ use subdiv_stitch::Assembler;
 /// patch's deviation from its two triangles.
 pub const SAMPLE_LEVELS: Depth = 2;
 
-/// Which quantile of a patch's samples the normal error reports: 0.99, as `subdiv bench
-/// quality`'s `shading_deg_p99` pools pixels. The largest angle would be the wrong statistic:
-/// along a semi-sharp crease the limit normal turns by up to 70° across a strip about
-/// `2^-s` of a face wide (the pawn's creases of sharpness 6), which no drawn depth up to 5 resolves (45° left
-/// at depth 5) and which covers a negligible share of the pixels; bounding the maximum sent
-/// 216 of the pawn's 588 faces to depth 5 at any tolerance under 10°.
-pub const NORMAL_QUANTILE: f32 = 0.99;
+/// Area elements per side of a patch (at most one per sample cell): 4 × 4 per patch, small
+/// enough that the view changes little across one (its projected-area density is taken at its
+/// centre, [`subdiv_depth::ScreenArea::density`]), few enough to weigh per frame.
+pub const ELEMENTS_PER_SIDE: usize = 4;
 
 /// Measures, for each cage face and depth `l <= max_depth`, the largest distance between the
-/// limit surface and the triangles drawn at depth `l` and the [`NORMAL_QUANTILE`] of the angle
-/// between limit and interpolated normals (each grid quad split along its
+/// limit surface and the triangles drawn at depth `l` (each grid quad split along its
 /// `(i, j)`–`(i + 1, j + 1)` diagonal, as `subdiv-stitch` draws it; the gap along the limit
-/// normal, or the whole gap near the cage's boundary and holes, see `Grid::triangle_deviation`),
-/// sampled on the depth
-/// `max_depth + SAMPLE_LEVELS` grid (at most [`MAX_DEPTH`]) of every patch of the face; and a
-/// cone containing the face's limit normals, widened by the largest angle between neighbouring
+/// normal, or the whole gap near the cage's boundary and holes, see `Grid::triangle_deviation`)
+/// and, per area element ([`ELEMENTS_PER_SIDE`]² per patch), the world area where the angle
+/// between limit and interpolated normals exceeds `shading_tolerance` (radians), sampled on the
+/// depth `max_depth + SAMPLE_LEVELS` grid (at most [`MAX_DEPTH`]) of every patch of the face; and
+/// a cone containing the face's limit normals, widened by the largest angle between neighbouring
 /// samples (normals between samples lean no further than that for a smooth patch).
-pub fn patch_errors(mesh: &Mesh, asm: &Assembler, max_depth: Depth) -> PatchErrors {
+pub fn patch_errors(
+    mesh: &Mesh,
+    asm: &Assembler,
+    max_depth: Depth,
+    shading_tolerance: f32,
+) -> PatchErrors {
     let set = asm.patch_set();
     let fine = (max_depth + SAMPLE_LEVELS).min(MAX_DEPTH);
-    let per_patch: Vec<(Vec<f32>, Vec<f32>, NormalCone)> = set
+    let depths = max_depth as usize + 1;
+    // Footprint scales: blocks of 1, 2, 4, ... fine cells up to a quad patch's element.
+    let scales = (fine as usize).saturating_sub(1).max(1);
+    let per_patch: Vec<PatchMeasure> = set
         .patches()
         .par_iter()
         .map_init(
             || {
                 let buffers = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-                (thread_worker(fine), buffers, RefCell::new(Vec::new()))
+                (thread_worker(fine), buffers, RefCell::new(Scratch::default()))
             },
-            |(w, (pos, nrm, shade, sided), angles), p| {
+            |(w, (pos, nrm, shade, sided), scratch), p| {
                 // Level-1 patches are one level coarser than their face.
                 let l_fine = fine - p.level;
                 let n = 1usize << l_fine;
@@ -60,46 +66,124 @@ pub fn patch_errors(mesh: &Mesh, asm: &Assembler, max_depth: Depth) -> PatchErro
                 }
                 let grid = Grid { n, pos, nrm, shade };
                 let outline = touches_outline(mesh, set.units()[p.unit as usize].face);
-                let per_depth = |measure: &dyn Fn(Depth) -> f32| -> Vec<f32> {
-                    (0..=max_depth)
-                        .map(|ld| match ld.checked_sub(p.level) {
-                            Some(l) if l <= l_fine => measure(l_fine - l),
-                            _ => f32::INFINITY,
-                        })
-                        .collect()
+                let shift_of = |ld: Depth| match ld.checked_sub(p.level) {
+                    Some(l) if l <= l_fine => Some(l_fine - l),
+                    _ => None,
                 };
-                let dev = per_depth(&|shift| grid.triangle_deviation(shift, outline));
-                let turn =
-                    per_depth(&|shift| grid.normal_deviation(shift, &mut angles.borrow_mut()));
-                (dev, turn, grid.normal_cone())
+                let deviation = (0..=max_depth)
+                    .map(|ld| shift_of(ld).map_or(f32::INFINITY, |s| grid.triangle_deviation(s, outline)))
+                    .collect();
+                let elements = grid.elements();
+                let table = ShadingTable {
+                    max_depth,
+                    tolerance: shading_tolerance,
+                    scales,
+                };
+                let outlier = table.measure(&grid, &elements, &shift_of, &mut scratch.borrow_mut());
+                PatchMeasure {
+                    deviation,
+                    elements,
+                    outlier,
+                    cone: grid.normal_cone(),
+                }
             },
         )
         .collect();
     let mut faces = vec![
         PatchError {
-            deviation: vec![0.0; max_depth as usize + 1],
-            normal_error: vec![0.0; max_depth as usize + 1],
+            deviation: vec![0.0; depths],
+            shading: ShadingError::default(),
             normals: NormalCone::ANY,
         };
         mesh.num_faces()
     ];
     let mut cones: Vec<Vec<NormalCone>> = vec![Vec::new(); mesh.num_faces()];
-    for (p, (dev, turn, cone)) in set.patches().iter().zip(per_patch) {
+    for (p, m) in set.patches().iter().zip(per_patch) {
         let f = set.units()[p.unit as usize].face.idx();
-        for (o, d) in faces[f].deviation.iter_mut().zip(dev) {
+        for (o, d) in faces[f].deviation.iter_mut().zip(m.deviation) {
             *o = o.max(d);
         }
-        for (o, a) in faces[f].normal_error.iter_mut().zip(turn) {
-            *o = o.max(a);
-        }
-        cones[f].push(cone);
+        let sh = &mut faces[f].shading;
+        sh.scales = scales;
+        sh.elements.extend(m.elements);
+        sh.outlier_area.extend(m.outlier);
+        // A level-1 patch draws a quarter of a quad patch's triangles at the face's depth.
+        sh.weight += 0.25f32.powi(p.level as i32);
+        cones[f].push(m.cone);
     }
     for (face, c) in faces.iter_mut().zip(&cones) {
         face.normals = merge_cones(c);
     }
     let closed =
         mesh.edges().all(|e| !mesh.is_boundary_edge(e)) && mesh.faces().all(|f| !mesh.is_hole(f));
-    PatchErrors { faces, closed }
+    PatchErrors {
+        faces,
+        closed,
+        shading_tolerance,
+    }
+}
+
+/// How [`patch_errors`] lays out a patch's outlier areas ([`ShadingError::outlier_area`]).
+struct ShadingTable {
+    max_depth: Depth,
+    tolerance: f32,
+    scales: usize,
+}
+
+impl ShadingTable {
+    /// The outlier areas of `grid`'s `elements`: element-major, then depth, then footprint
+    /// scale. `shift_of(depth)` is how many grid levels lie below a drawn depth (`None`: the
+    /// patch cannot be drawn there, a level-1 patch at depth 0, and the whole element counts).
+    fn measure(
+        &self,
+        grid: &Grid<'_>,
+        elements: &[AreaElement],
+        shift_of: &dyn Fn(Depth) -> Option<Depth>,
+        scratch: &mut Scratch,
+    ) -> Vec<f32> {
+        let scales = self.scales;
+        let per = (self.max_depth as usize + 1) * scales;
+        let mut outlier = vec![0.0f32; elements.len() * per];
+        let mut at_depth = vec![0.0f32; elements.len() * scales];
+        for ld in 0..=self.max_depth {
+            match shift_of(ld) {
+                Some(shift) => {
+                    grid.outlier_areas(shift, self.tolerance, scales, scratch, &mut at_depth)
+                }
+                None => {
+                    for (o, k) in at_depth.iter_mut().zip((0..).map(|x| x / scales)) {
+                        *o = elements[k].area;
+                    }
+                }
+            }
+            for (k, e) in at_depth.chunks(scales).enumerate() {
+                let at = k * per + ld as usize * scales;
+                outlier[at..at + scales].copy_from_slice(e);
+            }
+        }
+        outlier
+    }
+}
+
+/// Reused buffers of [`Grid::outlier_areas`].
+#[derive(Default)]
+struct Scratch {
+    interp: Vec<Vec3>,
+    truth: Vec<Vec3>,
+    drawn: Vec<Vec3>,
+    area: Vec<f32>,
+}
+
+/// What [`patch_errors`] measures of one patch.
+struct PatchMeasure {
+    /// Chord error per depth.
+    deviation: Vec<f32>,
+    /// The patch's area elements.
+    elements: Vec<AreaElement>,
+    /// Outlier area per element and depth (element-major).
+    outlier: Vec<f32>,
+    /// Bounds the patch's limit normals.
+    cone: NormalCone,
 }
 
 /// Whether face `f` shares a vertex with the cage's boundary or with a hole (so the surface's
@@ -171,16 +255,14 @@ impl Grid<'_> {
         worst
     }
 
-    /// The [`NORMAL_QUANTILE`] of the angle (radians) between a sample's normal and the normal
-    /// interpolated at its parameters across the coarser grid's triangles (as
-    /// [`Grid::triangle_deviation`] splits the quads) from their corners' normals, the
-    /// renderer's smooth shading, over the grid's samples; both normals from `shade`, so a
-    /// crease's sides are compared with their own normals. `angles` is scratch space.
-    fn normal_deviation(&self, shift: Depth, angles: &mut Vec<f32>) -> f32 {
+    /// The normal interpolated at each sample's parameters across the coarser grid's triangles
+    /// (as [`Grid::triangle_deviation`] splits the quads) from their corners' normals in
+    /// `shade`, normalised: the renderer's smooth shading, into `out` (row-major).
+    fn interpolated_normals(&self, shift: Depth, out: &mut Vec<Vec3>) {
         let step = 1usize << shift;
         let w = self.n + 1;
         let nrm = |i: usize, j: usize| Vec3::from(self.shade[j * w + i]);
-        angles.clear();
+        out.clear();
         for j in 0..w {
             // The quad holding sample (i, j): the last row and column belong to the last quad.
             let j0 = (j / step * step).min(self.n - step);
@@ -197,17 +279,146 @@ impl Grid<'_> {
                 } else {
                     a * (1.0 - v) + c * u + e * (v - u)
                 };
-                let (m, t) = (on.normalize_or_zero(), nrm(i, j).normalize_or_zero());
-                if m != Vec3::ZERO && t != Vec3::ZERO {
-                    angles.push(m.dot(t).clamp(-1.0, 1.0).acos());
-                }
+                out.push(on.normalize_or_zero());
             }
         }
-        if angles.is_empty() {
-            return 0.0;
+    }
+
+    /// Elements per side: [`ELEMENTS_PER_SIDE`], or one per cell on coarser grids.
+    #[inline]
+    fn elements_per_side(&self) -> usize {
+        ELEMENTS_PER_SIDE.min(self.n)
+    }
+
+    /// The element holding cell `(i, j)`.
+    #[inline]
+    fn element_of(&self, i: usize, j: usize) -> usize {
+        let e = self.elements_per_side();
+        (j * e / self.n) * e + i * e / self.n
+    }
+
+    /// World area of cell `(i, j)` (half the cross product of its diagonals).
+    #[inline]
+    fn cell_area(&self, i: usize, j: usize) -> f32 {
+        let d0 = self.at(i + 1, j + 1) - self.at(i, j);
+        let d1 = self.at(i, j + 1) - self.at(i + 1, j);
+        0.5 * d0.cross(d1).length()
+    }
+
+    /// The grid's area elements: per block of cells, the area-weighted centre, the mean limit
+    /// normal and the area.
+    fn elements(&self) -> Vec<AreaElement> {
+        let e = self.elements_per_side();
+        let w = self.n + 1;
+        let cells = ((self.n / e) * (self.n / e)) as f32;
+        let mut acc = vec![(Vec3::ZERO, Vec3::ZERO, 0.0f32); e * e];
+        for j in 0..self.n {
+            for i in 0..self.n {
+                let a = self.cell_area(i, j);
+                let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+                let centre = corners.iter().map(|&(x, y)| self.at(x, y)).sum::<Vec3>() * 0.25;
+                let normal: Vec3 = corners
+                    .iter()
+                    .map(|&(x, y)| Vec3::from(self.nrm[y * w + x]))
+                    .sum();
+                let k = &mut acc[self.element_of(i, j)];
+                k.0 += centre * a;
+                k.1 += normal.normalize_or_zero() * a;
+                k.2 += a;
+            }
         }
-        let rank = ((NORMAL_QUANTILE * angles.len() as f32).ceil() as usize).clamp(1, angles.len());
-        *angles.select_nth_unstable_by(rank - 1, f32::total_cmp).1
+        acc.into_iter()
+            .map(|(c, n, a)| AreaElement {
+                centre: if a > 0.0 { c / a } else { c },
+                normal: n.normalize_or_zero(),
+                area: a,
+                cell: (a / cells).sqrt(),
+            })
+            .collect()
+    }
+
+    /// Per element and footprint scale (into `out`, `out[k * scales + s]`): the world area
+    /// where the mean interpolated normal at `shift` turns further than `tolerance` (radians)
+    /// from the mean limit normal (both from `shade`, so a crease's sides are compared with
+    /// their own normals), the means taken over aligned blocks of `2^s × 2^s` cells — what a
+    /// pixel of that footprint shows, since a pixel's normal is the mean over its samples. Scales
+    /// beyond the element's size repeat its largest block. `scratch` is scratch space.
+    fn outlier_areas(
+        &self,
+        shift: Depth,
+        tolerance: f32,
+        scales: usize,
+        scratch: &mut Scratch,
+        out: &mut [f32],
+    ) {
+        out.fill(0.0);
+        if tolerance >= std::f32::consts::PI {
+            return;
+        }
+        let cos_tol = tolerance.cos();
+        self.interpolated_normals(shift, &mut scratch.interp);
+        let w = self.n + 1;
+        let truth = |i: usize, j: usize| Vec3::from(self.shade[j * w + i]).normalize_or_zero();
+        // Level 0: per cell, the area-weighted sums of both normals (corner means) and its area.
+        let (tr, dr, ar) = (&mut scratch.truth, &mut scratch.drawn, &mut scratch.area);
+        tr.clear();
+        dr.clear();
+        ar.clear();
+        for j in 0..self.n {
+            for i in 0..self.n {
+                let a = self.cell_area(i, j);
+                let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+                let t: Vec3 = corners.iter().map(|&(x, y)| truth(x, y)).sum();
+                let m: Vec3 = corners.iter().map(|&(x, y)| scratch.interp[y * w + x]).sum();
+                tr.push(t * a);
+                dr.push(m * a);
+                ar.push(a);
+            }
+        }
+        let per_side = self.elements_per_side();
+        let mut side = self.n;
+        let mut block = 1usize;
+        for s in 0..scales {
+            if block > self.n / per_side {
+                // Larger than the element: repeat the element-sized blocks' result.
+                for k in 0..per_side * per_side {
+                    out[k * scales + s] = out[k * scales + s - 1];
+                }
+                continue;
+            }
+            if s > 0 {
+                // Sum 2 × 2 blocks of the previous level, in place.
+                let half = side / 2;
+                for j in 0..half {
+                    for i in 0..half {
+                        let idx = |x: usize, y: usize| y * side + x;
+                        let q = [
+                            idx(2 * i, 2 * j),
+                            idx(2 * i + 1, 2 * j),
+                            idx(2 * i, 2 * j + 1),
+                            idx(2 * i + 1, 2 * j + 1),
+                        ];
+                        let to = j * half + i;
+                        tr[to] = q.iter().map(|&k| tr[k]).sum();
+                        dr[to] = q.iter().map(|&k| dr[k]).sum();
+                        ar[to] = q.iter().map(|&k| ar[k]).sum();
+                    }
+                }
+                side = half;
+            }
+            for j in 0..side {
+                for i in 0..side {
+                    let b = j * side + i;
+                    let (t, m) = (tr[b], dr[b]);
+                    let len = t.length() * m.length();
+                    if len > 0.0 && t.dot(m) < len * cos_tol {
+                        let k = self.element_of(i * block, j * block);
+                        out[k * scales + s] += ar[b];
+                    }
+                }
+            }
+            block *= 2;
+        }
     }
 
     /// A cone around the grid's normals, widened by the largest angle between neighbours.
@@ -271,28 +482,46 @@ mod tests {
     fn deviations_fall_with_depth_and_match_a_dense_check() {
         let mesh = Mesh::from_soup(&parse_obj(CUBE).unwrap()).unwrap();
         let asm = Assembler::new(&mesh, 3).unwrap();
-        let e = patch_errors(&mesh, &asm, 3);
+        let tolerance = 2f32.to_radians();
+        let e = patch_errors(&mesh, &asm, 3, tolerance);
         assert!(e.closed);
+        assert_eq!(e.shading_tolerance, tolerance);
         for f in &e.faces {
             for l in 1..f.deviation.len() {
                 assert!(f.deviation[l] < f.deviation[l - 1], "{:?}", f.deviation);
-                // Interpolated normals turn less from the limit normals at every depth.
-                let n = &f.normal_error;
-                assert!(n[l] < n[l - 1], "{n:?}");
             }
+            let sh = &f.shading;
+            assert_eq!(sh.elements.len(), ELEMENTS_PER_SIDE * ELEMENTS_PER_SIDE);
+            assert_eq!(sh.weight, 1.0);
+            // The elements tile the face's limit patch: a cube face's patch (a rounded square
+            // well inside the unit square: the limit of a cube cage is a blob of about 0.38 of
+            // its area per face) has an area between 0.2 and 1.
+            let area: f32 = sh.elements.iter().map(|el| el.area).sum();
+            assert!(area > 0.2 && area < 1.0, "{area}");
+            // Outlier area per depth, summed over the elements.
+            let at = |k: usize, l: usize, sc: usize| sh.outlier_area[(k * 4 + l) * sh.scales + sc];
+            let per_depth: Vec<f32> = (0..4)
+                .map(|l| (0..sh.elements.len()).map(|k| at(k, l, 0)).sum())
+                .collect();
             // Depth 0 of a cube face: the corner normals (54.7° off the face's axis)
-            // interpolated across two triangles are a few degrees off somewhere (6.7°); three
-            // levels down, about a degree.
-            assert!(
-                f.normal_error[0] > 3f32.to_radians(),
-                "{:?}",
-                f.normal_error
-            );
-            assert!(
-                f.normal_error[3] < 2f32.to_radians(),
-                "{:?}",
-                f.normal_error
-            );
+            // interpolated across two triangles are more than 2° off over a good part of the
+            // face (up to 6.7°); every level down shrinks that area, and three levels down
+            // almost nothing is left.
+            assert!(per_depth[0] > 0.1 * area, "{per_depth:?}");
+            assert!(per_depth.windows(2).all(|w| w[1] < w[0] || w[1] == 0.0), "{per_depth:?}");
+            assert!(per_depth[3] < 0.01 * area, "{per_depth:?}");
+            // Depth 3 drawn into a depth-5 sample grid: 32 × 32 cells, 8 × 8 per element.
+            assert_eq!(sh.scales, 4);
+            for (k, el) in sh.elements.iter().enumerate() {
+                assert!(el.area > 0.0 && el.normal.is_normalized(), "{el:?}");
+                assert!((el.cell * el.cell * 64.0 / el.area - 1.0).abs() < 1e-3, "{el:?}");
+                for l in 0..4 {
+                    assert!((0..sh.scales).all(|sc| at(k, l, sc) <= el.area * 1.0001));
+                }
+                // At depth 3 a drawn quad spans 4 × 4 cells: averaged over the whole quad
+                // (scale 2) the interpolated and the limit normals agree better than per cell.
+                assert!(at(k, 3, 2) <= at(k, 3, 0), "{el:?}");
+            }
             // A cube face's limit patch turns its normal by well under 90° but more than 10°.
             let half = f.normals.cos.acos().to_degrees();
             assert!(half > 10.0 && half < 90.0, "{half}");
@@ -309,7 +538,7 @@ mod tests {
             Mesh::from_soup(&parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap())
                 .unwrap();
         let asm = Assembler::new(&quad, 2).unwrap();
-        let e = patch_errors(&quad, &asm, 2);
+        let e = patch_errors(&quad, &asm, 2, 0.5f32.to_radians());
         assert!(!e.closed);
         // A flat quad: the limit surface lies in the quad's plane; what remains is where its
         // outline leaves the chord triangles (a real gap on screen), falling with depth; the
@@ -317,8 +546,8 @@ mod tests {
         let d = &e.faces[0].deviation;
         assert!(d.windows(2).all(|w| w[1] < w[0]), "{d:?}");
         assert!((e.faces[0].normals.axis - Vec3::Z).length() < 1e-6);
-        // Flat: interpolated normals are the limit normal.
-        assert!(e.faces[0].normal_error.iter().all(|&a| a < 1e-3), "{e:?}");
+        // Flat: interpolated normals are the limit normal, nothing is beyond even 0.5°.
+        assert!(e.faces[0].shading.outlier_area.iter().all(|&a| a == 0.0), "{e:?}");
         assert!(e.faces[0].normals.cos > 0.9999);
         let a = NormalCone {
             axis: Vec3::Z,
