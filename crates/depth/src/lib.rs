@@ -44,5 +44,5 @@ pub use controller::FrameRateController;
 pub use curvature::VertexData;
 pub use doi::depths_from_face_values;
 pub use pixel_error::{NormalCone, PatchError, PatchErrors, pixel_error_depth, screen_scale};
-pub use sphere::{SPHERE_FACE_BUDGET, SPHERE_LEVELS, Sphere, face_spheres};
+pub use sphere::{SPHERE_FACE_BUDGET, SPHERE_LEVELS, Sphere, face_spheres, face_spheres_scheme};
 pub use subdiv_rules::{Depth, MAX_DEPTH};
