@@ -52,10 +52,16 @@ fn open_edges(name: &str, g: &FrameGeometry) -> usize {
         for (&(a, b), &c) in &dir {
             assert_eq!(c, 1, "{name}: directed edge {a}->{b} used {c} times");
         }
-        dir.keys().filter(|&&(a, b)| !dir.contains_key(&(b, a))).count()
+        dir.keys()
+            .filter(|&&(a, b)| !dir.contains_key(&(b, a)))
+            .count()
     };
     let welded = count(&|i| id[i as usize]);
-    assert_eq!(welded, count(&|i| i), "{name}: open edges by position vs. by index");
+    assert_eq!(
+        welded,
+        count(&|i| i),
+        "{name}: open edges by position vs. by index"
+    );
     welded
 }
 
@@ -134,14 +140,16 @@ fn adaptive_loop_is_watertight_on_every_triangle_fixture() {
         // Depths given from outside (a DoI, a user): random per face, some faces not drawn.
         node.set_params(params).unwrap();
         for round in 0..3 {
-            let depths: Vec<u8> = (0..nf).map(|_| (rng.next() % (max_depth as u64 + 1)) as u8).collect();
+            let depths: Vec<u8> = (0..nf)
+                .map(|_| (rng.next() % (max_depth as u64 + 1)) as u8)
+                .collect();
             node.set_face_depths(Some(depths.clone())).unwrap();
             let camera = random_camera(&mut rng, &mesh);
             let g = node.update(&camera, None).unwrap().clone();
             let label = format!("{name} random depths round {round}");
             assert_eq!(open_edges(&label, &g), expected_open(&mesh, &g), "{label}");
-            for f in 0..nf {
-                assert!(g.unit_depth[f] == depths[f] || g.unit_depth[f] == u8::MAX, "{label}");
+            for (drawn, given) in g.unit_depth.iter().zip(&depths) {
+                assert!(drawn == given || *drawn == u8::MAX, "{label}");
             }
         }
         node.set_face_depths(None).unwrap();

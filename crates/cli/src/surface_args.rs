@@ -125,11 +125,8 @@ impl SurfaceArgs {
         if self.face_depths.is_some() {
             extra.push("--face-depths");
         }
-        self.adaptive.wants_adaptive(
-            self.depth.is_some(),
-            camera.has_camera(),
-            &extra,
-        )
+        self.adaptive
+            .wants_adaptive(self.depth.is_some(), camera.has_camera(), &extra)
     }
 
     /// The adaptive node for the `scheme` surface of `mesh` with the adaptive flags (fan

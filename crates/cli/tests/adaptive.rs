@@ -314,7 +314,14 @@ fn adaptive_flags_mean_the_same_in_every_command() {
         &["--eye-relative", "0.3,0.2,2.5"],
         &["--cone-aperture", "5", "--projected-size", "1,4"],
         &["--pixel-error", "0.5", "--cull-back"],
-        &["--pixel-error", "1", "--shading-error", "5", "--max-depth", "4"],
+        &[
+            "--pixel-error",
+            "1",
+            "--shading-error",
+            "5",
+            "--max-depth",
+            "4",
+        ],
         &["--doi", "view-angle"],
     ];
     for mode in modes {
@@ -326,19 +333,45 @@ fn adaptive_flags_mean_the_same_in_every_command() {
         assert!(out.contains("patches per depth: "), "{mode:?}: {out}");
     }
     if let Some(o) = run_ok(&[
-        "render", ico, "--scheme", "loop", "--pixel-error", "1", "-o", png,
+        "render",
+        ico,
+        "--scheme",
+        "loop",
+        "--pixel-error",
+        "1",
+        "-o",
+        png,
     ]) {
         let out = String::from_utf8_lossy(&o.stdout);
         assert!(out.contains("adaptive, max depth 5"), "{out}");
     }
     let (code, _, err) = run(&[
-        "tessellate", input, "--scheme", "loop", "--pixel-error", "1", "-o", obj,
+        "tessellate",
+        input,
+        "--scheme",
+        "loop",
+        "--pixel-error",
+        "1",
+        "-o",
+        obj,
     ]);
     assert_eq!(code, 1, "{err}");
-    assert!(err.contains("face 0 has 4 vertices; Loop subdivision needs a triangle"), "{err}");
+    assert!(
+        err.contains("face 0 has 4 vertices; Loop subdivision needs a triangle"),
+        "{err}"
+    );
     let (code, _, err) = run(&[
-        "tessellate", ico, "--scheme", "loop", "--simple-fans", "-o", obj,
+        "tessellate",
+        ico,
+        "--scheme",
+        "loop",
+        "--simple-fans",
+        "-o",
+        obj,
     ]);
     assert_eq!(code, 1, "{err}");
-    assert!(err.contains("--simple-fans chooses between the Catmull-Clark fan forms"), "{err}");
+    assert!(
+        err.contains("--simple-fans chooses between the Catmull-Clark fan forms"),
+        "{err}"
+    );
 }

@@ -162,7 +162,10 @@ fn render_and_tessellate_follow_a_loop_stage() {
         args.extend_from_slice(extra);
         if let Some(o) = common::run_ok(&args) {
             let out = String::from_utf8_lossy(&o.stdout);
-            assert!(out.contains("loop, depth 1") || out.contains("adaptive"), "{out}");
+            assert!(
+                out.contains("loop, depth 1") || out.contains("adaptive"),
+                "{out}"
+            );
         }
     }
     let (a, b) = (tmp("tetra_stage.obj"), tmp("tetra_named.obj"));
@@ -203,7 +206,15 @@ fn bench_follows_or_refuses_the_stage_scheme() {
     assert!(out.contains("scheme=loop"), "{out}");
     let stage = usd("tetra_loop.usda");
     let args = [
-        "bench", "quality", &stage, "--size", "64x48", "--max-depth", "2", "--runs", "1",
+        "bench",
+        "quality",
+        &stage,
+        "--size",
+        "64x48",
+        "--max-depth",
+        "2",
+        "--runs",
+        "1",
     ];
     if let Some(o) = common::run_ok(&args) {
         let out = String::from_utf8_lossy(&o.stdout);

@@ -159,7 +159,11 @@ mod tests {
             assert!((*p - want).length() < 1e-5, "{p} vs {want}");
             assert!(p.length() < mesh.position(VertexId(k as u32)).length());
         }
-        assert!(v.depth.iter().all(|&d| d == v.depth[0] && d > 0), "{:?}", v.depth);
+        assert!(
+            v.depth.iter().all(|&d| d == v.depth[0] && d > 0),
+            "{:?}",
+            v.depth
+        );
         let narrow = VertexData::compute_scheme(&mesh, Scheme::Loop, 2.0, 6);
         assert!(narrow.depth[0] > v.depth[0]);
         // Catmull-Clark rules on the same cage give other limit points.

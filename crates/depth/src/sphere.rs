@@ -196,7 +196,10 @@ mod tests {
     #[test]
     fn loop_spheres_contain_the_loop_limit_surface() {
         // Every Loop fixture (creases, semi-sharp creases, boundaries, corners, high valence).
-        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/reference/shapes");
+        let dir = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../fixtures/reference/shapes"
+        );
         let mut seen = 0;
         for entry in std::fs::read_dir(dir).unwrap() {
             let path = entry.unwrap().path();

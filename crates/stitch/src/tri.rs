@@ -213,7 +213,10 @@ impl TriAssembler {
     /// Where frame vertex `index` comes from: (face, lattice depth, lattice index), for tests
     /// and tools that compare the frame with uniform tessellations.
     pub fn vertex_source(&self, index: u32) -> Option<(usize, Depth, u32)> {
-        let f = self.block_start.partition_point(|&s| s <= index).checked_sub(1)?;
+        let f = self
+            .block_start
+            .partition_point(|&s| s <= index)
+            .checked_sub(1)?;
         let d = self.blocks.get(f)?.depth?;
         Some((f, d, index - self.block_start[f]))
     }

@@ -20,8 +20,8 @@ use crate::{patch_errors, patch_errors_loop};
 /// The patch assembly of the node's scheme.
 #[derive(Debug)]
 enum Stitcher {
-    /// Catmull-Clark units and quad fans.
-    Quads(Assembler),
+    /// Catmull-Clark units and quad fans (boxed: the Catmull-Clark patch set is large).
+    Quads(Box<Assembler>),
     /// Loop triangles and triangle fans.
     Tris(TriAssembler),
 }
@@ -29,7 +29,7 @@ enum Stitcher {
 impl Stitcher {
     fn new(mesh: &Mesh, scheme: Scheme, max_depth: Depth) -> Result<Stitcher, AssemblyError> {
         Ok(match scheme {
-            Scheme::CatmullClark => Stitcher::Quads(Assembler::new(mesh, max_depth)?),
+            Scheme::CatmullClark => Stitcher::Quads(Box::new(Assembler::new(mesh, max_depth)?)),
             Scheme::Loop => Stitcher::Tris(TriAssembler::new(mesh, max_depth)?),
         })
     }

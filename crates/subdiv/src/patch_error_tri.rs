@@ -213,8 +213,11 @@ mod tests {
         // recorded deviation, and by more than a third of it (a sphere-like bulge).
         let n = 32;
         let c = Vec3::from(pos[tri_lattice_index(n, 11, 11) as usize]);
-        let corners = [(0, 0), (n, 0), (0, n)].map(|(i, j)| Vec3::from(pos[tri_lattice_index(n, i, j) as usize]));
-        let plane_n = (corners[1] - corners[0]).cross(corners[2] - corners[0]).normalize();
+        let corners = [(0, 0), (n, 0), (0, n)]
+            .map(|(i, j)| Vec3::from(pos[tri_lattice_index(n, i, j) as usize]));
+        let plane_n = (corners[1] - corners[0])
+            .cross(corners[2] - corners[0])
+            .normalize();
         let off = (c - corners[0]).dot(plane_n).abs();
         assert!(off <= e.faces[0].deviation[0] * 1.001 && off > e.faces[0].deviation[0] / 3.0);
     }

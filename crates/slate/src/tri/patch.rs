@@ -112,7 +112,8 @@ mod tests {
                             assert_eq!(pos[k], uni.positions[id as usize], "({i}, {j})");
                             assert_eq!(nrm[k], uni.normals[id as usize], "({i}, {j})");
                         } else {
-                            let d = glam::Vec3::from(pos[k]) - glam::Vec3::from(uni.positions[id as usize]);
+                            let d = glam::Vec3::from(pos[k])
+                                - glam::Vec3::from(uni.positions[id as usize]);
                             assert!(d.length() < 1e-5, "({i}, {j}) {d}");
                         }
                     }
@@ -126,7 +127,8 @@ mod tests {
             tri_patch_lattice(&mesh, &layout, p, 0, &mut pos, &mut nrm, &mut sided);
             assert_eq!(pos.len(), 3);
             for (c, k) in [(0, 0), (1, 1), (2, 2)] {
-                let d = glam::Vec3::from(pos[k]) - glam::Vec3::from(uni.positions[p.corners[c] as usize]);
+                let d = glam::Vec3::from(pos[k])
+                    - glam::Vec3::from(uni.positions[p.corners[c] as usize]);
                 assert!(d.length() < 1e-5, "corner {c}: {d}");
             }
         }

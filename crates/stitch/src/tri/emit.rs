@@ -7,6 +7,9 @@ use subdiv_slate::{Depth, TriLayout, tri_lattice_index};
 
 use super::TriBlock;
 
+/// One-sided normals of triangle corners: (corner index, normal), ascending.
+type SidedNormals = Vec<(u32, [f32; 3])>;
+
 /// No active face: the edge or vertex is not drawn.
 const NONE: u32 = u32::MAX;
 
@@ -112,7 +115,9 @@ impl TriFrame<'_> {
     /// Frame vertex of patch `g`'s lattice point `(i, j)` at resolution `r`.
     #[inline]
     fn lattice(&self, g: u32, i: u32, j: u32, r: Depth) -> u32 {
-        let c = self.blocks[g as usize].depth.expect("owners' lattices are computed");
+        let c = self.blocks[g as usize]
+            .depth
+            .expect("owners' lattices are computed");
         let s = c - r;
         self.block_start[g as usize] + tri_lattice_index(1 << c, i << s, j << s)
     }
@@ -185,9 +190,9 @@ impl TriFrame<'_> {
         &self,
         active: &[bool],
         indices: &mut Vec<u32>,
-        corner_normals: &mut Vec<(u32, [f32; 3])>,
+        corner_normals: &mut SidedNormals,
     ) {
-        let per: Vec<(Vec<u32>, Vec<(u32, [f32; 3])>)> = (0..active.len())
+        let per: Vec<(Vec<u32>, SidedNormals)> = (0..active.len())
             .into_par_iter()
             .with_min_len(64)
             .map(|f| {
@@ -247,7 +252,11 @@ impl TriFrame<'_> {
                     }
                     fill(&rows[0], &rows[1], &rows[2], out);
                 } else {
-                    out.tri(self.own(f, a, b), self.own(f, a + 1, b), self.own(f, a, b + 1));
+                    out.tri(
+                        self.own(f, a, b),
+                        self.own(f, a + 1, b),
+                        self.own(f, a, b + 1),
+                    );
                 }
                 if a + b + 1 < n {
                     out.tri(
@@ -264,7 +273,7 @@ impl TriFrame<'_> {
 /// One patch's output.
 struct Emit<'a> {
     indices: Vec<u32>,
-    sided: Vec<(u32, [f32; 3])>,
+    sided: SidedNormals,
     /// The emitting patch's lattice (its one-sided normals).
     block: &'a TriBlock,
 }
@@ -277,7 +286,8 @@ impl Emit<'_> {
             if q.key != NONE
                 && let Ok(x) = self.block.sided.binary_search_by_key(&q.key, |&(k, _)| k)
             {
-                self.sided.push((self.indices.len() as u32, self.block.sided[x].1));
+                self.sided
+                    .push((self.indices.len() as u32, self.block.sided[x].1));
             }
             self.indices.push(q.id);
         }

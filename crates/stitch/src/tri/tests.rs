@@ -67,10 +67,16 @@ fn random_depths_are_watertight_on_every_loop_fixture() {
         for round in 0..12 {
             let depth: Vec<Depth> = (0..nf).map(|_| rng.below(5) as Depth).collect();
             // Every third round leaves some faces out (culled).
-            let active: Vec<bool> = (0..nf).map(|_| round % 3 != 2 || rng.below(4) > 0).collect();
+            let active: Vec<bool> = (0..nf)
+                .map(|_| round % 3 != 2 || rng.below(4) > 0)
+                .collect();
             let (asm, g) = frame(&mesh, &depth, &active);
             let open = open_edges(&g);
-            assert_eq!(open, expected_open(&mesh, &asm, &g), "{name} {depth:?} {active:?}");
+            assert_eq!(
+                open,
+                expected_open(&mesh, &asm, &g),
+                "{name} {depth:?} {active:?}"
+            );
             // Inside every patch the lattice triangles are kept: at least 4^d per drawn face.
             let lattice: u64 = asm.triangles_per_depth(&g).iter().sum();
             assert!(g.num_triangles() as u64 >= lattice, "{name}");
@@ -99,7 +105,10 @@ fn every_depth_pair_across_an_edge_is_watertight() {
         assert_eq!(open_edges(&g), 0, "{depth:?}");
         // Euler: a closed triangulated sphere has V - E + F = 2 with E = 3F / 2.
         let (p, _, idx) = g.compact();
-        assert_eq!(p.len() as i64 - (idx.len() / 2) as i64 + (idx.len() / 3) as i64, 2);
+        assert_eq!(
+            p.len() as i64 - (idx.len() / 2) as i64 + (idx.len() / 3) as i64,
+            2
+        );
     }
 }
 
@@ -109,10 +118,16 @@ fn every_depth_pair_across_an_edge_is_watertight() {
 #[test]
 fn drawn_points_are_the_uniform_tessellation_at_the_patch_depth() {
     let mut rng = Rng(77);
-    for name in ["loop_cubes_semisharp", "loop_saddle_edgecorner", "loop_pole8"] {
+    for name in [
+        "loop_cubes_semisharp",
+        "loop_saddle_edgecorner",
+        "loop_pole8",
+    ] {
         let mesh = fixture(name);
         let nf = mesh.num_faces();
-        let uniform: Vec<_> = (0..=4).map(|d| tessellate_loop(&mesh, d).unwrap()).collect();
+        let uniform: Vec<_> = (0..=4)
+            .map(|d| tessellate_loop(&mesh, d).unwrap())
+            .collect();
         let layouts: Vec<_> = (1..=4).map(|d| TriLayout::new(&mesh, d).unwrap()).collect();
         let (mut exact, mut shared) = (0, 0);
         for _ in 0..4 {
@@ -121,7 +136,9 @@ fn drawn_points_are_the_uniform_tessellation_at_the_patch_depth() {
             for &v in &g.indices {
                 let (f, c, k) = asm.vertex_source(v).unwrap();
                 let n = 1u32 << c;
-                let j = (0..=n).rev().find(|&j| subdiv_slate::tri_lattice_index(n, 0, j) <= k);
+                let j = (0..=n)
+                    .rev()
+                    .find(|&j| subdiv_slate::tri_lattice_index(n, 0, j) <= k);
                 let j = j.unwrap();
                 let i = k - subdiv_slate::tri_lattice_index(n, 0, j);
                 let p = &layouts[c as usize - 1].patches[f];
@@ -152,10 +169,12 @@ fn cache_recomputes_only_patches_whose_depth_rose() {
     let nf = mesh.num_faces();
     let mut asm = TriAssembler::new(&mesh, 4).unwrap();
     let mut g = FrameGeometry::default();
-    asm.frame(&mesh, &vec![3; nf], &vec![true; nf], &mut g).unwrap();
+    asm.frame(&mesh, &vec![3; nf], &vec![true; nf], &mut g)
+        .unwrap();
     assert_eq!(g.patches_recomputed, nf);
     let v0 = g.vertex_version;
-    asm.frame(&mesh, &vec![1; nf], &vec![true; nf], &mut g).unwrap();
+    asm.frame(&mesh, &vec![1; nf], &vec![true; nf], &mut g)
+        .unwrap();
     assert_eq!((g.patches_recomputed, g.vertex_version), (0, v0));
     assert_eq!(g.num_triangles(), nf * 4);
     assert_eq!(open_edges(&g), 0);
@@ -185,7 +204,18 @@ fn bad_input_is_an_error_not_a_panic() {
     let mut asm = TriAssembler::new(&tet, 3).unwrap();
     let mut g = FrameGeometry::default();
     let err = asm.frame(&tet, &[1; 3], &[true; 4], &mut g).unwrap_err();
-    assert!(matches!(err, AssemblyError::Length { got: 3, want: 4, .. }));
+    assert!(matches!(
+        err,
+        AssemblyError::Length {
+            got: 3,
+            want: 4,
+            ..
+        }
+    ));
     asm.frame(&tet, &[9; 4], &[true; 4], &mut g).unwrap();
-    assert_eq!(g.unit_depth, vec![3; 4], "depths are clamped to the maximum");
+    assert_eq!(
+        g.unit_depth,
+        vec![3; 4],
+        "depths are clamped to the maximum"
+    );
 }

@@ -129,11 +129,9 @@ impl<'a> QualityRun<'a> {
             return Err(QualityError::NoCameras);
         }
         let depth = params.reference_depth();
-        let scene = Scene::uniform(cage, scheme, depth).map_err(|source| {
-            QualityError::Scene {
-                config: format!("reference (uniform depth {depth})"),
-                source,
-            }
+        let scene = Scene::uniform(cage, scheme, depth).map_err(|source| QualityError::Scene {
+            config: format!("reference (uniform depth {depth})"),
+            source,
         })?;
         let mesh = scene.mesh.as_render_mesh();
         let (lo, hi) = cage.bounds();
@@ -210,8 +208,7 @@ impl<'a> QualityRun<'a> {
                 let mut scene = None;
                 for i in 0..self.frames.len() {
                     let t = Instant::now();
-                    let limit =
-                        uniform_limit(self.cage, self.scheme, depth).map_err(scene_err)?;
+                    let limit = uniform_limit(self.cage, self.scheme, depth).map_err(scene_err)?;
                     tally.update_ms.push(elapsed_ms(t));
                     let scene = match &scene {
                         Some(s) => s,
@@ -238,7 +235,8 @@ impl<'a> QualityRun<'a> {
                     ..DepthParams::default()
                 };
                 let mut node =
-                    DynamicSubdivision::with_scheme(self.cage.clone(), self.scheme, params).map_err(adaptive_err)?;
+                    DynamicSubdivision::with_scheme(self.cage.clone(), self.scheme, params)
+                        .map_err(adaptive_err)?;
                 if params.pixel_error.is_some() {
                     node.patch_errors();
                 }
