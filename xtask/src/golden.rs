@@ -70,7 +70,7 @@ pub const SCENES: &[Scene] = &[
     // Loop limit surfaces: a sphere-like icosahedron and the bunny.
     scene("loop_icosahedron", "fixtures/reference/shapes/loop_icosahedron.obj", &["--scheme", "loop", "--eye-relative", "0.8,0.6,1.8", "--wire-overlay", "--depth", "2"]),
     scene("loop_bunny", "fixtures/meshes/tri_bunny_3k.obj", &["--scheme", "loop", "--depth", "1", "--eye-relative", "0.3,0.4,2.1"]),
-    scene("loop_cubes_semisharp", "fixtures/reference/shapes/loop_cubes_semisharp.obj", &["--scheme", "loop", "--eye-relative", "0.6,1.2,1.6"]),
+    scene("loop_cubes_semisharp", "fixtures/reference/shapes/loop_cubes_semisharp.obj", &["--scheme", "loop", "--eye-relative", "0.6,1.2,1.6", "--depth", "3"]),
     // N-gons (triangles, pentagons, ...) and boundaries with corners.
     scene("nonquads_wire_overlay", "fixtures/reference/shapes/catmark_nonquads.obj", &["--eye-relative", "0.4,1.4,1.4", "--depth", "2", "--wire-overlay"]),
     scene("edgecorner_boundaries", "fixtures/reference/shapes/catmark_edgecorner.obj", &["--eye-relative", "0.4,1.4,1.4", "--depth", "2", "--wire-overlay"]),
