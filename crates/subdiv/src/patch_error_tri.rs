@@ -16,10 +16,10 @@ use crate::patch_error::{NORMAL_QUANTILE, SAMPLE_LEVELS, is_closed, touches_outl
 /// [`crate::patch_errors`] for a Loop cage: per triangle and depth `l <= max_depth`, the
 /// largest distance between the limit surface and the lattice triangles drawn at depth `l`
 /// (the gap along the limit normal, or the whole gap near the boundary and holes) and the
-/// [`NORMAL_QUANTILE`] of the angle between limit and interpolated normals, sampled on the
-/// patch's lattice at depth `max_depth + SAMPLE_LEVELS` (at most [`MAX_DEPTH`]); and a cone
-/// containing the patch's limit normals, widened by the largest angle between neighbouring
-/// samples.
+/// 99th percentile (`NORMAL_QUANTILE`) of the angle between limit and interpolated normals,
+/// sampled on the patch's lattice at depth `max_depth + SAMPLE_LEVELS` (at most
+/// [`MAX_DEPTH`]); and a cone containing the patch's limit normals, widened by the largest
+/// angle between neighbouring samples.
 pub fn patch_errors_loop(mesh: &Mesh, asm: &TriAssembler, max_depth: Depth) -> PatchErrors {
     let layout = asm.layout();
     let fine = (max_depth + SAMPLE_LEVELS).min(MAX_DEPTH);
@@ -135,8 +135,8 @@ impl Lattice<'_> {
         worst
     }
 
-    /// The [`NORMAL_QUANTILE`] of the angle (radians) between a sample's shading normal and
-    /// the one interpolated at its parameters across the coarser lattice's triangles.
+    /// The 99th percentile (`NORMAL_QUANTILE`) of the angle (radians) between a sample's shading
+    /// normal and the one interpolated at its parameters across the coarser lattice's triangles.
     fn normal_deviation(&self, shift: Depth, angles: &mut Vec<f32>) -> f32 {
         let nrm = |k: usize| Vec3::from(self.shade[k]);
         angles.clear();
