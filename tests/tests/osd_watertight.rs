@@ -1,5 +1,6 @@
 //! Adaptive watertightness on random cages (issue 13 item 6): the random cages of
-//! `cargo xtask fuzz-osd` (`subdiv_tests::osd_gen`, read as Catmull-Clark cages) under random
+//! `cargo xtask fuzz-osd` (`subdiv_tests::osd_gen`, read as Catmull-Clark cages, and the Loop
+//! ones as adaptive Loop too, issue 14 item 4) under random
 //! cameras, through `subdiv::DynamicSubdivision` in curvature mode (with and without the
 //! projected-size rule, sometimes culling back faces) and in pixel-error mode. After welding
 //! identical coordinates, every edge of the frame's triangles is used by exactly two triangles,
@@ -15,6 +16,7 @@ use glam::Vec3;
 use subdiv::DynamicSubdivision;
 use subdiv_depth::DepthParams;
 use subdiv_mesh::{Camera, Mesh};
+use subdiv_rules::Scheme;
 use subdiv_stitch::FrameGeometry;
 use subdiv_tests::fuzz::Rng;
 use subdiv_tests::osd_gen::random_cage;
@@ -120,13 +122,21 @@ fn random_cages_are_watertight_under_random_cameras() {
     let cages = env_u64("SUBDIV_WATERTIGHT_CAGES", 40);
     let mut failures = Vec::new();
     let mut frames = 0;
+    let mut loops = 0;
     for index in 0..cages {
         let cage = random_cage(seed, index);
         let mesh = cage.mesh().expect("generated cages are valid");
         let mut rng = Rng::for_case(seed ^ 0xCA3E, index);
-        for pixel in [false, true] {
-            let mut node = DynamicSubdivision::new(mesh.clone(), params(&mut rng, pixel))
-                .unwrap_or_else(|e| panic!("seed {seed} cage {index}: {e}"));
+        loops += usize::from(cage.loop_scheme);
+        let schemes: &[Scheme] = if cage.loop_scheme {
+            &[Scheme::CatmullClark, Scheme::Loop]
+        } else {
+            &[Scheme::CatmullClark]
+        };
+        for (&scheme, pixel) in schemes.iter().flat_map(|s| [(s, false), (s, true)]) {
+            let mut node =
+                DynamicSubdivision::with_scheme(mesh.clone(), scheme, params(&mut rng, pixel))
+                    .unwrap_or_else(|e| panic!("seed {seed} cage {index} {scheme:?}: {e}"));
             for shot in 0..3 {
                 let cam = camera(&mut rng, &mesh);
                 let g = node
@@ -136,13 +146,14 @@ fn random_cages_are_watertight_under_random_cameras() {
                 if let Err(e) = check_watertight(g, expected_open_edges(&mesh, g)) {
                     let mode = if pixel { "pixel-error" } else { "curvature" };
                     failures.push(format!(
-                        "seed {seed} cage {index} ({}) {mode} camera {shot}: {e}",
+                        "seed {seed} cage {index} ({}) {scheme:?} {mode} camera {shot}: {e}",
                         cage.features()
                     ));
                 }
             }
         }
     }
+    assert!(loops > 0, "no Loop cage among {cages}");
     assert!(
         failures.is_empty(),
         "{} of {frames} frames are not watertight:\n{}",

@@ -70,7 +70,7 @@ pub const SCENES: &[Scene] = &[
     // Loop limit surfaces: a sphere-like icosahedron and the bunny.
     scene("loop_icosahedron", "fixtures/reference/shapes/loop_icosahedron.obj", &["--scheme", "loop", "--eye-relative", "0.8,0.6,1.8", "--wire-overlay", "--depth", "2"]),
     scene("loop_bunny", "fixtures/meshes/tri_bunny_3k.obj", &["--scheme", "loop", "--depth", "1", "--eye-relative", "0.3,0.4,2.1"]),
-    scene("loop_cubes_semisharp", "fixtures/reference/shapes/loop_cubes_semisharp.obj", &["--scheme", "loop", "--eye-relative", "0.6,1.2,1.6"]),
+    scene("loop_cubes_semisharp", "fixtures/reference/shapes/loop_cubes_semisharp.obj", &["--scheme", "loop", "--eye-relative", "0.6,1.2,1.6", "--depth", "3"]),
     // N-gons (triangles, pentagons, ...) and boundaries with corners.
     scene("nonquads_wire_overlay", "fixtures/reference/shapes/catmark_nonquads.obj", &["--eye-relative", "0.4,1.4,1.4", "--depth", "2", "--wire-overlay"]),
     scene("edgecorner_boundaries", "fixtures/reference/shapes/catmark_edgecorner.obj", &["--eye-relative", "0.4,1.4,1.4", "--depth", "2", "--wire-overlay"]),
@@ -107,6 +107,9 @@ pub const SCENES: &[Scene] = &[
     // Colour legends (`--legend`): the adaptive depths of Fig. 11 and the dihedral DoI heat map.
     scene("pawn_adaptive_depth_legend", "fixtures/reference/shapes/catmark_pawn.obj", &["--eye-relative", "1.5,-1.7,0.9", "--up", "0,0,1", "--max-depth", "4", "--shading", "depth", "--legend"]),
     scene("doi_dihedral_teapot_legend", "fixtures/meshes/tri_teapot.obj", &["--split-nonmanifold", "--scheme", "loop", "--doi", "dihedral", "--eye-relative", "0,0.3,2.2", "--shading", "doi", "--legend"]),
+    // Adaptive Loop (issue 14 item 3): the icosahedron's triangle patches at view-dependent
+    // depths (front 3, silhouette 4, back 0), joined by triangle fans, depth-coloured.
+    scene("loop_icosahedron_adaptive_depth", "fixtures/reference/shapes/loop_icosahedron.obj", &["--scheme", "loop", "--eye-relative", "0.8,0.6,1.8", "--max-depth", "4", "--shading", "depth", "--wire-overlay"]),
     // Fig. 12: the 40-instance scene, adaptive.
     scene("helmet40_adaptive", "", &["--scene", "helmet40", "--eye-relative", "0.2,0.6,1.4", "--max-depth", "3", "--shading", "depth"]),
 ];

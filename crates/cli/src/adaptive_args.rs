@@ -3,7 +3,7 @@
 use anyhow::bail;
 use subdiv::DynamicSubdivision;
 use subdiv::depth::{DEFAULT_SHADING_ERROR_DEG, DepthParams};
-use subdiv::rules::Depth;
+use subdiv::rules::{Depth, Scheme};
 use subdiv::stitch::{FanMethod, MAX_ADAPTIVE_DEPTH};
 
 /// Default `--max-depth` (the paper's `maxsd = 5`).
@@ -44,7 +44,8 @@ pub struct AdaptiveArgs {
     /// Leave out back faces instead of drawing them at depth 0.
     #[arg(long)]
     pub cull_back: bool,
-    /// Close depth transitions with plain fans (the paper's "simple method").
+    /// Close depth transitions with plain fans (the paper's "simple method"; Catmull-Clark:
+    /// Loop's triangle fans have one form).
     #[arg(long)]
     pub simple_fans: bool,
 }
@@ -74,13 +75,12 @@ impl AdaptiveArgs {
 
     /// The one rule of `tessellate`, `render` and `view`: adaptive when there is no `--depth`
     /// and a camera flag or an adaptive flag was given (`extra` lists adaptive flags a command
-    /// adds, e.g. `--cull-camera-eye-relative`); adaptive flags next to `--depth` or with Loop
-    /// are refused, never ignored.
+    /// adds, e.g. `--cull-camera-eye-relative`); adaptive flags next to `--depth` are refused,
+    /// never ignored. Either scheme: Loop cages are tessellated adaptively on their triangles.
     pub fn wants_adaptive(
         &self,
         depth_given: bool,
         camera_given: bool,
-        catmull_clark: bool,
         extra: &[&'static str],
     ) -> anyhow::Result<bool> {
         let mut given = self.given();
@@ -93,13 +93,8 @@ impl AdaptiveArgs {
                      drop one or the other"
                 );
             }
-            if !catmull_clark {
-                bail!(
-                    "{flags} are for the adaptive Catmull-Clark tessellation (--scheme catmull-clark)"
-                );
-            }
         }
-        Ok(!depth_given && catmull_clark && (camera_given || !given.is_empty()))
+        Ok(!depth_given && (camera_given || !given.is_empty()))
     }
 
     /// The depth parameters these flags describe.
@@ -128,9 +123,19 @@ impl AdaptiveArgs {
         })
     }
 
-    /// A ready node for `mesh`.
-    pub fn node(&self, mesh: subdiv::mesh::Mesh) -> anyhow::Result<DynamicSubdivision> {
-        let mut node = DynamicSubdivision::new(mesh, self.params()?)?;
+    /// A ready node for the `scheme` surface of `mesh`.
+    pub fn node(
+        &self,
+        mesh: subdiv::mesh::Mesh,
+        scheme: Scheme,
+    ) -> anyhow::Result<DynamicSubdivision> {
+        if self.simple_fans && scheme == Scheme::Loop {
+            bail!(
+                "--simple-fans chooses between the Catmull-Clark fan forms; Loop's triangle fans \
+                 have one"
+            );
+        }
+        let mut node = DynamicSubdivision::with_scheme(mesh, scheme, self.params()?)?;
         if self.simple_fans {
             node.set_fan_method(FanMethod::Simple);
         }

@@ -10,11 +10,11 @@ use subdiv::BuiltinScene;
 use subdiv::depth::DEFAULT_SHADING_ERROR_DEG;
 use subdiv::mesh::Camera;
 use subdiv::quality::{Config, QualityParams, QualityRun, orbit_cameras};
-use subdiv::rules::Depth;
+use subdiv::rules::{Depth, Scheme};
 use subdiv::vk::Renderer;
 
 use crate::camera_args::CameraArgs;
-use crate::choices::{SceneName, value_name};
+use crate::choices::{SceneName, SchemeName, value_name};
 
 /// The camera of `subdiv bench framerate`'s first frame, in `--eye-relative` terms: the default
 /// camera of `--scene helmet40` here.
@@ -29,6 +29,10 @@ pub struct BenchQualityArgs {
     /// is `subdiv bench framerate`'s first frame (--eye-relative 1.1,0.55,0).
     #[arg(long, conflicts_with = "input")]
     pub scene: Option<SceneName>,
+    /// Subdivision scheme of the reference and of every configuration [default: the USD
+    /// subdivisionScheme, else catmull-clark].
+    #[arg(long, value_enum)]
+    pub scheme: Option<SchemeName>,
     #[command(flatten)]
     pub camera: CameraArgs,
     /// Measure from N cameras evenly around the up axis (through the target), at the camera's
@@ -110,22 +114,17 @@ impl BenchQualityArgs {
 
 pub fn run(a: &BenchQualityArgs) -> anyhow::Result<ExitCode> {
     let params = a.params()?;
-    let cage = match (&a.scene, &a.input) {
-        (Some(s), _) => BuiltinScene::from(*s).cage()?,
+    let requested = a.scheme.map(Scheme::from);
+    let (cage, scheme) = match (&a.scene, &a.input) {
+        (Some(s), _) => (
+            BuiltinScene::from(*s).cage()?,
+            requested.unwrap_or(Scheme::CatmullClark),
+        ),
         (None, Some(p)) => {
             let cage = crate::load::load_cage(p, a.split_nonmanifold, None)?;
-            // The configurations are Catmull-Clark (slates, adaptive); a stage naming another
-            // scheme is refused rather than measured as a different surface.
-            let scheme = crate::load::cage_scheme(p, &cage, None)?;
-            if scheme != subdiv::rules::Scheme::CatmullClark {
-                bail!(
-                    "{}: the stage's subdivisionScheme is {}; bench quality measures \
-                     Catmull-Clark tessellations",
-                    p.display(),
-                    crate::choices::value_name(&crate::choices::SchemeName::from(scheme))
-                );
-            }
-            cage.mesh
+            // `--scheme`, else the stage's: the reference and every configuration use it.
+            let scheme = crate::load::cage_scheme(p, &cage, requested)?;
+            (cage.mesh, scheme)
         }
         (None, None) => bail!("give an input cage or --scene helmet40"),
     };
@@ -150,7 +149,7 @@ pub fn run(a: &BenchQualityArgs) -> anyhow::Result<ExitCode> {
         renderer.device_name()
     );
     let spinner = crate::progress::spinner("rendering the reference");
-    let run = QualityRun::new(&mut renderer, &cage, &cameras, params);
+    let run = QualityRun::with_scheme(&mut renderer, &cage, scheme, &cameras, params);
     spinner.finish_and_clear();
     let run = run.with_context(|| a.label())?;
     log::info!("reference: {} triangles", run.reference_triangles());

@@ -52,13 +52,13 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     }
     let options = a.style.render_options()?;
     let t0 = Instant::now();
-    let mut scene = a.surface.uniform_scene()?;
+    let (mut scene, scheme) = a.surface.uniform_scene()?;
     let tessellate_ms = t0.elapsed().as_secs_f64() * 1e3;
     let (lo, hi) = scene.bounds();
     let camera = a.camera.camera(lo, hi);
     let note = format!(
         "{}, depth {}",
-        value_name(&a.surface.scheme()),
+        value_name(&scheme),
         a.surface.uniform_depth()
     );
     draw_seen_from(
@@ -132,11 +132,11 @@ fn run_doi(a: &RenderArgs) -> anyhow::Result<ExitCode> {
 fn run_adaptive(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     let mut options = a.style.render_options()?;
     let t0 = Instant::now();
-    let cage = a.surface.load_cage()?;
+    let (cage, scheme) = a.surface.load_cage_scheme()?;
     let (lo, hi) = cage.bounds();
     let camera = a.camera.camera(lo, hi);
     let cull = a.surface.cull_camera(&a.camera, &camera, lo, hi);
-    let mut node = a.surface.adaptive_node(cage)?;
+    let mut node = a.surface.adaptive_node(cage, scheme)?;
     let spinner = crate::progress::spinner("adaptive tessellation");
     let g = node.update(&cull, None);
     spinner.finish_and_clear();

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::{Context, bail};
 use glam::Vec3;
 use subdiv::mesh::{Camera, Mesh};
-use subdiv::rules::Depth;
+use subdiv::rules::{Depth, Scheme};
 use subdiv::vk::{RenderOptions, Shading};
 use subdiv::{BuiltinScene, DynamicSubdivision, Scene};
 
@@ -33,12 +33,11 @@ pub struct SurfaceArgs {
     /// catmark_helmet on an 8x5 grid).
     #[arg(long, conflicts_with = "input")]
     pub scene: Option<SceneName>,
-    /// Subdivision scheme [default: catmull-clark; a USD stage that names another scheme needs
-    /// it given].
+    /// Subdivision scheme [default: the USD subdivisionScheme, else catmull-clark].
     #[arg(long, value_enum)]
     pub scheme: Option<SchemeName>,
     /// Uniform subdivision depth. Without it, a camera (--eye or --eye-relative) makes the
-    /// Catmull-Clark tessellation adaptive; otherwise the default is depth 3.
+    /// tessellation adaptive (Catmull-Clark or Loop); otherwise the default is depth 3.
     #[arg(long)]
     pub depth: Option<subdiv::rules::Depth>,
     /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
@@ -77,30 +76,23 @@ impl SurfaceArgs {
         }
     }
 
-    /// The scheme: `--scheme`, else Catmull-Clark.
-    pub fn scheme(&self) -> SchemeName {
-        self.scheme.unwrap_or(SchemeName::CatmullClark)
+    /// Reads the cage (or builds the built-in scene).
+    pub fn load_cage(&self) -> anyhow::Result<Mesh> {
+        Ok(self.load_cage_scheme()?.0)
     }
 
-    /// Reads the cage (or builds the built-in scene). A USD stage whose `subdivisionScheme` is
-    /// not Catmull-Clark is refused unless `--scheme` is given, never drawn as another surface.
-    pub fn load_cage(&self) -> anyhow::Result<Mesh> {
+    /// Reads the cage (or builds the built-in scene) and the scheme to subdivide it with:
+    /// `--scheme`, else a USD stage's `subdivisionScheme`, else Catmull-Clark.
+    pub fn load_cage_scheme(&self) -> anyhow::Result<(Mesh, Scheme)> {
         match (&self.scene, &self.input) {
-            (Some(s), _) => Ok(BuiltinScene::from(*s).cage()?),
+            (Some(s), _) => Ok((
+                BuiltinScene::from(*s).cage()?,
+                self.scheme.map_or(Scheme::CatmullClark, Into::into),
+            )),
             (None, Some(p)) => {
                 let cage = crate::load::load_cage(p, self.split_nonmanifold, self.prim.as_deref())?;
-                let named = crate::load::cage_scheme(p, &cage, self.scheme.map(Into::into))?;
-                if self.scheme.is_none() && named != subdiv::rules::Scheme::CatmullClark {
-                    bail!(
-                        "{}: the stage's subdivisionScheme is {}; give --scheme {} (this command \
-                         decides adaptive tessellation before reading the file, so it does not \
-                         follow the stage's scheme by itself)",
-                        p.display(),
-                        value_name(&SchemeName::from(named)),
-                        value_name(&SchemeName::from(named))
-                    );
-                }
-                Ok(cage.mesh)
+                let scheme = crate::load::cage_scheme(p, &cage, self.scheme.map(Into::into))?;
+                Ok((cage.mesh, scheme))
             }
             (None, None) => bail!("give an input cage or --scene helmet40"),
         }
@@ -111,19 +103,20 @@ impl SurfaceArgs {
         self.depth.unwrap_or(DEFAULT_DEPTH)
     }
 
-    /// Loads the cage and tessellates it uniformly.
-    pub fn uniform_scene(&self) -> anyhow::Result<Scene> {
-        let cage = self.load_cage()?;
+    /// Loads the cage and tessellates it uniformly; returns the scene and its scheme.
+    pub fn uniform_scene(&self) -> anyhow::Result<(Scene, SchemeName)> {
+        let (cage, scheme) = self.load_cage_scheme()?;
         let depth = self.uniform_depth();
         let spinner = crate::progress::spinner(format!("tessellating at depth {depth}"));
-        let scene = Scene::uniform(&cage, self.scheme().into(), depth);
+        let scene = Scene::uniform(&cage, scheme, depth);
         spinner.finish_and_clear();
-        scene.map_err(|e| anyhow::anyhow!("{}: {e}", self.label()))
+        let scene = scene.map_err(|e| anyhow::anyhow!("{}: {e}", self.label()))?;
+        Ok((scene, scheme.into()))
     }
 
     /// Whether these flags ask for the adaptive tessellation ([`AdaptiveArgs::wants_adaptive`]:
-    /// Catmull-Clark, no `--depth`, and a camera or an adaptive flag; the default camera when no
-    /// camera flag is given). Adaptive flags that cannot apply are refused.
+    /// no `--depth`, and a camera or an adaptive flag; the default camera when no camera flag is
+    /// given). Adaptive flags that cannot apply are refused.
     pub fn is_adaptive(&self, camera: &CameraArgs) -> anyhow::Result<bool> {
         let mut extra = Vec::new();
         if self.cull_camera_eye_relative.is_some() {
@@ -132,18 +125,18 @@ impl SurfaceArgs {
         if self.face_depths.is_some() {
             extra.push("--face-depths");
         }
-        self.adaptive.wants_adaptive(
-            self.depth.is_some(),
-            camera.has_camera(),
-            self.scheme() == SchemeName::CatmullClark,
-            &extra,
-        )
+        self.adaptive
+            .wants_adaptive(self.depth.is_some(), camera.has_camera(), &extra)
     }
 
-    /// The adaptive node for `mesh` with the adaptive flags (fan method, fixed face depths).
-    pub fn adaptive_node(&self, mesh: Mesh) -> anyhow::Result<DynamicSubdivision> {
+    /// The adaptive node for the `scheme` surface of `mesh` with the adaptive flags (fan
+    /// method, fixed face depths).
+    pub fn adaptive_node(&self, mesh: Mesh, scheme: Scheme) -> anyhow::Result<DynamicSubdivision> {
         let faces = mesh.num_faces();
-        let mut node = self.adaptive.node(mesh).with_context(|| self.label())?;
+        let mut node = self
+            .adaptive
+            .node(mesh, scheme)
+            .with_context(|| self.label())?;
         if let Some(spec) = &self.face_depths {
             let depths = parse_face_depths(spec, self.adaptive.max_depth())?;
             if depths.len() != faces {

@@ -22,7 +22,7 @@ use crate::doi_args::{DoiChoice, doi_error};
 #[derive(clap::Args, Debug)]
 #[command(mut_arg("doi", |a| a
     .help(
-        "Drive the Catmull-Clark depths by a Degree-of-Interest function instead of the view \
+        "Drive the patch depths by a Degree-of-Interest function instead of the view \
          (face values above the threshold map linearly onto depths 1..max-depth)"
     )
     .value_parser(cage_doi_parser())))]
@@ -70,29 +70,18 @@ pub fn run(a: &TessellateArgs) -> anyhow::Result<ExitCode> {
     let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, a.prim.as_deref())?;
     let scheme = crate::load::cage_scheme(&a.input, &cage, a.scheme.map(Scheme::from))?;
     let mesh = cage.mesh;
-    let catmull_clark = scheme == Scheme::CatmullClark;
-    let adaptive =
-        a.adaptive
-            .wants_adaptive(a.depth.is_some(), a.camera.has_camera(), catmull_clark, &[])?;
+    let adaptive = a
+        .adaptive
+        .wants_adaptive(a.depth.is_some(), a.camera.has_camera(), &[])?;
     if let Some(depth) = a.depth {
         return run_uniform(a, &mesh, scheme, depth);
     }
     if !adaptive && a.doi.doi.is_none() {
-        if !catmull_clark {
-            bail!(
-                "adaptive tessellation with a camera is for --scheme catmull-clark; use `subdiv refine` for adaptive Loop"
-            );
-        }
         bail!(
             "give --depth N for a uniform tessellation, or a camera (--eye X,Y,Z or --eye-relative X,Y,Z) or an adaptive flag (--pixel-error PX, ...) for an adaptive one"
         );
     }
-    if !catmull_clark {
-        bail!(
-            "adaptive tessellation with a camera is for --scheme catmull-clark; use `subdiv refine` for adaptive Loop"
-        );
-    }
-    run_adaptive(a, mesh)
+    run_adaptive(a, mesh, scheme)
 }
 
 /// `subdiv tessellate --depth N`.
@@ -125,8 +114,9 @@ fn run_uniform(
     Ok(ExitCode::SUCCESS)
 }
 
-/// `subdiv tessellate` with a camera or a DoI: the adaptive Catmull-Clark tessellation.
-fn run_adaptive(a: &TessellateArgs, mesh: Mesh) -> anyhow::Result<ExitCode> {
+/// `subdiv tessellate` with a camera or a DoI: the adaptive tessellation (Catmull-Clark or
+/// Loop).
+fn run_adaptive(a: &TessellateArgs, mesh: Mesh, scheme: Scheme) -> anyhow::Result<ExitCode> {
     let input = a.input.display().to_string();
     let t0 = Instant::now();
     let (lo, hi) = mesh.bounds();
@@ -148,7 +138,10 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh) -> anyhow::Result<ExitCode> {
         }
         None => None,
     };
-    let mut node = a.adaptive.node(mesh).with_context(|| input.clone())?;
+    let mut node = a
+        .adaptive
+        .node(mesh, scheme)
+        .with_context(|| input.clone())?;
     node.set_face_depths(doi_depths)?;
     let spinner = crate::progress::spinner("adaptive tessellation");
     let g = node.update(&camera, None);

@@ -135,13 +135,13 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         return run_adaptive(a);
     }
     let render = a.style.render_options()?;
-    let scene = a.surface.uniform_scene()?;
+    let (scene, scheme) = a.surface.uniform_scene()?;
     let (lo, hi) = scene.bounds();
     let (camera, orbit) = start_camera(a, lo, hi);
     let title = format!(
         "subdiv view {} ({}, depth {})",
         a.surface.label(),
-        value_name(&a.surface.scheme()),
+        value_name(&scheme),
         a.surface.uniform_depth()
     );
     let mut source = UniformSource::new(scene);
@@ -165,7 +165,7 @@ fn run_adaptive(a: &ViewArgs) -> anyhow::Result<ExitCode> {
             "subdiv view: freeze the culling camera with Z instead of --cull-camera-eye-relative"
         );
     }
-    let cage = a.surface.load_cage()?;
+    let (cage, scheme) = a.surface.load_cage_scheme()?;
     let (lo, hi) = cage.bounds();
     let (camera, orbit) = start_camera(a, lo, hi);
     let title = format!(
@@ -173,7 +173,7 @@ fn run_adaptive(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         a.surface.label(),
         a.surface.adaptive.max_depth()
     );
-    let mut source = AdaptiveSource::new(a.surface.adaptive_node(cage)?);
+    let mut source = AdaptiveSource::new(a.surface.adaptive_node(cage, scheme)?);
     let options = ViewerOptions {
         title,
         size: [camera.width, camera.height],

@@ -257,7 +257,8 @@ fn bad_adaptive_flag_values_fail_cleanly() {
 
 /// Issue 12 item 6: an adaptive flag means the same in `tessellate`, `render` and `view`: without
 /// `--depth` it asks for the adaptive tessellation (with the default camera when no camera flag
-/// is given); next to `--depth`, or with Loop, it is refused — never silently ignored.
+/// is given); next to `--depth` it is refused — never silently ignored; with Loop on a triangle
+/// cage it applies as with Catmull-Clark (issue 14 item 3).
 #[test]
 fn adaptive_flags_mean_the_same_in_every_command() {
     let input = root().join("fixtures/scenes/box_8_sharp_edges.obj");
@@ -282,7 +283,7 @@ fn adaptive_flags_mean_the_same_in_every_command() {
     ]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("triangles"), "{out}");
-    // Next to --depth, or with Loop: refused, naming the flags.
+    // Next to --depth: refused, naming the flags.
     for cmd in ["render", "tessellate", "view"] {
         let out_file = if cmd == "tessellate" { obj } else { png };
         let mut args = vec![
@@ -305,19 +306,72 @@ fn adaptive_flags_mean_the_same_in_every_command() {
             "{cmd}: {err}"
         );
     }
-    let (code, _, err) = run(&[
+    // Loop: every adaptive mode (camera, curvature flags, pixel error, culling, a DoI) on a
+    // triangle cage; the quad cage is refused as Loop refuses it, naming the face.
+    let ico = root().join("fixtures/reference/shapes/loop_icosahedron.obj");
+    let ico = ico.to_str().unwrap();
+    let modes: [&[&str]; 5] = [
+        &["--eye-relative", "0.3,0.2,2.5"],
+        &["--cone-aperture", "5", "--projected-size", "1,4"],
+        &["--pixel-error", "0.5", "--cull-back"],
+        &[
+            "--pixel-error",
+            "1",
+            "--shading-error",
+            "5",
+            "--max-depth",
+            "4",
+        ],
+        &["--doi", "view-angle"],
+    ];
+    for mode in modes {
+        let mut args = vec!["tessellate", ico, "--scheme", "loop", "--stats", "-o", obj];
+        args.extend_from_slice(mode);
+        let (code, out, err) = run(&args);
+        assert_eq!(code, 0, "{mode:?}: {err}");
+        assert!(out.contains("(adaptive, max depth"), "{mode:?}: {out}");
+        assert!(out.contains("patches per depth: "), "{mode:?}: {out}");
+    }
+    if let Some(o) = run_ok(&[
         "render",
-        input,
+        ico,
         "--scheme",
         "loop",
         "--pixel-error",
         "1",
         "-o",
         png,
+    ]) {
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert!(out.contains("adaptive, max depth 5"), "{out}");
+    }
+    let (code, _, err) = run(&[
+        "tessellate",
+        input,
+        "--scheme",
+        "loop",
+        "--pixel-error",
+        "1",
+        "-o",
+        obj,
     ]);
     assert_eq!(code, 1, "{err}");
     assert!(
-        err.contains("are for the adaptive Catmull-Clark tessellation"),
+        err.contains("face 0 has 4 vertices; Loop subdivision needs a triangle"),
+        "{err}"
+    );
+    let (code, _, err) = run(&[
+        "tessellate",
+        ico,
+        "--scheme",
+        "loop",
+        "--simple-fans",
+        "-o",
+        obj,
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("--simple-fans chooses between the Catmull-Clark fan forms"),
         "{err}"
     );
 }

@@ -150,28 +150,45 @@ fn usd_and_output_errors_are_typed() {
     assert!(stdout.contains("subdivisionScheme: bilinear"), "{stdout}");
 }
 
-/// `render` and `view` decide on adaptive tessellation before reading the file, so a stage
-/// naming Loop is refused without `--scheme` (never drawn as a Catmull-Clark surface).
+/// `render` follows a stage naming Loop (uniform and adaptive), never drawing it as a
+/// Catmull-Clark surface; `tessellate` adaptively too, the same surface as `--scheme loop`.
 #[test]
-fn render_of_a_loop_stage_needs_the_scheme() {
+fn render_and_tessellate_follow_a_loop_stage() {
     let png = tmp("tetra_loop.png");
-    assert_fails(
-        &[
-            "render",
-            &usd("tetra_loop.usda"),
-            "--depth",
-            "1",
-            "--size",
-            "64x48",
+    let png = png.to_str().unwrap();
+    let stage = usd("tetra_loop.usda");
+    for extra in [&["--depth", "1"][..], &["--pixel-error", "1"][..]] {
+        let mut args = vec!["render", stage.as_str(), "--size", "64x48", "-o", png];
+        args.extend_from_slice(extra);
+        if let Some(o) = common::run_ok(&args) {
+            let out = String::from_utf8_lossy(&o.stdout);
+            assert!(
+                out.contains("loop, depth 1") || out.contains("adaptive"),
+                "{out}"
+            );
+        }
+    }
+    let (a, b) = (tmp("tetra_stage.obj"), tmp("tetra_named.obj"));
+    for (out, scheme) in [(&a, None), (&b, Some("loop"))] {
+        let mut args = vec![
+            "tessellate",
+            stage.as_str(),
+            "--eye-relative",
+            "0.4,0.3,2.5",
             "-o",
-            png.to_str().unwrap(),
-        ],
-        "the stage's subdivisionScheme is loop; give --scheme loop",
-    );
+            out.to_str().unwrap(),
+        ];
+        if let Some(s) = scheme {
+            args.extend(["--scheme", s]);
+        }
+        let (code, _, err) = run(&args);
+        assert_eq!(code, 0, "{err}");
+    }
+    assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
 }
 
 /// `bench tessellate` follows the stage's scheme (Loop on the triangular slates, its line says
-/// so); `bench quality`, which measures Catmull-Clark tessellations, refuses a Loop stage.
+/// so); so does `bench quality` (reference and configurations all Loop).
 #[test]
 fn bench_follows_or_refuses_the_stage_scheme() {
     let (code, out, err) = run(&[
@@ -187,14 +204,22 @@ fn bench_follows_or_refuses_the_stage_scheme() {
     ]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("scheme=loop"), "{out}");
-    assert_fails(
-        &[
-            "bench",
-            "quality",
-            &usd("tetra_loop.usda"),
-            "--size",
-            "64x48",
-        ],
-        "the stage's subdivisionScheme is loop; bench quality measures Catmull-Clark",
-    );
+    let stage = usd("tetra_loop.usda");
+    let args = [
+        "bench",
+        "quality",
+        &stage,
+        "--size",
+        "64x48",
+        "--max-depth",
+        "2",
+        "--runs",
+        "1",
+    ];
+    if let Some(o) = common::run_ok(&args) {
+        let out = String::from_utf8_lossy(&o.stdout);
+        for config in ["uniform-2", "curvature", "pixel-error-1"] {
+            assert!(out.contains(config), "{out}");
+        }
+    }
 }

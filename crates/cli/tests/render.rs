@@ -502,3 +502,55 @@ fn view_doi_screenshot_equals_render() {
         "view --doi screenshot differs from subdiv render --doi"
     );
 }
+
+/// `subdiv view` on an adaptive Loop cage (issue 14 item 3): a scripted screenshot without the
+/// HUD equals `subdiv render` with the same flags.
+#[test]
+fn view_adaptive_loop_screenshot_equals_render() {
+    if view_command().is_none() {
+        return;
+    }
+    let ico = root().join("fixtures/reference/shapes/loop_icosahedron.obj");
+    let flags = [
+        ico.to_str().unwrap(),
+        "--scheme",
+        "loop",
+        "--eye-relative",
+        "0.8,0.6,1.8",
+        "--max-depth",
+        "4",
+        "--shading",
+        "depth",
+        "--wire-overlay",
+        "--size",
+        "200x150",
+    ];
+    let rendered = tmp("view-loop-render.png");
+    let Some(r) = run_ok(&[&["render"][..], &flags, &["-o", rendered.to_str().unwrap()]].concat())
+    else {
+        return;
+    };
+    assert!(
+        String::from_utf8_lossy(&r.stdout).contains("adaptive, max depth 4"),
+        "{}",
+        String::from_utf8_lossy(&r.stdout)
+    );
+    let shot = tmp("view-loop-shot.png");
+    let o = view_command()
+        .unwrap()
+        .arg("view")
+        .args(flags)
+        .args([
+            "--screenshot-after",
+            "1",
+            "--no-hud",
+            "-o",
+            shot.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    let err = stderr(&o);
+    assert!(o.status.success(), "subdiv view failed:\n{err}");
+    let (a, b) = (read_png(&shot).unwrap(), read_png(&rendered).unwrap());
+    assert!(a == b, "view screenshot differs from subdiv render");
+}

@@ -35,12 +35,23 @@ impl VertexData {
     /// # Ok::<(), subdiv_mesh::MeshError>(())
     /// ```
     pub fn compute(mesh: &Mesh, aperture_deg: f32, max_depth: Depth) -> VertexData {
+        VertexData::compute_scheme(mesh, Scheme::CatmullClark, aperture_deg, max_depth)
+    }
+
+    /// [`VertexData::compute`] for the limit surface of `scheme`: the rings are refined with
+    /// its rules (Loop's for a Loop cage, whose patches are its triangles).
+    pub fn compute_scheme(
+        mesh: &Mesh,
+        scheme: Scheme,
+        aperture_deg: f32,
+        max_depth: Depth,
+    ) -> VertexData {
         let cos_a = (aperture_deg.to_radians() as f64).cos();
         let per: Vec<(Vec3, Vec3, Depth)> = (0..mesh.num_vertices() as u32)
             .into_par_iter()
             .map_init(Ring::new, |ring, v| {
                 let v = VertexId(v);
-                if !ring.load(mesh, v, Scheme::CatmullClark) {
+                if !ring.load(mesh, v, scheme) {
                     return (mesh.position(v), Vec3::ZERO, 0);
                 }
                 let mut probe = ring.clone();
@@ -129,6 +140,35 @@ mod tests {
             data.normal[0]
         );
         assert_eq!(data.depth[0], 5);
+    }
+
+    #[test]
+    fn loop_rings_give_loop_limits_and_cone_depths() {
+        // The Loop icosahedron: all vertices alike (valence 5), limit points on a sphere
+        // inside the cage, the same curvature depth everywhere, deeper for a narrower cone.
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../fixtures/reference/shapes/loop_icosahedron.obj"
+        ))
+        .unwrap();
+        let mesh = Mesh::from_soup(&subdiv_mesh::parse_obj(&text).unwrap()).unwrap();
+        let lim = subdiv_rules::tessellate_uniform(&mesh, Scheme::Loop, 0).unwrap();
+        let v = VertexData::compute_scheme(&mesh, Scheme::Loop, 10.0, 6);
+        for (k, p) in v.limit.iter().enumerate() {
+            let want = Vec3::from(lim.positions[k]);
+            assert!((*p - want).length() < 1e-5, "{p} vs {want}");
+            assert!(p.length() < mesh.position(VertexId(k as u32)).length());
+        }
+        assert!(
+            v.depth.iter().all(|&d| d == v.depth[0] && d > 0),
+            "{:?}",
+            v.depth
+        );
+        let narrow = VertexData::compute_scheme(&mesh, Scheme::Loop, 2.0, 6);
+        assert!(narrow.depth[0] > v.depth[0]);
+        // Catmull-Clark rules on the same cage give other limit points.
+        let cc = VertexData::compute(&mesh, 10.0, 6);
+        assert!((cc.limit[0] - v.limit[0]).length() > 1e-3);
     }
 
     #[test]

@@ -47,5 +47,5 @@ pub use curvature::VertexData;
 pub use doi::depths_from_face_values;
 pub use pixel_error::{NormalCone, PatchError, PatchErrors, pixel_error_depth, screen_scale};
 pub use shading::{AreaElement, ScreenArea, ShadingError, raise_for_shading};
-pub use sphere::{SPHERE_FACE_BUDGET, SPHERE_LEVELS, Sphere, face_spheres};
+pub use sphere::{SPHERE_FACE_BUDGET, SPHERE_LEVELS, Sphere, face_spheres, face_spheres_scheme};
 pub use subdiv_rules::{Depth, MAX_DEPTH};

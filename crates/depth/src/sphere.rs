@@ -17,6 +17,13 @@
 //! too), so it lies in that closed convex hull, and a sphere that contains the hull's points
 //! contains the hull (a ball is convex) and the patch.
 //!
+//! Loop (`subdiv_rules::loop_scheme`) is the same: the edge point weighs `(3/8, 3/8, 1/8, 1/8)`,
+//! the smooth vertex rule `1 - n beta` and `beta` with `n beta <= 5/8` for every valence, the
+//! crease, boundary and corner rules are Catmull-Clark's, and a triangle's children with their
+//! 1-neighbourhoods come from the triangle's own 1-neighbourhood (the triangles sharing a vertex
+//! with it, the premise of the triangular slates); its limit masks are positive too.
+//! [`face_spheres_scheme`] applies the argument to either scheme.
+//!
 //! Applied `k` levels down, the same argument bounds the patch by the union of the
 //! 1-neighbourhoods of its level-`k` descendants, which reaches only about `2^-k` of a face
 //! beyond the face: a tight sphere that is still a proof. Positions are `f32`, so the radius
@@ -49,13 +56,19 @@ pub const SPHERE_FACE_BUDGET: u64 = 1 << 24;
 /// control points of the 1-neighbourhoods of the face's level-`k` descendants that contains
 /// them all, `k =` [`SPHERE_LEVELS`] (fewer for very large cages).
 pub fn face_spheres(mesh: &Mesh) -> Vec<Sphere> {
+    face_spheres_scheme(mesh, Scheme::CatmullClark)
+}
+
+/// [`face_spheres`] for the limit patches of `scheme` (a Loop cage's triangles for
+/// [`Scheme::Loop`]).
+pub fn face_spheres_scheme(mesh: &Mesh, scheme: Scheme) -> Vec<Sphere> {
     for k in (1..=SPHERE_LEVELS).rev() {
-        let faces = subdiv_rules::refined_face_count(mesh, Scheme::CatmullClark, k);
+        let faces = subdiv_rules::refined_face_count(mesh, scheme, k);
         if faces > SPHERE_FACE_BUDGET {
             continue;
         }
-        if let Ok(fine) = refine_uniform_levels(mesh, Scheme::CatmullClark, k) {
-            return hull_spheres(&fine, &ancestors(mesh, k), mesh.num_faces());
+        if let Ok(fine) = refine_uniform_levels(mesh, scheme, k) {
+            return hull_spheres(&fine, &ancestors(mesh, k, scheme), mesh.num_faces());
         }
     }
     let identity: Vec<u32> = (0..mesh.num_faces() as u32).collect();
@@ -63,11 +76,16 @@ pub fn face_spheres(mesh: &Mesh) -> Vec<Sphere> {
 }
 
 /// The cage face of every face of the level-`k` uniform refinement (`subdiv_rules::refine`
-/// numbers the children of each face consecutively, `n` for an n-gon, then 4 per quad).
-fn ancestors(mesh: &Mesh, k: Depth) -> Vec<u32> {
+/// numbers the children of each face consecutively: Catmull-Clark `n` for an n-gon, then 4 per
+/// quad; Loop 4 per triangle).
+fn ancestors(mesh: &Mesh, k: Depth, scheme: Scheme) -> Vec<u32> {
+    let children = |f| match scheme {
+        Scheme::CatmullClark => mesh.face_size(f),
+        Scheme::Loop => 4,
+    };
     let mut anc: Vec<u32> = mesh
         .faces()
-        .flat_map(|f| std::iter::repeat_n(f.0, mesh.face_size(f)))
+        .flat_map(|f| std::iter::repeat_n(f.0, children(f)))
         .collect();
     for _ in 1..k {
         anc = anc.iter().flat_map(|&a| [a; 4]).collect();
@@ -138,8 +156,12 @@ mod tests {
 
     /// Every limit point of a fine uniform tessellation lies in its cage face's sphere.
     fn assert_contains(mesh: &Mesh, spheres: &[Sphere], depth: Depth) {
-        let lim = tessellate_uniform(mesh, Scheme::CatmullClark, depth).unwrap();
-        let anc = ancestors(mesh, depth);
+        assert_contains_scheme(mesh, spheres, depth, Scheme::CatmullClark);
+    }
+
+    fn assert_contains_scheme(mesh: &Mesh, spheres: &[Sphere], depth: Depth, scheme: Scheme) {
+        let lim = tessellate_uniform(mesh, scheme, depth).unwrap();
+        let anc = ancestors(mesh, depth, scheme);
         for (g, a) in anc.iter().enumerate() {
             let s = spheres[*a as usize];
             for &v in lim.face(g) {
@@ -169,6 +191,29 @@ mod tests {
         let m = Mesh::from_soup(&parse_obj(pent).unwrap()).unwrap();
         let s = face_spheres(&m);
         assert_contains(&m, &s, 4);
+    }
+
+    #[test]
+    fn loop_spheres_contain_the_loop_limit_surface() {
+        // Every Loop fixture (creases, semi-sharp creases, boundaries, corners, high valence).
+        let dir = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../fixtures/reference/shapes"
+        );
+        let mut seen = 0;
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.file_name().unwrap().to_string_lossy().to_string();
+            if !(name.starts_with("loop_") && name.ends_with(".obj")) {
+                continue;
+            }
+            let text = std::fs::read_to_string(&path).unwrap();
+            let m = Mesh::from_soup(&parse_obj(&text).unwrap()).unwrap();
+            let s = face_spheres_scheme(&m, Scheme::Loop);
+            assert_contains_scheme(&m, &s, 4, Scheme::Loop);
+            seen += 1;
+        }
+        assert!(seen >= 9, "{seen} loop fixtures");
     }
 
     #[test]

@@ -72,7 +72,7 @@ pub use tessellate::{
 };
 pub use tri::{
     TriLayout, TriPatch, TriSide, TriWorker, tessellate_loop, tessellate_loop_layout_into,
-    tri_slate_bytes_per_thread,
+    tri_lattice_index, tri_lattice_len, tri_patch_lattice, tri_slate_bytes_per_thread,
 };
 pub use uv::LevelUvs;
 pub use worker::Worker;

@@ -28,7 +28,7 @@ mod grid;
 mod index;
 
 #[cfg(test)]
-mod test_util;
+pub(crate) mod test_util;
 
 pub use assembler::{Assembler, MAX_ADAPTIVE_DEPTH};
 pub use geometry::FrameGeometry;

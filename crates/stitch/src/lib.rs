@@ -6,7 +6,8 @@
 //! level's face point, through the deeper side's own points, with the shared edge of two replaced
 //! quads subdivided once more ([`FanMethod::Subdivided`]) or not ([`FanMethod::Simple`]).
 //! [`Assembler`] keeps each patch's tessellation between frames and recomputes only patches whose
-//! depth rose.
+//! depth rose. Loop's triangular patches are joined the same way by [`TriAssembler`] (module
+//! [`tri`]): fans from the coarser patch's lattice points through the finer side's points.
 //!
 //! **Invariants.** Watertight to the bit: every point shared by two patches is written by one
 //! owner (the deeper side) and referenced through it, so after assembly every interior edge has
@@ -14,10 +15,12 @@
 //! cage is never modified.
 
 pub mod fans;
+pub mod tri;
 
 pub use fans::{Assembler, FanMethod, FrameGeometry, MAX_ADAPTIVE_DEPTH};
+pub use tri::TriAssembler;
 
-/// Errors of the Catmull-Clark assembly ([`Assembler`]).
+/// Errors of the assembly ([`Assembler`], [`TriAssembler`]).
 #[derive(Debug, thiserror::Error)]
 pub enum AssemblyError {
     /// Set-up of the patches failed.

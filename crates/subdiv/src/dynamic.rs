@@ -3,19 +3,40 @@
 //! [`DynamicSubdivision`] is the paper's `DynamicSubdivisionCC` scene-graph node (Settgast et
 //! al. 2004, Section 4): it owns the cage, its curvature depths (computed once), the per-patch
 //! tessellation cache and the user parameters, and turns a camera (and the last frame time,
-//! for frame-rate control) into the frame's geometry.
+//! for frame-rate control) into the frame's geometry. The same node runs a Loop cage (its
+//! triangles as patches, [`subdiv_stitch::TriAssembler`]) through the same depth assignment.
 
 use subdiv_depth::{
     Assignment, DepthParams, FrameRateController, PatchErrors, Sphere, VertexData, assign,
-    face_spheres,
+    face_spheres_scheme,
 };
 use subdiv_mesh::{Camera, Mesh};
+use subdiv_rules::Scheme;
 use subdiv_slate::Depth;
-use subdiv_stitch::{Assembler, AssemblyError, FanMethod, FrameGeometry};
+use subdiv_stitch::{Assembler, AssemblyError, FanMethod, FrameGeometry, TriAssembler};
 
-use crate::patch_errors;
+use crate::{patch_errors, patch_errors_loop};
 
-/// View-dependent adaptive Catmull-Clark tessellation with crack-free stitching.
+/// The patch assembly of the node's scheme.
+#[derive(Debug)]
+enum Stitcher {
+    /// Catmull-Clark units and quad fans (boxed: the Catmull-Clark patch set is large).
+    Quads(Box<Assembler>),
+    /// Loop triangles and triangle fans.
+    Tris(TriAssembler),
+}
+
+impl Stitcher {
+    fn new(mesh: &Mesh, scheme: Scheme, max_depth: Depth) -> Result<Stitcher, AssemblyError> {
+        Ok(match scheme {
+            Scheme::CatmullClark => Stitcher::Quads(Box::new(Assembler::new(mesh, max_depth)?)),
+            Scheme::Loop => Stitcher::Tris(TriAssembler::new(mesh, max_depth)?),
+        })
+    }
+}
+
+/// View-dependent adaptive Catmull-Clark (or, with [`DynamicSubdivision::with_scheme`], Loop)
+/// tessellation with crack-free stitching.
 ///
 /// ```
 /// use subdiv_mesh::{read_obj, Camera, glam::Vec3};
@@ -33,11 +54,12 @@ use crate::patch_errors;
 #[derive(Debug)]
 pub struct DynamicSubdivision {
     mesh: Mesh,
+    scheme: Scheme,
     params: DepthParams,
     vertex: VertexData,
     spheres: Vec<Sphere>,
     errors: Option<PatchErrors>,
-    assembler: Assembler,
+    assembler: Stitcher,
     controller: Option<FrameRateController>,
     fixed_depths: Option<Vec<Depth>>,
     assignment: Assignment,
@@ -45,13 +67,26 @@ pub struct DynamicSubdivision {
 }
 
 impl DynamicSubdivision {
-    /// Sets up the node for `mesh`: curvature depths, bounding spheres and patches.
+    /// Sets up the node for the Catmull-Clark surface of `mesh`: curvature depths, bounding
+    /// spheres and patches.
     pub fn new(mesh: Mesh, params: DepthParams) -> Result<DynamicSubdivision, AssemblyError> {
-        let vertex = VertexData::compute(&mesh, params.cone_aperture_deg, params.max_depth);
-        let spheres = face_spheres(&mesh);
-        let assembler = Assembler::new(&mesh, params.max_depth)?;
+        DynamicSubdivision::with_scheme(mesh, Scheme::CatmullClark, params)
+    }
+
+    /// Sets up the node for the `scheme` surface of `mesh` (a Loop cage must be triangles:
+    /// [`AssemblyError::Rules`] otherwise).
+    pub fn with_scheme(
+        mesh: Mesh,
+        scheme: Scheme,
+        params: DepthParams,
+    ) -> Result<DynamicSubdivision, AssemblyError> {
+        let assembler = Stitcher::new(&mesh, scheme, params.max_depth)?;
+        let vertex =
+            VertexData::compute_scheme(&mesh, scheme, params.cone_aperture_deg, params.max_depth);
+        let spheres = face_spheres_scheme(&mesh, scheme);
         Ok(DynamicSubdivision {
             mesh,
+            scheme,
             params,
             vertex,
             spheres,
@@ -68,6 +103,10 @@ impl DynamicSubdivision {
     pub fn mesh(&self) -> &Mesh {
         &self.mesh
     }
+    /// The subdivision scheme.
+    pub fn scheme(&self) -> Scheme {
+        self.scheme
+    }
     /// The user parameters.
     pub fn params(&self) -> &DepthParams {
         &self.params
@@ -78,13 +117,18 @@ impl DynamicSubdivision {
         let recompute = p.cone_aperture_deg != self.params.cone_aperture_deg
             || p.max_depth != self.params.max_depth;
         if p.max_depth != self.params.max_depth {
-            self.assembler = Assembler::new(&self.mesh, p.max_depth)?;
+            self.assembler = Stitcher::new(&self.mesh, self.scheme, p.max_depth)?;
             self.errors = None;
         }
         self.params = p;
         if recompute {
-            self.vertex = VertexData::compute(&self.mesh, p.cone_aperture_deg, p.max_depth);
-            self.spheres = face_spheres(&self.mesh);
+            self.vertex = VertexData::compute_scheme(
+                &self.mesh,
+                self.scheme,
+                p.cone_aperture_deg,
+                p.max_depth,
+            );
+            self.spheres = face_spheres_scheme(&self.mesh, self.scheme);
         }
         if let Some(c) = &mut self.controller {
             let fps = c.target_fps();
@@ -106,14 +150,15 @@ impl DynamicSubdivision {
             return Err(AssemblyError::NonFinite { vertex: v as u32 });
         }
         self.mesh.positions_mut().copy_from_slice(positions);
-        self.vertex = VertexData::compute(
+        self.vertex = VertexData::compute_scheme(
             &self.mesh,
+            self.scheme,
             self.params.cone_aperture_deg,
             self.params.max_depth,
         );
-        self.spheres = face_spheres(&self.mesh);
+        self.spheres = face_spheres_scheme(&self.mesh, self.scheme);
         self.errors = None;
-        self.assembler = Assembler::new(&self.mesh, self.params.max_depth)?;
+        self.assembler = Stitcher::new(&self.mesh, self.scheme, self.params.max_depth)?;
         Ok(())
     }
 
@@ -132,7 +177,10 @@ impl DynamicSubdivision {
     /// Drops the cached patch tessellations (the next frame recomputes every patch; for
     /// measuring what the cache saves).
     pub fn clear_cache(&mut self) {
-        self.assembler.invalidate();
+        match &mut self.assembler {
+            Stitcher::Quads(a) => a.invalidate(),
+            Stitcher::Tris(a) => a.invalidate(),
+        }
     }
     /// Number of triangles of the uniform tessellation at `depth` (visible faces).
     pub fn uniform_triangles_at(&self, depth: Depth) -> usize {
@@ -142,7 +190,9 @@ impl DynamicSubdivision {
             .filter(|&f| !self.mesh.is_hole(f))
             .map(|f| {
                 let n = self.mesh.face_size(f);
-                if n == 4 {
+                if self.scheme == Scheme::Loop {
+                    1usize << (2 * d)
+                } else if n == 4 {
                     2usize << (2 * d)
                 } else {
                     n * (2usize << (2 * d.saturating_sub(1)))
@@ -169,9 +219,12 @@ impl DynamicSubdivision {
         self.fixed_depths = depths;
         Ok(())
     }
-    /// Chooses how quads next to deeper neighbours are closed.
+    /// Chooses how quads next to deeper neighbours are closed (Catmull-Clark; a Loop node's
+    /// triangle fans have one form and ignore it).
     pub fn set_fan_method(&mut self, m: FanMethod) {
-        self.assembler.set_method(m);
+        if let Stitcher::Quads(a) = &mut self.assembler {
+            a.set_method(m);
+        }
     }
     /// Limit points, normals and curvature depths of the cage vertices.
     pub fn vertex_data(&self) -> &VertexData {
@@ -230,16 +283,22 @@ impl DynamicSubdivision {
                 a.active[f.idx()] = false;
             }
         }
-        self.assembler
-            .frame(&self.mesh, &a.depth, &a.active, &mut self.geometry)?;
+        match &mut self.assembler {
+            Stitcher::Quads(asm) => asm.frame(&self.mesh, &a.depth, &a.active, &mut self.geometry),
+            Stitcher::Tris(asm) => asm.frame(&self.mesh, &a.depth, &a.active, &mut self.geometry),
+        }?;
         self.assignment = a;
         Ok(&self.geometry)
     }
 
     /// The last frame's quads per depth before gap prevention (Settgast et al. Fig. 6; see
-    /// [`subdiv_stitch::Assembler::quads_per_depth`]).
+    /// [`subdiv_stitch::Assembler::quads_per_depth`]); for Loop the lattice triangles per depth
+    /// ([`TriAssembler::triangles_per_depth`]).
     pub fn quads_per_depth(&self) -> Vec<u64> {
-        self.assembler.quads_per_depth(&self.geometry)
+        match &self.assembler {
+            Stitcher::Quads(a) => a.quads_per_depth(&self.geometry),
+            Stitcher::Tris(a) => a.triangles_per_depth(&self.geometry),
+        }
     }
 
     /// Number of triangles of the uniform tessellation at the maximum depth (for comparison).
@@ -259,8 +318,10 @@ impl DynamicSubdivision {
         {
             self.errors = None;
         }
-        self.errors.get_or_insert_with(|| {
-            patch_errors(&self.mesh, &self.assembler, self.params.max_depth, tolerance)
+        let (mesh, max_depth) = (&self.mesh, self.params.max_depth);
+        self.errors.get_or_insert_with(|| match &self.assembler {
+            Stitcher::Quads(a) => patch_errors(mesh, a, max_depth, tolerance),
+            Stitcher::Tris(a) => patch_errors_loop(mesh, a, max_depth, tolerance),
         })
     }
 }
@@ -456,6 +517,71 @@ mod tests {
         node.set_target_fps(60.0);
         let fps = node.controller().map(|c| c.target_fps()).unwrap();
         assert!((fps - 60.0).abs() < 1e-3, "{fps}");
+    }
+
+    /// The Loop icosahedron.
+    fn icosahedron() -> Mesh {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../fixtures/reference/shapes/loop_icosahedron.obj"
+        );
+        Mesh::from_soup(&parse_obj(&std::fs::read_to_string(path).unwrap()).unwrap()).unwrap()
+    }
+
+    #[test]
+    fn loop_node_runs_every_adaptive_mode_watertight() {
+        let mesh = icosahedron();
+        let nf = mesh.num_faces();
+        let (lo, hi) = mesh.bounds();
+        let camera = Camera::eye_relative(lo, hi, Vec3::new(0.3, 0.2, 2.5), 45.0, 800, 600);
+        let mut node = DynamicSubdivision::with_scheme(mesh, Scheme::Loop, params(4)).unwrap();
+        assert_eq!(node.scheme(), Scheme::Loop);
+        // Curvature and classification: back faces at depth 0, front ones deeper.
+        let g = node.update(&camera, None).unwrap().clone();
+        assert_closed(&g);
+        let a = node.assignment().clone();
+        assert!(a.class.contains(&Class::Back) && a.class.contains(&Class::Front));
+        for f in 0..nf {
+            if a.class[f] == Class::Back {
+                assert_eq!(a.depth[f], 0);
+            }
+        }
+        assert!(a.depth.iter().any(|&d| d > 0));
+        let lattice: u64 = node.quads_per_depth().iter().sum();
+        assert!(g.num_triangles() as u64 >= lattice);
+        assert!(g.num_triangles() < node.uniform_triangles());
+        // Pixel error, projected size, frame-rate control, fixed (DoI) depths, culling.
+        node.set_params(DepthParams {
+            pixel_error: Some(0.5),
+            ..params(4)
+        })
+        .unwrap();
+        assert_closed(&node.update(&camera, None).unwrap().clone());
+        assert_eq!(node.patch_errors().faces.len(), nf);
+        node.set_params(DepthParams {
+            projected_size: Some((2.0, 8.0)),
+            ..params(4)
+        })
+        .unwrap();
+        node.set_frame_rate_control(Some(60.0));
+        for _ in 0..5 {
+            assert_closed(&node.update(&camera, Some(0.5)).unwrap().clone());
+        }
+        node.set_frame_rate_control(None);
+        let depths: Vec<Depth> = (0..nf).map(|f| (f % 5) as Depth).collect();
+        node.set_face_depths(Some(depths.clone())).unwrap();
+        let g = node.update(&camera, None).unwrap().clone();
+        assert_eq!(g.unit_depth, depths);
+        assert_closed(&g);
+        node.set_face_depths(Some(vec![2; nf])).unwrap();
+        let g = node.update(&camera, None).unwrap();
+        assert_eq!(g.num_triangles(), node.uniform_triangles_at(2));
+    }
+
+    #[test]
+    fn loop_node_refuses_quads() {
+        let err = DynamicSubdivision::with_scheme(cube(), Scheme::Loop, params(3)).unwrap_err();
+        assert!(matches!(err, AssemblyError::Rules(_)), "{err}");
     }
 
     #[test]

@@ -109,6 +109,7 @@ mod export;
 mod frame;
 mod frame_sources;
 mod patch_error;
+mod patch_error_tri;
 pub mod quality;
 mod refine;
 mod scene;
@@ -126,6 +127,7 @@ pub use export::{
 pub use frame::{depth_histogram, frame_limit};
 pub use frame_sources::{AdaptiveSource, DoiSource, UniformSource};
 pub use patch_error::{SAMPLE_LEVELS, patch_errors};
+pub use patch_error_tri::patch_errors_loop;
 pub use refine::{Balance, RefineError, RefineOptions, Refined, Refiner, refine_adaptive};
 pub use scene::{Scene, SceneError, uniform_limit};
 pub use silhouettes::Silhouettes;

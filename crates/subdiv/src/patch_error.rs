@@ -114,13 +114,16 @@ pub fn patch_errors(
     for (face, c) in faces.iter_mut().zip(&cones) {
         face.normals = merge_cones(c);
     }
-    let closed =
-        mesh.edges().all(|e| !mesh.is_boundary_edge(e)) && mesh.faces().all(|f| !mesh.is_hole(f));
     PatchErrors {
         faces,
-        closed,
+        closed: is_closed(mesh),
         shading_tolerance,
     }
+}
+
+/// No boundary edges and no holes: hidden patches may stay at depth 0.
+pub(crate) fn is_closed(mesh: &Mesh) -> bool {
+    mesh.edges().all(|e| !mesh.is_boundary_edge(e)) && mesh.faces().all(|f| !mesh.is_hole(f))
 }
 
 /// How [`patch_errors`] lays out a patch's outlier areas ([`ShadingError::outlier_area`]).
@@ -188,7 +191,7 @@ struct PatchMeasure {
 
 /// Whether face `f` shares a vertex with the cage's boundary or with a hole (so the surface's
 /// own edge may be an outline on screen near it).
-fn touches_outline(mesh: &Mesh, f: FaceId) -> bool {
+pub(crate) fn touches_outline(mesh: &Mesh, f: FaceId) -> bool {
     mesh.face_vertices(f).iter().any(|&v| {
         mesh.outgoing(v).any(|h| {
             let g = mesh.face(h);

@@ -1,7 +1,9 @@
 //! The pixel-error bound against the true surface (issue 12): with `--pixel-error P` the
 //! silhouette of the adaptive tessellation lies within `P + 0.5` pixels of the silhouette of a
 //! uniform tessellation one level deeper than the deepest adaptive depth, for every fixture cage
-//! seen from seven cameras (four around it, one from below, two random), at P = 0.5, 1, 2 and 4.
+//! seen from seven cameras (four around it, one from below, two random), at P = 0.5, 1, 2 and 4;
+//! OpenSubdiv's `loop_*` shapes as Loop surfaces (adaptive Loop, issue 14 item 4), the others as
+//! Catmull-Clark.
 //! Rendered with the real renderer (lavapipe in CI); without a Vulkan driver the test prints a
 //! note and passes unless `SUBDIV_VK_REQUIRE_DRIVER=1`. The `+ 0.5` is the metric's own
 //! resolution: a pixel wrongly covered next to a silhouette along pixel edges counts 0.5 px.
@@ -11,6 +13,7 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use subdiv::mesh::{Camera, ReadOptions, read_obj_with};
 use subdiv::quality::{Config, QualityParams, QualityRun, orbit_cameras};
+use subdiv::rules::Scheme;
 use subdiv::vk::{ContextOptions, Renderer, Validation, VkError};
 
 fn root() -> PathBuf {
@@ -92,6 +95,7 @@ fn pixel_error_bounds_the_silhouette_on_every_fixture() {
         shading_error_deg: 180.0,
     };
     let mut checked = 0;
+    let mut loops = 0;
     let mut failures = Vec::new();
     // Per pixel error: the largest silhouette_px_max and where.
     let mut worst = vec![(0.0f32, String::new()); PIXEL_ERRORS.len()];
@@ -119,7 +123,14 @@ fn pixel_error_bounds_the_silhouette_on_every_fixture() {
             h,
         ));
         cameras.extend(random_cameras(lo, hi, k as u32 + 1));
-        let run = QualityRun::new(&mut renderer, &cage, &cameras, params).unwrap();
+        let scheme = if name.starts_with("loop_") {
+            loops += 1;
+            Scheme::Loop
+        } else {
+            Scheme::CatmullClark
+        };
+        let run = QualityRun::with_scheme(&mut renderer, &cage, scheme, &cameras, params)
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
         for (px, worst) in PIXEL_ERRORS.into_iter().zip(&mut worst) {
             let q = run.measure(&mut renderer, Config::PixelError(px)).unwrap();
             if q.silhouette_px_max >= worst.0 {
@@ -135,6 +146,7 @@ fn pixel_error_bounds_the_silhouette_on_every_fixture() {
         eprintln!("largest at pixel error {px}: {at}");
     }
     assert!(checked >= PIXEL_ERRORS.len() * 30, "only {checked} runs");
+    assert!(loops >= 9, "only {loops} Loop cages");
     assert!(
         failures.is_empty(),
         "silhouette beyond P + 0.5:\n{}",

@@ -64,7 +64,7 @@ pub(super) fn frame(
 /// Checks that no directed edge is used twice and no triangle is degenerate, first by index,
 /// then after welding vertices with bitwise equal positions; returns the number of open
 /// (unpaired) edges after welding, which both passes must agree on.
-pub(super) fn open_edges(g: &FrameGeometry) -> usize {
+pub(crate) fn open_edges(g: &FrameGeometry) -> usize {
     let by_index = open_edges_with(g, |i| i);
     let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
     let id: Vec<u32> = g
@@ -104,10 +104,10 @@ fn open_edges_with(g: &FrameGeometry, id: impl Fn(u32) -> u32) -> usize {
 }
 
 /// A small deterministic generator (xorshift).
-pub(super) struct Rng(pub(super) u64);
+pub(crate) struct Rng(pub(crate) u64);
 
 impl Rng {
-    pub(super) fn below(&mut self, n: u64) -> u64 {
+    pub(crate) fn below(&mut self, n: u64) -> u64 {
         self.0 ^= self.0 << 13;
         self.0 ^= self.0 >> 7;
         self.0 ^= self.0 << 17;

@@ -74,7 +74,8 @@ fn render_options() -> RenderOptions {
 /// Image error of tessellations of `cage` against its true surface, seen from a list of cameras
 /// (what `subdiv bench quality` prints).
 ///
-/// The reference is the uniform Catmull-Clark slate tessellation at
+/// The reference is the uniform Catmull-Clark (or, with [`QualityRun::with_scheme`], Loop)
+/// slate tessellation at
 /// [`QualityParams::reference_depth`] with smooth limit normals, packed as a [`Scene`] exactly as
 /// `subdiv render` draws it (normals split at creases) and rendered once per camera; every
 /// configuration goes through the same [`Scene`] path and the same view ([`view_for`] with the
@@ -97,6 +98,7 @@ fn render_options() -> RenderOptions {
 /// ```
 pub struct QualityRun<'a> {
     cage: &'a Mesh,
+    scheme: Scheme,
     params: QualityParams,
     frames: Vec<ReferenceFrame>,
     reference_triangles: usize,
@@ -110,16 +112,26 @@ impl<'a> QualityRun<'a> {
         cameras: &[Camera],
         params: QualityParams,
     ) -> Result<QualityRun<'a>, QualityError> {
+        QualityRun::with_scheme(renderer, cage, Scheme::CatmullClark, cameras, params)
+    }
+
+    /// [`QualityRun::new`] for the `scheme` surface of `cage`: the reference, the uniform
+    /// configurations and the adaptive ones ([`DynamicSubdivision::with_scheme`]) all of it.
+    pub fn with_scheme(
+        renderer: &mut Renderer,
+        cage: &'a Mesh,
+        scheme: Scheme,
+        cameras: &[Camera],
+        params: QualityParams,
+    ) -> Result<QualityRun<'a>, QualityError> {
         params.check()?;
         if cameras.is_empty() {
             return Err(QualityError::NoCameras);
         }
         let depth = params.reference_depth();
-        let scene = Scene::uniform(cage, Scheme::CatmullClark, depth).map_err(|source| {
-            QualityError::Scene {
-                config: format!("reference (uniform depth {depth})"),
-                source,
-            }
+        let scene = Scene::uniform(cage, scheme, depth).map_err(|source| QualityError::Scene {
+            config: format!("reference (uniform depth {depth})"),
+            source,
         })?;
         let mesh = scene.mesh.as_render_mesh();
         let (lo, hi) = cage.bounds();
@@ -154,6 +166,7 @@ impl<'a> QualityRun<'a> {
         }
         Ok(QualityRun {
             cage,
+            scheme,
             params,
             frames,
             reference_triangles: mesh.triangle_count(),
@@ -195,8 +208,7 @@ impl<'a> QualityRun<'a> {
                 let mut scene = None;
                 for i in 0..self.frames.len() {
                     let t = Instant::now();
-                    let limit =
-                        uniform_limit(self.cage, Scheme::CatmullClark, depth).map_err(scene_err)?;
+                    let limit = uniform_limit(self.cage, self.scheme, depth).map_err(scene_err)?;
                     tally.update_ms.push(elapsed_ms(t));
                     let scene = match &scene {
                         Some(s) => s,
@@ -223,7 +235,8 @@ impl<'a> QualityRun<'a> {
                     ..DepthParams::default()
                 };
                 let mut node =
-                    DynamicSubdivision::new(self.cage.clone(), params).map_err(adaptive_err)?;
+                    DynamicSubdivision::with_scheme(self.cage.clone(), self.scheme, params)
+                        .map_err(adaptive_err)?;
                 if params.pixel_error.is_some() {
                     node.patch_errors();
                 }

@@ -1,0 +1,226 @@
+//! Crack-free assembly of Loop's triangular patches tessellated at different depths: Settgast et
+//! al. §3.3 adapted to triangles.
+//!
+//! Every cage triangle is a patch with a depth per frame. A cage edge is drawn at the resolution
+//! of its deeper side, and its points are written once, by that side (its *owner*; on equal
+//! depths the owner of the uniform [`TriLayout`]); a cage vertex is written by one active patch
+//! around it (the layout's owner when it is drawn). Since depths are powers of two apart, the
+//! coarser side's points along the edge are a subset of the finer side's: the coarser patch keeps
+//! its lattice triangles inside and replaces each triangle with an edge on a finer side by a fan
+//! from the triangle's opposite lattice point through the finer side's own points (a corner
+//! triangle with two finer sides is a strip between the two point rows; a depth-0 patch with
+//! three finer sides is split at the side midpoints first, which the finer sides hold). No
+//! extra points are evaluated, so every drawn point is a point of some patch's uniform lattice.
+//!
+//! Caching (Section 4): a patch keeps its lattice computed at some depth `c` and reuses it
+//! (sampled with stride `2^(c - d)`) while its required depth stays at or below `c`.
+//!
+//! **Invariants.** Watertight to the bit: every point on a cage edge or vertex is referenced
+//! through its one owner, so both sides of a border reference the same vertex; after welding
+//! equal coordinates every interior edge has exactly two triangles and the open edges are the
+//! cage's boundary. A freshly computed patch at depth `d` holds exactly the points of
+//! `tessellate_loop` at depth `d` that the uniform layout lets it own.
+
+mod emit;
+
+use rayon::prelude::*;
+use subdiv_mesh::Mesh;
+use subdiv_slate::{Depth, MAX_DEPTH, TriLayout, tri_lattice_len, tri_patch_lattice};
+
+use crate::{AssemblyError, FrameGeometry};
+use emit::TriFrame;
+
+/// A patch's cached lattice.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct TriBlock {
+    /// Depth the lattice was computed at (`None`: never).
+    pub(crate) depth: Option<Depth>,
+    pub(crate) pos: Vec<[f32; 3]>,
+    pub(crate) nrm: Vec<[f32; 3]>,
+    /// One-sided normals of this patch at its border points (lattice index, normal), ascending.
+    pub(crate) sided: Vec<(u32, [f32; 3])>,
+}
+
+/// The adaptive assembler of Loop cages (triangles only): per-face patches, their lattice
+/// cache, and the frame's index buffer with fans between depths.
+#[derive(Debug)]
+pub struct TriAssembler {
+    layout: TriLayout,
+    blocks: Vec<TriBlock>,
+    block_start: Vec<u32>,
+    version: u64,
+    max_depth: Depth,
+}
+
+impl TriAssembler {
+    /// Sets up the patches of `mesh` (triangles only; what Loop refuses is a
+    /// [`AssemblyError::Rules`]); `max_depth` is the deepest depth that will be requested, at
+    /// most [`MAX_DEPTH`].
+    pub fn new(mesh: &Mesh, max_depth: Depth) -> Result<TriAssembler, AssemblyError> {
+        if max_depth > MAX_DEPTH {
+            return Err(AssemblyError::TooDeep {
+                depth: max_depth,
+                max: MAX_DEPTH,
+            });
+        }
+        let layout = TriLayout::new(mesh, 1)?;
+        let n = layout.patches.len();
+        Ok(TriAssembler {
+            layout,
+            blocks: vec![TriBlock::default(); n],
+            block_start: vec![0; n + 1],
+            version: 0,
+            max_depth,
+        })
+    }
+
+    /// The patches' topology (a uniform layout; its point ids are not used).
+    pub fn layout(&self) -> &TriLayout {
+        &self.layout
+    }
+
+    /// Drops all cached lattices (e.g. after the mesh's positions changed).
+    pub fn invalidate(&mut self) {
+        for b in &mut self.blocks {
+            b.depth = None;
+        }
+    }
+
+    /// Triangles of the patch lattices per depth in frame `g` (index = depth): `4^d` per drawn
+    /// face, before the fans that join different depths.
+    pub fn triangles_per_depth(&self, g: &FrameGeometry) -> Vec<u64> {
+        let mut v = Vec::new();
+        for &d in &g.unit_depth {
+            if d == u8::MAX {
+                continue;
+            }
+            if v.len() <= d as usize {
+                v.resize(d as usize + 1, 0);
+            }
+            v[d as usize] += 1u64 << (2 * d as u32);
+        }
+        v
+    }
+
+    /// Builds a frame: `depth[f]` per cage face (clamped to `0..=max_depth`) and `active[f]`
+    /// (faces not drawn, e.g. culled, are `false`; holes and, with `interpolateboundary none`,
+    /// faces at the boundary are never drawn).
+    pub fn frame(
+        &mut self,
+        mesh: &Mesh,
+        depth: &[Depth],
+        active: &[bool],
+        out: &mut FrameGeometry,
+    ) -> Result<(), AssemblyError> {
+        let nf = self.layout.patches.len();
+        if depth.len() != nf || active.len() != nf {
+            return Err(AssemblyError::Length {
+                what: "depth/active",
+                got: depth.len().min(active.len()),
+                want: nf,
+            });
+        }
+        let depth: Vec<Depth> = depth.iter().map(|&d| d.min(self.max_depth)).collect();
+        let active: Vec<bool> = (0..nf)
+            .map(|f| active[f] && self.layout.patches[f].visible)
+            .collect();
+        let owners = emit::Owners::new(mesh, &self.layout, &depth, &active);
+        let required = owners.required_depths(mesh, &self.layout, &depth, &active);
+        self.check_size(&required)?;
+        let recomputed = self.recompute_blocks(mesh, &required);
+        if recomputed > 0 || out.positions.is_empty() {
+            self.concatenate_blocks(out);
+        }
+        out.vertex_version = self.version;
+        out.patches_recomputed = recomputed;
+        out.vertex_depth.clear();
+        out.vertex_depth.resize(out.positions.len(), 0.0);
+        for (f, &d) in depth.iter().enumerate() {
+            let range = self.block_start[f] as usize..self.block_start[f + 1] as usize;
+            out.vertex_depth[range].fill(d as f32);
+        }
+        let fr = TriFrame {
+            layout: &self.layout,
+            depth: &depth,
+            owners: &owners,
+            blocks: &self.blocks,
+            block_start: &self.block_start,
+        };
+        fr.emit_frame(&active, &mut out.indices, &mut out.corner_normals);
+        out.unit_depth = (0..nf)
+            .map(|f| if active[f] { depth[f] } else { u8::MAX })
+            .collect();
+        Ok(())
+    }
+
+    /// Refuses frames whose lattices would not fit in memory.
+    fn check_size(&self, required: &[Option<Depth>]) -> Result<(), AssemblyError> {
+        let total: u64 = (0..required.len())
+            .map(|i| match required[i].max(self.blocks[i].depth) {
+                None => 0,
+                Some(d) => tri_lattice_len(d) as u64,
+            })
+            .sum();
+        if total > subdiv_slate::MAX_POINTS {
+            return Err(AssemblyError::TooLarge { points: total });
+        }
+        Ok(())
+    }
+
+    /// Recomputes the lattices that are too coarse for `required`; returns how many.
+    fn recompute_blocks(&mut self, mesh: &Mesh, required: &[Option<Depth>]) -> usize {
+        let todo: Vec<usize> = (0..required.len())
+            .filter(|&i| required[i] > self.blocks[i].depth)
+            .collect();
+        let layout = &self.layout;
+        let fresh: Vec<(usize, TriBlock)> = todo
+            .par_iter()
+            .map(|&i| {
+                let d = required[i].unwrap_or_default();
+                let mut b = TriBlock {
+                    depth: Some(d),
+                    ..TriBlock::default()
+                };
+                let p = &layout.patches[i];
+                tri_patch_lattice(mesh, layout, p, d, &mut b.pos, &mut b.nrm, &mut b.sided);
+                (i, b)
+            })
+            .collect();
+        let recomputed = fresh.len();
+        for (i, b) in fresh {
+            self.blocks[i] = b;
+        }
+        recomputed
+    }
+
+    /// Rebuilds the vertex buffer from the lattices and bumps the vertex version.
+    fn concatenate_blocks(&mut self, out: &mut FrameGeometry) {
+        let mut acc = 0u32;
+        for (i, b) in self.blocks.iter().enumerate() {
+            self.block_start[i] = acc;
+            acc += b.pos.len() as u32;
+        }
+        self.block_start[self.blocks.len()] = acc;
+        out.positions.clear();
+        out.normals.clear();
+        for b in &self.blocks {
+            out.positions.extend_from_slice(&b.pos);
+            out.normals.extend_from_slice(&b.nrm);
+        }
+        self.version += 1;
+    }
+
+    /// Where frame vertex `index` comes from: (face, lattice depth, lattice index), for tests
+    /// and tools that compare the frame with uniform tessellations.
+    pub fn vertex_source(&self, index: u32) -> Option<(usize, Depth, u32)> {
+        let f = self
+            .block_start
+            .partition_point(|&s| s <= index)
+            .checked_sub(1)?;
+        let d = self.blocks.get(f)?.depth?;
+        Some((f, d, index - self.block_start[f]))
+    }
+}
+
+#[cfg(test)]
+mod tests;
