@@ -56,6 +56,31 @@ impl TriWorker {
         }
     }
 
+    /// Calls `f(a, position, normal)` for every inner point `a` (`0 < a < n`) of side `c`, which
+    /// must be smooth (interior, no sharpness): [`TriWorker::limit_side`]'s regular path (the
+    /// same ring, the same sums) with the ring read by index steps along the side.
+    #[inline]
+    pub(crate) fn limit_smooth_side(&self, c: usize, mut f: impl FnMut(u32, Vec3A, Vec3A)) {
+        debug_assert!(self.sides[c].smooth);
+        let t = self.table();
+        let (base, da, db) = TriWorker::frame(self.n, c);
+        let at = |k: isize| t[k as usize];
+        for a in 1..self.n {
+            let k = base + a as isize * da;
+            // The ring of `side_ring`: (a+1, 0), (a, 1), (a-1, 1), (a-1, 0), (a, -1), (a+1, -1).
+            let e = [
+                at(k + da),
+                at(k + db),
+                at(k - da + db),
+                at(k - da),
+                at(k - db),
+                at(k + da - db),
+            ];
+            let (p, t1, t2) = regular_limit(at(k), e);
+            f(a, p + self.origin, normal(t1, t2));
+        }
+    }
+
     /// The limit of side `c`'s inner point `a` (`0 < a < n`).
     pub(crate) fn limit_side(&self, s: &mut LimitScratch, c: usize, a: u32) -> LimitPoint {
         let n = self.n;

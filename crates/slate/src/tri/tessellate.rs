@@ -143,9 +143,14 @@ fn run_patch(
 ) -> Vec<(u32, [f32; 3])> {
     let n = 1u32 << depth;
     w.gather(mesh, layout, p, n);
-    for _ in 0..depth {
+    for _ in 1..depth {
         w.step();
     }
+    // The last step skips what no limit below reads: the ring row beyond a smooth side another
+    // patch owns, and a fast corner that neither this patch nor a side it evaluates needs.
+    let rows: [bool; 3] = std::array::from_fn(|c| p.sides[c].owned || !w.sides[c].smooth);
+    let corners = std::array::from_fn(|c| p.corner_owned[c] || rows[c] || rows[(c + 2) % 3]);
+    w.step_with(rows, corners);
     let visible = !tris.is_empty();
     let mut sided: Vec<(u32, u32, Vec3A)> = Vec::new();
     for c in 0..3 {
@@ -163,6 +168,11 @@ fn run_patch(
     for c in 0..3 {
         let side = p.sides[c];
         if !(side.owned || (visible && !w.sides[c].smooth)) {
+            continue;
+        }
+        if w.sides[c].smooth {
+            // Smooth: no one-sided normals; only the owner gets here.
+            w.limit_smooth_side(c, |a, pos, nrm| out.write(side.id(n, a), pos, nrm));
             continue;
         }
         for a in 1..n {

@@ -100,6 +100,23 @@ impl TriWorker {
         }
     }
 
+    /// Corner `c`'s frame at grid size `n` as index arithmetic: its local point `(a, b)` lies at
+    /// table index `base + a * da + b * db` (the index [`TriWorker::lidx`] computes), returned
+    /// as `(base, da, db)`. Walks along a side step by `da` instead of mapping every point.
+    #[inline(always)]
+    pub(crate) fn frame(n: u32, c: usize) -> (isize, isize, isize) {
+        let w = n as isize + 3;
+        let n = n as isize;
+        match c {
+            // (i, j) = (a, b): (b + 1) w + a + 1.
+            0 => (w + 1, 1, w),
+            // (i, j) = (n - a - b, a): (a + 1) w + n - a - b + 1.
+            1 => (w + n + 1, w - 1, -1),
+            // (i, j) = (b, n - a - b): (n - a - b + 1) w + b + 1.
+            _ => ((n + 1) * w + 1, -w, 1 - w),
+        }
+    }
+
     /// Table index of corner `c`'s local point `(a, b)`.
     #[inline(always)]
     fn lidx(n: u32, c: usize, a: i32, b: i32) -> usize {
@@ -187,6 +204,14 @@ impl TriWorker {
 
     /// One subdivision step into the other table (grid size `n` to `2n`).
     pub fn step(&mut self) {
+        self.step_with([true; 3], [true; 3]);
+    }
+
+    /// [`TriWorker::step`] that may skip the child ring row beyond a smooth side `c` with
+    /// `rows[c] == false` and the refinement of a fast corner `c` with `corners[c] == false`:
+    /// the last step of a patch whose limits will not read them (the points left stale are read
+    /// by no later stage, so the output is that of `step`).
+    pub(crate) fn step_with(&mut self, rows: [bool; 3], corners: [bool; 3]) {
         let n = self.n;
         let n2 = 2 * n;
         let mut tables = std::mem::take(&mut self.tables);
@@ -199,7 +224,7 @@ impl TriWorker {
         regular_step(src, dst, n);
         // Ring rows beyond the interior sides.
         for (c, side) in self.sides.iter().enumerate() {
-            if side.interior {
+            if side.interior && (rows[c] || !side.smooth) {
                 ring_row(src, dst, n, c);
             }
         }
@@ -235,6 +260,9 @@ impl TriWorker {
         }
         // Corners last: their points replace whatever the passes above wrote there.
         for c in 0..3 {
+            if self.corners[c].fast && !corners[c] {
+                continue;
+            }
             let b = if self.corners[c].fast {
                 let v = self.corners[c].valence;
                 self.beta(v)
@@ -285,12 +313,14 @@ impl TriWorker {
 /// edge point of every edge (opposites: the neighbouring edges).
 fn refine_fast_corner(corner: &mut Corner, b: f64) {
     let v = corner.valence;
-    let (c, e) = (corner.center, &corner.edges);
+    let (c, e) = (corner.center, &corner.edges[..v]);
     corner.tmp.clear();
+    // Neighbours around the ring without a division per edge.
+    let mut prev = e[v - 1];
     for t in 0..v {
-        let next = e[(t + 1) % v];
-        let prev = e[(t + v - 1) % v];
+        let next = if t + 1 == v { e[0] } else { e[t + 1] };
         corner.tmp.push(smooth_edge_point(c, e[t], next, prev));
+        prev = e[t];
     }
     corner.center = smooth_vertex_point(c, e, b);
     std::mem::swap(&mut corner.edges, &mut corner.tmp);
@@ -337,15 +367,17 @@ fn regular_step(src: &[Vec3A], dst: &mut [Vec3A], n: u32) {
 /// smooth edge points of the edges from side points to ring points (inside the next cage
 /// triangle). `(1, -1)` and `(2n, -1)` belong to the corners.
 fn ring_row(src: &[Vec3A], dst: &mut [Vec3A], n: u32, c: usize) {
-    let s = |a: i32, b: i32| src[TriWorker::lidx(n, c, a, b)];
-    let n2 = 2 * n;
-    for a in 1..n as i32 {
+    let (sb, sa, sn) = TriWorker::frame(n, c);
+    let (db, da, dn) = TriWorker::frame(2 * n, c);
+    let s = |k: isize| src[k as usize];
+    for a in 1..n as isize {
+        // Source (a, 0) and the child (2a, -1).
+        let k = sb + a * sa;
+        let d = db + 2 * a * da - dn;
         // i' = 2a + 1: edge (a, 0)-(a + 1, -1), opposites (a + 1, 0), (a, -1).
-        dst[TriWorker::lidx(n2, c, 2 * a + 1, -1)] =
-            smooth_edge_point(s(a, 0), s(a + 1, -1), s(a + 1, 0), s(a, -1));
+        dst[(d + da) as usize] = smooth_edge_point(s(k), s(k + sa - sn), s(k + sa), s(k - sn));
         // i' = 2a: edge (a, 0)-(a, -1), opposites (a - 1, 0), (a + 1, -1).
-        dst[TriWorker::lidx(n2, c, 2 * a, -1)] =
-            smooth_edge_point(s(a, 0), s(a, -1), s(a - 1, 0), s(a + 1, -1));
+        dst[d as usize] = smooth_edge_point(s(k), s(k - sn), s(k - sa), s(k + sa - sn));
     }
 }
 
@@ -452,4 +484,28 @@ fn general_side(
     }
     std::mem::swap(&mut side.sharp, &mut side.tmp);
     side.smooth = side.interior && side.sharp.iter().all(|&s| s <= 0.0);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::TriWorker;
+
+    #[test]
+    fn frame_steps_reach_the_points_lidx_maps() {
+        for n in [1u32, 2, 4, 8, 32] {
+            for c in 0..3 {
+                let (base, da, db) = TriWorker::frame(n, c);
+                for b in -1..=1i32 {
+                    for a in -1..=n as i32 + 1 {
+                        let (i, j) = TriWorker::local(n, c, a, b);
+                        if i < -1 || j < -1 || i + j > n as i32 + 1 {
+                            continue;
+                        }
+                        let k = base + a as isize * da + b as isize * db;
+                        assert_eq!(k as usize, TriWorker::lidx(n, c, a, b), "n {n} c {c} ({a}, {b})");
+                    }
+                }
+            }
+        }
+    }
 }
