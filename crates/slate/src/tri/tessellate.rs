@@ -215,31 +215,35 @@ fn up_index(n: u32, a: u32, b: u32) -> u32 {
 fn write_triangles(p: &TriPatch, n: u32, tris: &mut [u32], ids: &mut Vec<u32>) {
     // Row `b` of the lattice starts at `row(b)` and holds `n + 1 - b` points.
     let row = |b: u32| (b * (2 * n + 3) - b * b) / 2;
+    // `TriLayout::point_id` row by row, its cases laid out: row 0 is corner 0, side 0 and
+    // corner 1; row `j` side 2, the interior row and side 1; row `n` corner 2.
     ids.clear();
-    for j in 0..=n {
-        for i in 0..=n - j {
-            ids.push(TriLayout::point_id(p, n, i, j).0);
-        }
+    ids.push(p.corners[0]);
+    ids.extend((1..n).map(|a| p.sides[0].id(n, a)));
+    ids.push(p.corners[1]);
+    for j in 1..n {
+        ids.push(p.sides[2].id(n, n - j));
+        let first = p.interior + interior_offset(n, j);
+        ids.extend(first..first + (n - j - 1));
+        ids.push(p.sides[1].id(n, j));
     }
-    let mut out = tris.chunks_exact_mut(3);
+    ids.push(p.corners[2]);
+    debug_assert_eq!(ids.len() as u32, row(n + 1));
+    let mut t = 0;
     for b in 0..n {
         let (lo, hi) = (row(b) as usize, row(b + 1) as usize);
         let len = (n - b) as usize;
+        let (below, above) = (&ids[lo..lo + len + 1], &ids[hi..hi + len]);
         for a in 0..len {
-            out.next().expect("n^2 triangles").copy_from_slice(&[
-                ids[lo + a],
-                ids[lo + a + 1],
-                ids[hi + a],
-            ]);
+            tris[t..t + 3].copy_from_slice(&[below[a], below[a + 1], above[a]]);
+            t += 3;
             if a + 1 < len {
-                out.next().expect("n^2 triangles").copy_from_slice(&[
-                    ids[lo + a + 1],
-                    ids[hi + a + 1],
-                    ids[hi + a],
-                ]);
+                tris[t..t + 3].copy_from_slice(&[below[a + 1], above[a + 1], above[a]]);
+                t += 3;
             }
         }
     }
+    debug_assert_eq!(t, tris.len());
 }
 
 /// The triangle corners (index into the patch's `3 n^2` corners) at the lattice points of
