@@ -51,9 +51,18 @@ pub(crate) struct Side {
     pub interior: bool,
     /// Interior and no sharpness on any segment: the regular rules apply along it.
     pub smooth: bool,
-    /// Sharpness of each of the `n` segments, from the side's first corner.
+    /// Sharpness of each of the `n` segments, from the side's first corner; after a step on a
+    /// smooth side empty instead of `n` zeros (read it through [`Side::segment`]).
     pub sharp: Vec<f32>,
     tmp: Vec<f32>,
+}
+
+impl Side {
+    /// Sharpness of segment `k`: 0 on a smooth side.
+    #[inline]
+    pub(crate) fn segment(&self, k: usize) -> f32 {
+        if self.smooth { 0.0 } else { self.sharp[k] }
+    }
 }
 
 /// One thread's slates and corner arrays for triangular patches.
@@ -252,8 +261,8 @@ impl TriWorker {
             ];
             let side = &mut self.sides[c];
             if side.smooth {
+                // Its `n2` segments are all 0 (`Side::segment`): nothing to store.
                 side.sharp.clear();
-                side.sharp.resize(n2 as usize, 0.0);
             } else {
                 general_side(src, dst, n, c, side, method, ends);
             }
@@ -333,32 +342,31 @@ fn regular_step(src: &[Vec3A], dst: &mut [Vec3A], n: u32) {
     let w = n as usize + 3;
     let w2 = 2 * n as usize + 3;
     let n = n as usize;
-    // Parent (a, b) at src[(b + 1) * w + a + 1].
-    let p = |a: usize, b: usize| (b + 1) * w + a + 1;
+    // Parent (a, b) is `mid[a + 1]` with `mid` the table row of `b` (from column -1), `lo` and
+    // `hi` the rows of `b - 1` and `b + 1`: whole-row slices, so the loops index without a
+    // bounds check per point. The sums are those of the point-by-point form, in its order.
     for b in 0..=n {
-        // Even child row 2b: vertex points at even i', edge points of (a, b)-(a + 1, b) at odd.
-        let row = (2 * b + 1) * w2 + 1;
         let len = n - b;
+        let lo = &src[b * w..(b + 1) * w];
+        let mid = &src[(b + 1) * w..(b + 2) * w];
+        let hi = &src[(b + 2) * w..(b + 3) * w];
+        // Even child row 2b: vertex points at even i', edge points of (a, b)-(a + 1, b) at odd.
+        let even = &mut dst[(2 * b + 1) * w2 + 1..][..2 * len + 1];
         for a in 0..=len {
-            let c = p(a, b);
-            let sum =
-                src[c + 1] + src[c + w] + src[c + w - 1] + src[c - 1] + src[c - w] + src[c - w + 1];
-            dst[row + 2 * a] = regular_vertex_point(src[c], sum);
+            let sum = mid[a + 2] + hi[a + 1] + hi[a] + mid[a] + lo[a + 1] + lo[a + 2];
+            even[2 * a] = regular_vertex_point(mid[a + 1], sum);
             if a < len {
-                dst[row + 2 * a + 1] =
-                    smooth_edge_point(src[c], src[c + 1], src[c + w], src[c + 1 - w]);
+                even[2 * a + 1] = smooth_edge_point(mid[a + 1], mid[a + 2], hi[a + 1], lo[a + 2]);
             }
         }
         if b == n {
             break;
         }
         // Odd child row 2b + 1: edges (a, b)-(a, b + 1) at even i', (a + 1, b)-(a, b + 1) at odd.
-        let row = (2 * b + 2) * w2 + 1;
+        let odd = &mut dst[(2 * b + 2) * w2 + 1..][..2 * len];
         for a in 0..len {
-            let c = p(a, b);
-            dst[row + 2 * a] = smooth_edge_point(src[c], src[c + w], src[c + w - 1], src[c + 1]);
-            dst[row + 2 * a + 1] =
-                smooth_edge_point(src[c + 1], src[c + w], src[c], src[c + w + 1]);
+            odd[2 * a] = smooth_edge_point(mid[a + 1], hi[a + 1], hi[a], mid[a + 2]);
+            odd[2 * a + 1] = smooth_edge_point(mid[a + 2], hi[a + 1], mid[a + 1], hi[a + 2]);
         }
     }
 }
@@ -405,16 +413,16 @@ pub(crate) fn side_ring(
         s(a, -1),
         s(a + 1, -1),
     ];
-    let (ahead, behind) = (side.sharp[a as usize], side.sharp[a as usize - 1]);
+    let (ahead, behind) = (side.segment(a as usize), side.segment(a as usize - 1));
     *sharp = [ahead, 0.0, 0.0, behind, 0.0, 0.0];
     let semi = |x: f32| if is_semi_sharp(x) { (x, 1) } else { (0.0, 0) };
     let far_ahead = if a + 1 < n as i32 {
-        semi(side.sharp[a as usize + 1])
+        semi(side.segment(a as usize + 1))
     } else {
         far_ends[1]
     };
     let far_behind = if a > 1 {
-        semi(side.sharp[a as usize - 2])
+        semi(side.segment(a as usize - 2))
     } else {
         far_ends[0]
     };
