@@ -204,7 +204,8 @@ impl TriWorker {
                 corner.center = pos(v);
                 corner.edges.clear();
                 let (a, b) = ring.split_at(corner.r0);
-                corner.edges.extend(b.iter().chain(a).map(|&w| pos(w)));
+                corner.edges.extend(b.iter().map(|&w| pos(w)));
+                corner.edges.extend(a.iter().map(|&w| pos(w)));
             } else {
                 corner.ring.load(mesh, VertexId(v), Scheme::Loop);
             }
