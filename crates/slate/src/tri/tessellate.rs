@@ -190,12 +190,16 @@ fn run_patch(
         let m = ((n - 1) * (n - 2) / 2) as usize;
         let first = p.interior as usize;
         out.check_range(first, m);
-        w.limit_interior(|i, j, pos, nrm| {
-            let k = first + (interior_offset(n, j) + i - 1) as usize;
-            // SAFETY: `i, j >= 1`, `i + j <= n - 1`: `k` lies in this patch's interior range,
-            // checked above, which only this patch writes.
-            unsafe { out.write_unchecked(k, pos, nrm) }
+        let (mut k, end) = (first, first + m);
+        w.limit_interior(|pos, nrm| {
+            // Called `m` times in the order of the interior ids (row by row).
+            assert!(k < end, "interior points beyond the patch's range");
+            // SAFETY: `k` lies in `first..first + m`, this patch's interior range (checked
+            // above), which only this patch writes.
+            unsafe { out.write_unchecked(k, pos, nrm) };
+            k += 1;
         });
+        debug_assert_eq!(k, end);
     }
     if visible {
         write_triangles(p, n, tris, &mut scratch.ids);
