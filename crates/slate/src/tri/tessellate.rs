@@ -233,21 +233,25 @@ fn write_triangles(p: &TriPatch, n: u32, tris: &mut [u32], ids: &mut Vec<u32>) {
     }
     ids.push(p.corners[2]);
     debug_assert_eq!(ids.len() as u32, row(n + 1));
-    let mut t = 0;
+    // Row `b` of triangles: `len - 1` (up, down) pairs, then the last up triangle.
+    let mut rest = &mut tris[..];
     for b in 0..n {
         let (lo, hi) = (row(b) as usize, row(b + 1) as usize);
         let len = (n - b) as usize;
         let (below, above) = (&ids[lo..lo + len + 1], &ids[hi..hi + len]);
-        for a in 0..len {
-            tris[t..t + 3].copy_from_slice(&[below[a], below[a + 1], above[a]]);
-            t += 3;
-            if a + 1 < len {
-                tris[t..t + 3].copy_from_slice(&[below[a + 1], above[a + 1], above[a]]);
-                t += 3;
-            }
+        let (out, tail) = std::mem::take(&mut rest).split_at_mut(3 * (2 * len - 1));
+        rest = tail;
+        let (pairs, last) = out.split_at_mut(6 * (len - 1));
+        for ((t, d), u) in pairs
+            .chunks_exact_mut(6)
+            .zip(below.windows(2))
+            .zip(above.windows(2))
+        {
+            t.copy_from_slice(&[d[0], d[1], u[0], d[1], u[1], u[0]]);
         }
+        last.copy_from_slice(&[below[len - 1], below[len], above[len - 1]]);
     }
-    debug_assert_eq!(t, tris.len());
+    debug_assert!(rest.is_empty());
 }
 
 /// The triangle corners (index into the patch's `3 n^2` corners) at the lattice points of
