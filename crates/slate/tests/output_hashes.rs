@@ -234,7 +234,9 @@ fn loop_output_is_bit_identical_to_the_recorded_hashes() {
     let recorded = std::fs::read_to_string(&file).expect("read loop_output_hashes.txt");
     let (head, cases) = recorded.split_at(recorded.find('\n').map_or(0, |i| i + 1));
     if head != fingerprint {
-        eprintln!("loop_output_hashes: sin/cos differ from the recording's: only thread-count and reuse independence were checked");
+        eprintln!(
+            "loop_output_hashes: sin/cos differ from the recording's: only thread-count and reuse independence were checked"
+        );
         return;
     }
     let bad: Vec<String> = cases

@@ -46,14 +46,7 @@ impl TriWorker {
             let mid = &t[(j + 1) * w..(j + 2) * w];
             let hi = &t[(j + 2) * w..(j + 3) * w];
             for i in 1..n - j {
-                let e = [
-                    mid[i + 2],
-                    hi[i + 1],
-                    hi[i],
-                    mid[i],
-                    lo[i + 1],
-                    lo[i + 2],
-                ];
+                let e = [mid[i + 2], hi[i + 1], hi[i], mid[i], lo[i + 1], lo[i + 2]];
                 let (p, t1, t2) = regular_limit(mid[i + 1], e);
                 f(p + o, normal(t1, t2));
             }

@@ -511,7 +511,11 @@ mod tests {
                             continue;
                         }
                         let k = base + a as isize * da + b as isize * db;
-                        assert_eq!(k as usize, TriWorker::lidx(n, c, a, b), "n {n} c {c} ({a}, {b})");
+                        assert_eq!(
+                            k as usize,
+                            TriWorker::lidx(n, c, a, b),
+                            "n {n} c {c} ({a}, {b})"
+                        );
                     }
                 }
             }
