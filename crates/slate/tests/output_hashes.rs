@@ -174,3 +174,77 @@ fn output_is_bit_identical_to_the_recorded_hashes() {
     assert_eq!(cases.lines().count(), now.lines().count(), "case count");
     assert!(bad.is_empty(), "output changed:\n{}", bad.join("\n"));
 }
+
+/// Deepest depth of the Loop cases.
+const LOOP_MAX_DEPTH: subdiv_rules::Depth = 5;
+
+/// The Loop slates' cases (every fixture cage of triangles, depths 1..=5, 1 and 2 threads and a
+/// repeated run into the same buffers): one line `name depth points hash` each.
+fn loop_lines() -> String {
+    let pools: Vec<rayon::ThreadPool> = [1, 2]
+        .map(|t| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(t)
+                .build()
+                .expect("thread pool")
+        })
+        .into();
+    let mut out = String::new();
+    for (name, mesh) in cages() {
+        // Cages Loop refuses (not triangles, doubled triangles) are not cases.
+        if subdiv_slate::TriLayout::new(&mesh, 1).is_err() {
+            continue;
+        }
+        for depth in 1..=LOOP_MAX_DEPTH {
+            let mut hashes = Vec::new();
+            for pool in &pools {
+                pool.install(|| {
+                    let t = subdiv_slate::tessellate_loop(&mesh, depth).expect("tessellation");
+                    hashes.push((hash(&t), t.positions.len()));
+                    let layout = subdiv_slate::TriLayout::new(&mesh, depth).expect("layout");
+                    let mut again = t.clone();
+                    subdiv_slate::tessellate_loop_layout_into(&mesh, &layout, &mut again)
+                        .expect("tessellation");
+                    hashes.push((hash(&again), again.positions.len()));
+                });
+            }
+            assert!(
+                hashes.iter().all(|h| *h == hashes[0]),
+                "{name} depth {depth}: Loop output depends on the thread count or on reuse"
+            );
+            let (h, points) = hashes[0];
+            writeln!(out, "{name} {depth} {points} {h:016x}").expect("write to a string");
+        }
+    }
+    out
+}
+
+/// The Loop slates' output against `loop_output_hashes.txt`, recorded at commit d11c6ec (before
+/// the speed work of issue 14 items 2 and 5); same platform rule and `SLATE_HASHES_BLESS` as
+/// above.
+#[test]
+fn loop_output_is_bit_identical_to_the_recorded_hashes() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/loop_output_hashes.txt");
+    let fingerprint = format!("trig {:016x}\n", trig_fingerprint());
+    let now = loop_lines();
+    if std::env::var_os("SLATE_HASHES_BLESS").is_some() {
+        std::fs::write(&file, format!("{fingerprint}{now}")).expect("write loop_output_hashes.txt");
+        return;
+    }
+    let recorded = std::fs::read_to_string(&file).expect("read loop_output_hashes.txt");
+    let (head, cases) = recorded.split_at(recorded.find('\n').map_or(0, |i| i + 1));
+    if head != fingerprint {
+        eprintln!(
+            "loop_output_hashes: sin/cos differ from the recording's: only thread-count and reuse independence were checked"
+        );
+        return;
+    }
+    let bad: Vec<String> = cases
+        .lines()
+        .zip(now.lines())
+        .filter(|(want, got)| want != got)
+        .map(|(want, got)| format!("recorded {want}\n     now {got}"))
+        .collect();
+    assert_eq!(cases.lines().count(), now.lines().count(), "case count");
+    assert!(bad.is_empty(), "Loop output changed:\n{}", bad.join("\n"));
+}

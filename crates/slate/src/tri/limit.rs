@@ -31,28 +31,50 @@ fn normal(t1: Vec3A, t2: Vec3A) -> Vec3A {
 }
 
 impl TriWorker {
-    /// Calls `f(i, j, position, normal)` for every interior point (`i, j >= 1`, `i + j <= n - 1`)
-    /// of the last level: all are smooth valence-6 points.
+    /// Calls `f(position, normal)` for every interior point (`i, j >= 1`, `i + j <= n - 1`) of
+    /// the last level, row by row (`j`, then `i`): the order of the patch's interior ids. All are
+    /// smooth valence-6 points.
     #[inline]
-    pub(crate) fn limit_interior(&self, mut f: impl FnMut(u32, u32, Vec3A, Vec3A)) {
+    pub(crate) fn limit_interior(&self, mut f: impl FnMut(Vec3A, Vec3A)) {
         let n = self.n as usize;
         let w = n + 3;
         let t = self.table();
         let o = self.origin;
         for j in 1..n.saturating_sub(1) {
+            // Rows j - 1, j, j + 1 from column -1: point (i, j) is `mid[i + 1]`.
+            let lo = &t[j * w..(j + 1) * w];
+            let mid = &t[(j + 1) * w..(j + 2) * w];
+            let hi = &t[(j + 2) * w..(j + 3) * w];
             for i in 1..n - j {
-                let c = (j + 1) * w + i + 1;
-                let e = [
-                    t[c + 1],
-                    t[c + w],
-                    t[c + w - 1],
-                    t[c - 1],
-                    t[c - w],
-                    t[c - w + 1],
-                ];
-                let (p, t1, t2) = regular_limit(t[c], e);
-                f(i as u32, j as u32, p + o, normal(t1, t2));
+                let e = [mid[i + 2], hi[i + 1], hi[i], mid[i], lo[i + 1], lo[i + 2]];
+                let (p, t1, t2) = regular_limit(mid[i + 1], e);
+                f(p + o, normal(t1, t2));
             }
+        }
+    }
+
+    /// Calls `f(a, position, normal)` for every inner point `a` (`0 < a < n`) of side `c`, which
+    /// must be smooth (interior, no sharpness): [`TriWorker::limit_side`]'s regular path (the
+    /// same ring, the same sums) with the ring read by index steps along the side.
+    #[inline]
+    pub(crate) fn limit_smooth_side(&self, c: usize, mut f: impl FnMut(u32, Vec3A, Vec3A)) {
+        debug_assert!(self.sides[c].smooth);
+        let t = self.table();
+        let (base, da, db) = TriWorker::frame(self.n, c);
+        let at = |k: isize| t[k as usize];
+        for a in 1..self.n {
+            let k = base + a as isize * da;
+            // The ring of `side_ring`: (a+1, 0), (a, 1), (a-1, 1), (a-1, 0), (a, -1), (a+1, -1).
+            let e = [
+                at(k + da),
+                at(k + db),
+                at(k - da + db),
+                at(k - da),
+                at(k - db),
+                at(k + da - db),
+            ];
+            let (p, t1, t2) = regular_limit(at(k), e);
+            f(a, p + self.origin, normal(t1, t2));
         }
     }
 

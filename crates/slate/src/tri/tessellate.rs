@@ -144,9 +144,14 @@ fn run_patch(
 ) -> Vec<(u32, [f32; 3])> {
     let n = 1u32 << depth;
     w.gather(mesh, layout, p, n);
-    for _ in 0..depth {
+    for _ in 1..depth {
         w.step();
     }
+    // The last step skips what no limit below reads: the ring row beyond a smooth side another
+    // patch owns, and a fast corner that neither this patch nor a side it evaluates needs.
+    let rows: [bool; 3] = std::array::from_fn(|c| p.sides[c].owned || !w.sides[c].smooth);
+    let corners = std::array::from_fn(|c| p.corner_owned[c] || rows[c] || rows[(c + 2) % 3]);
+    w.step_with(rows, corners);
     let visible = !tris.is_empty();
     let mut sided: Vec<(u32, u32, Vec3A)> = Vec::new();
     for c in 0..3 {
@@ -166,6 +171,11 @@ fn run_patch(
         if !(side.owned || (visible && !w.sides[c].smooth)) {
             continue;
         }
+        if w.sides[c].smooth {
+            // Smooth: no one-sided normals; only the owner gets here.
+            w.limit_smooth_side(c, |a, pos, nrm| out.write(side.id(n, a), pos, nrm));
+            continue;
+        }
         for a in 1..n {
             let (pos, nrm, one) = w.limit_side(scratch, c, a);
             if side.owned {
@@ -181,12 +191,16 @@ fn run_patch(
         let m = ((n - 1) * (n - 2) / 2) as usize;
         let first = p.interior as usize;
         out.check_range(first, m);
-        w.limit_interior(|i, j, pos, nrm| {
-            let k = first + (interior_offset(n, j) + i - 1) as usize;
-            // SAFETY: `i, j >= 1`, `i + j <= n - 1`: `k` lies in this patch's interior range,
-            // checked above, which only this patch writes.
-            unsafe { out.write_unchecked(k, pos, nrm) }
+        let (mut k, end) = (first, first + m);
+        w.limit_interior(|pos, nrm| {
+            // Called `m` times in the order of the interior ids (row by row).
+            assert!(k < end, "interior points beyond the patch's range");
+            // SAFETY: `k` lies in `first..first + m`, this patch's interior range (checked
+            // above), which only this patch writes.
+            unsafe { out.write_unchecked(k, pos, nrm) };
+            k += 1;
         });
+        debug_assert_eq!(k, end);
     }
     if visible {
         write_triangles(p, n, tris, &mut scratch.ids);
@@ -206,31 +220,39 @@ fn up_index(n: u32, a: u32, b: u32) -> u32 {
 fn write_triangles(p: &TriPatch, n: u32, tris: &mut [u32], ids: &mut Vec<u32>) {
     // Row `b` of the lattice starts at `row(b)` and holds `n + 1 - b` points.
     let row = |b: u32| (b * (2 * n + 3) - b * b) / 2;
+    // `TriLayout::point_id` row by row, its cases laid out: row 0 is corner 0, side 0 and
+    // corner 1; row `j` side 2, the interior row and side 1; row `n` corner 2.
     ids.clear();
-    for j in 0..=n {
-        for i in 0..=n - j {
-            ids.push(TriLayout::point_id(p, n, i, j).0);
-        }
+    ids.push(p.corners[0]);
+    ids.extend((1..n).map(|a| p.sides[0].id(n, a)));
+    ids.push(p.corners[1]);
+    for j in 1..n {
+        ids.push(p.sides[2].id(n, n - j));
+        let first = p.interior + interior_offset(n, j);
+        ids.extend(first..first + (n - j - 1));
+        ids.push(p.sides[1].id(n, j));
     }
-    let mut out = tris.chunks_exact_mut(3);
+    ids.push(p.corners[2]);
+    debug_assert_eq!(ids.len() as u32, row(n + 1));
+    // Row `b` of triangles: `len - 1` (up, down) pairs, then the last up triangle.
+    let mut rest = &mut tris[..];
     for b in 0..n {
         let (lo, hi) = (row(b) as usize, row(b + 1) as usize);
         let len = (n - b) as usize;
-        for a in 0..len {
-            out.next().expect("n^2 triangles").copy_from_slice(&[
-                ids[lo + a],
-                ids[lo + a + 1],
-                ids[hi + a],
-            ]);
-            if a + 1 < len {
-                out.next().expect("n^2 triangles").copy_from_slice(&[
-                    ids[lo + a + 1],
-                    ids[hi + a + 1],
-                    ids[hi + a],
-                ]);
-            }
+        let (below, above) = (&ids[lo..lo + len + 1], &ids[hi..hi + len]);
+        let (out, tail) = std::mem::take(&mut rest).split_at_mut(3 * (2 * len - 1));
+        rest = tail;
+        let (pairs, last) = out.split_at_mut(6 * (len - 1));
+        for ((t, d), u) in pairs
+            .chunks_exact_mut(6)
+            .zip(below.windows(2))
+            .zip(above.windows(2))
+        {
+            t.copy_from_slice(&[d[0], d[1], u[0], d[1], u[1], u[0]]);
         }
+        last.copy_from_slice(&[below[len - 1], below[len], above[len - 1]]);
     }
+    debug_assert!(rest.is_empty());
 }
 
 /// The triangle corners (index into the patch's `3 n^2` corners) at the lattice points of

@@ -51,9 +51,18 @@ pub(crate) struct Side {
     pub interior: bool,
     /// Interior and no sharpness on any segment: the regular rules apply along it.
     pub smooth: bool,
-    /// Sharpness of each of the `n` segments, from the side's first corner.
+    /// Sharpness of each of the `n` segments, from the side's first corner; after a step on a
+    /// smooth side empty instead of `n` zeros (read it through [`Side::segment`]).
     pub sharp: Vec<f32>,
     tmp: Vec<f32>,
+}
+
+impl Side {
+    /// Sharpness of segment `k`: 0 on a smooth side.
+    #[inline]
+    pub(crate) fn segment(&self, k: usize) -> f32 {
+        if self.smooth { 0.0 } else { self.sharp[k] }
+    }
 }
 
 /// One thread's slates and corner arrays for triangular patches.
@@ -97,6 +106,23 @@ impl TriWorker {
             0 => (a, b),
             1 => (n - a - b, a),
             _ => (b, n - a - b),
+        }
+    }
+
+    /// Corner `c`'s frame at grid size `n` as index arithmetic: its local point `(a, b)` lies at
+    /// table index `base + a * da + b * db` (the index [`TriWorker::lidx`] computes), returned
+    /// as `(base, da, db)`. Walks along a side step by `da` instead of mapping every point.
+    #[inline(always)]
+    pub(crate) fn frame(n: u32, c: usize) -> (isize, isize, isize) {
+        let w = n as isize + 3;
+        let n = n as isize;
+        match c {
+            // (i, j) = (a, b): (b + 1) w + a + 1.
+            0 => (w + 1, 1, w),
+            // (i, j) = (n - a - b, a): (a + 1) w + n - a - b + 1.
+            1 => (w + n + 1, w - 1, -1),
+            // (i, j) = (b, n - a - b): (n - a - b + 1) w + b + 1.
+            _ => ((n + 1) * w + 1, -w, 1 - w),
         }
     }
 
@@ -178,7 +204,8 @@ impl TriWorker {
                 corner.center = pos(v);
                 corner.edges.clear();
                 let (a, b) = ring.split_at(corner.r0);
-                corner.edges.extend(b.iter().chain(a).map(|&w| pos(w)));
+                corner.edges.extend(b.iter().map(|&w| pos(w)));
+                corner.edges.extend(a.iter().map(|&w| pos(w)));
             } else {
                 corner.ring.load(mesh, VertexId(v), Scheme::Loop);
             }
@@ -187,6 +214,14 @@ impl TriWorker {
 
     /// One subdivision step into the other table (grid size `n` to `2n`).
     pub fn step(&mut self) {
+        self.step_with([true; 3], [true; 3]);
+    }
+
+    /// [`TriWorker::step`] that may skip the child ring row beyond a smooth side `c` with
+    /// `rows[c] == false` and the refinement of a fast corner `c` with `corners[c] == false`:
+    /// the last step of a patch whose limits will not read them (the points left stale are read
+    /// by no later stage, so the output is that of `step`).
+    pub(crate) fn step_with(&mut self, rows: [bool; 3], corners: [bool; 3]) {
         let n = self.n;
         let n2 = 2 * n;
         let mut tables = std::mem::take(&mut self.tables);
@@ -199,7 +234,7 @@ impl TriWorker {
         regular_step(src, dst, n);
         // Ring rows beyond the interior sides.
         for (c, side) in self.sides.iter().enumerate() {
-            if side.interior {
+            if side.interior && (rows[c] || !side.smooth) {
                 ring_row(src, dst, n, c);
             }
         }
@@ -227,14 +262,17 @@ impl TriWorker {
             ];
             let side = &mut self.sides[c];
             if side.smooth {
+                // Its `n2` segments are all 0 (`Side::segment`): nothing to store.
                 side.sharp.clear();
-                side.sharp.resize(n2 as usize, 0.0);
             } else {
                 general_side(src, dst, n, c, side, method, ends);
             }
         }
         // Corners last: their points replace whatever the passes above wrote there.
         for c in 0..3 {
+            if self.corners[c].fast && !corners[c] {
+                continue;
+            }
             let b = if self.corners[c].fast {
                 let v = self.corners[c].valence;
                 self.beta(v)
@@ -285,12 +323,14 @@ impl TriWorker {
 /// edge point of every edge (opposites: the neighbouring edges).
 fn refine_fast_corner(corner: &mut Corner, b: f64) {
     let v = corner.valence;
-    let (c, e) = (corner.center, &corner.edges);
+    let (c, e) = (corner.center, &corner.edges[..v]);
     corner.tmp.clear();
+    // Neighbours around the ring without a division per edge.
+    let mut prev = e[v - 1];
     for t in 0..v {
-        let next = e[(t + 1) % v];
-        let prev = e[(t + v - 1) % v];
+        let next = if t + 1 == v { e[0] } else { e[t + 1] };
         corner.tmp.push(smooth_edge_point(c, e[t], next, prev));
+        prev = e[t];
     }
     corner.center = smooth_vertex_point(c, e, b);
     std::mem::swap(&mut corner.edges, &mut corner.tmp);
@@ -303,32 +343,31 @@ fn regular_step(src: &[Vec3A], dst: &mut [Vec3A], n: u32) {
     let w = n as usize + 3;
     let w2 = 2 * n as usize + 3;
     let n = n as usize;
-    // Parent (a, b) at src[(b + 1) * w + a + 1].
-    let p = |a: usize, b: usize| (b + 1) * w + a + 1;
+    // Parent (a, b) is `mid[a + 1]` with `mid` the table row of `b` (from column -1), `lo` and
+    // `hi` the rows of `b - 1` and `b + 1`: whole-row slices, so the loops index without a
+    // bounds check per point. The sums are those of the point-by-point form, in its order.
     for b in 0..=n {
-        // Even child row 2b: vertex points at even i', edge points of (a, b)-(a + 1, b) at odd.
-        let row = (2 * b + 1) * w2 + 1;
         let len = n - b;
+        let lo = &src[b * w..(b + 1) * w];
+        let mid = &src[(b + 1) * w..(b + 2) * w];
+        let hi = &src[(b + 2) * w..(b + 3) * w];
+        // Even child row 2b: vertex points at even i', edge points of (a, b)-(a + 1, b) at odd.
+        let even = &mut dst[(2 * b + 1) * w2 + 1..][..2 * len + 1];
         for a in 0..=len {
-            let c = p(a, b);
-            let sum =
-                src[c + 1] + src[c + w] + src[c + w - 1] + src[c - 1] + src[c - w] + src[c - w + 1];
-            dst[row + 2 * a] = regular_vertex_point(src[c], sum);
+            let sum = mid[a + 2] + hi[a + 1] + hi[a] + mid[a] + lo[a + 1] + lo[a + 2];
+            even[2 * a] = regular_vertex_point(mid[a + 1], sum);
             if a < len {
-                dst[row + 2 * a + 1] =
-                    smooth_edge_point(src[c], src[c + 1], src[c + w], src[c + 1 - w]);
+                even[2 * a + 1] = smooth_edge_point(mid[a + 1], mid[a + 2], hi[a + 1], lo[a + 2]);
             }
         }
         if b == n {
             break;
         }
         // Odd child row 2b + 1: edges (a, b)-(a, b + 1) at even i', (a + 1, b)-(a, b + 1) at odd.
-        let row = (2 * b + 2) * w2 + 1;
+        let odd = &mut dst[(2 * b + 2) * w2 + 1..][..2 * len];
         for a in 0..len {
-            let c = p(a, b);
-            dst[row + 2 * a] = smooth_edge_point(src[c], src[c + w], src[c + w - 1], src[c + 1]);
-            dst[row + 2 * a + 1] =
-                smooth_edge_point(src[c + 1], src[c + w], src[c], src[c + w + 1]);
+            odd[2 * a] = smooth_edge_point(mid[a + 1], hi[a + 1], hi[a], mid[a + 2]);
+            odd[2 * a + 1] = smooth_edge_point(mid[a + 2], hi[a + 1], mid[a + 1], hi[a + 2]);
         }
     }
 }
@@ -337,15 +376,17 @@ fn regular_step(src: &[Vec3A], dst: &mut [Vec3A], n: u32) {
 /// smooth edge points of the edges from side points to ring points (inside the next cage
 /// triangle). `(1, -1)` and `(2n, -1)` belong to the corners.
 fn ring_row(src: &[Vec3A], dst: &mut [Vec3A], n: u32, c: usize) {
-    let s = |a: i32, b: i32| src[TriWorker::lidx(n, c, a, b)];
-    let n2 = 2 * n;
-    for a in 1..n as i32 {
+    let (sb, sa, sn) = TriWorker::frame(n, c);
+    let (db, da, dn) = TriWorker::frame(2 * n, c);
+    let s = |k: isize| src[k as usize];
+    for a in 1..n as isize {
+        // Source (a, 0) and the child (2a, -1).
+        let k = sb + a * sa;
+        let d = db + 2 * a * da - dn;
         // i' = 2a + 1: edge (a, 0)-(a + 1, -1), opposites (a + 1, 0), (a, -1).
-        dst[TriWorker::lidx(n2, c, 2 * a + 1, -1)] =
-            smooth_edge_point(s(a, 0), s(a + 1, -1), s(a + 1, 0), s(a, -1));
+        dst[(d + da) as usize] = smooth_edge_point(s(k), s(k + sa - sn), s(k + sa), s(k - sn));
         // i' = 2a: edge (a, 0)-(a, -1), opposites (a - 1, 0), (a + 1, -1).
-        dst[TriWorker::lidx(n2, c, 2 * a, -1)] =
-            smooth_edge_point(s(a, 0), s(a, -1), s(a - 1, 0), s(a + 1, -1));
+        dst[d as usize] = smooth_edge_point(s(k), s(k - sn), s(k - sa), s(k + sa - sn));
     }
 }
 
@@ -373,16 +414,16 @@ pub(crate) fn side_ring(
         s(a, -1),
         s(a + 1, -1),
     ];
-    let (ahead, behind) = (side.sharp[a as usize], side.sharp[a as usize - 1]);
+    let (ahead, behind) = (side.segment(a as usize), side.segment(a as usize - 1));
     *sharp = [ahead, 0.0, 0.0, behind, 0.0, 0.0];
     let semi = |x: f32| if is_semi_sharp(x) { (x, 1) } else { (0.0, 0) };
     let far_ahead = if a + 1 < n as i32 {
-        semi(side.sharp[a as usize + 1])
+        semi(side.segment(a as usize + 1))
     } else {
         far_ends[1]
     };
     let far_behind = if a > 1 {
-        semi(side.sharp[a as usize - 2])
+        semi(side.segment(a as usize - 2))
     } else {
         far_ends[0]
     };
@@ -452,4 +493,32 @@ fn general_side(
     }
     std::mem::swap(&mut side.sharp, &mut side.tmp);
     side.smooth = side.interior && side.sharp.iter().all(|&s| s <= 0.0);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::TriWorker;
+
+    #[test]
+    fn frame_steps_reach_the_points_lidx_maps() {
+        for n in [1u32, 2, 4, 8, 32] {
+            for c in 0..3 {
+                let (base, da, db) = TriWorker::frame(n, c);
+                for b in -1..=1i32 {
+                    for a in -1..=n as i32 + 1 {
+                        let (i, j) = TriWorker::local(n, c, a, b);
+                        if i < -1 || j < -1 || i + j > n as i32 + 1 {
+                            continue;
+                        }
+                        let k = base + a as isize * da + b as isize * db;
+                        assert_eq!(
+                            k as usize,
+                            TriWorker::lidx(n, c, a, b),
+                            "n {n} c {c} ({a}, {b})"
+                        );
+                    }
+                }
+            }
+        }
+    }
 }
