@@ -74,11 +74,17 @@ pub fn tri_patch_lattice(
         }
     }
     if n > 2 {
-        w.limit_interior(|i, j, q, m| {
+        // `limit_interior` visits the inner points row by row: j = 1..n-1, i = 1..n-j.
+        let (mut i, mut j) = (1u32, 1u32);
+        w.limit_interior(|q, m| {
             debug_assert!(interior_offset(n, j) < (n - 1) * (n - 2) / 2);
             let k = tri_lattice_index(n, i, j) as usize;
             pos[k] = q.to_array();
             nrm[k] = m.to_array();
+            i += 1;
+            if i + j >= n {
+                (i, j) = (1, j + 1);
+            }
         });
     }
     sided.sort_unstable_by_key(|&(k, _)| k);
