@@ -20,5 +20,5 @@ pub use metrics::{
     sample_silhouette_distance, silhouette_distance,
 };
 pub use orbit::orbit_cameras;
-pub use config::{Config, ConfigQuality, QualityError, QualityParams};
+pub use config::{Config, ConfigQuality, CurvatureParams, QualityError, QualityParams};
 pub use run::{QualityRun, measure};
