@@ -1,7 +1,8 @@
 //! Per-frame depth assignment (Settgast et al. 2004, Section 3.1): back/front/silhouette
 //! classification of vertices and faces (after Luebke and Erikson 1997), curvature depths for
-//! front faces, the average of `maxsd` and the curvature depth for silhouette faces, then the
-//! projected-size adjustment; or, beyond the paper, the least depth whose drawn triangles stay
+//! front faces (and for back faces of an open surface, whose back side can be seen), the
+//! average of `maxsd` and the curvature depth for silhouette faces, then the projected-size
+//! adjustment; or, beyond the paper, the least depth whose drawn triangles stay
 //! within a pixel error on screen ([`crate::pixel_error`]).
 
 use glam::Vec3;
@@ -169,6 +170,12 @@ pub fn assign(
         depth: Vec::with_capacity(mesh.num_faces()),
         ..Assignment::default()
     };
+    // Section 3.1 draws back faces at depth 0: on a closed surface they are hidden. On an open
+    // one (boundary edges or holes: a helmet, a pawn open at the base) the back side shows
+    // through the opening, so back faces are assigned like front faces (their curvature depth,
+    // then the projected size); they stay classified `Back` (frame-rate control never raises
+    // them, `cull_back` still drops them).
+    let back_hidden = mesh.is_closed();
     for f in mesh.faces() {
         let vs = mesh.face_vertices(f);
         let cls = if vs.iter().all(|v| vclass[v.idx()] == Class::Back) {
@@ -180,8 +187,8 @@ pub fn assign(
         };
         let curv = vs.iter().map(|v| vd.depth[v.idx()]).max().unwrap_or(0);
         let mut d = match cls {
-            Class::Back => 0,
-            Class::Front => curv,
+            Class::Back if back_hidden => 0,
+            Class::Back | Class::Front => curv,
             Class::Silhouette => (p.max_depth + curv).div_ceil(2),
         };
         let sphere = &spheres[f.idx()];
@@ -194,7 +201,7 @@ pub fn assign(
                 let max_angle = p.shading_error_deg.to_radians();
                 pixel_error_depth(camera, sphere, e, px, max_angle, p.max_depth)
             };
-        } else if cls != Class::Back
+        } else if (cls != Class::Back || !back_hidden)
             && let Some(ps) = p.projected_size
         {
             d = adjust_projected(d, r, ps, p.max_depth);
@@ -294,6 +301,46 @@ mod tests {
                 } else {
                     assert!(d == 0 || d == 6, "R {r} from {l}: {d}");
                 }
+            }
+        }
+    }
+
+    /// A cube (8 vertices, 6 quads), optionally without its top face (open).
+    fn cube(open: bool) -> Mesh {
+        let mut obj = String::from(
+            "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\n\
+             f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 1 5 7 3\nf 2 4 8 6\n",
+        );
+        if !open {
+            obj.push_str("f 3 7 8 4\n");
+        }
+        Mesh::from_soup(&subdiv_mesh::parse_obj(&obj).unwrap()).unwrap()
+    }
+
+    #[test]
+    fn back_faces_of_an_open_surface_are_assigned_like_front_faces() {
+        // Seen from far above (+Y) the bottom face is a back face. The closed cube hides it:
+        // depth 0. The open cube (no top face) shows its floor through the opening: its back
+        // faces get their curvature depth like front faces.
+        let p = DepthParams {
+            projected_size: None,
+            ..DepthParams::default()
+        };
+        let camera = cam(Vec3::new(0.3, 12.0, 0.2));
+        for open in [false, true] {
+            let mesh = cube(open);
+            assert_eq!(mesh.is_closed(), !open);
+            let vd = VertexData::compute(&mesh, p.cone_aperture_deg, p.max_depth);
+            let spheres = crate::sphere::face_spheres(&mesh);
+            let a = assign(&mesh, &vd, &spheres, None, &camera, &p);
+            let back: Vec<usize> = (0..a.depth.len())
+                .filter(|&f| a.class[f] == Class::Back)
+                .collect();
+            assert!(!back.is_empty());
+            for f in back {
+                let want = if open { a.curvature[f] } else { 0 };
+                assert_eq!(a.depth[f], want, "open {open}, face {f}");
+                assert!(a.curvature[f] > 0, "a cube's corners are curved");
             }
         }
     }
