@@ -19,16 +19,42 @@ use crate::sphere::Sphere;
 /// docs/performance.md show the triangles each tolerance costs.
 pub const DEFAULT_SHADING_ERROR_DEG: f32 = 2.0;
 
+/// Default [`DepthParams::cone_aperture_deg`]: 10°. At the curvature depth the face normals
+/// around a vertex lie within this angle of its limit normal, and the chord of a sub-patch `rho`
+/// pixels in radius whose normals turn by `alpha` deviates by about `rho * alpha / 4` pixels
+/// ([`priority`]): 0.17 px at `rho` = 4 px ([`DEFAULT_PROJECTED_SIZE`]). Swept 5°, 10°, 20°
+/// (docs/performance.md, "The curvature mode's defaults"): with the 1..4 px band, 5° costs
+/// 6-33 % more triangles for at most 0.03° less shading error, 20° saves up to 22 % and has up
+/// to a third more shading error (teapot).
+pub const DEFAULT_CONE_APERTURE_DEG: f32 = 10.0;
+
+/// Default [`DepthParams::classifier_eps`]: 0.1, a silhouette band of normals within
+/// `asin 0.1 = 5.7°` of edge-on (the paper gives no value). Swept 0.1 and 0.17 (`sin 10°`, the
+/// cone aperture): under 1 % more triangles for under 0.1° less shading error and the same
+/// silhouettes, so the narrower band stays.
+pub const DEFAULT_CLASSIFIER_EPS: f32 = 0.1;
+
+/// Default [`DepthParams::projected_size`]: sub-patch radii between 1 and 4 pixels.
+/// `R_min = 1 px`: a sub-patch of radius one pixel spans about two, so refining it further
+/// changes no more than those pixels (its triangles would go sub-pixel). `R_max = 4 px`: with
+/// the cone aperture's normal spread the chord of such a sub-patch stays within 0.2 px, and
+/// `R_max >= 2 R_min` keeps the band one level wide at least ([`adjust_projected`] lands in it
+/// whenever a depth can). The paper gives no values; the 2..8 px used before drew the teapot
+/// with 1.5 times uniform depth 3's triangles at worse errors (off the triangles-versus-error
+/// front), 1..4 lies on or near the front on every scene swept.
+pub const DEFAULT_PROJECTED_SIZE: (f32, f32) = (1.0, 4.0);
+
 /// The paper's user parameters, plus the pixel-error mode and back-face culling.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DepthParams {
     /// Deepest depth (`maxsd`).
     pub max_depth: Depth,
-    /// `NormalConeAperture` in degrees.
+    /// `NormalConeAperture` in degrees. Default [`DEFAULT_CONE_APERTURE_DEG`].
     pub cone_aperture_deg: f32,
-    /// `VertexClassifier` epsilon on `ln . camray`.
+    /// `VertexClassifier` epsilon on `ln . camray`. Default [`DEFAULT_CLASSIFIER_EPS`].
     pub classifier_eps: f32,
     /// `ProjectedSizeMin/Max`: sub-patch radius bounds in pixels (`None`: no adjustment).
+    /// Default [`DEFAULT_PROJECTED_SIZE`].
     pub projected_size: Option<(f32, f32)>,
     /// Screen-space error bound in pixels (replaces curvature and projected size when set).
     pub pixel_error: Option<f32>,
@@ -45,9 +71,9 @@ impl Default for DepthParams {
     fn default() -> Self {
         DepthParams {
             max_depth: 5,
-            cone_aperture_deg: 10.0,
-            classifier_eps: 0.1,
-            projected_size: Some((2.0, 8.0)),
+            cone_aperture_deg: DEFAULT_CONE_APERTURE_DEG,
+            classifier_eps: DEFAULT_CLASSIFIER_EPS,
+            projected_size: Some(DEFAULT_PROJECTED_SIZE),
             pixel_error: None,
             shading_error_deg: DEFAULT_SHADING_ERROR_DEG,
             cull_back: false,

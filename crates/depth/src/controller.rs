@@ -300,7 +300,13 @@ impl FrameRateController {
         let raise = self.share > 0.0;
         let mut movable: Vec<(f32, usize, f32)> = (0..a.depth.len())
             .filter(|&f| if raise { raisable(f) } else { lowerable(f) })
-            .map(|f| (priority(a.radius[f], a.curvature[f], a.depth[f]), f, tris(f)))
+            .map(|f| {
+                (
+                    priority(a.radius[f], a.curvature[f], a.depth[f]),
+                    f,
+                    tris(f),
+                )
+            })
             .collect();
         movable.sort_unstable_by(|x, y| {
             let by_priority = if raise {
