@@ -256,11 +256,15 @@ impl FrameRateController {
         let want = model_inverse(model(self.share) / r);
         let weight = err * err / (err * err + noise * noise);
         let next = self.share + GAIN * weight * (want - self.share);
-        // Beyond the share that moves every movable patch, the cap takes over.
+        // Beyond the share that moves every movable patch, the cap takes over. Raising it starts
+        // at the fewest triangles the new cap allows (every patch above depth 0 one level down,
+        // share -1), which is about where the old cap with share 0 was: the cost stays
+        // continuous instead of jumping by the whole level (share 0 at the new cap). Lowering
+        // it from share -1 to the new cap's share 0 is continuous already.
         let (hi, lo) = (self.reach.0, -self.reach.1);
         self.share = if next > hi && self.cap < self.max_depth {
             self.cap += 1;
-            0.0
+            -1.0
         } else if next < lo && self.cap > 0 {
             self.cap -= 1;
             0.0

@@ -419,3 +419,38 @@ fn holds_the_target_under_heavy_noise() {
         );
     }
 }
+
+#[test]
+fn a_saturated_share_raises_the_cap_without_a_jump() {
+    // At cap 2 the share up runs out of patches at once (few are below depth 2): the cap rises
+    // to 3 starting from share -1 (every patch above depth 0 one level down), not share 0, whose
+    // triangle count would jump by the whole level.
+    let geo = scene(700);
+    let mut c = FrameRateController::new(60.0, 4);
+    for _ in 0..4 {
+        feed(&mut c, 10.0 / 60.0); // far too slow: the cap drops to 2... then 0
+        if c.cap() == 2 {
+            break;
+        }
+    }
+    assert_eq!((c.cap(), c.share()), (2, 0.0));
+    let mut a = geo.clone();
+    c.apply(&mut a);
+    let at_cap2 = cost(&a, 1.0);
+    // 1.5 times too fast: not far enough to move the cap directly; the share saturates.
+    for _ in 0..10 {
+        feed(&mut c, 1.0 / 90.0);
+        let mut b = geo.clone();
+        c.apply(&mut b);
+        if c.cap() == 3 {
+            assert_eq!(c.share(), -1.0);
+            let at_cap3 = cost(&b, 1.0);
+            assert!(
+                at_cap3 < 1.5 * at_cap2,
+                "cap 3 share -1: {at_cap3} against cap 2 share 0: {at_cap2}"
+            );
+            return;
+        }
+    }
+    panic!("the cap never rose: {c:?}");
+}
