@@ -157,8 +157,16 @@ fn curvature_sweep_measures_every_combination_and_only_the_kinds_asked() {
 fn bad_curvature_parameters_are_refused() {
     let input = cube();
     for (flag, value, says) in [
-        ("--cone-aperture", "0", "--cone-aperture 0: need an angle in (0, 180) degrees"),
-        ("--classifier", "1.5", "--classifier 1.5: need an epsilon in [0, 1)"),
+        (
+            "--cone-aperture",
+            "0",
+            "--cone-aperture 0: need an angle in (0, 180) degrees",
+        ),
+        (
+            "--classifier",
+            "1.5",
+            "--classifier 1.5: need an epsilon in [0, 1)",
+        ),
     ] {
         let o = subdiv()
             .args(["bench", "quality", &input, flag, value])

@@ -15,10 +15,10 @@ mod run;
 #[cfg(test)]
 mod tests;
 
+pub use config::{Config, ConfigQuality, CurvatureParams, QualityError, QualityParams};
 pub use metrics::{
     FrameErrors, SUPERSAMPLE, area_coverage, compare_frames, compare_with_distance, quantile,
     sample_silhouette_distance, silhouette_distance,
 };
 pub use orbit::orbit_cameras;
-pub use config::{Config, ConfigQuality, CurvatureParams, QualityError, QualityParams};
 pub use run::{QualityRun, measure};

@@ -162,7 +162,10 @@ fn curvature_configurations_name_and_apply_their_parameters() {
     };
     assert_eq!(
         Config::Curvature(off).name(),
-        format!("curvature-cone{}-eps{}-sizeoff", d.cone_aperture_deg, d.classifier_eps)
+        format!(
+            "curvature-cone{}-eps{}-sizeoff",
+            d.cone_aperture_deg, d.classifier_eps
+        )
     );
     let base = subdiv_depth::DepthParams {
         max_depth: 3,
@@ -170,7 +173,12 @@ fn curvature_configurations_name_and_apply_their_parameters() {
     };
     let p = c.apply(base);
     assert_eq!(
-        (p.max_depth, p.cone_aperture_deg, p.classifier_eps, p.projected_size),
+        (
+            p.max_depth,
+            p.cone_aperture_deg,
+            p.classifier_eps,
+            p.projected_size
+        ),
         (3, 5.0, 0.25, Some((0.5, 4.0)))
     );
     assert_eq!(p.pixel_error, None);
