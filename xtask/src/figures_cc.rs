@@ -6,7 +6,7 @@
 //! Fig. 5 (triangles per frame, adaptive vs uniform depths 2, 3, 4, and their image error against
 //! the true surface every [`ERROR_EVERY`]th frame), Fig. 6 (quads per depth per frame), Fig. 7
 //! (frames per second: uniform depths 2, 3, 4, adaptive without control, and adaptive with
-//! frame-rate control whose target switches half-way to above uniform depth 2's rate; rendered
+//! frame-rate control aiming above uniform depth 2's rate, its target doubled half-way; rendered
 //! headless on the Vulkan driver).
 
 use std::path::{Path, PathBuf};
@@ -34,8 +34,21 @@ const FRAMES_RENDERED: usize = 200;
 const ERROR_EVERY: usize = 10;
 /// Image size of the error renders (each at 3x3 samples per pixel).
 const ERROR_SIZE: (u32, u32) = (640, 480);
-/// The second target over uniform depth 2's median rate: the paper's 39.5 against 31 fps.
+/// The first target over uniform depth 2's median rate: the paper's 39.5 against 31 fps.
 const HIGH_OVER_DEPTH2: f64 = 39.5 / 31.0;
+/// The switch: the second target over the first. Twice the rate needs about half the
+/// triangles, more than the share of patches one level can take away, so the controller has
+/// to move `maxsd` first (the paper's order), then the share.
+const SWITCH_FACTOR: f64 = 2.0;
+
+/// The 1-minute load average (`/proc/loadavg`), 0 where it cannot be read: the machine is
+/// shared, and the figures state the load they were measured under.
+fn load_average() -> f64 {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse().ok())
+        .unwrap_or(0.0)
+}
 
 /// One line of `subdiv bench framerate`.
 #[derive(Clone, Debug, Default)]
@@ -268,6 +281,7 @@ fn push_errors(t: &mut Table, config: &str, frames: &[Frame]) {
 /// Runs the experiment with the release `subdiv` binary `exe` and writes the figures.
 pub fn run(root: &Path, exe: &Path) -> Result<()> {
     let t0 = Instant::now();
+    let load_start = load_average();
     let dir: PathBuf = root.join("docs/figures");
     std::fs::create_dir_all(&dir)?;
     let (n5, n7) = (FRAMES_TESSELLATION.to_string(), FRAMES_RENDERED.to_string());
@@ -292,19 +306,23 @@ pub fn run(root: &Path, exe: &Path) -> Result<()> {
         .collect::<Result<_>>()?;
     let free = bench(exe, &["--frames", &n7])?;
     let fps_of = |v: &[Frame]| median(&v.iter().skip(1).map(|f| f.fps).collect::<Vec<_>>());
-    let (f2, f3, f4) = (fps_of(&fixed[0]), fps_of(&fixed[1]), fps_of(&fixed[2]));
-    // The paper switches from 14-15 fps (between its depths 3 and 4) to 39-40 fps (above depth 2).
-    let t_low = format!("{:.2}", (f3 + f4) / 2.0);
-    let t_high = format!("{:.2}", f2 * HIGH_OVER_DEPTH2);
+    let f2 = fps_of(&fixed[0]);
+    // A target above uniform depth 2's rate (the paper's 39-40 against 31 fps), then a switch
+    // to twice that rate. (The paper's other target, 14-15 fps between its depths 3 and 4, is
+    // not reachable here: the most detail the controller can give, every movable patch one
+    // level above its geometric depth, renders faster than uniform depth 3.)
+    let t_first = f2 * HIGH_OVER_DEPTH2;
+    let t_first_s = format!("{t_first:.2}");
+    let t_second_s = format!("{:.2}", t_first * SWITCH_FACTOR);
     let ctl = bench(
         exe,
         &[
             "--frames",
             &n7,
             "--target-fps",
-            &t_low,
+            &t_first_s,
             "--switch-fps",
-            &t_high,
+            &t_second_s,
             "--error-every",
             &every,
             "--error-size",
@@ -313,8 +331,17 @@ pub fn run(root: &Path, exe: &Path) -> Result<()> {
             REFERENCE_DEPTH,
         ],
     )?;
+    let loads = (load_start, load_average());
     let data = tables(
-        &adaptive, &uniform, &fixed, &free, &ctl, &t_low, &t_high, t0,
+        &adaptive,
+        &uniform,
+        &fixed,
+        &free,
+        &ctl,
+        &t_first_s,
+        &t_second_s,
+        t0,
+        loads,
     )?;
     data.write(&dir)?;
     plots(&dir, &data)?;
@@ -341,9 +368,10 @@ fn tables(
     fixed: &[Vec<Frame>],
     free: &[Frame],
     ctl: &[Frame],
-    t_low: &str,
-    t_high: &str,
+    t_first: &str,
+    t_second: &str,
     t0: Instant,
+    (load_start, load_end): (f64, f64),
 ) -> Result<CcData> {
     let faces = subdiv::helmet40()?.num_faces();
     let (w, h) = SIZE.split_once('x').context("SIZE is WxH")?;
@@ -360,6 +388,8 @@ fn tables(
         ("reference_depth", REFERENCE_DEPTH.into()),
         ("switch_frame", (ctl.len() / 2).to_string()),
         ("seconds", format!("{:.0}", t0.elapsed().as_secs_f64())),
+        ("load_start", format!("{load_start:.1}")),
+        ("load_end", format!("{load_end:.1}")),
     ] {
         run.push(vec![k.to_string(), v]);
     }
@@ -397,7 +427,7 @@ fn tables(
         r.extend(fixed.iter().map(|u| number(u[i].fps)));
         r.push(number(free[i].fps));
         r.push(number(c.fps));
-        r.push(if i < switch { t_low } else { t_high }.to_string());
+        r.push(if i < switch { t_first } else { t_second }.to_string());
         r.push(c.maxsd.to_string());
         r.push(number(c.share));
         r.push(c.triangles.to_string());

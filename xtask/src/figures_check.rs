@@ -112,6 +112,42 @@ fn check_claims(text: &str, d: &CcData) -> Result<()> {
             stated == count,
             "{line}: {count} frames of {lo}..{hi} lie within 10 % of {t}, not {stated}"
         );
+        // The running median of 5 frames (what the controller decides on), recomputed here.
+        let running: Vec<bool> = (lo..hi)
+            .map(|i| {
+                let mut w = fps[(i + 1).saturating_sub(5)..=i].to_vec();
+                w.sort_by(f64::total_cmp);
+                let m = if w.len() % 2 == 1 {
+                    w[w.len() / 2]
+                } else {
+                    0.5 * (w[w.len() / 2 - 1] + w[w.len() / 2])
+                };
+                m >= 0.9 * t && m <= 1.1 * t
+            })
+            .collect();
+        let count = running.iter().filter(|&&x| x).count();
+        let stated = number_after(line, "frames is within ±10 % in ")? as usize;
+        ensure!(
+            stated == count,
+            "{line}: the running median of {count} frames of {lo}..{hi} lies within 10 % of {t}, not {stated}"
+        );
+        if line.contains("since frame ") {
+            let from = number_after(line, "since frame ")? as usize;
+            ensure!(
+                from >= lo && from < hi && running[from - lo..].iter().all(|&x| x),
+                "{line}: a running median after frame {from} is outside 10 %"
+            );
+            ensure!(
+                from == lo || !running[from - lo - 1],
+                "{line}: the running median of frame {} is within 10 % too",
+                from - 1
+            );
+        } else {
+            ensure!(
+                !running[hi - lo - 1],
+                "{line}: says the last running median is outside, the CSV has it within 10 %"
+            );
+        }
         if line.contains("from frame ") {
             let from = number_after(line, "from frame ")? as usize;
             ensure!(
@@ -138,7 +174,7 @@ fn check_claims(text: &str, d: &CcData) -> Result<()> {
     let mut u2 = d.framerate.f64s("uniform2")?[1..].to_vec();
     u2.sort_by(f64::total_cmp);
     let f2 = u2[u2.len() / 2];
-    let mut late = fps[switch + (fps.len() - switch) / 2..].to_vec();
+    let mut late = fps[switch / 2..switch].to_vec();
     late.sort_by(f64::total_cmp);
     let late = late[late.len() / 2];
     let above = text.contains(&format!("fps, above uniform depth 2's {f2:.1} fps"));

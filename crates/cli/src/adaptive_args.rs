@@ -8,12 +8,6 @@ use subdiv::stitch::{FanMethod, MAX_ADAPTIVE_DEPTH};
 
 /// Default `--max-depth` (the paper's `maxsd = 5`).
 pub const DEFAULT_MAX_DEPTH: Depth = 5;
-/// Default `--cone-aperture` in degrees.
-pub const DEFAULT_CONE_APERTURE: f32 = 10.0;
-/// Default `--classifier` epsilon.
-pub const DEFAULT_CLASSIFIER: f32 = 0.1;
-/// Default `--projected-size` in pixels.
-pub const DEFAULT_PROJECTED_SIZE: (f32, f32) = (2.0, 8.0);
 
 /// Flags of the view-dependent depth assignment. Every flag is optional so that the commands can
 /// tell which were given: any of them asks for the adaptive tessellation in `tessellate`,
@@ -30,7 +24,7 @@ pub struct AdaptiveArgs {
     /// Vertex classifier epsilon (back / front / silhouette) [default: 0.1].
     #[arg(long)]
     pub classifier: Option<f32>,
-    /// Projected sub-patch radius bounds in pixels [default: 2,8].
+    /// Projected sub-patch radius bounds in pixels [default: 1,4].
     #[arg(long, value_parser = parse_pair)]
     pub projected_size: Option<(f32, f32)>,
     /// Choose the least depth whose chord error is at most PX pixels on screen.
@@ -112,11 +106,13 @@ impl AdaptiveArgs {
         if !(shading_error_deg > 0.0 && shading_error_deg <= 180.0) {
             bail!("--shading-error must be an angle in (0, 180] degrees");
         }
+        // The paper's parameters default to `DepthParams::default()`, their one home.
+        let d = DepthParams::default();
         Ok(DepthParams {
             max_depth,
-            cone_aperture_deg: self.cone_aperture.unwrap_or(DEFAULT_CONE_APERTURE),
-            classifier_eps: self.classifier.unwrap_or(DEFAULT_CLASSIFIER),
-            projected_size: Some(self.projected_size.unwrap_or(DEFAULT_PROJECTED_SIZE)),
+            cone_aperture_deg: self.cone_aperture.unwrap_or(d.cone_aperture_deg),
+            classifier_eps: self.classifier.unwrap_or(d.classifier_eps),
+            projected_size: self.projected_size.or(d.projected_size),
             pixel_error: self.pixel_error,
             shading_error_deg,
             cull_back: self.cull_back,

@@ -9,7 +9,7 @@ use glam::Vec3;
 use subdiv::BuiltinScene;
 use subdiv::depth::DEFAULT_SHADING_ERROR_DEG;
 use subdiv::mesh::Camera;
-use subdiv::quality::{Config, QualityParams, QualityRun, orbit_cameras};
+use subdiv::quality::{Config, CurvatureParams, QualityParams, QualityRun, orbit_cameras};
 use subdiv::rules::{Depth, Scheme};
 use subdiv::vk::Renderer;
 
@@ -57,6 +57,44 @@ pub struct BenchQualityArgs {
     /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
     #[arg(long)]
     pub split_nonmanifold: bool,
+    /// Which kinds of configuration to measure (comma-separated) [default: all three].
+    #[arg(long, value_delimiter = ',')]
+    pub configs: Vec<ConfigKind>,
+    /// Curvature mode: normal-cone apertures in degrees to measure (comma-separated; one
+    /// configuration per combination with --classifier and --projected-size) [default: the
+    /// `DepthParams` default].
+    #[arg(long, value_delimiter = ',', value_name = "DEG")]
+    pub cone_aperture: Vec<f32>,
+    /// Curvature mode: vertex classifier epsilons to measure (comma-separated).
+    #[arg(long, value_delimiter = ',', value_name = "EPS")]
+    pub classifier: Vec<f32>,
+    /// Curvature mode: projected sub-patch radius bounds in pixels, `MIN,MAX` or `off` (no
+    /// adjustment); repeat the flag to measure several.
+    #[arg(long, value_parser = parse_size_band, value_name = "MIN,MAX|off")]
+    pub projected_size: Vec<SizeBand>,
+}
+
+/// A kind of configuration of `subdiv bench quality`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ConfigKind {
+    /// `uniform-0` .. `uniform-<max depth>`.
+    Uniform,
+    /// The curvature mode (every combination of its parameter flags).
+    Curvature,
+    /// `pixel-error-2`, `pixel-error-1`, `pixel-error-0.5`.
+    PixelError,
+}
+
+/// `--projected-size` of `bench quality`: a band, or none (`off`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SizeBand(Option<(f32, f32)>);
+
+/// Parses `MIN,MAX` or `off`.
+fn parse_size_band(s: &str) -> Result<SizeBand, String> {
+    if s.trim() == "off" {
+        return Ok(SizeBand(None));
+    }
+    crate::adaptive_args::parse_pair(s).map(|p| SizeBand(Some(p)))
 }
 
 impl BenchQualityArgs {
@@ -89,6 +127,50 @@ impl BenchQualityArgs {
         Ok(params)
     }
 
+    /// The configurations to measure, in the order of [`Config::all`]: the uniform depths,
+    /// the curvature mode once per combination of its parameter flags, the pixel errors.
+    fn configs(&self, max_depth: Depth) -> anyhow::Result<Vec<Config>> {
+        for &a in &self.cone_aperture {
+            if !(a > 0.0 && a < 180.0) {
+                bail!("--cone-aperture {a}: need an angle in (0, 180) degrees");
+            }
+        }
+        for &e in &self.classifier {
+            if !(0.0..1.0).contains(&e) {
+                bail!("--classifier {e}: need an epsilon in [0, 1)");
+            }
+        }
+        let on = |k| self.configs.is_empty() || self.configs.contains(&k);
+        let d = CurvatureParams::default();
+        let or_default = |v: &[f32], x: f32| if v.is_empty() { vec![x] } else { v.to_vec() };
+        let sizes = if self.projected_size.is_empty() {
+            vec![d.projected_size]
+        } else {
+            self.projected_size.iter().map(|b| b.0).collect()
+        };
+        let mut out: Vec<Config> = Vec::new();
+        if on(ConfigKind::Uniform) {
+            out.extend((0..=max_depth).map(Config::Uniform));
+        }
+        if on(ConfigKind::Curvature) {
+            for &cone_aperture_deg in &or_default(&self.cone_aperture, d.cone_aperture_deg) {
+                for &classifier_eps in &or_default(&self.classifier, d.classifier_eps) {
+                    for &projected_size in &sizes {
+                        out.push(Config::Curvature(CurvatureParams {
+                            cone_aperture_deg,
+                            classifier_eps,
+                            projected_size,
+                        }));
+                    }
+                }
+            }
+        }
+        if on(ConfigKind::PixelError) {
+            out.extend(Config::pixel_errors());
+        }
+        Ok(out)
+    }
+
     /// The input's name for messages.
     fn label(&self) -> String {
         match (&self.scene, &self.input) {
@@ -114,6 +196,7 @@ impl BenchQualityArgs {
 
 pub fn run(a: &BenchQualityArgs) -> anyhow::Result<ExitCode> {
     let params = a.params()?;
+    let configs = a.configs(params.max_depth)?;
     let requested = a.scheme.map(Scheme::from);
     let (cage, scheme) = match (&a.scene, &a.input) {
         (Some(s), _) => (
@@ -153,9 +236,8 @@ pub fn run(a: &BenchQualityArgs) -> anyhow::Result<ExitCode> {
     spinner.finish_and_clear();
     let run = run.with_context(|| a.label())?;
     log::info!("reference: {} triangles", run.reference_triangles());
-    let configs = Config::all(run.params().max_depth).len() as u64;
-    let bar = crate::progress::bar(configs, "configurations");
-    let results = run.measure_all(&mut renderer, |q| {
+    let bar = crate::progress::bar(configs.len() as u64, "configurations");
+    let results = run.measure_configs(&mut renderer, &configs, |q| {
         log::info!("done: {q}");
         bar.inc(1);
     });

@@ -108,3 +108,70 @@ fn a_reference_that_is_not_deeper_is_refused() {
         .unwrap();
     assert_clean_failure(&o, "--orbit must be at least 1");
 }
+
+#[test]
+fn curvature_sweep_measures_every_combination_and_only_the_kinds_asked() {
+    let input = cube();
+    let Some(o) = run_ok(&[
+        "bench",
+        "quality",
+        &input,
+        "--size",
+        "64x48",
+        "--max-depth",
+        "2",
+        "--runs",
+        "1",
+        "--configs",
+        "curvature",
+        "--cone-aperture",
+        "5,20",
+        "--classifier",
+        "0.2",
+        "--projected-size",
+        "1,4",
+        "--projected-size",
+        "off",
+    ]) else {
+        return;
+    };
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let names: Vec<String> = stdout
+        .lines()
+        .filter(|l| l.starts_with("config="))
+        .map(|l| fields(l)[0].0.clone())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "curvature-cone5-eps0.2-size1-4",
+            "curvature-cone5-eps0.2-sizeoff",
+            "curvature-cone20-eps0.2-size1-4",
+            "curvature-cone20-eps0.2-sizeoff",
+        ],
+        "{stdout}"
+    );
+}
+
+#[test]
+fn bad_curvature_parameters_are_refused() {
+    let input = cube();
+    for (flag, value, says) in [
+        (
+            "--cone-aperture",
+            "0",
+            "--cone-aperture 0: need an angle in (0, 180) degrees",
+        ),
+        (
+            "--classifier",
+            "1.5",
+            "--classifier 1.5: need an epsilon in [0, 1)",
+        ),
+    ] {
+        let o = subdiv()
+            .args(["bench", "quality", &input, flag, value])
+            .output()
+            .unwrap();
+        assert_clean_failure(&o, says);
+    }
+}

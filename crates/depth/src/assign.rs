@@ -1,7 +1,8 @@
 //! Per-frame depth assignment (Settgast et al. 2004, Section 3.1): back/front/silhouette
 //! classification of vertices and faces (after Luebke and Erikson 1997), curvature depths for
-//! front faces, the average of `maxsd` and the curvature depth for silhouette faces, then the
-//! projected-size adjustment; or, beyond the paper, the least depth whose drawn triangles stay
+//! front faces (and for back faces of an open surface, whose back side can be seen), the
+//! average of `maxsd` and the curvature depth for silhouette faces, then the projected-size
+//! adjustment; or, beyond the paper, the least depth whose drawn triangles stay
 //! within a pixel error on screen ([`crate::pixel_error`]).
 
 use glam::Vec3;
@@ -19,16 +20,42 @@ use crate::sphere::Sphere;
 /// docs/performance.md show the triangles each tolerance costs.
 pub const DEFAULT_SHADING_ERROR_DEG: f32 = 2.0;
 
+/// Default [`DepthParams::cone_aperture_deg`]: 10°. At the curvature depth the face normals
+/// around a vertex lie within this angle of its limit normal, and the chord of a sub-patch `rho`
+/// pixels in radius whose normals turn by `alpha` deviates by about `rho * alpha / 4` pixels
+/// ([`priority`]): 0.17 px at `rho` = 4 px ([`DEFAULT_PROJECTED_SIZE`]). Swept 5°, 10°, 20°
+/// (docs/performance.md, "The curvature mode's defaults"): with the 1..4 px band, 5° costs
+/// 6-33 % more triangles for at most 0.03° less shading error, 20° saves up to 22 % and has up
+/// to a third more shading error (teapot).
+pub const DEFAULT_CONE_APERTURE_DEG: f32 = 10.0;
+
+/// Default [`DepthParams::classifier_eps`]: 0.1, a silhouette band of normals within
+/// `asin 0.1 = 5.7°` of edge-on (the paper gives no value). Swept 0.1 and 0.17 (`sin 10°`, the
+/// cone aperture): under 1 % more triangles for under 0.1° less shading error and the same
+/// silhouettes, so the narrower band stays.
+pub const DEFAULT_CLASSIFIER_EPS: f32 = 0.1;
+
+/// Default [`DepthParams::projected_size`]: sub-patch radii between 1 and 4 pixels.
+/// `R_min = 1 px`: a sub-patch of radius one pixel spans about two, so refining it further
+/// changes no more than those pixels (its triangles would go sub-pixel). `R_max = 4 px`: with
+/// the cone aperture's normal spread the chord of such a sub-patch stays within 0.2 px, and
+/// `R_max >= 2 R_min` keeps the band one level wide at least ([`adjust_projected`] lands in it
+/// whenever a depth can). The paper gives no values; the 2..8 px used before drew the teapot
+/// with 1.5 times uniform depth 3's triangles at worse errors (off the triangles-versus-error
+/// front), 1..4 lies on or near the front on every scene swept.
+pub const DEFAULT_PROJECTED_SIZE: (f32, f32) = (1.0, 4.0);
+
 /// The paper's user parameters, plus the pixel-error mode and back-face culling.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DepthParams {
     /// Deepest depth (`maxsd`).
     pub max_depth: Depth,
-    /// `NormalConeAperture` in degrees.
+    /// `NormalConeAperture` in degrees. Default [`DEFAULT_CONE_APERTURE_DEG`].
     pub cone_aperture_deg: f32,
-    /// `VertexClassifier` epsilon on `ln . camray`.
+    /// `VertexClassifier` epsilon on `ln . camray`. Default [`DEFAULT_CLASSIFIER_EPS`].
     pub classifier_eps: f32,
     /// `ProjectedSizeMin/Max`: sub-patch radius bounds in pixels (`None`: no adjustment).
+    /// Default [`DEFAULT_PROJECTED_SIZE`].
     pub projected_size: Option<(f32, f32)>,
     /// Screen-space error bound in pixels (replaces curvature and projected size when set).
     pub pixel_error: Option<f32>,
@@ -45,9 +72,9 @@ impl Default for DepthParams {
     fn default() -> Self {
         DepthParams {
             max_depth: 5,
-            cone_aperture_deg: 10.0,
-            classifier_eps: 0.1,
-            projected_size: Some((2.0, 8.0)),
+            cone_aperture_deg: DEFAULT_CONE_APERTURE_DEG,
+            classifier_eps: DEFAULT_CLASSIFIER_EPS,
+            projected_size: Some(DEFAULT_PROJECTED_SIZE),
             pixel_error: None,
             shading_error_deg: DEFAULT_SHADING_ERROR_DEG,
             cull_back: false,
@@ -170,6 +197,12 @@ pub fn assign(
         depth: Vec::with_capacity(mesh.num_faces()),
         ..Assignment::default()
     };
+    // Section 3.1 draws back faces at depth 0: on a closed surface they are hidden. On an open
+    // one (boundary edges or holes: a helmet, a pawn open at the base) the back side shows
+    // through the opening, so back faces are assigned like front faces (their curvature depth,
+    // then the projected size); they stay classified `Back` (frame-rate control never raises
+    // them, `cull_back` still drops them).
+    let back_hidden = mesh.is_closed();
     for f in mesh.faces() {
         let vs = mesh.face_vertices(f);
         let cls = if vs.iter().all(|v| vclass[v.idx()] == Class::Back) {
@@ -181,8 +214,8 @@ pub fn assign(
         };
         let curv = vs.iter().map(|v| vd.depth[v.idx()]).max().unwrap_or(0);
         let mut d = match cls {
-            Class::Back => 0,
-            Class::Front => curv,
+            Class::Back if back_hidden => 0,
+            Class::Back | Class::Front => curv,
             Class::Silhouette => (p.max_depth + curv).div_ceil(2),
         };
         let sphere = &spheres[f.idx()];
@@ -194,7 +227,7 @@ pub fn assign(
             } else {
                 pixel_error_depth(camera, sphere, e, px, p.max_depth)
             };
-        } else if cls != Class::Back
+        } else if (cls != Class::Back || !back_hidden)
             && let Some(ps) = p.projected_size
         {
             d = adjust_projected(d, r, ps, p.max_depth);
@@ -297,6 +330,46 @@ mod tests {
                 } else {
                     assert!(d == 0 || d == 6, "R {r} from {l}: {d}");
                 }
+            }
+        }
+    }
+
+    /// A cube (8 vertices, 6 quads), optionally without its top face (open).
+    fn cube(open: bool) -> Mesh {
+        let mut obj = String::from(
+            "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\n\
+             f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 1 5 7 3\nf 2 4 8 6\n",
+        );
+        if !open {
+            obj.push_str("f 3 7 8 4\n");
+        }
+        Mesh::from_soup(&subdiv_mesh::parse_obj(&obj).unwrap()).unwrap()
+    }
+
+    #[test]
+    fn back_faces_of_an_open_surface_are_assigned_like_front_faces() {
+        // Seen from far above (+Y) the bottom face is a back face. The closed cube hides it:
+        // depth 0. The open cube (no top face) shows its floor through the opening: its back
+        // faces get their curvature depth like front faces.
+        let p = DepthParams {
+            projected_size: None,
+            ..DepthParams::default()
+        };
+        let camera = cam(Vec3::new(0.3, 12.0, 0.2));
+        for open in [false, true] {
+            let mesh = cube(open);
+            assert_eq!(mesh.is_closed(), !open);
+            let vd = VertexData::compute(&mesh, p.cone_aperture_deg, p.max_depth);
+            let spheres = crate::sphere::face_spheres(&mesh);
+            let a = assign(&mesh, &vd, &spheres, None, &camera, &p);
+            let back: Vec<usize> = (0..a.depth.len())
+                .filter(|&f| a.class[f] == Class::Back)
+                .collect();
+            assert!(!back.is_empty());
+            for f in back {
+                let want = if open { a.curvature[f] } else { 0 };
+                assert_eq!(a.depth[f], want, "open {open}, face {f}");
+                assert!(a.curvature[f] > 0, "a cube's corners are curved");
             }
         }
     }

@@ -40,10 +40,14 @@ fn cost(a: &Assignment, seconds_per_triangle: f32) -> f32 {
         * seconds_per_triangle
 }
 
-/// Feeds the same frame time for one full window: exactly one decision.
+/// Feeds the same frame time for a full window, or until the controller changes something:
+/// exactly one decision that can move the share.
 fn feed(c: &mut FrameRateController, t: f32) {
     for _ in 0..WINDOW {
         c.update(t);
+        if c.pending() == 0 {
+            break;
+        }
     }
 }
 
@@ -255,10 +259,11 @@ fn a_change_waits_for_a_full_window_of_new_frames() {
     let mut c = FrameRateController::new(30.0, 5);
     feed(&mut c, 10.0 / 30.0);
     assert_eq!((c.cap(), c.pending()), (4, 0));
-    // Two frames at the new depths are not enough to decide again, however slow.
-    c.update(10.0 / 30.0);
-    c.update(10.0 / 30.0);
-    assert_eq!((c.cap(), c.pending()), (4, 2));
+    // Four frames at the new depths are not enough to decide again, however slow.
+    for k in 1..WINDOW {
+        c.update(10.0 / 30.0);
+        assert_eq!((c.cap(), c.pending()), (4, k));
+    }
     c.update(10.0 / 30.0);
     assert_eq!((c.cap(), c.pending()), (3, 0));
 }
@@ -288,22 +293,164 @@ fn converges_under_timer_noise() {
 }
 
 #[test]
-fn a_window_that_straddles_the_target_moves_nothing() {
+fn the_median_decides() {
     let mut c = FrameRateController::new(30.0, 5);
-    // Noise of +-40 % around the target: never all on one side within a window.
+    // Noise of +-40 % around the target: the median is on it, nothing moves.
     for _ in 0..20 {
         for t in [0.6 / 30.0, 1.4 / 30.0, 1.0 / 30.0] {
             c.update(t);
         }
     }
     assert_eq!((c.cap(), c.share()), (5, 0.0));
-    // All slower, one of them far slower: the step is the one the least slow frame proves.
+    assert!(c.holding());
+    // Slower frames, one of them far slower: the step is the one the median proves, the same
+    // as three frames at the median.
     let mut a = FrameRateController::new(30.0, 5);
     let mut b = a.clone();
-    for t in [1.2 / 30.0, 1.2 / 30.0, 1.9 / 30.0] {
-        a.update(t);
+    for t in [1.2, 1.9, 1.2, 1.9, 1.2] {
+        a.update(t / 30.0);
     }
     feed(&mut b, 1.2 / 30.0);
     assert!(a.share() < 0.0, "{a:?}");
     assert_eq!((a.cap(), a.share()), (b.cap(), b.share()));
+}
+
+#[test]
+fn two_spikes_in_five_move_nothing() {
+    let mut c = FrameRateController::new(30.0, 5);
+    // On target with two frames in five ten times too slow (the first frame after a change and
+    // one disturbance): the median of the window never leaves the target.
+    for _ in 0..20 {
+        for t in [1.0, 10.0, 1.0, 10.0, 1.0] {
+            c.update(t / 30.0);
+        }
+    }
+    assert_eq!((c.cap(), c.share()), (5, 0.0));
+    assert_eq!(c.pending(), WINDOW);
+}
+
+#[test]
+fn hysteresis_holds_inside_ten_percent() {
+    let mut c = FrameRateController::new(30.0, 5);
+    // Not yet holding: 5 % slow is beyond the tolerance, the share moves.
+    feed(&mut c, 1.05 / 30.0);
+    assert!(c.share() < 0.0 && !c.holding(), "{c:?}");
+    // On target: holds.
+    feed(&mut c, 1.0 / 30.0);
+    let held = c.share();
+    assert!(c.holding());
+    // Holding: 5 % or 8 % off either way moves nothing, however long it lasts.
+    for r in [1.05f32, 0.95, 1.08, 0.93] {
+        for _ in 0..10 {
+            c.update(r / 30.0);
+        }
+        assert_eq!((c.cap(), c.share()), (5, held), "ratio {r}");
+        assert!(c.holding());
+    }
+    // Beyond 10 %: acts, and keeps acting down to the tolerance (5 % is corrected again).
+    feed(&mut c, 1.15 / 30.0);
+    assert!(c.share() < held && !c.holding());
+    let after = c.share();
+    feed(&mut c, 1.05 / 30.0);
+    assert!(c.share() < after, "{c:?}");
+    // A new target is approached down to the tolerance, not the hysteresis band.
+    feed(&mut c, 1.0 / 30.0);
+    assert!(c.holding());
+    c.set_target_fps(30.0 * 1.05);
+    assert!(!c.holding());
+    let before = c.share();
+    feed(&mut c, 1.0 / 30.0);
+    assert!(c.share() != before);
+}
+
+#[test]
+fn holds_the_target_under_heavy_noise() {
+    // The cost model times log-uniform noise of +-35 % (about what a loaded 2-core machine
+    // shows frame to frame; one-sided spikes are the other tests') and a real change: frames
+    // 100-139 run 1.5x slower (other work). Over the frames from 60 on (leaving out the 15
+    // after each load change), the rate the controller's depths give under the current load,
+    // noise aside: its median within 5 % of the target, at least 70 % of the frames within
+    // 10 % (the median of 5 noisy frames is itself off by about 13 %, so no controller
+    // deciding on 5 frames does much better), and patches reshuffled on at most one frame in 4.
+    let geo = scene(2320);
+    let spt = 1e-7;
+    let full = 1.0 / cost(&geo, spt);
+    let mut state = 0x2545_f491_u32;
+    let mut noise = move || {
+        // xorshift32: deterministic, no wall clock.
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        (0.35 * (2.0 * (state as f32 / u32::MAX as f32) - 1.0)).exp()
+    };
+    for target in [full * 1.8, full * 4.0, full * 0.9, full * 12.0] {
+        let mut c = FrameRateController::new(target, 4);
+        let (mut changes, mut rates) = (0, Vec::new());
+        for i in 0..200usize {
+            let mut a = geo.clone();
+            c.apply(&mut a);
+            let load = if (100..140).contains(&i) { 1.5 } else { 1.0 };
+            let t = cost(&a, spt) * load;
+            let before = (c.cap(), c.share());
+            c.update(t * noise());
+            if i >= 60 && !(100..115).contains(&i) && !(140..155).contains(&i) {
+                changes += usize::from((c.cap(), c.share()) != before);
+                rates.push(1.0 / t);
+            }
+        }
+        let within = rates
+            .iter()
+            .filter(|&&f| (f / target - 1.0).abs() <= 0.10)
+            .count();
+        rates.sort_by(f32::total_cmp);
+        let median = rates[rates.len() / 2];
+        assert!(
+            (median / target - 1.0).abs() <= 0.05,
+            "target {target:.1}: median {median:.1}"
+        );
+        assert!(
+            within * 10 >= rates.len() * 7,
+            "target {target:.1}: {within} of {} within 10 %",
+            rates.len()
+        );
+        assert!(
+            changes * 4 <= rates.len(),
+            "target {target:.1}: {changes} changes"
+        );
+    }
+}
+
+#[test]
+fn a_saturated_share_raises_the_cap_without_a_jump() {
+    // At cap 2 the share up runs out of patches at once (few are below depth 2): the cap rises
+    // to 3 starting from share -1 (every patch above depth 0 one level down), not share 0, whose
+    // triangle count would jump by the whole level.
+    let geo = scene(700);
+    let mut c = FrameRateController::new(60.0, 4);
+    for _ in 0..4 {
+        feed(&mut c, 10.0 / 60.0); // far too slow: the cap drops to 2... then 0
+        if c.cap() == 2 {
+            break;
+        }
+    }
+    assert_eq!((c.cap(), c.share()), (2, 0.0));
+    let mut a = geo.clone();
+    c.apply(&mut a);
+    let at_cap2 = cost(&a, 1.0);
+    // 1.5 times too fast: not far enough to move the cap directly; the share saturates.
+    for _ in 0..10 {
+        feed(&mut c, 1.0 / 90.0);
+        let mut b = geo.clone();
+        c.apply(&mut b);
+        if c.cap() == 3 {
+            assert_eq!(c.share(), -1.0);
+            let at_cap3 = cost(&b, 1.0);
+            assert!(
+                at_cap3 < 1.5 * at_cap2,
+                "cap 3 share -1: {at_cap3} against cap 2 share 0: {at_cap2}"
+            );
+            return;
+        }
+    }
+    panic!("the cap never rose: {c:?}");
 }

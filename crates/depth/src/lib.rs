@@ -39,8 +39,9 @@ pub mod shading;
 mod sphere;
 
 pub use assign::{
-    Assignment, Class, DEFAULT_SHADING_ERROR_DEG, DepthParams, adjust_projected, assign,
-    classify_vertex, priority, projected_radius,
+    Assignment, Class, DEFAULT_CLASSIFIER_EPS, DEFAULT_CONE_APERTURE_DEG, DEFAULT_PROJECTED_SIZE,
+    DEFAULT_SHADING_ERROR_DEG, DepthParams, adjust_projected, assign, classify_vertex, priority,
+    projected_radius,
 };
 pub use controller::FrameRateController;
 pub use curvature::VertexData;

@@ -253,6 +253,11 @@ impl Mesh {
     pub fn is_boundary_edge(&self, e: EdgeId) -> bool {
         self.is_boundary_halfedge(e.halfedge(0)) || self.is_boundary_halfedge(e.halfedge(1))
     }
+    /// `true` if the surface is closed: no boundary edge and no hole, so its back side can be
+    /// seen from nowhere outside it.
+    pub fn is_closed(&self) -> bool {
+        self.edges().all(|e| !self.is_boundary_edge(e)) && self.faces().all(|f| !self.is_hole(f))
+    }
 
     // ---- vertices ----
 

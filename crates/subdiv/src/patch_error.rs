@@ -116,14 +116,9 @@ pub fn patch_errors(
     }
     PatchErrors {
         faces,
-        closed: is_closed(mesh),
+        closed: mesh.is_closed(),
         shading_tolerance,
     }
-}
-
-/// No boundary edges and no holes: hidden patches may stay at depth 0.
-pub(crate) fn is_closed(mesh: &Mesh) -> bool {
-    mesh.edges().all(|e| !mesh.is_boundary_edge(e)) && mesh.faces().all(|f| !mesh.is_hole(f))
 }
 
 /// How [`patch_errors`] lays out a patch's outlier areas ([`ShadingError::outlier_area`]).

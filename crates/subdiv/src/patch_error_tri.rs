@@ -11,7 +11,7 @@ use subdiv_mesh::{FaceId, Mesh};
 use subdiv_slate::{Depth, MAX_DEPTH, tri_lattice_index, tri_patch_lattice};
 use subdiv_stitch::TriAssembler;
 
-use crate::patch_error::{ELEMENTS_PER_SIDE, SAMPLE_LEVELS, is_closed, touches_outline};
+use crate::patch_error::{ELEMENTS_PER_SIDE, SAMPLE_LEVELS, touches_outline};
 
 /// [`crate::patch_errors`] for a Loop cage: per triangle and depth `l <= max_depth`, the
 /// largest distance between the limit surface and the lattice triangles drawn at depth `l`
@@ -79,7 +79,7 @@ pub fn patch_errors_loop(
         .collect();
     PatchErrors {
         faces,
-        closed: is_closed(mesh),
+        closed: mesh.is_closed(),
         shading_tolerance,
     }
 }

@@ -4,7 +4,7 @@
 
 use std::fmt;
 
-use subdiv_depth::DEFAULT_SHADING_ERROR_DEG;
+use subdiv_depth::{DEFAULT_SHADING_ERROR_DEG, DepthParams};
 use subdiv_rules::{Depth, MAX_DEPTH};
 use subdiv_stitch::{AssemblyError, MAX_ADAPTIVE_DEPTH};
 use subdiv_vk::VkError;
@@ -16,9 +16,10 @@ use crate::SceneError;
 pub enum Config {
     /// Uniform slate tessellation at this depth (`uniform-<d>`).
     Uniform(Depth),
-    /// [`DynamicSubdivision`] with the [`DepthParams`] defaults for the run's max depth:
-    /// curvature, classification and projected size (`curvature`).
-    Curvature,
+    /// [`DynamicSubdivision`] in the paper's mode for the run's max depth: curvature,
+    /// classification and projected size with these parameters (`curvature` for the
+    /// [`DepthParams`] defaults, else `curvature-cone<A>-eps<E>-size<MIN>-<MAX>`).
+    Curvature(CurvatureParams),
     /// [`DynamicSubdivision`] with `pixel_error = Some(px)` (`pixel-error-<px>`).
     PixelError(f32),
 }
@@ -29,7 +30,7 @@ impl Config {
     pub fn name(&self) -> String {
         match self {
             Config::Uniform(d) => format!("uniform-{d}"),
-            Config::Curvature => "curvature".to_string(),
+            Config::Curvature(c) => c.name(),
             Config::PixelError(px) => format!("pixel-error-{px}"),
         }
     }
@@ -39,13 +40,70 @@ impl Config {
     pub fn all(max_depth: Depth) -> Vec<Config> {
         (0..=max_depth)
             .map(Config::Uniform)
-            .chain([
-                Config::Curvature,
-                Config::PixelError(2.0),
-                Config::PixelError(1.0),
-                Config::PixelError(0.5),
-            ])
+            .chain([Config::Curvature(CurvatureParams::default())])
+            .chain(Config::pixel_errors())
             .collect()
+    }
+
+    /// The pixel-error configurations of [`Config::all`]: 2, 1 and 0.5 px.
+    pub fn pixel_errors() -> [Config; 3] {
+        [
+            Config::PixelError(2.0),
+            Config::PixelError(1.0),
+            Config::PixelError(0.5),
+        ]
+    }
+}
+
+/// The paper's user parameters of the curvature mode (Settgast et al. 2004, Section 3.1):
+/// `NormalConeAperture`, `VertexClassifier` and `ProjectedSizeMin/Max`, as in [`DepthParams`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CurvatureParams {
+    /// [`DepthParams::cone_aperture_deg`].
+    pub cone_aperture_deg: f32,
+    /// [`DepthParams::classifier_eps`].
+    pub classifier_eps: f32,
+    /// [`DepthParams::projected_size`].
+    pub projected_size: Option<(f32, f32)>,
+}
+
+impl Default for CurvatureParams {
+    /// The [`DepthParams`] defaults.
+    fn default() -> Self {
+        let d = DepthParams::default();
+        CurvatureParams {
+            cone_aperture_deg: d.cone_aperture_deg,
+            classifier_eps: d.classifier_eps,
+            projected_size: d.projected_size,
+        }
+    }
+}
+
+impl CurvatureParams {
+    /// `curvature` for the defaults, else `curvature-cone<A>-eps<E>-size<MIN>-<MAX>`
+    /// (`-sizeoff` without the projected-size adjustment).
+    pub fn name(&self) -> String {
+        if *self == CurvatureParams::default() {
+            return "curvature".to_string();
+        }
+        let size = match self.projected_size {
+            Some((lo, hi)) => format!("size{lo}-{hi}"),
+            None => "sizeoff".to_string(),
+        };
+        format!(
+            "curvature-cone{}-eps{}-{size}",
+            self.cone_aperture_deg, self.classifier_eps
+        )
+    }
+
+    /// `p` with these parameters.
+    pub fn apply(&self, p: DepthParams) -> DepthParams {
+        DepthParams {
+            cone_aperture_deg: self.cone_aperture_deg,
+            classifier_eps: self.classifier_eps,
+            projected_size: self.projected_size,
+            ..p
+        }
     }
 }
 

@@ -15,7 +15,7 @@ mod run;
 #[cfg(test)]
 mod tests;
 
-pub use config::{Config, ConfigQuality, QualityError, QualityParams};
+pub use config::{Config, ConfigQuality, CurvatureParams, QualityError, QualityParams};
 pub use metrics::{
     FrameErrors, SUPERSAMPLE, area_coverage, compare_frames, compare_with_distance, quantile,
     sample_silhouette_distance, silhouette_distance,

@@ -220,20 +220,21 @@ impl<'a> QualityRun<'a> {
                     self.compare(renderer, scene, i, &name, &mut tally)?;
                 }
             }
-            Config::Curvature | Config::PixelError(_) => {
+            Config::Curvature(_) | Config::PixelError(_) => {
                 let adaptive_err = |source| QualityError::Adaptive {
                     config: name.clone(),
                     source,
                 };
-                let params = DepthParams {
+                let mut params = DepthParams {
                     max_depth: self.params.max_depth,
-                    pixel_error: match config {
-                        Config::PixelError(px) => Some(px),
-                        _ => None,
-                    },
                     shading_error_deg: self.params.shading_error_deg,
                     ..DepthParams::default()
                 };
+                match config {
+                    Config::PixelError(px) => params.pixel_error = Some(px),
+                    Config::Curvature(c) => params = c.apply(params),
+                    Config::Uniform(_) => {}
+                }
                 let mut node =
                     DynamicSubdivision::with_scheme(self.cage.clone(), self.scheme, params)
                         .map_err(adaptive_err)?;
@@ -258,10 +259,21 @@ impl<'a> QualityRun<'a> {
     pub fn measure_all(
         &self,
         renderer: &mut Renderer,
+        progress: impl FnMut(&ConfigQuality),
+    ) -> Result<Vec<ConfigQuality>, QualityError> {
+        self.measure_configs(renderer, &Config::all(self.params.max_depth), progress)
+    }
+
+    /// Measures `configs` in order, calling `progress` after each (a sweep of the curvature
+    /// mode's parameters, or a subset of [`Config::all`]).
+    pub fn measure_configs(
+        &self,
+        renderer: &mut Renderer,
+        configs: &[Config],
         mut progress: impl FnMut(&ConfigQuality),
     ) -> Result<Vec<ConfigQuality>, QualityError> {
         let mut out = Vec::new();
-        for config in Config::all(self.params.max_depth) {
+        for &config in configs {
             let q = self.measure(renderer, config)?;
             progress(&q);
             out.push(q);

@@ -142,3 +142,44 @@ fn deeper_uniform_tessellations_come_closer_to_the_reference() {
         Some(QualityError::NoCameras)
     ));
 }
+
+#[test]
+fn curvature_configurations_name_and_apply_their_parameters() {
+    let d = CurvatureParams::default();
+    assert_eq!(Config::Curvature(d).name(), "curvature");
+    let c = CurvatureParams {
+        cone_aperture_deg: 5.0,
+        classifier_eps: 0.25,
+        projected_size: Some((0.5, 4.0)),
+    };
+    assert_eq!(
+        Config::Curvature(c).name(),
+        "curvature-cone5-eps0.25-size0.5-4"
+    );
+    let off = CurvatureParams {
+        projected_size: None,
+        ..d
+    };
+    assert_eq!(
+        Config::Curvature(off).name(),
+        format!(
+            "curvature-cone{}-eps{}-sizeoff",
+            d.cone_aperture_deg, d.classifier_eps
+        )
+    );
+    let base = subdiv_depth::DepthParams {
+        max_depth: 3,
+        ..Default::default()
+    };
+    let p = c.apply(base);
+    assert_eq!(
+        (
+            p.max_depth,
+            p.cone_aperture_deg,
+            p.classifier_eps,
+            p.projected_size
+        ),
+        (3, 5.0, 0.25, Some((0.5, 4.0)))
+    );
+    assert_eq!(p.pixel_error, None);
+}
