@@ -80,7 +80,9 @@ impl OsdCage {
 
     /// The cage as subdiv reads it (through its OBJ text, as `ref_osd` does).
     pub fn mesh(&self) -> Result<Mesh, MeshError> {
-        Mesh::from_soup(&parse_obj(&self.to_obj())?)
+        let mut soup = parse_obj(&self.to_obj())?;
+        soup.split_nonmanifold()?;
+        Mesh::from_soup(&soup)
     }
 
     /// `ref_osd`'s scheme argument.
@@ -194,7 +196,7 @@ impl OsdCage {
         c.compact();
         let ok = !c.faces.is_empty()
             && c.holes.len() < c.faces.len()
-            && is_manifold(&c.faces, c.positions.len());
+            && (is_manifold(&c.faces, c.positions.len()) || c.mesh().is_ok());
         ok.then_some(c)
     }
 

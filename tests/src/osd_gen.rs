@@ -12,8 +12,11 @@
 //! interpolation, crease method and triangle rule. Positions are jittered and rounded to
 //! multiples of 2^-10.
 //!
-//! Non-manifold cages (an edge with three faces, several fans at a vertex) are not generated:
-//! subdiv refuses them (`ReadOptions::split_nonmanifold_vertices` aside).
+//! A share of the cages ([`NONMANIFOLD_PERCENT`]) is then made non-manifold: fins (an edge with
+//! three faces, or two the same way round), closed tetrahedra sharing an edge (four faces),
+//! pyramids touching the cage at one vertex (bow-ties), and now and then a bare vertex; subdiv
+//! refines them as OpenSubdiv does (`PolygonSoup::split_nonmanifold`). Cages subdiv refuses
+//! (the non-manifold configurations it does not support, see there) are drawn again.
 
 use std::f64::consts::TAU;
 
@@ -33,6 +36,10 @@ pub fn random_cage(seed: u64, index: u64) -> OsdCage {
         if b.faces.is_empty() || !is_manifold(&b.faces, b.pos.len()) {
             continue;
         }
+        let nonmanifold = rng.chance(NONMANIFOLD_PERCENT);
+        if nonmanifold {
+            add_nonmanifold(&mut rng, &mut b, loop_scheme);
+        }
         let mut cage = OsdCage {
             positions: b.pos,
             faces: b.faces,
@@ -40,6 +47,11 @@ pub fn random_cage(seed: u64, index: u64) -> OsdCage {
             ..OsdCage::default()
         };
         cage.compact();
+        if nonmanifold && rng.chance(25) {
+            // A bare vertex (no face uses it) near the first.
+            let p = cage.positions[0];
+            cage.positions.push([p[0] + 0.5, p[1] - 0.25, p[2] + 0.75]);
+        }
         jitter(&mut rng, &mut cage);
         add_tags(&mut rng, &mut cage);
         if cage.mesh().is_ok() {
@@ -365,6 +377,65 @@ fn split_edge(rng: &mut Rng, b: &mut Builder, faces: &mut [Vec<u32>], f: usize) 
         }
     }
     true
+}
+
+/// The share of cages (percent) made non-manifold by [`add_nonmanifold`].
+pub const NONMANIFOLD_PERCENT: u64 = 15;
+
+/// Makes a manifold cage non-manifold (as OpenSubdiv takes such cages, issue 13 item 5): one or
+/// two of a fin (one more face on an edge: three faces on an interior edge, two the same way
+/// round on a boundary edge), a closed tetrahedron sharing an edge (four faces there), a
+/// bow-tie (a pyramid, closed or open, touching the cage at one vertex). Triangles only for
+/// Loop.
+fn add_nonmanifold(rng: &mut Rng, b: &mut Builder, loop_scheme: bool) {
+    for _ in 0..1 + rng.below(2) {
+        let f = rng.below(b.faces.len());
+        let n = b.faces[f].len();
+        let k = rng.below(n);
+        let (a, c) = (b.faces[f][k], b.faces[f][(k + 1) % n]);
+        let (pa, pc) = (b.pos[a as usize], b.pos[c as usize]);
+        let len = (0..3).map(|i| (pc[i] - pa[i]).powi(2)).sum::<f64>().sqrt().max(0.25);
+        let out = |rng: &mut Rng| -> [f64; 3] { std::array::from_fn(|_| len * rng.unit() as f64) };
+        let off = |p: [f64; 3], d: [f64; 3]| [p[0] + d[0], p[1] + d[1], p[2] + d[2]];
+        match rng.below(3) {
+            0 => {
+                // A fin on a-c, either way round.
+                let (x, y) = if rng.chance(50) { (a, c) } else { (c, a) };
+                let up = out(rng);
+                let (px, py) = (b.pos[x as usize], b.pos[y as usize]);
+                if loop_scheme || rng.chance(30) {
+                    let m = b.vertex(off([0.5 * (px[0] + py[0]), 0.5 * (px[1] + py[1]), 0.5 * (px[2] + py[2])], up));
+                    b.faces.push(vec![x, y, m]);
+                } else {
+                    let (ny, nx) = (b.vertex(off(py, up)), b.vertex(off(px, up)));
+                    b.faces.push(vec![x, y, ny, nx]);
+                }
+            }
+            1 => {
+                // A closed tetrahedron a, c, d, e sharing the edge a-c.
+                let (d, e) = (b.vertex(off(pa, out(rng))), b.vertex(off(pc, out(rng))));
+                b.faces.extend([vec![a, c, d], vec![a, d, e], vec![a, e, c], vec![c, e, d]]);
+            }
+            _ => {
+                // A pyramid with its apex at a: sides (a, d_{i+1}, d_i), the base closing it.
+                let sides = if loop_scheme { 3 } else { 3 + rng.below(2) };
+                let up = out(rng);
+                let ring: Vec<u32> = (0..sides)
+                    .map(|i| {
+                        let t = std::f64::consts::TAU * i as f64 / sides as f64;
+                        let r = 0.5 * len;
+                        b.vertex(off(pa, [up[0] + r * t.cos(), up[1] + r * t.sin(), up[2] + 0.3 * r]))
+                    })
+                    .collect();
+                for i in 0..sides {
+                    b.faces.push(vec![a, ring[(i + 1) % sides], ring[i]]);
+                }
+                if rng.chance(70) {
+                    b.faces.push(ring);
+                }
+            }
+        }
+    }
 }
 
 /// Jitters, scales and rounds the positions to multiples of 2^-10.

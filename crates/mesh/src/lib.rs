@@ -61,12 +61,12 @@ pub use handle::{EdgeId, FaceId, HalfedgeId, VertexId};
 pub use mesh::{Mesh, Outgoing};
 pub use obj::{
     ObjData, ReadOptions, format_mesh_obj, format_obj, parse_obj, read_obj, read_obj_soup,
-    read_obj_with, read_obj_with_warnings, write_mesh_obj, write_obj,
+    read_obj_with, read_obj_with_report, read_obj_with_warnings, write_mesh_obj, write_obj,
 };
 pub use options::{
     BoundaryInterpolation, CreaseMethod, SHARPNESS_INFINITE, SchemeOptions, TriangleSubdivision,
 };
-pub use soup::{CornerTag, CreaseTag, HoleTag, PolygonSoup};
+pub use soup::{CornerTag, CreaseTag, HoleTag, NonManifold, PolygonSoup};
 pub use stats::MeshStats;
 pub use tags::{IgnoredTagKind, TagWarning};
 pub use usd::{
