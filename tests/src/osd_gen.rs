@@ -26,6 +26,8 @@ use crate::osd_cage::{OsdCage, is_manifold};
 /// Cage `index` of the run with `seed` (independent of the other indices).
 pub fn random_cage(seed: u64, index: u64) -> OsdCage {
     let mut rng = Rng::for_case(seed ^ 0x05D0_05D0, index);
+    // Its own stream, so that the manifold cages are the ones earlier runs drew at each index.
+    let mut nm_rng = Rng::for_case(seed ^ 0x0A0B_0C0D, index);
     let loop_scheme = rng.chance(30);
     loop {
         let mut b = base_shape(&mut rng, loop_scheme);
@@ -36,9 +38,9 @@ pub fn random_cage(seed: u64, index: u64) -> OsdCage {
         if b.faces.is_empty() || !is_manifold(&b.faces, b.pos.len()) {
             continue;
         }
-        let nonmanifold = rng.chance(NONMANIFOLD_PERCENT);
+        let nonmanifold = nm_rng.chance(NONMANIFOLD_PERCENT);
         if nonmanifold {
-            add_nonmanifold(&mut rng, &mut b, loop_scheme);
+            add_nonmanifold(&mut nm_rng, &mut b, loop_scheme);
         }
         let mut cage = OsdCage {
             positions: b.pos,
@@ -47,7 +49,7 @@ pub fn random_cage(seed: u64, index: u64) -> OsdCage {
             ..OsdCage::default()
         };
         cage.compact();
-        if nonmanifold && rng.chance(25) {
+        if nonmanifold && nm_rng.chance(25) {
             // A bare vertex (no face uses it) near the first.
             let p = cage.positions[0];
             cage.positions.push([p[0] + 0.5, p[1] - 0.25, p[2] + 0.75]);
@@ -514,8 +516,13 @@ mod tests {
     #[test]
     fn cages_are_valid_reproducible_and_varied() {
         let (mut loops, mut holes, mut ngons, mut valence2, mut max_valence) = (0, 0, 0, 0, 0);
+        let (mut fins, mut bowties) = (0, 0);
         for i in 0..300 {
             let c = random_cage(7, i);
+            let mut soup = subdiv_mesh::parse_obj(&c.to_obj()).unwrap();
+            let found = soup.split_nonmanifold().unwrap();
+            fins += usize::from(found.edges.iter().any(|e| e.2 >= 3));
+            bowties += usize::from(found.edges.is_empty() && !found.vertices.is_empty());
             assert_eq!(c, random_cage(7, i), "cage {i} is not reproducible");
             let m = c
                 .mesh()
@@ -540,5 +547,6 @@ mod tests {
             "{loops} {holes} {ngons} {valence2}"
         );
         assert!(max_valence >= 16, "max valence {max_valence}");
+        assert!(fins > 10 && bowties > 5, "fins {fins}, bow-ties {bowties}");
     }
 }
