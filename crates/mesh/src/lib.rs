@@ -23,7 +23,9 @@
 //! Meshes are built from a [`PolygonSoup`] — usually read from an OBJ file with OpenSubdiv's
 //! crease/corner/hole tags by [`read_obj`], or from the `UsdGeomMesh` prims of a USD stage by
 //! [`read_usd`] ([`read_cage`] picks by extension) — and every defect of the input is a [`MeshError`]
-//! naming the face, vertex or tag and its line.
+//! naming the face, vertex or tag and its line. Non-manifold cages (fins, bow-ties) are cut by
+//! the readers into manifold pieces that refine to OpenSubdiv's surface
+//! ([`PolygonSoup::split_nonmanifold`]); [`Mesh::from_soup`] itself refuses them.
 //!
 //! ```
 //! use subdiv_mesh::{parse_obj, Mesh, VertexId};

@@ -72,7 +72,8 @@ impl PolygonSoup {
     /// the module notes): vertex copies are appended after the existing vertices, crease tags
     /// follow their edge, corner tags apply to every copy, and OpenSubdiv's sharpening of
     /// non-manifold edges and vertices is added as tags. Returns what was non-manifold (empty
-    /// for a manifold cage, which is left unchanged). Out-of-range indices are left for
+    /// for a manifold cage, which is left unchanged). A soup with a malformed face (fewer than
+    /// three corners, an index out of range, a repeated vertex) is left unchanged for
     /// validation to report.
     ///
     /// ```
@@ -100,7 +101,8 @@ impl PolygonSoup {
             }
         }
         found.bare = (0..nv as u32).filter(|&v| !used[v as usize]).collect();
-        if self.face_offsets.len() < 2 {
+        if self.face_offsets.len() < 2 || self.has_malformed_face() {
+            // Left for validation to report.
             return Ok(found);
         }
         let uses = self.edge_uses();
@@ -165,6 +167,17 @@ impl PolygonSoup {
         self.face_indices = remap;
         found.copies = created;
         Ok(found)
+    }
+
+    /// A face with fewer than three corners, an index out of range or a vertex used twice.
+    fn has_malformed_face(&self) -> bool {
+        let nv = self.positions.len() as i64;
+        (0..self.num_faces()).any(|f| {
+            let face = self.face(f);
+            face.len() < 3
+                || face.iter().any(|v| !(0..nv).contains(v))
+                || (1..face.len()).any(|i| face[..i].contains(&face[i]))
+        })
     }
 
     /// Every undirected in-range edge `(min, max)` and its uses, in face order.
