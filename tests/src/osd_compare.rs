@@ -207,7 +207,14 @@ fn check_faces(
     weld: &[usize],
 ) -> Result<(), String> {
     let our_faces: HashSet<Vec<usize>> = (0..t.num_faces())
-        .map(|i| canonical_face(&t.face(i).iter().map(|&x| weld[x as usize]).collect::<Vec<_>>()))
+        .map(|i| {
+            canonical_face(
+                &t.face(i)
+                    .iter()
+                    .map(|&x| weld[x as usize])
+                    .collect::<Vec<_>>(),
+            )
+        })
         .collect();
     for f in &reference.faces {
         let mapped: Vec<usize> = f.iter().map(|&i| map[i]).collect();

@@ -396,7 +396,11 @@ fn add_nonmanifold(rng: &mut Rng, b: &mut Builder, loop_scheme: bool) {
         let k = rng.below(n);
         let (a, c) = (b.faces[f][k], b.faces[f][(k + 1) % n]);
         let (pa, pc) = (b.pos[a as usize], b.pos[c as usize]);
-        let len = (0..3).map(|i| (pc[i] - pa[i]).powi(2)).sum::<f64>().sqrt().max(0.25);
+        let len = (0..3)
+            .map(|i| (pc[i] - pa[i]).powi(2))
+            .sum::<f64>()
+            .sqrt()
+            .max(0.25);
         let out = |rng: &mut Rng| -> [f64; 3] { std::array::from_fn(|_| len * rng.unit() as f64) };
         let off = |p: [f64; 3], d: [f64; 3]| [p[0] + d[0], p[1] + d[1], p[2] + d[2]];
         match rng.below(3) {
@@ -406,7 +410,14 @@ fn add_nonmanifold(rng: &mut Rng, b: &mut Builder, loop_scheme: bool) {
                 let up = out(rng);
                 let (px, py) = (b.pos[x as usize], b.pos[y as usize]);
                 if loop_scheme || rng.chance(30) {
-                    let m = b.vertex(off([0.5 * (px[0] + py[0]), 0.5 * (px[1] + py[1]), 0.5 * (px[2] + py[2])], up));
+                    let m = b.vertex(off(
+                        [
+                            0.5 * (px[0] + py[0]),
+                            0.5 * (px[1] + py[1]),
+                            0.5 * (px[2] + py[2]),
+                        ],
+                        up,
+                    ));
                     b.faces.push(vec![x, y, m]);
                 } else {
                     let (ny, nx) = (b.vertex(off(py, up)), b.vertex(off(px, up)));
@@ -416,7 +427,8 @@ fn add_nonmanifold(rng: &mut Rng, b: &mut Builder, loop_scheme: bool) {
             1 => {
                 // A closed tetrahedron a, c, d, e sharing the edge a-c.
                 let (d, e) = (b.vertex(off(pa, out(rng))), b.vertex(off(pc, out(rng))));
-                b.faces.extend([vec![a, c, d], vec![a, d, e], vec![a, e, c], vec![c, e, d]]);
+                b.faces
+                    .extend([vec![a, c, d], vec![a, d, e], vec![a, e, c], vec![c, e, d]]);
             }
             _ => {
                 // A pyramid with its apex at a: sides (a, d_{i+1}, d_i), the base closing it.
@@ -426,7 +438,10 @@ fn add_nonmanifold(rng: &mut Rng, b: &mut Builder, loop_scheme: bool) {
                     .map(|i| {
                         let t = std::f64::consts::TAU * i as f64 / sides as f64;
                         let r = 0.5 * len;
-                        b.vertex(off(pa, [up[0] + r * t.cos(), up[1] + r * t.sin(), up[2] + 0.3 * r]))
+                        b.vertex(off(
+                            pa,
+                            [up[0] + r * t.cos(), up[1] + r * t.sin(), up[2] + 0.3 * r],
+                        ))
                     })
                     .collect();
                 for i in 0..sides {

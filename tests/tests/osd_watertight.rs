@@ -59,13 +59,22 @@ fn nonmanifold_edges(cage: &OsdCage, mesh: &Mesh) -> (u32, Vec<bool>) {
     let mut soup = subdiv_mesh::parse_obj(&cage.to_obj()).expect("generated cages parse");
     let nv = soup.positions.len();
     let found = soup.split_nonmanifold().expect("generated cages are valid");
-    let orig = |v: usize| if v < nv { v } else { found.copies[v - nv].0 as usize };
+    let orig = |v: usize| {
+        if v < nv {
+            v
+        } else {
+            found.copies[v - nv].0 as usize
+        }
+    };
     let on = mesh
         .edges()
         .map(|e| {
             let (a, b) = (mesh.from(e.halfedge(0)), mesh.to(e.halfedge(0)));
             let (a, b) = (orig(a.idx()) as u32, orig(b.idx()) as u32);
-            found.edges.iter().any(|x| (x.0, x.1) == (a.min(b), a.max(b)))
+            found
+                .edges
+                .iter()
+                .any(|x| (x.0, x.1) == (a.min(b), a.max(b)))
         })
         .collect();
     (found.edges.iter().map(|e| e.2).max().unwrap_or(0), on)
@@ -127,7 +136,11 @@ fn check_watertight(
             let (ra, rb) = (t[k], t[(k + 1) % 3]);
             let raw = (ra.min(rb), ra.max(rb));
             let e = uses.entry((a.min(b), a.max(b))).or_default();
-            if a < b { e.0 += 1 } else { e.1 += 1 }
+            if a < b {
+                e.0 += 1
+            } else {
+                e.1 += 1
+            }
             match e.2 {
                 None => e.2 = Some(raw),
                 Some(r) if r != raw => e.3 = true,

@@ -66,8 +66,15 @@ pub fn nonmanifold_lines(found: &NonManifold) -> String {
     };
     let mut out = String::new();
     if !found.edges.is_empty() {
-        let items = found.edges.iter().map(|(a, b, n)| format!("{a}-{b}: {n} faces"));
-        out += &format!("non-manifold edges: {} ({})\n", found.edges.len(), list(items.collect()));
+        let items = found
+            .edges
+            .iter()
+            .map(|(a, b, n)| format!("{a}-{b}: {n} faces"));
+        out += &format!(
+            "non-manifold edges: {} ({})\n",
+            found.edges.len(),
+            list(items.collect())
+        );
     }
     if !found.vertices.is_empty() {
         let items = found.vertices.iter().map(|(v, n)| format!("{v}: {n} fans"));
@@ -79,7 +86,11 @@ pub fn nonmanifold_lines(found: &NonManifold) -> String {
     }
     if !found.bare.is_empty() {
         let items = found.bare.iter().map(|v| v.to_string());
-        out += &format!("bare vertices: {} ({})\n", found.bare.len(), list(items.collect()));
+        out += &format!(
+            "bare vertices: {} ({})\n",
+            found.bare.len(),
+            list(items.collect())
+        );
     }
     out
 }

@@ -230,7 +230,9 @@ pub fn read_obj_with_report(
         path: path.display().to_string(),
         err,
     };
-    let found = soup.prepare_nonmanifold(opts.split_nonmanifold_vertices).map_err(invalid)?;
+    let found = soup
+        .prepare_nonmanifold(opts.split_nonmanifold_vertices)
+        .map_err(invalid)?;
     let mesh = Mesh::from_soup(&soup).map_err(invalid)?;
     Ok((mesh, soup.warnings, found))
 }

@@ -169,7 +169,9 @@ pub fn read_usd(path: impl AsRef<Path>, opts: &UsdReadOptions) -> Result<UsdMesh
         attr: attribute_of(&err),
         err,
     };
-    let found = cage.soup.prepare_nonmanifold(opts.split_nonmanifold_vertices);
+    let found = cage
+        .soup
+        .prepare_nonmanifold(opts.split_nonmanifold_vertices);
     let nonmanifold = found.map_err(invalid)?;
     let mesh = Mesh::from_soup(&cage.soup).map_err(invalid)?;
     Ok(UsdMesh {
@@ -209,7 +211,9 @@ pub fn read_usd_soup(path: impl AsRef<Path>, prim: Option<&str>) -> Result<UsdCa
         let one = read_mesh_prim(&stage, &file, p)?;
         // Validated as the reader builds it: non-manifold prims cut as OpenSubdiv refines them.
         let mut alone = one.soup.clone();
-        let built = alone.split_nonmanifold().and_then(|_| Mesh::from_soup(&alone));
+        let built = alone
+            .split_nonmanifold()
+            .and_then(|_| Mesh::from_soup(&alone));
         if let Err(err) = built {
             return Err(UsdError::Invalid {
                 path: file,

@@ -139,14 +139,18 @@ impl PolygonSoup {
             return Ok(found);
         }
         if self.options.boundary == BoundaryInterpolation::None {
-            return Err(unsupported(self, found.vertices[0].0, "boundary interpolation none"));
+            return Err(unsupported(
+                self,
+                found.vertices[0].0,
+                "boundary interpolation none",
+            ));
         }
         let corners = self.nonmanifold_corners(&uses, &nm_edges, &found, &nm_count, &mut parent)?;
         let (remap, created) = self.copy_extra_fans(&mut parent);
         self.retag_copies(&remap, &created);
         // Every use of a non-manifold edge: an infinitely sharp boundary edge of its piece.
-        for (&(a, b), _) in &nm_edges {
-            for u in &uses[&(a, b)] {
+        for &(a, b, _) in &found.edges {
+            for u in &uses[&(i64::from(a), i64::from(b))] {
                 self.creases.push(CreaseTag {
                     a: remap[u.corner],
                     b: remap[u.next],
@@ -236,8 +240,11 @@ impl PolygonSoup {
             vertex_sharp.insert(t.v, t.sharpness);
         }
         // Per non-manifold vertex: its edges' sharpness and, per edge, the fans that use it.
-        let mut at: HashMap<i64, Vec<(f32, bool, Vec<usize>)>> =
-            found.vertices.iter().map(|&(v, _)| (v as i64, Vec::new())).collect();
+        let mut at: HashMap<i64, Vec<(f32, bool, Vec<usize>)>> = found
+            .vertices
+            .iter()
+            .map(|&(v, _)| (v as i64, Vec::new()))
+            .collect();
         for (&(a, b), u) in uses {
             let nm = nm_edges.contains_key(&(a, b));
             let s = if nm || u.len() == 1 {
@@ -250,7 +257,11 @@ impl PolygonSoup {
                     let fans = u
                         .iter()
                         .map(|e| {
-                            let c = if self.face_indices[e.corner] == v { e.corner } else { e.next };
+                            let c = if self.face_indices[e.corner] == v {
+                                e.corner
+                            } else {
+                                e.next
+                            };
                             find_root(parent, c)
                         })
                         .collect();
@@ -281,7 +292,11 @@ impl PolygonSoup {
                     let first = &edges.iter().find(|e| semi(e.0)).expect("counted").2;
                     let one = edges.iter().filter(|e| semi(e.0)).all(|e| e.2 == *first);
                     if !one || first.len() != 1 {
-                        return Err(unsupported(self, v, "Chaikin creases at a non-manifold vertex"));
+                        return Err(unsupported(
+                            self,
+                            v,
+                            "Chaikin creases at a non-manifold vertex",
+                        ));
                     }
                 }
                 corners.push(v);
@@ -290,14 +305,22 @@ impl PolygonSoup {
             // The crease rule along its two non-manifold edges (or a rule that changes with
             // the levels): every copy must see exactly those two sharp edges.
             if semi_edges > 0 || semi(vs) {
-                return Err(unsupported(self, v, "semi-sharp tags at a non-manifold crease vertex"));
+                return Err(unsupported(
+                    self,
+                    v,
+                    "semi-sharp tags at a non-manifold crease vertex",
+                ));
             }
             let nm: Vec<&Vec<usize>> = edges.iter().filter(|e| e.1).map(|e| &e.2).collect();
             let mut all: Vec<usize> = edges.iter().flat_map(|e| e.2.iter().copied()).collect();
             all.sort_unstable();
             all.dedup();
             if all.iter().any(|r| !nm.iter().all(|fans| fans.contains(r))) {
-                return Err(unsupported(self, v, "a copy without both non-manifold edges"));
+                return Err(unsupported(
+                    self,
+                    v,
+                    "a copy without both non-manifold edges",
+                ));
             }
             // With edge-and-corner interpolation a one-face copy would become a corner.
             if edge_and_corner && all.iter().any(|r| fan_faces[r] == 1) {
