@@ -1,5 +1,6 @@
 //! Input fuzzing, part 4: the checker. One input goes through `parse_obj`, `Mesh::from_soup`
-//! (as read, and after `split_nonmanifold_vertices`) and, for every mesh built, the depth-1
+//! (as read, after `split_nonmanifold`, the readers' default, and after
+//! `split_nonmanifold_vertices`) and, for every mesh built, the depth-1
 //! slate tessellation and the depth-1 uniform Catmull-Clark (and Loop, for triangle meshes)
 //! tessellation of `subdiv-rules`. Every stage runs under `catch_unwind`; the properties checked:
 //!
@@ -120,6 +121,22 @@ pub fn check(bytes: &[u8]) -> Result<Outcome, Failure> {
             outcome = Outcome::Tessellated;
         }
         Err(e) => check_refusal("Mesh::from_soup", &e, nlines)?,
+    }
+    // The readers' default: non-manifold cages cut into manifold pieces as OpenSubdiv refines
+    // them.
+    const CUT: &str = "Mesh::from_soup after split_nonmanifold";
+    let mut cut = soup.clone();
+    match guard("split_nonmanifold", || cut.split_nonmanifold())? {
+        Ok(found) if !found.is_empty() => match guard(CUT, || Mesh::from_soup(&cut))? {
+            Ok(mesh) => {
+                check_mesh(CUT, &cut, &mesh)?;
+                tessellate_all(&mesh)?;
+                outcome = Outcome::Tessellated;
+            }
+            Err(e) => check_refusal(CUT, &e, nlines)?,
+        },
+        Ok(_) => {}
+        Err(e) => check_refusal("split_nonmanifold", &e, nlines)?,
     }
     if created.is_empty() {
         return Ok(outcome);

@@ -80,7 +80,9 @@ impl OsdCage {
 
     /// The cage as subdiv reads it (through its OBJ text, as `ref_osd` does).
     pub fn mesh(&self) -> Result<Mesh, MeshError> {
-        Mesh::from_soup(&parse_obj(&self.to_obj())?)
+        let mut soup = parse_obj(&self.to_obj())?;
+        soup.split_nonmanifold()?;
+        Mesh::from_soup(&soup)
     }
 
     /// `ref_osd`'s scheme argument.
@@ -113,7 +115,7 @@ impl OsdCage {
         };
         format!(
             "{} F={} (tri {} quad {} ngon {}) V={} valence2={} holes={} creases={}[{}] \
-             corners={}[{}] boundary={:?} chaikin={:?} smoothtri={:?}",
+             corners={}[{}] boundary={:?} chaikin={:?} smoothtri={:?} nonmanifold={}",
             self.scheme_name(),
             self.faces.len(),
             sizes(3, 3),
@@ -128,8 +130,22 @@ impl OsdCage {
             kinds(&mut self.corners.iter().map(|c| c.1)),
             self.boundary,
             self.chaikin,
-            self.smooth_triangles
+            self.smooth_triangles,
+            self.nonmanifold_summary()
         )
+    }
+
+    /// `none`, or the non-manifold edges and vertices and the bare vertices
+    /// (`PolygonSoup::split_nonmanifold`), e.g. `e2v3b1`.
+    pub fn nonmanifold_summary(&self) -> String {
+        let found = parse_obj(&self.to_obj()).map(|mut s| s.split_nonmanifold());
+        match found {
+            Ok(Ok(n)) if !n.is_empty() || !n.bare.is_empty() => {
+                format!("e{}v{}b{}", n.edges.len(), n.vertices.len(), n.bare.len())
+            }
+            Ok(Ok(_)) => "none".into(),
+            _ => "refused".into(),
+        }
     }
 
     /// Number of interior vertices with two faces (the faces share two consecutive edges).
@@ -194,7 +210,7 @@ impl OsdCage {
         c.compact();
         let ok = !c.faces.is_empty()
             && c.holes.len() < c.faces.len()
-            && is_manifold(&c.faces, c.positions.len());
+            && (is_manifold(&c.faces, c.positions.len()) || c.mesh().is_ok());
         ok.then_some(c)
     }
 

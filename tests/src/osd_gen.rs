@@ -12,8 +12,11 @@
 //! interpolation, crease method and triangle rule. Positions are jittered and rounded to
 //! multiples of 2^-10.
 //!
-//! Non-manifold cages (an edge with three faces, several fans at a vertex) are not generated:
-//! subdiv refuses them (`ReadOptions::split_nonmanifold_vertices` aside).
+//! A share of the cages ([`NONMANIFOLD_PERCENT`]) is then made non-manifold: fins (an edge with
+//! three faces, or two the same way round), closed tetrahedra sharing an edge (four faces),
+//! pyramids touching the cage at one vertex (bow-ties), and now and then a bare vertex; subdiv
+//! refines them as OpenSubdiv does (`PolygonSoup::split_nonmanifold`). Cages subdiv refuses
+//! (the non-manifold configurations it does not support, see there) are drawn again.
 
 use std::f64::consts::TAU;
 
@@ -23,6 +26,8 @@ use crate::osd_cage::{OsdCage, is_manifold};
 /// Cage `index` of the run with `seed` (independent of the other indices).
 pub fn random_cage(seed: u64, index: u64) -> OsdCage {
     let mut rng = Rng::for_case(seed ^ 0x05D0_05D0, index);
+    // Its own stream, so that the manifold cages are the ones earlier runs drew at each index.
+    let mut nm_rng = Rng::for_case(seed ^ 0x0A0B_0C0D, index);
     let loop_scheme = rng.chance(30);
     loop {
         let mut b = base_shape(&mut rng, loop_scheme);
@@ -33,6 +38,10 @@ pub fn random_cage(seed: u64, index: u64) -> OsdCage {
         if b.faces.is_empty() || !is_manifold(&b.faces, b.pos.len()) {
             continue;
         }
+        let nonmanifold = nm_rng.chance(NONMANIFOLD_PERCENT);
+        if nonmanifold {
+            add_nonmanifold(&mut nm_rng, &mut b, loop_scheme);
+        }
         let mut cage = OsdCage {
             positions: b.pos,
             faces: b.faces,
@@ -40,6 +49,11 @@ pub fn random_cage(seed: u64, index: u64) -> OsdCage {
             ..OsdCage::default()
         };
         cage.compact();
+        if nonmanifold && nm_rng.chance(25) {
+            // A bare vertex (no face uses it) near the first.
+            let p = cage.positions[0];
+            cage.positions.push([p[0] + 0.5, p[1] - 0.25, p[2] + 0.75]);
+        }
         jitter(&mut rng, &mut cage);
         add_tags(&mut rng, &mut cage);
         if cage.mesh().is_ok() {
@@ -367,6 +381,80 @@ fn split_edge(rng: &mut Rng, b: &mut Builder, faces: &mut [Vec<u32>], f: usize) 
     true
 }
 
+/// The share of cages (percent) made non-manifold by [`add_nonmanifold`].
+pub const NONMANIFOLD_PERCENT: u64 = 15;
+
+/// Makes a manifold cage non-manifold (as OpenSubdiv takes such cages, issue 13 item 5): one or
+/// two of a fin (one more face on an edge: three faces on an interior edge, two the same way
+/// round on a boundary edge), a closed tetrahedron sharing an edge (four faces there), a
+/// bow-tie (a pyramid, closed or open, touching the cage at one vertex). Triangles only for
+/// Loop.
+fn add_nonmanifold(rng: &mut Rng, b: &mut Builder, loop_scheme: bool) {
+    for _ in 0..1 + rng.below(2) {
+        let f = rng.below(b.faces.len());
+        let n = b.faces[f].len();
+        let k = rng.below(n);
+        let (a, c) = (b.faces[f][k], b.faces[f][(k + 1) % n]);
+        let (pa, pc) = (b.pos[a as usize], b.pos[c as usize]);
+        let len = (0..3)
+            .map(|i| (pc[i] - pa[i]).powi(2))
+            .sum::<f64>()
+            .sqrt()
+            .max(0.25);
+        let out = |rng: &mut Rng| -> [f64; 3] { std::array::from_fn(|_| len * rng.unit() as f64) };
+        let off = |p: [f64; 3], d: [f64; 3]| [p[0] + d[0], p[1] + d[1], p[2] + d[2]];
+        match rng.below(3) {
+            0 => {
+                // A fin on a-c, either way round.
+                let (x, y) = if rng.chance(50) { (a, c) } else { (c, a) };
+                let up = out(rng);
+                let (px, py) = (b.pos[x as usize], b.pos[y as usize]);
+                if loop_scheme || rng.chance(30) {
+                    let m = b.vertex(off(
+                        [
+                            0.5 * (px[0] + py[0]),
+                            0.5 * (px[1] + py[1]),
+                            0.5 * (px[2] + py[2]),
+                        ],
+                        up,
+                    ));
+                    b.faces.push(vec![x, y, m]);
+                } else {
+                    let (ny, nx) = (b.vertex(off(py, up)), b.vertex(off(px, up)));
+                    b.faces.push(vec![x, y, ny, nx]);
+                }
+            }
+            1 => {
+                // A closed tetrahedron a, c, d, e sharing the edge a-c.
+                let (d, e) = (b.vertex(off(pa, out(rng))), b.vertex(off(pc, out(rng))));
+                b.faces
+                    .extend([vec![a, c, d], vec![a, d, e], vec![a, e, c], vec![c, e, d]]);
+            }
+            _ => {
+                // A pyramid with its apex at a: sides (a, d_{i+1}, d_i), the base closing it.
+                let sides = if loop_scheme { 3 } else { 3 + rng.below(2) };
+                let up = out(rng);
+                let ring: Vec<u32> = (0..sides)
+                    .map(|i| {
+                        let t = std::f64::consts::TAU * i as f64 / sides as f64;
+                        let r = 0.5 * len;
+                        b.vertex(off(
+                            pa,
+                            [up[0] + r * t.cos(), up[1] + r * t.sin(), up[2] + 0.3 * r],
+                        ))
+                    })
+                    .collect();
+                for i in 0..sides {
+                    b.faces.push(vec![a, ring[(i + 1) % sides], ring[i]]);
+                }
+                if rng.chance(70) {
+                    b.faces.push(ring);
+                }
+            }
+        }
+    }
+}
+
 /// Jitters, scales and rounds the positions to multiples of 2^-10.
 fn jitter(rng: &mut Rng, cage: &mut OsdCage) {
     let amp = 0.15 * rng.range(0, 4) as f64 / 4.0;
@@ -443,8 +531,13 @@ mod tests {
     #[test]
     fn cages_are_valid_reproducible_and_varied() {
         let (mut loops, mut holes, mut ngons, mut valence2, mut max_valence) = (0, 0, 0, 0, 0);
+        let (mut fins, mut bowties) = (0, 0);
         for i in 0..300 {
             let c = random_cage(7, i);
+            let mut soup = subdiv_mesh::parse_obj(&c.to_obj()).unwrap();
+            let found = soup.split_nonmanifold().unwrap();
+            fins += usize::from(found.edges.iter().any(|e| e.2 >= 3));
+            bowties += usize::from(found.edges.is_empty() && !found.vertices.is_empty());
             assert_eq!(c, random_cage(7, i), "cage {i} is not reproducible");
             let m = c
                 .mesh()
@@ -469,5 +562,6 @@ mod tests {
             "{loops} {holes} {ngons} {valence2}"
         );
         assert!(max_valence >= 16, "max valence {max_valence}");
+        assert!(fins > 10 && bowties > 5, "fins {fins}, bow-ties {bowties}");
     }
 }

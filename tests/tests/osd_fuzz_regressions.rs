@@ -4,6 +4,8 @@
 //! `<name>.L<level>.txt` from `xtask/osd/ref_osd.cpp ... local` at the level where it failed;
 //! the comparison is fuzz-osd's: counts, faces, positions within 1e-5 x diagonal and normals
 //! within 0.05 degrees, through the whole-mesh path and (Catmull-Clark) the slate tessellator.
+//! `fuzz13_16024_full` is the whole cage 16024 at levels 1-4, whose level-2 normal at valence-2
+//! vertex 10 is undefined (parallel tangents; `ref_osd` writes 0 0 0 there since issue 13).
 
 use subdiv_mesh::read_obj;
 use subdiv_tests::osd_compare::{Tessellator, compare};

@@ -274,8 +274,16 @@ int main(int argc, char **argv) {
         Vec3 const &a = lim.du[d], &b = lim.dv[d];
         double n[3] = {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
         double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        if (len > 0.0) {
+        // Parallel tangents (an interior valence-2 vertex whose two edges line up, seed 13 cage
+        // 16024): du x dv is rounding noise (|du x dv| = 2e-14 |du| |dv| there, from 1e-16
+        // components across the exact direction), and normalizing it gives an arbitrary
+        // direction. The normal is undefined: print 0 0 0, as subdiv returns it.
+        double la = std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+        double lb = std::sqrt(b.x * b.x + b.y * b.y + b.z * b.z);
+        if (len > 1e-12 * la * lb) {
             for (double &x : n) x /= len;
+        } else {
+            n[0] = n[1] = n[2] = 0.0;
         }
         std::printf("p %.9g %.9g %.9g %.9g %.9g %.9g\n", pos[d].x, pos[d].y, pos[d].z, n[0],
                     n[1], n[2]);

@@ -50,7 +50,8 @@ pub struct BenchTessellateArgs {
     /// Timed runs (the median is reported).
     #[arg(long, default_value_t = 15)]
     pub runs: usize,
-    /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
+    /// Give each extra fan of faces at a non-manifold vertex its own vertex (the surface opens
+    /// there) instead of refining non-manifold cages as OpenSubdiv does.
     #[arg(long)]
     pub split_nonmanifold: bool,
 }

@@ -54,7 +54,8 @@ pub struct BenchQualityArgs {
     /// pixels stay within (180: silhouettes only).
     #[arg(long, value_name = "DEG", default_value_t = DEFAULT_SHADING_ERROR_DEG)]
     pub shading_error: f32,
-    /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
+    /// Give each extra fan of faces at a non-manifold vertex its own vertex (the surface opens
+    /// there) instead of refining non-manifold cages as OpenSubdiv does.
     #[arg(long)]
     pub split_nonmanifold: bool,
     /// Which kinds of configuration to measure (comma-separated) [default: all three].

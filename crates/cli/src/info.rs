@@ -16,7 +16,8 @@ pub struct InfoArgs {
     /// The USD mesh prim to read (e.g. /World/Body); every Mesh prim merged without it.
     #[arg(long, value_name = "PATH")]
     pub prim: Option<String>,
-    /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
+    /// Give each extra fan of faces at a non-manifold vertex its own vertex (the surface opens
+    /// there) instead of refining non-manifold cages as OpenSubdiv does.
     #[arg(long)]
     pub split_nonmanifold: bool,
 }
@@ -49,13 +50,18 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<ExitCode> {
         writeln!(out, "ignored tags: {} ({})", list.len(), list.join(", "))?;
     }
 
-    if a.split_nonmanifold {
+    let prepared = if a.split_nonmanifold {
         let split = soup.split_nonmanifold_vertices();
         if !split.is_empty() {
             writeln!(out, "split non-manifold vertices: {}", split.len())?;
         }
-    }
-    let mesh = match Mesh::from_soup(&soup) {
+        Ok(())
+    } else {
+        soup.split_nonmanifold().map(|found| {
+            out.push_str(&crate::load::nonmanifold_lines(&found));
+        })
+    };
+    let mesh = match prepared.and_then(|()| Mesh::from_soup(&soup)) {
         Ok(m) => m,
         Err(err) => {
             let mut sizes = std::collections::BTreeMap::new();

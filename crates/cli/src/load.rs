@@ -4,7 +4,7 @@ use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::anyhow;
-use subdiv::mesh::{Cage, CageOptions, TagWarning, read_cage};
+use subdiv::mesh::{Cage, CageOptions, NonManifold, TagWarning, read_cage};
 use subdiv::rules::Scheme;
 
 /// `--strict` (a global flag): tag lines that are read but not applied are errors.
@@ -39,7 +39,60 @@ pub fn load_cage(path: &Path, split_nonmanifold: bool, prim: Option<&str>) -> an
         cage.mesh.num_faces()
     );
     report_tag_warnings(path, &cage.warnings)?;
+    if !cage.nonmanifold.is_empty() {
+        log::warn!(
+            "{}: non-manifold cage, refined as OpenSubdiv does (non-manifold edges infinitely \
+             sharp, non-manifold vertices corners or creases; --split-nonmanifold splits vertices \
+             instead):\n{}",
+            path.display(),
+            nonmanifold_lines(&cage.nonmanifold).trim_end()
+        );
+    }
     Ok(cage)
+}
+
+/// The `subdiv info` lines (and the warning) naming what is non-manifold, 0-based vertex
+/// indices as in tag lines: `non-manifold edges: N (a-b: F faces, ...)`, `non-manifold
+/// vertices: N (v: F fans, ...)`, `bare vertices: N (v, ...)`; empty for a manifold cage.
+pub fn nonmanifold_lines(found: &NonManifold) -> String {
+    const SHOWN: usize = 12;
+    let list = |items: Vec<String>| {
+        let more = items.len().saturating_sub(SHOWN);
+        let mut s = items.into_iter().take(SHOWN).collect::<Vec<_>>().join(", ");
+        if more > 0 {
+            s.push_str(&format!(", ... {more} more"));
+        }
+        s
+    };
+    let mut out = String::new();
+    if !found.edges.is_empty() {
+        let items = found
+            .edges
+            .iter()
+            .map(|(a, b, n)| format!("{a}-{b}: {n} faces"));
+        out += &format!(
+            "non-manifold edges: {} ({})\n",
+            found.edges.len(),
+            list(items.collect())
+        );
+    }
+    if !found.vertices.is_empty() {
+        let items = found.vertices.iter().map(|(v, n)| format!("{v}: {n} fans"));
+        out += &format!(
+            "non-manifold vertices: {} ({})\n",
+            found.vertices.len(),
+            list(items.collect())
+        );
+    }
+    if !found.bare.is_empty() {
+        let items = found.bare.iter().map(|v| v.to_string());
+        out += &format!(
+            "bare vertices: {} ({})\n",
+            found.bare.len(),
+            list(items.collect())
+        );
+    }
+    out
 }
 
 /// The scheme to subdivide `cage` with: `--scheme` when given, else the USD

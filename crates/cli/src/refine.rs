@@ -30,7 +30,8 @@ pub struct RefineArgs {
     /// vertex normals and each vertex's largest DoI over its faces (_DOI, doi).
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
-    /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
+    /// Give each extra fan of faces at a non-manifold vertex its own vertex (the surface opens
+    /// there) instead of refining non-manifold cages as OpenSubdiv does.
     #[arg(long)]
     pub split_nonmanifold: bool,
 }

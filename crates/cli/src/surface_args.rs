@@ -40,7 +40,8 @@ pub struct SurfaceArgs {
     /// tessellation adaptive (Catmull-Clark or Loop); otherwise the default is depth 3.
     #[arg(long)]
     pub depth: Option<subdiv::rules::Depth>,
-    /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
+    /// Give each extra fan of faces at a non-manifold vertex its own vertex (the surface opens
+    /// there) instead of refining non-manifold cages as OpenSubdiv does.
     #[arg(long)]
     pub split_nonmanifold: bool,
     #[command(flatten)]

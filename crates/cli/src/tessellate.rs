@@ -53,7 +53,8 @@ pub struct TessellateArgs {
     /// subdivision depth (_DEPTH, depth).
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
-    /// Give each extra fan of faces at a non-manifold vertex its own vertex instead of refusing.
+    /// Give each extra fan of faces at a non-manifold vertex its own vertex (the surface opens
+    /// there) instead of refining non-manifold cages as OpenSubdiv does.
     #[arg(long)]
     pub split_nonmanifold: bool,
 }

@@ -7,14 +7,15 @@ use thiserror::Error;
 
 use crate::error::{ObjError, UsdError};
 use crate::mesh::Mesh;
-use crate::obj::{ReadOptions, read_obj_with_warnings};
+use crate::obj::{ReadOptions, read_obj_with_report};
 use crate::tags::TagWarning;
 use crate::usd::{FaceVaryingLinear, UsdReadOptions, UsdScheme, is_usd_path, read_usd};
 
 /// Options of [`read_cage`].
 #[derive(Clone, Debug, Default)]
 pub struct CageOptions {
-    /// Repair non-manifold vertices instead of refusing them.
+    /// Repair non-manifold vertices (each fan its own copy, the surface open there) instead of
+    /// refining the cage as OpenSubdiv does.
     pub split_nonmanifold_vertices: bool,
     /// USD only: the mesh prim to read (every mesh, merged, without it).
     pub prim: Option<String>,
@@ -33,6 +34,9 @@ pub struct Cage {
     pub face_varying: Option<FaceVaryingLinear>,
     /// USD only: the mesh prims read.
     pub prims: Vec<String>,
+    /// What was non-manifold, refined as OpenSubdiv does (see
+    /// [`crate::PolygonSoup::split_nonmanifold`]; empty with `split_nonmanifold_vertices`).
+    pub nonmanifold: crate::NonManifold,
 }
 
 /// An error of [`read_cage`].
@@ -77,6 +81,7 @@ pub fn read_cage(path: impl AsRef<Path>, opts: &CageOptions) -> Result<Cage, Cag
             scheme: Some(usd.scheme),
             face_varying: Some(usd.face_varying),
             prims: usd.prims,
+            nonmanifold: usd.nonmanifold,
         });
     }
     if let Some(prim) = &opts.prim {
@@ -85,7 +90,7 @@ pub fn read_cage(path: impl AsRef<Path>, opts: &CageOptions) -> Result<Cage, Cag
             prim: prim.clone(),
         });
     }
-    let (mesh, warnings) = read_obj_with_warnings(
+    let (mesh, warnings, nonmanifold) = read_obj_with_report(
         path,
         ReadOptions {
             split_nonmanifold_vertices: opts.split_nonmanifold_vertices,
@@ -97,5 +102,6 @@ pub fn read_cage(path: impl AsRef<Path>, opts: &CageOptions) -> Result<Cage, Cag
         scheme: None,
         face_varying: None,
         prims: Vec::new(),
+        nonmanifold,
     })
 }

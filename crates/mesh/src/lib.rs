@@ -23,7 +23,9 @@
 //! Meshes are built from a [`PolygonSoup`] — usually read from an OBJ file with OpenSubdiv's
 //! crease/corner/hole tags by [`read_obj`], or from the `UsdGeomMesh` prims of a USD stage by
 //! [`read_usd`] ([`read_cage`] picks by extension) — and every defect of the input is a [`MeshError`]
-//! naming the face, vertex or tag and its line.
+//! naming the face, vertex or tag and its line. Non-manifold cages (fins, bow-ties) are cut by
+//! the readers into manifold pieces that refine to OpenSubdiv's surface
+//! ([`PolygonSoup::split_nonmanifold`]); [`Mesh::from_soup`] itself refuses them.
 //!
 //! ```
 //! use subdiv_mesh::{parse_obj, Mesh, VertexId};
@@ -61,12 +63,12 @@ pub use handle::{EdgeId, FaceId, HalfedgeId, VertexId};
 pub use mesh::{Mesh, Outgoing};
 pub use obj::{
     ObjData, ReadOptions, format_mesh_obj, format_obj, parse_obj, read_obj, read_obj_soup,
-    read_obj_with, read_obj_with_warnings, write_mesh_obj, write_obj,
+    read_obj_with, read_obj_with_report, read_obj_with_warnings, write_mesh_obj, write_obj,
 };
 pub use options::{
     BoundaryInterpolation, CreaseMethod, SHARPNESS_INFINITE, SchemeOptions, TriangleSubdivision,
 };
-pub use soup::{CornerTag, CreaseTag, HoleTag, PolygonSoup};
+pub use soup::{CornerTag, CreaseTag, HoleTag, NonManifold, PolygonSoup};
 pub use stats::MeshStats;
 pub use tags::{IgnoredTagKind, TagWarning};
 pub use usd::{

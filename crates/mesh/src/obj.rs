@@ -37,7 +37,7 @@ use crate::mesh::Mesh;
 use crate::options::{
     BoundaryInterpolation, CreaseMethod, SHARPNESS_INFINITE, TriangleSubdivision,
 };
-use crate::soup::PolygonSoup;
+use crate::soup::{NonManifold, PolygonSoup};
 use crate::tags::{TagWarning, parse_tag};
 
 /// Parses OBJ text into a polygon soup (no topology validation yet).
@@ -198,7 +198,8 @@ pub fn read_obj(path: impl AsRef<Path>) -> Result<Mesh, ObjError> {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct ReadOptions {
     /// Repair vertices where several fans of faces meet by giving each fan its own copy (see
-    /// [`PolygonSoup::split_nonmanifold_vertices`]) instead of refusing the mesh.
+    /// [`PolygonSoup::split_nonmanifold_vertices`]; the surface opens there) instead of
+    /// refining non-manifold cages as OpenSubdiv does ([`PolygonSoup::split_nonmanifold`]).
     pub split_nonmanifold_vertices: bool,
 }
 
@@ -213,16 +214,27 @@ pub fn read_obj_with_warnings(
     path: impl AsRef<Path>,
     opts: ReadOptions,
 ) -> Result<(Mesh, Vec<TagWarning>), ObjError> {
+    let (mesh, warnings, _) = read_obj_with_report(path, opts)?;
+    Ok((mesh, warnings))
+}
+
+/// [`read_obj_with_warnings`], also returning what was non-manifold (see
+/// [`PolygonSoup::split_nonmanifold`]; empty with `split_nonmanifold_vertices`).
+pub fn read_obj_with_report(
+    path: impl AsRef<Path>,
+    opts: ReadOptions,
+) -> Result<(Mesh, Vec<TagWarning>, NonManifold), ObjError> {
     let path = path.as_ref();
     let mut soup = read_obj_soup(path)?;
-    if opts.split_nonmanifold_vertices {
-        soup.split_nonmanifold_vertices();
-    }
-    let mesh = Mesh::from_soup(&soup).map_err(|err| ObjError::Invalid {
+    let invalid = |err| ObjError::Invalid {
         path: path.display().to_string(),
         err,
-    })?;
-    Ok((mesh, soup.warnings))
+    };
+    let found = soup
+        .prepare_nonmanifold(opts.split_nonmanifold_vertices)
+        .map_err(invalid)?;
+    let mesh = Mesh::from_soup(&soup).map_err(invalid)?;
+    Ok((mesh, soup.warnings, found))
 }
 
 /// Reads an OBJ file into a polygon soup, without topology validation.

@@ -6,6 +6,9 @@ use glam::Vec3;
 
 use crate::options::SchemeOptions;
 
+mod nonmanifold;
+pub use nonmanifold::NonManifold;
+
 /// A crease tag: the edge `a`-`b` gets `sharpness` (>= 10 is infinitely sharp).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CreaseTag {

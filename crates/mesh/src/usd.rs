@@ -137,6 +137,8 @@ pub struct UsdMesh {
     pub face_varying: FaceVaryingLinear,
     /// The paths of the prims read, in order.
     pub prims: Vec<String>,
+    /// What was non-manifold (see [`crate::PolygonSoup::split_nonmanifold`]).
+    pub nonmanifold: crate::NonManifold,
 }
 
 /// Whether `path` names a USD file (`.usd`, `.usda`, `.usdc`, `.usdz`, any case).
@@ -161,20 +163,23 @@ pub fn is_usd_path(path: impl AsRef<Path>) -> bool {
 pub fn read_usd(path: impl AsRef<Path>, opts: &UsdReadOptions) -> Result<UsdMesh, UsdError> {
     let path = path.as_ref();
     let mut cage = read_usd_soup(path, opts.prim.as_deref())?;
-    if opts.split_nonmanifold_vertices {
-        cage.soup.split_nonmanifold_vertices();
-    }
-    let mesh = Mesh::from_soup(&cage.soup).map_err(|err| UsdError::Invalid {
+    let invalid = |err| UsdError::Invalid {
         path: path.display().to_string(),
         prim: cage.prims.join(" "),
         attr: attribute_of(&err),
         err,
-    })?;
+    };
+    let found = cage
+        .soup
+        .prepare_nonmanifold(opts.split_nonmanifold_vertices);
+    let nonmanifold = found.map_err(invalid)?;
+    let mesh = Mesh::from_soup(&cage.soup).map_err(invalid)?;
     Ok(UsdMesh {
         mesh,
         scheme: cage.scheme,
         face_varying: cage.face_varying,
         prims: cage.prims,
+        nonmanifold,
     })
 }
 
@@ -204,7 +209,12 @@ pub fn read_usd_soup(path: impl AsRef<Path>, prim: Option<&str>) -> Result<UsdCa
     let mut cage = UsdCage::default();
     for p in &chosen {
         let one = read_mesh_prim(&stage, &file, p)?;
-        if let Err(err) = Mesh::from_soup(&one.soup) {
+        // Validated as the reader builds it: non-manifold prims cut as OpenSubdiv refines them.
+        let mut alone = one.soup.clone();
+        let built = alone
+            .split_nonmanifold()
+            .and_then(|_| Mesh::from_soup(&alone));
+        if let Err(err) = built {
             return Err(UsdError::Invalid {
                 path: file,
                 prim: p.clone(),

@@ -1,0 +1,340 @@
+//! Non-manifold cages as OpenSubdiv takes them ([`PolygonSoup::split_nonmanifold`]).
+//!
+//! OpenSubdiv 3.5 refines non-manifold cages as they are:
+//! `Far::TopologyRefinerFactoryBase::prepareComponentTagsAndSharpness` (with its
+//! `sharpenNonManFeatures`, fixed to `true`) makes every non-manifold edge (more than two faces,
+//! or two faces using it the same way round) infinitely sharp, and every non-manifold vertex
+//! (several fans of faces, or on a non-manifold edge) an infinitely sharp corner unless exactly
+//! two of its edges are non-manifold, where `DetermineVertexVertexRule` decides from all its
+//! sharp edges (two: the crease rule along them; more: a corner). Bare vertices (no face) stay
+//! where they are.
+//!
+//! subdiv's [`Mesh`](crate::Mesh) is manifold, so the cage is cut into manifold pieces that
+//! refine to the same points: every fan of faces around a vertex gets its own copy of the vertex,
+//! every piece its own copy of a non-manifold edge (tagged infinitely sharp), and every copy the
+//! rule OpenSubdiv gives the whole vertex (an infinite corner tag where that is a corner). The
+//! crease and corner masks read only the points along the sharp edges, which every copy has, so
+//! each copy refines and takes its limit exactly where OpenSubdiv puts the one vertex; the copies
+//! coincide. Where a copy cannot be given the whole vertex's rule at every level (semi-sharp
+//! tags at a non-manifold vertex with several copies, a crease vertex whose copy misses one of
+//! its two non-manifold edges, boundary interpolation `none`), the cage is refused with
+//! [`MeshError::UnsupportedNonManifold`] naming the vertex, rather than refined differently.
+
+use std::collections::HashMap;
+
+use super::{CornerTag, CreaseTag, PolygonSoup, find_root};
+use crate::error::MeshError;
+use crate::options::{BoundaryInterpolation, SHARPNESS_INFINITE};
+
+/// What [`PolygonSoup::split_nonmanifold`] found (vertex indices of the cage as read, 0-based).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct NonManifold {
+    /// Non-manifold edges `(a, b, faces)`, `a < b`: more than two faces, or two faces using the
+    /// edge the same way round.
+    pub edges: Vec<(u32, u32, u32)>,
+    /// Non-manifold vertices `(vertex, fans)`: several fans of faces, or on a non-manifold edge.
+    pub vertices: Vec<(u32, u32)>,
+    /// Vertices no face uses.
+    pub bare: Vec<u32>,
+    /// `(original, copy)` for every vertex copy made.
+    pub copies: Vec<(u32, u32)>,
+}
+
+impl NonManifold {
+    /// Whether the cage was manifold (bare vertices aside).
+    pub fn is_empty(&self) -> bool {
+        self.edges.is_empty() && self.vertices.is_empty()
+    }
+}
+
+/// One use of an undirected edge: the face corner at its first vertex (in face order) and
+/// whether the face runs it from the smaller index to the larger.
+#[derive(Clone, Copy)]
+struct EdgeUse {
+    corner: usize,
+    next: usize,
+    up: bool,
+}
+
+impl PolygonSoup {
+    /// What the readers do before building a mesh: with `split_vertices` the opt-in repair
+    /// [`PolygonSoup::split_nonmanifold_vertices`] (non-manifold edges stay refused), otherwise
+    /// [`PolygonSoup::split_nonmanifold`], OpenSubdiv's surface.
+    pub fn prepare_nonmanifold(&mut self, split_vertices: bool) -> Result<NonManifold, MeshError> {
+        if split_vertices {
+            self.split_nonmanifold_vertices();
+            return Ok(NonManifold::default());
+        }
+        self.split_nonmanifold()
+    }
+
+    /// Cuts a non-manifold cage into manifold pieces that refine to OpenSubdiv's surface (see
+    /// the module notes): vertex copies are appended after the existing vertices, crease tags
+    /// follow their edge, corner tags apply to every copy, and OpenSubdiv's sharpening of
+    /// non-manifold edges and vertices is added as tags. Returns what was non-manifold (empty
+    /// for a manifold cage, which is left unchanged). A soup with a malformed face (fewer than
+    /// three corners, an index out of range, a repeated vertex) is left unchanged for
+    /// validation to report.
+    ///
+    /// ```
+    /// use subdiv_mesh::{Mesh, PolygonSoup};
+    /// use glam::Vec3;
+    /// // Three quads on the edge 0-1 (a fin).
+    /// let p = |x: f32, y: f32, z: f32| Vec3::new(x, y, z);
+    /// let mut soup = PolygonSoup::from_faces(
+    ///     vec![p(0., 0., 0.), p(1., 0., 0.), p(1., 1., 0.), p(0., 1., 0.), p(1., 0., 1.),
+    ///          p(0., 0., 1.), p(1., -1., 0.), p(0., -1., 0.)],
+    ///     &[vec![0, 1, 2, 3], vec![1, 0, 5, 4], vec![0, 1, 6, 7]],
+    /// );
+    /// let found = soup.split_nonmanifold().unwrap();
+    /// assert_eq!(found.edges, vec![(0, 1, 3)]);
+    /// let mesh = Mesh::from_soup(&soup).unwrap();
+    /// assert_eq!(mesh.num_vertices(), 8 + 4);
+    /// ```
+    pub fn split_nonmanifold(&mut self) -> Result<NonManifold, MeshError> {
+        let nv = self.positions.len();
+        let mut found = NonManifold::default();
+        let mut used = vec![false; nv];
+        for &v in &self.face_indices {
+            if (0..nv as i64).contains(&v) {
+                used[v as usize] = true;
+            }
+        }
+        found.bare = (0..nv as u32).filter(|&v| !used[v as usize]).collect();
+        if self.face_offsets.len() < 2 || self.has_malformed_face() {
+            // Left for validation to report.
+            return Ok(found);
+        }
+        let uses = self.edge_uses();
+        let nonmanifold_edge = |u: &[EdgeUse]| u.len() > 2 || (u.len() == 2 && u[0].up == u[1].up);
+        let mut parent: Vec<usize> = (0..self.face_indices.len()).collect();
+        let mut nm_edges: HashMap<(i64, i64), u32> = HashMap::new();
+        for (&(a, b), u) in &uses {
+            if nonmanifold_edge(u) {
+                nm_edges.insert((a, b), u.len() as u32);
+            } else if u.len() == 2 {
+                // A manifold edge joins the fans of its two faces at both ends.
+                for (x, y) in [(u[0].corner, u[1].next), (u[0].next, u[1].corner)] {
+                    let (rx, ry) = (find_root(&mut parent, x), find_root(&mut parent, y));
+                    parent[rx.max(ry)] = rx.min(ry);
+                }
+            }
+        }
+        let fans = self.fan_counts(&mut parent, nv);
+        found.edges = nm_edges
+            .iter()
+            .map(|(&(a, b), &n)| (a as u32, b as u32, n))
+            .collect();
+        found.edges.sort_unstable();
+        let mut nm_count = vec![0u32; nv];
+        for &(a, b, _) in &found.edges {
+            nm_count[a as usize] += 1;
+            nm_count[b as usize] += 1;
+        }
+        found.vertices = (0..nv)
+            .filter(|&v| fans[v] > 1 || nm_count[v] > 0)
+            .map(|v| (v as u32, fans[v]))
+            .collect();
+        if found.is_empty() {
+            return Ok(found);
+        }
+        if self.options.boundary == BoundaryInterpolation::None {
+            return Err(unsupported(
+                self,
+                found.vertices[0].0,
+                "boundary interpolation none",
+            ));
+        }
+        let corners = self.nonmanifold_corners(&uses, &nm_edges, &found, &nm_count, &mut parent)?;
+        let (remap, created) = self.copy_extra_fans(&mut parent);
+        self.retag_copies(&remap, &created);
+        // Every use of a non-manifold edge: an infinitely sharp boundary edge of its piece.
+        for &(a, b, _) in &found.edges {
+            for u in &uses[&(i64::from(a), i64::from(b))] {
+                self.creases.push(CreaseTag {
+                    a: remap[u.corner],
+                    b: remap[u.next],
+                    sharpness: SHARPNESS_INFINITE,
+                    line: None,
+                });
+            }
+        }
+        for &v in &corners {
+            for w in std::iter::once(v).chain(created.iter().filter(|c| c.0 == v).map(|c| c.1)) {
+                self.corners.push(CornerTag {
+                    v: w as i64,
+                    sharpness: SHARPNESS_INFINITE,
+                    line: None,
+                });
+            }
+        }
+        self.face_indices = remap;
+        found.copies = created;
+        Ok(found)
+    }
+
+    /// A face with fewer than three corners, an index out of range or a vertex used twice.
+    fn has_malformed_face(&self) -> bool {
+        let nv = self.positions.len() as i64;
+        (0..self.num_faces()).any(|f| {
+            let face = self.face(f);
+            face.len() < 3
+                || face.iter().any(|v| !(0..nv).contains(v))
+                || (1..face.len()).any(|i| face[..i].contains(&face[i]))
+        })
+    }
+
+    /// Every undirected in-range edge `(min, max)` and its uses, in face order.
+    fn edge_uses(&self) -> HashMap<(i64, i64), Vec<EdgeUse>> {
+        let nv = self.positions.len() as i64;
+        let mut uses: HashMap<(i64, i64), Vec<EdgeUse>> = HashMap::new();
+        for f in 0..self.num_faces() {
+            let s = self.face_offsets[f] as usize;
+            let n = self.face_offsets[f + 1] as usize - s;
+            for k in 0..n {
+                let (c, d) = (s + k, s + (k + 1) % n);
+                let (a, b) = (self.face_indices[c], self.face_indices[d]);
+                if a == b || !(0..nv).contains(&a) || !(0..nv).contains(&b) {
+                    continue;
+                }
+                uses.entry((a.min(b), a.max(b))).or_default().push(EdgeUse {
+                    corner: c,
+                    next: d,
+                    up: a < b,
+                });
+            }
+        }
+        uses
+    }
+
+    /// Number of fans (corner classes of `parent`) at every vertex.
+    fn fan_counts(&self, parent: &mut [usize], nv: usize) -> Vec<u32> {
+        let mut roots: HashMap<(i64, usize), ()> = HashMap::new();
+        let mut fans = vec![0u32; nv];
+        for c in 0..self.face_indices.len() {
+            let v = self.face_indices[c];
+            if (0..nv as i64).contains(&v) && roots.insert((v, find_root(parent, c)), ()).is_none()
+            {
+                fans[v as usize] += 1;
+            }
+        }
+        fans
+    }
+
+    /// The non-manifold vertices OpenSubdiv makes corners, after checking that every copy can
+    /// be given the whole vertex's rule (`Err` names the first that cannot).
+    fn nonmanifold_corners(
+        &self,
+        uses: &HashMap<(i64, i64), Vec<EdgeUse>>,
+        nm_edges: &HashMap<(i64, i64), u32>,
+        found: &NonManifold,
+        nm_count: &[u32],
+        parent: &mut [usize],
+    ) -> Result<Vec<u32>, MeshError> {
+        let mut tagged: HashMap<(i64, i64), f32> = HashMap::new();
+        for t in &self.creases {
+            tagged.insert((t.a.min(t.b), t.a.max(t.b)), t.sharpness);
+        }
+        let mut vertex_sharp: HashMap<i64, f32> = HashMap::new();
+        for t in &self.corners {
+            vertex_sharp.insert(t.v, t.sharpness);
+        }
+        // Per non-manifold vertex: its edges' sharpness and, per edge, the fans that use it.
+        let mut at: HashMap<i64, Vec<(f32, bool, Vec<usize>)>> = found
+            .vertices
+            .iter()
+            .map(|&(v, _)| (v as i64, Vec::new()))
+            .collect();
+        for (&(a, b), u) in uses {
+            let nm = nm_edges.contains_key(&(a, b));
+            let s = if nm || u.len() == 1 {
+                SHARPNESS_INFINITE
+            } else {
+                tagged.get(&(a, b)).copied().unwrap_or(0.0)
+            };
+            for v in [a, b] {
+                if let Some(list) = at.get_mut(&v) {
+                    let fans = u
+                        .iter()
+                        .map(|e| {
+                            let c = if self.face_indices[e.corner] == v {
+                                e.corner
+                            } else {
+                                e.next
+                            };
+                            find_root(parent, c)
+                        })
+                        .collect();
+                    list.push((s, nm, fans));
+                }
+            }
+        }
+        let chaikin = self.options.crease == crate::options::CreaseMethod::Chaikin;
+        let edge_and_corner = self.options.boundary == BoundaryInterpolation::EdgeAndCorner;
+        let mut fan_faces: HashMap<usize, u32> = HashMap::new();
+        for c in 0..self.face_indices.len() {
+            *fan_faces.entry(find_root(parent, c)).or_default() += 1;
+        }
+        let mut corners = Vec::new();
+        for &(v, fans) in &found.vertices {
+            let edges = &at[&(v as i64)];
+            let vs = vertex_sharp.get(&(v as i64)).copied().unwrap_or(0.0);
+            let semi = |s: f32| s > 0.0 && s < SHARPNESS_INFINITE;
+            let semi_edges = edges.iter().filter(|e| semi(e.0)).count();
+            let sharp = edges.iter().filter(|e| e.0 > 0.0).count();
+            let is_corner = nm_count[v as usize] != 2
+                || vs >= SHARPNESS_INFINITE
+                || (sharp > 2 && semi_edges == 0 && !semi(vs));
+            if is_corner {
+                // Chaikin's decay at the vertex averages its semi-sharp edges: all must be
+                // seen by one copy.
+                if chaikin && semi_edges > 1 && fans > 1 {
+                    let first = &edges.iter().find(|e| semi(e.0)).expect("counted").2;
+                    let one = edges.iter().filter(|e| semi(e.0)).all(|e| e.2 == *first);
+                    if !one || first.len() != 1 {
+                        return Err(unsupported(
+                            self,
+                            v,
+                            "Chaikin creases at a non-manifold vertex",
+                        ));
+                    }
+                }
+                corners.push(v);
+                continue;
+            }
+            // The crease rule along its two non-manifold edges (or a rule that changes with
+            // the levels): every copy must see exactly those two sharp edges.
+            if semi_edges > 0 || semi(vs) {
+                return Err(unsupported(
+                    self,
+                    v,
+                    "semi-sharp tags at a non-manifold crease vertex",
+                ));
+            }
+            let nm: Vec<&Vec<usize>> = edges.iter().filter(|e| e.1).map(|e| &e.2).collect();
+            let mut all: Vec<usize> = edges.iter().flat_map(|e| e.2.iter().copied()).collect();
+            all.sort_unstable();
+            all.dedup();
+            if all.iter().any(|r| !nm.iter().all(|fans| fans.contains(r))) {
+                return Err(unsupported(
+                    self,
+                    v,
+                    "a copy without both non-manifold edges",
+                ));
+            }
+            // With edge-and-corner interpolation a one-face copy would become a corner.
+            if edge_and_corner && all.iter().any(|r| fan_faces[r] == 1) {
+                return Err(unsupported(self, v, "a one-face copy of a crease vertex"));
+            }
+        }
+        Ok(corners)
+    }
+}
+
+fn unsupported(soup: &PolygonSoup, vertex: u32, why: &'static str) -> MeshError {
+    MeshError::UnsupportedNonManifold {
+        vertex,
+        why,
+        line: soup.vertex_line(vertex as usize),
+    }
+}
