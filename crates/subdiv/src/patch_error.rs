@@ -50,7 +50,11 @@ pub fn patch_errors(
         .map_init(
             || {
                 let buffers = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-                (thread_worker(fine), buffers, RefCell::new(Scratch::default()))
+                (
+                    thread_worker(fine),
+                    buffers,
+                    RefCell::new(Scratch::default()),
+                )
             },
             |(w, (pos, nrm, shade, sided), scratch), p| {
                 // Level-1 patches are one level coarser than their face.
@@ -71,7 +75,9 @@ pub fn patch_errors(
                     _ => None,
                 };
                 let deviation = (0..=max_depth)
-                    .map(|ld| shift_of(ld).map_or(f32::INFINITY, |s| grid.triangle_deviation(s, outline)))
+                    .map(|ld| {
+                        shift_of(ld).map_or(f32::INFINITY, |s| grid.triangle_deviation(s, outline))
+                    })
                     .collect();
                 let elements = grid.elements();
                 let table = ShadingTable {
@@ -163,13 +169,73 @@ impl ShadingTable {
     }
 }
 
-/// Reused buffers of [`Grid::outlier_areas`].
+/// Reused buffers of the outlier measure (`Grid::outlier_areas`, and the triangle lattice's in
+/// `patch_error_tri`): the interpolated normal per sample, and per cell of a square array of
+/// side `n` (row-major) the area-weighted sums of the limit and the interpolated normals and
+/// the cell's area (zero for cells a triangular lattice lacks).
 #[derive(Default)]
-struct Scratch {
-    interp: Vec<Vec3>,
-    truth: Vec<Vec3>,
-    drawn: Vec<Vec3>,
-    area: Vec<f32>,
+pub(crate) struct Scratch {
+    pub(crate) interp: Vec<Vec3>,
+    pub(crate) truth: Vec<Vec3>,
+    pub(crate) drawn: Vec<Vec3>,
+    pub(crate) area: Vec<f32>,
+}
+
+impl Scratch {
+    /// From the per-cell sums: per element and footprint scale (into `out`,
+    /// `out[k * scales + s]`), the area of the aligned blocks of `2^s × 2^s` cells whose mean
+    /// interpolated normal is further than `acos(cos_tol)` from their mean limit normal (what a
+    /// pixel of that footprint shows: a pixel's normal is the mean over its samples), credited
+    /// to the element `element_of(i, j)` holding the block's first cell. `per_side` is
+    /// elements per side and how many there are; scales beyond an element's size repeat the
+    /// element-sized blocks' result. Sums `2 × 2` blocks in place, level by level.
+    pub(crate) fn outliers_by_block(
+        &mut self,
+        n: usize,
+        (per_side, elements): (usize, usize),
+        scales: usize,
+        cos_tol: f32,
+        element_of: impl Fn(usize, usize) -> usize,
+        out: &mut [f32],
+    ) {
+        let (tr, dr, ar) = (&mut self.truth, &mut self.drawn, &mut self.area);
+        let mut side = n;
+        let mut block = 1usize;
+        for s in 0..scales {
+            if block > n / per_side {
+                // Larger than the element: repeat the element-sized blocks' result.
+                for k in 0..elements {
+                    out[k * scales + s] = out[k * scales + s - 1];
+                }
+                continue;
+            }
+            if s > 0 {
+                let half = side / 2;
+                for j in 0..half {
+                    for i in 0..half {
+                        let q = [(0, 0), (1, 0), (0, 1), (1, 1)]
+                            .map(|(x, y)| (2 * j + y) * side + 2 * i + x);
+                        let to = j * half + i;
+                        tr[to] = q.iter().map(|&k| tr[k]).sum();
+                        dr[to] = q.iter().map(|&k| dr[k]).sum();
+                        ar[to] = q.iter().map(|&k| ar[k]).sum();
+                    }
+                }
+                side = half;
+            }
+            for j in 0..side {
+                for i in 0..side {
+                    let b = j * side + i;
+                    let (t, m) = (tr[b], dr[b]);
+                    let len = t.length() * m.length();
+                    if ar[b] > 0.0 && len > 0.0 && t.dot(m) < len * cos_tol {
+                        out[element_of(i * block, j * block) * scales + s] += ar[b];
+                    }
+                }
+            }
+            block *= 2;
+        }
+    }
 }
 
 /// What [`patch_errors`] measures of one patch.
@@ -367,56 +433,24 @@ impl Grid<'_> {
                 let a = self.cell_area(i, j);
                 let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
                 let t: Vec3 = corners.iter().map(|&(x, y)| truth(x, y)).sum();
-                let m: Vec3 = corners.iter().map(|&(x, y)| scratch.interp[y * w + x]).sum();
+                let m: Vec3 = corners
+                    .iter()
+                    .map(|&(x, y)| scratch.interp[y * w + x])
+                    .sum();
                 tr.push(t * a);
                 dr.push(m * a);
                 ar.push(a);
             }
         }
         let per_side = self.elements_per_side();
-        let mut side = self.n;
-        let mut block = 1usize;
-        for s in 0..scales {
-            if block > self.n / per_side {
-                // Larger than the element: repeat the element-sized blocks' result.
-                for k in 0..per_side * per_side {
-                    out[k * scales + s] = out[k * scales + s - 1];
-                }
-                continue;
-            }
-            if s > 0 {
-                // Sum 2 × 2 blocks of the previous level, in place.
-                let half = side / 2;
-                for j in 0..half {
-                    for i in 0..half {
-                        let idx = |x: usize, y: usize| y * side + x;
-                        let q = [
-                            idx(2 * i, 2 * j),
-                            idx(2 * i + 1, 2 * j),
-                            idx(2 * i, 2 * j + 1),
-                            idx(2 * i + 1, 2 * j + 1),
-                        ];
-                        let to = j * half + i;
-                        tr[to] = q.iter().map(|&k| tr[k]).sum();
-                        dr[to] = q.iter().map(|&k| dr[k]).sum();
-                        ar[to] = q.iter().map(|&k| ar[k]).sum();
-                    }
-                }
-                side = half;
-            }
-            for j in 0..side {
-                for i in 0..side {
-                    let b = j * side + i;
-                    let (t, m) = (tr[b], dr[b]);
-                    let len = t.length() * m.length();
-                    if len > 0.0 && t.dot(m) < len * cos_tol {
-                        let k = self.element_of(i * block, j * block);
-                        out[k * scales + s] += ar[b];
-                    }
-                }
-            }
-            block *= 2;
-        }
+        scratch.outliers_by_block(
+            self.n,
+            (per_side, per_side * per_side),
+            scales,
+            cos_tol,
+            |i, j| self.element_of(i, j),
+            out,
+        );
     }
 
     /// A cone around the grid's normals, widened by the largest angle between neighbours.
@@ -506,13 +540,19 @@ mod tests {
             // face (up to 6.7°); every level down shrinks that area, and three levels down
             // almost nothing is left.
             assert!(per_depth[0] > 0.1 * area, "{per_depth:?}");
-            assert!(per_depth.windows(2).all(|w| w[1] < w[0] || w[1] == 0.0), "{per_depth:?}");
+            assert!(
+                per_depth.windows(2).all(|w| w[1] < w[0] || w[1] == 0.0),
+                "{per_depth:?}"
+            );
             assert!(per_depth[3] < 0.01 * area, "{per_depth:?}");
             // Depth 3 drawn into a depth-5 sample grid: 32 × 32 cells, 8 × 8 per element.
             assert_eq!(sh.scales, 4);
             for (k, el) in sh.elements.iter().enumerate() {
                 assert!(el.area > 0.0 && el.normal.is_normalized(), "{el:?}");
-                assert!((el.cell * el.cell * 64.0 / el.area - 1.0).abs() < 1e-3, "{el:?}");
+                assert!(
+                    (el.cell * el.cell * 64.0 / el.area - 1.0).abs() < 1e-3,
+                    "{el:?}"
+                );
                 for l in 0..4 {
                     assert!((0..sh.scales).all(|sc| at(k, l, sc) <= el.area * 1.0001));
                 }
@@ -545,7 +585,10 @@ mod tests {
         assert!(d.windows(2).all(|w| w[1] < w[0]), "{d:?}");
         assert!((e.faces[0].normals.axis - Vec3::Z).length() < 1e-6);
         // Flat: interpolated normals are the limit normal, nothing is beyond even 0.5°.
-        assert!(e.faces[0].shading.outlier_area.iter().all(|&a| a == 0.0), "{e:?}");
+        assert!(
+            e.faces[0].shading.outlier_area.iter().all(|&a| a == 0.0),
+            "{e:?}"
+        );
         assert!(e.faces[0].normals.cos > 0.9999);
         let a = NormalCone {
             axis: Vec3::Z,

@@ -11,7 +11,7 @@ use subdiv_mesh::{FaceId, Mesh};
 use subdiv_slate::{Depth, MAX_DEPTH, tri_lattice_index, tri_patch_lattice};
 use subdiv_stitch::TriAssembler;
 
-use crate::patch_error::{ELEMENTS_PER_SIDE, SAMPLE_LEVELS, touches_outline};
+use crate::patch_error::{ELEMENTS_PER_SIDE, SAMPLE_LEVELS, Scratch, touches_outline};
 
 /// [`crate::patch_errors`] for a Loop cage: per triangle and depth `l <= max_depth`, the
 /// largest distance between the limit surface and the lattice triangles drawn at depth `l`
@@ -35,7 +35,15 @@ pub fn patch_errors_loop(
         .par_iter()
         .enumerate()
         .map_init(
-            || (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Cells::default()),
+            || {
+                (
+                    Vec::new(),
+                    Vec::new(),
+                    Vec::new(),
+                    Vec::new(),
+                    Scratch::default(),
+                )
+            },
             |(pos, nrm, sided, shade, cells), (f, p)| {
                 tri_patch_lattice(mesh, layout, p, fine, pos, nrm, sided);
                 shade.clone_from(nrm);
@@ -82,17 +90,6 @@ pub fn patch_errors_loop(
         closed: mesh.is_closed(),
         shading_tolerance,
     }
-}
-
-/// Per cell of a lattice (see [`Lattice::cell`]), reused across depths: the area-weighted sums
-/// of the limit and the interpolated normals and the area, on a square array of side `n`
-/// (cells beyond the lattice's hypotenuse stay empty), summed in place over `2 × 2` blocks.
-#[derive(Default)]
-struct Cells {
-    interp: Vec<Vec3>,
-    truth: Vec<Vec3>,
-    drawn: Vec<Vec3>,
-    area: Vec<f32>,
 }
 
 /// One patch's limit points and normals on its triangular lattice of side `n`.
@@ -232,16 +229,16 @@ impl Lattice<'_> {
             .collect()
     }
 
-    /// Per element and footprint scale (into `out`, `out[k * scales + s]`): the world area
-    /// where the mean interpolated normal at `shift` turns further than `tolerance` (radians)
-    /// from the mean limit normal (both from `shade`), the means taken over aligned blocks of
-    /// `2^s × 2^s` cells, as `crate::patch_errors` measures a quad patch's grid.
+    /// The outlier areas of the lattice's elements at `shift` (the quad grid's measure, over
+    /// the cells of [`Lattice::cell`]): per cell the area-weighted sums of the limit normals
+    /// (from `shade`) and of the normals interpolated across the drawn triangles, then
+    /// `Scratch::outliers_by_block`.
     fn outlier_areas(
         &self,
         shift: Depth,
         tolerance: f32,
         scales: usize,
-        c: &mut Cells,
+        c: &mut Scratch,
         out: &mut [f32],
     ) {
         out.fill(0.0);
@@ -280,42 +277,14 @@ impl Lattice<'_> {
             }
         }
         let per_side = self.elements_per_side() as usize;
-        let elements = per_side * (per_side + 1) / 2;
-        let (mut side, mut block) = (n, 1usize);
-        for s in 0..scales {
-            if block > n / per_side {
-                // Larger than an element: repeat the element-sized blocks' result.
-                for k in 0..elements {
-                    out[k * scales + s] = out[k * scales + s - 1];
-                }
-                continue;
-            }
-            if s > 0 {
-                let half = side / 2;
-                for j in 0..half {
-                    for i in 0..half {
-                        let q = [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(x, y)| (2 * j + y) * side + 2 * i + x);
-                        let to = j * half + i;
-                        c.truth[to] = q.iter().map(|&k| c.truth[k]).sum();
-                        c.drawn[to] = q.iter().map(|&k| c.drawn[k]).sum();
-                        c.area[to] = q.iter().map(|&k| c.area[k]).sum();
-                    }
-                }
-                side = half;
-            }
-            for j in 0..side {
-                for i in 0..side {
-                    let b = j * side + i;
-                    let (t, m, a) = (c.truth[b], c.drawn[b], c.area[b]);
-                    let len = t.length() * m.length();
-                    if a > 0.0 && len > 0.0 && t.dot(m) < len * cos_tol {
-                        let k = self.element_of((i * block) as u32, (j * block) as u32);
-                        out[k * scales + s] += a;
-                    }
-                }
-            }
-            block *= 2;
-        }
+        c.outliers_by_block(
+            n,
+            (per_side, per_side * (per_side + 1) / 2),
+            scales,
+            cos_tol,
+            |i, j| self.element_of(i as u32, j as u32),
+            out,
+        );
     }
 
     /// A cone around the lattice's normals, widened by the largest angle between neighbours.
@@ -368,10 +337,17 @@ mod tests {
             let sh = &f.shading;
             let per = 4 * sh.scales;
             let by_depth: Vec<f32> = (0..4)
-                .map(|l| (0..sh.elements.len()).map(|k| sh.outlier_area[k * per + l * sh.scales]).sum())
+                .map(|l| {
+                    (0..sh.elements.len())
+                        .map(|k| sh.outlier_area[k * per + l * sh.scales])
+                        .sum()
+                })
                 .collect();
             assert!(by_depth.windows(2).all(|w| w[1] <= w[0]), "{by_depth:?}");
-            assert!(by_depth[0] > 0.0 && by_depth[3] < by_depth[0], "{by_depth:?}");
+            assert!(
+                by_depth[0] > 0.0 && by_depth[3] < by_depth[0],
+                "{by_depth:?}"
+            );
             let area: f32 = sh.elements.iter().map(|e| e.area).sum();
             assert!(area > 0.0 && sh.elements.iter().all(|e| e.area > 0.0));
             let half = f.normals.cos.acos().to_degrees();

@@ -116,7 +116,9 @@ fn shading_error_bounds_the_image_p99_on_every_fixture() {
                 shading_error_deg: deg,
             };
             let run = QualityRun::new(&mut renderer, &cage, &cameras, params).unwrap();
-            let q = run.measure(&mut renderer, Config::PixelError(PIXEL_ERROR)).unwrap();
+            let q = run
+                .measure(&mut renderer, Config::PixelError(PIXEL_ERROR))
+                .unwrap();
             eprintln!("{name} at {deg}°: {q}");
             let excess = q.shading_deg_p99 - deg;
             if excess >= worst.0 {

@@ -1,0 +1,279 @@
+//! Tests of [`super::DynamicSubdivision`].
+
+use std::collections::HashMap;
+
+use glam::Vec3;
+
+use subdiv_depth::Class;
+use subdiv_mesh::parse_obj;
+
+use super::*;
+
+/// The unit cube: face 0 is `z = 0`, face 1 is `z = 1`, faces 2..=5 the sides.
+fn cube() -> Mesh {
+    let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
+               f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+    Mesh::from_soup(&parse_obj(obj).unwrap()).unwrap()
+}
+
+/// A closed triangular prism (two triangles, three quads).
+fn prism() -> Mesh {
+    let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\n\
+               f 1 3 2\nf 4 5 6\nf 1 2 5 4\nf 1 4 6 3\nf 2 3 6 5\n";
+    Mesh::from_soup(&parse_obj(obj).unwrap()).unwrap()
+}
+
+fn params(max_depth: Depth) -> DepthParams {
+    DepthParams {
+        max_depth,
+        projected_size: None,
+        ..DepthParams::default()
+    }
+}
+
+/// A camera on the `+z` axis at distance `dist` from the cube's centre, looking at it.
+fn camera_on_z(dist: f32) -> Camera {
+    let c = Vec3::splat(0.5);
+    Camera::new(c + Vec3::Z * dist, c, Vec3::Y, 45.0, 800, 600)
+}
+
+/// After welding bitwise equal positions, every edge of a closed surface has exactly two
+/// triangles, in opposite directions.
+fn assert_closed(g: &FrameGeometry) {
+    let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
+    let id: Vec<u32> = g
+        .positions
+        .iter()
+        .map(|p| {
+            let n = weld.len() as u32;
+            *weld.entry(p.map(f32::to_bits)).or_insert(n)
+        })
+        .collect();
+    let mut dir: HashMap<(u32, u32), u32> = HashMap::new();
+    for t in g.indices.chunks(3) {
+        let t = [id[t[0] as usize], id[t[1] as usize], id[t[2] as usize]];
+        assert!(
+            t[0] != t[1] && t[1] != t[2] && t[0] != t[2],
+            "degenerate {t:?}"
+        );
+        for k in 0..3 {
+            *dir.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
+        }
+    }
+    for (&(a, b), &c) in &dir {
+        assert_eq!(c, 1, "edge {a}->{b} used {c} times");
+        assert!(dir.contains_key(&(b, a)), "open edge {a}->{b}");
+    }
+}
+
+#[test]
+fn back_faces_stay_at_depth_zero_front_faces_go_deeper() {
+    let mut node = DynamicSubdivision::new(cube(), params(3)).unwrap();
+    let g = node.update(&camera_on_z(20.0), None).unwrap().clone();
+    let a = node.assignment();
+    assert_eq!(a.class[0], Class::Back);
+    assert_eq!(a.class[1], Class::Front);
+    assert_eq!(a.depth[0], 0);
+    assert!(a.depth[1] > 0, "front face depth {}", a.depth[1]);
+    for f in 2..6 {
+        assert_eq!(a.class[f], Class::Silhouette, "side face {f}");
+        assert!(a.depth[f] > 0);
+    }
+    assert_eq!(g.unit_depth, a.depth);
+    assert!(g.num_triangles() < node.uniform_triangles_at(3));
+    assert_closed(&g);
+    // From the other side the roles swap.
+    node.update(&camera_on_z(-20.0), None).unwrap();
+    let a = node.assignment();
+    assert_eq!((a.class[0], a.class[1]), (Class::Front, Class::Back));
+    assert_eq!(a.depth[1], 0);
+    assert!(a.depth[0] > 0);
+}
+
+#[test]
+fn culled_back_faces_are_not_drawn() {
+    let p = DepthParams {
+        cull_back: true,
+        ..params(3)
+    };
+    let mut node = DynamicSubdivision::new(cube(), p).unwrap();
+    let g = node.update(&camera_on_z(20.0), None).unwrap();
+    assert_eq!(g.unit_depth[0], u8::MAX);
+    assert!(!node.assignment().active[0]);
+    assert!(node.assignment().active[1..].iter().all(|&x| x));
+}
+
+#[test]
+fn fixed_face_depths_are_checked_and_used() {
+    let mut node = DynamicSubdivision::new(cube(), params(3)).unwrap();
+    let err = node.set_face_depths(Some(vec![1; 5])).unwrap_err();
+    assert!(matches!(
+        err,
+        AssemblyError::Length {
+            got: 5,
+            want: 6,
+            ..
+        }
+    ));
+    let depths = vec![0u8, 3, 1, 2, 1, 2];
+    node.set_face_depths(Some(depths.clone())).unwrap();
+    // The camera sees face 0 from behind, but the fixed depths win.
+    let g = node.update(&camera_on_z(20.0), None).unwrap().clone();
+    assert_eq!(g.unit_depth, depths);
+    assert_eq!(node.assignment().depth, depths);
+    assert_closed(&g);
+    // Back to view-dependent depths.
+    node.set_face_depths(None).unwrap();
+    node.update(&camera_on_z(-20.0), None).unwrap();
+    assert_eq!(node.assignment().depth[1], 0);
+}
+
+#[test]
+fn positions_are_checked_and_name_the_bad_vertex() {
+    let mut node = DynamicSubdivision::new(cube(), params(2)).unwrap();
+    let mut pos = node.mesh().positions().to_vec();
+    pos[3].y = f32::NAN;
+    let err = node.set_positions(&pos).unwrap_err();
+    assert!(matches!(err, AssemblyError::NonFinite { vertex: 3 }));
+    assert!(err.to_string().contains("vertex 3"), "{err}");
+    pos[3].y = f32::INFINITY;
+    assert!(matches!(
+        node.set_positions(&pos),
+        Err(AssemblyError::NonFinite { vertex: 3 })
+    ));
+    assert!(matches!(
+        node.set_positions(&pos[..7]),
+        Err(AssemblyError::Length {
+            got: 7,
+            want: 8,
+            ..
+        })
+    ));
+    // The cage is unchanged by the refused calls; good positions move it.
+    assert_eq!(node.mesh().position(subdiv_mesh::VertexId(3)).y, 1.0);
+    let doubled: Vec<Vec3> = cube().positions().iter().map(|p| *p * 2.0).collect();
+    node.set_positions(&doubled).unwrap();
+    assert_eq!(node.mesh().bounds().1, Vec3::splat(2.0));
+    let g = node.update(&camera_on_z(20.0), None).unwrap();
+    assert_closed(g);
+}
+
+#[test]
+fn uniform_triangle_count_matches_a_uniform_frame() {
+    // Depth 0 is left out for the prism: its quads touch triangles, so they are level-1
+    // units whose depth is clamped to 1 in the frame, while `uniform_triangles_at(0)`
+    // counts them as 2 triangles each.
+    for (mesh, depths) in [(cube(), 0..=3u8), (prism(), 1..=3)] {
+        let nf = mesh.num_faces();
+        let mut node = DynamicSubdivision::new(mesh, params(3)).unwrap();
+        for d in depths {
+            node.set_face_depths(Some(vec![d; nf])).unwrap();
+            let g = node.update(&camera_on_z(20.0), None).unwrap();
+            assert_eq!(g.num_triangles(), node.uniform_triangles_at(d), "depth {d}");
+        }
+        assert_eq!(node.uniform_triangles(), node.uniform_triangles_at(3));
+    }
+}
+
+#[test]
+fn frame_rate_control_toggles() {
+    let mut node = DynamicSubdivision::new(cube(), params(3)).unwrap();
+    assert!(node.controller().is_none());
+    node.set_frame_rate_control(Some(30.0));
+    let fps = node.controller().map(|c| c.target_fps()).unwrap();
+    assert!((fps - 30.0).abs() < 1e-3, "{fps}");
+    node.update(&camera_on_z(20.0), Some(0.1)).unwrap();
+    assert!(node.controller().is_some());
+    node.set_frame_rate_control(None);
+    assert!(node.controller().is_none());
+    node.set_target_fps(60.0);
+    let fps = node.controller().map(|c| c.target_fps()).unwrap();
+    assert!((fps - 60.0).abs() < 1e-3, "{fps}");
+}
+
+/// The Loop icosahedron.
+fn icosahedron() -> Mesh {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../fixtures/reference/shapes/loop_icosahedron.obj"
+    );
+    Mesh::from_soup(&parse_obj(&std::fs::read_to_string(path).unwrap()).unwrap()).unwrap()
+}
+
+#[test]
+fn loop_node_runs_every_adaptive_mode_watertight() {
+    let mesh = icosahedron();
+    let nf = mesh.num_faces();
+    let (lo, hi) = mesh.bounds();
+    let camera = Camera::eye_relative(lo, hi, Vec3::new(0.3, 0.2, 2.5), 45.0, 800, 600);
+    let mut node = DynamicSubdivision::with_scheme(mesh, Scheme::Loop, params(4)).unwrap();
+    assert_eq!(node.scheme(), Scheme::Loop);
+    // Curvature and classification: back faces at depth 0, front ones deeper.
+    let g = node.update(&camera, None).unwrap().clone();
+    assert_closed(&g);
+    let a = node.assignment().clone();
+    assert!(a.class.contains(&Class::Back) && a.class.contains(&Class::Front));
+    for f in 0..nf {
+        if a.class[f] == Class::Back {
+            assert_eq!(a.depth[f], 0);
+        }
+    }
+    assert!(a.depth.iter().any(|&d| d > 0));
+    let lattice: u64 = node.quads_per_depth().iter().sum();
+    assert!(g.num_triangles() as u64 >= lattice);
+    assert!(g.num_triangles() < node.uniform_triangles());
+    // Pixel error, projected size, frame-rate control, fixed (DoI) depths, culling.
+    node.set_params(DepthParams {
+        pixel_error: Some(0.5),
+        ..params(4)
+    })
+    .unwrap();
+    assert_closed(&node.update(&camera, None).unwrap().clone());
+    assert_eq!(node.patch_errors().faces.len(), nf);
+    node.set_params(DepthParams {
+        projected_size: Some((2.0, 8.0)),
+        ..params(4)
+    })
+    .unwrap();
+    node.set_frame_rate_control(Some(60.0));
+    for _ in 0..5 {
+        assert_closed(&node.update(&camera, Some(0.5)).unwrap().clone());
+    }
+    node.set_frame_rate_control(None);
+    let depths: Vec<Depth> = (0..nf).map(|f| (f % 5) as Depth).collect();
+    node.set_face_depths(Some(depths.clone())).unwrap();
+    let g = node.update(&camera, None).unwrap().clone();
+    assert_eq!(g.unit_depth, depths);
+    assert_closed(&g);
+    node.set_face_depths(Some(vec![2; nf])).unwrap();
+    let g = node.update(&camera, None).unwrap();
+    assert_eq!(g.num_triangles(), node.uniform_triangles_at(2));
+}
+
+#[test]
+fn loop_node_refuses_quads() {
+    let err = DynamicSubdivision::with_scheme(cube(), Scheme::Loop, params(3)).unwrap_err();
+    assert!(matches!(err, AssemblyError::Rules(_)), "{err}");
+}
+
+#[test]
+fn pixel_error_mode_is_watertight() {
+    let p = DepthParams {
+        pixel_error: Some(0.5),
+        ..params(3)
+    };
+    let mut node = DynamicSubdivision::new(cube(), p).unwrap();
+    let g = node.update(&camera_on_z(3.0), None).unwrap().clone();
+    assert!(g.num_triangles() > 0);
+    assert_closed(&g);
+    assert_eq!(node.assignment().depth[0], 0, "back face");
+    // Deviations shrink with depth on every face.
+    let errors = node.patch_errors().clone();
+    assert_eq!(errors.faces.len(), 6);
+    assert!(errors.closed);
+    for f in &errors.faces {
+        let d = &f.deviation;
+        assert_eq!(d.len(), 4);
+        assert!(d.windows(2).all(|w| w[1] <= w[0]), "{d:?}");
+    }
+}
