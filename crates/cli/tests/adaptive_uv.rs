@@ -98,3 +98,63 @@ fn usd_texture_coordinates_reach_the_output() {
         assert_eq!(files[0], files[1], "{what}: USD and OBJ outputs differ");
     }
 }
+
+/// Adaptive Loop keeps the cage's UVs (issue 16 item 3): the octahedron with a seam loop,
+/// tessellated from a camera, writes a `vt` on every triangle corner, inside the cage's UV
+/// range, with both sides of the seam (more values than points), and the values of the
+/// uniform Loop tessellation at the deepest depth drawn among them.
+#[test]
+fn adaptive_loop_writes_texture_coordinates() {
+    let cage = fixtures().join("meshes/fvar/tri_seam.obj");
+    let cage = cage.to_str().unwrap();
+    let out = tmp("tri_seam_adaptive.obj");
+    let (code, stdout, err) = run(&[
+        "tessellate",
+        cage,
+        "--scheme",
+        "loop",
+        "--eye-relative",
+        "0.3,0.4,2.5",
+        "--max-depth",
+        "3",
+        "--stats",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let tris: usize = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("triangles: "))
+        .unwrap()
+        .parse()
+        .unwrap();
+    let m = subdiv_mesh::read_obj(&out).unwrap();
+    assert_eq!(m.num_faces(), tris);
+    let fv = m.uv().expect("texture coordinates written");
+    assert_eq!(fv.indices.len(), 3 * tris);
+    assert!(
+        fv.values
+            .iter()
+            .all(|t| t.x >= 0.0 && t.x <= 1.0 && t.y >= -0.1 && t.y <= 1.0),
+        "a UV outside the cage's range"
+    );
+    assert!(fv.values.len() > m.num_vertices(), "a seam lost a side");
+    let uniform = tmp("tri_seam_uniform.obj");
+    let (code, _, err) = run(&[
+        "tessellate",
+        cage,
+        "--scheme",
+        "loop",
+        "--depth",
+        "3",
+        "-o",
+        uniform.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let u = subdiv_mesh::read_obj(&uniform).unwrap();
+    let uv = u.uv().unwrap();
+    assert!(
+        fv.values.iter().all(|v| uv.values.contains(v)),
+        "a value not in the depth-3 uniform tessellation's"
+    );
+}

@@ -25,7 +25,7 @@ mod emit;
 
 use rayon::prelude::*;
 use subdiv_mesh::Mesh;
-use subdiv_slate::{Depth, MAX_DEPTH, TriLayout, tri_lattice_len, tri_patch_lattice};
+use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, TriLayout, tri_lattice_len, tri_patch_lattice};
 
 use crate::{AssemblyError, FrameGeometry};
 use emit::TriFrame;
@@ -50,6 +50,8 @@ pub struct TriAssembler {
     block_start: Vec<u32>,
     version: u64,
     max_depth: Depth,
+    /// The cage's face-varying limit values (issue 16), kept while frames need no finer level.
+    uvs: Option<LevelUvs>,
 }
 
 impl TriAssembler {
@@ -71,6 +73,7 @@ impl TriAssembler {
             block_start: vec![0; n + 1],
             version: 0,
             max_depth,
+            uvs: None,
         })
     }
 
@@ -84,6 +87,7 @@ impl TriAssembler {
         for b in &mut self.blocks {
             b.depth = None;
         }
+        // The face-varying values do not depend on the positions: kept.
     }
 
     /// Triangles of the patch lattices per depth in frame `g` (index = depth): `4^d` per drawn
@@ -139,6 +143,8 @@ impl TriAssembler {
             let range = self.block_start[f] as usize..self.block_start[f + 1] as usize;
             out.vertex_depth[range].fill(d as f32);
         }
+        let with_uvs = self.level_uvs(mesh, &depth, &active, out)?;
+        let uvs = self.uvs.as_ref().filter(|_| with_uvs);
         let fr = TriFrame {
             layout: &self.layout,
             depth: &depth,
@@ -146,11 +152,50 @@ impl TriAssembler {
             blocks: &self.blocks,
             block_start: &self.block_start,
         };
-        fr.emit_frame(&active, &mut out.indices, &mut out.corner_normals);
+        fr.emit_frame(
+            &active,
+            uvs,
+            &mut out.indices,
+            &mut out.corner_normals,
+            &mut out.uv_indices,
+        );
         out.unit_depth = (0..nf)
             .map(|f| if active[f] { depth[f] } else { u8::MAX })
             .collect();
         Ok(())
+    }
+
+    /// Readies `self.uvs`, the face-varying limit values for this frame, refined again only when
+    /// a deeper level than the cached one is needed, with their values in `out.uvs`; `false`
+    /// (and `out.uvs` empty) without UVs or with nothing drawn. Every drawn point is a lattice point at most at the deepest drawn depth
+    /// (fans use only points of the finer side's lattice), so that level suffices.
+    fn level_uvs(
+        &mut self,
+        mesh: &Mesh,
+        depth: &[Depth],
+        active: &[bool],
+        out: &mut FrameGeometry,
+    ) -> Result<bool, AssemblyError> {
+        let deepest = (0..depth.len())
+            .filter(|&f| active[f])
+            .map(|f| depth[f])
+            .max();
+        let (true, Some(level)) = (mesh.uv().is_some(), deepest) else {
+            out.uvs.clear();
+            return Ok(false);
+        };
+        if self.uvs.as_ref().is_none_or(|u| u.level() < level) {
+            self.uvs = LevelUvs::new(mesh, subdiv_rules::Scheme::Loop, level)?;
+            out.uvs.clear();
+        }
+        if out.uvs.is_empty() {
+            out.uvs = self
+                .uvs
+                .as_ref()
+                .map(|u| u.values.clone())
+                .unwrap_or_default();
+        }
+        Ok(self.uvs.is_some())
     }
 
     /// Refuses frames whose lattices would not fit in memory.
@@ -224,3 +269,5 @@ impl TriAssembler {
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod uv_tests;

@@ -22,15 +22,15 @@ use crate::{patch_errors, patch_errors_loop};
 enum Stitcher {
     /// Catmull-Clark units and quad fans (boxed: the Catmull-Clark patch set is large).
     Quads(Box<Assembler>),
-    /// Loop triangles and triangle fans.
-    Tris(TriAssembler),
+    /// Loop triangles and triangle fans (boxed: with its cached UVs it is large too).
+    Tris(Box<TriAssembler>),
 }
 
 impl Stitcher {
     fn new(mesh: &Mesh, scheme: Scheme, max_depth: Depth) -> Result<Stitcher, AssemblyError> {
         Ok(match scheme {
             Scheme::CatmullClark => Stitcher::Quads(Box::new(Assembler::new(mesh, max_depth)?)),
-            Scheme::Loop => Stitcher::Tris(TriAssembler::new(mesh, max_depth)?),
+            Scheme::Loop => Stitcher::Tris(Box::new(TriAssembler::new(mesh, max_depth)?)),
         })
     }
 }

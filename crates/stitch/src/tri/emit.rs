@@ -2,8 +2,8 @@
 //! inside, fans and strips along finer sides (Settgast et al. §3.3, adapted to triangles).
 
 use rayon::prelude::*;
-use subdiv_mesh::Mesh;
-use subdiv_slate::{Depth, TriLayout, tri_lattice_index};
+use subdiv_mesh::{FaceId, Mesh};
+use subdiv_slate::{Depth, LevelUvs, TriLayout, tri_lattice_index};
 
 use super::TriBlock;
 
@@ -84,12 +84,15 @@ impl Owners {
     }
 }
 
-/// A point of the frame: its vertex index and, where the emitting patch's own lattice holds
-/// the same point, its index there (for the patch's one-sided normals), else `NONE`.
+/// A point of the frame: its vertex index; where the emitting patch's own lattice holds the
+/// same point, its index there (for the patch's one-sided normals), else `NONE`; and where it
+/// lies on the emitting patch: lattice point `(i, j)` at resolution `r` (for its UV on the
+/// patch's side of any seam).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Pt {
     id: u32,
     key: u32,
+    at: (u32, u32, Depth),
 }
 
 /// What emission reads.
@@ -140,6 +143,7 @@ impl TriFrame<'_> {
         Pt {
             id: self.lattice(g, i, j, 0),
             key: self.key(f, a, b, 0),
+            at: (a, b, 0),
         }
     }
 
@@ -161,6 +165,7 @@ impl TriFrame<'_> {
         Pt {
             id: self.lattice(g, i, j, r),
             key: self.key(f, a, b, r),
+            at: (a, b, r),
         }
     }
 
@@ -180,39 +185,49 @@ impl TriFrame<'_> {
             (i, j) => Pt {
                 id: self.lattice(f as u32, i, j, d),
                 key: NONE,
+                at: (i, j, d),
             },
         }
     }
 
-    /// The index buffer of every active patch (in face order) and the one-sided normals of its
-    /// triangles' corners.
+    /// The index buffer of every active patch (in face order), the one-sided normals of its
+    /// triangles' corners and, with `uvs`, the face-varying value of every corner on the
+    /// emitting patch's side of any seam in `uv_indices` (parallel to `indices`; cleared
+    /// first).
     pub(crate) fn emit_frame(
         &self,
         active: &[bool],
+        uvs: Option<&LevelUvs>,
         indices: &mut Vec<u32>,
         corner_normals: &mut SidedNormals,
+        uv_indices: &mut Vec<u32>,
     ) {
-        let per: Vec<(Vec<u32>, SidedNormals)> = (0..active.len())
+        let per: Vec<(Vec<u32>, SidedNormals, Vec<u32>)> = (0..active.len())
             .into_par_iter()
             .with_min_len(64)
             .map(|f| {
                 let mut out = Emit {
                     indices: Vec::new(),
                     sided: Vec::new(),
+                    uv: Vec::new(),
                     block: &self.blocks[f],
+                    uvs,
+                    face: FaceId(f as u32),
                 };
                 if active[f] {
                     self.emit_patch(f, &mut out);
                 }
-                (out.indices, out.sided)
+                (out.indices, out.sided, out.uv)
             })
             .collect();
         indices.clear();
         corner_normals.clear();
-        for (idx, sided) in per {
+        uv_indices.clear();
+        for (idx, sided, uv) in per {
             let base = indices.len() as u32;
             corner_normals.extend(sided.into_iter().map(|(k, n)| (base + k, n)));
             indices.extend_from_slice(&idx);
+            uv_indices.extend_from_slice(&uv);
         }
     }
 
@@ -274,15 +289,26 @@ impl TriFrame<'_> {
 struct Emit<'a> {
     indices: Vec<u32>,
     sided: SidedNormals,
+    /// The face-varying value of every corner (parallel to `indices`; empty without UVs).
+    uv: Vec<u32>,
     /// The emitting patch's lattice (its one-sided normals).
     block: &'a TriBlock,
+    /// The cage's face-varying limit values, `None` without UVs.
+    uvs: Option<&'a LevelUvs>,
+    /// The emitting patch's cage face.
+    face: FaceId,
 }
 
 impl Emit<'_> {
-    /// Appends a counter-clockwise triangle and its corners' one-sided normals.
+    /// Appends a counter-clockwise triangle, its corners' one-sided normals and, with UVs,
+    /// their values on this patch's side.
     #[inline]
     fn tri(&mut self, a: Pt, b: Pt, c: Pt) {
         for q in [a, b, c] {
+            if let Some(u) = self.uvs {
+                let (i, j, r) = q.at;
+                self.uv.push(u.tri_value_at(self.face, i, j, r));
+            }
             if q.key != NONE
                 && let Ok(x) = self.block.sided.binary_search_by_key(&q.key, |&(k, _)| k)
             {
