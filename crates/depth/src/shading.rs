@@ -360,7 +360,14 @@ mod tests {
     use crate::pixel_error::{NormalCone, PatchError};
 
     fn cam() -> Camera {
-        Camera::new(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, Vec3::Y, 60.0, 800, 600)
+        Camera::new(
+            Vec3::new(0.0, 0.0, 10.0),
+            Vec3::ZERO,
+            Vec3::Y,
+            60.0,
+            800,
+            600,
+        )
     }
 
     #[test]
@@ -371,7 +378,10 @@ mod tests {
         for (centre, normal) in [
             (Vec3::ZERO, Vec3::Z),
             (Vec3::new(2.0, 1.0, 0.0), Vec3::Z),
-            (Vec3::new(-1.0, 2.0, 1.0), Vec3::new(0.3, 0.2, 1.0).normalize()),
+            (
+                Vec3::new(-1.0, 2.0, 1.0),
+                Vec3::new(0.3, 0.2, 1.0).normalize(),
+            ),
         ] {
             let h = 0.01f32;
             let (u, v) = {
@@ -401,7 +411,9 @@ mod tests {
                 ..e
             };
             assert_eq!(ScreenArea::new(&c, true).density(&back), 0.0);
-            assert!((ScreenArea::new(&c, false).density(&back) * e.area / shoelace - 1.0).abs() < 0.01);
+            assert!(
+                (ScreenArea::new(&c, false).density(&back) * e.area / shoelace - 1.0).abs() < 0.01
+            );
         }
         // Behind the eye and off screen: nothing.
         let behind = AreaElement {
