@@ -78,6 +78,43 @@ fn refine_usd_writes_doi_attribute() {
 }
 
 #[test]
+fn refine_says_it_drops_the_cages_uvs() {
+    let out = tmp("refined_uv.obj");
+    let cage = fixtures().join("meshes/fvar/tri_seam.obj");
+    let args = [
+        "refine",
+        cage.to_str().unwrap(),
+        "--doi",
+        "dihedral",
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    let (code, _, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("tri_seam.obj: the cage's UVs are not carried"),
+        "{err}"
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        !text.lines().any(|l| l.starts_with("vt ")),
+        "no UVs written"
+    );
+    // A cage without UVs gets no such warning.
+    let plain = fixtures().join("reference/shapes/loop_tetrahedron.obj");
+    let (code, _, err) = run(&[
+        "refine",
+        plain.to_str().unwrap(),
+        "--doi",
+        "dihedral",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("UVs"), "{err}");
+}
+
+#[test]
 fn usd_and_output_errors_are_typed() {
     let o = tmp("x.glb");
     let o = o.to_str().unwrap();
