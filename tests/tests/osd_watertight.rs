@@ -9,11 +9,13 @@
 //! (2^depth each).
 //!
 //! Non-manifold cages (a share of the generator's, refined as manifold pieces whose copies of
-//! a vertex coincide, `PolygonSoup::split_nonmanifold`): welding joins the pieces' copies of a
-//! non-manifold edge, so an edge there may be used by up to as many triangles as the cage has
-//! faces on it, in any directions. The uses on open and non-manifold edges must then make up
-//! the drawn pieces' boundary plus at most the segments of the copies that lie inside a piece
-//! (counted only where welding joins them with another copy).
+//! a vertex coincide, `PolygonSoup::split_nonmanifold`): `DynamicSubdivision` draws the faces
+//! on the copies of one non-manifold edge at one depth, so welding joins the copies' points and
+//! every segment on a non-manifold edge is used by exactly as many triangles as the cage has
+//! drawn faces on that edge (in any directions). The check counts the welded edges per number
+//! of uses and wants exactly: the drawn pieces' boundary away from non-manifold edges used once,
+//! and per non-manifold edge with `n` drawn faces 2^d segments used `n` times (`d` the largest
+//! depth among those faces).
 //!
 //! `SUBDIV_WATERTIGHT_CAGES` (default 40) and `SUBDIV_WATERTIGHT_SEED` (default 1) scale a run.
 
@@ -36,14 +38,16 @@ fn env_u64(name: &str, default: u64) -> u64 {
         .unwrap_or(default)
 }
 
-/// Open edges the frame must have: along every cage edge with exactly one drawn face, 2^depth
-/// of that face.
-fn expected_open_edges(mesh: &Mesh, g: &FrameGeometry) -> usize {
+/// Open edges the frame must have away from non-manifold edges: along every cage edge with
+/// exactly one drawn face, 2^depth of that face (`on`: the split mesh's copies of non-manifold
+/// edges, counted by [`seam_segments`] instead).
+fn expected_open_edges(mesh: &Mesh, g: &FrameGeometry, on: &[Option<usize>]) -> usize {
     let drawn = |h| {
         let f = mesh.face(h);
         f.is_some() && g.unit_depth[f.idx()] != u8::MAX
     };
     mesh.edges()
+        .filter(|e| on.get(e.idx()).is_none_or(|c| c.is_none()))
         .map(|e| {
             let (a, b) = (drawn(e.halfedge(0)), drawn(e.halfedge(1)));
             match (a, b) {
@@ -55,9 +59,9 @@ fn expected_open_edges(mesh: &Mesh, g: &FrameGeometry) -> usize {
         .sum()
 }
 
-/// A cage's non-manifold edges (`PolygonSoup::split_nonmanifold`): the most faces on one of
-/// them (0 for a manifold cage) and, per edge of the split mesh, whether it is a copy of one.
-fn nonmanifold_edges(cage: &OsdCage, mesh: &Mesh) -> (u32, Vec<bool>) {
+/// Per edge of the split mesh, the cage non-manifold edge it is a copy of
+/// (`PolygonSoup::split_nonmanifold`; its index in `NonManifold::edges`), and how many there are.
+fn nonmanifold_edges(cage: &OsdCage, mesh: &Mesh) -> (Vec<Option<usize>>, usize) {
     let mut soup = subdiv_mesh::parse_obj(&cage.to_obj()).expect("generated cages parse");
     let nv = soup.positions.len();
     let found = soup.split_nonmanifold().expect("generated cages are valid");
@@ -76,40 +80,59 @@ fn nonmanifold_edges(cage: &OsdCage, mesh: &Mesh) -> (u32, Vec<bool>) {
             found
                 .edges
                 .iter()
-                .any(|x| (x.0, x.1) == (a.min(b), a.max(b)))
+                .position(|x| (x.0, x.1) == (a.min(b), a.max(b)))
         })
         .collect();
-    (found.edges.iter().map(|e| e.2).max().unwrap_or(0), on)
+    (on, found.edges.len())
 }
 
-/// Drawn-face segments on the split mesh's copies of non-manifold edges (2^depth per drawn
-/// face on each).
-fn seam_uses(mesh: &Mesh, g: &FrameGeometry, on: &[bool]) -> usize {
-    mesh.edges()
-        .filter(|e| on[e.idx()])
-        .map(|e| {
-            [e.halfedge(0), e.halfedge(1)]
-                .iter()
-                .map(|&h| mesh.face(h))
-                .filter(|f| f.is_some() && g.unit_depth[f.idx()] != u8::MAX)
-                .map(|f| 1usize << g.unit_depth[f.idx()])
-                .sum::<usize>()
-        })
-        .sum()
+/// The welded segments every cage non-manifold edge must have, as a count per number of
+/// triangles on a segment: for an edge with `n` drawn faces, the largest of their depths `d`
+/// puts 2^d segments, each used by exactly `n` triangles. Two drawn faces on one copy (a
+/// manifold edge of one piece, its other copies not drawn) are left out: their segments are
+/// inner edges, used once each way by one piece's triangles.
+fn seam_segments(
+    mesh: &Mesh,
+    g: &FrameGeometry,
+    on: &[Option<usize>],
+    count: usize,
+) -> HashMap<u32, usize> {
+    // Per cage non-manifold edge: drawn faces, their largest depth, copies with a drawn face.
+    let mut seams = vec![(0u32, 0u8, 0u32); count];
+    for e in mesh.edges() {
+        let Some(c) = on[e.idx()] else { continue };
+        let depths: Vec<u8> = [e.halfedge(0), e.halfedge(1)]
+            .iter()
+            .map(|&h| mesh.face(h))
+            .filter(|f| f.is_some() && g.unit_depth[f.idx()] != u8::MAX)
+            .map(|f| g.unit_depth[f.idx()])
+            .collect();
+        if let Some(&d) = depths.iter().max() {
+            let s = &mut seams[c];
+            s.0 += depths.len() as u32;
+            s.1 = s.1.max(d);
+            s.2 += 1;
+        }
+    }
+    let mut want = HashMap::new();
+    for &(n, d, copies) in &seams {
+        if n > 0 && !(n == 2 && copies == 1) {
+            *want.entry(n).or_default() += 1usize << d;
+        }
+    }
+    want
 }
 
 /// Welds identical coordinates and counts the triangles on every edge: `Err` unless each edge
-/// has one or two (two in opposite directions), or (on a non-manifold cage, whose manifold
-/// pieces' copies of a non-manifold edge weld together) up to `most` in any directions; and
-/// unless the uses on open and non-manifold edges plus two per welded pair of piece borders
-/// (an edge used once each way by triangles that name it with different vertices, which only
-/// welding joins) make up `want_open`, the drawn pieces' boundary. Triangles that welding
-/// makes degenerate are left out (they cover nothing).
+/// is used once each way by triangles naming it with the same vertices (an inner edge of a
+/// piece), or else the welded edges per number of uses are exactly `want_open` used once (the
+/// drawn pieces' boundary away from non-manifold edges) plus the segments `seams` wants on the
+/// cage's non-manifold edges ([`seam_segments`]). Triangles that welding makes degenerate are
+/// left out (they cover nothing).
 fn check_watertight(
     g: &FrameGeometry,
     want_open: usize,
-    most: u32,
-    seams: usize,
+    seams: &HashMap<u32, usize>,
 ) -> Result<(), String> {
     let mut ids: HashMap<[u32; 3], u32> = HashMap::new();
     let weld: Vec<u32> = g
@@ -121,7 +144,8 @@ fn check_watertight(
             *ids.entry(key).or_insert(n)
         })
         .collect();
-    // Per welded edge: uses each way and the first use's own (unwelded) vertices.
+    // Per welded edge: uses each way, the first use's own (unwelded) vertices, and whether
+    // another use names it with other vertices (only welding joins them).
     type Uses = (u32, u32, Option<(u32, u32)>, bool);
     let mut uses: HashMap<(u32, u32), Uses> = HashMap::new();
     for t in g.indices.chunks(3) {
@@ -150,28 +174,38 @@ fn check_watertight(
             }
         }
     }
-    let mut open = 0;
-    for (&(a, b), &(fw, bw, _, joined)) in &uses {
-        match (fw, bw) {
-            (1, 1) if !joined => {}
-            (1, 1) if most > 0 => open += 2,
-            (1, 0) | (0, 1) => open += 1,
-            _ if most > 0 && fw + bw <= most => open += (fw + bw) as usize,
-            _ => {
-                let p = g.positions[weld.iter().position(|&w| w == a).unwrap_or(0)];
-                return Err(format!(
-                    "edge {a}-{b} at {p:?} is used {fw} times one way and {bw} the other"
-                ));
-            }
+    let mut want = seams.clone();
+    *want.entry(1).or_default() += want_open;
+    want.retain(|_, n| *n > 0);
+    let mut got: HashMap<u32, usize> = HashMap::new();
+    let mut example: HashMap<u32, [f32; 3]> = HashMap::new();
+    for (&(a, _), &(fw, bw, _, joined)) in &uses {
+        if (fw, bw) == (1, 1) && !joined {
+            continue;
         }
+        *got.entry(fw + bw).or_default() += 1;
+        example
+            .entry(fw + bw)
+            .or_insert_with(|| g.positions[weld.iter().position(|&w| w == a).unwrap_or(0)]);
     }
-    // A copy of a non-manifold edge inside its piece (two drawn faces) is counted only where
-    // welding joins it with another copy, so with seams the count lies in a range.
-    if open < want_open || open > want_open + seams {
-        return Err(format!(
-            "{open} open or non-manifold edge uses, want {want_open} (the drawn pieces' \
-             boundary, {seams} of it on non-manifold edges, each counted once or more)"
-        ));
+    if got != want {
+        let mut diff: Vec<String> = got
+            .keys()
+            .chain(want.keys())
+            .collect::<std::collections::BTreeSet<_>>()
+            .into_iter()
+            .filter(|m| got.get(m) != want.get(m))
+            .map(|m| {
+                format!(
+                    "{} edges used {m} times, want {} (e.g. at {:?})",
+                    got.get(m).copied().unwrap_or(0),
+                    want.get(m).copied().unwrap_or(0),
+                    example.get(m)
+                )
+            })
+            .collect();
+        diff.sort();
+        return Err(diff.join("; "));
     }
     Ok(())
 }
@@ -204,7 +238,7 @@ fn random_cages_are_watertight_under_random_cameras() {
     for index in 0..cages {
         let cage = random_cage(seed, index);
         let mesh = cage.mesh().expect("generated cages are valid");
-        let (most, on) = nonmanifold_edges(&cage, &mesh);
+        let (on, count) = nonmanifold_edges(&cage, &mesh);
         let mut rng = Rng::for_case(seed ^ 0xCA3E, index);
         loops += usize::from(cage.loop_scheme);
         let schemes: &[Scheme] = if cage.loop_scheme {
@@ -222,8 +256,9 @@ fn random_cages_are_watertight_under_random_cameras() {
                     .update(&cam, None)
                     .unwrap_or_else(|e| panic!("seed {seed} cage {index}: {e}"));
                 frames += 1;
-                let (open, seams) = (expected_open_edges(&mesh, g), seam_uses(&mesh, g, &on));
-                if let Err(e) = check_watertight(g, open, most, seams) {
+                let open = expected_open_edges(&mesh, g, &on);
+                let seams = seam_segments(&mesh, g, &on, count);
+                if let Err(e) = check_watertight(g, open, &seams) {
                     let mode = if pixel { "pixel-error" } else { "curvature" };
                     failures.push(format!(
                         "seed {seed} cage {index} ({}) {scheme:?} {mode} camera {shot}: {e}",
@@ -255,12 +290,13 @@ fn the_check_finds_cracks() {
     let (lo, hi) = mesh.bounds();
     let cam = Camera::eye_relative(lo, hi, Vec3::new(0.3, 0.4, 2.0), 45.0, 320, 240);
     let g = node.update(&cam, None).expect("frame").clone();
-    let want = expected_open_edges(&mesh, &g);
-    check_watertight(&g, want, 0, 0).expect("the real frame is watertight");
+    let want = expected_open_edges(&mesh, &g, &[]);
+    let none = HashMap::new();
+    check_watertight(&g, want, &none).expect("the real frame is watertight");
     let mut cracked = g.clone();
     cracked.indices.truncate(cracked.indices.len() - 3);
-    assert!(check_watertight(&cracked, want, 0, 0).is_err());
+    assert!(check_watertight(&cracked, want, &none).is_err());
     let mut doubled = g.clone();
     doubled.indices.extend_from_slice(&g.indices[..3]);
-    assert!(check_watertight(&doubled, want, 0, 0).is_err());
+    assert!(check_watertight(&doubled, want, &none).is_err());
 }

@@ -17,6 +17,9 @@ use subdiv_stitch::{Assembler, AssemblyError, FanMethod, FrameGeometry, TriAssem
 
 use crate::{patch_errors, patch_errors_loop};
 
+mod seams;
+use seams::Seams;
+
 /// The patch assembly of the node's scheme.
 #[derive(Debug)]
 enum Stitcher {
@@ -64,6 +67,7 @@ pub struct DynamicSubdivision {
     fixed_depths: Option<Vec<Depth>>,
     assignment: Assignment,
     geometry: FrameGeometry,
+    seams: Seams,
 }
 
 impl DynamicSubdivision {
@@ -84,6 +88,7 @@ impl DynamicSubdivision {
         let vertex =
             VertexData::compute_scheme(&mesh, scheme, params.cone_aperture_deg, params.max_depth);
         let spheres = face_spheres_scheme(&mesh, scheme);
+        let seams = Seams::new(&mesh);
         Ok(DynamicSubdivision {
             mesh,
             scheme,
@@ -96,6 +101,7 @@ impl DynamicSubdivision {
             fixed_depths: None,
             assignment: Assignment::default(),
             geometry: FrameGeometry::default(),
+            seams,
         })
     }
 
@@ -157,6 +163,7 @@ impl DynamicSubdivision {
             self.params.max_depth,
         );
         self.spheres = face_spheres_scheme(&self.mesh, self.scheme);
+        self.seams = Seams::new(&self.mesh);
         self.errors = None;
         self.assembler = Stitcher::new(&self.mesh, self.scheme, self.params.max_depth)?;
         Ok(())
@@ -206,6 +213,7 @@ impl DynamicSubdivision {
     }
     /// Overrides the view-dependent depths with fixed per-face depths (uniform tessellation, or
     /// depths from a Degree-of-Interest function); `None` returns to view-dependent depths.
+    /// The faces on one non-manifold edge are still drawn at the largest of their depths.
     pub fn set_face_depths(&mut self, depths: Option<Vec<Depth>>) -> Result<(), AssemblyError> {
         if let Some(d) = &depths
             && d.len() != self.mesh.num_faces()
@@ -283,6 +291,9 @@ impl DynamicSubdivision {
                 a.active[f.idx()] = false;
             }
         }
+        // The faces on the copies of one non-manifold edge (in different manifold pieces,
+        // which stitching does not join) at one depth, so the copies get the same points.
+        self.seams.raise(&mut a.depth, &a.active);
         match &mut self.assembler {
             Stitcher::Quads(asm) => asm.frame(&self.mesh, &a.depth, &a.active, &mut self.geometry),
             Stitcher::Tris(asm) => asm.frame(&self.mesh, &a.depth, &a.active, &mut self.geometry),

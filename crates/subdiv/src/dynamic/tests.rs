@@ -277,3 +277,42 @@ fn pixel_error_mode_is_watertight() {
         assert!(d.windows(2).all(|w| w[1] <= w[0]), "{d:?}");
     }
 }
+
+/// Three quads on one edge (a fin), cut into manifold pieces as OpenSubdiv refines it.
+fn fin() -> Mesh {
+    let obj = "v 0 0 0\nv 0 1 0\nv 1 0 0\nv 1 1 0\nv 0 0 1\nv 0 1 1\nv -1 0 0\nv -1 1 0\n\
+               f 1 3 4 2\nf 1 2 6 5\nf 1 2 8 7\n";
+    let mut soup = parse_obj(obj).unwrap();
+    let found = soup.split_nonmanifold().unwrap();
+    assert_eq!(found.edges, vec![(0, 1, 3)]);
+    Mesh::from_soup(&soup).unwrap()
+}
+
+#[test]
+fn faces_on_a_nonmanifold_edge_share_one_depth_and_its_points() {
+    let mut node = DynamicSubdivision::new(fin(), params(3)).unwrap();
+    node.set_face_depths(Some(vec![1, 2, 3])).unwrap();
+    let g = node.update(&camera_on_z(5.0), None).unwrap().clone();
+    assert_eq!(g.unit_depth, vec![3, 3, 3]);
+    // After welding bitwise equal positions, the fin edge has 2^3 segments of three triangles
+    // each; every other edge one or two.
+    let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
+    let id: Vec<u32> = g
+        .positions
+        .iter()
+        .map(|p| {
+            let n = weld.len() as u32;
+            *weld.entry(p.map(f32::to_bits)).or_insert(n)
+        })
+        .collect();
+    let mut uses: HashMap<(u32, u32), u32> = HashMap::new();
+    for t in g.indices.chunks(3) {
+        for k in 0..3 {
+            let (a, b) = (id[t[k] as usize], id[t[(k + 1) % 3] as usize]);
+            *uses.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+        }
+    }
+    let on_fin = uses.values().filter(|&&n| n == 3).count();
+    assert_eq!(on_fin, 8, "segments on the fin edge with three triangles");
+    assert!(uses.values().all(|&n| (1..=3).contains(&n)));
+}
