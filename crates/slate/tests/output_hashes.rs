@@ -106,17 +106,63 @@ fn cages() -> Vec<(String, subdiv_mesh::Mesh)> {
         .collect()
 }
 
-/// One line per case: `name depth points hash`, hashes of 1 and 2 threads and of a second run
-/// into the same buffers on reused workers required equal.
-fn lines() -> String {
-    let pools: Vec<rayon::ThreadPool> = [1, 2]
+/// Pools of 1 and 2 threads: every case must hash the same on both.
+fn pools() -> Vec<rayon::ThreadPool> {
+    [1, 2]
         .map(|t| {
             rayon::ThreadPoolBuilder::new()
                 .num_threads(t)
                 .build()
                 .expect("thread pool")
         })
-        .into();
+        .into()
+}
+
+/// Compares `now` (one line per case) with `tests/<file>`: its first line is the platform's
+/// sin/cos fingerprint (on another platform only the thread-count and reuse independence, already
+/// asserted by the caller, are checked); `SLATE_HASHES_BLESS` rewrites the file instead.
+fn check_recorded(file: &str, now: &str) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests")
+        .join(file);
+    let fingerprint = format!("trig {:016x}\n", trig_fingerprint());
+    if std::env::var_os("SLATE_HASHES_BLESS").is_some() {
+        std::fs::write(&path, format!("{fingerprint}{now}")).expect("write the hashes");
+        return;
+    }
+    let recorded = std::fs::read_to_string(&path).expect("read the hashes");
+    let (head, cases) = recorded.split_at(recorded.find('\n').map_or(0, |i| i + 1));
+    if head != fingerprint {
+        eprintln!(
+            "{file}: this platform's sin/cos differ from the recording's ({} vs {}): only \
+             thread-count and reuse independence were checked",
+            fingerprint.trim(),
+            head.trim()
+        );
+        return;
+    }
+    let bad: Vec<String> = cases
+        .lines()
+        .zip(now.lines())
+        .filter(|(want, got)| want != got)
+        .map(|(want, got)| format!("recorded {want}\n     now {got}"))
+        .collect();
+    assert_eq!(
+        cases.lines().count(),
+        now.lines().count(),
+        "{file}: case count"
+    );
+    assert!(
+        bad.is_empty(),
+        "{file}: output changed:\n{}",
+        bad.join("\n")
+    );
+}
+
+/// One line per case: `name depth points hash`, hashes of 1 and 2 threads and of a second run
+/// into the same buffers on reused workers required equal.
+fn lines() -> String {
+    let pools = pools();
     let mut out = String::new();
     for (name, mesh) in cages() {
         // The largest case, tri_bunny_3k at depth 6, has 9.4 M points.
@@ -147,32 +193,7 @@ fn lines() -> String {
 
 #[test]
 fn output_is_bit_identical_to_the_recorded_hashes() {
-    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/output_hashes.txt");
-    let fingerprint = format!("trig {:016x}\n", trig_fingerprint());
-    let now = lines();
-    if std::env::var_os("SLATE_HASHES_BLESS").is_some() {
-        std::fs::write(&file, format!("{fingerprint}{now}")).expect("write output_hashes.txt");
-        return;
-    }
-    let recorded = std::fs::read_to_string(&file).expect("read output_hashes.txt");
-    let (head, cases) = recorded.split_at(recorded.find('\n').map_or(0, |i| i + 1));
-    if head != fingerprint {
-        eprintln!(
-            "output_hashes: this platform's sin/cos differ from the recording's ({} vs {}): \
-             only thread-count and reuse independence were checked",
-            fingerprint.trim(),
-            head.trim()
-        );
-        return;
-    }
-    let mut bad = Vec::new();
-    for (want, got) in cases.lines().zip(now.lines()) {
-        if want != got {
-            bad.push(format!("recorded {want}\n     now {got}"));
-        }
-    }
-    assert_eq!(cases.lines().count(), now.lines().count(), "case count");
-    assert!(bad.is_empty(), "output changed:\n{}", bad.join("\n"));
+    check_recorded("output_hashes.txt", &lines());
 }
 
 /// Deepest depth of the Loop cases.
@@ -181,14 +202,7 @@ const LOOP_MAX_DEPTH: subdiv_rules::Depth = 5;
 /// The Loop slates' cases (every fixture cage of triangles, depths 1..=5, 1 and 2 threads and a
 /// repeated run into the same buffers): one line `name depth points hash` each.
 fn loop_lines() -> String {
-    let pools: Vec<rayon::ThreadPool> = [1, 2]
-        .map(|t| {
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(t)
-                .build()
-                .expect("thread pool")
-        })
-        .into();
+    let pools = pools();
     let mut out = String::new();
     for (name, mesh) in cages() {
         // Cages Loop refuses (not triangles, doubled triangles) are not cases.
@@ -224,27 +238,5 @@ fn loop_lines() -> String {
 /// above.
 #[test]
 fn loop_output_is_bit_identical_to_the_recorded_hashes() {
-    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/loop_output_hashes.txt");
-    let fingerprint = format!("trig {:016x}\n", trig_fingerprint());
-    let now = loop_lines();
-    if std::env::var_os("SLATE_HASHES_BLESS").is_some() {
-        std::fs::write(&file, format!("{fingerprint}{now}")).expect("write loop_output_hashes.txt");
-        return;
-    }
-    let recorded = std::fs::read_to_string(&file).expect("read loop_output_hashes.txt");
-    let (head, cases) = recorded.split_at(recorded.find('\n').map_or(0, |i| i + 1));
-    if head != fingerprint {
-        eprintln!(
-            "loop_output_hashes: sin/cos differ from the recording's: only thread-count and reuse independence were checked"
-        );
-        return;
-    }
-    let bad: Vec<String> = cases
-        .lines()
-        .zip(now.lines())
-        .filter(|(want, got)| want != got)
-        .map(|(want, got)| format!("recorded {want}\n     now {got}"))
-        .collect();
-    assert_eq!(cases.lines().count(), now.lines().count(), "case count");
-    assert!(bad.is_empty(), "Loop output changed:\n{}", bad.join("\n"));
+    check_recorded("loop_output_hashes.txt", &loop_lines());
 }

@@ -323,19 +323,9 @@ impl Assembler {
     /// Rebuilds the vertex buffer from the blocks (and their start offsets) and bumps the
     /// vertex version.
     fn concatenate_blocks(&mut self, out: &mut FrameGeometry) {
-        let mut acc = 0u32;
-        for (i, b) in self.blocks.iter().enumerate() {
-            self.block_start[i] = acc;
-            acc += b.pos.len() as u32;
-        }
-        self.block_start[self.blocks.len()] = acc;
-        out.positions.clear();
-        out.normals.clear();
+        let blocks = self.blocks.iter().map(|b| (&b.pos[..], &b.nrm[..]));
+        out.concatenate(blocks, &mut self.block_start);
         out.vertex_depth.clear();
-        for b in &self.blocks {
-            out.positions.extend_from_slice(&b.pos);
-            out.normals.extend_from_slice(&b.nrm);
-        }
         self.version += 1;
     }
 

@@ -30,6 +30,30 @@ pub struct FrameGeometry {
 }
 
 impl FrameGeometry {
+    /// Replaces the vertex buffer by the blocks' points in order (`blocks` yields each block's
+    /// positions and normals) and records where each block starts in `block_start` (one entry
+    /// per block plus the total). Shared by the quad and the triangle assemblers.
+    pub(crate) fn concatenate<'a>(
+        &mut self,
+        blocks: impl Iterator<Item = (&'a [[f32; 3]], &'a [[f32; 3]])> + Clone,
+        block_start: &mut [u32],
+    ) {
+        let mut acc = 0u32;
+        let mut n = 0;
+        for (i, (pos, _)) in blocks.clone().enumerate() {
+            block_start[i] = acc;
+            acc += pos.len() as u32;
+            n = i + 1;
+        }
+        block_start[n] = acc;
+        self.positions.clear();
+        self.normals.clear();
+        for (pos, nrm) in blocks {
+            self.positions.extend_from_slice(pos);
+            self.normals.extend_from_slice(nrm);
+        }
+    }
+
     /// Number of triangles.
     pub fn num_triangles(&self) -> usize {
         self.indices.len() / 3
