@@ -35,6 +35,7 @@
 //! ```
 
 mod error;
+mod fvar;
 mod pass;
 pub mod red_green;
 mod step;
