@@ -40,12 +40,6 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
     let input = a.input.display().to_string();
     let format = OutputFormat::from_path(&a.output)?;
     let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, a.prim.as_deref())?;
-    if cage.mesh.uv().is_some() {
-        log::warn!(
-            "{input}: the cage's UVs are not carried by DoI-adaptive Loop refinement; the output \
-             has none (`subdiv tessellate` carries them)"
-        );
-    }
     let setup = a.doi.setup(cage.mesh, &input)?;
     let (lo, hi) = setup.cage.bounds();
     let (mesh, doi, threshold) = (&setup.cage, &setup.doi, setup.opts.threshold);
