@@ -25,9 +25,10 @@ pub struct RefineArgs {
     pub doi: DoiArgs,
     #[command(flatten)]
     pub camera: CameraArgs,
-    /// Output file, its format by extension: .obj (the refined mesh with its tags), .gltf (+
-    /// .bin) or .glb (glTF 2.0), .ply (binary); glTF and PLY hold the refined triangles with
-    /// vertex normals and each vertex's largest DoI over its faces (_DOI, doi).
+    /// Output file, its format by extension: .obj (the refined mesh with its tags and UVs),
+    /// .gltf (+ .bin) or .glb (glTF 2.0), .ply (binary); glTF and PLY hold the refined triangles
+    /// with vertex normals, the cage's refined UVs when it has them (TEXCOORD_0, s t) and each
+    /// vertex's largest DoI over its faces (_DOI, doi).
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
     /// Give each extra fan of faces at a non-manifold vertex its own vertex (the surface opens
