@@ -25,9 +25,10 @@ pub struct RefineArgs {
     pub doi: DoiArgs,
     #[command(flatten)]
     pub camera: CameraArgs,
-    /// Output file, its format by extension: .obj (the refined mesh with its tags), .gltf (+
-    /// .bin) or .glb (glTF 2.0), .ply (binary); glTF and PLY hold the refined triangles with
-    /// vertex normals and each vertex's largest DoI over its faces (_DOI, doi).
+    /// Output file, its format by extension: .obj (the refined mesh with its tags and UVs),
+    /// .gltf (+ .bin) or .glb (glTF 2.0), .ply (binary); glTF and PLY hold the refined triangles
+    /// with vertex normals, the cage's refined UVs when it has them (TEXCOORD_0, s t) and each
+    /// vertex's largest DoI over its faces (_DOI, doi).
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
     /// Give each extra fan of faces at a non-manifold vertex its own vertex (the surface opens
@@ -40,12 +41,6 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
     let input = a.input.display().to_string();
     let format = OutputFormat::from_path(&a.output)?;
     let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, a.prim.as_deref())?;
-    if cage.mesh.uv().is_some() {
-        log::warn!(
-            "{input}: the cage's UVs are not carried by DoI-adaptive Loop refinement; the output \
-             has none (`subdiv tessellate` carries them)"
-        );
-    }
     let setup = a.doi.setup(cage.mesh, &input)?;
     let (lo, hi) = setup.cage.bounds();
     let (mesh, doi, threshold) = (&setup.cage, &setup.doi, setup.opts.threshold);

@@ -77,41 +77,51 @@ fn refine_usd_writes_doi_attribute() {
     assert!(String::from_utf8_lossy(&std::fs::read(&out).unwrap()).contains("\"_DOI\""));
 }
 
+/// `refine` carries the cage's UVs (issue 16 item 3): the octahedron with a seam loop, refined
+/// where the dihedral DoI says, writes `f v/vt` with both sides of the seam (more values than
+/// points), glTF `TEXCOORD_0` and PLY `s t`, and warns about nothing.
 #[test]
-fn refine_says_it_drops_the_cages_uvs() {
-    let out = tmp("refined_uv.obj");
+fn refine_carries_the_cages_uvs() {
     let cage = fixtures().join("meshes/fvar/tri_seam.obj");
-    let args = [
-        "refine",
-        cage.to_str().unwrap(),
-        "--doi",
-        "dihedral",
-        "-o",
-        out.to_str().unwrap(),
-    ];
-    let (code, _, err) = run(&args);
-    assert_eq!(code, 0, "{err}");
-    assert!(
-        err.contains("tri_seam.obj: the cage's UVs are not carried"),
-        "{err}"
-    );
-    let text = std::fs::read_to_string(&out).unwrap();
-    assert!(
-        !text.lines().any(|l| l.starts_with("vt ")),
-        "no UVs written"
-    );
-    // A cage without UVs gets no such warning.
-    let plain = fixtures().join("reference/shapes/loop_tetrahedron.obj");
-    let (code, _, err) = run(&[
-        "refine",
-        plain.to_str().unwrap(),
-        "--doi",
-        "dihedral",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 0, "{err}");
-    assert!(!err.contains("UVs"), "{err}");
+    let cage_mesh = subdiv_mesh::read_obj(&cage).unwrap();
+    for ext in ["obj", "glb", "ply"] {
+        let out = tmp(&format!("refined_uv.{ext}"));
+        let args = [
+            "refine",
+            cage.to_str().unwrap(),
+            "--doi",
+            "dihedral",
+            "--threshold",
+            "10",
+            "-o",
+            out.to_str().unwrap(),
+        ];
+        let (code, _, err) = run(&args);
+        assert_eq!(code, 0, "{err}");
+        assert!(!err.contains("UV"), "{err}");
+        let bytes = std::fs::read(&out).unwrap();
+        match ext {
+            "obj" => {
+                let m = subdiv_mesh::read_obj(&out).unwrap();
+                assert!(m.num_faces() > cage_mesh.num_faces(), "refined");
+                let fv = m.uv().expect("vt written");
+                assert_eq!(fv.indices.len(), 3 * m.num_faces());
+                assert!(fv.values.len() > m.num_vertices(), "a seam lost a side");
+                // Refined values stay inside the cage's UV range.
+                let (lo, hi) = cage_mesh.uv().unwrap().values.iter().fold(
+                    (glam::Vec2::splat(f32::MAX), glam::Vec2::splat(f32::MIN)),
+                    |(lo, hi), &t| (lo.min(t), hi.max(t)),
+                );
+                assert!(
+                    fv.values
+                        .iter()
+                        .all(|&t| t.cmpge(lo).all() && t.cmple(hi).all())
+                );
+            }
+            "glb" => assert!(String::from_utf8_lossy(&bytes).contains("\"TEXCOORD_0\"")),
+            _ => assert!(String::from_utf8_lossy(&bytes).contains("property float s\n")),
+        }
+    }
 }
 
 #[test]

@@ -65,6 +65,15 @@ pub enum LoopError {
         /// The limit ([`crate::MAX_TRIANGLES`]).
         limit: u64,
     },
+    /// A corner of a refined triangle has no face-varying value (a bug: every corner is a
+    /// parent corner or a split edge's midpoint).
+    #[error("internal error: corner at vertex {vertex} of a triangle from face {face} has no UV")]
+    UvCorner {
+        /// The face of the input mesh the triangle comes from.
+        face: u32,
+        /// The corner's vertex in the refined mesh.
+        vertex: u32,
+    },
     /// A refined mesh failed validation (a bug: the closure keeps the mesh valid).
     #[error("internal error: the refined mesh is invalid: {0}")]
     Internal(subdiv_mesh::MeshError),

@@ -17,6 +17,10 @@
 //!   where uniform Loop puts it at its level (the highest level of the faces around it).
 //! - The rules are `subdiv-rules`' one refinement kernel ([`subdiv_rules::RefineKernel`]): with
 //!   every face selected a step is bit-identical to `subdiv_rules::refine_uniform`.
+//! - A mesh's UVs (face-varying data, [`subdiv_mesh::Mesh::uv`]) are refined with the same
+//!   closure by `subdiv-rules`' face-varying rules ([`subdiv_rules::refine_face_varying_part`]):
+//!   with every face selected the channel is `refine_uniform`'s exactly; values are continuous
+//!   across every edge off a seam, and seams stay seams.
 //!
 //! ```
 //! use subdiv_loop::{loop_step, AdaptiveMesh};
@@ -35,6 +39,7 @@
 //! ```
 
 mod error;
+mod fvar;
 mod pass;
 pub mod red_green;
 mod step;

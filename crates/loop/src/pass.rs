@@ -66,7 +66,7 @@ pub(crate) fn once_per_level(mesh: &Mesh, level: &[u8], c: &mut Closure) {
 /// Whether the edge of `h` joins a green triangle's corner to the midpoint of the opposite
 /// parent edge (an edge inside the family, not one of its parent's level).
 #[inline]
-fn inside_family(mesh: &Mesh, green: &GreenState, h: HalfedgeId) -> bool {
+pub(crate) fn inside_family(mesh: &Mesh, green: &GreenState, h: HalfedgeId) -> bool {
     let (v, m) = (mesh.from(h), mesh.to(h));
     [h, h.twin()].iter().any(|&s| {
         let f = mesh.face(s);
@@ -83,22 +83,22 @@ fn inside_family(mesh: &Mesh, green: &GreenState, h: HalfedgeId) -> bool {
     })
 }
 
-/// Applies `closure` to `cur`: vertex and edge points read from `at` (one position per vertex,
-/// the level being refined, and rings without green-internal edges; `None`: the current
-/// positions and rings, the paper's plain closure), moved vertices and new midpoints
+/// Applies `closure` to `cur`: vertex and edge points (and UVs, `crate::fvar`) read at
+/// `level` (every vertex at that level, and rings without green-internal edges; `None`: the
+/// current positions and rings, the paper's plain closure), moved vertices and new midpoints
 /// written, the conforming triangles assembled. Returns the refined mesh and, per new face, the
 /// face of `cur` it comes from.
 pub(crate) fn pass(
     cur: &AdaptiveMesh,
     closure: &Closure,
-    at: Option<Vec<Vec3>>,
+    level: Option<u8>,
 ) -> Result<(AdaptiveMesh, Vec<u32>), LoopError> {
     let mesh = &cur.mesh;
     // Balanced passes read the level's ring (green-internal edges left out); the plain closure
     // reads the current mesh, as the paper does.
-    let by_level = at.is_some();
+    let by_level = level.is_some();
     let shifted;
-    let kmesh = match at {
+    let kmesh = match level.map(|l| level_positions(cur, l)) {
         Some(p) => {
             let mut m = mesh.clone();
             m.positions_mut().copy_from_slice(&p);
@@ -155,11 +155,16 @@ pub(crate) fn pass(
             limit: MAX_TRIANGLES,
         });
     }
+    let uvs = crate::fvar::pass_uvs(&mut kernel, cur, closure, level, &edge_mid, &asm)?;
     let mut soup = PolygonSoup {
         positions,
         options: mesh.options(),
         ..Default::default()
     };
+    let mut previous_uv = Vec::new();
+    if let Some(u) = uvs {
+        (soup.uvs, soup.uv_indices, previous_uv) = (u.values, u.indices, u.previous);
+    }
     soup.face_offsets.reserve(asm.triangles.len() + 1);
     soup.face_indices.reserve(asm.triangles.len() * 3);
     soup.face_offsets.push(0);
@@ -201,6 +206,7 @@ pub(crate) fn pass(
             green: asm.state,
             level,
             previous,
+            previous_uv,
             cage_angle: cur.cage_angle,
         },
         asm.source_face,
@@ -210,7 +216,7 @@ pub(crate) fn pass(
 /// The vertex opposite half-edge `h` in its face, or, for an edge of the parent of a merged
 /// green family, the parent's opposite corner.
 #[inline]
-fn opposite(cur: &AdaptiveMesh, merged: &[bool], h: HalfedgeId) -> VertexId {
+pub(crate) fn opposite(cur: &AdaptiveMesh, merged: &[bool], h: HalfedgeId) -> VertexId {
     let mesh = &cur.mesh;
     let f = mesh.face(h);
     let fam = cur.green.family_of_face[f.idx()];

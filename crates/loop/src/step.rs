@@ -50,12 +50,12 @@
 //! (1 123 340 against 1 094 084; docs/figures.md). [`loop_step_with`] with [`Balance::None`] is the paper's
 //! plain closure, the vertex rule over the current mesh.
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use subdiv_mesh::Mesh;
 
 use crate::LoopError;
 use crate::error::check_len;
-use crate::pass::{level_positions, once_per_level, pass};
+use crate::pass::{once_per_level, pass};
 use crate::red_green::{self, GreenState};
 
 /// Most triangles an adaptive refinement may produce.
@@ -77,6 +77,10 @@ pub struct AdaptiveMesh {
     /// moved since it was made. A balanced step reads it for vertices one level ahead of the
     /// faces it refines.
     pub previous: Vec<Vec3>,
+    /// Per value of the mesh's UVs ([`Mesh::uv`]; empty without): the value one level before
+    /// its vertex's current one, as [`AdaptiveMesh::previous`] for positions; the value itself
+    /// for a value that has not moved since it was made.
+    pub previous_uv: Vec<Vec2>,
     /// The cage's smallest angle (radians). A balanced step refines red a triangle whose green
     /// bisection would cut an angle too small for it ([`red_green::balance`]); 0 allows every
     /// bisection.
@@ -90,6 +94,7 @@ impl AdaptiveMesh {
         let green = GreenState::new(mesh.num_faces());
         let level = vec![0; mesh.num_faces()];
         let previous = mesh.positions().to_vec();
+        let previous_uv = mesh.uv().map(|fv| fv.values.clone()).unwrap_or_default();
         let cage_angle = mesh
             .faces()
             .map(|f| {
@@ -103,6 +108,7 @@ impl AdaptiveMesh {
             green,
             level,
             previous,
+            previous_uv,
             cage_angle,
         })
     }
@@ -183,6 +189,11 @@ pub fn loop_step_with(
         cur.previous.len(),
         mesh.num_vertices(),
     )?;
+    check_len(
+        "previous UVs",
+        cur.previous_uv.len(),
+        mesh.uv().map_or(0, |fv| fv.values.len()),
+    )?;
     let count = |s: &[bool]| s.iter().filter(|&&x| x).count();
     let selected_n = count(selected);
     let mut stats = StepStats {
@@ -242,8 +253,7 @@ fn by_level(
         once_per_level(&a.mesh, &a.level, &mut c);
         stats.refined += c.red_face.iter().filter(|&&r| r).count();
         stats.merged += c.merged.iter().filter(|&&m| m).count();
-        let at = level_positions(&a, l);
-        let (b, source) = pass(&a, &c, Some(at))?;
+        let (b, source) = pass(&a, &c, Some(l))?;
         origin = source.iter().map(|&s| origin[s as usize]).collect();
         done = source
             .iter()

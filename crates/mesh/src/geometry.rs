@@ -146,7 +146,8 @@ impl Mesh {
 
 /// Splits every face of `mesh` into triangles: quads along their shorter diagonal, larger
 /// polygons as a fan from their first vertex. Triangles stay as they are. Groups, holes, edge
-/// and vertex sharpness and the scheme options carry over; the new diagonals are smooth.
+/// and vertex sharpness, the scheme options and the UVs (each triangle corner keeps its face
+/// corner's value) carry over; the new diagonals are smooth.
 ///
 /// ```
 /// use subdiv_mesh::{parse_obj, triangulate, Mesh};
@@ -164,22 +165,32 @@ pub fn triangulate(mesh: &Mesh) -> Result<Mesh, MeshError> {
         ..Default::default()
     };
     let mut holes = Vec::new();
+    let (offsets, _) = mesh.face_lists();
+    if let Some(fv) = mesh.uv() {
+        soup.uvs = fv.values.clone();
+    }
     for f in mesh.faces() {
         let v: Vec<i64> = mesh.face_vertices(f).iter().map(|x| x.0 as i64).collect();
-        let tris: Vec<[i64; 3]> = match v.len() {
-            3 => vec![[v[0], v[1], v[2]]],
+        // Triangles as corners of the face.
+        let tris: Vec<[usize; 3]> = match v.len() {
+            3 => vec![[0, 1, 2]],
             4 => {
                 let p = |i: usize| mesh.position(VertexId(v[i] as u32));
                 if p(0).distance_squared(p(2)) <= p(1).distance_squared(p(3)) {
-                    vec![[v[0], v[1], v[2]], [v[0], v[2], v[3]]]
+                    vec![[0, 1, 2], [0, 2, 3]]
                 } else {
-                    vec![[v[0], v[1], v[3]], [v[1], v[2], v[3]]]
+                    vec![[0, 1, 3], [1, 2, 3]]
                 }
             }
-            n => (1..n - 1).map(|k| [v[0], v[k], v[k + 1]]).collect(),
+            n => (1..n - 1).map(|k| [0, k, k + 1]).collect(),
         };
         for t in tris {
-            soup.push_face(t);
+            soup.push_face(t.map(|k| v[k]));
+            if let Some(fv) = mesh.uv() {
+                let c = offsets[f.idx()] as usize;
+                soup.uv_indices
+                    .extend(t.map(|k| i64::from(fv.indices[c + k])));
+            }
             soup.face_groups.push(mesh.face_group(f));
             holes.push(mesh.is_hole(f));
         }
@@ -207,7 +218,7 @@ pub fn triangulate(mesh: &Mesh) -> Result<Mesh, MeshError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::parse_obj;
+    use crate::{FaceId, parse_obj};
 
     #[test]
     fn newell_relative_to_a_corner_survives_distance_from_the_origin() {
@@ -304,5 +315,34 @@ mod tests {
         )
         .unwrap();
         assert_eq!(triangulate(&hex).unwrap().num_faces(), 4);
+    }
+
+    #[test]
+    fn triangulate_keeps_each_corner_uv() {
+        // Two quads with a UV seam between them (the shared edge's corners differ).
+        let m = Mesh::from_soup(
+            &parse_obj(
+                "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n\
+                 vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 5 0\nvt 6 0\nvt 6 1\nvt 5 1\n\
+                 f 1/1 2/2 3/3 4/4\nf 2/5 5/6 6/7 3/8\n",
+            )
+            .unwrap(),
+        )
+        .unwrap();
+        let t = triangulate(&m).unwrap();
+        let fv = t.uv().expect("UVs carried");
+        assert_eq!(fv.values, m.uv().unwrap().values);
+        let (offsets, _) = t.face_lists();
+        // Every triangle corner has the value of the quad corner at the same vertex.
+        let (mo, _) = m.face_lists();
+        for f in t.faces() {
+            let quad = FaceId(f.0 / 2);
+            let qv = m.face_vertices(quad);
+            for (k, v) in t.face_vertices(f).iter().enumerate() {
+                let q = qv.iter().position(|x| x == v).unwrap();
+                let want = m.uv().unwrap().indices[mo[quad.idx()] as usize + q];
+                assert_eq!(fv.indices[offsets[f.idx()] as usize + k], want);
+            }
+        }
     }
 }

@@ -23,12 +23,14 @@
 use glam::{Vec2, Vec3};
 use subdiv_mesh::{FVarLinearInterpolation, FaceId, FaceVarying, HalfedgeId, Mesh, VertexId};
 
-use crate::Scheme;
 use crate::crease::{decrement, fractional_weight, is_infinite, is_semi_sharp};
 use crate::refine::RefineKernel;
 
 mod limit;
+mod step;
 pub use limit::{limit_face_varying, limit_face_varying_exact, semi_sharp_levels};
+pub(crate) use step::refine_face_varying;
+pub use step::{FVarChildren, FVarRegion, refine_face_varying_part};
 
 /// The options of `Vtr::FVarLevel::completeTopologyFromFaceValues`, as flags.
 #[derive(Clone, Copy, Debug)]
@@ -82,6 +84,8 @@ struct Channel<'a> {
     /// Edges whose faces disagree at either end.
     seam: Vec<bool>,
     flags: Flags,
+    /// Out half-edges left out of their origin's ring ([`FVarRegion::skips`]; empty: none).
+    skip: Vec<bool>,
 }
 
 impl<'a> Channel<'a> {
@@ -104,6 +108,7 @@ impl<'a> Channel<'a> {
             corner,
             seam: vec![false; mesh.num_edges()],
             flags: Flags::new(mesh),
+            skip: Vec::new(),
         };
         for e in mesh.edges() {
             let (h0, h1) = (e.halfedge(0), e.halfedge(1));
@@ -133,6 +138,26 @@ impl<'a> Channel<'a> {
             self.value(h.twin())
         }
     }
+    /// Whether out half-edge `h` is left out of its origin's ring.
+    #[inline]
+    fn skips(&self, h: HalfedgeId) -> bool {
+        self.skip.get(h.idx()).copied().unwrap_or(false)
+    }
+    /// The half-edge into a vertex `v` along the far edge of the face of `h` (out of `v`):
+    /// `prev(h)`, or past the faces that stand with it across skipped edges.
+    #[inline]
+    fn far_edge(&self, h: HalfedgeId) -> HalfedgeId {
+        let mesh = self.mesh;
+        let mut p = mesh.prev(h);
+        for _ in 0..mesh.num_halfedges() {
+            let next = p.twin();
+            if !self.skips(next) || !mesh.face(next).is_some() {
+                break;
+            }
+            p = mesh.prev(next);
+        }
+        p
+    }
     /// Edge with linear face-varying interpolation: a seam or, with linear boundaries, a
     /// boundary edge.
     #[inline]
@@ -142,177 +167,11 @@ impl<'a> Channel<'a> {
     }
 }
 
-/// One uniform refinement step of `fv` on the kernel's mesh, whose vertex points the kernel has
-/// already computed (so its child sharpness is known). The child channel numbers corners as
-/// [`refine_uniform`](crate::refine_uniform) numbers the child faces.
-pub(crate) fn refine_face_varying(kernel: &mut RefineKernel<'_>, fv: &FaceVarying) -> FaceVarying {
-    let mesh = kernel.mesh();
-    let scheme = kernel.scheme();
-    let (offsets, _) = mesh.face_lists();
-    let ch = Channel::new(mesh, fv);
-    let mut out = FaceVarying::default();
-    let push = push_value;
-
-    // Face values (Catmull-Clark): the centroid of the corners.
-    let mut face_value = Vec::new();
-    if scheme == Scheme::CatmullClark {
-        face_value = mesh
-            .faces()
-            .map(|f| {
-                let r = offsets[f.idx()] as usize..offsets[f.idx() + 1] as usize;
-                let n = r.len() as f32;
-                r.map(|c| fv.corner(c).extend(0.0)).sum::<Vec3>() / n
-            })
-            .collect::<Vec<Vec3>>();
-    }
-
-    // Vertex values: child value index of every face corner.
-    let mut vertex_child = vec![0u32; fv.indices.len()];
-    let mut hs = Vec::new();
-    let mut sib = Vec::new();
-    let mut uniq = Vec::new();
-    for v in mesh.vertices() {
-        hs.clear();
-        hs.extend(mesh.outgoing(v).filter(|&h| mesh.face(h).is_some()));
-        if hs.is_empty() {
-            continue;
-        }
-        // OpenSubdiv walks an interior vertex's faces from its lowest-numbered one.
-        if !mesh.is_boundary_vertex(v)
-            && let Some(k) = (0..hs.len()).min_by_key(|&k| mesh.face(hs[k]).0)
-        {
-            hs.rotate_left(k);
-        }
-        siblings(&ch, &hs, &mut sib, &mut uniq);
-        if !vertex_mismatch(&ch, v) {
-            let centre = ch.value(hs[0]);
-            let p = if ch.flags.linear_all {
-                centre
-            } else {
-                kernel.vertex_point_with(v, centre, |h| ch.end_value(h), |f| face_value[f.idx()])
-            };
-            let i = push(&mut out, p);
-            for &h in &hs {
-                vertex_child[ch.corner[h.idx()] as usize] = i;
-            }
-            continue;
-        }
-        let corners = sibling_corners(&ch, v, &hs, &sib, uniq.len());
-        let base = out.values.len() as u32;
-        for (s, &is_corner) in corners.iter().enumerate() {
-            let first = sib.iter().position(|&x| x == s).unwrap_or(0);
-            let centre = ch.value(hs[first]);
-            let p = if is_corner || ch.flags.linear_all {
-                centre
-            } else {
-                let span = spans(&ch, &hs, &sib, uniq.len())[s];
-                crease_value(&ch, kernel, v, &hs, span, centre)
-            };
-            push(&mut out, p);
-        }
-        for (k, &h) in hs.iter().enumerate() {
-            vertex_child[ch.corner[h.idx()] as usize] = base + sib[k] as u32;
-        }
-    }
-
-    // Edge values: one per edge, or one per side of a linear edge.
-    let mut edge_child = vec![0u32; mesh.num_halfedges()];
-    for e in mesh.edges() {
-        let (h0, h1) = (e.halfedge(0), e.halfedge(1));
-        if ch.linear_edge(h0) || ch.flags.linear_all {
-            let mut shared = None;
-            for h in [h0, h1] {
-                if mesh.face(h).is_some() {
-                    let mid = (ch.value(h) + ch.value(mesh.next(h))) * 0.5;
-                    // Without a seam both sides agree: one value.
-                    let i = match shared {
-                        Some(i) if !ch.seam[e.idx()] => i,
-                        _ => push(&mut out, mid),
-                    };
-                    shared = Some(i);
-                    edge_child[h.idx()] = i;
-                }
-            }
-            continue;
-        }
-        let h = if mesh.face(h0).is_some() { h0 } else { h1 };
-        let (a, b) = if h == h0 {
-            (ch.value(h0), ch.value(mesh.next(h0)))
-        } else {
-            (ch.value(mesh.next(h1)), ch.value(h1))
-        };
-        let p = kernel.edge_point_with(e, a, b, |h| match scheme {
-            Scheme::CatmullClark => face_value[mesh.face(h).idx()],
-            Scheme::Loop => ch.value(mesh.prev(h)),
-        });
-        let i = push(&mut out, p);
-        edge_child[h0.idx()] = i;
-        edge_child[h1.idx()] = i;
-    }
-
-    child_corners(
-        &ch,
-        scheme,
-        face_value,
-        &vertex_child,
-        &edge_child,
-        &mut out,
-    );
-    out
-}
-
-/// Appends the Catmull-Clark face values to `out` and the value of every child face corner, in
-/// the child face order of [`refine_uniform`](crate::refine_uniform).
-fn child_corners(
-    ch: &Channel<'_>,
-    scheme: Scheme,
-    face_value: Vec<Vec3>,
-    vertex_child: &[u32],
-    edge_child: &[u32],
-    out: &mut FaceVarying,
-) {
-    let mesh = ch.mesh;
-    let face_base = out.values.len() as u32;
-    if scheme == Scheme::CatmullClark {
-        for p in face_value {
-            push_value(out, p);
-        }
-    }
-    let vc = |h: HalfedgeId| vertex_child[ch.corner[h.idx()] as usize];
-    for f in mesh.faces() {
-        let h0 = mesh.face_halfedge(f);
-        match scheme {
-            Scheme::CatmullClark => {
-                let mut h = h0;
-                let mut hp = mesh.prev(h0);
-                for _ in 0..mesh.face_size(f) {
-                    out.indices.extend([
-                        vc(h),
-                        edge_child[h.idx()],
-                        face_base + f.0,
-                        edge_child[hp.idx()],
-                    ]);
-                    hp = h;
-                    h = mesh.next(h);
-                }
-            }
-            Scheme::Loop => {
-                let (ha, hb, hc) = (h0, mesh.next(h0), mesh.prev(h0));
-                let ev = |h: HalfedgeId| edge_child[h.idx()];
-                out.indices.extend([vc(ha), ev(ha), ev(hc)]);
-                out.indices.extend([vc(hb), ev(hb), ev(ha)]);
-                out.indices.extend([vc(hc), ev(hc), ev(hb)]);
-                out.indices.extend([ev(ha), ev(hb), ev(hc)]);
-            }
-        }
-    }
-}
-
 /// Appends a value (the `x`, `y` of `p`); its index.
 #[inline]
-fn push_value(out: &mut FaceVarying, p: Vec3) -> u32 {
-    out.values.push(Vec2::new(p.x, p.y));
-    (out.values.len() - 1) as u32
+fn push_value(values: &mut Vec<Vec2>, p: Vec3) -> u32 {
+    values.push(Vec2::new(p.x, p.y));
+    (values.len() - 1) as u32
 }
 
 /// The value of a crease sibling at `v` (OpenSubdiv's `PrimvarRefiner::interpFVarFromVerts`):
@@ -385,9 +244,10 @@ fn siblings(ch: &Channel<'_>, hs: &[HalfedgeId], sib: &mut Vec<usize>, uniq: &mu
     }
 }
 
-/// Whether the values at `v` are refined apart from the vertex rules: a seam ends at `v`, or a
-/// boundary vertex is made linear (linear boundaries, or a one-face corner made sharp).
-fn vertex_mismatch(ch: &Channel<'_>, v: VertexId) -> bool {
+/// Whether the values at `v` (with `faces` faces in its ring) are refined apart from the vertex
+/// rules: a seam ends at `v`, or a boundary vertex is made linear (linear boundaries, or a
+/// one-face corner made sharp).
+fn vertex_mismatch(ch: &Channel<'_>, v: VertexId, faces: usize) -> bool {
     let mesh = ch.mesh;
     if mesh.outgoing(v).any(|h| ch.seam[h.edge().idx()]) {
         return true;
@@ -395,7 +255,6 @@ fn vertex_mismatch(ch: &Channel<'_>, v: VertexId) -> bool {
     if !mesh.is_boundary_vertex(v) {
         return false;
     }
-    let faces = mesh.outgoing(v).filter(|&h| mesh.face(h).is_some()).count();
     ch.flags.linear_boundaries || (faces == 1 && ch.flags.smooth_corners_sharp)
 }
 

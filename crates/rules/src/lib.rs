@@ -31,7 +31,10 @@ mod point;
 mod refine;
 mod ring;
 
-pub use fvar::{face_uvs, limit_face_varying, limit_face_varying_exact, semi_sharp_levels};
+pub use fvar::{
+    FVarChildren, FVarRegion, face_uvs, limit_face_varying, limit_face_varying_exact,
+    refine_face_varying_part, semi_sharp_levels,
+};
 pub use limit::{LimitMesh, limit_surface, tessellate_uniform};
 pub use point::{Point, centroid};
 pub use refine::{

@@ -193,8 +193,11 @@ impl<'m, P: Point> RefineKernel<'m, P> {
     }
 
     /// The one vertex rule behind [`RefineKernel::vertex_point_without`] and
-    /// [`RefineKernel::vertex_point_with`].
-    fn vertex_point_over(
+    /// [`RefineKernel::vertex_point_with`]: other data than the positions (`centre`, `end`,
+    /// `face_point` as in [`RefineKernel::vertex_point_with`]) over the ring of `v` without the
+    /// out half-edges `skip` names (as in [`RefineKernel::vertex_point_without`]); the
+    /// face-varying values of adaptive Loop refinement.
+    pub fn vertex_point_over(
         &mut self,
         v: VertexId,
         centre: P,

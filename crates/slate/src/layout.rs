@@ -58,6 +58,8 @@ pub struct PatchLayout {
     pub(crate) level1: Option<Mesh>,
     pub(crate) isolated: Vec<VertexId>,
     pub(crate) max_valence: usize,
+    /// The UVs of the first tessellation with UVs, for the calls that follow (`uv.rs`).
+    pub(crate) uv_cache: crate::uv::UvCache,
 }
 
 impl PatchLayout {
@@ -158,6 +160,7 @@ impl PatchLayout {
             max_valence: mesh
                 .max_valence()
                 .max(level1_max_valence(any_irregular, mesh)),
+            uv_cache: Default::default(),
         })
     }
 }

@@ -22,6 +22,10 @@
 //!   that patch's own gather, in a fixed order, and a worker's reuse between patches cannot
 //!   change results (see [`thread_worker`]), so the output is bit-identical whether it runs on
 //!   one thread or many.
+//! - **UVs are a function of the cage but for its positions.** A cage's face-varying values
+//!   (`uv`) depend on its topology, UVs, sharpness, options and holes only; a layout keeps those
+//!   of its first tessellation with UVs and hands them to later calls on the same cage, bit for
+//!   bit what a fresh tessellation gives.
 //!
 //! # Beyond the paper
 //!

@@ -11,14 +11,18 @@
 //! `k` of a face starts at its corner `k`, runs along its edge `k`, and holds the quadrant
 //! there; Loop children `0..3` at the corners, `3` the middle), which is also how a patch's
 //! grid lies on its face (grid point `(0, 0)` at the face's first corner, `i` along its first
-//! edge). Cost: one whole-mesh refinement per call, only for cages with UVs; the no-UV path
-//! only clears two empty vectors.
+//! edge). Cost: one whole-mesh refinement per layout, only for cages with UVs: the layout keeps
+//! its first call's values ([`cache`]) and later calls with the same topology, UVs, sharpness
+//! and options (positions may move) copy them; the no-UV path only clears two empty vectors.
 
 use subdiv_mesh::{FaceId, Mesh};
 use subdiv_rules::{
     Depth, LimitMesh, RulesError, Scheme, limit_face_varying, refine_uniform_levels,
     semi_sharp_levels,
 };
+
+mod cache;
+pub(crate) use cache::UvCache;
 
 use crate::layout::PatchLayout;
 use crate::tessellate::SlateError;
@@ -33,6 +37,9 @@ pub(crate) fn quad_uvs(
 ) -> Result<(), SlateError> {
     out.uvs.clear();
     out.uv_indices.clear();
+    if mesh.uv().is_none() || layout.uv_cache.restore(mesh, out) {
+        return Ok(());
+    }
     let depth = layout.depth;
     let Some(lev) = LevelUvs::new(mesh, Scheme::CatmullClark, depth)? else {
         return Ok(());
@@ -65,6 +72,7 @@ pub(crate) fn quad_uvs(
     }
     out.uvs = lev.values;
     out.compact_uvs();
+    layout.uv_cache.keep(mesh, out);
     Ok(())
 }
 
@@ -252,6 +260,9 @@ pub(crate) fn tri_uvs(
 ) -> Result<(), SlateError> {
     out.uvs.clear();
     out.uv_indices.clear();
+    if mesh.uv().is_none() || layout.uv_cache.restore(mesh, out) {
+        return Ok(());
+    }
     let depth = layout.depth;
     let Some(lev) = LevelUvs::new(mesh, Scheme::Loop, depth)? else {
         return Ok(());
@@ -279,6 +290,7 @@ pub(crate) fn tri_uvs(
     }
     out.uvs = lev.values;
     out.compact_uvs();
+    layout.uv_cache.keep(mesh, out);
     Ok(())
 }
 

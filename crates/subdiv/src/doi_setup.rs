@@ -306,8 +306,8 @@ impl DoiSetup {
     }
 
     /// A refinement of this set-up for `camera` as a surface to draw or write: the refined mesh
-    /// (not pushed to the limit) with vertex normals, one-sided normals along sharp edges, and
-    /// each vertex's largest DoI over its faces.
+    /// (not pushed to the limit) with vertex normals, one-sided normals along sharp edges, its
+    /// refined UVs when the cage has UVs, and each vertex's largest DoI over its faces.
     pub fn refined_surface(
         &self,
         r: &Refined,
@@ -332,6 +332,12 @@ impl DoiSetup {
         }
         let normals = subdiv_mesh::vertex_normals(m);
         let (offsets, indices) = m.face_lists();
+        // The refined values of the cage's UVs (not limit values: the mesh is not pushed to
+        // the limit), one per face corner.
+        let (uvs, uv_indices) = m.uv().map_or((Vec::new(), Vec::new()), |fv| {
+            let uvs = fv.values.iter().map(|t| t.to_array()).collect();
+            (uvs, fv.indices.clone())
+        });
         let limit = LimitMesh {
             positions: m.positions().iter().map(|p| p.to_array()).collect(),
             normals: normals.iter().map(|n| n.to_array()).collect(),
@@ -339,7 +345,8 @@ impl DoiSetup {
             face_indices: indices.iter().map(|v| v.0).collect(),
             // Sharp edges shade as creases: each sector of a vertex its own normal.
             corner_normals: crate::crease_normals::sector_corner_normals(m, &normals),
-            ..Default::default()
+            uvs,
+            uv_indices,
         };
         Ok((limit, scalar))
     }

@@ -317,3 +317,46 @@ fn uvs_of_a_tessellated_cage_reach_the_export() {
     .unwrap();
     check_gltf(&glb, &s, "cube_uv.glb");
 }
+
+/// A cage with UVs refined where a DoI says (`subdiv refine`): the export carries the refined
+/// mesh's UVs, every triangle corner the value of its face corner, vertices split at the seam;
+/// the `.glb` re-read by the `gltf` crate holds `TEXCOORD_0`, one per vertex (issue 16 item 3).
+#[test]
+fn uvs_of_a_refined_cage_reach_the_export() {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/meshes/fvar/tri_seam.obj");
+    let cage = read_obj(path).unwrap();
+    let (lo, hi) = cage.bounds();
+    let camera = Camera::eye_relative(lo, hi, Vec3::new(0.3, 0.4, 2.5), 45.0, 640, 480);
+    let mut o = DoiOptions::new(DoiKind::ViewAngle);
+    o.steps = 3;
+    let setup = DoiSetup::new(cage, &o).unwrap();
+    let r = setup.run(camera).unwrap();
+    let m = &r.mesh.mesh;
+    let fv = m.uv().expect("the refined mesh carries the UVs");
+    let (limit, dois) = setup.refined_surface(&r, &camera).unwrap();
+    assert!(r.mesh.green.num_green_faces() > 0, "a partial refinement");
+    assert_eq!(limit.uv_indices, fv.indices);
+    let s = SurfaceExport::from_limit(&limit, Some((VertexScalar::Doi, dois.clone())));
+    let uvs = s.uvs.as_ref().expect("the export carries the UVs");
+    assert_eq!(uvs.len(), s.positions.len());
+    // At least one vertex per distinct (vertex, value) pair: the seam splits vertices.
+    let mut pairs: Vec<(u32, u32)> = limit
+        .face_indices
+        .iter()
+        .zip(&limit.uv_indices)
+        .map(|(&v, &t)| (v, t))
+        .collect();
+    pairs.sort_unstable();
+    pairs.dedup();
+    assert!(pairs.len() > m.num_vertices());
+    assert!(s.positions.len() >= pairs.len());
+    for (c, &o) in s.triangles.iter().enumerate() {
+        let (v, t) = (limit.face_indices[c], limit.uv_indices[c]);
+        assert_eq!(s.positions[o as usize], limit.positions[v as usize]);
+        assert_eq!(uvs[o as usize], limit.uvs[t as usize]);
+    }
+    let glb = out_dir().join("tri_seam_refined.glb");
+    write_surface(&glb, &limit, Some((VertexScalar::Doi, dois))).unwrap();
+    check_gltf(&glb, &s, "tri_seam_refined.glb");
+}

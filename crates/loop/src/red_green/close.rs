@@ -2,7 +2,7 @@
 
 use subdiv_mesh::{EdgeId, FaceId, Mesh, VertexId};
 
-use super::green::{GreenState, NO_FAMILY};
+use super::green::{FamilyFaces, GreenState, NO_FAMILY};
 use crate::LoopError;
 use crate::error::check_len;
 
@@ -30,8 +30,7 @@ impl Closure {
 struct Marker<'a> {
     mesh: &'a Mesh,
     state: &'a GreenState,
-    fam_start: Vec<u32>,
-    fam_faces: Vec<u32>,
+    families: FamilyFaces,
     c: Closure,
     queue: Vec<EdgeId>,
 }
@@ -64,8 +63,8 @@ impl Marker<'_> {
             return Ok(());
         }
         self.c.merged[k] = true;
-        for i in self.fam_start[k]..self.fam_start[k + 1] {
-            self.c.red_face[self.fam_faces[i as usize] as usize] = true;
+        for &f in self.families.of(fam) {
+            self.c.red_face[f as usize] = true;
         }
         let fam_rec = self.state.families[k];
         for j in 0..3 {
@@ -123,36 +122,11 @@ pub fn close(mesh: &Mesh, state: &GreenState, selected: &[bool]) -> Result<Closu
     check_len("green family_of_face", state.family_of_face.len(), nf)?;
     mesh.check_triangles()?;
     let nfam = state.families.len();
-    // Faces of each family, by counting sort.
-    let mut fam_start = vec![0u32; nfam + 1];
-    for (f, &fam) in state.family_of_face.iter().enumerate() {
-        if fam != NO_FAMILY {
-            if fam as usize >= nfam {
-                return Err(LoopError::FamilyOutOfRange {
-                    face: f as u32,
-                    family: fam,
-                    count: nfam as u32,
-                });
-            }
-            fam_start[fam as usize + 1] += 1;
-        }
-    }
-    for k in 0..nfam {
-        fam_start[k + 1] += fam_start[k];
-    }
-    let mut fill = fam_start.clone();
-    let mut fam_faces = vec![0u32; fam_start[nfam] as usize];
-    for (f, &fam) in state.family_of_face.iter().enumerate() {
-        if fam != NO_FAMILY {
-            fam_faces[fill[fam as usize] as usize] = f as u32;
-            fill[fam as usize] += 1;
-        }
-    }
+    let families = state.family_faces()?;
     let mut m = Marker {
         mesh,
         state,
-        fam_start,
-        fam_faces,
+        families,
         c: Closure {
             red_face: vec![false; nf],
             merged: vec![false; nfam],

@@ -2,6 +2,8 @@
 
 use subdiv_mesh::{FaceId, VertexId};
 
+use crate::LoopError;
+
 /// `family_of_face` value of a face that is not green.
 pub const NO_FAMILY: u32 = u32::MAX;
 
@@ -55,5 +57,53 @@ impl GreenState {
             .iter()
             .filter(|&&x| x != NO_FAMILY)
             .count()
+    }
+}
+
+/// The faces of every green family, grouped by a counting sort ([`GreenState::family_faces`]).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct FamilyFaces {
+    start: Vec<u32>,
+    faces: Vec<u32>,
+}
+
+impl FamilyFaces {
+    /// The faces of family `fam`, in face order.
+    #[inline]
+    pub(crate) fn of(&self, fam: u32) -> &[u32] {
+        let k = fam as usize;
+        &self.faces[self.start[k] as usize..self.start[k + 1] as usize]
+    }
+}
+
+impl GreenState {
+    /// The faces of every family; a face naming a family that does not exist is an error.
+    pub(crate) fn family_faces(&self) -> Result<FamilyFaces, LoopError> {
+        let nfam = self.families.len();
+        let mut start = vec![0u32; nfam + 1];
+        for (f, &fam) in self.family_of_face.iter().enumerate() {
+            if fam != NO_FAMILY {
+                if fam as usize >= nfam {
+                    return Err(LoopError::FamilyOutOfRange {
+                        face: f as u32,
+                        family: fam,
+                        count: nfam as u32,
+                    });
+                }
+                start[fam as usize + 1] += 1;
+            }
+        }
+        for k in 0..nfam {
+            start[k + 1] += start[k];
+        }
+        let mut fill = start.clone();
+        let mut faces = vec![0u32; start[nfam] as usize];
+        for (f, &fam) in self.family_of_face.iter().enumerate() {
+            if fam != NO_FAMILY {
+                faces[fill[fam as usize] as usize] = f as u32;
+                fill[fam as usize] += 1;
+            }
+        }
+        Ok(FamilyFaces { start, faces })
     }
 }

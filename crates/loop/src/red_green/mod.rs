@@ -42,4 +42,5 @@ pub use assemble::{Assembly, assemble, split_triangle};
 pub use balance::balance;
 pub(crate) use balance::smallest_angle;
 pub use close::{Closure, close};
+pub(crate) use green::FamilyFaces;
 pub use green::{GreenFamily, GreenState, NO_FAMILY};

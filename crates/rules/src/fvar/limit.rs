@@ -45,7 +45,7 @@ pub fn limit_face_varying(mesh: &Mesh, scheme: Scheme) -> Option<FaceVarying> {
         {
             hs.rotate_left(k);
         }
-        if !vertex_mismatch(&ch, v) {
+        if !vertex_mismatch(&ch, v, hs.len()) {
             let centre = ch.value(hs[0]).as_dvec3();
             let p = if ch.flags.linear_all {
                 centre
@@ -150,7 +150,7 @@ pub(super) fn span_ends(ch: &Channel<'_>, hs: &[HalfedgeId], span: Span) -> glam
     let n = hs.len();
     let first = hs[span.start % n];
     let last = hs[(span.start + n - 1 + span.size.max(1)) % n];
-    ch.value(mesh.next(first)) + ch.value(mesh.prev(last))
+    ch.value(mesh.next(first)) + ch.value(ch.far_edge(last))
 }
 
 /// Scratch for one vertex's ring of values (kept across vertices: no allocation per vertex).

@@ -71,6 +71,8 @@ pub struct TriLayout {
     ring_offsets: Vec<u32>,
     ring_verts: Vec<u32>,
     fast: Vec<bool>,
+    /// The UVs of the first tessellation with UVs, for the calls that follow (`uv.rs`).
+    pub(crate) uv_cache: crate::uv::UvCache,
 }
 
 impl TriLayout {
@@ -158,6 +160,7 @@ impl TriLayout {
             ring_offsets,
             ring_verts,
             fast,
+            uv_cache: Default::default(),
         })
     }
 
