@@ -108,7 +108,7 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
     let med = median(times.clone());
     let points = out.positions.len() as f64;
     let patches = layout.num_patches() as f64;
-    println!(
+    out!(
         "input={} depth={} threads={} patches={} limit_points={} quads={} setup_ms={:.3} median_ms={:.3} min_ms={:.3}",
         a.input.display(),
         a.depth,
@@ -120,7 +120,7 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
         med * 1e3,
         times.iter().copied().fold(f64::INFINITY, f64::min) * 1e3
     );
-    println!(
+    out!(
         "limit_points_per_s={:.0} patches_per_s={:.0} slate_bytes_per_thread={}",
         points / med,
         patches / med,
@@ -155,7 +155,7 @@ fn bench_loop(
     })?;
     let med = median(times.clone());
     let patches = layout.patches.len();
-    println!(
+    out!(
         "input={} scheme=loop depth={} threads={} patches={} limit_points={} triangles={} setup_ms={:.3} median_ms={:.3} min_ms={:.3}",
         a.input.display(),
         a.depth,
@@ -167,7 +167,7 @@ fn bench_loop(
         med * 1e3,
         times.iter().copied().fold(f64::INFINITY, f64::min) * 1e3
     );
-    println!(
+    out!(
         "limit_points_per_s={:.0} patches_per_s={:.0} slate_bytes_per_thread={}",
         out.positions.len() as f64 / med,
         patches as f64 / med,

@@ -168,7 +168,7 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
         None => None,
     };
     let (w, h) = a.size;
-    println!(
+    out!(
         "scene={} faces={nf} size={w}x{h} mode={mode}",
         value_name(&a.scene)
     );
@@ -225,7 +225,7 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
                 quantile(&e.shading_deg, 0.99)
             ));
         }
-        crate::progress::suspend(|| println!("{line}"));
+        crate::progress::suspend(|| out!("{line}"));
         bar.inc(1);
     }
     bar.finish_and_clear();

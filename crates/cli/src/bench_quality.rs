@@ -245,7 +245,7 @@ pub fn run(a: &BenchQualityArgs) -> anyhow::Result<ExitCode> {
     bar.finish_and_clear();
     let results = results.with_context(|| a.label())?;
     for q in &results {
-        println!("{q}");
+        out!("{q}");
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -72,7 +72,7 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<ExitCode> {
             writeln!(out, "faces: {}", soup.num_faces())?;
             writeln!(out, "face sizes: {}", histogram(&sizes))?;
             writeln!(out, "status: refused")?;
-            print!("{out}");
+            crate::out::text(&out);
             let e = ObjError::Invalid { path, err };
             eprintln!("error: {e}");
             return Ok(ExitCode::FAILURE);
@@ -136,11 +136,11 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<ExitCode> {
     if let Err(e) = ignored {
         // --strict: the mesh is fine, but it has tag lines subdiv does not apply.
         writeln!(out, "status: refused")?;
-        print!("{out}");
+        crate::out::text(&out);
         eprintln!("error: {e}");
         return Ok(ExitCode::FAILURE);
     }
     writeln!(out, "status: ok")?;
-    print!("{out}");
+    crate::out::text(&out);
     Ok(ExitCode::SUCCESS)
 }

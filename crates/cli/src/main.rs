@@ -1,6 +1,9 @@
 //! `subdiv`: the command-line front end. It parses arguments and wires the library crates
 //! together; all geometry lives in the libraries.
 
+#[macro_use]
+mod out;
+
 mod adaptive_args;
 mod bench;
 mod bench_framerate;

@@ -58,7 +58,7 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
         let surface = SurfaceExport::from_limit(&limit, Some((VertexScalar::Doi, dois)));
         write_export(&a.output, &surface)?;
     }
-    println!(
+    out!(
         "refined {input} with the {} DoI (threshold {threshold}, {} steps, {}): {} -> {} triangles in {ms:.1} ms -> {}",
         doi.name(),
         a.doi.steps,
@@ -68,7 +68,7 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
         a.output.display()
     );
     for (i, s) in r.steps.iter().enumerate() {
-        println!(
+        out!(
             "  step {}: {} selected, {} refined, {} merged back, {} triangles ({} green)",
             i + 1,
             s.selected,

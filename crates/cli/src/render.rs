@@ -195,7 +195,7 @@ fn draw_and_report(a: &RenderArgs, d: &Drawing<'_>) -> anyhow::Result<ExitCode> 
         (Some(l), true) => format!(", {} line segments", l.len() / 2),
         _ => String::new(),
     };
-    println!(
+    out!(
         "rendered {}: {} faces, {} triangles{} ({}, {} shading) at {}x{} on {}: \
          tessellated in {:.1} ms, rendered in {:.1} ms -> {}{}",
         a.surface.label(),

@@ -101,7 +101,7 @@ fn run_uniform(
     let ms = t0.elapsed().as_secs_f64() * 1e3;
     let depths = vec![depth as f32; t.positions.len()];
     write_surface(&a.output, &t, Some((VertexScalar::Depth, depths)))?;
-    println!(
+    out!(
         "tessellated {input}: {} vertices, {} faces ({}, depth {depth}) in {ms:.1} ms -> {}",
         t.positions.len(),
         t.num_faces(),
@@ -109,8 +109,8 @@ fn run_uniform(
         a.output.display()
     );
     if a.stats {
-        println!("patches per depth: {depth}:{}", mesh.num_faces());
-        println!("triangles: {}", t.triangles().len() / 3);
+        out!("patches per depth: {depth}:{}", mesh.num_faces());
+        out!("triangles: {}", t.triangles().len() / 3);
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -153,7 +153,7 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh, scheme: Scheme) -> anyhow::Resul
     // depth of each vertex's patch.
     let (limit, depths) = frame_limit(g);
     write_surface(&a.output, &limit, Some((VertexScalar::Depth, depths)))?;
-    println!(
+    out!(
         "tessellated {input}: {} vertices, {} triangles (adaptive, max depth {}) in {ms:.1} ms -> {}",
         limit.positions.len(),
         limit.face_indices.len() / 3,
@@ -169,11 +169,11 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh, scheme: Scheme) -> anyhow::Resul
 /// `--stats` of the adaptive tessellation: patches per depth, triangles, and the uniform
 /// counts it compares with.
 fn print_stats(a: &TessellateArgs, node: &DynamicSubdivision, g: &FrameGeometry) {
-    println!("patches per depth: {}", depth_histogram(g));
+    out!("patches per depth: {}", depth_histogram(g));
     let tris = g.num_triangles();
     let uni = node.uniform_triangles();
-    println!("triangles: {tris}");
-    println!(
+    out!("triangles: {tris}");
+    out!(
         "uniform triangles at max depth {}: {uni} (adaptive/uniform = {:.3})",
         a.adaptive.max_depth(),
         tris as f64 / uni.max(1) as f64
@@ -191,7 +191,7 @@ fn print_stats(a: &TessellateArgs, node: &DynamicSubdivision, g: &FrameGeometry)
             .max()
             .unwrap_or(0);
         let u = node.uniform_triangles_at(dmax);
-        println!(
+        out!(
             "uniform triangles at equal max screen error (depth {dmax}): {u} (adaptive/uniform = {:.3})",
             tris as f64 / u.max(1) as f64
         );

@@ -83,7 +83,7 @@ fn show<S: FrameSource>(
         .unwrap_or_else(|| PathBuf::from("screenshot.png"));
     let report = viewer::run(source, options)?;
     for shot in &report.screenshots {
-        println!("screenshot -> {}", shot.display());
+        out!("screenshot -> {}", shot.display());
     }
     let note = note(source);
     let note = if note.is_empty() {
@@ -91,7 +91,7 @@ fn show<S: FrameSource>(
     } else {
         format!(" ({note})")
     };
-    println!(
+    out!(
         "viewed {}: {} frames{note}",
         a.surface.label(),
         report.frames

@@ -513,3 +513,28 @@ fn view_help_lists_the_keys() {
         assert!(stdout.contains(want), "no '{want}' in:\n{stdout}");
     }
 }
+
+/// A closed pipe on stdout (`subdiv info CAGE | head -0`) ends the command quietly with status 0,
+/// not with a panic. The read end is closed before the command starts, so every write fails.
+#[test]
+fn closed_stdout_pipe_is_not_a_panic() {
+    let cube = fixtures().join("reference/shapes/catmark_cube.obj");
+    let cube = cube.to_str().unwrap();
+    let out = tmp("closed_pipe.obj");
+    let o = out.to_str().unwrap();
+    for args in [
+        vec!["info", cube],
+        vec!["tessellate", cube, "--depth", "2", "--stats", "-o", o],
+    ] {
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let done = common::subdiv()
+            .args(&args)
+            .stdout(writer)
+            .output()
+            .unwrap();
+        let err = common::stderr(&done);
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert_eq!(done.status.code(), Some(0), "{args:?}: {err}");
+    }
+}
