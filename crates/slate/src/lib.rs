@@ -22,6 +22,10 @@
 //!   that patch's own gather, in a fixed order, and a worker's reuse between patches cannot
 //!   change results (see [`thread_worker`]), so the output is bit-identical whether it runs on
 //!   one thread or many.
+//! - **The copies of a non-manifold edge agree to the bit.** A non-manifold cage is tessellated
+//!   as manifold pieces, each with its own copy of the edge; the points on those copies (and
+//!   their end vertices) are written from the edge's crease chain by
+//!   [`SeamCurves`](subdiv_rules::SeamCurves), identically in every copy, piece and depth.
 //!
 //! # Beyond the paper
 //!
