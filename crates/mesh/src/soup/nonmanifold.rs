@@ -15,9 +15,13 @@
 //! rule OpenSubdiv gives the whole vertex (an infinite corner tag where that is a corner). The
 //! crease and corner masks read only the points along the sharp edges, which every copy has, so
 //! each copy refines and takes its limit exactly where OpenSubdiv puts the one vertex; the copies
-//! coincide. Where a copy cannot be given the whole vertex's rule at every level (semi-sharp
-//! tags at a non-manifold vertex with several copies, a crease vertex whose copy misses one of
-//! its two non-manifold edges, boundary interpolation `none`), the cage is refused with
+//! coincide. A semi-sharp vertex sharpness at a crease vertex is carried by every copy, so
+//! every copy is a corner while it lasts and blends into the crease rule at the same level by
+//! the same weight, as the whole vertex does. Where a copy cannot be given the whole vertex's
+//! rule at every level (semi-sharp creases at a non-manifold crease vertex, which change the
+//! rule of their own copy only; Chaikin creases spread over several copies of a corner, whose
+//! decay averages over all of them; a crease vertex whose copy misses one of its two
+//! non-manifold edges; boundary interpolation `none`), the cage is refused with
 //! [`MeshError::UnsupportedNonManifold`] naming the vertex, rather than refined differently.
 
 use std::collections::HashMap;
@@ -282,9 +286,11 @@ impl PolygonSoup {
             let semi = |s: f32| s > 0.0 && s < SHARPNESS_INFINITE;
             let semi_edges = edges.iter().filter(|e| semi(e.0)).count();
             let sharp = edges.iter().filter(|e| e.0 > 0.0).count();
+            // Three or more sharp edges that never decay make a corner at every level,
+            // whatever the vertex sharpness.
             let is_corner = nm_count[v as usize] != 2
                 || vs >= SHARPNESS_INFINITE
-                || (sharp > 2 && semi_edges == 0 && !semi(vs));
+                || (sharp > 2 && semi_edges == 0);
             if is_corner {
                 // Chaikin's decay at the vertex averages its semi-sharp edges: all must be
                 // seen by one copy.
@@ -302,13 +308,15 @@ impl PolygonSoup {
                 corners.push(v);
                 continue;
             }
-            // The crease rule along its two non-manifold edges (or a rule that changes with
-            // the levels): every copy must see exactly those two sharp edges.
-            if semi_edges > 0 || semi(vs) {
+            // The crease rule along its two non-manifold edges, after a corner while a
+            // semi-sharp vertex sharpness lasts (every copy has that tag, so every copy changes
+            // rule at the same level with the same weight, as the whole vertex does). A
+            // semi-sharp edge would change the rule of its own copy only.
+            if semi_edges > 0 {
                 return Err(unsupported(
                     self,
                     v,
-                    "semi-sharp tags at a non-manifold crease vertex",
+                    "semi-sharp creases at a non-manifold crease vertex",
                 ));
             }
             let nm: Vec<&Vec<usize>> = edges.iter().filter(|e| e.1).map(|e| &e.2).collect();
@@ -338,3 +346,6 @@ fn unsupported(soup: &PolygonSoup, vertex: u32, why: &'static str) -> MeshError 
         line: soup.vertex_line(vertex as usize),
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,63 @@
+use crate::error::MeshError;
+use crate::{Mesh, VertexId, parse_obj};
+
+/// Three quads on the edge 1-2 and three on the edge 2-3 beside it (1-based): vertex 2 has
+/// exactly two non-manifold edges (a crease for OpenSubdiv), 1 and 3 one each (corners). Each
+/// fan at vertex 2 holds both non-manifold edges.
+const FINS: &str = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\n\
+    v 0 0 1\nv 1 0 1\nv 2 0 1\nv 0 -1 0\nv 1 -1 0\nv 2 -1 0\n\
+    f 1 2 5 4\nf 2 3 6 5\nf 2 1 7 8\nf 3 2 8 9\nf 1 2 11 10\nf 2 3 12 11\n";
+
+fn split(text: &str) -> Result<Mesh, MeshError> {
+    let mut soup = parse_obj(text)?;
+    soup.split_nonmanifold()?;
+    Mesh::from_soup(&soup)
+}
+
+/// The reason `split` refuses `text` for, and the vertex it names.
+fn refused(text: &str) -> (u32, &'static str) {
+    match split(text) {
+        Err(MeshError::UnsupportedNonManifold { vertex, why, .. }) => (vertex, why),
+        other => panic!("expected a refusal, got {other:?}"),
+    }
+}
+
+#[test]
+fn a_semi_sharp_vertex_at_a_crease_vertex_goes_to_every_copy() {
+    let mesh = split(&format!("{FINS}t corner 1/1/0 1 1.5\n")).unwrap();
+    // Vertex 1 (0-based) and its two copies, all with the tag's sharpness.
+    let at = mesh.position(VertexId(1));
+    let copies: Vec<f32> = mesh
+        .vertices()
+        .filter(|&v| mesh.position(v) == at)
+        .map(|v| mesh.vertex_sharpness(v))
+        .collect();
+    assert_eq!(copies, vec![1.5; 3]);
+}
+
+#[test]
+fn what_the_pieces_cannot_carry_is_refused_naming_the_vertex() {
+    // A semi-sharp crease at the crease vertex changes the rule of its own copy only.
+    let (v, why) = refused(&format!("{FINS}t crease 2/1/0 1 4 2\n"));
+    assert_eq!(
+        (v, why),
+        (1, "semi-sharp creases at a non-manifold crease vertex")
+    );
+    // Chaikin creases at a corner (infinite tag) in two of its copies.
+    let (v, why) = refused(&format!(
+        "{FINS}t corner 1/1/0 1 10\nt crease 2/1/0 1 4 2\nt crease 2/1/0 1 7 1.5\n\
+         t creasemethod 0/0/1 chaikin\n"
+    ));
+    assert_eq!((v, why), (1, "Chaikin creases at a non-manifold vertex"));
+    // A closed tetrahedron touching the crease vertex: its copy lacks both non-manifold edges.
+    let (v, why) = refused(&format!(
+        "{FINS}v 1 0.5 -1\nv 1.5 0.3 -1.2\nv 0.7 0.2 -1.1\n\
+         f 2 14 13\nf 2 15 14\nf 2 13 15\nf 13 14 15\n"
+    ));
+    assert_eq!((v, why), (1, "a copy without both non-manifold edges"));
+    // Boundary interpolation none.
+    let (_, why) = refused(&format!("{FINS}t interpolateboundary 1/0/0 0\n"));
+    assert_eq!(why, "boundary interpolation none");
+    // Without the tags the cage is read.
+    assert!(split(FINS).is_ok());
+}
