@@ -26,7 +26,7 @@
 
 use std::collections::HashMap;
 
-use super::{CornerTag, CreaseTag, PolygonSoup, find_root};
+use super::{CornerTag, CreaseTag, HoleTag, PolygonSoup, find_root};
 use crate::error::MeshError;
 use crate::options::{BoundaryInterpolation, SHARPNESS_INFINITE};
 
@@ -143,11 +143,7 @@ impl PolygonSoup {
             return Ok(found);
         }
         if self.options.boundary == BoundaryInterpolation::None {
-            return Err(unsupported(
-                self,
-                found.vertices[0].0,
-                "boundary interpolation none",
-            ));
+            self.hide_boundary_faces(&uses);
         }
         let corners = self.nonmanifold_corners(&uses, &nm_edges, &found, &nm_count, &mut parent)?;
         let (remap, created) = self.copy_extra_fans(&mut parent);
@@ -175,6 +171,37 @@ impl PolygonSoup {
         self.face_indices = remap;
         found.copies = created;
         Ok(found)
+    }
+
+    /// `interpolateboundary none` as OpenSubdiv applies it to the whole cage: the faces at a
+    /// vertex with a boundary edge of the cage (one face) are not drawn, the others are refined
+    /// as with boundary edges interpolated (which no drawn face's limit reads). Every copy of a
+    /// non-manifold vertex is a boundary vertex of its piece, where subdiv's own rule would hide
+    /// more faces; so the hidden faces become holes and the pieces take `EdgeOnly`.
+    fn hide_boundary_faces(&mut self, uses: &HashMap<(i64, i64), Vec<EdgeUse>>) {
+        let mut at_boundary = vec![false; self.positions.len()];
+        for (&(a, b), u) in uses {
+            if u.len() == 1 {
+                at_boundary[a as usize] = true;
+                at_boundary[b as usize] = true;
+            }
+        }
+        let mut hole = vec![false; self.num_faces()];
+        for h in &self.holes {
+            if let Some(x) = usize::try_from(h.f).ok().and_then(|f| hole.get_mut(f)) {
+                *x = true;
+            }
+        }
+        for f in 0..self.num_faces() {
+            let hidden = self.face(f).iter().any(|&v| at_boundary[v as usize]);
+            if hidden && !hole[f] {
+                self.holes.push(HoleTag {
+                    f: f as i64,
+                    line: None,
+                });
+            }
+        }
+        self.options.boundary = BoundaryInterpolation::EdgeOnly;
     }
 
     /// A face with fewer than three corners, an index out of range or a vertex used twice.

@@ -55,9 +55,36 @@ fn what_the_pieces_cannot_carry_is_refused_naming_the_vertex() {
          f 2 14 13\nf 2 15 14\nf 2 13 15\nf 13 14 15\n"
     ));
     assert_eq!((v, why), (1, "a copy without both non-manifold edges"));
-    // Boundary interpolation none.
-    let (_, why) = refused(&format!("{FINS}t interpolateboundary 1/0/0 0\n"));
-    assert_eq!(why, "boundary interpolation none");
     // Without the tags the cage is read.
     assert!(split(FINS).is_ok());
+}
+
+/// `interpolateboundary none`: the faces at a vertex with a boundary edge of the cage become
+/// holes, and the pieces take edge-only boundaries (their copies of a non-manifold vertex are
+/// boundary vertices of the piece, which OpenSubdiv does not hide).
+#[test]
+fn boundary_none_hides_the_faces_opensubdiv_hides() {
+    // A cube with a fin on its edge 1-2 (1-based): every face at vertex 1 or 2 is hidden.
+    let cube = "v 0 0 0\nv 0 0 1\nv 1 0 0\nv 1 0 1\nv 1 1 0\nv 1 1 1\nv 0 1 0\nv 0 1 1\n\
+                v -1 -1 0\nv -1 -1 1\nf 1 7 5 3\nf 2 4 6 8\nf 1 3 4 2\nf 3 5 6 4\nf 5 7 8 6\n\
+                f 7 1 2 8\nf 2 1 9 10\nt interpolateboundary 1/0/0 0\nt hole 1/0/0 2\n";
+    let mut soup = parse_obj(cube).unwrap();
+    soup.split_nonmanifold().unwrap();
+    let mut holes: Vec<i64> = soup.holes.iter().map(|h| h.f).collect();
+    holes.sort_unstable();
+    // Face 2 was a hole already; it is not tagged twice.
+    assert_eq!(holes, vec![0, 1, 2, 5, 6]);
+    assert_eq!(
+        soup.options.boundary,
+        crate::BoundaryInterpolation::EdgeOnly
+    );
+    let mesh = Mesh::from_soup(&soup).unwrap();
+    assert_eq!(mesh.faces().filter(|&f| !mesh.is_hole(f)).count(), 2);
+    // A manifold cage keeps its option (subdiv's own rule applies).
+    let mut quad =
+        parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nt interpolateboundary 1/0/0 0\n")
+            .unwrap();
+    quad.split_nonmanifold().unwrap();
+    assert_eq!(quad.options.boundary, crate::BoundaryInterpolation::None);
+    assert!(quad.holes.is_empty());
 }
