@@ -4,10 +4,11 @@
 //! `Far::TopologyRefinerFactoryBase::prepareComponentTagsAndSharpness` (with its
 //! `sharpenNonManFeatures`, fixed to `true`) makes every non-manifold edge (more than two faces,
 //! or two faces using it the same way round) infinitely sharp, and every non-manifold vertex
-//! (several fans of faces, or on a non-manifold edge) an infinitely sharp corner unless exactly
-//! two of its edges are non-manifold, where `DetermineVertexVertexRule` decides from all its
-//! sharp edges (two: the crease rule along them; more: a corner). Bare vertices (no face) stay
-//! where they are.
+//! (several fans of faces, or on a non-manifold edge) an infinitely sharp corner unless it lies
+//! on an interior non-manifold crease (exactly two non-manifold edges, no boundary edge and
+//! more faces than edges), where `DetermineVertexVertexRule` decides from all its sharp edges
+//! (two: the crease rule along them; more: a corner). Bare vertices (no face) stay where they
+//! are.
 //!
 //! subdiv's [`Mesh`](crate::Mesh) is manifold, so the cage is cut into manifold pieces that
 //! refine to the same points: every fan of faces around a vertex gets its own copy of the vertex,
@@ -173,15 +174,23 @@ impl PolygonSoup {
         Ok(found)
     }
 
-    /// `interpolateboundary none` as OpenSubdiv applies it to the whole cage: the faces at a
-    /// vertex with a boundary edge of the cage (one face) are not drawn, the others are refined
-    /// as with boundary edges interpolated (which no drawn face's limit reads). Every copy of a
-    /// non-manifold vertex is a boundary vertex of its piece, where subdiv's own rule would hide
-    /// more faces; so the hidden faces become holes and the pieces take `EdgeOnly`.
+    /// `interpolateboundary none` as OpenSubdiv 3.5 applies it to the whole cage
+    /// (`Far::TopologyRefinerFactoryBase::prepareComponentTagsAndSharpness`): the faces at a
+    /// vertex with a boundary edge (one face) not tagged infinitely sharp are not drawn; the
+    /// others are refined as with `EdgeOnly` (boundary edges are sharpened in every mode, and
+    /// only `EdgeAndCorner` sharpens corners). Every copy of a non-manifold vertex is a
+    /// boundary vertex of its piece, where subdiv's own rule for `none` would hide more faces;
+    /// so the hidden faces become holes and the pieces take `EdgeOnly`.
     fn hide_boundary_faces(&mut self, uses: &HashMap<(i64, i64), Vec<EdgeUse>>) {
+        let infinite: std::collections::HashSet<(i64, i64)> = self
+            .creases
+            .iter()
+            .filter(|t| t.sharpness >= SHARPNESS_INFINITE)
+            .map(|t| (t.a.min(t.b), t.a.max(t.b)))
+            .collect();
         let mut at_boundary = vec![false; self.positions.len()];
         for (&(a, b), u) in uses {
-            if u.len() == 1 {
+            if u.len() == 1 && !infinite.contains(&(a, b)) {
                 at_boundary[a as usize] = true;
                 at_boundary[b as usize] = true;
             }
@@ -306,6 +315,10 @@ impl PolygonSoup {
         for c in 0..self.face_indices.len() {
             *fan_faces.entry(find_root(parent, c)).or_default() += 1;
         }
+        let mut faces_at = vec![0usize; self.positions.len()];
+        for &v in &self.face_indices {
+            faces_at[v as usize] += 1;
+        }
         let mut corners = Vec::new();
         for &(v, fans) in &found.vertices {
             let edges = &at[&(v as i64)];
@@ -313,11 +326,16 @@ impl PolygonSoup {
             let semi = |s: f32| s > 0.0 && s < SHARPNESS_INFINITE;
             let semi_edges = edges.iter().filter(|e| semi(e.0)).count();
             let sharp = edges.iter().filter(|e| e.0 > 0.0).count();
-            // Three or more sharp edges that never decay make a corner at every level,
-            // whatever the vertex sharpness.
-            let is_corner = nm_count[v as usize] != 2
-                || vs >= SHARPNESS_INFINITE
-                || (sharp > 2 && semi_edges == 0);
+            // OpenSubdiv keeps a non-manifold vertex unsharpened only on an interior
+            // non-manifold crease: exactly two non-manifold edges, no boundary edge (one face)
+            // and more faces than edges (one more per extra fin). Three or more sharp edges
+            // that never decay make a corner at every level, whatever the vertex sharpness.
+            let boundary_edges = edges.iter().filter(|e| e.2.len() == 1).count();
+            let interior_crease = nm_count[v as usize] == 2
+                && boundary_edges == 0
+                && faces_at[v as usize] > edges.len();
+            let is_corner =
+                !interior_crease || vs >= SHARPNESS_INFINITE || (sharp > 2 && semi_edges == 0);
             if is_corner {
                 // Chaikin's decay at the vertex averages its semi-sharp edges: all must be
                 // seen by one copy.

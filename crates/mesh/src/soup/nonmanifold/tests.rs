@@ -80,6 +80,15 @@ fn boundary_none_hides_the_faces_opensubdiv_hides() {
     );
     let mesh = Mesh::from_soup(&soup).unwrap();
     assert_eq!(mesh.faces().filter(|&f| !mesh.is_hole(f)).count(), 2);
+    // Infinitely sharp tags on the fin's three boundary edges: no vertex has a boundary edge
+    // that is not infinitely sharp, so nothing is hidden.
+    let tagged = cube.replace(
+        "t hole 1/0/0 2\n",
+        "t crease 2/1/0 0 8 10\nt crease 2/1/0 8 9 10\nt crease 2/1/0 9 1 10\n",
+    );
+    let mut soup = parse_obj(&tagged).unwrap();
+    soup.split_nonmanifold().unwrap();
+    assert!(soup.holes.is_empty());
     // A manifold cage keeps its option (subdiv's own rule applies).
     let mut quad =
         parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nt interpolateboundary 1/0/0 0\n")
@@ -87,4 +96,23 @@ fn boundary_none_hides_the_faces_opensubdiv_hides() {
     quad.split_nonmanifold().unwrap();
     assert_eq!(quad.options.boundary, crate::BoundaryInterpolation::None);
     assert!(quad.holes.is_empty());
+}
+
+/// OpenSubdiv leaves a vertex with two non-manifold edges unsharpened only with more faces than
+/// edges and no boundary edge: a fin strip along two edges of a pentagon, each non-manifold
+/// edge used twice the same way round, has three faces and three edges at its middle vertex: a
+/// corner (fuzz-osd seed 21 cage 79).
+#[test]
+fn a_crease_needs_more_faces_than_edges() {
+    let text = "v 1.17 -0.89 -2.03\nv 2.06 -0.91 -2.43\nv 2.79 -1.22 -3.06\nv 4.1 0.45 -3.38\n\
+                v 2.37 0.24 -2.96\nv 2.0 -1.45 -2.09\nv 1.0 -1.59 -1.51\nv 3.32 -0.11 -2.66\n\
+                f 1 2 3 4 5\nf 2 3 6 7\nf 3 4 8 6\n";
+    let mut soup = parse_obj(text).unwrap();
+    let found = soup.split_nonmanifold().unwrap();
+    assert_eq!(found.edges, vec![(1, 2, 2), (2, 3, 2)]);
+    assert!(soup.corners.iter().any(|c| c.v == 2 && c.sharpness >= 10.0));
+    // FINS (six faces, five edges at vertex 2, no boundary edge) keeps the crease.
+    let mut soup = parse_obj(FINS).unwrap();
+    soup.split_nonmanifold().unwrap();
+    assert!(!soup.corners.iter().any(|c| c.v == 1));
 }
