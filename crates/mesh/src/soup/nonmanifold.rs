@@ -201,9 +201,9 @@ impl PolygonSoup {
                 *x = true;
             }
         }
-        for f in 0..self.num_faces() {
+        for (f, &already) in hole.iter().enumerate() {
             let hidden = self.face(f).iter().any(|&v| at_boundary[v as usize]);
-            if hidden && !hole[f] {
+            if hidden && !already {
                 self.holes.push(HoleTag {
                     f: f as i64,
                     line: None,
