@@ -1,11 +1,15 @@
 //! Non-manifold cages as OpenSubdiv refines them (issue 13 item 5): the hand-made cages of
 //! `fixtures/nonmanifold/` (a fin of three quads, two cubes sharing an edge, two pyramids
 //! touching at their apex, a cube with a bare vertex; for Loop a fin with a tetrahedron on an
-//! edge and two tetrahedra touching at a vertex), read as `read_obj` reads them (cut into
+//! edge and two tetrahedra touching at a vertex; both schemes, `chain_semi_corner*`: a vertex
+//! with exactly two non-manifold edges, OpenSubdiv's crease rule, after a semi-sharp vertex
+//! sharpness has run out), read as `read_obj` reads them (cut into
 //! manifold pieces, `PolygonSoup::split_nonmanifold`), against OpenSubdiv's limits from
 //! `xtask/osd/ref_osd.cpp ... local` at levels 1-3, which takes the cages as they are. The
 //! comparison is fuzz-osd's (coincident copies welded): counts, faces, positions within 1e-5 x
 //! diagonal, normals within 0.05 degrees where smooth; whole-mesh path and slate.
+
+use std::collections::HashMap;
 
 use subdiv_mesh::{PolygonSoup, read_obj, read_obj_soup};
 use subdiv_tests::osd_compare::{Tessellator, compare};
@@ -38,7 +42,7 @@ fn nonmanifold_cages_agree_with_opensubdiv() {
         failures.len(),
         failures.join("\n")
     );
-    assert!(checked >= 36, "only {checked} checks");
+    assert!(checked >= 60, "only {checked} checks");
 }
 
 /// What the split reports on each cage, and that a manifold cage is left alone.
@@ -67,4 +71,45 @@ fn the_split_names_what_is_non_manifold() {
     assert_eq!(found.bare, vec![8]);
     assert_eq!(bare.face_indices, before.face_indices);
     assert_eq!(bare.creases, before.creases);
+}
+
+/// The uniform slates write the copies of a non-manifold edge with the same bits: every point
+/// `SeamCurves` gives on a seam is in the output once per copy (both schemes, depths 0-4).
+#[test]
+fn seam_copies_agree_to_the_bit_in_the_uniform_slates() {
+    let mut checked = 0;
+    for file in fixture_files("nonmanifold", "obj") {
+        let name = file.file_stem().unwrap().to_string_lossy().to_string();
+        let mesh = read_obj(&file).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let seams = subdiv_rules::SeamCurves::new(&mesh);
+        if seams.is_empty() {
+            continue;
+        }
+        for depth in 0..=4u8 {
+            let t = if name.contains("loop") {
+                subdiv_slate::tessellate_loop(&mesh, depth)
+            } else {
+                subdiv_slate::tessellate(&mesh, depth)
+            }
+            .unwrap();
+            let mut count: HashMap<[u32; 3], usize> = HashMap::new();
+            for p in &t.positions {
+                *count.entry(p.map(f32::to_bits)).or_default() += 1;
+            }
+            for group in seams.groups() {
+                let h = group[0].halfedge(0);
+                for s in 0..=1u32 << depth {
+                    let p = seams.point(&mesh, h, s, depth).unwrap().to_array();
+                    let n = count.get(&p.map(f32::to_bits)).copied().unwrap_or(0);
+                    assert!(
+                        n >= group.len(),
+                        "{name} depth {depth}: point {s} of {} copies is in the output {n} times",
+                        group.len()
+                    );
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked > 100, "only {checked} points");
 }

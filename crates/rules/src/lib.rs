@@ -5,8 +5,9 @@
 //! semi-sharp creases with the uniform and Chaikin decay, dart/crease/corner vertex rules and
 //! their fractional transitions ([`crease`]), and limit position and tangent masks. On top of
 //! them sit the exact limit of a single vertex by local ring refinement ([`Ring`],
-//! [`limit_point`]), the uniform whole-mesh refinement ([`refine_uniform`]) and the uniform
-//! depth-N limit tessellation ([`tessellate_uniform`]).
+//! [`limit_point`]), the uniform whole-mesh refinement ([`refine_uniform`]), the uniform
+//! depth-N limit tessellation ([`tessellate_uniform`]) and the points on the copies of a
+//! non-manifold edge, bit-identical in every copy ([`SeamCurves`]).
 //!
 //! Results agree with Pixar's OpenSubdiv 3.5 (boundaries, creases, corners, n-gons, any valence),
 //! except that semi-sharp creases always give the true limit surface.
@@ -30,6 +31,7 @@ pub mod loop_scheme;
 mod point;
 mod refine;
 mod ring;
+mod seam;
 
 pub use fvar::{
     FVarChildren, FVarRegion, face_uvs, limit_face_varying, limit_face_varying_exact,
@@ -42,6 +44,7 @@ pub use refine::{
     refine_uniform, refine_uniform_levels, refine_uniform_levels_f64, refined_face_count,
 };
 pub use ring::{QuadRingStencil, Ring, limit_point, limit_point_with};
+pub use seam::SeamCurves;
 
 use thiserror::Error;
 

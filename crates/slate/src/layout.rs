@@ -12,7 +12,7 @@
 //! by construction and the output independent of the number of threads.
 
 use subdiv_mesh::{FaceId, HalfedgeId, Mesh, VertexId};
-use subdiv_rules::{Depth, RulesError};
+use subdiv_rules::{Depth, RulesError, SeamCurves};
 
 use crate::patches::{irregular_faces, local_level1};
 
@@ -60,6 +60,12 @@ pub struct PatchLayout {
     pub(crate) max_valence: usize,
     /// The UVs of the first tessellation with UVs, for the calls that follow (`uv.rs`).
     pub(crate) uv_cache: crate::uv::UvCache,
+    /// First id of the interior points of cage edges (`2^depth - 1` per edge, in edge order,
+    /// along the edge's even half-edge).
+    pub(crate) edge_base: u32,
+    /// The cage's seams (copies of non-manifold edges), whose points are written from their
+    /// chains after the patches ([`PatchLayout::write_seam_points`]).
+    pub(crate) seams: SeamCurves,
 }
 
 impl PatchLayout {
@@ -161,7 +167,21 @@ impl PatchLayout {
                 .max_valence()
                 .max(level1_max_valence(any_irregular, mesh)),
             uv_cache: Default::default(),
+            edge_base,
+            seams: SeamCurves::new(mesh),
         })
+    }
+}
+
+impl PatchLayout {
+    /// Overwrites the points on the cage's seams (the copies of a non-manifold edge and their
+    /// end vertices) with [`SeamCurves`]' values, which are the same bits in every copy, so the
+    /// pieces of a non-manifold cage meet exactly; every other point is left as the patches
+    /// wrote it. Normals stay the patches' (at a seam the renderer takes each piece's own
+    /// one-sided normal).
+    pub(crate) fn write_seam_points(&self, mesh: &Mesh, positions: &mut [[f32; 3]]) {
+        self.seams
+            .write_uniform(mesh, self.depth, self.edge_base, positions);
     }
 }
 

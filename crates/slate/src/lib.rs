@@ -26,6 +26,10 @@
 //!   (`uv`) depend on its topology, UVs, sharpness, options and holes only; a layout keeps those
 //!   of its first tessellation with UVs and hands them to later calls on the same cage, bit for
 //!   bit what a fresh tessellation gives.
+//! - **The copies of a non-manifold edge agree to the bit.** A non-manifold cage is tessellated
+//!   as manifold pieces, each with its own copy of the edge; the points on those copies (and
+//!   their end vertices) are written from the edge's crease chain by
+//!   [`SeamCurves`](subdiv_rules::SeamCurves), identically in every copy, piece and depth.
 //!
 //! # Beyond the paper
 //!

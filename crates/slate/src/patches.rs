@@ -2,8 +2,8 @@
 //! with an all-quad neighbourhood, gathered from the cage) or of the face's level-1 quads
 //! (gathered from a local level-1 refinement around such faces only).
 
-use subdiv_mesh::{FaceId, Mesh, VertexId};
-use subdiv_rules::{RulesError, Scheme, refine_uniform};
+use subdiv_mesh::{FaceId, HalfedgeId, Mesh, VertexId};
+use subdiv_rules::{Depth, RulesError, Scheme, SeamCurves, refine_uniform};
 
 /// `true` for faces that are tessellated through their level-1 quads.
 pub(crate) fn irregular_faces(mesh: &Mesh) -> Vec<bool> {
@@ -143,6 +143,8 @@ pub struct PatchSet {
     units: Vec<Unit>,
     patches: Vec<PatchRef>,
     max_valence: usize,
+    /// The cage's seams (copies of non-manifold edges; [`PatchSet::write_seam_points`]).
+    seams: SeamCurves,
 }
 
 impl PatchSet {
@@ -207,6 +209,7 @@ impl PatchSet {
             units,
             patches,
             max_valence: mesh.max_valence().max(face_max),
+            seams: SeamCurves::new(mesh),
         })
     }
 
@@ -228,6 +231,70 @@ impl PatchSet {
     /// Largest valence a slate corner array must hold.
     pub fn max_valence(&self) -> usize {
         self.max_valence
+    }
+
+    /// The cage's seams: the copies of its non-manifold edges.
+    pub fn seams(&self) -> &SeamCurves {
+        &self.seams
+    }
+
+    /// Overwrites the points of patch `p`'s grid at `depth` (`pos`, row by row as
+    /// [`Worker::patch_grid`](crate::Worker::patch_grid) writes it) that lie on the cage's seams
+    /// with [`SeamCurves`]' values, the same bits in every copy of a non-manifold edge, at any
+    /// depth and from any side, so the pieces of a non-manifold cage meet exactly. Nothing
+    /// changes for a cage without seams.
+    pub fn write_seam_points(&self, mesh: &Mesh, p: &PatchRef, depth: Depth, pos: &mut [[f32; 3]]) {
+        let seams = &self.seams;
+        if seams.is_empty() {
+            return;
+        }
+        let n = 1u32 << depth;
+        let at = |i: u32, j: u32| (j * (n + 1) + i) as usize;
+        let face = self.units[p.unit as usize].face;
+        let size = mesh.face_size(face);
+        let h0 = mesh.face_halfedge(face);
+        let hs = |k: usize| -> HalfedgeId {
+            let mut h = h0;
+            for _ in 0..k % size {
+                h = mesh.next(h);
+            }
+            h
+        };
+        let mut put = |k: usize, q: Option<glam::Vec3>| {
+            if let Some(q) = q {
+                pos[k] = q.to_array();
+            }
+        };
+        if p.level == 0 {
+            // Corners (0,0), (n,0), (n,n), (0,n) at the face's vertices; side k along hs(k).
+            let ends = [(0, 0), (n, 0), (n, n), (0, n)];
+            for (k, &(i, j)) in ends.iter().enumerate() {
+                put(at(i, j), seams.vertex_point(mesh, mesh.from(hs(k))));
+            }
+            for k in 0..4 {
+                let h = hs(k);
+                for s in 1..n {
+                    let (i, j) = match k {
+                        0 => (s, 0),
+                        1 => (n, s),
+                        2 => (n - s, n),
+                        _ => (0, n - s),
+                    };
+                    put(at(i, j), seams.point(mesh, h, s, depth));
+                }
+            }
+        } else {
+            // Level-1 quad `sub` of the face: corner (0,0) at the face's vertex `sub`, side
+            // (i, 0) along the first half of hs(sub), side (0, j) back along the second half of
+            // the previous edge.
+            let k = p.sub as usize;
+            let (h, hp) = (hs(k), hs(k + size - 1));
+            put(at(0, 0), seams.vertex_point(mesh, mesh.from(h)));
+            for s in 1..=n {
+                put(at(s, 0), seams.point(mesh, h, s, depth + 1));
+                put(at(0, s), seams.point(mesh, hp, 2 * n - s, depth + 1));
+            }
+        }
     }
 }
 

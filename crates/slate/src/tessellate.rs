@@ -101,7 +101,10 @@ pub fn tessellate(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateError> {
     // Coordinates near `f32::MAX` would overflow to infinite points.
     subdiv_rules::check_coordinates(mesh)?;
     if depth == 0 {
-        return Ok(limit_surface(mesh, Scheme::CatmullClark));
+        let mut out = limit_surface(mesh, Scheme::CatmullClark);
+        // The cage vertices on seams, the same bits in every copy (as at any depth).
+        subdiv_rules::SeamCurves::new(mesh).write_uniform(mesh, 0, 0, &mut out.positions);
+        return Ok(out);
     }
     if depth > MAX_DEPTH {
         return Err(SlateError::TooDeep {
@@ -219,6 +222,8 @@ pub fn tessellate_layout_into(
     for (k, slot, n) in sided.into_iter().flatten() {
         result.corner_normals.push((starts[k as usize] + slot, n));
     }
+    // Points on seams from their chains: the copies of a non-manifold edge agree to the bit.
+    layout.write_seam_points(mesh, &mut result.positions);
     // Face-varying limit values, only for a cage with UVs (`uv.rs`).
     crate::uv::quad_uvs(mesh, layout, result)
 }

@@ -293,7 +293,11 @@ impl DynamicSubdivision {
         }
         // The faces on the copies of one non-manifold edge (in different manifold pieces,
         // which stitching does not join) at one depth, so the copies get the same points.
-        self.seams.raise(&mut a.depth, &a.active);
+        let min_depth = |u: usize| match &self.assembler {
+            Stitcher::Quads(asm) => asm.min_depth(u),
+            Stitcher::Tris(_) => 0,
+        };
+        self.seams.raise(&mut a.depth, &a.active, min_depth);
         match &mut self.assembler {
             Stitcher::Quads(asm) => asm.frame(&self.mesh, &a.depth, &a.active, &mut self.geometry),
             Stitcher::Tris(asm) => asm.frame(&self.mesh, &a.depth, &a.active, &mut self.geometry),

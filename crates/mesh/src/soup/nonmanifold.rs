@@ -4,10 +4,11 @@
 //! `Far::TopologyRefinerFactoryBase::prepareComponentTagsAndSharpness` (with its
 //! `sharpenNonManFeatures`, fixed to `true`) makes every non-manifold edge (more than two faces,
 //! or two faces using it the same way round) infinitely sharp, and every non-manifold vertex
-//! (several fans of faces, or on a non-manifold edge) an infinitely sharp corner unless exactly
-//! two of its edges are non-manifold, where `DetermineVertexVertexRule` decides from all its
-//! sharp edges (two: the crease rule along them; more: a corner). Bare vertices (no face) stay
-//! where they are.
+//! (several fans of faces, or on a non-manifold edge) an infinitely sharp corner unless it lies
+//! on an interior non-manifold crease (exactly two non-manifold edges, no boundary edge and
+//! more faces than edges), where `DetermineVertexVertexRule` decides from all its sharp edges
+//! (two: the crease rule along them; more: a corner). Bare vertices (no face) stay where they
+//! are.
 //!
 //! subdiv's [`Mesh`](crate::Mesh) is manifold, so the cage is cut into manifold pieces that
 //! refine to the same points: every fan of faces around a vertex gets its own copy of the vertex,
@@ -15,14 +16,18 @@
 //! rule OpenSubdiv gives the whole vertex (an infinite corner tag where that is a corner). The
 //! crease and corner masks read only the points along the sharp edges, which every copy has, so
 //! each copy refines and takes its limit exactly where OpenSubdiv puts the one vertex; the copies
-//! coincide. Where a copy cannot be given the whole vertex's rule at every level (semi-sharp
-//! tags at a non-manifold vertex with several copies, a crease vertex whose copy misses one of
-//! its two non-manifold edges, boundary interpolation `none`), the cage is refused with
+//! coincide. A semi-sharp vertex sharpness at a crease vertex is carried by every copy, so
+//! every copy is a corner while it lasts and blends into the crease rule at the same level by
+//! the same weight, as the whole vertex does. Where a copy cannot be given the whole vertex's
+//! rule at every level (semi-sharp creases at a non-manifold crease vertex, which change the
+//! rule of their own copy only; Chaikin creases spread over several copies of a corner, whose
+//! decay averages over all of them; a crease vertex whose copy misses one of its two
+//! non-manifold edges; boundary interpolation `none`), the cage is refused with
 //! [`MeshError::UnsupportedNonManifold`] naming the vertex, rather than refined differently.
 
 use std::collections::HashMap;
 
-use super::{CornerTag, CreaseTag, PolygonSoup, find_root};
+use super::{CornerTag, CreaseTag, HoleTag, PolygonSoup, find_root};
 use crate::error::MeshError;
 use crate::options::{BoundaryInterpolation, SHARPNESS_INFINITE};
 
@@ -139,11 +144,7 @@ impl PolygonSoup {
             return Ok(found);
         }
         if self.options.boundary == BoundaryInterpolation::None {
-            return Err(unsupported(
-                self,
-                found.vertices[0].0,
-                "boundary interpolation none",
-            ));
+            self.hide_boundary_faces(&uses);
         }
         let corners = self.nonmanifold_corners(&uses, &nm_edges, &found, &nm_count, &mut parent)?;
         let (remap, created) = self.copy_extra_fans(&mut parent);
@@ -171,6 +172,45 @@ impl PolygonSoup {
         self.face_indices = remap;
         found.copies = created;
         Ok(found)
+    }
+
+    /// `interpolateboundary none` as OpenSubdiv 3.5 applies it to the whole cage
+    /// (`Far::TopologyRefinerFactoryBase::prepareComponentTagsAndSharpness`): the faces at a
+    /// vertex with a boundary edge (one face) not tagged infinitely sharp are not drawn; the
+    /// others are refined as with `EdgeOnly` (boundary edges are sharpened in every mode, and
+    /// only `EdgeAndCorner` sharpens corners). Every copy of a non-manifold vertex is a
+    /// boundary vertex of its piece, where subdiv's own rule for `none` would hide more faces;
+    /// so the hidden faces become holes and the pieces take `EdgeOnly`.
+    fn hide_boundary_faces(&mut self, uses: &HashMap<(i64, i64), Vec<EdgeUse>>) {
+        let infinite: std::collections::HashSet<(i64, i64)> = self
+            .creases
+            .iter()
+            .filter(|t| t.sharpness >= SHARPNESS_INFINITE)
+            .map(|t| (t.a.min(t.b), t.a.max(t.b)))
+            .collect();
+        let mut at_boundary = vec![false; self.positions.len()];
+        for (&(a, b), u) in uses {
+            if u.len() == 1 && !infinite.contains(&(a, b)) {
+                at_boundary[a as usize] = true;
+                at_boundary[b as usize] = true;
+            }
+        }
+        let mut hole = vec![false; self.num_faces()];
+        for h in &self.holes {
+            if let Some(x) = usize::try_from(h.f).ok().and_then(|f| hole.get_mut(f)) {
+                *x = true;
+            }
+        }
+        for (f, &already) in hole.iter().enumerate() {
+            let hidden = self.face(f).iter().any(|&v| at_boundary[v as usize]);
+            if hidden && !already {
+                self.holes.push(HoleTag {
+                    f: f as i64,
+                    line: None,
+                });
+            }
+        }
+        self.options.boundary = BoundaryInterpolation::EdgeOnly;
     }
 
     /// A face with fewer than three corners, an index out of range or a vertex used twice.
@@ -275,6 +315,10 @@ impl PolygonSoup {
         for c in 0..self.face_indices.len() {
             *fan_faces.entry(find_root(parent, c)).or_default() += 1;
         }
+        let mut faces_at = vec![0usize; self.positions.len()];
+        for &v in &self.face_indices {
+            faces_at[v as usize] += 1;
+        }
         let mut corners = Vec::new();
         for &(v, fans) in &found.vertices {
             let edges = &at[&(v as i64)];
@@ -282,9 +326,16 @@ impl PolygonSoup {
             let semi = |s: f32| s > 0.0 && s < SHARPNESS_INFINITE;
             let semi_edges = edges.iter().filter(|e| semi(e.0)).count();
             let sharp = edges.iter().filter(|e| e.0 > 0.0).count();
-            let is_corner = nm_count[v as usize] != 2
-                || vs >= SHARPNESS_INFINITE
-                || (sharp > 2 && semi_edges == 0 && !semi(vs));
+            // OpenSubdiv keeps a non-manifold vertex unsharpened only on an interior
+            // non-manifold crease: exactly two non-manifold edges, no boundary edge (one face)
+            // and more faces than edges (one more per extra fin). Three or more sharp edges
+            // that never decay make a corner at every level, whatever the vertex sharpness.
+            let boundary_edges = edges.iter().filter(|e| e.2.len() == 1).count();
+            let interior_crease = nm_count[v as usize] == 2
+                && boundary_edges == 0
+                && faces_at[v as usize] > edges.len();
+            let is_corner =
+                !interior_crease || vs >= SHARPNESS_INFINITE || (sharp > 2 && semi_edges == 0);
             if is_corner {
                 // Chaikin's decay at the vertex averages its semi-sharp edges: all must be
                 // seen by one copy.
@@ -302,13 +353,15 @@ impl PolygonSoup {
                 corners.push(v);
                 continue;
             }
-            // The crease rule along its two non-manifold edges (or a rule that changes with
-            // the levels): every copy must see exactly those two sharp edges.
-            if semi_edges > 0 || semi(vs) {
+            // The crease rule along its two non-manifold edges, after a corner while a
+            // semi-sharp vertex sharpness lasts (every copy has that tag, so every copy changes
+            // rule at the same level with the same weight, as the whole vertex does). A
+            // semi-sharp edge would change the rule of its own copy only.
+            if semi_edges > 0 {
                 return Err(unsupported(
                     self,
                     v,
-                    "semi-sharp tags at a non-manifold crease vertex",
+                    "semi-sharp creases at a non-manifold crease vertex",
                 ));
             }
             let nm: Vec<&Vec<usize>> = edges.iter().filter(|e| e.1).map(|e| &e.2).collect();
@@ -338,3 +391,6 @@ fn unsupported(soup: &PolygonSoup, vertex: u32, why: &'static str) -> MeshError 
         line: soup.vertex_line(vertex as usize),
     }
 }
+
+#[cfg(test)]
+mod tests;

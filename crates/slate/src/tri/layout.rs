@@ -8,7 +8,7 @@
 //! boundary, by its one face; every triangle owns its interior.
 
 use subdiv_mesh::{BoundaryInterpolation, EdgeId, HalfedgeId, Mesh, VertexId};
-use subdiv_rules::{Depth, RulesError};
+use subdiv_rules::{Depth, RulesError, SeamCurves};
 
 /// One side of a triangular patch: the cage edge from corner `k` to corner `k + 1`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -73,6 +73,9 @@ pub struct TriLayout {
     fast: Vec<bool>,
     /// The UVs of the first tessellation with UVs, for the calls that follow (`uv.rs`).
     pub(crate) uv_cache: crate::uv::UvCache,
+    /// The cage's seams (copies of non-manifold edges), whose points are written from their
+    /// chains ([`TriLayout::write_seam_points`], [`super::tri_patch_lattice`]).
+    pub(crate) seams: SeamCurves,
 }
 
 impl TriLayout {
@@ -161,7 +164,17 @@ impl TriLayout {
             ring_verts,
             fast,
             uv_cache: Default::default(),
+            seams: SeamCurves::new(mesh),
         })
+    }
+
+    /// Overwrites the points on the cage's seams (the copies of a non-manifold edge and their
+    /// end vertices) in a uniform tessellation at this layout's depth with [`SeamCurves`]'
+    /// values, the same bits in every copy, so the pieces of a non-manifold cage meet exactly.
+    pub(crate) fn write_seam_points(&self, mesh: &Mesh, positions: &mut [[f32; 3]]) {
+        let edge_base = mesh.num_vertices() as u32;
+        self.seams
+            .write_uniform(mesh, self.depth, edge_base, positions);
     }
 
     /// The edge neighbours of cage vertex `v` in `Mesh::outgoing` order.

@@ -88,6 +88,26 @@ pub fn tri_patch_lattice(
         });
     }
     sided.sort_unstable_by_key(|&(k, _)| k);
+    // Points on seams from their chains: the copies of a non-manifold edge, in different
+    // pieces, at any depth, agree to the bit (as `TriLayout::write_seam_points` in the uniform
+    // tessellation).
+    let seams = &layout.seams;
+    if !seams.is_empty() {
+        let hs = [p.halfedge, mesh.next(p.halfedge), mesh.prev(p.halfedge)];
+        for (c, &h) in hs.iter().enumerate() {
+            for a in 0..n {
+                let q = if a == 0 {
+                    seams.vertex_point(mesh, mesh.from(h))
+                } else {
+                    seams.point(mesh, h, a, depth)
+                };
+                if let Some(q) = q {
+                    let (i, j) = TriWorker::local(n, c, a as i32, 0);
+                    pos[tri_lattice_index(n, i as u32, j as u32) as usize] = q.to_array();
+                }
+            }
+        }
+    }
 }
 
 #[cfg(test)]

@@ -33,7 +33,10 @@ pub fn tessellate_loop(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateErro
     check_loop_cage(mesh)?;
     if depth == 0 {
         // The cage's own limit points (with `interpolateboundary none` hiding boundary faces).
-        return Ok(tessellate_uniform(mesh, Scheme::Loop, 0)?);
+        let mut out = tessellate_uniform(mesh, Scheme::Loop, 0)?;
+        // The cage vertices on seams, the same bits in every copy (as at any depth).
+        subdiv_rules::SeamCurves::new(mesh).write_uniform(mesh, 0, 0, &mut out.positions);
+        return Ok(out);
     }
     if depth > MAX_DEPTH {
         return Err(SlateError::TooDeep {
@@ -125,6 +128,8 @@ pub fn tessellate_loop_layout_into(
             .extend(slots.into_iter().map(|(k, nrm)| (start + k, nrm)));
         start += 3 * tris_of(p) as u32;
     }
+    // Points on seams from their chains: the copies of a non-manifold edge agree to the bit.
+    layout.write_seam_points(mesh, &mut result.positions);
     // Face-varying limit values, only for a cage with UVs (`uv.rs`).
     crate::uv::tri_uvs(mesh, layout, result)
 }

@@ -309,6 +309,9 @@ impl Assembler {
                         &mut b.nrm,
                         &mut b.sided,
                     );
+                    // Seam points from their chains: the copies of a non-manifold edge, in
+                    // different pieces and blocks, agree to the bit.
+                    set.write_seam_points(mesh, p, d, &mut b.pos);
                     (i, b)
                 },
             )

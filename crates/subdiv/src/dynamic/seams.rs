@@ -7,12 +7,12 @@
 //! put 2^depth segments each on the one edge of the surface: T-junctions, a crack (issue 13
 //! item 6). An infinitely sharp edge's limit curve depends only on its crease points (Settgast
 //! et al. 2004, Section 3.3; the crease rules of DeRose et al. 1998), so copies drawn at the
-//! same depth give the same points; [`Seams::raise`] draws every face on the copies of one
+//! same depth give the same points, to the bit since the tessellators write them from the
+//! chain (`subdiv_rules::SeamCurves`); [`Seams::raise`] draws every face on the copies of one
 //! edge at the largest of their depths, after assignment and before stitching.
 
-use std::collections::HashMap;
-
-use subdiv_mesh::{FaceId, Mesh, SHARPNESS_INFINITE};
+use subdiv_mesh::{FaceId, Mesh};
+use subdiv_rules::SeamCurves;
 use subdiv_slate::Depth;
 
 /// The faces on each group of coincident, infinitely sharp cage edges (the copies of one
@@ -23,46 +23,45 @@ pub(crate) struct Seams {
 }
 
 impl Seams {
-    /// Groups `mesh`'s infinitely sharp edges by their end points' bits (copies of a
-    /// non-manifold edge coincide); keeps the groups of two or more edges.
+    /// The faces on each of `mesh`'s seams (`subdiv_rules::SeamCurves::groups`: infinitely
+    /// sharp edges grouped by their end points' bits, as the copies of a non-manifold edge
+    /// coincide); keeps the groups with two or more faces.
     pub(crate) fn new(mesh: &Mesh) -> Seams {
-        let key = |v| mesh.position(v).to_array().map(f32::to_bits);
-        let mut by_ends: HashMap<([u32; 3], [u32; 3]), Vec<FaceId>> = HashMap::new();
-        let mut edges: HashMap<([u32; 3], [u32; 3]), u32> = HashMap::new();
-        for e in mesh.edges() {
-            if mesh.edge_sharpness(e) < SHARPNESS_INFINITE {
-                continue;
-            }
-            let h = e.halfedge(0);
-            let (a, b) = (key(mesh.from(h)), key(mesh.to(h)));
-            let ends = (a.min(b), a.max(b));
-            *edges.entry(ends).or_default() += 1;
-            let faces = by_ends.entry(ends).or_default();
-            for side in 0..2 {
-                let f = mesh.face(e.halfedge(side));
-                if f.is_some() && !mesh.is_hole(f) {
-                    faces.push(f);
-                }
-            }
-        }
-        let mut groups: Vec<Vec<FaceId>> = by_ends
-            .into_iter()
-            .filter(|(ends, faces)| edges[ends] > 1 && faces.len() > 1)
-            .map(|(_, faces)| faces)
+        let mut groups: Vec<Vec<FaceId>> = SeamCurves::new(mesh)
+            .groups()
+            .iter()
+            .map(|edges| {
+                edges
+                    .iter()
+                    .flat_map(|e| [e.halfedge(0), e.halfedge(1)])
+                    .map(|h| mesh.face(h))
+                    .filter(|&f| f.is_some() && !mesh.is_hole(f))
+                    .collect::<Vec<FaceId>>()
+            })
+            .filter(|faces| faces.len() > 1)
             .collect();
         groups.sort_unstable_by_key(|g| g[0].idx());
         Seams { groups }
     }
 
     /// Raises the drawn (`active`) faces of every group to the group's largest drawn depth,
-    /// until no group changes (a face may lie on several non-manifold edges).
-    pub(crate) fn raise(&self, depth: &mut [Depth], active: &[bool]) {
+    /// until no group changes (a face may lie on several non-manifold edges). A face's depth
+    /// counts as at least `min_depth(face)` (the stitcher's smallest depth for it: 1 for a
+    /// face tessellated through its level-1 quads), so that the stitcher's clamp leaves the
+    /// group at one depth.
+    pub(crate) fn raise(
+        &self,
+        depth: &mut [Depth],
+        active: &[bool],
+        min_depth: impl Fn(usize) -> Depth,
+    ) {
         let mut changed = !self.groups.is_empty();
         while changed {
             changed = false;
             for g in &self.groups {
                 let drawn = || g.iter().filter(|f| active[f.idx()]);
-                let Some(most) = drawn().map(|f| depth[f.idx()]).max() else {
+                let at = |f: &FaceId| depth[f.idx()].max(min_depth(f.idx()));
+                let Some(most) = drawn().map(at).max() else {
                     continue;
                 };
                 for f in g {

@@ -280,22 +280,23 @@ fn pixel_error_mode_is_watertight() {
 
 /// Three quads on one edge (a fin), cut into manifold pieces as OpenSubdiv refines it.
 fn fin() -> Mesh {
-    let obj = "v 0 0 0\nv 0 1 0\nv 1 0 0\nv 1 1 0\nv 0 0 1\nv 0 1 1\nv -1 0 0\nv -1 1 0\n\
-               f 1 3 4 2\nf 1 2 6 5\nf 1 2 8 7\n";
+    fin_from(
+        "v 0 0 0\nv 0 1 0\nv 1 0 0\nv 1 1 0\nv 0 0 1\nv 0 1 1\nv -1 0 0\nv -1 1 0\n\
+              f 1 3 4 2\nf 1 2 6 5\nf 1 2 8 7\n",
+    )
+}
+
+/// A cage with three faces on the edge 0-1, cut into its manifold pieces.
+fn fin_from(obj: &str) -> Mesh {
     let mut soup = parse_obj(obj).unwrap();
     let found = soup.split_nonmanifold().unwrap();
     assert_eq!(found.edges, vec![(0, 1, 3)]);
     Mesh::from_soup(&soup).unwrap()
 }
 
-#[test]
-fn faces_on_a_nonmanifold_edge_share_one_depth_and_its_points() {
-    let mut node = DynamicSubdivision::new(fin(), params(3)).unwrap();
-    node.set_face_depths(Some(vec![1, 2, 3])).unwrap();
-    let g = node.update(&camera_on_z(5.0), None).unwrap().clone();
-    assert_eq!(g.unit_depth, vec![3, 3, 3]);
-    // After welding bitwise equal positions, the fin edge has 2^3 segments of three triangles
-    // each; every other edge one or two.
+/// The segments of a frame used by three triangles after welding bitwise equal positions (on
+/// a fin, its non-manifold edge), checking that no edge has more than three.
+fn fin_segments(g: &subdiv_stitch::FrameGeometry) -> usize {
     let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
     let id: Vec<u32> = g
         .positions
@@ -312,7 +313,39 @@ fn faces_on_a_nonmanifold_edge_share_one_depth_and_its_points() {
             *uses.entry((a.min(b), a.max(b))).or_insert(0) += 1;
         }
     }
-    let on_fin = uses.values().filter(|&&n| n == 3).count();
-    assert_eq!(on_fin, 8, "segments on the fin edge with three triangles");
     assert!(uses.values().all(|&n| (1..=3).contains(&n)));
+    uses.values().filter(|&&n| n == 3).count()
+}
+
+#[test]
+fn faces_on_a_nonmanifold_edge_share_one_depth_and_its_points() {
+    let mut node = DynamicSubdivision::new(fin(), params(3)).unwrap();
+    node.set_face_depths(Some(vec![1, 2, 3])).unwrap();
+    let g = node.update(&camera_on_z(5.0), None).unwrap().clone();
+    assert_eq!(g.unit_depth, vec![3, 3, 3]);
+    // After welding, the fin edge has 2^3 segments of three triangles each.
+    assert_eq!(
+        fin_segments(&g),
+        8,
+        "segments on the fin edge with three triangles"
+    );
+}
+
+/// A triangle on the fin is drawn through its level-1 quads, at depth 1 at least: the quads
+/// on the other copies follow it, so the copies keep one depth after the stitcher's clamp.
+#[test]
+fn a_level1_face_on_a_nonmanifold_edge_lifts_its_copies() {
+    let mesh = fin_from(
+        "v 0 0 0\nv 0 1 0\nv 1 0 0\nv 1 1 0\nv 0 0 1\nv 0 1 1\nv -1 0.5 0\n\
+         f 1 3 4 2\nf 1 2 6 5\nf 1 2 7\n",
+    );
+    let mut node = DynamicSubdivision::new(mesh, params(3)).unwrap();
+    node.set_face_depths(Some(vec![0, 0, 0])).unwrap();
+    let g = node.update(&camera_on_z(5.0), None).unwrap().clone();
+    assert_eq!(g.unit_depth, vec![1, 1, 1]);
+    assert_eq!(
+        fin_segments(&g),
+        2,
+        "segments on the fin edge with three triangles"
+    );
 }

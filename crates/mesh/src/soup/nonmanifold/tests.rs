@@ -1,0 +1,118 @@
+use crate::error::MeshError;
+use crate::{Mesh, VertexId, parse_obj};
+
+/// Three quads on the edge 1-2 and three on the edge 2-3 beside it (1-based): vertex 2 has
+/// exactly two non-manifold edges (a crease for OpenSubdiv), 1 and 3 one each (corners). Each
+/// fan at vertex 2 holds both non-manifold edges.
+const FINS: &str = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\n\
+    v 0 0 1\nv 1 0 1\nv 2 0 1\nv 0 -1 0\nv 1 -1 0\nv 2 -1 0\n\
+    f 1 2 5 4\nf 2 3 6 5\nf 2 1 7 8\nf 3 2 8 9\nf 1 2 11 10\nf 2 3 12 11\n";
+
+fn split(text: &str) -> Result<Mesh, MeshError> {
+    let mut soup = parse_obj(text)?;
+    soup.split_nonmanifold()?;
+    Mesh::from_soup(&soup)
+}
+
+/// The reason `split` refuses `text` for, and the vertex it names.
+fn refused(text: &str) -> (u32, &'static str) {
+    match split(text) {
+        Err(MeshError::UnsupportedNonManifold { vertex, why, .. }) => (vertex, why),
+        other => panic!("expected a refusal, got {other:?}"),
+    }
+}
+
+#[test]
+fn a_semi_sharp_vertex_at_a_crease_vertex_goes_to_every_copy() {
+    let mesh = split(&format!("{FINS}t corner 1/1/0 1 1.5\n")).unwrap();
+    // Vertex 1 (0-based) and its two copies, all with the tag's sharpness.
+    let at = mesh.position(VertexId(1));
+    let copies: Vec<f32> = mesh
+        .vertices()
+        .filter(|&v| mesh.position(v) == at)
+        .map(|v| mesh.vertex_sharpness(v))
+        .collect();
+    assert_eq!(copies, vec![1.5; 3]);
+}
+
+#[test]
+fn what_the_pieces_cannot_carry_is_refused_naming_the_vertex() {
+    // A semi-sharp crease at the crease vertex changes the rule of its own copy only.
+    let (v, why) = refused(&format!("{FINS}t crease 2/1/0 1 4 2\n"));
+    assert_eq!(
+        (v, why),
+        (1, "semi-sharp creases at a non-manifold crease vertex")
+    );
+    // Chaikin creases at a corner (infinite tag) in two of its copies.
+    let (v, why) = refused(&format!(
+        "{FINS}t corner 1/1/0 1 10\nt crease 2/1/0 1 4 2\nt crease 2/1/0 1 7 1.5\n\
+         t creasemethod 0/0/1 chaikin\n"
+    ));
+    assert_eq!((v, why), (1, "Chaikin creases at a non-manifold vertex"));
+    // A closed tetrahedron touching the crease vertex: its copy lacks both non-manifold edges.
+    let (v, why) = refused(&format!(
+        "{FINS}v 1 0.5 -1\nv 1.5 0.3 -1.2\nv 0.7 0.2 -1.1\n\
+         f 2 14 13\nf 2 15 14\nf 2 13 15\nf 13 14 15\n"
+    ));
+    assert_eq!((v, why), (1, "a copy without both non-manifold edges"));
+    // Without the tags the cage is read.
+    assert!(split(FINS).is_ok());
+}
+
+/// `interpolateboundary none`: the faces at a vertex with a boundary edge of the cage become
+/// holes, and the pieces take edge-only boundaries (their copies of a non-manifold vertex are
+/// boundary vertices of the piece, which OpenSubdiv does not hide).
+#[test]
+fn boundary_none_hides_the_faces_opensubdiv_hides() {
+    // A cube with a fin on its edge 1-2 (1-based): every face at vertex 1 or 2 is hidden.
+    let cube = "v 0 0 0\nv 0 0 1\nv 1 0 0\nv 1 0 1\nv 1 1 0\nv 1 1 1\nv 0 1 0\nv 0 1 1\n\
+                v -1 -1 0\nv -1 -1 1\nf 1 7 5 3\nf 2 4 6 8\nf 1 3 4 2\nf 3 5 6 4\nf 5 7 8 6\n\
+                f 7 1 2 8\nf 2 1 9 10\nt interpolateboundary 1/0/0 0\nt hole 1/0/0 2\n";
+    let mut soup = parse_obj(cube).unwrap();
+    soup.split_nonmanifold().unwrap();
+    let mut holes: Vec<i64> = soup.holes.iter().map(|h| h.f).collect();
+    holes.sort_unstable();
+    // Face 2 was a hole already; it is not tagged twice.
+    assert_eq!(holes, vec![0, 1, 2, 5, 6]);
+    assert_eq!(
+        soup.options.boundary,
+        crate::BoundaryInterpolation::EdgeOnly
+    );
+    let mesh = Mesh::from_soup(&soup).unwrap();
+    assert_eq!(mesh.faces().filter(|&f| !mesh.is_hole(f)).count(), 2);
+    // Infinitely sharp tags on the fin's three boundary edges: no vertex has a boundary edge
+    // that is not infinitely sharp, so nothing is hidden.
+    let tagged = cube.replace(
+        "t hole 1/0/0 2\n",
+        "t crease 2/1/0 0 8 10\nt crease 2/1/0 8 9 10\nt crease 2/1/0 9 1 10\n",
+    );
+    let mut soup = parse_obj(&tagged).unwrap();
+    soup.split_nonmanifold().unwrap();
+    assert!(soup.holes.is_empty());
+    // A manifold cage keeps its option (subdiv's own rule applies).
+    let mut quad =
+        parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nt interpolateboundary 1/0/0 0\n")
+            .unwrap();
+    quad.split_nonmanifold().unwrap();
+    assert_eq!(quad.options.boundary, crate::BoundaryInterpolation::None);
+    assert!(quad.holes.is_empty());
+}
+
+/// OpenSubdiv leaves a vertex with two non-manifold edges unsharpened only with more faces than
+/// edges and no boundary edge: a fin strip along two edges of a pentagon, each non-manifold
+/// edge used twice the same way round, has three faces and three edges at its middle vertex: a
+/// corner (fuzz-osd seed 21 cage 79).
+#[test]
+fn a_crease_needs_more_faces_than_edges() {
+    let text = "v 1.17 -0.89 -2.03\nv 2.06 -0.91 -2.43\nv 2.79 -1.22 -3.06\nv 4.1 0.45 -3.38\n\
+                v 2.37 0.24 -2.96\nv 2.0 -1.45 -2.09\nv 1.0 -1.59 -1.51\nv 3.32 -0.11 -2.66\n\
+                f 1 2 3 4 5\nf 2 3 6 7\nf 3 4 8 6\n";
+    let mut soup = parse_obj(text).unwrap();
+    let found = soup.split_nonmanifold().unwrap();
+    assert_eq!(found.edges, vec![(1, 2, 2), (2, 3, 2)]);
+    assert!(soup.corners.iter().any(|c| c.v == 2 && c.sharpness >= 10.0));
+    // FINS (six faces, five edges at vertex 2, no boundary edge) keeps the crease.
+    let mut soup = parse_obj(FINS).unwrap();
+    soup.split_nonmanifold().unwrap();
+    assert!(!soup.corners.iter().any(|c| c.v == 1));
+}

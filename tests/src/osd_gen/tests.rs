@@ -1,0 +1,56 @@
+use super::*;
+
+#[test]
+fn cages_are_valid_reproducible_and_varied() {
+    let (mut loops, mut holes, mut ngons, mut valence2, mut max_valence) = (0, 0, 0, 0, 0);
+    let (mut fins, mut bowties, mut chains, mut semi_chains) = (0, 0, 0, 0);
+    for i in 0..300 {
+        let c = random_cage(7, i);
+        let mut soup = subdiv_mesh::parse_obj(&c.to_obj()).unwrap();
+        let found = soup.split_nonmanifold().unwrap();
+        fins += usize::from(found.edges.iter().any(|e| e.2 >= 3));
+        bowties += usize::from(found.edges.is_empty() && !found.vertices.is_empty());
+        // Vertices with exactly two non-manifold edges, and those with a semi-sharp tag.
+        let two = |v: u32| found.edges.iter().filter(|e| e.0 == v || e.1 == v).count() == 2;
+        let chain: Vec<u32> = found
+            .vertices
+            .iter()
+            .map(|v| v.0)
+            .filter(|&v| two(v))
+            .collect();
+        chains += usize::from(!chain.is_empty());
+        semi_chains += usize::from(
+            c.corners
+                .iter()
+                .any(|&(v, s)| chain.contains(&v) && s < 10.0),
+        );
+        assert_eq!(c, random_cage(7, i), "cage {i} is not reproducible");
+        let m = c
+            .mesh()
+            .unwrap_or_else(|e| panic!("cage {i}: {e}\n{}", c.to_obj()));
+        loops += usize::from(c.loop_scheme);
+        holes += usize::from(!c.holes.is_empty());
+        ngons += usize::from(c.faces.iter().any(|f| f.len() > 4));
+        let interior_v2 = m
+            .vertices()
+            .any(|v| !m.is_boundary_vertex(v) && m.outgoing(v).count() == 2);
+        valence2 += usize::from(interior_v2);
+        max_valence = max_valence.max(m.max_valence());
+        if c.loop_scheme {
+            assert!(
+                c.faces.iter().all(|f| f.len() == 3),
+                "cage {i}: Loop needs triangles"
+            );
+        }
+    }
+    assert!(
+        loops > 50 && holes > 20 && ngons > 20 && valence2 > 5,
+        "{loops} {holes} {ngons} {valence2}"
+    );
+    assert!(max_valence >= 16, "max valence {max_valence}");
+    assert!(fins > 10 && bowties > 5, "fins {fins}, bow-ties {bowties}");
+    assert!(
+        chains > 5 && semi_chains > 2,
+        "vertices with two non-manifold edges {chains}, with a semi-sharp tag {semi_chains}"
+    );
+}
