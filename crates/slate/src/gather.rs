@@ -47,7 +47,7 @@ impl Worker {
         self.origin = self.origin32.as_dvec3();
         let origin32 = self.origin32;
         let t = &mut self.t[0];
-        t.dirty = true;
+        // Clears the sharpness the last patch left, if it left any (its `dirty` flag).
         t.reset(1, false, self.method == CreaseMethod::Chaikin);
         let h0 = mesh.face_halfedge(f);
         let hs = [h0, mesh.next(h0), mesh.next(mesh.next(h0)), mesh.prev(h0)];

@@ -43,6 +43,7 @@ impl Worker {
             let scratch = Scratch {
                 dirty: &mut self.dirty,
                 dirty_list: &mut self.dirty_list,
+                sharp_edges: &mut self.sharp_edges,
                 split: &mut self.split,
             };
             step_general(src, dst, &self.corners, self.method, scratch);
@@ -172,6 +173,7 @@ fn step_regular(src: &Table, dst: &mut Table, split: &mut Vec<Vec3A>) {
 struct Scratch<'a> {
     dirty: &'a mut Vec<bool>,
     dirty_list: &'a mut Vec<u32>,
+    sharp_edges: &'a mut Vec<(u32, u8)>,
     split: &'a mut Vec<Vec3A>,
 }
 
@@ -220,7 +222,7 @@ fn step_general(
     let n = src.grid_size as i32;
     // The smooth regular rules everywhere first; then the general rules where they differ.
     step_regular(src, dst, sc.split);
-    let missing = src.mark_dirty(sc.dirty, sc.dirty_list);
+    let missing = src.mark_dirty(sc.dirty, sc.dirty_list, sc.sharp_edges);
     let g = General {
         src,
         corners,
@@ -269,10 +271,31 @@ fn step_general(
         }
         general_vertex_point(g, dst, i, j);
     }
-    // Every edge with a dirty end, once: from its dirty end with the lower index. Horizontal edges
-    // of rows 0..=n and vertical edges of columns 0..=n (the outer ring's own edges have no
-    // children in the next table).
-    for &kk in sc.dirty_list.iter() {
+    if missing {
+        general_edges_near_missing(g, dst, sc.dirty, sc.dirty_list);
+    } else {
+        // Every point exists: a smooth edge of rows or columns 0..=n lies between two faces, and
+        // the regular pass computed its point alike; only the sharp edges need the general rule.
+        for &(k, dir) in sc.sharp_edges.iter() {
+            let (k, dir) = (k as usize, dir as usize);
+            let (i, j) = ((k % ss) as i32 - 1, (k / ss) as i32 - 1);
+            let row = if dir == 0 { j } else { i };
+            if (0..=n).contains(&row) && src.inside(i + DI[dir], j + DJ[dir]) {
+                general_edge_point(g, dst, sc.dirty, i, j, dir);
+            }
+        }
+    }
+    // The outer ends of crossing edges exist as edge points; new outer-ring vertices beyond
+    // (odd positions) are face points (already marked).
+}
+
+/// The general edge points of a table with missing points: every edge with a dirty end, once,
+/// from its dirty end with the lower index. Horizontal edges of rows 0..=n and vertical edges of
+/// columns 0..=n (the outer ring's own edges have no children in the next table).
+fn general_edges_near_missing(g: General<'_>, dst: &mut Table, dirty: &[bool], list: &[u32]) {
+    let (src, n) = (g.src, g.src.grid_size as i32);
+    let ss = src.stride;
+    for &kk in list.iter() {
         let kk = kk as usize;
         let (i, j) = ((kk % ss) as i32 - 1, (kk / ss) as i32 - 1);
         for d in 0..4 {
@@ -281,18 +304,16 @@ fn step_general(
                 continue;
             }
             let qk = src.at(qi, qj);
-            if sc.dirty[qk] && qk < kk {
+            if dirty[qk] && qk < kk {
                 continue;
             }
             let (ei, ej, dir) = if d < 2 { (i, j, d) } else { (qi, qj, d - 2) };
             let row = if dir == 0 { ej } else { ei };
             if (0..=n).contains(&row) {
-                general_edge_point(g, dst, sc.dirty, ei, ej, dir);
+                general_edge_point(g, dst, dirty, ei, ej, dir);
             }
         }
     }
-    // The outer ends of crossing edges exist as edge points; new outer-ring vertices beyond
-    // (odd positions) are face points (already marked).
 }
 
 /// Vertex point of patch point `(i, j)` by the general rules, and the child sharpness of its
@@ -378,8 +399,9 @@ fn general_edge_point(g: General<'_>, dst: &mut Table, dirty: &[bool], i: i32, j
     let w = edge_crease_weight(s, [c0, c1]);
     let mut faces = [Vec3A::ZERO; 2];
     let mut nf = 0;
+    // The crease rule (weight 1) is the midpoint: the faces are not read.
     for (fi, fj) in sides {
-        if g.face_exists(fi, fj) {
+        if w != 1.0 && g.face_exists(fi, fj) {
             faces[nf] = dst.positions[dst.at(2 * fi + 1, 2 * fj + 1)];
             nf += 1;
         }

@@ -32,6 +32,8 @@ pub struct Worker {
     pub(crate) dirty: Vec<bool>,
     /// Indices set in `dirty` (cleared by the next marking).
     pub(crate) dirty_list: Vec<u32>,
+    /// The sharp edges of the table last marked (see `Table::mark_dirty`).
+    pub(crate) sharp_edges: Vec<(u32, u8)>,
     /// Three split rows of the separable regular step (`step_regular`).
     pub(crate) split: Vec<Vec3A>,
     /// Three rows of sums of the separable regular limit masks (`limit_interior`).
@@ -66,6 +68,7 @@ impl Worker {
             ids: Vec::new(),
             dirty: Vec::new(),
             dirty_list: Vec::new(),
+            sharp_edges: Vec::new(),
             split: Vec::new(),
             sum_b: Vec::new(),
             sum_a: Vec::new(),
