@@ -164,28 +164,28 @@ impl Worker {
             self.sum_b.resize(3 * cnt, Vec3A::ZERO);
             self.sum_a.resize(3 * cnt, Vec3A::ZERO);
         }
-        let (sb, sa) = (&mut self.sum_b[..3 * cnt], &mut self.sum_a[..3 * cnt]);
-        let slot = |r: i32| (r % 3) as usize * cnt..((r % 3) as usize + 1) * cnt;
-        let sums = |j: i32, sb: &mut [Vec3A], sa: &mut [Vec3A]| {
+        let (b0, rest) = self.sum_b[..3 * cnt].split_at_mut(cnt);
+        let (b1, b2) = rest.split_at_mut(cnt);
+        let (a0, rest) = self.sum_a[..3 * cnt].split_at_mut(cnt);
+        let (a1, a2) = rest.split_at_mut(cnt);
+        // Slots of table rows j - 1, j and j + 1, rotated after each output row.
+        let mut sb: [&mut [Vec3A]; 3] = [b0, b1, b2];
+        let mut sa: [&mut [Vec3A]; 3] = [a0, a1, a2];
+        let sums = |j: i32, b: &mut [Vec3A], a: &mut [Vec3A]| {
             let base = t.at(0, j);
-            catmark::limit_row_sums(
-                &t.positions[base..base + cnt + 2],
-                &mut sb[slot(j)],
-                &mut sa[slot(j)],
-            );
+            catmark::limit_row_sums(&t.positions[base..base + cnt + 2], b, a);
         };
-        sums(0, sb, sa);
-        sums(1, sb, sa);
+        sums(0, sb[0], sa[0]);
+        sums(1, sb[1], sa[1]);
         let o = self.origin32;
         let mut bad = std::mem::take(&mut self.bad);
         bad.clear();
         for j in 1..n {
-            sums(j + 1, sb, sa);
-            let (bs, b0, bn) = (&sb[slot(j - 1)], &sb[slot(j)], &sb[slot(j + 1)]);
-            let (as_, a0, an) = (&sa[slot(j - 1)], &sa[slot(j)], &sa[slot(j + 1)]);
-            for x in 0..cnt {
-                let (pos, t1, t2) =
-                    catmark::limit_regular_from_sums([bs[x], b0[x], bn[x]], [as_[x], a0[x], an[x]]);
+            sums(j + 1, sb[2], sa[2]);
+            let b = sb[0].iter().zip(sb[1].iter()).zip(sb[2].iter());
+            let a = sa[0].iter().zip(sa[1].iter()).zip(sa[2].iter());
+            for (x, (((&bs, &b0), &bn), ((&as_, &a0), &an))) in b.zip(a).enumerate() {
+                let (pos, t1, t2) = catmark::limit_regular_from_sums([bs, b0, bn], [as_, a0, an]);
                 let nrm = t1.cross(t2);
                 let len2 = nrm.length_squared();
                 if len2 > 0.0 && len2.is_finite() {
@@ -194,6 +194,8 @@ impl Worker {
                     bad.push((x as i32 + 1, j));
                 }
             }
+            sb.rotate_left(1);
+            sa.rotate_left(1);
         }
         // Degenerate tangents: those points exactly, through a ring.
         for &(i, j) in &bad {

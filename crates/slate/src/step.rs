@@ -149,22 +149,29 @@ fn step_regular(src: &Table, dst: &mut Table, split: &mut Vec<Vec3A>) {
         split.resize(3 * ds, Vec3A::ZERO);
     }
     // Storage row y of dst is level coordinate y - 1: odd coordinates (even y) lie between split
-    // rows y / 2 and y / 2 + 1, even ones (odd y) at split row (y + 1) / 2.
-    let slot = |r: usize| (r % 3) * ds..(r % 3 + 1) * ds;
-    for (r, row) in src.positions[..ss * ss].chunks_exact(ss).enumerate() {
-        catmark::split_row(row, &mut split[slot(r)]);
-        if r == 0 {
-            continue;
+    // rows r - 1 and r, even ones (odd y) at split row r - 1. The three slots hold split rows
+    // r - 2, r - 1 and r, rotated after each source row.
+    let (s0, rest) = split[..3 * ds].split_at_mut(ds);
+    let (s1, s2) = rest.split_at_mut(ds);
+    let mut slots: [&mut [Vec3A]; 3] = [s0, s1, s2];
+    let mut rows = src.positions[..ss * ss].chunks_exact(ss);
+    let mut out = dst.positions[..ds * ds].chunks_exact_mut(ds);
+    if let (Some(r0), Some(r1)) = (rows.next(), rows.next()) {
+        catmark::split_row(r0, slots[0]);
+        catmark::split_row(r1, slots[1]);
+        if let Some(o) = out.next() {
+            catmark::split_rows_mid(slots[0], slots[1], o);
         }
-        let h = &split[..3 * ds];
-        if r >= 2 {
-            let y = 2 * r - 3;
-            let out = &mut dst.positions[y * ds..(y + 1) * ds];
-            catmark::split_rows_even(&h[slot(r - 2)], &h[slot(r - 1)], &h[slot(r)], out);
+    }
+    for row in rows {
+        catmark::split_row(row, slots[2]);
+        if let Some(o) = out.next() {
+            catmark::split_rows_even(slots[0], slots[1], slots[2], o);
         }
-        let y = 2 * r - 2;
-        let out = &mut dst.positions[y * ds..(y + 1) * ds];
-        catmark::split_rows_mid(&h[slot(r - 1)], &h[slot(r)], out);
+        if let Some(o) = out.next() {
+            catmark::split_rows_mid(slots[1], slots[2], o);
+        }
+        slots.rotate_left(1);
     }
     dst.exists[..ds * ds].fill(true);
 }
