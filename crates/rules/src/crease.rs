@@ -226,7 +226,11 @@ impl VertexRules {
         let mut ends = [0usize; 2];
         let mut n = 0usize;
         let mut lost = false;
-        for (i, (&s, c)) in edge_sharpness.iter().zip(child_edges.iter_mut()).enumerate() {
+        for (i, (&s, c)) in edge_sharpness
+            .iter()
+            .zip(child_edges.iter_mut())
+            .enumerate()
+        {
             *c = decrement(s);
             if is_sharp(s) {
                 lost |= !is_sharp(*c);
@@ -326,7 +330,8 @@ mod tests {
             let b = VertexRules::general(CreaseMethod::Uniform, vs, &es, &mut c1);
             assert_eq!(a, b, "vertex {vs} edges {es:?}");
             assert_eq!(c0, c1, "vertex {vs} edges {es:?}");
-            fast_cases += usize::from(vs == 0.0 && VertexRules::uniform_lasting(&es, &mut c1).is_some());
+            fast_cases +=
+                usize::from(vs == 0.0 && VertexRules::uniform_lasting(&es, &mut c1).is_some());
         }
         assert!(fast_cases > 1000, "{fast_cases}");
     }

@@ -269,7 +269,9 @@ impl Worker {
     #[inline]
     fn table_ring_config(&self, i: i32, j: i32, r: &mut TableRing) -> bool {
         let t = &self.t[self.cur];
-        debug_assert!((0..=t.grid_size as i32).contains(&i) && (0..=t.grid_size as i32).contains(&j));
+        debug_assert!(
+            (0..=t.grid_size as i32).contains(&i) && (0..=t.grid_size as i32).contains(&j)
+        );
         let (k, s) = (t.at(i, j), t.stride);
         // Neighbours and edge sharpness in direction order (E, N, W, S).
         let nb = [k + 1, k + s, k - 1, k - s];

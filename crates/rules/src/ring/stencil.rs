@@ -372,14 +372,21 @@ mod tests {
                 _ => DVec3::ONE,
             };
             let pt = |rng: &mut Rng, a: f64, r: f64| {
-                offset + (DVec3::new(a.cos() * r, a.sin() * r, 0.0) + rng.point(0.3)) * squash * scale
+                offset
+                    + (DVec3::new(a.cos() * r, a.sin() * r, 0.0) + rng.point(0.3)) * squash * scale
             };
             let center = pt(&mut rng, 0.0, 0.0);
             let edges: Vec<DVec3> = (0..m)
                 .map(|i| pt(&mut rng, std::f64::consts::TAU * i as f64 / m as f64, 1.0))
                 .collect();
             let diag: Vec<DVec3> = (0..nd)
-                .map(|i| pt(&mut rng, std::f64::consts::TAU * (i as f64 + 0.5) / m as f64, 1.4))
+                .map(|i| {
+                    pt(
+                        &mut rng,
+                        std::f64::consts::TAU * (i as f64 + 0.5) / m as f64,
+                        1.4,
+                    )
+                })
                 .collect();
             let (a, used) = st.evaluate(center, &edges, &diag, &mut quick, true);
             let (b, _) = st.evaluate(center, &edges, &diag, &mut full, false);
