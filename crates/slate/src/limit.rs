@@ -131,8 +131,20 @@ impl Worker {
                     || (0..r.valence()).any(|e| is_infinite(r.edge_sharpness(e)));
             }
         }
-        if self.regular || self.t[self.cur].is_plain(i, j) {
+        if self.regular {
             return false;
+        }
+        // A ring with all four edges and none infinitely sharp is smooth in the limit (its
+        // semi-sharp edges decay, table points carry no vertex sharpness): one tangent plane,
+        // without looking up its stencil. (A grid point's neighbours lie inside the table.)
+        let t = &self.t[self.cur];
+        let (k, s) = (t.at(i, j), t.stride);
+        let (ex, hs, vs) = (&t.exists, &t.horizontal_sharpness, &t.vertical_sharpness);
+        if ex[k] && ex[k + 1] && ex[k + s] && ex[k - 1] && ex[k - s] {
+            let sharp = [hs[k], vs[k], hs[k - 1], vs[k - s]];
+            if !sharp.iter().any(|&x| is_infinite(x)) {
+                return false;
+            }
         }
         let mut r = TableRing::default();
         let boundary = self.table_ring_config(i, j, &mut r);

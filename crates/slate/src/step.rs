@@ -342,16 +342,19 @@ fn general_vertex_point(g: General<'_>, dst: &mut Table, i: i32, j: i32) {
             ne += 1;
         }
     }
-    for d in 0..4 {
-        let d2 = (d + 1) % 4;
-        let (fi, fj) = (i + (DI[d] + DI[d2] - 1) / 2, j + (DJ[d] + DJ[d2] - 1) / 2);
-        if g.face_exists(fi, fj) {
-            f_pts[nf] = dst.positions[dst.at(2 * fi + 1, 2 * fj + 1)];
-            nf += 1;
-        }
-    }
     let mut c_sh = [0.0f32; 4];
     let rules = VertexRules::new(g.method, 0.0, &e_sh[..ne], &mut c_sh[..ne]);
+    // Only the smooth rule reads the face points (crease and corner rules do not).
+    if rules.parent.is_smooth() || rules.child.is_smooth() {
+        for d in 0..4 {
+            let d2 = (d + 1) % 4;
+            let (fi, fj) = (i + (DI[d] + DI[d2] - 1) / 2, j + (DJ[d] + DJ[d2] - 1) / 2);
+            if g.face_exists(fi, fj) {
+                f_pts[nf] = dst.positions[dst.at(2 * fi + 1, 2 * fj + 1)];
+                nf += 1;
+            }
+        }
+    }
     let v = src.positions[src.at(i, j)];
     let k = dst.at(2 * i, 2 * j);
     dst.positions[k] = catmark::vertex_point(v, &e_pts[..ne], &f_pts[..nf], &rules);
