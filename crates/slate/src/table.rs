@@ -67,7 +67,12 @@ impl Table {
             (n + 3) * (n + 3) <= self.positions.len(),
             "slate too small for grid {n}"
         );
-        if self.dirty && self.stride > 0 {
+        if self.dirty && self.stride > 0 && self.grid_size <= 4 {
+            // A small table is all band but its centre: cleared whole.
+            let len = self.stride * self.stride;
+            self.horizontal_sharpness[..len].fill(0.0);
+            self.vertical_sharpness[..len].fill(0.0);
+        } else if self.dirty && self.stride > 0 {
             // The band (see [`band`]), its rows as slices: rows -1, 0, n, n + 1 whole; columns
             // -1, 0, n, n + 1 of the rows between.
             let (n, s) = (self.grid_size, self.stride);
@@ -104,7 +109,7 @@ impl Table {
     }
 
     /// Sharpness of the edge from `(i,j)` in direction `d`.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn edge_sharp(&self, i: i32, j: i32, d: usize) -> f32 {
         match d {
             0 => self.horizontal_sharpness[self.at(i, j)],
@@ -138,7 +143,7 @@ impl Table {
 
     /// `true` if `(i, j)` is an interior point whose 8 neighbours exist and whose 4 edges are
     /// smooth: the regular rules and limit masks apply there exactly.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn is_plain(&self, i: i32, j: i32) -> bool {
         let k = self.at(i, j);
         let s = self.stride;
