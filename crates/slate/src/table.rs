@@ -59,8 +59,9 @@ impl Table {
     }
 
     /// Prepares the table for grid size `n`. A table for the regular step needs no clearing
-    /// (it overwrites every point); sharpness is cleared only if a general step left some, and
-    /// then only on the band where it can be (see [`band`]). The Chaikin far information is only
+    /// (it overwrites every point); sharpness is cleared only if a gather or general step left
+    /// some (`dirty`), and then only on the band where it can be (see [`band`]; a table of grid
+    /// 4 or less is cleared whole, it is nearly all band). The Chaikin far information is only
     /// read under the Chaikin rule (`chaikin`), and then cleared for every table.
     pub(crate) fn reset(&mut self, n: usize, regular: bool, chaikin: bool) {
         debug_assert!(
