@@ -206,6 +206,61 @@ impl VertexRules {
         edge_sharpness: &[f32],
         child_edges: &mut [f32],
     ) -> VertexRules {
+        if method == CreaseMethod::Uniform
+            && !is_sharp(vertex_sharpness)
+            && let Some(rules) = Self::uniform_lasting(edge_sharpness, child_edges)
+        {
+            return rules;
+        }
+        Self::general(method, vertex_sharpness, edge_sharpness, child_edges)
+    }
+
+    /// [`VertexRules::new`] in one pass over the edges for the common case of the uniform rule
+    /// at a vertex without sharpness: the child sharpness is the decremented parent's, and where
+    /// no sharp edge becomes smooth (or the parent rule is smooth) the child rule is the parent
+    /// rule, without a fractional transition. `None` where a crease or corner loses an edge
+    /// (then [`VertexRules::general`] decides; `child_edges` is rewritten there).
+    #[inline]
+    fn uniform_lasting(edge_sharpness: &[f32], child_edges: &mut [f32]) -> Option<VertexRules> {
+        debug_assert_eq!(edge_sharpness.len(), child_edges.len());
+        let mut ends = [0usize; 2];
+        let mut n = 0usize;
+        let mut lost = false;
+        for (i, (&s, c)) in edge_sharpness
+            .iter()
+            .zip(child_edges.iter_mut())
+            .enumerate()
+        {
+            *c = decrement(s);
+            if is_sharp(s) {
+                lost |= !is_sharp(*c);
+                if n < 2 {
+                    ends[n] = i;
+                }
+                n += 1;
+            }
+        }
+        let parent = match n {
+            0 => Rule::Smooth,
+            1 => Rule::Dart,
+            _ if lost => return None,
+            2 => Rule::Crease(ends),
+            _ => Rule::Corner,
+        };
+        Some(VertexRules {
+            parent,
+            child: parent,
+            parent_weight: 1.0,
+        })
+    }
+
+    /// [`VertexRules::new`] for any method and sharpness.
+    fn general(
+        method: CreaseMethod,
+        vertex_sharpness: f32,
+        edge_sharpness: &[f32],
+        child_edges: &mut [f32],
+    ) -> VertexRules {
         child_edge_sharpness_around(method, edge_sharpness, child_edges);
         let parent = Rule::determine(vertex_sharpness, edge_sharpness);
         if parent.is_smooth() {
@@ -248,6 +303,38 @@ impl VertexRules {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The one-pass uniform case decides exactly as the general rules: rules, weight and child
+    /// sharpness, over random vertices of valence 2 to 6 with every kind of sharpness.
+    #[test]
+    fn uniform_fast_path_matches_the_general_rules() {
+        let choices = [0.0f32, 0.0, 0.0, 0.25, 0.5, 1.0, 1.5, 2.0, 3.0, 10.0, 12.0];
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = |k: usize| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 33) as usize % k
+        };
+        let mut fast_cases = 0;
+        for _ in 0..4000 {
+            let m = 2 + next(5);
+            let vs = if next(4) == 0 {
+                choices[next(choices.len())]
+            } else {
+                0.0
+            };
+            let es: Vec<f32> = (0..m).map(|_| choices[next(choices.len())]).collect();
+            let (mut c0, mut c1) = (vec![-1.0; m], vec![-2.0; m]);
+            let a = VertexRules::new(CreaseMethod::Uniform, vs, &es, &mut c0);
+            let b = VertexRules::general(CreaseMethod::Uniform, vs, &es, &mut c1);
+            assert_eq!(a, b, "vertex {vs} edges {es:?}");
+            assert_eq!(c0, c1, "vertex {vs} edges {es:?}");
+            fast_cases +=
+                usize::from(vs == 0.0 && VertexRules::uniform_lasting(&es, &mut c1).is_some());
+        }
+        assert!(fast_cases > 1000, "{fast_cases}");
+    }
 
     #[test]
     fn decrement_rules() {

@@ -37,65 +37,42 @@ impl TableEdges {
     }
 }
 
-impl Worker {
-    /// Gathers the 1-neighbourhood of quad `f` of `mesh` (whose neighbourhood is all quads) into
-    /// slate 0 (paper Fig. 2).
-    pub(crate) fn gather(&mut self, mesh: &Mesh, f: FaceId) {
-        self.cur = 0;
-        self.method = mesh.options().crease;
-        self.origin32 = Vec3A::from(mesh.position(mesh.from(mesh.face_halfedge(f))));
-        self.origin = self.origin32.as_dvec3();
-        let origin32 = self.origin32;
-        let t = &mut self.t[0];
-        t.dirty = true;
-        t.reset(1, false, self.method == CreaseMethod::Chaikin);
-        let h0 = mesh.face_halfedge(f);
-        let hs = [h0, mesh.next(h0), mesh.next(mesh.next(h0)), mesh.prev(h0)];
+/// A sharp edge of a level-0 table: its lower end `(i, j)`, direction (0 = +i, 1 = +j) and
+/// sharpness.
+pub(crate) type PlanEdge = (i8, i8, u8, f32);
+
+/// What gathering a patch reads from the mesh besides positions, found once per patch: the
+/// vertex of every level-0 table position, the sharp table edges, which corners keep a corner
+/// array and whether the regular rules apply. Topology and sharpness never change for a mesh
+/// (only its positions may), so a [`PatchLayout`](crate::PatchLayout) keeps one per patch and
+/// every tessellation gathers through it ([`Worker::gather_with`]).
+#[derive(Clone, Debug)]
+pub(crate) struct GatherPlan {
+    vid: TableVertices,
+    /// Range of this patch's sharp edges in the layout's edge list.
+    first_edge: u32,
+    num_edges: u8,
+    /// Corner `k` keeps a corner array (bit `k`).
+    active: u8,
+    /// Corner `k` is a boundary vertex (bit `k`).
+    boundary: u8,
+    regular: bool,
+}
+
+impl GatherPlan {
+    /// The plan of quad `f` of `mesh` (whose neighbourhood is all quads); its sharp edges are
+    /// appended to `edges`.
+    pub(crate) fn new(mesh: &Mesh, f: FaceId, edges: &mut Vec<PlanEdge>) -> GatherPlan {
+        let hs = face_halfedges(mesh, f);
         let mut vid = face_and_edge_neighbours(mesh, &hs);
-        self.regular = true;
+        let mut regular = true;
         // Table edges and their half-edges: the face's sides, the three other sides of each edge
         // neighbour, and the two outer sides of each regular corner's diagonal face.
-        let mut edges = side_edges(mesh, &hs);
-        self.gather_corners(mesh, &hs, &mut vid, &mut edges);
-        let t = &mut self.t[0];
-        fill_points(t, mesh, &vid, origin32);
-        for &((i, j), d, h) in &edges.edges[..edges.len] {
-            let s = mesh.edge_sharpness(h.edge());
-            if s > 0.0 {
-                self.regular = false;
-                t.set_edge_sharp(i, j, d, s);
-            }
-        }
-        // Missing points anywhere except the diagonal spots of irregular corners mean boundary.
-        for j in -1..=2i32 {
-            for i in -1..=2i32 {
-                let diag_spot = (i == -1 || i == 2) && (j == -1 || j == 2);
-                if !t.exists[t.at(i, j)] && !diag_spot {
-                    self.regular = false;
-                }
-            }
-        }
-        // Far ends of the crossing edges, for the Chaikin rule.
-        if self.method == CreaseMethod::Chaikin {
-            self.regular = false;
-            gather_far(t, mesh, &vid);
-        }
-    }
-
-    /// Corners: an interior valence-4 corner without a corner tag completes the table with its
-    /// diagonal vertex (and two table edges); any other corner keeps its whole ring in a corner
-    /// array.
-    #[inline]
-    fn gather_corners(
-        &mut self,
-        mesh: &Mesh,
-        hs: &[HalfedgeId; 4],
-        vid: &mut TableVertices,
-        edges: &mut TableEdges,
-    ) {
-        for k in 0..4 {
-            let v = mesh.from(hs[k]);
-            let boundary = mesh.is_boundary_vertex(v);
+        let mut table_edges = side_edges(mesh, &hs);
+        let (mut active, mut boundary) = (0u8, 0u8);
+        for (k, &h) in hs.iter().enumerate() {
+            let v = mesh.from(h);
+            let on_boundary = mesh.is_boundary_vertex(v);
             let mut valence = 0usize;
             for _ in mesh.outgoing(v) {
                 valence += 1;
@@ -103,35 +80,126 @@ impl Worker {
                     break;
                 }
             }
+            boundary |= u8::from(on_boundary) << k;
             // Sharp edges at an interior valence-4 corner are table edges like any other (the
             // general step's rules handle them); a corner tag has no place in the table.
-            let c = &mut self.corners[k];
-            c.active = valence != 4 || boundary || mesh.vertex_sharpness(v) > 0.0;
-            c.boundary = boundary;
+            if valence != 4 || on_boundary || mesh.vertex_sharpness(v) > 0.0 {
+                active |= 1 << k;
+                if on_boundary || mesh.vertex_sharpness(v) > 0.0 {
+                    regular = false;
+                }
+            } else {
+                diagonal_corner(mesh, &hs, k, &mut vid, &mut table_edges);
+            }
+        }
+        let first_edge = edges.len() as u32;
+        for &((i, j), d, h) in &table_edges.edges[..table_edges.len] {
+            let s = mesh.edge_sharpness(h.edge());
+            if s > 0.0 {
+                regular = false;
+                edges.push((i as i8, j as i8, d as u8, s));
+            }
+        }
+        // Missing points anywhere except the diagonal spots of irregular corners mean boundary.
+        for j in -1..=2i32 {
+            for i in -1..=2i32 {
+                let diag_spot = (i == -1 || i == 2) && (j == -1 || j == 2);
+                if !vid[(j + 1) as usize][(i + 1) as usize].is_some() && !diag_spot {
+                    regular = false;
+                }
+            }
+        }
+        GatherPlan {
+            vid,
+            first_edge,
+            num_edges: (edges.len() - first_edge as usize) as u8,
+            active,
+            boundary,
+            regular: regular && mesh.options().crease != CreaseMethod::Chaikin,
+        }
+    }
+}
+
+/// The four half-edges of quad `f`, from its first.
+#[inline]
+fn face_halfedges(mesh: &Mesh, f: FaceId) -> [HalfedgeId; 4] {
+    let h0 = mesh.face_halfedge(f);
+    [h0, mesh.next(h0), mesh.next(mesh.next(h0)), mesh.prev(h0)]
+}
+
+/// An interior valence-4 corner `k` without a corner tag completes the table with its diagonal
+/// vertex (and two table edges).
+#[inline]
+fn diagonal_corner(
+    mesh: &Mesh,
+    hs: &[HalfedgeId; 4],
+    k: usize,
+    vid: &mut TableVertices,
+    edges: &mut TableEdges,
+) {
+    let g = mesh.prev(mesh.prev(hs[k]).twin()).twin(); // corner -> behind
+    let gn = mesh.next(g);
+    let d = mesh.to(gn);
+    let (ci, cj) = CORNER_POS[k];
+    let (o1i, o1j) = OUTWARD[k];
+    let (o2i, o2j) = OUTWARD[(k + 3) % 4];
+    vid[(cj + o1j + o2j + 1) as usize][(ci + o1i + o2i + 1) as usize] = d;
+    edges.push((ci + o2i, cj + o2j), OUT_DIR[k], gn);
+    edges.push(
+        (ci + o1i, cj + o1j),
+        OUT_DIR[(k + 3) % 4],
+        mesh.next(gn).twin(),
+    );
+}
+
+impl Worker {
+    /// Gathers the 1-neighbourhood of quad `f` of `mesh` (whose neighbourhood is all quads) into
+    /// slate 0 (paper Fig. 2).
+    pub(crate) fn gather(&mut self, mesh: &Mesh, f: FaceId) {
+        let mut edges = Vec::new();
+        let plan = GatherPlan::new(mesh, f, &mut edges);
+        self.gather_with(mesh, f, &plan, &edges);
+    }
+
+    /// [`Worker::gather`] through the patch's plan (`edges`: the list its sharp edges are in):
+    /// the mesh is read only for positions and the corner arrays' rings.
+    pub(crate) fn gather_with(
+        &mut self,
+        mesh: &Mesh,
+        f: FaceId,
+        plan: &GatherPlan,
+        edges: &[PlanEdge],
+    ) {
+        self.cur = 0;
+        self.method = mesh.options().crease;
+        self.origin32 = Vec3A::from(mesh.position(mesh.from(mesh.face_halfedge(f))));
+        self.origin = self.origin32.as_dvec3();
+        self.regular = plan.regular;
+        let t = &mut self.t[0];
+        // Clears the sharpness the last patch left, if it left any (its `dirty` flag).
+        t.reset(1, false, self.method == CreaseMethod::Chaikin);
+        fill_points(t, mesh, &plan.vid, self.origin32);
+        let first = plan.first_edge as usize;
+        for &(i, j, d, s) in &edges[first..first + plan.num_edges as usize] {
+            t.set_edge_sharp(i as i32, j as i32, d as usize, s);
+        }
+        // Far ends of the crossing edges, for the Chaikin rule.
+        if self.method == CreaseMethod::Chaikin {
+            gather_far(t, mesh, &plan.vid);
+        }
+        let hs = face_halfedges(mesh, f);
+        for (k, c) in self.corners.iter_mut().enumerate() {
+            c.active = plan.active & (1 << k) != 0;
+            c.boundary = plan.boundary & (1 << k) != 0;
             if c.active {
+                let v = mesh.from(hs[k]);
                 c.ring
                     .load_with_halfedges(mesh, v, Scheme::CatmullClark, &mut self.hes);
                 c.valence = self.hes.len();
                 c.ih = self.hes.iter().position(|&h| h == hs[k]).unwrap_or(0);
                 c.keep_sharpness();
-                if boundary || c.ring.vertex_sharpness() > 0.0 {
-                    self.regular = false;
-                }
             } else {
                 c.valence = 4;
-                let g = mesh.prev(mesh.prev(hs[k]).twin()).twin(); // corner -> behind
-                let gn = mesh.next(g);
-                let d = mesh.to(gn);
-                let (ci, cj) = CORNER_POS[k];
-                let (o1i, o1j) = OUTWARD[k];
-                let (o2i, o2j) = OUTWARD[(k + 3) % 4];
-                vid[(cj + o1j + o2j + 1) as usize][(ci + o1i + o2i + 1) as usize] = d;
-                edges.push((ci + o2i, cj + o2j), OUT_DIR[k], gn);
-                edges.push(
-                    (ci + o1i, cj + o1j),
-                    OUT_DIR[(k + 3) % 4],
-                    mesh.next(gn).twin(),
-                );
             }
         }
     }

@@ -14,6 +14,7 @@
 use subdiv_mesh::{FaceId, HalfedgeId, Mesh, VertexId};
 use subdiv_rules::{Depth, RulesError, SeamCurves};
 
+use crate::gather::{GatherPlan, PlanEdge};
 use crate::patches::{irregular_faces, local_level1};
 
 /// Where the points along one side of a patch go: the point at parameter index `s`
@@ -54,6 +55,9 @@ pub(crate) struct Patch {
 pub struct PatchLayout {
     pub(crate) depth: Depth,
     pub(crate) patches: Vec<Patch>,
+    /// How each patch is gathered (parallel to `patches`), and the sharp edges they list.
+    pub(crate) plans: Vec<GatherPlan>,
+    pub(crate) plan_edges: Vec<PlanEdge>,
     pub(crate) num_points: u32,
     pub(crate) level1: Option<Mesh>,
     pub(crate) isolated: Vec<VertexId>,
@@ -157,9 +161,22 @@ impl PatchLayout {
             }
         }
         let isolated = mesh.vertices().filter(|&v| mesh.is_isolated(v)).collect();
+        let mut plan_edges = Vec::new();
+        let plans = patches
+            .iter()
+            .map(|p| {
+                let src = match (&level1, p.level) {
+                    (Some(l1), 1) => l1,
+                    _ => mesh,
+                };
+                GatherPlan::new(src, p.face, &mut plan_edges)
+            })
+            .collect();
         Ok(PatchLayout {
             depth,
             patches,
+            plans,
+            plan_edges,
             num_points: next,
             level1,
             isolated,

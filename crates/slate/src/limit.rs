@@ -10,7 +10,7 @@ use glam::{DVec3, Vec3A};
 use subdiv_mesh::CreaseMethod;
 use subdiv_rules::QuadRingStencil;
 use subdiv_rules::catmark;
-use subdiv_rules::crease::Rule;
+use subdiv_rules::crease::{Rule, is_infinite};
 
 use crate::table::{DI, DJ, far_info};
 use crate::worker::Worker;
@@ -112,19 +112,44 @@ impl Worker {
         self.limit_general(i, j, side)
     }
 
-    /// `true` if grid point `(i, j)` (on the border) may have one-sided normals: it is on a
-    /// sharp edge or a boundary (an active corner: its ring has a sharp edge or vertex).
-    pub(crate) fn may_be_sided(&self, i: i32, j: i32) -> bool {
+    /// `true` if grid point `(i, j)` (on the border) may have one-sided normals: exactly where
+    /// [`Worker::limit_sided`] would give one, so that a patch that does not own the point can
+    /// skip its evaluation.
+    ///
+    /// A table point has them when the limit stencil of its ring's configuration is sided (the
+    /// stencil is looked up, not applied). A corner array's ring is refined until no semi-sharp
+    /// feature is left before its limit masks apply (`Ring::limit`), and boundary edges are
+    /// infinitely sharp, so it can only have them with an infinitely sharp edge or vertex: a
+    /// semi-sharp crease (the pawn's) smooths out and has one tangent plane in the limit.
+    pub(crate) fn may_be_sided(&mut self, i: i32, j: i32) -> bool {
         let n = self.t[self.cur].grid_size as i32;
         if let Some(k) = grid_corner(i, j, n) {
             let c = &self.corners[k];
             if c.active {
                 let r = &c.ring;
-                return r.vertex_sharpness() > 0.0
-                    || (0..r.valence()).any(|e| r.edge_sharpness(e) > 0.0);
+                return is_infinite(r.vertex_sharpness())
+                    || (0..r.valence()).any(|e| is_infinite(r.edge_sharpness(e)));
             }
         }
-        !self.regular && !self.t[self.cur].is_plain(i, j)
+        if self.regular {
+            return false;
+        }
+        // A ring with all four edges and none infinitely sharp is smooth in the limit (its
+        // semi-sharp edges decay, table points carry no vertex sharpness): one tangent plane,
+        // without looking up its stencil. (A grid point's neighbours lie inside the table.)
+        let t = &self.t[self.cur];
+        let (k, s) = (t.at(i, j), t.stride);
+        let (ex, hs, vs) = (&t.exists, &t.horizontal_sharpness, &t.vertical_sharpness);
+        if ex[k] && ex[k + 1] && ex[k + s] && ex[k - 1] && ex[k - s] {
+            let sharp = [hs[k], vs[k], hs[k - 1], vs[k - s]];
+            if !sharp.iter().any(|&x| is_infinite(x)) {
+                return false;
+            }
+        }
+        let mut r = TableRing::default();
+        let boundary = self.table_ring_config(i, j, &mut r);
+        let idx = self.stencil_index(&r, boundary);
+        self.stencils[idx].1.is_sided()
     }
 
     /// Limits of all interior grid points `(i, j)`, `1 <= i, j <= n - 1`, of the current slate,
@@ -151,28 +176,28 @@ impl Worker {
             self.sum_b.resize(3 * cnt, Vec3A::ZERO);
             self.sum_a.resize(3 * cnt, Vec3A::ZERO);
         }
-        let (sb, sa) = (&mut self.sum_b[..3 * cnt], &mut self.sum_a[..3 * cnt]);
-        let slot = |r: i32| (r % 3) as usize * cnt..((r % 3) as usize + 1) * cnt;
-        let sums = |j: i32, sb: &mut [Vec3A], sa: &mut [Vec3A]| {
+        let (b0, rest) = self.sum_b[..3 * cnt].split_at_mut(cnt);
+        let (b1, b2) = rest.split_at_mut(cnt);
+        let (a0, rest) = self.sum_a[..3 * cnt].split_at_mut(cnt);
+        let (a1, a2) = rest.split_at_mut(cnt);
+        // Slots of table rows j - 1, j and j + 1, rotated after each output row.
+        let mut sb: [&mut [Vec3A]; 3] = [b0, b1, b2];
+        let mut sa: [&mut [Vec3A]; 3] = [a0, a1, a2];
+        let sums = |j: i32, b: &mut [Vec3A], a: &mut [Vec3A]| {
             let base = t.at(0, j);
-            catmark::limit_row_sums(
-                &t.positions[base..base + cnt + 2],
-                &mut sb[slot(j)],
-                &mut sa[slot(j)],
-            );
+            catmark::limit_row_sums(&t.positions[base..base + cnt + 2], b, a);
         };
-        sums(0, sb, sa);
-        sums(1, sb, sa);
+        sums(0, sb[0], sa[0]);
+        sums(1, sb[1], sa[1]);
         let o = self.origin32;
         let mut bad = std::mem::take(&mut self.bad);
         bad.clear();
         for j in 1..n {
-            sums(j + 1, sb, sa);
-            let (bs, b0, bn) = (&sb[slot(j - 1)], &sb[slot(j)], &sb[slot(j + 1)]);
-            let (as_, a0, an) = (&sa[slot(j - 1)], &sa[slot(j)], &sa[slot(j + 1)]);
-            for x in 0..cnt {
-                let (pos, t1, t2) =
-                    catmark::limit_regular_from_sums([bs[x], b0[x], bn[x]], [as_[x], a0[x], an[x]]);
+            sums(j + 1, sb[2], sa[2]);
+            let b = sb[0].iter().zip(sb[1].iter()).zip(sb[2].iter());
+            let a = sa[0].iter().zip(sa[1].iter()).zip(sa[2].iter());
+            for (x, (((&bs, &b0), &bn), ((&as_, &a0), &an))) in b.zip(a).enumerate() {
+                let (pos, t1, t2) = catmark::limit_regular_from_sums([bs, b0, bn], [as_, a0, an]);
                 let nrm = t1.cross(t2);
                 let len2 = nrm.length_squared();
                 if len2 > 0.0 && len2.is_finite() {
@@ -181,6 +206,8 @@ impl Worker {
                     bad.push((x as i32 + 1, j));
                 }
             }
+            sb.rotate_left(1);
+            sa.rotate_left(1);
         }
         // Degenerate tangents: those points exactly, through a ring.
         for &(i, j) in &bad {
@@ -199,37 +226,9 @@ impl Worker {
         j: i32,
         side: Option<(usize, usize)>,
     ) -> (Vec3A, Vec3A, Option<Vec3A>) {
-        let t = &self.t[self.cur];
-        // Counter-clockwise directions, starting after a missing one (boundary).
-        let present: [bool; 4] = std::array::from_fn(|d| t.edge_exists(i, j, d));
-        let start = (0..4)
-            .find(|&d| !present[(d + 3) % 4] && present[d])
-            .unwrap_or(0);
         let mut r = TableRing::default();
-        for k in 0..4 {
-            let d = (start + k) % 4;
-            if present[d] {
-                r.dirs[r.m] = d;
-                r.m += 1;
-            }
-        }
-        let boundary = r.m < 4;
-        let chaikin = self.method == CreaseMethod::Chaikin;
-        for k in 0..r.m {
-            let d = r.dirs[k];
-            let (ni, nj) = (i + DI[d], j + DJ[d]);
-            r.edges[k] = t.positions[t.at(ni, nj)].as_dvec3();
-            r.sharp[k] = t.edge_sharp(i, j, d);
-            // Far-end information only matters to the Chaikin rule.
-            if chaikin {
-                r.far[k] = far_info(t, &self.corners, ni, nj, (d + 2) % 4);
-            }
-            if !boundary || k + 1 < r.m {
-                let d2 = (d + 1) % 4;
-                r.diag[r.nd] = t.positions[t.at(i + DI[d] + DI[d2], j + DJ[d] + DJ[d2])].as_dvec3();
-                r.nd += 1;
-            }
-        }
+        let boundary = self.table_ring(i, j, &mut r);
+        let t = &self.t[self.cur];
         let center = t.positions[t.at(i, j)].as_dvec3();
         let idx = self.stencil_index(&r, boundary);
         let st = &self.stencils[idx].1;
@@ -257,6 +256,72 @@ impl Worker {
             Vec3A::from(nrm.as_vec3()),
             one_sided,
         )
+    }
+
+    /// The ring of grid point `(i, j)` (`0 <= i, j <= n`) of the current slate into `r`, and
+    /// whether it is a boundary ring (an edge missing).
+    #[inline]
+    fn table_ring(&self, i: i32, j: i32, r: &mut TableRing) -> bool {
+        let boundary = self.table_ring_config(i, j, r);
+        let t = &self.t[self.cur];
+        for k in 0..r.m {
+            let d = r.dirs[k];
+            r.edges[k] = t.positions[t.at(i + DI[d], j + DJ[d])].as_dvec3();
+            if !boundary || k + 1 < r.m {
+                let d2 = (d + 1) % 4;
+                r.diag[k] = t.positions[t.at(i + DI[d] + DI[d2], j + DJ[d] + DJ[d2])].as_dvec3();
+            }
+        }
+        boundary
+    }
+
+    /// [`Worker::table_ring`] without the points: what its stencil depends on (directions,
+    /// sharpness, far-end information, counts). A grid point's four neighbours lie inside the
+    /// table, so an edge exists where both its ends do.
+    #[inline]
+    fn table_ring_config(&self, i: i32, j: i32, r: &mut TableRing) -> bool {
+        let t = &self.t[self.cur];
+        debug_assert!(
+            (0..=t.grid_size as i32).contains(&i) && (0..=t.grid_size as i32).contains(&j)
+        );
+        let (k, s) = (t.at(i, j), t.stride);
+        // Neighbours and edge sharpness in direction order (E, N, W, S).
+        let nb = [k + 1, k + s, k - 1, k - s];
+        let sharp = [
+            t.horizontal_sharpness[k],
+            t.vertical_sharpness[k],
+            t.horizontal_sharpness[k - 1],
+            t.vertical_sharpness[k - s],
+        ];
+        let here = t.exists[k];
+        let present: [bool; 4] = std::array::from_fn(|d| here && t.exists[nb[d]]);
+        // Counter-clockwise directions, starting after a missing one (boundary).
+        let start = (0..4)
+            .find(|&d| !present[(d + 3) % 4] && present[d])
+            .unwrap_or(0);
+        r.m = 0;
+        for k in 0..4 {
+            let d = (start + k) % 4;
+            if present[d] {
+                r.dirs[r.m] = d;
+                r.m += 1;
+            }
+        }
+        let boundary = r.m < 4;
+        let chaikin = self.method == CreaseMethod::Chaikin;
+        for k in 0..r.m {
+            let d = r.dirs[k];
+            r.sharp[k] = sharp[d];
+            // Far-end information only matters to the Chaikin rule.
+            r.far[k] = if chaikin {
+                far_info(t, &self.corners, i + DI[d], j + DJ[d], (d + 2) % 4)
+            } else {
+                (0.0, 0)
+            };
+        }
+        // A diagonal after every edge but the last of a boundary ring.
+        r.nd = if boundary { r.m.saturating_sub(1) } else { r.m };
+        boundary
     }
 
     /// Index in the stencil cache of the limit stencil of the table ring `r`, computed and cached

@@ -43,6 +43,7 @@ impl Worker {
             let scratch = Scratch {
                 dirty: &mut self.dirty,
                 dirty_list: &mut self.dirty_list,
+                sharp_edges: &mut self.sharp_edges,
                 split: &mut self.split,
             };
             step_general(src, dst, &self.corners, self.method, scratch);
@@ -148,22 +149,29 @@ fn step_regular(src: &Table, dst: &mut Table, split: &mut Vec<Vec3A>) {
         split.resize(3 * ds, Vec3A::ZERO);
     }
     // Storage row y of dst is level coordinate y - 1: odd coordinates (even y) lie between split
-    // rows y / 2 and y / 2 + 1, even ones (odd y) at split row (y + 1) / 2.
-    let slot = |r: usize| (r % 3) * ds..(r % 3 + 1) * ds;
-    for (r, row) in src.positions[..ss * ss].chunks_exact(ss).enumerate() {
-        catmark::split_row(row, &mut split[slot(r)]);
-        if r == 0 {
-            continue;
+    // rows r - 1 and r, even ones (odd y) at split row r - 1. The three slots hold split rows
+    // r - 2, r - 1 and r, rotated after each source row.
+    let (s0, rest) = split[..3 * ds].split_at_mut(ds);
+    let (s1, s2) = rest.split_at_mut(ds);
+    let mut slots: [&mut [Vec3A]; 3] = [s0, s1, s2];
+    let mut rows = src.positions[..ss * ss].chunks_exact(ss);
+    let mut out = dst.positions[..ds * ds].chunks_exact_mut(ds);
+    if let (Some(r0), Some(r1)) = (rows.next(), rows.next()) {
+        catmark::split_row(r0, slots[0]);
+        catmark::split_row(r1, slots[1]);
+        if let Some(o) = out.next() {
+            catmark::split_rows_mid(slots[0], slots[1], o);
         }
-        let h = &split[..3 * ds];
-        if r >= 2 {
-            let y = 2 * r - 3;
-            let out = &mut dst.positions[y * ds..(y + 1) * ds];
-            catmark::split_rows_even(&h[slot(r - 2)], &h[slot(r - 1)], &h[slot(r)], out);
+    }
+    for row in rows {
+        catmark::split_row(row, slots[2]);
+        if let Some(o) = out.next() {
+            catmark::split_rows_even(slots[0], slots[1], slots[2], o);
         }
-        let y = 2 * r - 2;
-        let out = &mut dst.positions[y * ds..(y + 1) * ds];
-        catmark::split_rows_mid(&h[slot(r - 1)], &h[slot(r)], out);
+        if let Some(o) = out.next() {
+            catmark::split_rows_mid(slots[1], slots[2], o);
+        }
+        slots.rotate_left(1);
     }
     dst.exists[..ds * ds].fill(true);
 }
@@ -172,6 +180,7 @@ fn step_regular(src: &Table, dst: &mut Table, split: &mut Vec<Vec3A>) {
 struct Scratch<'a> {
     dirty: &'a mut Vec<bool>,
     dirty_list: &'a mut Vec<u32>,
+    sharp_edges: &'a mut Vec<(u32, u8)>,
     split: &'a mut Vec<Vec3A>,
 }
 
@@ -220,7 +229,7 @@ fn step_general(
     let n = src.grid_size as i32;
     // The smooth regular rules everywhere first; then the general rules where they differ.
     step_regular(src, dst, sc.split);
-    let missing = src.mark_dirty(sc.dirty, sc.dirty_list);
+    let missing = src.mark_dirty(sc.dirty, sc.dirty_list, sc.sharp_edges);
     let g = General {
         src,
         corners,
@@ -269,10 +278,31 @@ fn step_general(
         }
         general_vertex_point(g, dst, i, j);
     }
-    // Every edge with a dirty end, once: from its dirty end with the lower index. Horizontal edges
-    // of rows 0..=n and vertical edges of columns 0..=n (the outer ring's own edges have no
-    // children in the next table).
-    for &kk in sc.dirty_list.iter() {
+    if missing {
+        general_edges_near_missing(g, dst, sc.dirty, sc.dirty_list);
+    } else {
+        // Every point exists: a smooth edge of rows or columns 0..=n lies between two faces, and
+        // the regular pass computed its point alike; only the sharp edges need the general rule.
+        for &(k, dir) in sc.sharp_edges.iter() {
+            let (k, dir) = (k as usize, dir as usize);
+            let (i, j) = ((k % ss) as i32 - 1, (k / ss) as i32 - 1);
+            let row = if dir == 0 { j } else { i };
+            if (0..=n).contains(&row) && src.inside(i + DI[dir], j + DJ[dir]) {
+                general_edge_point(g, dst, sc.dirty, i, j, dir);
+            }
+        }
+    }
+    // The outer ends of crossing edges exist as edge points; new outer-ring vertices beyond
+    // (odd positions) are face points (already marked).
+}
+
+/// The general edge points of a table with missing points: every edge with a dirty end, once,
+/// from its dirty end with the lower index. Horizontal edges of rows 0..=n and vertical edges of
+/// columns 0..=n (the outer ring's own edges have no children in the next table).
+fn general_edges_near_missing(g: General<'_>, dst: &mut Table, dirty: &[bool], list: &[u32]) {
+    let (src, n) = (g.src, g.src.grid_size as i32);
+    let ss = src.stride;
+    for &kk in list.iter() {
         let kk = kk as usize;
         let (i, j) = ((kk % ss) as i32 - 1, (kk / ss) as i32 - 1);
         for d in 0..4 {
@@ -281,18 +311,16 @@ fn step_general(
                 continue;
             }
             let qk = src.at(qi, qj);
-            if sc.dirty[qk] && qk < kk {
+            if dirty[qk] && qk < kk {
                 continue;
             }
             let (ei, ej, dir) = if d < 2 { (i, j, d) } else { (qi, qj, d - 2) };
             let row = if dir == 0 { ej } else { ei };
             if (0..=n).contains(&row) {
-                general_edge_point(g, dst, sc.dirty, ei, ej, dir);
+                general_edge_point(g, dst, dirty, ei, ej, dir);
             }
         }
     }
-    // The outer ends of crossing edges exist as edge points; new outer-ring vertices beyond
-    // (odd positions) are face points (already marked).
 }
 
 /// Vertex point of patch point `(i, j)` by the general rules, and the child sharpness of its
@@ -314,16 +342,19 @@ fn general_vertex_point(g: General<'_>, dst: &mut Table, i: i32, j: i32) {
             ne += 1;
         }
     }
-    for d in 0..4 {
-        let d2 = (d + 1) % 4;
-        let (fi, fj) = (i + (DI[d] + DI[d2] - 1) / 2, j + (DJ[d] + DJ[d2] - 1) / 2);
-        if g.face_exists(fi, fj) {
-            f_pts[nf] = dst.positions[dst.at(2 * fi + 1, 2 * fj + 1)];
-            nf += 1;
-        }
-    }
     let mut c_sh = [0.0f32; 4];
     let rules = VertexRules::new(g.method, 0.0, &e_sh[..ne], &mut c_sh[..ne]);
+    // Only the smooth rule reads the face points (crease and corner rules do not).
+    if rules.parent.is_smooth() || rules.child.is_smooth() {
+        for d in 0..4 {
+            let d2 = (d + 1) % 4;
+            let (fi, fj) = (i + (DI[d] + DI[d2] - 1) / 2, j + (DJ[d] + DJ[d2] - 1) / 2);
+            if g.face_exists(fi, fj) {
+                f_pts[nf] = dst.positions[dst.at(2 * fi + 1, 2 * fj + 1)];
+                nf += 1;
+            }
+        }
+    }
     let v = src.positions[src.at(i, j)];
     let k = dst.at(2 * i, 2 * j);
     dst.positions[k] = catmark::vertex_point(v, &e_pts[..ne], &f_pts[..nf], &rules);
@@ -378,8 +409,9 @@ fn general_edge_point(g: General<'_>, dst: &mut Table, dirty: &[bool], i: i32, j
     let w = edge_crease_weight(s, [c0, c1]);
     let mut faces = [Vec3A::ZERO; 2];
     let mut nf = 0;
+    // The crease rule (weight 1) is the midpoint: the faces are not read.
     for (fi, fj) in sides {
-        if g.face_exists(fi, fj) {
+        if w != 1.0 && g.face_exists(fi, fj) {
             faces[nf] = dst.positions[dst.at(2 * fi + 1, 2 * fj + 1)];
             nf += 1;
         }

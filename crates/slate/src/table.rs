@@ -59,15 +59,21 @@ impl Table {
     }
 
     /// Prepares the table for grid size `n`. A table for the regular step needs no clearing
-    /// (it overwrites every point); sharpness is cleared only if a general step left some, and
-    /// then only on the band where it can be (see [`band`]). The Chaikin far information is only
+    /// (it overwrites every point); sharpness is cleared only if a gather or general step left
+    /// some (`dirty`), and then only on the band where it can be (see [`band`]; a table of grid
+    /// 4 or less is cleared whole, it is nearly all band). The Chaikin far information is only
     /// read under the Chaikin rule (`chaikin`), and then cleared for every table.
     pub(crate) fn reset(&mut self, n: usize, regular: bool, chaikin: bool) {
         debug_assert!(
             (n + 3) * (n + 3) <= self.positions.len(),
             "slate too small for grid {n}"
         );
-        if self.dirty && self.stride > 0 {
+        if self.dirty && self.stride > 0 && self.grid_size <= 4 {
+            // A small table is all band but its centre: cleared whole.
+            let len = self.stride * self.stride;
+            self.horizontal_sharpness[..len].fill(0.0);
+            self.vertical_sharpness[..len].fill(0.0);
+        } else if self.dirty && self.stride > 0 {
             // The band (see [`band`]), its rows as slices: rows -1, 0, n, n + 1 whole; columns
             // -1, 0, n, n + 1 of the rows between.
             let (n, s) = (self.grid_size, self.stride);
@@ -104,7 +110,7 @@ impl Table {
     }
 
     /// Sharpness of the edge from `(i,j)` in direction `d`.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn edge_sharp(&self, i: i32, j: i32, d: usize) -> f32 {
         match d {
             0 => self.horizontal_sharpness[self.at(i, j)],
@@ -138,7 +144,7 @@ impl Table {
 
     /// `true` if `(i, j)` is an interior point whose 8 neighbours exist and whose 4 edges are
     /// smooth: the regular rules and limit masks apply there exactly.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn is_plain(&self, i: i32, j: i32) -> bool {
         let k = self.at(i, j);
         let s = self.stride;
@@ -163,11 +169,19 @@ impl Table {
     }
 
     /// Marks the points whose rules are not the smooth regular ones: the ends of sharp edges and
-    /// the neighbours of missing points. Returns `true` if any point is missing.
+    /// the neighbours of missing points, and lists the sharp edges in `sharp` (storage index of
+    /// the edge's lower end and direction, 0 horizontal, 1 vertical). Returns `true` if any
+    /// point is missing.
     ///
-    /// Only the band can hold such points (see [`band`]), so only the band is scanned; `list`
-    /// remembers what was marked so that the next call clears just that.
-    pub(crate) fn mark_dirty(&self, dirty: &mut Vec<bool>, list: &mut Vec<u32>) -> bool {
+    /// Only the band can hold such points (see [`band`]), so only the band is scanned, line by
+    /// line in [`band`]'s order; `list` remembers what was marked so that the next call clears
+    /// just that.
+    pub(crate) fn mark_dirty(
+        &self,
+        dirty: &mut Vec<bool>,
+        list: &mut Vec<u32>,
+        sharp: &mut Vec<(u32, u8)>,
+    ) -> bool {
         #[cfg(debug_assertions)]
         self.check_band_invariant();
         if dirty.len() < self.positions.len() {
@@ -177,22 +191,45 @@ impl Table {
             dirty[k as usize] = false;
         }
         list.clear();
+        sharp.clear();
+        let (n, s) = (self.grid_size, self.stride);
+        let (hs, vs, ex) = (
+            &self.horizontal_sharpness[..s * s],
+            &self.vertical_sharpness[..s * s],
+            &self.exists[..s * s],
+        );
         let mut missing = false;
-        band(self.grid_size, |k| {
-            if self.horizontal_sharpness[k] != 0.0
-                || self.vertical_sharpness[k] != 0.0
-                || !self.exists[k]
-            {
-                missing |= self.mark_point(k, dirty, list);
+        let lines = [0, 1, n + 1, n + 2];
+        for r in lines {
+            let row = r * s..(r + 1) * s;
+            let cells = hs[row.clone()].iter().zip(&vs[row.clone()]).zip(&ex[row]);
+            for (x, ((&h, &v), &e)) in cells.enumerate() {
+                if h != 0.0 || v != 0.0 || !e {
+                    missing |= self.mark_point(r * s + x, dirty, list, sharp);
+                }
             }
-            true
-        });
+        }
+        for r in 2..=n {
+            for c in lines {
+                let k = r * s + c;
+                if hs[k] != 0.0 || vs[k] != 0.0 || !ex[k] {
+                    missing |= self.mark_point(k, dirty, list, sharp);
+                }
+            }
+        }
         missing
     }
 
     /// [`Table::mark_dirty`] at one band point (storage index `k`) that has a sharp edge or is
-    /// missing; returns `true` if it is missing.
-    fn mark_point(&self, k: usize, dirty: &mut [bool], list: &mut Vec<u32>) -> bool {
+    /// missing; returns `true` if it is missing. Out of line: most band points need nothing.
+    #[inline(never)]
+    fn mark_point(
+        &self,
+        k: usize,
+        dirty: &mut [bool],
+        list: &mut Vec<u32>,
+        sharp: &mut Vec<(u32, u8)>,
+    ) -> bool {
         let s = self.stride;
         let len = s * s;
         let mut set = |k: usize| {
@@ -202,12 +239,14 @@ impl Table {
             }
         };
         if self.horizontal_sharpness[k] != 0.0 {
+            sharp.push((k as u32, 0));
             set(k);
             if k + 1 < len {
                 set(k + 1);
             }
         }
         if self.vertical_sharpness[k] != 0.0 {
+            sharp.push((k as u32, 1));
             set(k);
             if k + s < len {
                 set(k + s);

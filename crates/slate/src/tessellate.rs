@@ -208,7 +208,8 @@ pub fn tessellate_layout_into(
                 };
                 let visible = !quads.is_empty();
                 let e = depth - p.level;
-                run_patch(&mut w, src, p, e, &out, quads);
+                w.gather_with(src, p.face, &layout.plans[k], &layout.plan_edges);
+                run_patch(&mut w, p, e, &out, quads);
                 if visible {
                     corner_slots(1 << e, &w.sided_points, k as u32, &mut acc);
                 }
@@ -228,12 +229,12 @@ pub fn tessellate_layout_into(
     crate::uv::quad_uvs(mesh, layout, result)
 }
 
-/// Gathers, subdivides and evaluates one patch; writes the points it owns and its quads, and
-/// leaves in the worker's `sided_points` the grid points where the limit surface has a crease or
-/// a corner, with the one-sided normal of this patch's side (visible patches only).
-fn run_patch(wk: &mut Worker, src: &Mesh, p: &Patch, e: Depth, out: &SharedOut, quads: &mut [u32]) {
+/// Subdivides and evaluates one patch (gathered into the worker's slate 0); writes the points
+/// it owns and its quads, and leaves in the worker's `sided_points` the grid points where the
+/// limit surface has a crease or a corner, with the one-sided normal of this patch's side
+/// (visible patches only).
+fn run_patch(wk: &mut Worker, p: &Patch, e: Depth, out: &SharedOut, quads: &mut [u32]) {
     let w = &mut *wk;
-    w.gather(src, p.face);
     for _ in 0..e {
         w.step();
     }

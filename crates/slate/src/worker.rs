@@ -32,6 +32,8 @@ pub struct Worker {
     pub(crate) dirty: Vec<bool>,
     /// Indices set in `dirty` (cleared by the next marking).
     pub(crate) dirty_list: Vec<u32>,
+    /// The sharp edges of the table last marked (see `Table::mark_dirty`).
+    pub(crate) sharp_edges: Vec<(u32, u8)>,
     /// Three split rows of the separable regular step (`step_regular`).
     pub(crate) split: Vec<Vec3A>,
     /// Three rows of sums of the separable regular limit masks (`limit_interior`).
@@ -66,6 +68,7 @@ impl Worker {
             ids: Vec::new(),
             dirty: Vec::new(),
             dirty_list: Vec::new(),
+            sharp_edges: Vec::new(),
             split: Vec::new(),
             sum_b: Vec::new(),
             sum_a: Vec::new(),
@@ -84,14 +87,16 @@ impl Worker {
     }
 
     /// Most bytes the worker's scratch can reach besides the tables and corner arrays (capacity
-    /// for `max_depth`): the dirty mask and its list, the rolling rows of the regular step and of the
-    /// limit sums, the Chaikin far information and a full stencil cache.
+    /// for `max_depth`): the dirty mask and its list, the list of sharp edges (two per band
+    /// point), the rolling rows of the regular step and of the limit sums, the Chaikin far
+    /// information and a full stencil cache.
     pub fn scratch_bytes(&self) -> usize {
         let (side, cap) = (self.maxn + 3, (self.maxn + 3) * (self.maxn + 3));
         let v = std::mem::size_of::<Vec3A>();
         // A table ring has at most 4 edges and 4 diagonals: 6 + 4 rows of 9 weights.
         let stencil = std::mem::size_of::<(StencilKey, QuadRingStencil)>() + 10 * 9 * 8;
         cap + 8 * side * 4
+            + 2 * (8 * self.maxn + 8) * std::mem::size_of::<(u32, u8)>()
             + 3 * side * v
             + 6 * self.maxn * v
             + 2 * 4 * (self.maxn + 1) * std::mem::size_of::<(f32, u32)>()

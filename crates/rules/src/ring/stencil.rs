@@ -45,6 +45,10 @@ pub struct QuadRingStencil {
     /// Rows of `1 + m + nd` weights (centre, edges, diagonals): position, t1, t2, u1, u2 (other
     /// crease side; zero rows otherwise), refined centre, refined edges `0..m`.
     w: Vec<f64>,
+    /// `max_i sum_k |w_ik| + |w_ck|` over the refined edges' rows `i` and the refined centre's
+    /// row `c`: bounds the refined ring's spread, `|e_i - c| <= spread * max_k |p_k|` (see
+    /// [`QuadRingStencil::quick_normal`]).
+    spread: f64,
 }
 
 impl QuadRingStencil {
@@ -110,6 +114,11 @@ impl QuadRingStencil {
                 put(Self::FIXED_ROWS + i, ring.edges[i]);
             }
         }
+        let abs_sum = |r: usize| w[r * np..(r + 1) * np].iter().map(|x| x.abs()).sum::<f64>();
+        let centre = abs_sum(5);
+        let spread = (0..m)
+            .map(|i| abs_sum(Self::FIXED_ROWS + i) + centre)
+            .fold(0.0, f64::max);
         QuadRingStencil {
             m,
             nd,
@@ -117,6 +126,7 @@ impl QuadRingStencil {
             crease_sides,
             sides,
             w,
+            spread,
         }
     }
 
@@ -141,6 +151,20 @@ impl QuadRingStencil {
         diag: &[DVec3],
         faces: &mut Vec<DVec3>,
     ) -> (DVec3, DVec3) {
+        self.evaluate(center, edges, diag, faces, true).0
+    }
+
+    /// [`QuadRingStencil::limit_sided`]; with `quick`, through [`QuadRingStencil::quick_normal`]
+    /// where it decides (the same bits, checked by the tests against `quick == false`), and
+    /// whether it did.
+    fn evaluate(
+        &self,
+        center: DVec3,
+        edges: &[DVec3],
+        diag: &[DVec3],
+        faces: &mut Vec<DVec3>,
+        quick: bool,
+    ) -> ((DVec3, DVec3), bool) {
         assert!(
             edges.len() == self.m && diag.len() == self.nd,
             "ring does not match the stencil's configuration"
@@ -163,12 +187,34 @@ impl QuadRingStencil {
         let pts = &*pts;
         let row = |r: usize| {
             let w = &self.w[r * np..(r + 1) * np];
+            if let (Ok(w), Ok(p)) = (<&[f64; 9]>::try_from(w), <&[DVec3; 9]>::try_from(pts)) {
+                // The table's ring (4 edges, 4 diagonals): the same sum, unrolled.
+                let mut acc = p[0] * w[0];
+                for (pk, wk) in p[1..].iter().zip(&w[1..]) {
+                    acc += *pk * *wk;
+                }
+                return acc;
+            }
             let mut acc = pts[0] * w[0];
             for k in 1..np {
                 acc += pts[k] * w[k];
             }
             acc
         };
+        let parts = LimitParts {
+            pos: row(Self::POS),
+            t1: row(1),
+            t2: row(2),
+            other: self.crease_sides.then(|| (row(3), row(4))),
+            sides: Sides::One,
+        };
+        if quick
+            && !self.sides.is_sided()
+            && let Some(normal) = self.quick_normal(&parts, pts)
+        {
+            faces.clear();
+            return ((parts.pos, normal), true);
+        }
         let mut refined = [DVec3::ZERO; 8];
         let mut refined_vec = Vec::new();
         let refined: &mut [DVec3] = if self.m <= refined.len() {
@@ -180,16 +226,35 @@ impl QuadRingStencil {
         for (i, e) in refined.iter_mut().enumerate() {
             *e = row(Self::FIXED_ROWS + i);
         }
-        let parts = LimitParts {
-            pos: row(Self::POS),
-            t1: row(1),
-            t2: row(2),
-            other: self.crease_sides.then(|| (row(3), row(4))),
-            sides: Sides::One,
-        };
         let c = row(5);
         sided_normals(&parts, &self.sides, c, refined, self.num_faces, faces);
-        finish_limit(&parts, c, refined, self.num_faces)
+        (finish_limit(&parts, c, refined, self.num_faces), false)
+    }
+
+    /// [`finish_limit`]'s normal without the refined ring, where that gives the same bits: the
+    /// ring only orients degenerate tangents, and sets their threshold through its spread
+    /// `scale = max_i |e_i - c|^2`. [`QuadRingStencil::spread`] bounds it from above (with a
+    /// margin for rounding), so a tangent cross product longer than the threshold of the bound
+    /// is longer than the threshold of `scale` too, and is normalised exactly as
+    /// [`finish_limit`] does. `None` where the bound cannot decide (degenerate tangents): the
+    /// caller takes the full path.
+    #[inline]
+    fn quick_normal(&self, parts: &LimitParts, pts: &[DVec3]) -> Option<DVec3> {
+        let p2 = pts.iter().map(|p| p.length_squared()).fold(0.0, f64::max);
+        let bound = 1.0201 * self.spread * self.spread * p2;
+        let threshold = 1e-12 * bound.max(f64::MIN_POSITIVE);
+        let unit = |n: DVec3| {
+            let len = n.length();
+            (len > threshold && len.is_finite()).then(|| n / len)
+        };
+        let mut normal = unit(parts.t1.cross(parts.t2))?;
+        if let Some((u1, u2)) = parts.other {
+            let sum = normal + unit(u1.cross(u2))?;
+            if sum.length_squared() > 1e-12 {
+                normal = sum.normalize();
+            }
+        }
+        Some(normal)
     }
 }
 
@@ -273,6 +338,68 @@ mod tests {
         }
         assert!(checked > 300);
         assert!(sided >= 20, "{sided} sided configurations");
+    }
+
+    /// The quick normal (no refined ring) gives the bits of the full path, on rings of every
+    /// scale and offset and on degenerate ones (flat, collapsed), where it must hand over.
+    #[test]
+    fn quick_normal_keeps_every_bit() {
+        let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+        let choices = [0.0f32, 0.0, 0.5, 1.0, 2.0, 3.0, 6.0, 10.0];
+        let (mut quick, mut full) = (Vec::new(), Vec::new());
+        let mut decided = 0;
+        for case in 0..600 {
+            let method = if case % 3 == 0 {
+                CreaseMethod::Chaikin
+            } else {
+                CreaseMethod::Uniform
+            };
+            let boundary = case % 7 == 0;
+            let m = if case % 2 == 0 { 4 } else { 3 + case % 4 };
+            let nd = if boundary { m - 1 } else { m };
+            let sharp: Vec<f32> = (0..m)
+                .map(|_| choices[(rng.next() * choices.len() as f64) as usize])
+                .collect();
+            let far = vec![(0.0, 0); m];
+            let st = QuadRingStencil::new(method, boundary, &sharp, &far, nd);
+            // Scales from 1e-6 to 1e3, offsets from 1e-2 to 1e2, and every tenth ring flat or
+            // collapsed.
+            let scale = 10f64.powi((case % 10) as i32 - 6);
+            let offset = rng.point(10f64.powi(((case / 10) % 5) as i32 - 2));
+            let squash = match case % 10 {
+                0 => DVec3::new(1.0, 1.0, 0.0),
+                5 => DVec3::ZERO,
+                _ => DVec3::ONE,
+            };
+            let pt = |rng: &mut Rng, a: f64, r: f64| {
+                offset
+                    + (DVec3::new(a.cos() * r, a.sin() * r, 0.0) + rng.point(0.3)) * squash * scale
+            };
+            let center = pt(&mut rng, 0.0, 0.0);
+            let edges: Vec<DVec3> = (0..m)
+                .map(|i| pt(&mut rng, std::f64::consts::TAU * i as f64 / m as f64, 1.0))
+                .collect();
+            let diag: Vec<DVec3> = (0..nd)
+                .map(|i| {
+                    pt(
+                        &mut rng,
+                        std::f64::consts::TAU * (i as f64 + 0.5) / m as f64,
+                        1.4,
+                    )
+                })
+                .collect();
+            let (a, used) = st.evaluate(center, &edges, &diag, &mut quick, true);
+            let (b, _) = st.evaluate(center, &edges, &diag, &mut full, false);
+            let bits = |v: DVec3| v.to_array().map(f64::to_bits);
+            assert_eq!(
+                (bits(a.0), bits(a.1)),
+                (bits(b.0), bits(b.1)),
+                "case {case}: {a:?} vs {b:?}"
+            );
+            assert_eq!(quick, full, "case {case}");
+            decided += usize::from(used);
+        }
+        assert!(decided > 150, "{decided} rings through the quick normal");
     }
 
     #[test]
