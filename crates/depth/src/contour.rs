@@ -22,9 +22,10 @@ use crate::pixel_error::PatchError;
 
 /// The normal turn across one drawn triangle of face `e` (radians) at each depth
 /// `0..out.len()` (see the module documentation): `8 δ_d / h_d`, with `h_d` the edge length of
-/// the face's grid at depth `d` (the square root of the face's limit area per quad patch, halved
-/// per level), and never more than half the turn of the depth above. Zero for a face without
-/// area elements.
+/// the face's grid at depth `d` — `sqrt(area / weight)` at depth 0, the side of a square of the
+/// limit area drawn as two triangles (a quad patch; a Loop triangle's weight is 1/2), halved per
+/// level — and never more than half the turn of the depth above. Zero for a face without area
+/// elements.
 pub fn contour_turns(e: &PatchError, out: &mut [f32]) {
     let area: f32 = e.shading.elements.iter().map(|el| el.area).sum();
     let h0 = (area / e.shading.weight.max(f32::MIN_POSITIVE)).sqrt();
