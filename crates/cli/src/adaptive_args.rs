@@ -32,7 +32,7 @@ pub struct AdaptiveArgs {
     pub pixel_error: Option<f32>,
     /// With --pixel-error: also keep the normals interpolated across the drawn triangles within
     /// DEG degrees of the limit normals on 99 % of the visible pixels (180: silhouettes only)
-    /// [default: 2].
+    /// [default: 10].
     #[arg(long, value_name = "DEG", requires = "pixel_error")]
     pub shading_error: Option<f32>,
     /// Leave out back faces instead of drawing them at depth 0.

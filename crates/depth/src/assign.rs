@@ -9,16 +9,23 @@ use glam::Vec3;
 use subdiv_mesh::{Camera, Mesh};
 
 use crate::Depth;
+use crate::contour::contour_pixels;
 use crate::curvature::VertexData;
-use crate::pixel_error::{PatchErrors, pixel_error_depth};
+use crate::pixel_error::{PatchErrors, outside_view, pixel_error_depth};
 use crate::shading::raise_for_shading;
 use crate::sphere::Sphere;
 
-/// Default [`DepthParams::shading_error_deg`]: 2°. A normal off by `θ` moves diffuse intensity
-/// `n · l` by at most `sin θ` of full scale: 3.5 % (9 of 255 levels) at 2°, about the step
-/// smooth shading shows as a visible facet edge on a gradient; the pawn and helmet40 tables of
-/// docs/performance.md show the triangles each tolerance costs.
-pub const DEFAULT_SHADING_ERROR_DEG: f32 = 2.0;
+/// Default [`DepthParams::shading_error_deg`]: 10°, the 99th percentile of the image's normal
+/// error that the pixel-error mode aims at. Below about 5° it is out of reach on scenes with
+/// many silhouettes whatever the depth (helmet40: uniform depth 5 has 4.7°, its contour pixels
+/// are 15 % of the image), and the budget then raises every face it counts to `max_depth`
+/// without lowering the percentile: 2° and 4° draw 1.78 M and 1.69 M triangles there for 8.1°
+/// and 8.5°, 8° 1.25 M for 8.1°, 10° 1.04 M for 9.1° (docs/performance.md, "Line pixels").
+/// 10° is the smallest swept tolerance with which the mode meets issue 12's targets on both the
+/// pawn and helmet40 (8° misses helmet40 by 1.4 points); a normal off by `θ` moves diffuse
+/// intensity `n · l` by at most `sin θ` of full scale (17 % at 10°), so lower it for still
+/// images of smooth objects (the pawn's top view: 2° draws 131 k triangles for 1.0°).
+pub const DEFAULT_SHADING_ERROR_DEG: f32 = 10.0;
 
 /// Default [`DepthParams::cone_aperture_deg`]: 10°. At the curvature depth the face normals
 /// around a vertex lie within this angle of its limit normal, and the chord of a sub-patch `rho`
@@ -222,7 +229,8 @@ pub fn assign(
         let r = projected_radius(camera, sphere);
         if let (Some(px), Some(errs)) = (p.pixel_error, errors) {
             let e = &errs.faces[f.idx()];
-            d = if errs.closed && e.faces_away(camera, sphere) {
+            // Off screen (on any surface) or provably hidden (closed surface): no screen error.
+            d = if outside_view(camera, sphere) || (errs.closed && e.faces_away(camera, sphere)) {
                 0
             } else {
                 pixel_error_depth(camera, sphere, e, px, p.max_depth)
@@ -239,7 +247,24 @@ pub fn assign(
         out.curvature.push(curv);
     }
     if let (Some(_), Some(errs)) = (p.pixel_error, errors) {
-        raise_for_shading(camera, errs, &out.active, &mut out.depth, p.max_depth);
+        // The contour runs through the silhouette faces (crate::contour).
+        let contour: Vec<f32> = (out.class.iter().zip(&out.radius))
+            .map(|(&c, &r)| {
+                if c == Class::Silhouette {
+                    contour_pixels(r)
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        raise_for_shading(
+            camera,
+            errs,
+            &out.active,
+            &contour,
+            &mut out.depth,
+            p.max_depth,
+        );
     }
     out
 }

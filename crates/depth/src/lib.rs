@@ -4,7 +4,8 @@
 //! Section 3.1: a curvature depth per cage vertex from the cone of normals, computed once per
 //! mesh ([`VertexData`]); per frame a back/front/silhouette classification and a projected-size
 //! adjustment ([`assign`]), or the least depth within a screen-space error ([`DepthParams::pixel_error`])
-//! raised where shading needs it over the whole image ([`shading`]);
+//! raised where shading needs it over the whole image ([`shading`], with the pixels along
+//! silhouettes: [`contour`]);
 //! and frame-rate control by feedback ([`FrameRateController`]). A Degree of Interest can drive
 //! the depths instead ([`depths_from_face_values`]).
 //!
@@ -31,6 +32,7 @@
 //! ```
 
 mod assign;
+pub mod contour;
 mod controller;
 mod curvature;
 mod doi;
@@ -46,7 +48,9 @@ pub use assign::{
 pub use controller::FrameRateController;
 pub use curvature::VertexData;
 pub use doi::depths_from_face_values;
-pub use pixel_error::{NormalCone, PatchError, PatchErrors, pixel_error_depth, screen_scale};
+pub use pixel_error::{
+    NormalCone, PatchError, PatchErrors, outside_view, pixel_error_depth, screen_scale,
+};
 pub use shading::{AreaElement, ScreenArea, ShadingError, raise_for_shading};
 pub use sphere::{SPHERE_FACE_BUDGET, SPHERE_LEVELS, Sphere, face_spheres, face_spheres_scheme};
 pub use subdiv_rules::{Depth, MAX_DEPTH};

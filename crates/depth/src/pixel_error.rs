@@ -130,6 +130,26 @@ pub fn screen_scale(camera: &Camera, sphere: &Sphere) -> f32 {
     camera.focal_pixels() * reach / (z * z)
 }
 
+/// `true` when `sphere` lies wholly outside `camera`'s view: behind the eye, or beyond one of
+/// the four planes through the eye and the image's edges. Nothing inside it reaches a pixel, so
+/// a face whose sphere (which contains its limit surface, hence every point drawn for it at any
+/// depth, and the fans `subdiv-stitch` draws on its side) is outside has no screen error at
+/// depth 0.
+pub fn outside_view(camera: &Camera, sphere: &Sphere) -> bool {
+    // View space: the eye at the origin looking down -Z; `z` is the depth ahead of the eye.
+    let c = camera.view_matrix().transform_point3(sphere.centre);
+    let (x, y, z) = (c.x, c.y, -c.z);
+    let r = sphere.radius;
+    if z < -r {
+        return true;
+    }
+    let f = camera.focal_pixels();
+    let (hw, hh) = (camera.width as f32 * 0.5, camera.height as f32 * 0.5);
+    // Signed distances to the side planes `x f = ±z hw` and `y f = ±z hh`, positive outside.
+    let (nx, ny) = ((f * f + hw * hw).sqrt(), (f * f + hh * hh).sqrt());
+    (x.abs() * f - z * hw) / nx > r || (y.abs() * f - z * hh) / ny > r
+}
+
 /// The least depth whose chord error `e.deviation[l]`, projected by [`screen_scale`], is at most
 /// `px` pixels; `max_depth` when none is.
 pub fn pixel_error_depth(
@@ -196,6 +216,56 @@ mod tests {
             radius: 1.0,
         };
         assert!(screen_scale(&c, &at_eye).is_infinite());
+    }
+
+    #[test]
+    fn outside_view_only_when_no_point_of_the_sphere_projects_into_the_image() {
+        let c = cam(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO);
+        let mut seed = 11u32;
+        let mut rnd = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            seed as f32 / u32::MAX as f32 * 2.0 - 1.0
+        };
+        let inside = |p: Vec3| {
+            c.project(p)
+                .is_some_and(|q| q.x >= 0.0 && q.y >= 0.0 && q.x <= 800.0 && q.y <= 600.0)
+        };
+        let (mut culled, mut kept) = (0, 0);
+        for _ in 0..400 {
+            let s = Sphere {
+                centre: Vec3::new(rnd() * 20.0, rnd() * 15.0, rnd() * 20.0),
+                radius: 0.2 + rnd().abs() * 2.0,
+            };
+            if outside_view(&c, &s) {
+                culled += 1;
+                // No point of the sphere lands in the image.
+                for _ in 0..300 {
+                    let d = Vec3::new(rnd(), rnd(), rnd()).clamp_length_max(1.0);
+                    assert!(!inside(s.centre + d * s.radius), "{s:?}");
+                }
+            } else {
+                kept += 1;
+            }
+        }
+        assert!(culled > 50 && kept > 50, "{culled} {kept}");
+        // Tight: a sphere just beyond the right edge is outside, one reaching into it is not
+        // (the side plane is slanted: its distance from a point `dx` beyond the edge at depth
+        // 10 is `dx f / sqrt(f² + 400²)`, about 0.79 dx here).
+        let edge = |x: f32| Sphere {
+            centre: Vec3::new(x, 0.0, 0.0),
+            radius: 0.5,
+        };
+        let half_width = 10.0 * 400.0 / c.focal_pixels();
+        assert!(outside_view(&c, &edge(half_width + 0.7)));
+        assert!(!outside_view(&c, &edge(half_width + 0.4)));
+        // Behind the eye.
+        let behind = Sphere {
+            centre: Vec3::new(0.0, 0.0, 11.0),
+            radius: 0.5,
+        };
+        assert!(outside_view(&c, &behind));
     }
 
     #[test]

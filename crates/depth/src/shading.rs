@@ -24,7 +24,10 @@
 //!   a pixel there. The visible pixels `V` and each face's outlier pixels at every depth follow.
 //!   Starting from the silhouette depths, faces are raised greedily — the raise with the most
 //!   outlier pixels removed per added triangle first, looking ahead over every deeper depth —
-//!   until the outlier pixels are at most [`MODELLED_SHARE`] × 1 % of `V`.
+//!   until the outlier pixels are at most [`MODELLED_SHARE`] × 1 % of `V`. The pixels
+//!   straddling a silhouette, which no area element sees, join the count as the *contour term*
+//!   ([`crate::contour`]): a silhouette face's contour pixels are outliers at every depth where
+//!   the normal's turn across one drawn triangle exceeds the tolerance.
 //!
 //! With at most 1 % of the covered pixels beyond the tolerance, their 99th percentile is within
 //! it. Half of that 1 % is left for what the model does not see: occlusion beyond the coarse
@@ -38,6 +41,7 @@ use glam::{Mat4, Vec2, Vec3};
 use subdiv_mesh::Camera;
 
 use crate::Depth;
+use crate::contour::contour_turns;
 use crate::pixel_error::PatchErrors;
 
 /// The share of the visible pixels whose shading error may exceed the tolerance: 1 %, as the
@@ -278,12 +282,16 @@ fn best_raise(f: usize, d: Depth, outliers: &[f32], e: &ShadingError, max: Depth
 /// Raises `depth` (one entry per face, the silhouette depths) until the outlier pixels of the
 /// frame are at most [`MODELLED_SHARE`] × [`OUTLIER_SHARE`] of its visible pixels, greedily by
 /// outlier pixels removed per added triangle (see the module documentation). `active[f]` is
-/// whether face `f` is drawn; depths never exceed `max_depth`. Returns the estimated share of
-/// outlier pixels after the raise.
+/// whether face `f` is drawn; `contour_px[f]` the length in pixels of the contour through face
+/// `f` (0 when it holds none; missing entries count 0), whose visible share counts as outlier
+/// pixels at the depths where the face's contour turn exceeds the tolerance
+/// ([`crate::contour`]); depths never exceed `max_depth`. Returns the estimated share of outlier
+/// pixels after the raise.
 pub fn raise_for_shading(
     camera: &Camera,
     errors: &PatchErrors,
     active: &[bool],
+    contour_px: &[f32],
     depth: &mut [Depth],
     max_depth: Depth,
 ) -> f32 {
@@ -305,22 +313,39 @@ pub fn raise_for_shading(
     );
     let mut next = densities.iter();
     let mut table = vec![0.0f32; faces.len() * levels];
-    for (f, e) in faces.iter().map(|p| &p.shading).enumerate() {
+    let mut turns = vec![0.0f32; levels];
+    let tolerance = errors.shading_tolerance;
+    for (f, p) in faces.iter().enumerate() {
         if !is_active(f) {
             continue;
         }
+        let e = &p.shading;
         let depths = e.depths();
         let row = &mut table[f * levels..(f + 1) * levels];
+        // Projected and visible pixels of the face, for the visible share of its contour.
+        let (mut projected, mut seen) = (0.0f32, 0.0f32);
         for (k, el) in e.elements.iter().enumerate() {
             let density = next.next().copied().unwrap_or(0.0);
             if density == 0.0 {
                 continue;
             }
+            seen += el.area * density;
+            projected += el.area * screen.density(el);
             visible += (el.area * density) as f64;
             let s = e.scale(el, density);
             let areas = &e.outlier_area[k * depths * e.scales..(k + 1) * depths * e.scales];
             for (o, a) in row.iter_mut().zip(areas.chunks(e.scales)) {
                 *o += a[s] * density;
+            }
+        }
+        let contour = contour_px.get(f).copied().unwrap_or(0.0);
+        if contour > 0.0 && seen > 0.0 && tolerance < std::f32::consts::PI {
+            let pixels = contour * (seen / projected.max(seen));
+            contour_turns(p, &mut turns);
+            for (o, &t) in row.iter_mut().zip(&turns) {
+                if t > tolerance {
+                    *o += pixels;
+                }
             }
         }
         outlier += row[(depth[f] as usize).min(levels - 1)] as f64;
@@ -479,14 +504,14 @@ mod tests {
         // Cells of 1 mm: a pixel (about 2 cm at this distance) holds many, so scale 1 is read
         // and nothing is raised.
         let mut depth = vec![0u8; faces.len()];
-        raise_for_shading(&c, &closed(faces.clone()), &active, &mut depth, 3);
+        raise_for_shading(&c, &closed(faces.clone()), &active, &[], &mut depth, 3);
         assert!(depth.iter().all(|&d| d == 0), "{depth:?}");
         // Cells of 10 cm are larger than a pixel: scale 0 is read and the face is raised.
         for f in &mut faces {
             f.shading.elements[0].cell = 0.1;
         }
         let mut depth = vec![0u8; faces.len()];
-        raise_for_shading(&c, &closed(faces), &active, &mut depth, 3);
+        raise_for_shading(&c, &closed(faces), &active, &[], &mut depth, 3);
         assert_eq!(depth[100], 1);
     }
 
@@ -504,7 +529,7 @@ mod tests {
         faces.push(face(0.2, [o, o, o, 0.0]));
         let active = vec![true; faces.len()];
         let mut depth = vec![0u8; faces.len()];
-        let left = raise_for_shading(&c, &closed(faces.clone()), &active, &mut depth, 3);
+        let left = raise_for_shading(&c, &closed(faces.clone()), &active, &[], &mut depth, 3);
         // Both must go: the cheap one to 1, the dear one to 3 (nothing in between helps).
         assert_eq!(&depth[100..], &[1, 3]);
         assert!(depth[..100].iter().all(|&d| d == 0));
@@ -513,22 +538,22 @@ mod tests {
         let small = 0.1 * o * share / 0.01;
         faces[101] = face(0.2, [small, small, small, 0.0]);
         let mut depth = vec![0u8; faces.len()];
-        raise_for_shading(&c, &closed(faces.clone()), &active, &mut depth, 3);
+        raise_for_shading(&c, &closed(faces.clone()), &active, &[], &mut depth, 3);
         assert_eq!(&depth[100..], &[1, 0]);
         // Hidden (facing away) or inactive faces are never raised.
         let mut hidden = faces.clone();
         hidden[100].shading.elements[0].normal = -Vec3::Z;
         let mut depth = vec![0u8; faces.len()];
-        raise_for_shading(&c, &closed(hidden), &active, &mut depth, 3);
+        raise_for_shading(&c, &closed(hidden), &active, &[], &mut depth, 3);
         assert_eq!(depth[100], 0);
         let mut off = active.clone();
         off[100] = false;
         let mut depth = vec![0u8; faces.len()];
-        raise_for_shading(&c, &closed(faces.clone()), &off, &mut depth, 3);
+        raise_for_shading(&c, &closed(faces.clone()), &off, &[], &mut depth, 3);
         assert_eq!(depth[100], 0);
         // Never beyond the cap, and depths already deeper stay.
         let mut depth = vec![2u8; faces.len()];
-        raise_for_shading(&c, &closed(faces), &active, &mut depth, 2);
+        raise_for_shading(&c, &closed(faces), &active, &[], &mut depth, 2);
         assert!(depth.iter().all(|&d| d == 2));
     }
 }

@@ -7,11 +7,11 @@
 //! Vulkan driver the test prints a note and passes unless `SUBDIV_VK_REQUIRE_DRIVER=1`.
 //!
 //! **Ignored: the shading bound does not hold yet** (2026-11-30): the silhouette bound holds on
-//! every cage, but `shading_deg_p99` exceeds `DEG + MARGIN_DEG` on 17 of 39 cages at 2° and 8
-//! of 39 at 5° (up to 23.4°, catmark_cube_creases1; docs/figures/quality_shading_bound_test.txt).
-//! The tail the model leaves out dominates at this size: pixels straddling sharp creases and
-//! silhouettes, whose mean normal moves with the sub-pixel position of the line (see
-//! docs/performance.md, "Re-measured with the screen-space shading bound").
+//! every cage, but `shading_deg_p99` exceeds `DEG + MARGIN_DEG` on 14 of 39 cages at 2° and 7
+//! of 39 at 5° with the contour term of the model (17 and 8 before it; up to 23.4°,
+//! catmark_cube_creases1; docs/figures/quality_shading_bound_test.txt). The model now counts
+//! the pixels straddling silhouettes (`subdiv_depth::contour`) but not those straddling sharp
+//! crease lines, which dominate at this size (see docs/performance.md, "Line pixels").
 //! `cargo test -p subdiv --test shading_error_bound -- --ignored` (about 4 minutes here).
 
 use std::path::{Path, PathBuf};
