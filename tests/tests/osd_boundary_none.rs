@@ -165,6 +165,7 @@ fn adaptive_frames_hide_the_faces_the_uniform_path_hides() {
             break;
         }
     }
+    eprintln!("{cages} fixture cages, {random} random none cages ({hiding} hiding faces)");
     assert!(
         failures.is_empty(),
         "{} disagreements:\n{}",
