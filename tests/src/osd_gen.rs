@@ -19,6 +19,11 @@
 //! sharpness), and now and then a bare vertex; subdiv
 //! refines them as OpenSubdiv does (`PolygonSoup::split_nonmanifold`). Cages subdiv refuses
 //! (the non-manifold configurations it does not support, see there) are drawn again.
+//!
+//! Of the cages with `interpolateboundary none`, a share
+//! ([`boundary_none::SHARP_NONE_PERCENT`], from a stream of their own) get infinite crease
+//! tags on every boundary edge, or on every boundary edge at a few boundary vertices: vertices
+//! whose faces OpenSubdiv draws under `none`.
 
 use std::f64::consts::TAU;
 
@@ -60,9 +65,19 @@ pub fn random_cage(seed: u64, index: u64) -> OsdCage {
         }
         jitter(&mut rng, &mut cage);
         add_tags(&mut rng, &mut cage);
-        if cage.mesh().is_ok() {
-            return cage;
+        if cage.mesh().is_err() {
+            continue;
         }
+        // Its own stream too: the other cages stay the ones earlier runs drew.
+        let mut none_rng = Rng::for_case(seed ^ 0x0B0D_0000, index);
+        if cage.boundary == Some(0) && none_rng.chance(boundary_none::SHARP_NONE_PERCENT) {
+            let mut sharp = cage.clone();
+            boundary_none::sharpen_boundary(&mut none_rng, &mut sharp);
+            if sharp.mesh().is_ok() {
+                return sharp;
+            }
+        }
+        return cage;
     }
 }
 
@@ -553,5 +568,6 @@ fn add_tags(rng: &mut Rng, cage: &mut OsdCage) {
     }
 }
 
+pub mod boundary_none;
 #[cfg(test)]
 mod tests;

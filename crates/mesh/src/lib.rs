@@ -17,6 +17,9 @@
 //! - **explicit boundary half-edges**: every edge has two half-edges; the side without a face is
 //!   a boundary half-edge ([`FaceId::NONE`]), linked into closed boundary loops;
 //! - **properties as arrays indexed by handle**: `handle.idx()` indexes every per-element array.
+//! - **`interpolateboundary none` as holes**: the faces OpenSubdiv hides under
+//!   [`BoundaryInterpolation::None`] are hole faces of the mesh (one rule, applied when the mesh
+//!   is built), so no tessellator has a rule of its own for them.
 //! - **face-varying data** ([`FaceVarying`], OBJ `vt`): when present, one value index per face
 //!   corner in face order, every index in range (a bad `vt` index is a [`MeshError`] with its line).
 //!

@@ -27,7 +27,10 @@ pub use traverse::Outgoing;
 ///   counter-clockwise order, whose twin is a boundary half-edge;
 /// - boundary edges carry infinite sharpness; with
 ///   [`BoundaryInterpolation::EdgeAndCorner`](crate::BoundaryInterpolation::EdgeAndCorner)
-///   boundary vertices with a single face carry infinite vertex sharpness (as in OpenSubdiv).
+///   boundary vertices with a single face carry infinite vertex sharpness (as in OpenSubdiv);
+/// - with [`BoundaryInterpolation::None`](crate::BoundaryInterpolation::None) the faces
+///   OpenSubdiv hides are holes (every face at a vertex with a boundary edge not tagged
+///   infinitely sharp), so every tessellator hides the same faces by hiding holes.
 #[derive(Clone, Debug)]
 pub struct Mesh {
     positions: Vec<Vec3>,

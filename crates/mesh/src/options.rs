@@ -3,7 +3,9 @@
 /// How boundary edges and vertices are interpolated (OpenSubdiv `VtxBoundaryInterpolation`).
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Default)]
 pub enum BoundaryInterpolation {
-    /// Boundary faces are not part of the limit surface; they only shape their neighbours.
+    /// Faces at the boundary are not part of the limit surface (they only shape their
+    /// neighbours): every face at a vertex with a boundary edge that is not tagged infinitely
+    /// sharp is made a hole when the mesh is built (OpenSubdiv's rule, [`BoundaryNoneRule`]).
     None,
     /// Boundary edges are infinitely sharp creases (the default, as in OpenSubdiv's OBJ shapes).
     #[default]
@@ -48,3 +50,40 @@ pub struct SchemeOptions {
 
 /// Sharpness at or above this value is infinite (OpenSubdiv `SHARPNESS_INFINITE`).
 pub const SHARPNESS_INFINITE: f32 = 10.0;
+
+/// OpenSubdiv 3.5's rule for [`BoundaryInterpolation::None`]
+/// (`Far::TopologyRefinerFactoryBase::prepareComponentTagsAndSharpness`, before boundary edges
+/// are sharpened): every face at a vertex with a boundary edge (one face) whose *tagged*
+/// sharpness is not infinite is hidden (a hole); a vertex whose boundary edges are all tagged
+/// infinitely sharp hides nothing. The one home of the rule: `Mesh::from_soup` applies it to
+/// manifold cages, `PolygonSoup::split_nonmanifold` to a non-manifold cage before cutting it.
+#[derive(Clone, Debug)]
+pub(crate) struct BoundaryNoneRule {
+    /// Vertices with a boundary edge not tagged infinitely sharp.
+    hiding: Vec<bool>,
+}
+
+impl BoundaryNoneRule {
+    /// The rule over `num_vertices` vertices, no edge noted yet.
+    pub(crate) fn new(num_vertices: usize) -> Self {
+        Self {
+            hiding: vec![false; num_vertices],
+        }
+    }
+
+    /// Notes the edge `a`-`b` with `faces` faces and its tagged sharpness (as the cage's crease
+    /// tags give it, before the boundary is sharpened).
+    #[inline]
+    pub(crate) fn edge(&mut self, a: usize, b: usize, faces: usize, tagged_sharpness: f32) {
+        if faces == 1 && tagged_sharpness < SHARPNESS_INFINITE {
+            self.hiding[a] = true;
+            self.hiding[b] = true;
+        }
+    }
+
+    /// Whether the face with vertices `face` is hidden.
+    #[inline]
+    pub(crate) fn hides(&self, mut face: impl Iterator<Item = usize>) -> bool {
+        face.any(|v| self.hiding[v])
+    }
+}

@@ -2,7 +2,7 @@
 
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
-use subdiv_mesh::{BoundaryInterpolation, Mesh, ObjData, VertexId};
+use subdiv_mesh::{Mesh, ObjData, VertexId};
 
 use crate::refine::refine_uniform_levels_f64;
 use crate::ring::Ring;
@@ -231,20 +231,7 @@ pub fn tessellate_uniform(
     if scheme == Scheme::Loop {
         mesh.check_triangles()?;
     }
-    let hidden;
-    let base = if mesh.options().boundary == BoundaryInterpolation::None {
-        let mut m = mesh.clone();
-        let holes: Vec<bool> = m
-            .faces()
-            .map(|f| m.is_hole(f) || m.face_vertices(f).iter().any(|&v| m.is_boundary_vertex(v)))
-            .collect();
-        m.set_holes(holes);
-        hidden = m;
-        &hidden
-    } else {
-        mesh
-    };
-    let (refined, pos) = refine_uniform_levels_f64(base, scheme, depth)?;
+    let (refined, pos) = refine_uniform_levels_f64(mesh, scheme, depth)?;
     Ok(limit_surface_from(&refined, scheme, |w| pos[w.idx()]))
 }
 

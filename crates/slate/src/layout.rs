@@ -252,13 +252,7 @@ impl Numbering<'_> {
 
     /// `true` for faces whose patches are computed but not drawn.
     fn hidden(&self, f: FaceId) -> bool {
-        let mesh = self.mesh;
-        mesh.is_hole(f)
-            || (mesh.options().boundary == subdiv_mesh::BoundaryInterpolation::None
-                && mesh
-                    .face_vertices(f)
-                    .iter()
-                    .any(|&v| mesh.is_boundary_vertex(v)))
+        self.mesh.is_hole(f)
     }
 
     /// The one patch of a regular quad `f` (half-edges `hs`), gathered from the cage; its

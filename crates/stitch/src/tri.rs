@@ -107,8 +107,8 @@ impl TriAssembler {
     }
 
     /// Builds a frame: `depth[f]` per cage face (clamped to `0..=max_depth`) and `active[f]`
-    /// (faces not drawn, e.g. culled, are `false`; holes and, with `interpolateboundary none`,
-    /// faces at the boundary are never drawn).
+    /// (faces not drawn, e.g. culled, are `false`; holes, among them the faces
+    /// `interpolateboundary none` hides, are never drawn).
     pub fn frame(
         &mut self,
         mesh: &Mesh,

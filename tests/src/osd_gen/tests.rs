@@ -4,6 +4,8 @@ use super::*;
 fn cages_are_valid_reproducible_and_varied() {
     let (mut loops, mut holes, mut ngons, mut valence2, mut max_valence) = (0, 0, 0, 0, 0);
     let (mut fins, mut bowties, mut chains, mut semi_chains) = (0, 0, 0, 0);
+    // `none` cages with a boundary vertex whose boundary edges are all infinitely sharp.
+    let mut sharp_none = 0;
     for i in 0..300 {
         let c = random_cage(7, i);
         let mut soup = subdiv_mesh::parse_obj(&c.to_obj()).unwrap();
@@ -29,6 +31,9 @@ fn cages_are_valid_reproducible_and_varied() {
             .mesh()
             .unwrap_or_else(|e| panic!("cage {i}: {e}\n{}", c.to_obj()));
         loops += usize::from(c.loop_scheme);
+        if c.boundary == Some(0) {
+            sharp_none += usize::from(has_fully_sharp_boundary_vertex(&c));
+        }
         holes += usize::from(!c.holes.is_empty());
         ngons += usize::from(c.faces.iter().any(|f| f.len() > 4));
         let interior_v2 = m
@@ -47,10 +52,43 @@ fn cages_are_valid_reproducible_and_varied() {
         loops > 50 && holes > 20 && ngons > 20 && valence2 > 5,
         "{loops} {holes} {ngons} {valence2}"
     );
+    assert!(
+        sharp_none > 5,
+        "none cages with a fully sharp boundary vertex {sharp_none}"
+    );
     assert!(max_valence >= 16, "max valence {max_valence}");
     assert!(fins > 10 && bowties > 5, "fins {fins}, bow-ties {bowties}");
     assert!(
         chains > 5 && semi_chains > 2,
         "vertices with two non-manifold edges {chains}, with a semi-sharp tag {semi_chains}"
     );
+}
+
+/// Whether a boundary vertex of `c` has only boundary edges tagged infinitely sharp.
+fn has_fully_sharp_boundary_vertex(c: &crate::osd_cage::OsdCage) -> bool {
+    let mut uses = std::collections::HashMap::new();
+    for f in &c.faces {
+        for k in 0..f.len() {
+            let (a, b) = (f[k], f[(k + 1) % f.len()]);
+            *uses.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+        }
+    }
+    let sharp = |e: (u32, u32)| {
+        c.creases
+            .iter()
+            .any(|t| (t.0.min(t.1), t.0.max(t.1)) == e && t.2 >= 10.0)
+    };
+    let (mut any, mut unsharp) = (
+        vec![false; c.positions.len()],
+        vec![false; c.positions.len()],
+    );
+    for (&(a, b), &n) in &uses {
+        if n == 1 {
+            for v in [a, b] {
+                any[v as usize] = true;
+                unsharp[v as usize] |= !sharp((a, b));
+            }
+        }
+    }
+    (0..any.len()).any(|v| any[v] && !unsharp[v])
 }

@@ -84,6 +84,7 @@ pub(super) fn build(soup: &PolygonSoup) -> Result<Mesh, MeshError> {
 
     manifold::check_vertex_fans(&mesh, &corner_count, soup)?;
     tags::apply_tags(&mut mesh, soup, &edge_map)?;
+    tags::hide_boundary_none(&mut mesh);
     tags::sharpen_boundary(&mut mesh, &corner_count);
     Ok(mesh)
 }

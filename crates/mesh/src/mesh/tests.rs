@@ -110,6 +110,59 @@ fn edge_and_corner_sharpens_corners() {
     assert_eq!(m.vertex_sharpness(VertexId(1)), 0.0);
 }
 
+/// `interpolateboundary none` (OpenSubdiv's rule): the faces at a vertex with a boundary edge
+/// not tagged infinitely sharp are holes; a vertex whose boundary edges are all tagged
+/// infinitely sharp hides nothing, whatever its other boundary vertices do.
+#[test]
+fn boundary_none_hides_faces_at_unsharpened_boundary_edges() {
+    let hidden = |s: &PolygonSoup| -> Vec<bool> { Mesh::from_soup(s).unwrap().holes().to_vec() };
+    let mut s = grid(3);
+    s.options.boundary = BoundaryInterpolation::None;
+    // Every boundary vertex has an untagged boundary edge: only the middle face is drawn.
+    let plain = hidden(&s);
+    assert_eq!(plain.iter().filter(|&&h| !h).count(), 1);
+    assert!(!plain[4]);
+    // Every boundary edge tagged infinitely sharp: nothing is hidden.
+    let ring: Vec<(i64, i64)> = (0..3)
+        .flat_map(|i| {
+            [
+                (i, i + 1),
+                (12 + i, 13 + i),
+                (4 * i, 4 * i + 4),
+                (4 * i + 3, 4 * i + 7),
+            ]
+        })
+        .collect();
+    assert_eq!(ring.len(), 12);
+    let tag = |s: &mut PolygonSoup, edges: &[(i64, i64)], sharpness: f32| {
+        for &(a, b) in edges {
+            s.creases.push(CreaseTag {
+                a,
+                b,
+                sharpness,
+                line: None,
+            });
+        }
+    };
+    let mut sharp = s.clone();
+    tag(&mut sharp, &ring, SHARPNESS_INFINITE);
+    assert!(hidden(&sharp).iter().all(|&h| !h));
+    // One boundary edge semi-sharp (0-1): the faces at vertices 0 and 1 are hidden.
+    let mut one = s.clone();
+    tag(&mut one, &ring[1..], SHARPNESS_INFINITE);
+    tag(&mut one, &ring[..1], 9.5);
+    let h = hidden(&one);
+    assert_eq!(
+        h,
+        [true, true, false, false, false, false, false, false, false]
+    );
+    // Edge-only keeps every face; a tagged hole stays a hole.
+    let mut edge_only = grid(3);
+    edge_only.holes.push(HoleTag { f: 8, line: None });
+    let h = hidden(&edge_only);
+    assert!(h[8] && h.iter().filter(|&&x| x).count() == 1);
+}
+
 #[test]
 fn tags_apply() {
     let mut s = cube();

@@ -29,7 +29,7 @@ use std::collections::HashMap;
 
 use super::{CornerTag, CreaseTag, HoleTag, PolygonSoup, find_root};
 use crate::error::MeshError;
-use crate::options::{BoundaryInterpolation, SHARPNESS_INFINITE};
+use crate::options::{BoundaryInterpolation, BoundaryNoneRule, SHARPNESS_INFINITE};
 
 /// What [`PolygonSoup::split_nonmanifold`] found (vertex indices of the cage as read, 0-based).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -175,25 +175,22 @@ impl PolygonSoup {
     }
 
     /// `interpolateboundary none` as OpenSubdiv 3.5 applies it to the whole cage
-    /// (`Far::TopologyRefinerFactoryBase::prepareComponentTagsAndSharpness`): the faces at a
-    /// vertex with a boundary edge (one face) not tagged infinitely sharp are not drawn; the
-    /// others are refined as with `EdgeOnly` (boundary edges are sharpened in every mode, and
-    /// only `EdgeAndCorner` sharpens corners). Every copy of a non-manifold vertex is a
-    /// boundary vertex of its piece, where subdiv's own rule for `none` would hide more faces;
-    /// so the hidden faces become holes and the pieces take `EdgeOnly`.
+    /// ([`BoundaryNoneRule`], before the cut: a non-manifold vertex hides the faces of all its
+    /// fans, and an edge with two faces the same way round is no boundary edge); the others
+    /// are refined as with `EdgeOnly` (boundary edges are sharpened in every mode, and only
+    /// `EdgeAndCorner` sharpens corners). Every copy of a non-manifold vertex is a boundary
+    /// vertex of its piece, and the rule on the pieces could hide fewer faces than on the whole
+    /// cage; so the hidden faces become holes here and the pieces take `EdgeOnly`.
     fn hide_boundary_faces(&mut self, uses: &HashMap<(i64, i64), Vec<EdgeUse>>) {
-        let infinite: std::collections::HashSet<(i64, i64)> = self
+        let tagged: HashMap<(i64, i64), f32> = self
             .creases
             .iter()
-            .filter(|t| t.sharpness >= SHARPNESS_INFINITE)
-            .map(|t| (t.a.min(t.b), t.a.max(t.b)))
+            .map(|t| ((t.a.min(t.b), t.a.max(t.b)), t.sharpness))
             .collect();
-        let mut at_boundary = vec![false; self.positions.len()];
+        let mut rule = BoundaryNoneRule::new(self.positions.len());
         for (&(a, b), u) in uses {
-            if u.len() == 1 && !infinite.contains(&(a, b)) {
-                at_boundary[a as usize] = true;
-                at_boundary[b as usize] = true;
-            }
+            let s = tagged.get(&(a, b)).copied().unwrap_or(0.0);
+            rule.edge(a as usize, b as usize, u.len(), s);
         }
         let mut hole = vec![false; self.num_faces()];
         for h in &self.holes {
@@ -202,8 +199,7 @@ impl PolygonSoup {
             }
         }
         for (f, &already) in hole.iter().enumerate() {
-            let hidden = self.face(f).iter().any(|&v| at_boundary[v as usize]);
-            if hidden && !already {
+            if !already && rule.hides(self.face(f).iter().map(|&v| v as usize)) {
                 self.holes.push(HoleTag {
                     f: f as i64,
                     line: None,

@@ -7,7 +7,7 @@
 //! boundary vertex its leading edge), a cage edge by the face of its even half-edge or, on the
 //! boundary, by its one face; every triangle owns its interior.
 
-use subdiv_mesh::{BoundaryInterpolation, EdgeId, HalfedgeId, Mesh, VertexId};
+use subdiv_mesh::{EdgeId, HalfedgeId, Mesh, VertexId};
 use subdiv_rules::{Depth, RulesError, SeamCurves};
 
 /// One side of a triangular patch: the cage edge from corner `k` to corner `k + 1`.
@@ -47,8 +47,9 @@ pub struct TriPatch {
     pub sides: [TriSide; 3],
     /// Id of the first interior point.
     pub interior: u32,
-    /// `false` for a hole (or, with `interpolateboundary none`, a face at the boundary): its points
-    /// are computed (where owned) but it has no triangles.
+    /// `false` for a hole (with `interpolateboundary none` also the faces it hides, which
+    /// `Mesh::from_soup` makes holes): its points are computed (where owned) but it has no
+    /// triangles.
     pub visible: bool,
     /// The cage edge of each side.
     pub edges: [EdgeId; 3],
@@ -104,13 +105,6 @@ impl TriLayout {
             ring_offsets.push(ring_verts.len() as u32);
             fast.push(smooth && valence >= 3);
         }
-        // `interpolateboundary none`: faces at the boundary are not drawn (as OpenSubdiv does).
-        let no_boundary = mesh.options().boundary == BoundaryInterpolation::None;
-        let at_boundary = |f| {
-            mesh.face_vertices(f)
-                .iter()
-                .any(|&v| mesh.is_boundary_vertex(v))
-        };
         let mut patches = Vec::with_capacity(mesh.num_faces());
         for f in mesh.faces() {
             let h0 = mesh.face_halfedge(f);
@@ -137,7 +131,7 @@ impl TriLayout {
                 corner_owned,
                 sides,
                 interior: interior0 + f.0 * per_face,
-                visible: !(mesh.is_hole(f) || (no_boundary && at_boundary(f))),
+                visible: !mesh.is_hole(f),
                 edges: hs.map(|h| h.edge()),
                 beyond: hs.map(|h| {
                     let t = h.twin();

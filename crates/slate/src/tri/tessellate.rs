@@ -32,7 +32,7 @@ use crate::tessellate::{MAX_POINTS, SharedOut, SlateError};
 pub fn tessellate_loop(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateError> {
     check_loop_cage(mesh)?;
     if depth == 0 {
-        // The cage's own limit points (with `interpolateboundary none` hiding boundary faces).
+        // The cage's own limit points.
         let mut out = tessellate_uniform(mesh, Scheme::Loop, 0)?;
         // The cage vertices on seams, the same bits in every copy (as at any depth).
         subdiv_rules::SeamCurves::new(mesh).write_uniform(mesh, 0, 0, &mut out.positions);

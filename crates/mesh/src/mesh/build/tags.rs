@@ -1,13 +1,14 @@
 //! Step 5: sharpness and tags. Applies the soup's crease, corner and hole tags (refusing tags
-//! that name missing elements or carry invalid sharpness), then sharpens the boundary as
-//! OpenSubdiv does before refinement.
+//! that name missing elements or carry invalid sharpness), hides the faces
+//! `interpolateboundary none` hides, then sharpens the boundary as OpenSubdiv does before
+//! refinement.
 
 use std::collections::HashMap;
 
 use crate::error::MeshError;
 use crate::handle::{EdgeId, VertexId};
 use crate::mesh::Mesh;
-use crate::options::{BoundaryInterpolation, SHARPNESS_INFINITE};
+use crate::options::{BoundaryInterpolation, BoundaryNoneRule, SHARPNESS_INFINITE};
 use crate::soup::PolygonSoup;
 
 /// Applies crease, then corner, then hole tags, in that order; `edge_map` maps a `(min, max)`
@@ -92,6 +93,26 @@ fn apply_holes(mesh: &mut Mesh, soup: &PolygonSoup) -> Result<(), MeshError> {
         mesh.face_hole[t.f as usize] = true;
     }
     Ok(())
+}
+
+/// With [`BoundaryInterpolation::None`], the faces OpenSubdiv hides become holes
+/// ([`BoundaryNoneRule`], from the tagged sharpness: call before [`sharpen_boundary`]).
+pub(super) fn hide_boundary_none(mesh: &mut Mesh) {
+    if mesh.options.boundary != BoundaryInterpolation::None {
+        return;
+    }
+    let mut rule = BoundaryNoneRule::new(mesh.num_vertices());
+    for e in mesh.edges() {
+        let [a, b] = mesh.edge_vertices(e);
+        let faces = if mesh.is_boundary_edge(e) { 1 } else { 2 };
+        rule.edge(a.idx(), b.idx(), faces, mesh.edge_sharpness(e));
+    }
+    for f in 0..mesh.num_faces() {
+        let vs = mesh.face_vertices(crate::handle::FaceId(f as u32));
+        if rule.hides(vs.iter().map(|v| v.idx())) {
+            mesh.face_hole[f] = true;
+        }
+    }
 }
 
 /// Boundary edges become infinitely sharp; with [`BoundaryInterpolation::EdgeAndCorner`] so do
