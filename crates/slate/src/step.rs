@@ -276,7 +276,11 @@ fn step_general(
         if (i == 0 || i == n) && (j == 0 || j == n) && is_corner(i, j).is_some() {
             continue;
         }
-        general_vertex_point(g, dst, i, j);
+        if g.all_exist {
+            plain_vertex_point(method, src, dst, kk);
+        } else {
+            general_vertex_point(g, dst, i, j);
+        }
     }
     if missing {
         general_edges_near_missing(g, dst, sc.dirty, sc.dirty_list);
@@ -373,6 +377,44 @@ fn sharp_edge_point(src: &Table, dst: &mut Table, k: usize, dir: usize) {
     };
     dst.positions[kd] = e;
     dst.exists[kd] = true;
+}
+
+/// [`general_vertex_point`] at a patch point (storage index `k`) of a table where every point
+/// exists: its four edges and four faces exist (its neighbours lie inside the table), so they are
+/// read by storage index in the general path's order (edges E, N, W, S; faces NE, NW, SW, SE).
+#[inline]
+fn plain_vertex_point(method: CreaseMethod, src: &Table, dst: &mut Table, k: usize) {
+    let (ss, ds) = (src.stride, dst.stride);
+    let (hs, vs, p) = (
+        &src.horizontal_sharpness,
+        &src.vertical_sharpness,
+        &src.positions,
+    );
+    let e_sh = [hs[k], vs[k], hs[k - 1], vs[k - ss]];
+    let e_pts = [p[k + 1], p[k + ss], p[k - 1], p[k - ss]];
+    let mut c_sh = [0.0f32; 4];
+    let rules = VertexRules::new(method, 0.0, &e_sh, &mut c_sh);
+    // Storage index in `dst` of the vertex point: level coordinates `(2 i, 2 j)`.
+    let kd = (2 * (k / ss) - 1) * ds + 2 * (k % ss) - 1;
+    let v = p[k];
+    let q = if rules.parent.is_smooth() || rules.child.is_smooth() {
+        let d = &dst.positions;
+        let f_pts = [
+            d[kd + ds + 1],
+            d[kd + ds - 1],
+            d[kd - ds - 1],
+            d[kd - ds + 1],
+        ];
+        catmark::vertex_point(v, &e_pts, &f_pts, &rules)
+    } else {
+        catmark::vertex_point(v, &e_pts, &[], &rules)
+    };
+    dst.positions[kd] = q;
+    dst.exists[kd] = true;
+    dst.horizontal_sharpness[kd] = c_sh[0];
+    dst.vertical_sharpness[kd] = c_sh[1];
+    dst.horizontal_sharpness[kd - 1] = c_sh[2];
+    dst.vertical_sharpness[kd - ds] = c_sh[3];
 }
 
 /// Vertex point of patch point `(i, j)` by the general rules, and the child sharpness of its
