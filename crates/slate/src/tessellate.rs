@@ -285,7 +285,8 @@ fn run_patch(
                 _ => (0, n - s),
             };
             if side.owned || look(w, i, j) {
-                let (pos, nrm, one) = w.limit_sided(i as i32, j as i32, visible);
+                // Not a grid corner: no corner array.
+                let (pos, nrm, one) = w.limit_table(i as i32, j as i32, visible);
                 if side.owned {
                     out.write(side.id(s), pos, nrm);
                 }
