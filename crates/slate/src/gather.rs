@@ -136,8 +136,9 @@ impl GatherPlan {
     /// [`Worker::may_be_sided`] would answer `false` everywhere: no point is missing (boundary)
     /// and no table edge, corner array edge or corner vertex is infinitely sharp. Sharpness only
     /// decays under refinement (semi-sharp stays below infinite, under the Chaikin rule too), and
-    /// missing points arise only from missing points, so what holds for the level-0 table holds
-    /// for every level.
+    /// without a boundary the only missing points are the corner arrays' diagonal spots, no grid
+    /// point's edge neighbour, so what holds for the level-0 table holds for every level. Debug
+    /// builds check it at every point skipped (`run_patch`).
     pub(crate) fn may_be_sided(&self) -> bool {
         self.sided
     }
