@@ -199,7 +199,9 @@ pub struct VertexRules {
 
 impl VertexRules {
     /// Determines the rules for a vertex from its sharpness and the sharpness of its edges (ring
-    /// order), and writes the child sharpness of those edges into `child_edges`.
+    /// order), and writes the child sharpness of those edges into `child_edges`. Inlined (the
+    /// uniform one-pass case is small): the slate's general step calls it at every dirty point.
+    #[inline]
     pub fn new(
         method: CreaseMethod,
         vertex_sharpness: f32,

@@ -5,7 +5,7 @@
 use glam::Vec3A;
 use subdiv_mesh::{CreaseMethod, FaceId, HalfedgeId, Mesh, VertexId};
 use subdiv_rules::Scheme;
-use subdiv_rules::crease::is_semi_sharp;
+use subdiv_rules::crease::{is_infinite, is_semi_sharp};
 
 use crate::table::Table;
 use crate::worker::Worker;
@@ -57,6 +57,9 @@ pub(crate) struct GatherPlan {
     /// Corner `k` is a boundary vertex (bit `k`).
     boundary: u8,
     regular: bool,
+    /// The patch may have one-sided limit normals: a boundary, or an infinitely sharp table edge,
+    /// corner array edge or corner vertex (see [`GatherPlan::may_be_sided`]).
+    sided: bool,
 }
 
 impl GatherPlan {
@@ -70,6 +73,7 @@ impl GatherPlan {
         // neighbour, and the two outer sides of each regular corner's diagonal face.
         let mut table_edges = side_edges(mesh, &hs);
         let (mut active, mut boundary) = (0u8, 0u8);
+        let mut sided = false;
         for (k, &h) in hs.iter().enumerate() {
             let v = mesh.from(h);
             let on_boundary = mesh.is_boundary_vertex(v);
@@ -85,6 +89,12 @@ impl GatherPlan {
             // general step's rules handle them); a corner tag has no place in the table.
             if valence != 4 || on_boundary || mesh.vertex_sharpness(v) > 0.0 {
                 active |= 1 << k;
+                // The corner array's ring: the vertex and all its edges.
+                sided |= on_boundary
+                    || is_infinite(mesh.vertex_sharpness(v))
+                    || mesh
+                        .outgoing(v)
+                        .any(|h| is_infinite(mesh.edge_sharpness(h.edge())));
                 if on_boundary || mesh.vertex_sharpness(v) > 0.0 {
                     regular = false;
                 }
@@ -97,6 +107,7 @@ impl GatherPlan {
             let s = mesh.edge_sharpness(h.edge());
             if s > 0.0 {
                 regular = false;
+                sided |= is_infinite(s);
                 edges.push((i as i8, j as i8, d as u8, s));
             }
         }
@@ -106,6 +117,7 @@ impl GatherPlan {
                 let diag_spot = (i == -1 || i == 2) && (j == -1 || j == 2);
                 if !vid[(j + 1) as usize][(i + 1) as usize].is_some() && !diag_spot {
                     regular = false;
+                    sided = true;
                 }
             }
         }
@@ -116,7 +128,19 @@ impl GatherPlan {
             active,
             boundary,
             regular: regular && mesh.options().crease != CreaseMethod::Chaikin,
+            sided,
         }
+    }
+
+    /// `false` where no grid point of the patch can have one-sided normals at any depth, so that
+    /// [`Worker::may_be_sided`] would answer `false` everywhere: no point is missing (boundary)
+    /// and no table edge, corner array edge or corner vertex is infinitely sharp. Sharpness only
+    /// decays under refinement (semi-sharp stays below infinite, under the Chaikin rule too), and
+    /// without a boundary the only missing points are the corner arrays' diagonal spots, no grid
+    /// point's edge neighbour, so what holds for the level-0 table holds for every level. Debug
+    /// builds check it at every point skipped (`run_patch`).
+    pub(crate) fn may_be_sided(&self) -> bool {
+        self.sided
     }
 }
 

@@ -10,7 +10,7 @@ use glam::{DVec3, Vec3A};
 use subdiv_mesh::CreaseMethod;
 use subdiv_rules::QuadRingStencil;
 use subdiv_rules::catmark;
-use subdiv_rules::crease::{Rule, is_infinite};
+use subdiv_rules::crease::is_infinite;
 
 use crate::table::{DI, DJ, far_info};
 use crate::worker::Worker;
@@ -93,14 +93,28 @@ impl Worker {
             self.sided = faces;
             return (Vec3A::from(p.as_vec3()), Vec3A::from(nrm.as_vec3()), side);
         }
+        self.limit_table(i, j, sided)
+    }
+
+    /// [`Worker::limit_sided`] at a grid point of the table, not a corner with a corner array:
+    /// what the points along a patch's sides (`0 < i < n` or `0 < j < n`) take directly.
+    #[inline]
+    pub(crate) fn limit_table(
+        &mut self,
+        i: i32,
+        j: i32,
+        sided: bool,
+    ) -> (Vec3A, Vec3A, Option<Vec3A>) {
         let t = &self.t[self.cur];
+        let n = t.grid_size as i32;
         if self.regular || t.is_plain(i, j) {
             let k = t.at(i, j);
             let s = t.stride;
             let p = &t.positions;
             let e = [p[k + 1], p[k + s], p[k - 1], p[k - s]];
             let dg = [p[k + s + 1], p[k + s - 1], p[k - s - 1], p[k - s + 1]];
-            let (pos, t1, t2) = catmark::limit(p[k], &e, &dg, Rule::Smooth);
+            // `catmark::limit` of a smooth valence-4 ring is this.
+            let (pos, t1, t2) = catmark::limit_regular(p[k], e, dg);
             let nrm = t1.cross(t2);
             let len = nrm.length();
             if len > 0.0 && len.is_finite() {

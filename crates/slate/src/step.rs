@@ -276,7 +276,11 @@ fn step_general(
         if (i == 0 || i == n) && (j == 0 || j == n) && is_corner(i, j).is_some() {
             continue;
         }
-        general_vertex_point(g, dst, i, j);
+        if g.all_exist {
+            plain_vertex_point(method, src, dst, kk);
+        } else {
+            general_vertex_point(g, dst, i, j);
+        }
     }
     if missing {
         general_edges_near_missing(g, dst, sc.dirty, sc.dirty_list);
@@ -288,7 +292,11 @@ fn step_general(
             let (i, j) = ((k % ss) as i32 - 1, (k / ss) as i32 - 1);
             let row = if dir == 0 { j } else { i };
             if (0..=n).contains(&row) && src.inside(i + DI[dir], j + DJ[dir]) {
-                general_edge_point(g, dst, sc.dirty, i, j, dir);
+                if method == CreaseMethod::Chaikin {
+                    general_edge_point(g, dst, sc.dirty, i, j, dir);
+                } else {
+                    sharp_edge_point(src, dst, k, dir);
+                }
             }
         }
     }
@@ -321,6 +329,92 @@ fn general_edges_near_missing(g: General<'_>, dst: &mut Table, dirty: &[bool], l
             }
         }
     }
+}
+
+/// [`general_edge_point`] of a sharp edge of rows or columns `0..=n` in a table where every point
+/// exists, under a rule without far-end information (not Chaikin): both ends are dirty, the edge
+/// and the faces beside it exist, and the child sharpness beyond the outer ring is the parent's
+/// decremented (`child_edge_sharpness` without semi-sharp neighbours). `k` is the storage index
+/// of the edge's lower end, `dir` 0 horizontal, 1 vertical. The same operations on the same
+/// values as the general path, without its existence tests and index arithmetic.
+#[inline]
+fn sharp_edge_point(src: &Table, dst: &mut Table, k: usize, dir: usize) {
+    let (n, ss, ds) = (src.grid_size, src.stride, dst.stride);
+    let (x, y) = (k % ss, k / ss);
+    let b = if dir == 0 { k + 1 } else { k + ss };
+    let (s, kd) = if dir == 0 {
+        (src.horizontal_sharpness[k], y * 2 * ds - ds + 2 * x)
+    } else {
+        (src.vertical_sharpness[k], 2 * x + 2 * y * ds - 1)
+    };
+    // `kd`: storage index in `dst` of the edge point, level coordinates `(i + bi, j + bj)` with
+    // storage `(2 x - 1, 2 y - 1) + (DI, DJ)` for `(x, y)` the lower end's storage position.
+    debug_assert_eq!(kd, {
+        let (i, j) = (x as i32 - 1, y as i32 - 1);
+        dst.at(2 * i + DI[dir], 2 * j + DJ[dir])
+    });
+    let inner = |x: usize, y: usize| (1..=n + 1).contains(&x) && (1..=n + 1).contains(&y);
+    let child = |x: usize, y: usize, toward: usize| -> f32 {
+        if inner(x, y) {
+            dst.edge_sharp(2 * x as i32 - 2, 2 * y as i32 - 2, toward)
+        } else {
+            crease::decrement(s)
+        }
+    };
+    let (bx, by) = if dir == 0 { (x + 1, y) } else { (x, y + 1) };
+    let c0 = child(x, y, dir);
+    let c1 = child(bx, by, dir + 2);
+    let w = edge_crease_weight(s, [c0, c1]);
+    let (a, bp) = (src.positions[k], src.positions[b]);
+    let e = if w == 1.0 {
+        catmark::edge_point(a, bp, &[], w)
+    } else {
+        // The face points beside the edge (both exist: every point does, and the edge lies in
+        // rows or columns 0..=n): below/left of it first, as the general path reads them.
+        let f0 = if dir == 0 { kd - ds } else { kd - 1 };
+        let f1 = if dir == 0 { kd + ds } else { kd + 1 };
+        catmark::edge_point(a, bp, &[dst.positions[f0], dst.positions[f1]], w)
+    };
+    dst.positions[kd] = e;
+    dst.exists[kd] = true;
+}
+
+/// [`general_vertex_point`] at a patch point (storage index `k`) of a table where every point
+/// exists: its four edges and four faces exist (its neighbours lie inside the table), so they are
+/// read by storage index in the general path's order (edges E, N, W, S; faces NE, NW, SW, SE).
+#[inline]
+fn plain_vertex_point(method: CreaseMethod, src: &Table, dst: &mut Table, k: usize) {
+    let (ss, ds) = (src.stride, dst.stride);
+    let (hs, vs, p) = (
+        &src.horizontal_sharpness,
+        &src.vertical_sharpness,
+        &src.positions,
+    );
+    let e_sh = [hs[k], vs[k], hs[k - 1], vs[k - ss]];
+    let e_pts = [p[k + 1], p[k + ss], p[k - 1], p[k - ss]];
+    let mut c_sh = [0.0f32; 4];
+    let rules = VertexRules::new(method, 0.0, &e_sh, &mut c_sh);
+    // Storage index in `dst` of the vertex point: level coordinates `(2 i, 2 j)`.
+    let kd = (2 * (k / ss) - 1) * ds + 2 * (k % ss) - 1;
+    let v = p[k];
+    let q = if rules.parent.is_smooth() || rules.child.is_smooth() {
+        let d = &dst.positions;
+        let f_pts = [
+            d[kd + ds + 1],
+            d[kd + ds - 1],
+            d[kd - ds - 1],
+            d[kd - ds + 1],
+        ];
+        catmark::vertex_point(v, &e_pts, &f_pts, &rules)
+    } else {
+        catmark::vertex_point(v, &e_pts, &[], &rules)
+    };
+    dst.positions[kd] = q;
+    dst.exists[kd] = true;
+    dst.horizontal_sharpness[kd] = c_sh[0];
+    dst.vertical_sharpness[kd] = c_sh[1];
+    dst.horizontal_sharpness[kd - 1] = c_sh[2];
+    dst.vertical_sharpness[kd - ds] = c_sh[3];
 }
 
 /// Vertex point of patch point `(i, j)` by the general rules, and the child sharpness of its

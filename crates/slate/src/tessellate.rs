@@ -209,7 +209,8 @@ pub fn tessellate_layout_into(
                 let visible = !quads.is_empty();
                 let e = depth - p.level;
                 w.gather_with(src, p.face, &layout.plans[k], &layout.plan_edges);
-                run_patch(&mut w, p, e, &out, quads);
+                let sided = visible && layout.plans[k].may_be_sided();
+                run_patch(&mut w, p, e, &out, quads, sided);
                 if visible {
                     corner_slots(1 << e, &w.sided_points, k as u32, &mut acc);
                 }
@@ -232,8 +233,17 @@ pub fn tessellate_layout_into(
 /// Subdivides and evaluates one patch (gathered into the worker's slate 0); writes the points
 /// it owns and its quads, and leaves in the worker's `sided_points` the grid points where the
 /// limit surface has a crease or a corner, with the one-sided normal of this patch's side
-/// (visible patches only).
-fn run_patch(wk: &mut Worker, p: &Patch, e: Depth, out: &SharedOut, quads: &mut [u32]) {
+/// (visible patches only). `may_sided`: the patch is visible and its plan says it may have
+/// one-sided normals (`GatherPlan::may_be_sided`); otherwise the points it does not own are
+/// not looked at.
+fn run_patch(
+    wk: &mut Worker,
+    p: &Patch,
+    e: Depth,
+    out: &SharedOut,
+    quads: &mut [u32],
+    may_sided: bool,
+) {
     let w = &mut *wk;
     for _ in 0..e {
         w.step();
@@ -243,10 +253,22 @@ fn run_patch(wk: &mut Worker, p: &Patch, e: Depth, out: &SharedOut, quads: &mut 
     // Grid points with a one-sided normal of this patch's side.
     let mut sided = std::mem::take(&mut w.sided_points);
     sided.clear();
+    // Whether a point this patch does not own needs its limit for a one-sided normal (debug
+    // builds check the plan's answer against the point's own where the plan says no).
+    let look = |w: &mut Worker, i: u32, j: u32| -> bool {
+        if may_sided {
+            return w.may_be_sided(i as i32, j as i32);
+        }
+        debug_assert!(
+            !visible || !w.may_be_sided(i as i32, j as i32),
+            "plan without one-sided normals, but grid point ({i}, {j}) may have one"
+        );
+        false
+    };
     // Corners and sides: where this patch is the owner, and for a visible patch wherever the
     // point may lie on a crease (its side's normal is its own, owner or not).
     for (k, (i, j)) in [(0, 0), (n, 0), (n, n), (0, n)].into_iter().enumerate() {
-        if p.corner_owned[k] || (visible && w.may_be_sided(i as i32, j as i32)) {
+        if p.corner_owned[k] || look(w, i, j) {
             let (pos, nrm, side) = w.limit_sided(i as i32, j as i32, visible);
             if p.corner_owned[k] {
                 out.write(p.corners[k], pos, nrm);
@@ -262,8 +284,9 @@ fn run_patch(wk: &mut Worker, p: &Patch, e: Depth, out: &SharedOut, quads: &mut 
                 2 => (n - s, n),
                 _ => (0, n - s),
             };
-            if side.owned || (visible && w.may_be_sided(i as i32, j as i32)) {
-                let (pos, nrm, one) = w.limit_sided(i as i32, j as i32, visible);
+            if side.owned || look(w, i, j) {
+                // Not a grid corner: no corner array.
+                let (pos, nrm, one) = w.limit_table(i as i32, j as i32, visible);
                 if side.owned {
                     out.write(side.id(s), pos, nrm);
                 }
