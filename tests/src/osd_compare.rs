@@ -287,3 +287,39 @@ pub fn is_smooth_point(m: &Mesh, v: VertexId) -> bool {
         && m.outgoing(v)
             .all(|h| m.edge_sharpness(h.edge()) < subdiv_mesh::SHARPNESS_INFINITE)
 }
+
+/// Compares every reference `fixtures/<dir>/<cage>.L<level>.txt` with `<cage>.obj` read by
+/// `read_obj`, through the tessellators `paths(cage text)` names, as fuzz-osd does (normals
+/// within `normal_deg`). Panics listing every disagreement, or when fewer than `min_checks`
+/// comparisons ran (so a fixture directory cannot silently empty).
+pub fn assert_fixture_dir_agrees(
+    dir: &str,
+    normal_deg: f64,
+    min_checks: usize,
+    paths: impl Fn(&str) -> Vec<Tessellator>,
+) {
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for file in crate::fixture_files(dir, "txt") {
+        let name = file.file_stem().unwrap().to_string_lossy().to_string();
+        let (cage, lv) = name.rsplit_once(".L").unwrap();
+        let level: Depth = lv.parse().unwrap();
+        let path = crate::fixtures().join(dir).join(format!("{cage}.obj"));
+        let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{cage}: {e}"));
+        let mesh = subdiv_mesh::read_obj(&path).unwrap_or_else(|e| panic!("{cage}: {e}"));
+        let reference = Reference::read(&file);
+        for which in paths(&text) {
+            checked += 1;
+            if let Err(e) = compare(&mesh, level, &reference, which, normal_deg) {
+                failures.push(format!("{name} ({which:?}): {e}"));
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {checked} checks disagree with OpenSubdiv:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+    assert!(checked >= min_checks, "only {checked} checks");
+}

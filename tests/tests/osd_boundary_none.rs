@@ -16,9 +16,9 @@ use subdiv::DynamicSubdivision;
 use subdiv_depth::DepthParams;
 use subdiv_mesh::{Camera, Mesh, read_obj};
 use subdiv_rules::{Depth, Scheme, tessellate_uniform};
-use subdiv_tests::osd_compare::{Tessellator, compare};
+use subdiv_tests::osd_compare::{Tessellator, assert_fixture_dir_agrees};
 use subdiv_tests::osd_gen::random_cage;
-use subdiv_tests::{PointGrid, Reference, fixture_files, fixtures};
+use subdiv_tests::{PointGrid, fixture_files};
 
 /// fuzz-osd's normal tolerance (degrees).
 const NORMAL_DEG: f64 = 0.05;
@@ -33,29 +33,9 @@ fn scheme_of(name: &str) -> Scheme {
 
 #[test]
 fn boundary_none_cages_agree_with_opensubdiv() {
-    let mut failures = Vec::new();
-    let mut checked = 0;
-    for file in fixture_files("boundary_none", "txt") {
-        let name = file.file_stem().unwrap().to_string_lossy().to_string();
-        let (cage, lv) = name.rsplit_once(".L").unwrap();
-        let level: Depth = lv.parse().unwrap();
-        let path = fixtures().join("boundary_none").join(format!("{cage}.obj"));
-        let mesh = read_obj(&path).unwrap_or_else(|e| panic!("{cage}: {e}"));
-        let reference = Reference::read(&file);
-        for which in [Tessellator::Uniform, Tessellator::Slate] {
-            checked += 1;
-            if let Err(e) = compare(&mesh, level, &reference, which, NORMAL_DEG) {
-                failures.push(format!("{name} ({which:?}): {e}"));
-            }
-        }
-    }
-    assert!(
-        failures.is_empty(),
-        "{} of {checked} checks disagree with OpenSubdiv:\n{}",
-        failures.len(),
-        failures.join("\n")
-    );
-    assert!(checked >= 24, "only {checked} checks");
+    assert_fixture_dir_agrees("boundary_none", NORMAL_DEG, 24, |_| {
+        vec![Tessellator::Uniform, Tessellator::Slate]
+    });
 }
 
 /// The points the drawn faces of the uniform tessellation use, and its triangle count.

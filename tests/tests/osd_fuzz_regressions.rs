@@ -7,42 +7,18 @@
 //! `fuzz13_16024_full` is the whole cage 16024 at levels 1-4, whose level-2 normal at valence-2
 //! vertex 10 is undefined (parallel tangents; `ref_osd` writes 0 0 0 there since issue 13).
 
-use subdiv_mesh::read_obj;
-use subdiv_tests::osd_compare::{Tessellator, compare};
-use subdiv_tests::{Reference, fixture_files, fixtures};
+use subdiv_tests::osd_compare::{Tessellator, assert_fixture_dir_agrees};
 
 /// fuzz-osd's normal tolerance (degrees).
 const NORMAL_DEG: f64 = 0.05;
 
 #[test]
 fn fuzz_osd_regressions_agree_with_opensubdiv() {
-    let mut failures = Vec::new();
-    let mut checked = 0;
-    for file in fixture_files("osd_fuzz", "txt") {
-        let name = file.file_stem().unwrap().to_string_lossy().to_string();
-        let (cage, lv) = name.rsplit_once(".L").unwrap();
-        let level: subdiv_rules::Depth = lv.parse().unwrap();
-        let path = fixtures().join("osd_fuzz").join(format!("{cage}.obj"));
-        let text = std::fs::read_to_string(&path).unwrap();
-        let loop_scheme = text.contains("scheme loop");
-        let mesh = read_obj(&path).unwrap_or_else(|e| panic!("{cage}: {e}"));
-        let reference = Reference::read(&file);
-        let mut paths = vec![Tessellator::Uniform];
-        if !loop_scheme {
-            paths.push(Tessellator::Slate);
+    assert_fixture_dir_agrees("osd_fuzz", NORMAL_DEG, 10, |text| {
+        if text.contains("scheme loop") {
+            vec![Tessellator::Uniform]
+        } else {
+            vec![Tessellator::Uniform, Tessellator::Slate]
         }
-        for which in paths {
-            checked += 1;
-            if let Err(e) = compare(&mesh, level, &reference, which, NORMAL_DEG) {
-                failures.push(format!("{name} ({which:?}): {e}"));
-            }
-        }
-    }
-    assert!(
-        failures.is_empty(),
-        "{} of {checked} checks disagree with OpenSubdiv:\n{}",
-        failures.len(),
-        failures.join("\n")
-    );
-    assert!(checked >= 10, "only {checked} checks");
+    });
 }

@@ -12,37 +12,17 @@
 use std::collections::HashMap;
 
 use subdiv_mesh::{PolygonSoup, read_obj, read_obj_soup};
-use subdiv_tests::osd_compare::{Tessellator, compare};
-use subdiv_tests::{Reference, fixture_files, fixtures};
+use subdiv_tests::osd_compare::{Tessellator, assert_fixture_dir_agrees};
+use subdiv_tests::{fixture_files, fixtures};
 
 /// fuzz-osd's normal tolerance (degrees).
 const NORMAL_DEG: f64 = 0.05;
 
 #[test]
 fn nonmanifold_cages_agree_with_opensubdiv() {
-    let mut failures = Vec::new();
-    let mut checked = 0;
-    for file in fixture_files("nonmanifold", "txt") {
-        let name = file.file_stem().unwrap().to_string_lossy().to_string();
-        let (cage, lv) = name.rsplit_once(".L").unwrap();
-        let level: subdiv_rules::Depth = lv.parse().unwrap();
-        let path = fixtures().join("nonmanifold").join(format!("{cage}.obj"));
-        let mesh = read_obj(&path).unwrap_or_else(|e| panic!("{cage}: {e}"));
-        let reference = Reference::read(&file);
-        for which in [Tessellator::Uniform, Tessellator::Slate] {
-            checked += 1;
-            if let Err(e) = compare(&mesh, level, &reference, which, NORMAL_DEG) {
-                failures.push(format!("{name} ({which:?}): {e}"));
-            }
-        }
-    }
-    assert!(
-        failures.is_empty(),
-        "{} of {checked} checks disagree with OpenSubdiv:\n{}",
-        failures.len(),
-        failures.join("\n")
-    );
-    assert!(checked >= 60, "only {checked} checks");
+    assert_fixture_dir_agrees("nonmanifold", NORMAL_DEG, 60, |_| {
+        vec![Tessellator::Uniform, Tessellator::Slate]
+    });
 }
 
 /// What the split reports on each cage, and that a manifold cage is left alone.
