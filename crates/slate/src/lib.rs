@@ -57,6 +57,7 @@
 //! ```
 
 mod gather;
+mod grid;
 mod layout;
 mod limit;
 mod patches;
@@ -70,6 +71,7 @@ mod tri;
 mod uv;
 mod worker;
 
+pub use grid::side_point;
 pub use layout::PatchLayout;
 pub use patches::{PatchRef, PatchSet, Unit};
 pub use pool::{KEEP_MAX_DEPTH, WorkerGuard, thread_worker};

@@ -274,12 +274,7 @@ impl PatchSet {
             for k in 0..4 {
                 let h = hs(k);
                 for s in 1..n {
-                    let (i, j) = match k {
-                        0 => (s, 0),
-                        1 => (n, s),
-                        2 => (n - s, n),
-                        _ => (0, n - s),
-                    };
+                    let (i, j) = crate::side_point(k, s, n);
                     put(at(i, j), seams.point(mesh, h, s, depth));
                 }
             }

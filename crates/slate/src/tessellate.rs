@@ -278,12 +278,7 @@ fn run_patch(
     }
     for (k, side) in p.sides.iter().enumerate() {
         for s in 1..n {
-            let (i, j) = match k {
-                0 => (s, 0),
-                1 => (n, s),
-                2 => (n - s, n),
-                _ => (0, n - s),
-            };
+            let (i, j) = crate::side_point(k, s, n);
             if side.owned || look(w, i, j) {
                 // Not a grid corner: no corner array.
                 let (pos, nrm, one) = w.limit_table(i as i32, j as i32, visible);
