@@ -167,14 +167,15 @@ impl Worker {
     }
 
     /// Limits of all interior grid points `(i, j)`, `1 <= i, j <= n - 1`, of the current slate,
-    /// passed row by row to `emit(i, j, position, normal)`.
+    /// passed row by row to `emit(i, j, position, normal)` (grid coordinates as `usize`, so a
+    /// caller's output index folds into one add per point).
     ///
     /// Off the band every point is plain (see [`band`](crate::table::band)), general table or
     /// not, so the regular limit masks apply to every interior point; they are evaluated in their
     /// separable form (`catmark::limit_row_sums` once per table row, shared by the three output
     /// rows around it).
     #[inline]
-    pub(crate) fn limit_interior(&mut self, mut emit: impl FnMut(i32, i32, Vec3A, Vec3A)) {
+    pub(crate) fn limit_interior(&mut self, mut emit: impl FnMut(usize, usize, Vec3A, Vec3A)) {
         let t = &self.t[self.cur];
         let n = t.grid_size as i32;
         if n < 2 {
@@ -214,8 +215,11 @@ impl Worker {
                 let (pos, t1, t2) = catmark::limit_regular_from_sums([bs, b0, bn], [as_, a0, an]);
                 let nrm = t1.cross(t2);
                 let len2 = nrm.length_squared();
-                if len2 > 0.0 && len2.is_finite() {
-                    emit(x as i32 + 1, j, pos + o, nrm * len2.sqrt().recip());
+                // `len2 > 0.0 && len2.is_finite()` in one compare: the positive finite
+                // floats are exactly the bit patterns 1..=0x7f7f_ffff (+0 wraps to u32::MAX;
+                // negatives, infinities and NaNs lie above).
+                if len2.to_bits().wrapping_sub(1) < 0x7f7f_ffff {
+                    emit(x + 1, j as usize, pos + o, nrm * len2.sqrt().recip());
                 } else {
                     bad.push((x as i32 + 1, j));
                 }
@@ -226,7 +230,7 @@ impl Worker {
         // Degenerate tangents: those points exactly, through a ring.
         for &(i, j) in &bad {
             let (pos, nrm) = self.limit(i, j);
-            emit(i, j, pos, nrm);
+            emit(i as usize, j as usize, pos, nrm);
         }
         self.bad = bad;
     }

@@ -295,7 +295,7 @@ fn run_patch(
         let first = p.interior as usize;
         out.check_range(first, m * m);
         w.limit_interior(|i, j, pos, nrm| {
-            let k = first + (j as usize - 1) * m + (i as usize - 1);
+            let k = first + (j - 1) * m + (i - 1);
             // SAFETY: `1 <= i, j <= n - 1`, so `k` lies in this patch's interior range, checked
             // above, which only this patch writes.
             unsafe { out.write_unchecked(k, pos, nrm) }

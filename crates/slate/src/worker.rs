@@ -173,7 +173,7 @@ impl Worker {
             }
         }
         self.limit_interior(|i, j, p, q| {
-            let k = j as usize * w + i as usize;
+            let k = j * w + i;
             pos[k] = p.to_array();
             nrm[k] = q.to_array();
         });
