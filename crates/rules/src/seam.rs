@@ -79,6 +79,35 @@ fn key(p: glam::Vec3) -> [u32; 3] {
     p.to_array().map(|x| if x == 0.0 { 0 } else { x.to_bits() })
 }
 
+/// A seam's crease chain in one orientation: the edge's ends `p1`, `p2` and the crease points
+/// beyond them (`None` at a corner end), in `f64`.
+#[derive(Clone, Copy, Debug)]
+struct Chain {
+    beyond1: Option<DVec3>,
+    p1: DVec3,
+    p2: DVec3,
+    beyond2: Option<DVec3>,
+}
+
+impl Chain {
+    /// The same chain read from `p2` to `p1`.
+    fn reversed(self) -> Chain {
+        Chain {
+            beyond1: self.beyond2,
+            p1: self.p2,
+            p2: self.p1,
+            beyond2: self.beyond1,
+        }
+    }
+
+    /// The points' bits (`f32`, signed zeros as one), ends first: the order the canonical
+    /// orientation is chosen by.
+    fn keys(&self) -> [Option<[u32; 3]>; 4] {
+        [Some(self.p1), Some(self.p2), self.beyond1, self.beyond2]
+            .map(|x| x.map(|y| key(y.as_vec3())))
+    }
+}
+
 /// The chain ends of vertex `v` if its rule reads the chain only at every level (see the
 /// module notes): a corner, or a crease with the far ends of its two infinitely sharp edges and
 /// its vertex sharpness.
@@ -168,11 +197,8 @@ impl SeamCurves {
                 beyond_b: beyond(eb, a),
                 sharp: [ea.2, eb.2],
             };
-            let (pts, sharp, _) = Self::canonical(mesh, &c);
-            let bits = (
-                pts.map(|p| p.map(|q| key(q.as_vec3()))),
-                sharp.map(f32::to_bits),
-            );
+            let (chain, sharp, _) = Self::canonical(mesh, &c);
+            let bits = (chain.keys(), sharp.map(f32::to_bits));
             if canon.is_some_and(|k| k != bits) {
                 return;
             }
@@ -202,18 +228,20 @@ impl SeamCurves {
     /// The curve's control points `[P0, P1, P2, P3]` (`None`: a corner end, reflected) and
     /// the vertex sharpness of `P1` and `P2`, in canonical order, and whether that order runs
     /// against the edge's even half-edge.
-    fn canonical(mesh: &Mesh, c: &Curve) -> ([Option<DVec3>; 4], [f32; 2], bool) {
+    fn canonical(mesh: &Mesh, c: &Curve) -> (Chain, [f32; 2], bool) {
         let p = |v: VertexId| mesh.position(v).as_dvec3();
         let end = |e: ChainEnd| match e {
             ChainEnd::Corner => None,
             ChainEnd::Crease(v) => Some(p(v)),
         };
-        let fwd = [end(c.beyond_a), Some(p(c.a)), Some(p(c.b)), end(c.beyond_b)];
-        let rev = [fwd[3], fwd[2], fwd[1], fwd[0]];
-        let k = |q: &[Option<DVec3>; 4], s: [f32; 2]| {
-            let pts = [q[1], q[2], q[0], q[3]].map(|x| x.map(|y| key(y.as_vec3())));
-            (pts, s.map(f32::to_bits))
+        let fwd = Chain {
+            beyond1: end(c.beyond_a),
+            p1: p(c.a),
+            p2: p(c.b),
+            beyond2: end(c.beyond_b),
         };
+        let rev = fwd.reversed();
+        let k = |q: &Chain, s: [f32; 2]| (q.keys(), s.map(f32::to_bits));
         let [s1, s2] = c.sharp;
         if k(&rev, [s2, s1]) < k(&fwd, [s1, s2]) {
             (rev, [s2, s1], true)
@@ -266,28 +294,38 @@ impl SeamCurves {
             t = 1.0 - t;
         }
         // A symmetric chain reads the same both ways: take the half nearer P1.
-        if (q[0], q[1], s[0]) == (q[3], q[2], s[1]) {
+        if (q.beyond1, q.p1, s[0]) == (q.beyond2, q.p2, s[1]) {
             t = t.min(1.0 - t);
         }
         // Refine the half holding `t` while a vertex sharpness lasts at either end.
         while s[0] > 0.0 || s[1] > 0.0 {
-            let (p1, p2) = (q[1].expect("edge end"), q[2].expect("edge end"));
-            let v1 = vertex_step(q[0], p1, Some(p2), s[0]);
-            let v2 = vertex_step(Some(p1), p2, q[3], s[1]);
+            let (p1, p2) = (q.p1, q.p2);
+            let v1 = vertex_step(q.beyond1, p1, Some(p2), s[0]);
+            let v2 = vertex_step(Some(p1), p2, q.beyond2, s[1]);
             let m = (p1 + p2) * 0.5;
             if t <= 0.5 {
-                q = [q[0].map(|p0| (p0 + p1) * 0.5), Some(v1), Some(m), Some(v2)];
+                q = Chain {
+                    beyond1: q.beyond1.map(|p0| (p0 + p1) * 0.5),
+                    p1: v1,
+                    p2: m,
+                    beyond2: Some(v2),
+                };
                 s = [decrement(s[0]), 0.0];
                 t *= 2.0;
             } else {
-                q = [Some(v1), Some(m), Some(v2), q[3].map(|p3| (p2 + p3) * 0.5)];
+                q = Chain {
+                    beyond1: Some(v1),
+                    p1: m,
+                    p2: v2,
+                    beyond2: q.beyond2.map(|p3| (p2 + p3) * 0.5),
+                };
                 s = [0.0, decrement(s[1])];
                 t = 2.0 * t - 1.0;
             }
         }
-        let (p1, p2) = (q[1].expect("edge end"), q[2].expect("edge end"));
-        let p0 = q[0].unwrap_or(p1 * 2.0 - p2);
-        let p3 = q[3].unwrap_or(p2 * 2.0 - p1);
+        let (p1, p2) = (q.p1, q.p2);
+        let p0 = q.beyond1.unwrap_or(p1 * 2.0 - p2);
+        let p3 = q.beyond2.unwrap_or(p2 * 2.0 - p1);
         Some(bspline(p0, p1, p2, p3, t).as_vec3())
     }
 
