@@ -44,7 +44,7 @@
 //! Loop runs on triangular slates by the same design (module `tri`, see [`tessellate_loop`]).
 //!
 //! `table` (a slate's storage), `gather` (a patch's 1-neighbourhood into slate 0), `step` (one
-//! subdivision step), `limit` (limit points and normals), `worker` (a thread's slates and the
+//! subdivision step), `limit` (limit points and normals; `wide` its interior loop eight points at a time), `worker` (a thread's slates and the
 //! pipeline of one patch), `pool` (the per-thread workers), `patches` and `layout` (per-mesh
 //! set-up and output numbering), `tessellate` (the parallel driver).
 //!
@@ -69,6 +69,7 @@ mod tessellate;
 mod test_meshes;
 mod tri;
 mod uv;
+mod wide;
 mod worker;
 
 pub use grid::side_point;

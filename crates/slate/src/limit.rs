@@ -13,6 +13,7 @@ use subdiv_rules::catmark;
 use subdiv_rules::crease::is_infinite;
 
 use crate::table::{DI, DJ, far_info};
+use crate::wide::{self, InteriorOut};
 use crate::worker::Worker;
 
 /// Most configurations a worker keeps stencils for (beyond, the oldest are replaced). Real cages
@@ -167,25 +168,67 @@ impl Worker {
     }
 
     /// Limits of all interior grid points `(i, j)`, `1 <= i, j <= n - 1`, of the current slate,
-    /// passed row by row to `emit(i, j, position, normal)` (grid coordinates as `usize`, so a
-    /// caller's output index folds into one add per point).
+    /// written to `out` (see [`InteriorOut`]; panics if they do not fit).
     ///
     /// Off the band every point is plain (see [`band`](crate::table::band)), general table or
     /// not, so the regular limit masks apply to every interior point; they are evaluated in their
     /// separable form (`catmark::limit_row_sums` once per table row, shared by the three output
-    /// rows around it).
+    /// rows around it): eight points at a time where the CPU has AVX2 and a row has at least
+    /// eight points ([`wide`](crate::wide), the same bits), otherwise one at a time.
     #[inline]
-    pub(crate) fn limit_interior(&mut self, mut emit: impl FnMut(usize, usize, Vec3A, Vec3A)) {
+    pub(crate) fn limit_interior(&mut self, out: &mut InteriorOut<'_>) {
         let t = &self.t[self.cur];
-        let n = t.grid_size as i32;
+        let n = t.grid_size;
         if n < 2 {
             return;
         }
+        assert!(out.fits(n), "interior output out of range");
         debug_assert!(
-            (1..n).all(|j| (1..n).all(|i| t.is_plain(i, j))),
+            (1..n as i32).all(|j| (1..n as i32).all(|i| t.is_plain(i, j))),
             "interior points of a slate must be plain"
         );
-        let cnt = (n - 1) as usize;
+        let mut bad = std::mem::take(&mut self.bad);
+        bad.clear();
+        if n >= 9 && wide::available() {
+            let mut scratch = std::mem::take(&mut self.wide);
+            if scratch.len() < wide::scratch_len(n) {
+                scratch.resize(wide::scratch_len(n), 0.0);
+            }
+            let t = &self.t[self.cur];
+            wide::interior_rows(
+                &t.positions,
+                t.stride,
+                n,
+                self.origin32,
+                &mut scratch,
+                out,
+                &mut bad,
+            );
+            self.wide = scratch;
+        } else {
+            self.limit_interior_scalar(out, &mut bad);
+        }
+        // Degenerate tangents: those points exactly, through a ring.
+        for &(i, j) in &bad {
+            let (pos, nrm) = self.limit(i, j);
+            let k = out.first + (j - 1) as usize * out.stride + (i - 1) as usize;
+            out.pos[k] = pos.to_array();
+            out.nrm[k] = nrm.to_array();
+        }
+        self.bad = bad;
+    }
+
+    /// [`Worker::limit_interior`] one point at a time, but for the points with degenerate
+    /// tangents, which it pushes onto `bad` (row by row) and leaves unwritten.
+    pub(crate) fn limit_interior_scalar(
+        &mut self,
+        out: &mut InteriorOut<'_>,
+        bad: &mut Vec<(i32, i32)>,
+    ) {
+        let t = &self.t[self.cur];
+        let n = t.grid_size;
+        let cnt = n - 1;
+        assert!(out.fits(n), "interior output out of range");
         // Row sums of table rows 0..=n in a three-row rolling buffer.
         if self.sum_b.len() < 3 * cnt {
             self.sum_b.resize(3 * cnt, Vec3A::ZERO);
@@ -205,13 +248,16 @@ impl Worker {
         sums(0, sb[0], sa[0]);
         sums(1, sb[1], sa[1]);
         let o = self.origin32;
-        let mut bad = std::mem::take(&mut self.bad);
-        bad.clear();
         for j in 1..n {
-            sums(j + 1, sb[2], sa[2]);
+            sums(j as i32 + 1, sb[2], sa[2]);
+            let row = out.first + (j - 1) * out.stride;
+            let (prow, nrow) = (&mut out.pos[row..row + cnt], &mut out.nrm[row..row + cnt]);
             let b = sb[0].iter().zip(sb[1].iter()).zip(sb[2].iter());
             let a = sa[0].iter().zip(sa[1].iter()).zip(sa[2].iter());
-            for (x, (((&bs, &b0), &bn), ((&as_, &a0), &an))) in b.zip(a).enumerate() {
+            let dst = prow.iter_mut().zip(nrow.iter_mut());
+            for (x, ((((&bs, &b0), &bn), ((&as_, &a0), &an)), (p, q))) in
+                b.zip(a).zip(dst).enumerate()
+            {
                 let (pos, t1, t2) = catmark::limit_regular_from_sums([bs, b0, bn], [as_, a0, an]);
                 let nrm = t1.cross(t2);
                 let len2 = nrm.length_squared();
@@ -219,20 +265,15 @@ impl Worker {
                 // floats are exactly the bit patterns 1..=0x7f7f_ffff (+0 wraps to u32::MAX;
                 // negatives, infinities and NaNs lie above).
                 if len2.to_bits().wrapping_sub(1) < 0x7f7f_ffff {
-                    emit(x + 1, j as usize, pos + o, nrm * len2.sqrt().recip());
+                    *p = (pos + o).to_array();
+                    *q = (nrm * len2.sqrt().recip()).to_array();
                 } else {
-                    bad.push((x as i32 + 1, j));
+                    bad.push((x as i32 + 1, j as i32));
                 }
             }
             sb.rotate_left(1);
             sa.rotate_left(1);
         }
-        // Degenerate tangents: those points exactly, through a ring.
-        for &(i, j) in &bad {
-            let (pos, nrm) = self.limit(i, j);
-            emit(i as usize, j as usize, pos, nrm);
-        }
-        self.bad = bad;
     }
 
     /// Limit through a ring built from the table (creases, boundaries, degenerate tangents), and

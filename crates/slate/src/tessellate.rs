@@ -7,6 +7,7 @@ use subdiv_rules::{Depth, LimitMesh, MAX_DEPTH, RulesError, Scheme, limit_surfac
 
 use crate::layout::{Patch, PatchLayout};
 use crate::pool::thread_worker;
+use crate::wide::InteriorOut;
 use crate::worker::Worker;
 
 /// Errors of the slate tessellator.
@@ -46,9 +47,9 @@ pub(crate) struct SharedOut {
     pub(crate) nrm: *mut [f32; 3],
     pub(crate) len: usize,
 }
-// SAFETY: the pointers are only written through `write` and `write_unchecked`, at indices
-// below `len` (asserted, or checked by `check_range`), and the tasks sharing a `SharedOut` write
-// disjoint indices (each output point has one owner patch in the layout); nothing reads through
+// SAFETY: the pointers are only written through `write`, `write_unchecked` and the slices of
+// `range`, at indices below `len` (asserted, or checked by `check_range`), and the tasks sharing a
+// `SharedOut` write disjoint indices (each output point has one owner patch in the layout); nothing reads through
 // them while tasks run, and the buffers outlive the parallel loop that uses them.
 unsafe impl Sync for SharedOut {}
 // SAFETY: as for `Sync`: the raw pointers carry no thread affinity, and the only accesses are
@@ -67,6 +68,28 @@ impl SharedOut {
     #[inline]
     pub(crate) fn check_range(&self, first: usize, count: usize) {
         assert!(first + count <= self.len, "output range out of bounds");
+    }
+
+    /// The elements `first..first + count` of both buffers as slices.
+    ///
+    /// # Safety
+    /// `first + count <= len` (see [`SharedOut::check_range`]), no other task writes these
+    /// indices while the slices live, and no other slice of them is alive.
+    #[inline]
+    #[allow(clippy::mut_from_ref)]
+    pub(crate) unsafe fn range(
+        &self,
+        first: usize,
+        count: usize,
+    ) -> (&mut [[f32; 3]], &mut [[f32; 3]]) {
+        // SAFETY: the range lies inside the `len`-element buffers (caller), which outlive the
+        // tasks; the caller guarantees exclusive access to it, so the slices alias nothing.
+        unsafe {
+            (
+                std::slice::from_raw_parts_mut(self.pos.add(first), count),
+                std::slice::from_raw_parts_mut(self.nrm.add(first), count),
+            )
+        }
     }
 
     /// # Safety
@@ -294,11 +317,13 @@ fn run_patch(
         let m = (n - 1) as usize;
         let first = p.interior as usize;
         out.check_range(first, m * m);
-        w.limit_interior(|i, j, pos, nrm| {
-            let k = first + (j - 1) * m + (i - 1);
-            // SAFETY: `1 <= i, j <= n - 1`, so `k` lies in this patch's interior range, checked
-            // above, which only this patch writes.
-            unsafe { out.write_unchecked(k, pos, nrm) }
+        // SAFETY: the range is inside the buffers (checked above) and only this patch writes it.
+        let (pos, nrm) = unsafe { out.range(first, m * m) };
+        w.limit_interior(&mut InteriorOut {
+            pos,
+            nrm,
+            first: 0,
+            stride: m,
         });
     }
     w.sided_points = sided;

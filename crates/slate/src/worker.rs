@@ -11,6 +11,7 @@ use subdiv_rules::{Depth, QuadRingStencil};
 
 use crate::limit::{MAX_STENCILS, StencilKey};
 use crate::table::{Corner, Table};
+use crate::wide::InteriorOut;
 
 /// Per-thread tessellation state: two slates and four corner arrays, allocated once.
 #[derive(Debug)]
@@ -39,6 +40,8 @@ pub struct Worker {
     /// Three rows of sums of the separable regular limit masks (`limit_interior`).
     pub(crate) sum_b: Vec<Vec3A>,
     pub(crate) sum_a: Vec<Vec3A>,
+    /// The same rows in SoA form, with one transposed table row (`wide::interior_rows`).
+    pub(crate) wide: Vec<f32>,
     /// Interior points with degenerate regular tangents.
     pub(crate) bad: Vec<(i32, i32)>,
     /// Limit stencils of the crease and boundary configurations met by `limit_general`.
@@ -72,6 +75,7 @@ impl Worker {
             split: Vec::new(),
             sum_b: Vec::new(),
             sum_a: Vec::new(),
+            wide: Vec::new(),
             bad: Vec::new(),
             stencils: Vec::new(),
             last_stencil: 0,
@@ -88,7 +92,7 @@ impl Worker {
 
     /// Most bytes the worker's scratch can reach besides the tables and corner arrays (capacity
     /// for `max_depth`): the dirty mask and its list, the list of sharp edges (two per band
-    /// point), the rolling rows of the regular step and of the limit sums, the Chaikin far
+    /// point), the rolling rows of the regular step and of the limit sums (AoS and SoA), the Chaikin far
     /// information and a full stencil cache.
     pub fn scratch_bytes(&self) -> usize {
         let (side, cap) = (self.maxn + 3, (self.maxn + 3) * (self.maxn + 3));
@@ -99,6 +103,7 @@ impl Worker {
             + 2 * (8 * self.maxn + 8) * std::mem::size_of::<(u32, u8)>()
             + 3 * side * v
             + 6 * self.maxn * v
+            + crate::wide::scratch_len(self.maxn) * 4
             + 2 * 4 * (self.maxn + 1) * std::mem::size_of::<(f32, u32)>()
             + MAX_STENCILS * stencil
     }
@@ -172,10 +177,11 @@ impl Worker {
                 }
             }
         }
-        self.limit_interior(|i, j, p, q| {
-            let k = j * w + i;
-            pos[k] = p.to_array();
-            nrm[k] = q.to_array();
+        self.limit_interior(&mut InteriorOut {
+            pos,
+            nrm,
+            first: w + 1,
+            stride: w,
         });
     }
 }
