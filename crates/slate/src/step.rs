@@ -2,7 +2,8 @@
 //! `1 - i` with the rules of `subdiv-rules`, and the corner arrays refined in place.
 //!
 //! Every table is first refined by the smooth regular rules in their separable form (rows split,
-//! then split rows combined, [`step_regular`]); a table with creases or boundaries then redoes,
+//! then split rows combined, [`step_regular`]; the row loop in `rows`, its AVX2 kernels in
+//! `wide::split`); a table with creases or boundaries then redoes,
 //! with the general face, edge and vertex rules, only its *dirty* points: the ends of sharp edges
 //! and the neighbours of missing points ([`step_general`]). Those lie on the *band* (rows and
 //! columns `-1, 0, n, n + 1`, see [`band`](crate::table::band)), so the general work grows with
@@ -15,6 +16,8 @@ use subdiv_rules::crease::{self, VertexRules, edge_crease_weight, is_semi_sharp}
 
 use crate::table::{Corner, DI, DJ, Table, band, corner_frame, far_info, ring_index_of_dir};
 use crate::worker::Worker;
+
+pub(crate) mod rows;
 
 impl Worker {
     /// One subdivision step: slate `cur` to slate `1 - cur`, corner arrays refined in place.
@@ -148,30 +151,9 @@ fn step_regular(src: &Table, dst: &mut Table, split: &mut Vec<Vec3A>) {
     if split.len() < 3 * ds {
         split.resize(3 * ds, Vec3A::ZERO);
     }
-    // Storage row y of dst is level coordinate y - 1: odd coordinates (even y) lie between split
-    // rows r - 1 and r, even ones (odd y) at split row r - 1. The three slots hold split rows
-    // r - 2, r - 1 and r, rotated after each source row.
-    let (s0, rest) = split[..3 * ds].split_at_mut(ds);
-    let (s1, s2) = rest.split_at_mut(ds);
-    let mut slots: [&mut [Vec3A]; 3] = [s0, s1, s2];
-    let mut rows = src.positions[..ss * ss].chunks_exact(ss);
-    let mut out = dst.positions[..ds * ds].chunks_exact_mut(ds);
-    if let (Some(r0), Some(r1)) = (rows.next(), rows.next()) {
-        catmark::split_row(r0, slots[0]);
-        catmark::split_row(r1, slots[1]);
-        if let Some(o) = out.next() {
-            catmark::split_rows_mid(slots[0], slots[1], o);
-        }
-    }
-    for row in rows {
-        catmark::split_row(row, slots[2]);
-        if let Some(o) = out.next() {
-            catmark::split_rows_even(slots[0], slots[1], slots[2], o);
-        }
-        if let Some(o) = out.next() {
-            catmark::split_rows_mid(slots[1], slots[2], o);
-        }
-        slots.rotate_left(1);
+    let (src, dst_p) = (&src.positions, &mut dst.positions);
+    if !crate::wide::split_rows(src, ss, dst_p, ds, split) {
+        rows::regular_rows(&rows::Scalar, src, ss, dst_p, ds, split);
     }
     dst.exists[..ds * ds].fill(true);
 }

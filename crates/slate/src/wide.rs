@@ -17,6 +17,10 @@
 
 use glam::Vec3A;
 
+mod split;
+
+pub(crate) use split::split_rows;
+
 /// Whether this CPU runs [`interior_rows`] (AVX2), detected once.
 #[inline]
 pub(crate) fn available() -> bool {
