@@ -36,7 +36,7 @@ pub(crate) fn available() -> bool {
 
 /// Floats of scratch [`interior_rows`] needs for grid size `n`.
 pub(crate) fn scratch_len(n: usize) -> usize {
-    3 * (n + 1) + 3 * 48 * n.saturating_sub(1).div_ceil(8)
+    6 * (n + 1) + 3 * 48 * n.saturating_sub(1).div_ceil(8)
 }
 
 /// Where the interior limits go: point `(i, j)`, `1 <= i, j <= n - 1`, at index
@@ -136,31 +136,41 @@ mod avx2 {
     /// Floats of one block of row sums: `b` x, y, z then `a` x, y, z, eight lanes each.
     const BLOCK: usize = 48;
 
-    /// `catmark::limit_row_sums` of table row `j`, by blocks: block `k` (the points of
-    /// `blocks(n - 1)`'s `k`-th start) at `sums + k * BLOCK`, each coordinate's
-    /// `b = (w[i] + w[i + 2]) + w[i + 1] * 4` and `a = w[i + 2] - w[i]`.
+    /// Table row `j` transposed into `px` (`x`, `y`, `z`, `n + 1` floats each).
     ///
     /// # Safety
-    /// AVX2; the bounds of [`interior_rows`]; `px` holds `3 * (n + 1)` floats, `sums`
-    /// `BLOCK * (n - 1).div_ceil(8)`.
+    /// AVX2; the bounds of [`interior_rows`]; `px` writable for `3 * (n + 1)` floats.
     #[target_feature(enable = "avx2")]
     #[inline]
-    unsafe fn table_row(
-        positions: &[Vec3A],
-        stride: usize,
-        n: usize,
-        j: usize,
-        px: *mut f32,
-        sums: *mut f32,
-    ) {
-        let (len, cnt) = (n + 1, n - 1);
-        let four = _mm256_set1_ps(4.0);
+    unsafe fn transpose_row(positions: &[Vec3A], stride: usize, n: usize, j: usize, px: *mut f32) {
+        let len = n + 1;
         // SAFETY: row `j <= n` of the table spans `(j + 1) * stride + 1 ..= + n`, inside
-        // `positions` (`(n + 2) * stride` points); block starts `s <= cnt - 8` read `px` below
-        // `c * len + cnt + 2 = (c + 1) * len` and write block `k < cnt.div_ceil(8)`.
+        // `positions` (`(n + 2) * stride` points).
         unsafe {
             let src = positions.as_ptr().add((j + 1) * stride + 1);
             transpose(src, len, px, px.add(len), px.add(2 * len));
+        }
+    }
+
+    /// `catmark::limit_row_sums` of the transposed row `px`, by blocks: block `k` (the points
+    /// of `blocks(n - 1)`'s `k`-th start) at `sums + k * BLOCK`, each coordinate's
+    /// `b = (w[i] + w[i + 2]) + w[i + 1] * 4` and `a = w[i + 2] - w[i]`.
+    ///
+    /// The loads are unaligned, so they must not read a row transposed just before: a load
+    /// that straddles two recent stores waits for them to leave the store buffer (on the
+    /// pawn at depth 5 that stall was a sixth of the kernel's cycles).
+    ///
+    /// # Safety
+    /// AVX2; `px` readable for `3 * (n + 1)` floats, `sums` writable for
+    /// `BLOCK * (n - 1).div_ceil(8)`.
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    unsafe fn row_sums(px: *const f32, n: usize, sums: *mut f32) {
+        let (len, cnt) = (n + 1, n - 1);
+        let four = _mm256_set1_ps(4.0);
+        // SAFETY: block starts `s <= cnt - 8` read `px` below `c * len + cnt + 2 =
+        // (c + 1) * len` and write block `k < cnt.div_ceil(8)`.
+        unsafe {
             for (k, s) in blocks(cnt).enumerate() {
                 let out = sums.add(k * BLOCK);
                 for c in 0..3 {
@@ -276,23 +286,36 @@ mod avx2 {
         bad: &mut Vec<(i32, i32)>,
     ) {
         let cnt = n - 1;
-        let px = scratch.as_mut_ptr();
-        // Scratch: the transposed table row (`3 * (n + 1)` floats), then three slots of row
-        // sums (`BLOCK * cnt.div_ceil(8)` floats each), `scratch_len(n)` in all.
+        let base = scratch.as_mut_ptr();
+        // Scratch: two transposed table rows (`3 * (n + 1)` floats each; row `r` goes to
+        // `px[r % 2]`, transposed one output row before its sums are formed), then three slots
+        // of row sums (`BLOCK * cnt.div_ceil(8)` floats each), `scratch_len(n)` in all.
         let slot_len = BLOCK * cnt.div_ceil(8);
         // SAFETY: offsets inside the scratch (see above).
-        let mut slots = [0, 1, 2].map(|s| unsafe { px.add(3 * (n + 1) + slot_len * s) });
-        // SAFETY: the caller's bounds; rows 0 and 1 exist (`n >= 9`).
+        let px = [0, 1].map(|b| unsafe { base.add(3 * (n + 1) * b) });
+        // SAFETY: as above.
+        let mut slots = [0, 1, 2].map(|s| unsafe { base.add(6 * (n + 1) + slot_len * s) });
+        // SAFETY: the caller's bounds; rows 0, 1 and 2 exist (`n >= 9`).
         unsafe {
-            table_row(positions, stride, n, 0, px, slots[0]);
-            table_row(positions, stride, n, 1, px, slots[1]);
+            transpose_row(positions, stride, n, 0, px[0]);
+            transpose_row(positions, stride, n, 1, px[1]);
+            row_sums(px[0], n, slots[0]);
+            transpose_row(positions, stride, n, 2, px[0]);
+            row_sums(px[1], n, slots[1]);
         }
         let o = [origin.x, origin.y, origin.z].map(|c| _mm256_set1_ps(c));
         let pos = out.pos.as_mut_ptr() as *mut f32;
         let nrm = out.nrm.as_mut_ptr() as *mut f32;
         for j in 1..n {
-            // SAFETY: table row `j + 1 <= n`; the slot holds `slot_len` floats.
-            unsafe { table_row(positions, stride, n, j + 1, px, slots[2]) };
+            // SAFETY: table rows `j + 1 <= n` (transposed last iteration) and `j + 2`
+            // (into the buffer of row `j`, whose sums are formed); the slot holds `slot_len`
+            // floats.
+            unsafe {
+                row_sums(px[(j + 1) % 2], n, slots[2]);
+                if j + 2 <= n {
+                    transpose_row(positions, stride, n, j + 2, px[j % 2]);
+                }
+            }
             let row = out.first + (j - 1) * out.stride;
             // Lanes below `checked` were tested by an earlier block of this row.
             let mut checked = 0;
