@@ -22,6 +22,10 @@
 //!   that patch's own gather, in a fixed order, and a worker's reuse between patches cannot
 //!   change results (see [`thread_worker`]), so the output is bit-identical whether it runs on
 //!   one thread or many.
+//! - **The same bits with or without SIMD.** Where the CPU has AVX2 (detected at run time), the
+//!   interior limits run eight points per register and the regular step two (`wide`); every
+//!   lane performs the scalar path's IEEE operations in its order, without fused multiply-add,
+//!   so the output does not depend on the path taken.
 //! - **UVs are a function of the cage but for its positions.** A cage's face-varying values
 //!   (`uv`) depend on its topology, UVs, sharpness, options and holes only; a layout keeps those
 //!   of its first tessellation with UVs and hands them to later calls on the same cage, bit for
