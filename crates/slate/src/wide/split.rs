@@ -124,8 +124,23 @@ mod avx2 {
         f4: impl Fn(__m128, __m128, __m128) -> __m128,
     ) {
         let mut i = 0;
-        // SAFETY (both blocks): points `i`, `i + 1 < len`, then the last one, `i < len`.
-        while i + 2 <= len {
+        // SAFETY (every block): points `i .. i + 4 <= len`, then `i`, `i + 1 < len`, then the
+        // last one, `i < len`.
+        while i + 4 <= len {
+            // SAFETY: points `i .. i + 4` (see above).
+            unsafe {
+                for h in [0, 2] {
+                    let (x, y, z) = (
+                        _mm256_loadu_ps(a.add(4 * (i + h))),
+                        _mm256_loadu_ps(b.add(4 * (i + h))),
+                        _mm256_loadu_ps(c.add(4 * (i + h))),
+                    );
+                    _mm256_storeu_ps(o.add(4 * (i + h)), f8(x, y, z));
+                }
+            }
+            i += 4;
+        }
+        if i + 2 <= len {
             // SAFETY: points `i`, `i + 1` (see above).
             unsafe {
                 let (x, y, z) = (
