@@ -90,4 +90,5 @@ pub use tri::{
     tri_lattice_index, tri_lattice_len, tri_patch_lattice, tri_slate_bytes_per_thread,
 };
 pub use uv::LevelUvs;
+pub use wide::set_simd;
 pub use worker::Worker;

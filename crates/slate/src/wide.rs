@@ -15,15 +15,28 @@
 //! at `0, 8, 16, ...` and a last block at `m - 8`, which recomputes (identically) the points it
 //! shares with the block before instead of masking.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use glam::Vec3A;
 
 mod split;
 
 pub(crate) use split::split_rows;
 
-/// Whether this CPU runs [`interior_rows`] (AVX2), detected once.
+/// Whether the SIMD paths may be taken (see [`set_simd`]).
+static SIMD: AtomicBool = AtomicBool::new(true);
+
+/// Lets the slate tessellator take its SIMD paths where the CPU has them (`true`, the default)
+/// or makes it take the scalar paths everywhere (`false`): for tests and measurements, since
+/// the output is the same bits either way. Takes effect from the next patch; patches running
+/// meanwhile may take either path.
+pub fn set_simd(on: bool) {
+    SIMD.store(on, Ordering::Relaxed);
+}
+
+/// Whether this CPU has AVX2 (detected once; `std` caches it).
 #[inline]
-pub(crate) fn available() -> bool {
+fn cpu_avx2() -> bool {
     #[cfg(target_arch = "x86_64")]
     {
         std::arch::is_x86_feature_detected!("avx2")
@@ -32,6 +45,12 @@ pub(crate) fn available() -> bool {
     {
         false
     }
+}
+
+/// Whether the AVX2 paths run: the CPU has AVX2 and [`set_simd`] allows it.
+#[inline]
+pub(crate) fn available() -> bool {
+    SIMD.load(Ordering::Relaxed) && cpu_avx2()
 }
 
 /// Floats of scratch [`interior_rows`] needs for grid size `n`.
@@ -75,7 +94,7 @@ pub(crate) fn interior_rows(
     out: &mut InteriorOut<'_>,
     bad: &mut Vec<(i32, i32)>,
 ) {
-    assert!(available(), "interior_rows needs AVX2");
+    assert!(cpu_avx2(), "interior_rows needs AVX2");
     assert!(n >= 9 && stride >= n + 3, "grid too small for eight lanes");
     assert!(positions.len() >= (n + 2) * stride, "table too small");
     assert!(scratch.len() >= scratch_len(n), "scratch too small");
@@ -390,7 +409,7 @@ mod tests {
 
     #[test]
     fn eight_lanes_equal_the_scalar_loop_bit_for_bit() {
-        if !available() {
+        if !cpu_avx2() {
             eprintln!("no AVX2 on this CPU: the wide path is not used, nothing to compare");
             return;
         }

@@ -10,6 +10,9 @@
 //! a fingerprint of those, and on a platform whose fingerprint differs the test compares the
 //! thread counts and a repeated run with each other only, and says so.
 //!
+//! Each case is also run with the SIMD paths off (`set_simd(false)`, depths 2 and up), so a CPU
+//! with AVX2 checks the scalar paths too.
+//!
 //! `SLATE_HASHES_BLESS=1 cargo test -p subdiv-slate --test output_hashes` rewrites the file.
 
 use std::fmt::Write as _;
@@ -180,9 +183,17 @@ fn lines() -> String {
                     }
                 });
             }
+            // The scalar paths (what a CPU without AVX2 runs) give the same bits.
+            if depth >= 2 {
+                subdiv_slate::set_simd(false);
+                let t = pools[1].install(|| tessellate(&mesh, depth).expect("tessellation"));
+                subdiv_slate::set_simd(true);
+                hashes.push((hash(&t), t.positions.len()));
+            }
             assert!(
                 hashes.iter().all(|h| *h == hashes[0]),
-                "{name} depth {depth}: output depends on the thread count or on reuse: {hashes:x?}"
+                "{name} depth {depth}: output depends on the thread count, on reuse or on SIMD: \
+                 {hashes:x?}"
             );
             let (h, points) = hashes[0];
             writeln!(out, "{name} {depth} {points} {h:016x}").expect("write to a string");

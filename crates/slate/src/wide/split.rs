@@ -232,7 +232,7 @@ mod tests {
 
     #[test]
     fn two_points_per_register_equal_the_scalar_rules_bit_for_bit() {
-        if !super::super::available() {
+        if !super::super::cpu_avx2() {
             eprintln!("no AVX2 on this CPU: the wide path is not used, nothing to compare");
             return;
         }
