@@ -49,6 +49,7 @@ mod handle;
 mod mesh;
 mod obj;
 mod options;
+pub mod sharpness;
 mod soup;
 mod stats;
 mod tags;
