@@ -18,11 +18,15 @@
 //! each copy refines and takes its limit exactly where OpenSubdiv puts the one vertex; the copies
 //! coincide. A semi-sharp vertex sharpness at a crease vertex is carried by every copy, so
 //! every copy is a corner while it lasts and blends into the crease rule at the same level by
-//! the same weight, as the whole vertex does. Where a copy cannot be given the whole vertex's
-//! rule at every level (semi-sharp creases at a non-manifold crease vertex, which change the
-//! rule of their own copy only; Chaikin creases spread over several copies of a corner, whose
-//! decay averages over all of them; a crease vertex whose copy misses one of its two
-//! non-manifold edges; boundary interpolation `none`), the cage is refused with
+//! the same weight, as the whole vertex does. Semi-sharp edges at a crease vertex make the
+//! whole vertex a corner while they last (three sharp edges), then blend it into the crease by
+//! the average of what runs out last (OpenSubdiv's fractional weight over all the vertex's
+//! edges): that schedule is one vertex sharpness (`sharpness::crease_vertex_schedule`), given to
+//! every copy whose own edges and tag do not already give it. Where a copy cannot be given the
+//! whole vertex's rule at every level (Chaikin creases spread over several copies, whose decay
+//! averages over all of them; semi-sharp edges in several copies whose own transition weights
+//! differ from the whole vertex's; a crease vertex whose copy misses one of its two
+//! non-manifold edges, or a one-face copy under edge-and-corner), the cage is refused with
 //! [`MeshError::UnsupportedNonManifold`] naming the vertex, rather than refined differently.
 
 use std::collections::HashMap;
@@ -30,6 +34,7 @@ use std::collections::HashMap;
 use super::{CornerTag, CreaseTag, HoleTag, PolygonSoup, find_root};
 use crate::error::MeshError;
 use crate::options::{BoundaryInterpolation, BoundaryNoneRule, SHARPNESS_INFINITE};
+use crate::sharpness::crease_vertex_schedule;
 
 /// What [`PolygonSoup::split_nonmanifold`] found (vertex indices of the cage as read, 0-based).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -146,9 +151,22 @@ impl PolygonSoup {
         if self.options.boundary == BoundaryInterpolation::None {
             self.hide_boundary_faces(&uses);
         }
-        let corners = self.nonmanifold_corners(&uses, &nm_edges, &found, &nm_count, &mut parent)?;
+        let marks = self.nonmanifold_corners(&uses, &nm_edges, &found, &nm_count, &mut parent)?;
         let (remap, created) = self.copy_extra_fans(&mut parent);
         self.retag_copies(&remap, &created);
+        // After the copied tags, which they replace (the last corner tag of a vertex holds).
+        for &(v, root, sharpness) in &marks.vertex_sharpness {
+            let c = (0..remap.len())
+                .find(|&c| {
+                    self.face_indices[c] == i64::from(v) && find_root(&mut parent, c) == root
+                })
+                .expect("a fan root is a corner of its vertex");
+            self.corners.push(CornerTag {
+                v: remap[c],
+                sharpness,
+                line: None,
+            });
+        }
         // Every use of a non-manifold edge: an infinitely sharp boundary edge of its piece.
         for &(a, b, _) in &found.edges {
             for u in &uses[&(i64::from(a), i64::from(b))] {
@@ -160,7 +178,7 @@ impl PolygonSoup {
                 });
             }
         }
-        for &v in &corners {
+        for &v in &marks.corners {
             for w in std::iter::once(v).chain(created.iter().filter(|c| c.0 == v).map(|c| c.1)) {
                 self.corners.push(CornerTag {
                     v: w as i64,
@@ -257,8 +275,9 @@ impl PolygonSoup {
         fans
     }
 
-    /// The non-manifold vertices OpenSubdiv makes corners, after checking that every copy can
-    /// be given the whole vertex's rule (`Err` names the first that cannot).
+    /// The non-manifold vertices OpenSubdiv makes corners and the vertex sharpness of crease
+    /// copies, after checking that every copy can be given the whole vertex's rule (`Err` names
+    /// the first that cannot).
     fn nonmanifold_corners(
         &self,
         uses: &HashMap<(i64, i64), Vec<EdgeUse>>,
@@ -266,7 +285,7 @@ impl PolygonSoup {
         found: &NonManifold,
         nm_count: &[u32],
         parent: &mut [usize],
-    ) -> Result<Vec<u32>, MeshError> {
+    ) -> Result<NonManifoldMarks, MeshError> {
         let mut tagged: HashMap<(i64, i64), f32> = HashMap::new();
         for t in &self.creases {
             tagged.insert((t.a.min(t.b), t.a.max(t.b)), t.sharpness);
@@ -315,51 +334,39 @@ impl PolygonSoup {
         for &v in &self.face_indices {
             faces_at[v as usize] += 1;
         }
-        let mut corners = Vec::new();
-        for &(v, fans) in &found.vertices {
+        let mut marks = NonManifoldMarks::default();
+        for &(v, _) in &found.vertices {
             let edges = &at[&(v as i64)];
             let vs = vertex_sharp.get(&(v as i64)).copied().unwrap_or(0.0);
             let semi = |s: f32| s > 0.0 && s < SHARPNESS_INFINITE;
-            let semi_edges = edges.iter().filter(|e| semi(e.0)).count();
-            let sharp = edges.iter().filter(|e| e.0 > 0.0).count();
+            let semi_edges: Vec<&(f32, bool, Vec<usize>)> =
+                edges.iter().filter(|e| semi(e.0)).collect();
+            // Chaikin's decay at the vertex averages its semi-sharp edges, all copies'
+            // together: they must all be in one copy (a semi-sharp edge has one fan).
+            let mut semi_fans: Vec<usize> = semi_edges.iter().flat_map(|e| e.2.clone()).collect();
+            semi_fans.sort_unstable();
+            semi_fans.dedup();
+            if chaikin && semi_edges.len() > 1 && semi_fans.len() > 1 {
+                return Err(unsupported(
+                    self,
+                    v,
+                    "Chaikin creases at a non-manifold vertex",
+                ));
+            }
             // OpenSubdiv keeps a non-manifold vertex unsharpened only on an interior
             // non-manifold crease: exactly two non-manifold edges, no boundary edge (one face)
-            // and more faces than edges (one more per extra fin). Three or more sharp edges
-            // that never decay make a corner at every level, whatever the vertex sharpness.
+            // and more faces than edges (one more per extra fin). Three or more infinitely
+            // sharp edges make a corner at every level, whatever else is sharp there.
             let boundary_edges = edges.iter().filter(|e| e.2.len() == 1).count();
             let interior_crease = nm_count[v as usize] == 2
                 && boundary_edges == 0
                 && faces_at[v as usize] > edges.len();
-            let is_corner =
-                !interior_crease || vs >= SHARPNESS_INFINITE || (sharp > 2 && semi_edges == 0);
-            if is_corner {
-                // Chaikin's decay at the vertex averages its semi-sharp edges: all must be
-                // seen by one copy.
-                if chaikin && semi_edges > 1 && fans > 1 {
-                    let first = &edges.iter().find(|e| semi(e.0)).expect("counted").2;
-                    let one = edges.iter().filter(|e| semi(e.0)).all(|e| e.2 == *first);
-                    if !one || first.len() != 1 {
-                        return Err(unsupported(
-                            self,
-                            v,
-                            "Chaikin creases at a non-manifold vertex",
-                        ));
-                    }
-                }
-                corners.push(v);
+            let infinite = edges.iter().filter(|e| e.0 >= SHARPNESS_INFINITE).count();
+            if !interior_crease || vs >= SHARPNESS_INFINITE || infinite > 2 {
+                marks.corners.push(v);
                 continue;
             }
-            // The crease rule along its two non-manifold edges, after a corner while a
-            // semi-sharp vertex sharpness lasts (every copy has that tag, so every copy changes
-            // rule at the same level with the same weight, as the whole vertex does). A
-            // semi-sharp edge would change the rule of its own copy only.
-            if semi_edges > 0 {
-                return Err(unsupported(
-                    self,
-                    v,
-                    "semi-sharp creases at a non-manifold crease vertex",
-                ));
-            }
+            // The crease rule along its two non-manifold edges, which every copy must hold.
             let nm: Vec<&Vec<usize>> = edges.iter().filter(|e| e.1).map(|e| &e.2).collect();
             let mut all: Vec<usize> = edges.iter().flat_map(|e| e.2.iter().copied()).collect();
             all.sort_unstable();
@@ -375,9 +382,49 @@ impl PolygonSoup {
             if edge_and_corner && all.iter().any(|r| fan_faces[r] == 1) {
                 return Err(unsupported(self, v, "a one-face copy of a crease vertex"));
             }
+            if semi_edges.is_empty() {
+                // A semi-sharp vertex sharpness goes to every copy with its tag.
+                continue;
+            }
+            // Semi-sharp edges make the whole vertex a corner while they last, then blend it
+            // into the crease by the average of what runs out last: each copy gets the vertex
+            // sharpness with that schedule (`crease_vertex_schedule`) unless its own edges
+            // and tag already give it.
+            let method = self.options.crease;
+            let values: Vec<f32> = semi_edges.iter().map(|e| e.0).collect();
+            let whole = crease_vertex_schedule(method, vs, &values);
+            for &r in &all {
+                let own: Vec<f32> = semi_edges
+                    .iter()
+                    .filter(|e| e.2.contains(&r))
+                    .map(|e| e.0)
+                    .collect();
+                let gives =
+                    |s: f32| crease_vertex_schedule(method, s, &own).to_bits() == whole.to_bits();
+                if !own.is_empty() && gives(vs) {
+                    continue;
+                }
+                if !gives(whole) {
+                    return Err(unsupported(
+                        self,
+                        v,
+                        "semi-sharp creases at a non-manifold crease vertex that its copies cannot share",
+                    ));
+                }
+                marks.vertex_sharpness.push((v, r, whole));
+            }
         }
-        Ok(corners)
+        Ok(marks)
     }
+}
+
+/// What [`PolygonSoup::split_nonmanifold`] tags on the copies besides the sharp edges: the
+/// vertices OpenSubdiv makes corners (every copy), and `(vertex, fan root, sharpness)` for the
+/// copies of a crease vertex that carry its semi-sharp schedule as a vertex sharpness.
+#[derive(Default)]
+struct NonManifoldMarks {
+    corners: Vec<u32>,
+    vertex_sharpness: Vec<(u32, usize, f32)>,
 }
 
 fn unsupported(soup: &PolygonSoup, vertex: u32, why: &'static str) -> MeshError {

@@ -35,13 +35,57 @@ fn a_semi_sharp_vertex_at_a_crease_vertex_goes_to_every_copy() {
     assert_eq!(copies, vec![1.5; 3]);
 }
 
+/// The vertex sharpness of vertex 1 (0-based) and its copies, sorted.
+fn copies_sharpness(mesh: &Mesh) -> Vec<f32> {
+    let at = mesh.position(VertexId(1));
+    let mut s: Vec<f32> = mesh
+        .vertices()
+        .filter(|&v| mesh.position(v) == at)
+        .map(|v| mesh.vertex_sharpness(v))
+        .collect();
+    s.sort_by(f32::total_cmp);
+    s
+}
+
+/// Semi-sharp creases at a crease vertex make the whole vertex a corner while they last: the
+/// copies that do not hold them, or whose own creases run out earlier, get the vertex
+/// sharpness with the whole vertex's schedule; the copy holding the last one keeps its own.
+#[test]
+fn semi_sharp_creases_at_a_crease_vertex_reach_every_copy() {
+    // 1-4 (1.5, first fan) outlasts 1-10 (0.5, third fan): a corner for one level, then the
+    // crease by 0.5 (the 1.5 edge's 0.5).
+    let mesh = split(&format!(
+        "{FINS}t crease 2/1/0 1 4 1.5\nt crease 2/1/0 1 10 0.5\n"
+    ))
+    .unwrap();
+    assert_eq!(copies_sharpness(&mesh), vec![0.0, 1.5, 1.5]);
+    // With a vertex sharpness of 0.25 too, the copy holding 1.5 keeps its tag.
+    let mesh = split(&format!(
+        "{FINS}t crease 2/1/0 1 4 1.5\nt crease 2/1/0 1 10 0.5\nt corner 1/1/0 1 0.25\n"
+    ))
+    .unwrap();
+    assert_eq!(copies_sharpness(&mesh), vec![0.25, 1.5, 1.5]);
+    // Chaikin creases in one copy: its own decay is the whole vertex's.
+    let mesh = split(&format!(
+        "{FINS}t crease 2/1/0 1 4 2\nt creasemethod 0/0/1 chaikin\n"
+    ))
+    .unwrap();
+    assert_eq!(copies_sharpness(&mesh), vec![0.0, 2.0, 2.0]);
+}
+
 #[test]
 fn what_the_pieces_cannot_carry_is_refused_naming_the_vertex() {
-    // A semi-sharp crease at the crease vertex changes the rule of its own copy only.
-    let (v, why) = refused(&format!("{FINS}t crease 2/1/0 1 4 2\n"));
+    // Semi-sharp creases running out together in two copies (1.3 and 1.5: the whole vertex
+    // blends by 0.4 after one level, each copy alone by its own fraction).
+    let (v, why) = refused(&format!(
+        "{FINS}t crease 2/1/0 1 4 1.3\nt crease 2/1/0 1 7 1.5\n"
+    ));
     assert_eq!(
         (v, why),
-        (1, "semi-sharp creases at a non-manifold crease vertex")
+        (
+            1,
+            "semi-sharp creases at a non-manifold crease vertex that its copies cannot share"
+        )
     );
     // Chaikin creases at a corner (infinite tag) in two of its copies.
     let (v, why) = refused(&format!(
