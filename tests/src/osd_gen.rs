@@ -46,14 +46,18 @@ pub fn random_cage(seed: u64, index: u64) -> OsdCage {
             continue;
         }
         let nonmanifold = nm_rng.chance(NONMANIFOLD_PERCENT);
-        let mut corners = Vec::new();
+        let (mut corners, mut creases) = (Vec::new(), Vec::new());
         if nonmanifold {
-            corners = add_nonmanifold(&mut nm_rng, &mut b, loop_scheme);
+            // Its own stream for the creases at fin strips, so the non-manifold shapes stay
+            // the ones earlier runs drew.
+            let mut crease_rng = Rng::for_case(seed ^ 0x0C4E_A5E0, index);
+            (corners, creases) = add_nonmanifold(&mut nm_rng, &mut crease_rng, &mut b, loop_scheme);
         }
         let mut cage = OsdCage {
             positions: b.pos,
             faces: b.faces,
             corners,
+            creases,
             loop_scheme,
             ..OsdCage::default()
         };
@@ -409,10 +413,18 @@ pub const NONMANIFOLD_PERCENT: u64 = 15;
 /// bow-tie (a pyramid, closed or open, touching the cage at one vertex), a fin strip (two fins
 /// on consecutive edges of a face, sharing an edge from their common vertex: a vertex with
 /// exactly two non-manifold edges, OpenSubdiv's crease rule along them). Triangles only for
-/// Loop. Returns corner tags for the cage: half the fin strips' middle vertices get a
-/// semi-sharp vertex sharpness (a corner that turns into the crease after some levels).
-fn add_nonmanifold(rng: &mut Rng, b: &mut Builder, loop_scheme: bool) -> Vec<(u32, f32)> {
-    let mut corners = Vec::new();
+/// Loop. Returns corner and crease tags for the cage: half the fin strips' middle vertices get a
+/// semi-sharp vertex sharpness (a corner that turns into the crease after some levels), and
+/// half of them (from `crease_rng`) semi-sharp creases on one or two of their edges that are
+/// not non-manifold (the fins' shared edge, the cage's own): the whole vertex is a corner while
+/// they last, whichever copies hold them.
+fn add_nonmanifold(
+    rng: &mut Rng,
+    crease_rng: &mut Rng,
+    b: &mut Builder,
+    loop_scheme: bool,
+) -> (Vec<(u32, f32)>, Vec<(u32, u32, f32)>) {
+    let (mut corners, mut creases) = (Vec::new(), Vec::new());
     for _ in 0..1 + rng.below(2) {
         let f = rng.below(b.faces.len());
         let n = b.faces[f].len();
@@ -445,6 +457,9 @@ fn add_nonmanifold(rng: &mut Rng, b: &mut Builder, loop_scheme: bool) -> Vec<(u3
                 }
                 if rng.chance(50) {
                     corners.push((c, rng.range(1, 18) as f32 / 8.0));
+                }
+                if crease_rng.chance(50) {
+                    creases.extend(fin_strip_creases(crease_rng, &b.faces, c, [a, d, m]));
                 }
             }
             0 => {
@@ -496,7 +511,38 @@ fn add_nonmanifold(rng: &mut Rng, b: &mut Builder, loop_scheme: bool) -> Vec<(u3
             }
         }
     }
-    corners
+    (corners, creases)
+}
+
+/// One or two semi-sharp creases (multiples of 1/8 up to 2) on the edges at `c` other than
+/// `skip` (the non-manifold edges' far ends), the first on the edge to the fins' apex
+/// `skip[2]` or on an edge of the cage.
+fn fin_strip_creases(
+    rng: &mut Rng,
+    faces: &[Vec<u32>],
+    c: u32,
+    skip: [u32; 3],
+) -> Vec<(u32, u32, f32)> {
+    let mut ends: Vec<u32> = faces
+        .iter()
+        .filter_map(|f| f.iter().position(|&v| v == c).map(|i| (f, i)))
+        .flat_map(|(f, i)| [f[(i + 1) % f.len()], f[(i + f.len() - 1) % f.len()]])
+        .filter(|&v| !skip[..2].contains(&v))
+        .collect();
+    ends.sort_unstable();
+    ends.dedup();
+    let mut out = Vec::new();
+    for k in 0..1 + rng.below(2) {
+        let to = if (k == 0 && rng.chance(50)) || ends.len() < 2 {
+            skip[2]
+        } else {
+            ends[rng.below(ends.len())]
+        };
+        if ends.contains(&to) && !out.iter().any(|&(x, y, _)| x == to || y == to) {
+            out.push((c.min(to), c.max(to), rng.range(1, 16) as f32 / 8.0));
+        }
+    }
+    out
 }
 
 /// Jitters, scales and rounds the positions to multiples of 2^-10.
