@@ -33,7 +33,7 @@ use std::collections::HashMap;
 
 use super::{CornerTag, CreaseTag, HoleTag, PolygonSoup, find_root};
 use crate::error::MeshError;
-use crate::options::{BoundaryInterpolation, BoundaryNoneRule, SHARPNESS_INFINITE};
+use crate::options::{BoundaryInterpolation, BoundaryNoneRule, CreaseMethod, SHARPNESS_INFINITE};
 use crate::sharpness::crease_vertex_schedule;
 
 /// What [`PolygonSoup::split_nonmanifold`] found (vertex indices of the cage as read, 0-based).
@@ -404,14 +404,14 @@ impl PolygonSoup {
                 if !own.is_empty() && gives(vs) {
                     continue;
                 }
-                if !gives(whole) {
+                let Some(s) = copy_vertex_sharpness(method, &own, whole, gives) else {
                     return Err(unsupported(
                         self,
                         v,
                         "semi-sharp creases at a non-manifold crease vertex that its copies cannot share",
                     ));
-                }
-                marks.vertex_sharpness.push((v, r, whole));
+                };
+                marks.vertex_sharpness.push((v, r, s));
             }
         }
         Ok(marks)
@@ -425,6 +425,47 @@ impl PolygonSoup {
 struct NonManifoldMarks {
     corners: Vec<u32>,
     vertex_sharpness: Vec<(u32, usize, f32)>,
+}
+
+/// The vertex sharpness that gives a copy of a crease vertex, holding the semi-sharp creases
+/// `own`, the whole vertex's schedule `whole` (`gives` checks one, bit for bit): `whole` itself
+/// where none of `own` runs out with the last (or their average is the whole vertex's);
+/// otherwise, under the uniform rule, `k + x` with `x` chosen so that the average of `x` and
+/// the copy's own creases running out at level `k` is the whole vertex's weight `w`
+/// (`x = w (1 + n) - sum`, which must lie in `(0, 1]`; the nearest values in `f32` are tried
+/// until one gives the same bits). `None` where no vertex sharpness gives it.
+fn copy_vertex_sharpness(
+    method: CreaseMethod,
+    own: &[f32],
+    whole: f32,
+    gives: impl Fn(f32) -> bool,
+) -> Option<f32> {
+    if gives(whole) {
+        return Some(whole);
+    }
+    if method != CreaseMethod::Uniform {
+        return None;
+    }
+    // whole = k + w with 0 < w <= 1.
+    let k = f64::from(whole).ceil() - 1.0;
+    let w = f64::from(whole) - k;
+    let last: Vec<f64> = own
+        .iter()
+        .map(|&s| f64::from(s) - k)
+        .filter(|&s| s > 0.0 && s <= 1.0)
+        .collect();
+    let x = w * (1.0 + last.len() as f64) - last.iter().sum::<f64>();
+    if !(x > 0.0 && x <= 1.0) {
+        return None;
+    }
+    let base = (k + x) as f32;
+    (0..64i32)
+        .map(|i| {
+            f32::from_bits(
+                (base.to_bits() as i32 + if i % 2 == 0 { i / 2 } else { -(i + 1) / 2 }) as u32,
+            )
+        })
+        .find(|&c| c > k as f32 && gives(c))
 }
 
 fn unsupported(soup: &PolygonSoup, vertex: u32, why: &'static str) -> MeshError {

@@ -65,6 +65,17 @@ fn semi_sharp_creases_at_a_crease_vertex_reach_every_copy() {
     ))
     .unwrap();
     assert_eq!(copies_sharpness(&mesh), vec![0.25, 1.5, 1.5]);
+    // 1-4 (1.3) and 1-7 (1.5) run out together: the whole vertex blends by 0.4 after one
+    // level; the first copy gets 1.5 (its own 0.3 and the tag's 0.5 average 0.4), the second
+    // 1.3, the third 1.4.
+    let mesh = split(&format!(
+        "{FINS}t crease 2/1/0 1 4 1.3\nt crease 2/1/0 1 7 1.5\n"
+    ))
+    .unwrap();
+    let got = copies_sharpness(&mesh);
+    for (g, want) in got.iter().zip([1.3f32, 1.4, 1.5]) {
+        assert!((g - want).abs() < 1e-6, "{got:?}");
+    }
     // Chaikin creases in one copy: its own decay is the whole vertex's.
     let mesh = split(&format!(
         "{FINS}t crease 2/1/0 1 4 2\nt creasemethod 0/0/1 chaikin\n"
@@ -75,10 +86,11 @@ fn semi_sharp_creases_at_a_crease_vertex_reach_every_copy() {
 
 #[test]
 fn what_the_pieces_cannot_carry_is_refused_naming_the_vertex() {
-    // Semi-sharp creases running out together in two copies (1.3 and 1.5: the whole vertex
-    // blends by 0.4 after one level, each copy alone by its own fraction).
+    // Semi-sharp creases running out together in three copies (1.9, 1.1, 1.1: the whole
+    // vertex blends by 0.3667 after one level; the first copy's own 0.9 averaged with any
+    // weight in (0, 1] stays above it).
     let (v, why) = refused(&format!(
-        "{FINS}t crease 2/1/0 1 4 1.3\nt crease 2/1/0 1 7 1.5\n"
+        "{FINS}t crease 2/1/0 1 4 1.9\nt crease 2/1/0 1 7 1.1\nt crease 2/1/0 1 10 1.1\n"
     ));
     assert_eq!(
         (v, why),
