@@ -155,17 +155,20 @@ impl PolygonSoup {
         let (remap, created) = self.copy_extra_fans(&mut parent);
         self.retag_copies(&remap, &created);
         // After the copied tags, which they replace (the last corner tag of a vertex holds).
-        for &(v, root, sharpness) in &marks.vertex_sharpness {
-            let c = (0..remap.len())
-                .find(|&c| {
-                    self.face_indices[c] == i64::from(v) && find_root(&mut parent, c) == root
-                })
-                .expect("a fan root is a corner of its vertex");
-            self.corners.push(CornerTag {
-                v: remap[c],
-                sharpness,
-                line: None,
-            });
+        if !marks.vertex_sharpness.is_empty() {
+            let mut copy_of: HashMap<(i64, usize), i64> = HashMap::new();
+            for (c, &w) in remap.iter().enumerate() {
+                copy_of.insert((self.face_indices[c], find_root(&mut parent, c)), w);
+            }
+            for &(v, root, sharpness) in &marks.vertex_sharpness {
+                if let Some(&w) = copy_of.get(&(i64::from(v), root)) {
+                    self.corners.push(CornerTag {
+                        v: w,
+                        sharpness,
+                        line: None,
+                    });
+                }
+            }
         }
         // Every use of a non-manifold edge: an infinitely sharp boundary edge of its piece.
         for &(a, b, _) in &found.edges {
