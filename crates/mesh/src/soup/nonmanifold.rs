@@ -34,7 +34,7 @@ use std::collections::HashMap;
 use super::{CornerTag, CreaseTag, HoleTag, PolygonSoup, find_root};
 use crate::error::MeshError;
 use crate::options::{BoundaryInterpolation, BoundaryNoneRule, CreaseMethod, SHARPNESS_INFINITE};
-use crate::sharpness::crease_vertex_schedule;
+use crate::sharpness::{child_edge_sharpness_around, crease_vertex_schedule};
 
 /// What [`PolygonSoup::split_nonmanifold`] found (vertex indices of the cage as read, 0-based).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -345,11 +345,19 @@ impl PolygonSoup {
             let semi_edges: Vec<&(f32, bool, Vec<usize>)> =
                 edges.iter().filter(|e| semi(e.0)).collect();
             // Chaikin's decay at the vertex averages its semi-sharp edges, all copies'
-            // together: they must all be in one copy (a semi-sharp edge has one fan).
+            // together, while each copy averages its own (a semi-sharp edge has one fan): they
+            // must decay alike, as where all are in one copy.
             let mut semi_fans: Vec<usize> = semi_edges.iter().flat_map(|e| e.2.clone()).collect();
             semi_fans.sort_unstable();
             semi_fans.dedup();
-            if chaikin && semi_edges.len() > 1 && semi_fans.len() > 1 {
+            let by_copy: Vec<Vec<f32>> = semi_fans
+                .iter()
+                .map(|r| {
+                    let of_r = semi_edges.iter().filter(|e| e.2.contains(r));
+                    of_r.map(|e| e.0).collect()
+                })
+                .collect();
+            if chaikin && by_copy.len() > 1 && !copies_decay_alike(&by_copy) {
                 return Err(unsupported(
                     self,
                     v,
@@ -433,8 +441,8 @@ struct NonManifoldMarks {
 /// The vertex sharpness that gives a copy of a crease vertex, holding the semi-sharp creases
 /// `own`, the whole vertex's schedule `whole` (`gives` checks one, bit for bit): `whole` itself
 /// where none of `own` runs out with the last (or their average is the whole vertex's);
-/// otherwise, under the uniform rule, `k + x` with `x` chosen so that the average of `x` and
-/// the copy's own creases running out at level `k` is the whole vertex's weight `w`
+/// otherwise `k + x` with `x` chosen so that the average of `x` and the copy's own creases
+/// running out at level `k` is the whole vertex's weight `w`
 /// (`x = w (1 + n) - sum`, which must lie in `(0, 1]`; the nearest values in `f32` are tried
 /// until one gives the same bits). `None` where no vertex sharpness gives it.
 fn copy_vertex_sharpness(
@@ -446,16 +454,20 @@ fn copy_vertex_sharpness(
     if gives(whole) {
         return Some(whole);
     }
-    if method != CreaseMethod::Uniform {
-        return None;
-    }
-    // whole = k + w with 0 < w <= 1.
+    // whole = k + w with 0 < w <= 1; the copy's own creases at level k (their decay there is
+    // the whole vertex's: `copies_decay_alike`), those still sharp running out with the last.
     let k = f64::from(whole).ceil() - 1.0;
     let w = f64::from(whole) - k;
-    let last: Vec<f64> = own
+    let mut at_k: Vec<f32> = own.to_vec();
+    let mut next = vec![0.0f32; own.len()];
+    for _ in 0..k as usize {
+        child_edge_sharpness_around(method, &at_k, &mut next);
+        std::mem::swap(&mut at_k, &mut next);
+    }
+    let last: Vec<f64> = at_k
         .iter()
-        .map(|&s| f64::from(s) - k)
-        .filter(|&s| s > 0.0 && s <= 1.0)
+        .filter(|&&s| s > 0.0)
+        .map(|&s| f64::from(s))
         .collect();
     let x = w * (1.0 + last.len() as f64) - last.iter().sum::<f64>();
     if !(x > 0.0 && x <= 1.0) {
@@ -469,6 +481,34 @@ fn copy_vertex_sharpness(
             )
         })
         .find(|&c| c > k as f32 && gives(c))
+}
+
+/// Whether every copy's own Chaikin decay of its semi-sharp edges at a vertex (`by_copy`, one
+/// list per copy) gives the whole vertex's at every level, within rounding: Chaikin averages
+/// the other semi-sharp edges at the vertex, and a copy sees only its own (they agree where
+/// the averages agree, or where the decay runs out either way).
+fn copies_decay_alike(by_copy: &[Vec<f32>]) -> bool {
+    let mut by_copy = by_copy.to_vec();
+    for _ in 0..=SHARPNESS_INFINITE as u32 {
+        let all = by_copy.concat();
+        if all.iter().all(|&s| s <= 0.0) {
+            return true;
+        }
+        let mut whole = vec![0.0f32; all.len()];
+        child_edge_sharpness_around(CreaseMethod::Chaikin, &all, &mut whole);
+        let mut k = 0;
+        for own in &mut by_copy {
+            let mut child = vec![0.0f32; own.len()];
+            child_edge_sharpness_around(CreaseMethod::Chaikin, own, &mut child);
+            let alike = |(a, b): (&f32, &f32)| (a - b).abs() <= 1e-6 * b.abs().max(1.0);
+            if !child.iter().zip(&whole[k..k + own.len()]).all(alike) {
+                return false;
+            }
+            k += own.len();
+            *own = child;
+        }
+    }
+    true
 }
 
 fn unsupported(soup: &PolygonSoup, vertex: u32, why: &'static str) -> MeshError {

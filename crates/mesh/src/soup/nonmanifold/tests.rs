@@ -76,6 +76,13 @@ fn semi_sharp_creases_at_a_crease_vertex_reach_every_copy() {
     for (g, want) in got.iter().zip([1.3f32, 1.4, 1.5]) {
         assert!((g - want).abs() < 1e-6, "{got:?}");
     }
+    // Chaikin creases of 2 in two copies: averaged at the vertex they decay as each alone
+    // (1, then 0), so the copies differ only by the schedule (a corner for two levels).
+    let mesh = split(&format!(
+        "{FINS}t crease 2/1/0 1 4 2\nt crease 2/1/0 1 7 2\nt creasemethod 0/0/1 chaikin\n"
+    ))
+    .unwrap();
+    assert_eq!(copies_sharpness(&mesh), vec![0.0, 0.0, 2.0]);
     // Chaikin creases in one copy: its own decay is the whole vertex's.
     let mesh = split(&format!(
         "{FINS}t crease 2/1/0 1 4 2\nt creasemethod 0/0/1 chaikin\n"
@@ -99,7 +106,8 @@ fn what_the_pieces_cannot_carry_is_refused_naming_the_vertex() {
             "semi-sharp creases at a non-manifold crease vertex that its copies cannot share"
         )
     );
-    // Chaikin creases at a corner (infinite tag) in two of its copies.
+    // Chaikin creases at a corner (infinite tag) in two of its copies, whose decay there
+    // averages them (2 next to 1.5: 0.875; alone 1).
     let (v, why) = refused(&format!(
         "{FINS}t corner 1/1/0 1 10\nt crease 2/1/0 1 4 2\nt crease 2/1/0 1 7 1.5\n\
          t creasemethod 0/0/1 chaikin\n"
