@@ -23,8 +23,8 @@
 //! the average of what runs out last (OpenSubdiv's fractional weight over all the vertex's
 //! edges): that schedule is one vertex sharpness (`sharpness::crease_vertex_schedule`), given to
 //! every copy whose own edges and tag do not already give it. Where a copy cannot be given the
-//! whole vertex's rule at every level (Chaikin creases spread over several copies, whose decay
-//! averages over all of them; semi-sharp edges in several copies whose own transition weights
+//! whole vertex's rule at every level (Chaikin creases spread over several copies whose own
+//! decay differs from the whole vertex's, which averages over all of them; semi-sharp edges in several copies whose own transition weights
 //! differ from the whole vertex's; a crease vertex whose copy misses one of its two
 //! non-manifold edges, or a one-face copy under edge-and-corner), the cage is refused with
 //! [`MeshError::UnsupportedNonManifold`] naming the vertex, rather than refined differently.
