@@ -26,7 +26,7 @@
 //! whole vertex's rule at every level (Chaikin creases spread over several copies whose own
 //! decay differs from the whole vertex's, which averages over all of them; semi-sharp edges in several copies whose own transition weights
 //! differ from the whole vertex's; a crease vertex whose copy misses one of its two
-//! non-manifold edges, or a one-face copy under edge-and-corner), the cage is refused with
+//! non-manifold edges), the cage is refused with
 //! [`MeshError::UnsupportedNonManifold`] naming the vertex, rather than refined differently.
 
 use std::collections::HashMap;
@@ -148,8 +148,10 @@ impl PolygonSoup {
         if found.is_empty() {
             return Ok(found);
         }
-        if self.options.boundary == BoundaryInterpolation::None {
-            self.hide_boundary_faces(&uses);
+        match self.options.boundary {
+            BoundaryInterpolation::None => self.hide_boundary_faces(&uses),
+            BoundaryInterpolation::EdgeAndCorner => self.tag_one_face_corners(),
+            BoundaryInterpolation::EdgeOnly => {}
         }
         let marks = self.nonmanifold_corners(&uses, &nm_edges, &found, &nm_count, &mut parent)?;
         let (remap, created) = self.copy_extra_fans(&mut parent);
@@ -226,6 +228,26 @@ impl PolygonSoup {
                     line: None,
                 });
             }
+        }
+        self.options.boundary = BoundaryInterpolation::EdgeOnly;
+    }
+
+    /// `interpolateboundary edge-and-corner` as OpenSubdiv 3.5 applies it to the whole cage
+    /// (before the cut): a vertex with a single face is an infinitely sharp corner. A copy of a
+    /// non-manifold crease vertex may have a single face in its piece, where the piece's own
+    /// rule would make it a corner; so those corners become tags here and the pieces take
+    /// `EdgeOnly` (which otherwise refines the same).
+    fn tag_one_face_corners(&mut self) {
+        let mut faces_at = vec![0u32; self.positions.len()];
+        for &v in &self.face_indices {
+            faces_at[v as usize] += 1;
+        }
+        for (v, _) in faces_at.iter().enumerate().filter(|(_, n)| **n == 1) {
+            self.corners.push(CornerTag {
+                v: v as i64,
+                sharpness: SHARPNESS_INFINITE,
+                line: None,
+            });
         }
         self.options.boundary = BoundaryInterpolation::EdgeOnly;
     }
@@ -328,11 +350,6 @@ impl PolygonSoup {
             }
         }
         let chaikin = self.options.crease == crate::options::CreaseMethod::Chaikin;
-        let edge_and_corner = self.options.boundary == BoundaryInterpolation::EdgeAndCorner;
-        let mut fan_faces: HashMap<usize, u32> = HashMap::new();
-        for c in 0..self.face_indices.len() {
-            *fan_faces.entry(find_root(parent, c)).or_default() += 1;
-        }
         let mut faces_at = vec![0usize; self.positions.len()];
         for &v in &self.face_indices {
             faces_at[v as usize] += 1;
@@ -388,10 +405,6 @@ impl PolygonSoup {
                     v,
                     "a copy without both non-manifold edges",
                 ));
-            }
-            // With edge-and-corner interpolation a one-face copy would become a corner.
-            if edge_and_corner && all.iter().any(|r| fan_faces[r] == 1) {
-                return Err(unsupported(self, v, "a one-face copy of a crease vertex"));
             }
             if semi_edges.is_empty() {
                 // A semi-sharp vertex sharpness goes to every copy with its tag.

@@ -1,5 +1,5 @@
 use crate::error::MeshError;
-use crate::{Mesh, VertexId, parse_obj};
+use crate::{Mesh, SHARPNESS_INFINITE, VertexId, parse_obj};
 
 /// Three quads on the edge 1-2 and three on the edge 2-3 beside it (1-based): vertex 2 has
 /// exactly two non-manifold edges (a crease for OpenSubdiv), 1 and 3 one each (corners). Each
@@ -89,6 +89,28 @@ fn semi_sharp_creases_at_a_crease_vertex_reach_every_copy() {
     ))
     .unwrap();
     assert_eq!(copies_sharpness(&mesh), vec![0.0, 2.0, 2.0]);
+}
+
+/// `edge-and-corner` sharpens the vertices with a single face in the whole cage, not a copy of
+/// a crease vertex with a single face in its piece: a fin of one quad across both
+/// non-manifold edges of vertex 1 (0-based).
+#[test]
+fn edge_and_corner_sharpens_the_whole_cages_one_face_vertices() {
+    let one_face_fin = FINS.replace(
+        "f 1 2 11 10\nf 2 3 12 11\n",
+        "f 1 2 3 11\nt interpolateboundary 1/0/0 1\n",
+    );
+    let mut soup = parse_obj(&one_face_fin).unwrap();
+    soup.split_nonmanifold().unwrap();
+    assert_eq!(
+        soup.options.boundary,
+        crate::BoundaryInterpolation::EdgeOnly
+    );
+    let mesh = Mesh::from_soup(&soup).unwrap();
+    // The crease vertex and its copies (one of them with a single face) stay creases.
+    assert_eq!(copies_sharpness(&mesh), vec![0.0; 3]);
+    // Vertex 3 (0-based), with one face in the cage, is a corner.
+    assert_eq!(mesh.vertex_sharpness(VertexId(3)), SHARPNESS_INFINITE);
 }
 
 #[test]
