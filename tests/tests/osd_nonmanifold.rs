@@ -3,11 +3,14 @@
 //! touching at their apex, a cube with a bare vertex; for Loop a fin with a tetrahedron on an
 //! edge and two tetrahedra touching at a vertex; both schemes, `chain_semi_corner*`: a vertex
 //! with exactly two non-manifold edges, OpenSubdiv's crease rule, after a semi-sharp vertex
-//! sharpness has run out), read as `read_obj` reads them (cut into
-//! manifold pieces, `PolygonSoup::split_nonmanifold`), against OpenSubdiv's limits from
-//! `xtask/osd/ref_osd.cpp ... local` at levels 1-3, which takes the cages as they are. The
-//! comparison is fuzz-osd's (coincident copies welded): counts, faces, positions within 1e-5 x
-//! diagonal, normals within 0.05 degrees where smooth; whole-mesh path and slate.
+//! sharpness has run out; `chain_semi_crease*`, `chain_chaikin_*`: semi-sharp creases at such a
+//! vertex, in two of its copies or, with Chaikin's decay, in one or two, and at a corner;
+//! `chain_one_face_copy*`: a copy of it with one face under edge-and-corner), read as
+//! `read_obj` reads them (cut into manifold pieces, `PolygonSoup::split_nonmanifold`), against
+//! OpenSubdiv's limits from `xtask/osd/ref_osd.cpp ... local` at levels 1-3, which takes the
+//! cages as they are. The comparison is fuzz-osd's (coincident copies welded): counts, faces,
+//! positions within 1e-5 x diagonal, normals within 0.05 degrees where smooth; whole-mesh path
+//! and slate.
 
 use std::collections::HashMap;
 
@@ -20,7 +23,7 @@ const NORMAL_DEG: f64 = 0.05;
 
 #[test]
 fn nonmanifold_cages_agree_with_opensubdiv() {
-    assert_fixture_dir_agrees("nonmanifold", NORMAL_DEG, 60, |_| {
+    assert_fixture_dir_agrees("nonmanifold", NORMAL_DEG, 114, |_| {
         vec![Tessellator::Uniform, Tessellator::Slate]
     });
 }

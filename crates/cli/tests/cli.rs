@@ -47,13 +47,15 @@ fn located_error_cases() -> Vec<(&'static str, String, &'static str, u32)> {
             2,
         ),
         // Non-manifold cages are refined as OpenSubdiv does, except where subdiv's manifold
-        // pieces cannot carry OpenSubdiv's rule (docs/testing.md). Here: a semi-sharp crease at
-        // a vertex with exactly two non-manifold edges, and Chaikin creases in two fans of a
-        // bow-tie vertex.
+        // pieces cannot carry OpenSubdiv's rule (docs/testing.md). Here: semi-sharp creases in
+        // the three fans of a vertex with exactly two non-manifold edges that no vertex
+        // sharpness per copy can schedule as the whole vertex (1.9, 1.1, 1.1), and Chaikin
+        // creases in two fans of a bow-tie vertex that decay differently there (2 and 1.5).
         (
             "nonmanifold-edge",
             "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 1 1 0\nv 1 0 1\nv 1 -1 0\nf 1 2 4\nf 2 3 4\n\
-             f 2 1 5\nf 3 2 5\nf 1 2 6\nf 2 3 6\nt crease 2/1/0 1 3 2\n"
+             f 2 1 5\nf 3 2 5\nf 1 2 6\nf 2 3 6\nt crease 2/1/0 1 3 1.9\n\
+             t crease 2/1/0 1 4 1.1\nt crease 2/1/0 1 5 1.1\n"
                 .into(),
             "vertex 1 is non-manifold and cannot be refined as OpenSubdiv does",
             2,
@@ -61,7 +63,7 @@ fn located_error_cases() -> Vec<(&'static str, String, &'static str, u32)> {
         (
             "bowtie",
             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv -1 0 0\nv -1 -1 0\nv 0 -1 0\n\
-             f 1 2 3\nf 1 3 4\nf 1 5 6\nf 1 6 7\nt crease 2/1/0 0 2 1.5\nt crease 2/1/0 0 5 1.5\n\
+             f 1 2 3\nf 1 3 4\nf 1 5 6\nf 1 6 7\nt crease 2/1/0 0 2 2\nt crease 2/1/0 0 5 1.5\n\
              t creasemethod 0/0/1 chaikin\n"
                 .into(),
             "vertex 0 is non-manifold and cannot be refined as OpenSubdiv does",

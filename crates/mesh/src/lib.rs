@@ -28,7 +28,9 @@
 //! [`read_usd`] ([`read_cage`] picks by extension) — and every defect of the input is a [`MeshError`]
 //! naming the face, vertex or tag and its line. Non-manifold cages (fins, bow-ties) are cut by
 //! the readers into manifold pieces that refine to OpenSubdiv's surface
-//! ([`PolygonSoup::split_nonmanifold`]); [`Mesh::from_soup`] itself refuses them.
+//! ([`PolygonSoup::split_nonmanifold`]); [`Mesh::from_soup`] itself refuses them. That cut
+//! needs OpenSubdiv's sharpness arithmetic (decay, transition weights), so its one home is
+//! here too ([`sharpness`], re-exported by `subdiv-rules`).
 //!
 //! ```
 //! use subdiv_mesh::{parse_obj, Mesh, VertexId};
@@ -49,6 +51,7 @@ mod handle;
 mod mesh;
 mod obj;
 mod options;
+pub mod sharpness;
 mod soup;
 mod stats;
 mod tags;

@@ -1,4 +1,5 @@
-//! Sharpness: how creases and corners decay per level and which vertex rule applies.
+//! Sharpness: which vertex rule applies (the decay arithmetic is `subdiv_mesh::sharpness`,
+//! re-exported here).
 //!
 //! Semi-sharp creases follow DeRose, Kass and Truong, "Subdivision Surfaces in Character
 //! Animation", SIGGRAPH 1998: an edge of sharpness `s` is subdivided with the sharp (midpoint)
@@ -9,75 +10,14 @@
 //! crease, corner) and their fractional transitions follow Hoppe et al. 1994 and the semantics
 //! of OpenSubdiv 3.5 (`Sdc::Crease`), so that limit surfaces agree with it.
 
-use subdiv_mesh::{CreaseMethod, SHARPNESS_INFINITE};
+use subdiv_mesh::CreaseMethod;
+#[cfg(test)]
+use subdiv_mesh::SHARPNESS_INFINITE;
 
-/// `true` for sharpness 0 (or less).
-#[inline]
-pub fn is_smooth(s: f32) -> bool {
-    s <= 0.0
-}
-/// `true` for any positive sharpness.
-#[inline]
-pub fn is_sharp(s: f32) -> bool {
-    s > 0.0
-}
-/// `true` for infinite sharpness (>= 10).
-#[inline]
-pub fn is_infinite(s: f32) -> bool {
-    s >= SHARPNESS_INFINITE
-}
-/// `true` for finite positive sharpness.
-#[inline]
-pub fn is_semi_sharp(s: f32) -> bool {
-    s > 0.0 && s < SHARPNESS_INFINITE
-}
-
-/// Sharpness one level down under the uniform rule (also the vertex-sharpness rule of both
-/// methods): infinite stays infinite, anything `<= 1` becomes smooth.
-#[inline]
-pub fn decrement(s: f32) -> f32 {
-    if is_infinite(s) {
-        SHARPNESS_INFINITE
-    } else if s > 1.0 {
-        s - 1.0
-    } else {
-        0.0
-    }
-}
-
-/// Sharpness of the child of an edge of sharpness `s` at one of its ends, where `others` is the
-/// (sum, count) of the sharpness of the *other* semi-sharp edges at that end.
-#[inline]
-pub fn child_edge_sharpness(method: CreaseMethod, s: f32, others: (f32, u32)) -> f32 {
-    if method == CreaseMethod::Uniform || !is_semi_sharp(s) || others.1 == 0 {
-        return decrement(s);
-    }
-    let avg = others.0 / others.1 as f32;
-    let c = 0.75 * s + 0.25 * avg - 1.0;
-    if is_sharp(c) { c } else { 0.0 }
-}
-
-/// Child sharpness of every edge around a vertex, given the parent sharpness of those edges.
-pub fn child_edge_sharpness_around(method: CreaseMethod, parent: &[f32], child: &mut [f32]) {
-    debug_assert_eq!(parent.len(), child.len());
-    let (sum, count) = semi_sharp_sum(parent);
-    for (c, &p) in child.iter_mut().zip(parent) {
-        let others = if is_semi_sharp(p) {
-            (sum - p, count - 1)
-        } else {
-            (sum, count)
-        };
-        *c = child_edge_sharpness(method, p, others);
-    }
-}
-
-/// Sum and count of the semi-sharp values in `s`.
-#[inline]
-pub fn semi_sharp_sum(s: &[f32]) -> (f32, u32) {
-    s.iter()
-        .filter(|&&x| is_semi_sharp(x))
-        .fold((0.0, 0), |(a, n), &x| (a + x, n + 1))
-}
+pub use subdiv_mesh::sharpness::{
+    child_edge_sharpness, child_edge_sharpness_around, crease_vertex_schedule, decrement,
+    fractional_weight, is_infinite, is_semi_sharp, is_sharp, is_smooth, semi_sharp_sum,
+};
 
 /// Weight of the sharp (midpoint) rule for the point inserted on an edge of sharpness `s` whose
 /// two child edges get the sharpness `child`: 0 is the smooth rule; 1 the crease rule, when both
@@ -148,40 +88,6 @@ impl Rule {
             (Rule::Crease(a), Rule::Crease(b)) => a != b,
             (a, b) => a != b,
         }
-    }
-}
-
-/// The weight of the parent mask in a fractional sharpness transition: the average parent
-/// sharpness of the vertex and the edges (parent `edges`, child `child_edges`) that become
-/// smooth in this step, at most 1 (OpenSubdiv's `Sdc::Crease::ComputeFractionalWeightAtVertex`);
-/// 0 when nothing becomes smooth.
-pub fn fractional_weight(
-    method: CreaseMethod,
-    vertex_sharpness: f32,
-    child_vertex_sharpness: f32,
-    edges: &[f32],
-    child_edges: &[f32],
-) -> f32 {
-    let mut sum = 0.0f32;
-    let mut count = 0u32;
-    if is_sharp(vertex_sharpness) && is_smooth(child_vertex_sharpness) {
-        sum += vertex_sharpness;
-        count += 1;
-    }
-    for (&p, &c) in edges.iter().zip(child_edges.iter()) {
-        let transition = match method {
-            CreaseMethod::Uniform => is_sharp(p) && p <= 1.0,
-            CreaseMethod::Chaikin => is_sharp(p) && is_smooth(c),
-        };
-        if transition {
-            sum += p;
-            count += 1;
-        }
-    }
-    if count == 0 {
-        0.0
-    } else {
-        (sum / count as f32).min(1.0)
     }
 }
 

@@ -19,9 +19,11 @@
 //! and at the dyadic parameter of the point: every copy, every piece, every depth and every
 //! orientation gives the same bits. A chain vertex must be a corner (infinite vertex
 //! sharpness, or three or more infinitely sharp edges) or a crease (exactly two infinitely
-//! sharp edges and no semi-sharp edge at it). A crease vertex may carry a semi-sharp vertex
-//! sharpness: it is a corner while that lasts, then blends into the crease rule by the parent
-//! sharpness (OpenSubdiv's fractional weight, `Sdc::Crease::ComputeFractionalWeightAtVertex`),
+//! sharp edges). A crease vertex may carry a semi-sharp vertex sharpness or semi-sharp edges:
+//! it is a corner while they last, then blends into the crease rule by the average of what
+//! runs out last (OpenSubdiv's fractional weight, `Sdc::Crease::ComputeFractionalWeightAtVertex`),
+//! taken as the one vertex sharpness with that schedule (`crease::crease_vertex_schedule`, the
+//! same bits in every copy of a non-manifold crease vertex, whichever holds the edges),
 //! which still reads the chain's points only; the segment is refined in 1D until the
 //! sharpness has run out, then evaluated as a B-spline. A seam where a copy's chain does not
 //! qualify, or where the copies' chains differ, is left to the tessellators (they agree with
@@ -33,7 +35,7 @@ use glam::DVec3;
 use subdiv_mesh::{EdgeId, HalfedgeId, Mesh, VertexId};
 
 use crate::Depth;
-use crate::crease::{decrement, is_infinite, is_semi_sharp};
+use crate::crease::{crease_vertex_schedule, decrement, is_infinite};
 
 /// What lies beyond a chain vertex along its crease chain: nothing (a corner) or the far end of
 /// its other infinitely sharp edge.
@@ -114,7 +116,8 @@ impl Chain {
 fn chain_ends(mesh: &Mesh, v: VertexId) -> Option<Ends> {
     let vs = mesh.vertex_sharpness(v);
     let mut sharp = [VertexId::NONE; 2];
-    let (mut count, mut semi_edge) = (0usize, false);
+    let mut count = 0usize;
+    let mut ring = Vec::new();
     for h in mesh.outgoing(v) {
         let s = mesh.edge_sharpness(h.edge());
         if is_infinite(s) {
@@ -123,13 +126,16 @@ fn chain_ends(mesh: &Mesh, v: VertexId) -> Option<Ends> {
             }
             count += 1;
         }
-        semi_edge |= is_semi_sharp(s);
+        ring.push(s);
     }
     if is_infinite(vs) || count >= 3 {
         Some((ChainEnd::Corner, ChainEnd::Corner, 0.0))
-    } else if count == 2 && !semi_edge {
+    } else if count == 2 {
         let ends = (ChainEnd::Crease(sharp[0]), ChainEnd::Crease(sharp[1]));
-        Some((ends.0, ends.1, vs.max(0.0)))
+        // Semi-sharp edges keep it a corner for a while too: one vertex sharpness with the
+        // same schedule, the same bits in every copy that has it.
+        let schedule = crease_vertex_schedule(mesh.options().crease, vs, &ring);
+        Some((ends.0, ends.1, schedule))
     } else {
         None
     }

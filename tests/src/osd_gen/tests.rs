@@ -4,6 +4,7 @@ use super::*;
 fn cages_are_valid_reproducible_and_varied() {
     let (mut loops, mut holes, mut ngons, mut valence2, mut max_valence) = (0, 0, 0, 0, 0);
     let (mut fins, mut bowties, mut chains, mut semi_chains) = (0, 0, 0, 0);
+    let mut crease_chains = 0;
     // `none` cages with a boundary vertex whose boundary edges are all infinitely sharp.
     let mut sharp_none = 0;
     for i in 0..300 {
@@ -26,6 +27,10 @@ fn cages_are_valid_reproducible_and_varied() {
                 .iter()
                 .any(|&(v, s)| chain.contains(&v) && s < 10.0),
         );
+        crease_chains +=
+            usize::from(c.creases.iter().any(|&(a, b, s)| {
+                (chain.contains(&a) || chain.contains(&b)) && s > 0.0 && s < 10.0
+            }));
         assert_eq!(c, random_cage(7, i), "cage {i} is not reproducible");
         let m = c
             .mesh()
@@ -59,8 +64,9 @@ fn cages_are_valid_reproducible_and_varied() {
     assert!(max_valence >= 16, "max valence {max_valence}");
     assert!(fins > 10 && bowties > 5, "fins {fins}, bow-ties {bowties}");
     assert!(
-        chains > 5 && semi_chains > 2,
-        "vertices with two non-manifold edges {chains}, with a semi-sharp tag {semi_chains}"
+        chains > 5 && semi_chains > 2 && crease_chains > 2,
+        "vertices with two non-manifold edges {chains}, with a semi-sharp tag {semi_chains}, \
+         with semi-sharp creases {crease_chains}"
     );
 }
 

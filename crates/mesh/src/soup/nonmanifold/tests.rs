@@ -1,5 +1,5 @@
 use crate::error::MeshError;
-use crate::{Mesh, VertexId, parse_obj};
+use crate::{Mesh, SHARPNESS_INFINITE, VertexId, parse_obj};
 
 /// Three quads on the edge 1-2 and three on the edge 2-3 beside it (1-based): vertex 2 has
 /// exactly two non-manifold edges (a crease for OpenSubdiv), 1 and 3 one each (corners). Each
@@ -35,15 +35,101 @@ fn a_semi_sharp_vertex_at_a_crease_vertex_goes_to_every_copy() {
     assert_eq!(copies, vec![1.5; 3]);
 }
 
+/// The vertex sharpness of vertex 1 (0-based) and its copies, sorted.
+fn copies_sharpness(mesh: &Mesh) -> Vec<f32> {
+    let at = mesh.position(VertexId(1));
+    let mut s: Vec<f32> = mesh
+        .vertices()
+        .filter(|&v| mesh.position(v) == at)
+        .map(|v| mesh.vertex_sharpness(v))
+        .collect();
+    s.sort_by(f32::total_cmp);
+    s
+}
+
+/// Semi-sharp creases at a crease vertex make the whole vertex a corner while they last: the
+/// copies that do not hold them, or whose own creases run out earlier, get the vertex
+/// sharpness with the whole vertex's schedule; the copy holding the last one keeps its own.
+#[test]
+fn semi_sharp_creases_at_a_crease_vertex_reach_every_copy() {
+    // 1-4 (1.5, first fan) outlasts 1-10 (0.5, third fan): a corner for one level, then the
+    // crease by 0.5 (the 1.5 edge's 0.5).
+    let mesh = split(&format!(
+        "{FINS}t crease 2/1/0 1 4 1.5\nt crease 2/1/0 1 10 0.5\n"
+    ))
+    .unwrap();
+    assert_eq!(copies_sharpness(&mesh), vec![0.0, 1.5, 1.5]);
+    // With a vertex sharpness of 0.25 too, the copy holding 1.5 keeps its tag.
+    let mesh = split(&format!(
+        "{FINS}t crease 2/1/0 1 4 1.5\nt crease 2/1/0 1 10 0.5\nt corner 1/1/0 1 0.25\n"
+    ))
+    .unwrap();
+    assert_eq!(copies_sharpness(&mesh), vec![0.25, 1.5, 1.5]);
+    // 1-4 (1.3) and 1-7 (1.5) run out together: the whole vertex blends by 0.4 after one
+    // level; the first copy gets 1.5 (its own 0.3 and the tag's 0.5 average 0.4), the second
+    // 1.3, the third 1.4.
+    let mesh = split(&format!(
+        "{FINS}t crease 2/1/0 1 4 1.3\nt crease 2/1/0 1 7 1.5\n"
+    ))
+    .unwrap();
+    let got = copies_sharpness(&mesh);
+    for (g, want) in got.iter().zip([1.3f32, 1.4, 1.5]) {
+        assert!((g - want).abs() < 1e-6, "{got:?}");
+    }
+    // Chaikin creases of 2 in two copies: averaged at the vertex they decay as each alone
+    // (1, then 0), so the copies differ only by the schedule (a corner for two levels).
+    let mesh = split(&format!(
+        "{FINS}t crease 2/1/0 1 4 2\nt crease 2/1/0 1 7 2\nt creasemethod 0/0/1 chaikin\n"
+    ))
+    .unwrap();
+    assert_eq!(copies_sharpness(&mesh), vec![0.0, 0.0, 2.0]);
+    // Chaikin creases in one copy: its own decay is the whole vertex's.
+    let mesh = split(&format!(
+        "{FINS}t crease 2/1/0 1 4 2\nt creasemethod 0/0/1 chaikin\n"
+    ))
+    .unwrap();
+    assert_eq!(copies_sharpness(&mesh), vec![0.0, 2.0, 2.0]);
+}
+
+/// `edge-and-corner` sharpens the vertices with a single face in the whole cage, not a copy of
+/// a crease vertex with a single face in its piece: a fin of one quad across both
+/// non-manifold edges of vertex 1 (0-based).
+#[test]
+fn edge_and_corner_sharpens_the_whole_cages_one_face_vertices() {
+    let one_face_fin = FINS.replace(
+        "f 1 2 11 10\nf 2 3 12 11\n",
+        "f 1 2 3 11\nt interpolateboundary 1/0/0 1\n",
+    );
+    let mut soup = parse_obj(&one_face_fin).unwrap();
+    soup.split_nonmanifold().unwrap();
+    assert_eq!(
+        soup.options.boundary,
+        crate::BoundaryInterpolation::EdgeOnly
+    );
+    let mesh = Mesh::from_soup(&soup).unwrap();
+    // The crease vertex and its copies (one of them with a single face) stay creases.
+    assert_eq!(copies_sharpness(&mesh), vec![0.0; 3]);
+    // Vertex 3 (0-based), with one face in the cage, is a corner.
+    assert_eq!(mesh.vertex_sharpness(VertexId(3)), SHARPNESS_INFINITE);
+}
+
 #[test]
 fn what_the_pieces_cannot_carry_is_refused_naming_the_vertex() {
-    // A semi-sharp crease at the crease vertex changes the rule of its own copy only.
-    let (v, why) = refused(&format!("{FINS}t crease 2/1/0 1 4 2\n"));
+    // Semi-sharp creases running out together in three copies (1.9, 1.1, 1.1: the whole
+    // vertex blends by 0.3667 after one level; the first copy's own 0.9 averaged with any
+    // weight in (0, 1] stays above it).
+    let (v, why) = refused(&format!(
+        "{FINS}t crease 2/1/0 1 4 1.9\nt crease 2/1/0 1 7 1.1\nt crease 2/1/0 1 10 1.1\n"
+    ));
     assert_eq!(
         (v, why),
-        (1, "semi-sharp creases at a non-manifold crease vertex")
+        (
+            1,
+            "semi-sharp creases at a non-manifold crease vertex that its copies cannot share"
+        )
     );
-    // Chaikin creases at a corner (infinite tag) in two of its copies.
+    // Chaikin creases at a corner (infinite tag) in two of its copies, whose decay there
+    // averages them (2 next to 1.5: 0.875; alone 1).
     let (v, why) = refused(&format!(
         "{FINS}t corner 1/1/0 1 10\nt crease 2/1/0 1 4 2\nt crease 2/1/0 1 7 1.5\n\
          t creasemethod 0/0/1 chaikin\n"
