@@ -99,6 +99,19 @@ fn quads_changed_by_hand_or_by_another_tessellator_are_written() {
         "after the Loop slates"
     );
     assert!(tris_into(&tet, &tri, &mut out), "after the quads");
+    // As many quads as triangles: the same list lengths, other offsets (`4i`, not `3i`).
+    let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+    let quad = Mesh::from_soup(&subdiv_mesh::parse_obj(text).unwrap()).unwrap();
+    let one = PatchLayout::new(&quad, 3).unwrap();
+    assert_eq!(one.num_quads(), out.num_faces());
+    assert!(
+        quads_into(&quad, &one, &mut out),
+        "as many quads as triangles"
+    );
+    assert!(
+        tris_into(&tet, &tri, &mut out),
+        "as many triangles as quads"
+    );
 }
 
 #[test]
