@@ -154,7 +154,7 @@ fn bench_loop(
         Ok(times)
     })?;
     let med = median(times.clone());
-    let patches = layout.patches.len();
+    let patches = layout.patches().len();
     out!(
         "input={} scheme=loop depth={} threads={} patches={} limit_points={} triangles={} setup_ms={:.3} median_ms={:.3} min_ms={:.3}",
         a.input.display(),

@@ -8,9 +8,18 @@ use crate::refine::refine_uniform_levels_f64;
 use crate::ring::Ring;
 use crate::{Depth, RulesError, Scheme};
 
+mod topology;
+pub use topology::{TopologyKey, TopologyStamp};
+
 /// A tessellated limit surface: one limit point and unit normal per vertex, polygons, and
 /// one-sided normals of the face corners where the surface has a crease or a corner.
-#[derive(Clone, Debug, Default, PartialEq)]
+///
+/// A tessellator called again into the same mesh with the same layout (a slate
+/// `PatchLayout` or `TriLayout`) keeps `face_offsets` and `face_indices`, which depend on the
+/// layout alone ([`LimitMesh::topology_written`] says whether it wrote them). Whoever changes
+/// those two fields by hand calls [`LimitMesh::invalidate_topology`] before tessellating into
+/// the mesh again.
+#[derive(Clone, Debug, Default)]
 pub struct LimitMesh {
     /// Limit positions.
     pub positions: Vec<[f32; 3]>,
@@ -36,6 +45,31 @@ pub struct LimitMesh {
     /// The value in `uvs` of every face corner (aligned with `face_indices`); empty when the
     /// cage has no face-varying data.
     pub uv_indices: Vec<u32>,
+    /// Which layout the faces were written for (bookkeeping, not content: ignored by `==`).
+    pub topology: TopologyStamp,
+}
+
+impl PartialEq for LimitMesh {
+    fn eq(&self, o: &LimitMesh) -> bool {
+        // Destructured so that a new field cannot be forgotten here.
+        let LimitMesh {
+            positions,
+            normals,
+            face_offsets,
+            face_indices,
+            corner_normals,
+            uvs,
+            uv_indices,
+            topology: _,
+        } = self;
+        *positions == o.positions
+            && *normals == o.normals
+            && *face_offsets == o.face_offsets
+            && *face_indices == o.face_indices
+            && *corner_normals == o.corner_normals
+            && *uvs == o.uvs
+            && *uv_indices == o.uv_indices
+    }
 }
 
 impl LimitMesh {
@@ -203,6 +237,7 @@ fn limit_surface_from(
             .map(|fv| fv.values.iter().map(|t| t.to_array()).collect())
             .unwrap_or_default(),
         uv_indices,
+        topology: TopologyStamp::default(),
     }
 }
 

@@ -12,7 +12,7 @@
 //! by construction and the output independent of the number of threads.
 
 use subdiv_mesh::{FaceId, HalfedgeId, Mesh, VertexId};
-use subdiv_rules::{Depth, RulesError, SeamCurves};
+use subdiv_rules::{Depth, RulesError, SeamCurves, TopologyKey};
 
 use crate::gather::{GatherPlan, PlanEdge};
 use crate::patches::{irregular_faces, local_level1};
@@ -70,6 +70,9 @@ pub struct PatchLayout {
     /// The cage's seams (copies of non-manifold edges), whose points are written from their
     /// chains after the patches ([`PatchLayout::write_seam_points`]).
     pub(crate) seams: SeamCurves,
+    /// This layout's identity: an output whose faces carry it keeps them (the quads and their
+    /// offsets are a function of the layout alone, `tessellate_layout_into`).
+    pub(crate) key: TopologyKey,
 }
 
 impl PatchLayout {
@@ -186,6 +189,7 @@ impl PatchLayout {
             uv_cache: Default::default(),
             edge_base,
             seams: SeamCurves::new(mesh),
+            key: TopologyKey::fresh(),
         })
     }
 }

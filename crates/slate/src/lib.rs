@@ -26,6 +26,11 @@
 //!   interior limits run eight points per register and the regular step two (`wide`); every
 //!   lane performs the scalar path's IEEE operations in its order, without fused multiply-add,
 //!   so the output does not depend on the path taken.
+//! - **Faces are written once per layout.** The quads (Loop: triangles) and their offsets are a
+//!   function of the layout alone; each layout has a process-unique key (a clone another), the
+//!   output records the key its faces were written for, and a call with the same layout and
+//!   face-list lengths keeps them (`LimitMesh::topology_written` reports it). No other layout,
+//!   depth, hole set or cage can match a key.
 //! - **UVs are a function of the cage but for its positions.** A cage's face-varying values
 //!   (`uv`) depend on its topology, UVs, sharpness, options and holes only; a layout keeps those
 //!   of its first tessellation with UVs and hands them to later calls on the same cage, bit for

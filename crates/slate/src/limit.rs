@@ -118,7 +118,8 @@ impl Worker {
             let (pos, t1, t2) = catmark::limit_regular(p[k], e, dg);
             let nrm = t1.cross(t2);
             let len = nrm.length();
-            if len > 0.0 && len.is_finite() {
+            // `len > 0.0 && len.is_finite()` in one unsigned compare (as the interior's).
+            if len.to_bits().wrapping_sub(1) < 0x7f7f_ffff {
                 return (pos + self.origin32, nrm / len, None);
             }
         }

@@ -157,6 +157,15 @@ pub fn tessellate_layout(mesh: &Mesh, layout: &PatchLayout) -> Result<LimitMesh,
 
 /// [`tessellate_layout`] into a reused output (its buffers are resized, not reallocated, when
 /// the sizes match: the steady state of per-frame tessellation).
+///
+/// The quads (`face_indices`, `face_offsets`) are a function of the layout alone: they are
+/// written once per layout and output, and kept by the calls that follow with the same layout
+/// (the positions, normals, one-sided corner normals and UVs are written every call).
+/// [`LimitMesh::topology_written`] tells the caller whether this call wrote them (a renderer
+/// uploads its index buffer again only then). Another layout (another depth, another cage, a
+/// hole changed: each a new layout, whose key no other layout has), an output another
+/// tessellator wrote, or one whose face lists changed length, gets its quads written; after
+/// changing them by hand, call [`LimitMesh::invalidate_topology`].
 pub fn tessellate_layout_into(
     mesh: &Mesh,
     layout: &PatchLayout,
@@ -188,8 +197,13 @@ pub fn tessellate_layout_into(
         }
     };
     let total: usize = layout.patches.iter().map(quads_of).sum();
-    result.face_indices.resize(total * 4, 0);
-    if result.face_offsets.len() != total + 1 {
+    // The quads and their offsets depend on the layout alone: written once per layout, kept
+    // by the calls that follow into the same output (`LimitMesh::has_topology`).
+    let write_faces = !result.has_topology(layout.key, total, total * 4);
+    if write_faces {
+        // Until the quads are written, the output holds no layout's faces.
+        result.invalidate_topology();
+        result.face_indices.resize(total * 4, 0);
         result.face_offsets.clear();
         result
             .face_offsets
@@ -200,15 +214,21 @@ pub fn tessellate_layout_into(
         nrm: result.normals.as_mut_ptr(),
         len: np,
     };
-    // Split the index buffer into one chunk per patch; `starts[k]`: patch `k`'s first corner.
+    // Split the index buffer into one chunk per patch (empty ones where the quads are kept);
+    // `starts[k]`: patch `k`'s first corner.
     let mut chunks: Vec<&mut [u32]> = Vec::with_capacity(layout.patches.len());
     let mut starts: Vec<u32> = Vec::with_capacity(layout.patches.len());
-    let mut rest: &mut [u32] = &mut result.face_indices;
+    let mut rest: &mut [u32] = if write_faces {
+        &mut result.face_indices
+    } else {
+        &mut []
+    };
     let mut start = 0u32;
     for p in &layout.patches {
-        let (a, b) = rest.split_at_mut(quads_of(p) * 4);
+        let corners = quads_of(p) * 4;
+        let (a, b) = rest.split_at_mut(if write_faces { corners } else { 0 });
         starts.push(start);
-        start += a.len() as u32;
+        start += corners as u32;
         chunks.push(a);
         rest = b;
     }
@@ -229,11 +249,14 @@ pub fn tessellate_layout_into(
                 } else {
                     level1.expect("level-1 mesh for level-1 patches")
                 };
-                let visible = !quads.is_empty();
+                let visible = p.visible;
                 let e = depth - p.level;
                 w.gather_with(src, p.face, &layout.plans[k], &layout.plan_edges);
                 let sided = visible && layout.plans[k].may_be_sided();
-                run_patch(&mut w, p, e, &out, quads, sided);
+                run_patch(&mut w, p, e, &out, sided);
+                if visible && write_faces {
+                    write_quads(&mut w, p, 1 << e, quads);
+                }
                 if visible {
                     corner_slots(1 << e, &w.sided_points, k as u32, &mut acc);
                 }
@@ -242,6 +265,7 @@ pub fn tessellate_layout_into(
         )
         .map(|(_, acc)| acc)
         .collect();
+    result.set_topology(layout.key, write_faces);
     // Corner normals in patch order: ascending, as each patch's are.
     result.corner_normals.clear();
     for (k, slot, n) in sided.into_iter().flatten() {
@@ -254,25 +278,18 @@ pub fn tessellate_layout_into(
 }
 
 /// Subdivides and evaluates one patch (gathered into the worker's slate 0); writes the points
-/// it owns and its quads, and leaves in the worker's `sided_points` the grid points where the
+/// it owns, and leaves in the worker's `sided_points` the grid points where the
 /// limit surface has a crease or a corner, with the one-sided normal of this patch's side
 /// (visible patches only). `may_sided`: the patch is visible and its plan says it may have
 /// one-sided normals (`GatherPlan::may_be_sided`); otherwise the points it does not own are
 /// not looked at.
-fn run_patch(
-    wk: &mut Worker,
-    p: &Patch,
-    e: Depth,
-    out: &SharedOut,
-    quads: &mut [u32],
-    may_sided: bool,
-) {
+fn run_patch(wk: &mut Worker, p: &Patch, e: Depth, out: &SharedOut, may_sided: bool) {
     let w = &mut *wk;
     for _ in 0..e {
         w.step();
     }
     let n = 1u32 << e;
-    let visible = !quads.is_empty();
+    let visible = p.visible;
     // Grid points with a one-sided normal of this patch's side.
     let mut sided = std::mem::take(&mut w.sided_points);
     sided.clear();
@@ -327,7 +344,6 @@ fn run_patch(
         });
     }
     w.sided_points = sided;
-    write_quads(wk, p, n, quads);
 }
 
 /// Appends to `slots` the corners of the quads of patch `patch` (row by row, corners
@@ -355,40 +371,38 @@ fn corner_slots(
     slots[first..].sort_unstable_by_key(|&(_, k, _)| k);
 }
 
-/// Writes the quads of patch `p` (grid size `n`) into `quads` (nothing for a hidden patch).
+/// Writes the quads of visible patch `p` (grid size `n`) into `quads`.
 fn write_quads(wk: &mut Worker, p: &Patch, n: u32, quads: &mut [u32]) {
-    if !quads.is_empty() {
-        // Ids of the whole grid once (border through the layout, interior contiguous), then quads.
-        let w = (n + 1) as usize;
-        let mut ids = std::mem::take(&mut wk.ids);
-        ids.resize(w * w, 0);
-        for j in 0..=n {
-            if j == 0 || j == n {
-                for i in 0..=n {
-                    ids[j as usize * w + i as usize] = point_id(p, n, i, j).0;
-                }
-            } else {
-                let r = j as usize * w;
-                ids[r] = point_id(p, n, 0, j).0;
-                ids[r + w - 1] = point_id(p, n, n, j).0;
-                let first = p.interior + (j - 1) * (n - 1);
-                for (k, id) in ids[r + 1..r + w - 1].iter_mut().enumerate() {
-                    *id = first + k as u32;
-                }
+    // Ids of the whole grid once (border through the layout, interior contiguous), then quads.
+    let w = (n + 1) as usize;
+    let mut ids = std::mem::take(&mut wk.ids);
+    ids.resize(w * w, 0);
+    for j in 0..=n {
+        if j == 0 || j == n {
+            for i in 0..=n {
+                ids[j as usize * w + i as usize] = point_id(p, n, i, j).0;
+            }
+        } else {
+            let r = j as usize * w;
+            ids[r] = point_id(p, n, 0, j).0;
+            ids[r + w - 1] = point_id(p, n, n, j).0;
+            let first = p.interior + (j - 1) * (n - 1);
+            for (k, id) in ids[r + 1..r + w - 1].iter_mut().enumerate() {
+                *id = first + k as u32;
             }
         }
-        for (j, qrow) in quads.chunks_exact_mut(4 * n as usize).enumerate() {
-            let (lo, hi) = (&ids[j * w..(j + 1) * w], &ids[(j + 1) * w..(j + 2) * w]);
-            for ((q, a), b) in qrow
-                .chunks_exact_mut(4)
-                .zip(lo.windows(2))
-                .zip(hi.windows(2))
-            {
-                q.copy_from_slice(&[a[0], a[1], b[1], b[0]]);
-            }
-        }
-        wk.ids = ids;
     }
+    for (j, qrow) in quads.chunks_exact_mut(4 * n as usize).enumerate() {
+        let (lo, hi) = (&ids[j * w..(j + 1) * w], &ids[(j + 1) * w..(j + 2) * w]);
+        for ((q, a), b) in qrow
+            .chunks_exact_mut(4)
+            .zip(lo.windows(2))
+            .zip(hi.windows(2))
+        {
+            q.copy_from_slice(&[a[0], a[1], b[1], b[0]]);
+        }
+    }
+    wk.ids = ids;
 }
 
 /// Output id of grid point `(i, j)` of a patch with grid size `n`, and whether the patch owns it.

@@ -66,7 +66,7 @@ impl TriAssembler {
             });
         }
         let layout = TriLayout::new(mesh, 1)?;
-        let n = layout.patches.len();
+        let n = layout.patches().len();
         Ok(TriAssembler {
             layout,
             blocks: vec![TriBlock::default(); n],
@@ -116,7 +116,7 @@ impl TriAssembler {
         active: &[bool],
         out: &mut FrameGeometry,
     ) -> Result<(), AssemblyError> {
-        let nf = self.layout.patches.len();
+        let nf = self.layout.patches().len();
         if depth.len() != nf || active.len() != nf {
             return Err(AssemblyError::Length {
                 what: "depth/active",
@@ -126,7 +126,7 @@ impl TriAssembler {
         }
         let depth: Vec<Depth> = depth.iter().map(|&d| d.min(self.max_depth)).collect();
         let active: Vec<bool> = (0..nf)
-            .map(|f| active[f] && self.layout.patches[f].visible)
+            .map(|f| active[f] && self.layout.patches()[f].visible)
             .collect();
         let owners = emit::Owners::new(mesh, &self.layout, &depth, &active);
         let required = owners.required_depths(mesh, &self.layout, &depth, &active);
@@ -226,7 +226,7 @@ impl TriAssembler {
                     depth: Some(d),
                     ..TriBlock::default()
                 };
-                let p = &layout.patches[i];
+                let p = &layout.patches()[i];
                 tri_patch_lattice(mesh, layout, p, d, &mut b.pos, &mut b.nrm, &mut b.sided);
                 (i, b)
             })

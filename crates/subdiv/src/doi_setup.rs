@@ -347,6 +347,7 @@ impl DoiSetup {
             corner_normals: crate::crease_normals::sector_corner_normals(m, &normals),
             uvs,
             uv_indices,
+            ..LimitMesh::default()
         };
         Ok((limit, scalar))
     }

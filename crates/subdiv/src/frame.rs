@@ -17,6 +17,7 @@ pub fn frame_limit(g: &FrameGeometry) -> (LimitMesh, Vec<f32>) {
         corner_normals: g.corner_normals.clone(),
         uvs: g.uvs.clone(),
         uv_indices: g.uv_indices.clone(),
+        ..LimitMesh::default()
     };
     let mut depths = Vec::new();
     for &i in &g.indices {

@@ -31,7 +31,7 @@ pub fn patch_errors_loop(
     // Footprint scales: blocks of 1, 2, 4, ... fine cells up to an element, as for quads.
     let scales = (fine as usize).saturating_sub(1).max(1);
     let faces: Vec<PatchError> = layout
-        .patches
+        .patches()
         .par_iter()
         .enumerate()
         .map_init(
@@ -327,7 +327,7 @@ mod tests {
         // the measured deviation is the largest such gap.
         let layout = asm.layout();
         let (mut pos, mut nrm, mut sided) = (Vec::new(), Vec::new(), Vec::new());
-        let p = &layout.patches[0];
+        let p = &layout.patches()[0];
         tri_patch_lattice(&mesh, layout, p, 5, &mut pos, &mut nrm, &mut sided);
         for f in &e.faces {
             let d = &f.deviation;

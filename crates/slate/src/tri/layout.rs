@@ -8,7 +8,7 @@
 //! boundary, by its one face; every triangle owns its interior.
 
 use subdiv_mesh::{EdgeId, HalfedgeId, Mesh, VertexId};
-use subdiv_rules::{Depth, RulesError, SeamCurves};
+use subdiv_rules::{Depth, RulesError, SeamCurves, TopologyKey};
 
 /// One side of a triangular patch: the cage edge from corner `k` to corner `k + 1`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -59,15 +59,17 @@ pub struct TriPatch {
     pub r0: [u32; 3],
 }
 
-/// The numbering of the level-`depth` Loop tessellation of a cage of triangles.
+/// The numbering of the level-`depth` Loop tessellation of a cage of triangles. Read-only
+/// once built: the triangles of its tessellation are a function of it alone, written once
+/// per output ([`crate::tessellate_loop_layout_into`]).
 #[derive(Clone, Debug)]
 pub struct TriLayout {
     /// The subdivision depth.
-    pub depth: Depth,
+    pub(crate) depth: Depth,
     /// One patch per cage face, in face order.
-    pub patches: Vec<TriPatch>,
+    pub(crate) patches: Vec<TriPatch>,
     /// Vertices in no face: output at their cage position with a zero normal.
-    pub isolated: Vec<VertexId>,
+    pub(crate) isolated: Vec<VertexId>,
     num_points: usize,
     ring_offsets: Vec<u32>,
     ring_verts: Vec<u32>,
@@ -77,6 +79,18 @@ pub struct TriLayout {
     /// The cage's seams (copies of non-manifold edges), whose points are written from their
     /// chains ([`TriLayout::write_seam_points`], [`super::tri_patch_lattice`]).
     pub(crate) seams: SeamCurves,
+    /// This layout's identity (a clone gets its own), kept by the outputs it wrote.
+    pub(crate) key: LayoutKey,
+}
+
+/// A [`TopologyKey`] that a clone of its layout does not share.
+#[derive(Debug)]
+pub(crate) struct LayoutKey(pub(crate) TopologyKey);
+
+impl Clone for LayoutKey {
+    fn clone(&self) -> LayoutKey {
+        LayoutKey(TopologyKey::fresh())
+    }
 }
 
 impl TriLayout {
@@ -159,7 +173,23 @@ impl TriLayout {
             fast,
             uv_cache: Default::default(),
             seams: SeamCurves::new(mesh),
+            key: LayoutKey(TopologyKey::fresh()),
         })
+    }
+
+    /// The subdivision depth.
+    pub fn depth(&self) -> Depth {
+        self.depth
+    }
+
+    /// One patch per cage face, in face order.
+    pub fn patches(&self) -> &[TriPatch] {
+        &self.patches
+    }
+
+    /// Vertices in no face: output at their cage position with a zero normal.
+    pub fn isolated(&self) -> &[VertexId] {
+        &self.isolated
     }
 
     /// Overwrites the points on the cage's seams (the copies of a non-manifold edge and their

@@ -66,6 +66,12 @@ pub(crate) fn check_loop_cage(mesh: &Mesh) -> Result<(), RulesError> {
 
 /// [`tessellate_loop`] with a precomputed layout into a reused output (buffers are resized, not
 /// reallocated, when the sizes match).
+///
+/// The triangles (`face_indices`, `face_offsets`) are a function of the layout alone: written
+/// once per layout and output, kept by the calls that follow with the same layout (positions,
+/// normals, one-sided corner normals and UVs are written every call), as in
+/// [`crate::tessellate_layout_into`]: [`LimitMesh::topology_written`] says whether this call
+/// wrote them, [`LimitMesh::invalidate_topology`] forces it.
 pub fn tessellate_loop_layout_into(
     mesh: &Mesh,
     layout: &TriLayout,
@@ -91,8 +97,14 @@ pub fn tessellate_loop_layout_into(
     let per_patch = (n * n) as usize;
     let tris_of = |p: &TriPatch| if p.visible { per_patch } else { 0 };
     let total: usize = layout.patches.iter().map(tris_of).sum();
-    result.face_indices.resize(total * 3, 0);
-    if result.face_offsets.len() != total + 1 {
+    // The triangles and their offsets depend on the layout alone: written once per layout,
+    // kept by the calls that follow into the same output (`LimitMesh::has_topology`).
+    let key = layout.key.0;
+    let write_faces = !result.has_topology(key, total, total * 3);
+    if write_faces {
+        // Until the triangles are written, the output holds no layout's faces.
+        result.invalidate_topology();
+        result.face_indices.resize(total * 3, 0);
         result.face_offsets.clear();
         result
             .face_offsets
@@ -103,10 +115,15 @@ pub fn tessellate_loop_layout_into(
         nrm: result.normals.as_mut_ptr(),
         len: np,
     };
+    // One chunk of the index buffer per patch (empty ones where the triangles are kept).
     let mut chunks: Vec<&mut [u32]> = Vec::with_capacity(layout.patches.len());
-    let mut rest: &mut [u32] = &mut result.face_indices;
+    let mut rest: &mut [u32] = if write_faces {
+        &mut result.face_indices
+    } else {
+        &mut []
+    };
     for p in &layout.patches {
-        let (a, b) = rest.split_at_mut(tris_of(p) * 3);
+        let (a, b) = rest.split_at_mut(if write_faces { tris_of(p) * 3 } else { 0 });
         chunks.push(a);
         rest = b;
     }
@@ -120,6 +137,7 @@ pub fn tessellate_loop_layout_into(
             run_patch(wk, scratch, mesh, layout, p, depth, &out, tris)
         })
         .collect();
+    result.set_topology(key, write_faces);
     result.corner_normals.clear();
     let mut start = 0u32;
     for (p, slots) in layout.patches.iter().zip(sided) {
@@ -134,8 +152,9 @@ pub fn tessellate_loop_layout_into(
     crate::uv::tri_uvs(mesh, layout, result)
 }
 
-/// Gathers, subdivides and evaluates one patch; writes the points it owns and its triangles, and
-/// returns the one-sided normals of its triangles' corners (ascending) at crease points.
+/// Gathers, subdivides and evaluates one patch; writes the points it owns and its triangles
+/// (into `tris`, empty where they are kept), and returns the one-sided normals of its
+/// triangles' corners (ascending) at crease points.
 #[allow(clippy::too_many_arguments)]
 fn run_patch(
     w: &mut TriWorker,
@@ -157,7 +176,7 @@ fn run_patch(
     let rows: [bool; 3] = std::array::from_fn(|c| p.sides[c].owned || !w.sides[c].smooth);
     let corners = std::array::from_fn(|c| p.corner_owned[c] || rows[c] || rows[(c + 2) % 3]);
     w.step_with(rows, corners);
-    let visible = !tris.is_empty();
+    let visible = p.visible;
     let mut sided: Vec<(u32, u32, Vec3A)> = Vec::new();
     for c in 0..3 {
         if p.corner_owned[c] || (visible && !w.corners[c].fast) {
@@ -207,7 +226,8 @@ fn run_patch(
         });
         debug_assert_eq!(k, end);
     }
-    if visible {
+    // Empty where the layout's triangles are kept (or the patch is hidden).
+    if !tris.is_empty() {
         write_triangles(p, n, tris, &mut scratch.ids);
     }
     corner_slots(n, &sided)

@@ -31,7 +31,7 @@ impl Owners {
         let mut edge_res = vec![0; mesh.num_edges()];
         let mut edge_owner = vec![(NONE, 0u8); mesh.num_edges()];
         let mut vertex_owner = vec![(NONE, 0u8); mesh.num_vertices()];
-        for (f, p) in layout.patches.iter().enumerate() {
+        for (f, p) in layout.patches().iter().enumerate() {
             if !active[f] {
                 continue;
             }
@@ -68,7 +68,7 @@ impl Owners {
         active: &[bool],
     ) -> Vec<Option<Depth>> {
         layout
-            .patches
+            .patches()
             .iter()
             .enumerate()
             .map(|(f, p)| {
@@ -136,7 +136,7 @@ impl TriFrame<'_> {
 
     /// Corner `k` of patch `f`, through the vertex's owner.
     fn corner(&self, f: usize, k: usize) -> Pt {
-        let v = self.layout.patches[f].corners[k] as usize;
+        let v = self.layout.patches()[f].corners[k] as usize;
         let (g, c) = self.owners.vertex_owner[v];
         let (i, j) = side_coords(1, c as usize, 0);
         let (a, b) = side_coords(1, k, 0);
@@ -156,7 +156,7 @@ impl TriFrame<'_> {
         if t == n {
             return self.corner(f, (k + 1) % 3);
         }
-        let e = self.layout.patches[f].edges[k].idx();
+        let e = self.layout.patches()[f].edges[k].idx();
         let (g, k2) = self.owners.edge_owner[e];
         // The two faces of an edge run along it in opposite directions.
         let t2 = if g as usize == f { t } else { n - t };
@@ -173,7 +173,7 @@ impl TriFrame<'_> {
     fn own(&self, f: usize, i: u32, j: u32) -> Pt {
         let d = self.depth[f];
         let n = 1u32 << d;
-        let res = |k: usize| self.owners.edge_res[self.layout.patches[f].edges[k].idx()];
+        let res = |k: usize| self.owners.edge_res[self.layout.patches()[f].edges[k].idx()];
         let on_side = |k: usize, t: u32| self.side(f, k, t << (res(k) - d), res(k));
         match (i, j) {
             (0, 0) => self.corner(f, 0),
@@ -236,7 +236,7 @@ impl TriFrame<'_> {
     fn emit_patch(&self, f: usize, out: &mut Emit<'_>) {
         let d = self.depth[f];
         let n = 1u32 << d;
-        let p = &self.layout.patches[f];
+        let p = &self.layout.patches()[f];
         let res = p.edges.map(|e| self.owners.edge_res[e.idx()]);
         let fine = res.map(|r| r > d);
         let mut rows: [Vec<Pt>; 3] = Default::default();

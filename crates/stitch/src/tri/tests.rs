@@ -33,7 +33,7 @@ const FIXTURES: [&str; 9] = [
 /// `2^resolution` segments.
 fn expected_open(mesh: &Mesh, asm: &TriAssembler, g: &FrameGeometry) -> usize {
     let mut sides = vec![(0u32, 0u8); mesh.num_edges()];
-    for (f, p) in asm.layout().patches.iter().enumerate() {
+    for (f, p) in asm.layout().patches().iter().enumerate() {
         let d = g.unit_depth[f];
         if d == u8::MAX {
             continue;
@@ -141,7 +141,7 @@ fn drawn_points_are_the_uniform_tessellation_at_the_patch_depth() {
                     .find(|&j| subdiv_slate::tri_lattice_index(n, 0, j) <= k);
                 let j = j.unwrap();
                 let i = k - subdiv_slate::tri_lattice_index(n, 0, j);
-                let p = &layouts[c as usize - 1].patches[f];
+                let p = &layouts[c as usize - 1].patches()[f];
                 let (id, owned) = TriLayout::point_id(p, n, i, j);
                 let want = uniform[c as usize].positions[id as usize];
                 let got = g.positions[v as usize];
