@@ -8,48 +8,13 @@
 //! note and passes unless `SUBDIV_VK_REQUIRE_DRIVER=1`. The `+ 0.5` is the metric's own
 //! resolution: a pixel wrongly covered next to a silhouette along pixel edges counts 0.5 px.
 
-use std::path::{Path, PathBuf};
+mod common;
 
+use common::{cages, renderer};
 use glam::Vec3;
 use subdiv::mesh::{Camera, ReadOptions, read_obj_with};
 use subdiv::quality::{Config, QualityParams, QualityRun, orbit_cameras};
 use subdiv::rules::Scheme;
-use subdiv::vk::{ContextOptions, Renderer, Validation, VkError};
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn cages() -> Vec<PathBuf> {
-    let mut out = Vec::new();
-    for dir in ["fixtures/reference/shapes", "fixtures/scenes"] {
-        let mut files: Vec<PathBuf> = std::fs::read_dir(root().join(dir))
-            .unwrap()
-            .map(|e| e.unwrap().path())
-            .filter(|p| p.extension().is_some_and(|x| x == "obj"))
-            .collect();
-        files.sort();
-        out.extend(files);
-    }
-    out
-}
-
-fn renderer() -> Option<Renderer> {
-    let options = ContextOptions {
-        validation: Validation::IfAvailable,
-        ..Default::default()
-    };
-    match Renderer::with_options(&options) {
-        Ok(r) => Some(r),
-        Err(e @ (VkError::LoaderMissing { .. } | VkError::NoDriver { .. }))
-            if std::env::var("SUBDIV_VK_REQUIRE_DRIVER").as_deref() != Ok("1") =>
-        {
-            eprintln!("skipping: {e}");
-            None
-        }
-        Err(e) => panic!("cannot create renderer: {e}"),
-    }
-}
 
 /// Pixel errors checked; P = 4 lets most patches of these small images drop to depth 0–1.
 const PIXEL_ERRORS: [f32; 4] = [0.5, 1.0, 2.0, 4.0];
