@@ -49,6 +49,9 @@ pub struct Mesh {
     groups: Vec<String>,
     options: SchemeOptions,
     uv: Option<crate::FaceVarying>,
+    /// [`Mesh::whole_vertex_edges`]: sorted semi-sharp values, by vertex; empty for almost
+    /// every mesh.
+    whole_edges: std::collections::BTreeMap<u32, Vec<f32>>,
 }
 
 impl Mesh {
@@ -137,6 +140,41 @@ impl Mesh {
     /// Sets the sharpness of vertex `v`.
     pub fn set_vertex_sharpness(&mut self, v: VertexId, s: f32) {
         self.vertex_sharpness[v.idx()] = s;
+    }
+    /// The semi-sharp edge sharpness of the *whole vertex* that `v` is a copy of, where `v` is
+    /// one of several copies of a non-manifold crease vertex holding semi-sharp edges
+    /// ([`PolygonSoup::split_nonmanifold`](crate::PolygonSoup::split_nonmanifold)); `None`
+    /// elsewhere. OpenSubdiv decides the vertex's rule, its fractional weight and the Chaikin
+    /// decay of its edges over all the vertex's edges, every copy's together: every vertex
+    /// rule reads these values in place of the semi-sharp edges of `v`'s own ring (the values
+    /// are sorted, positive and below infinity, so every copy sums them alike, to the bit).
+    #[inline]
+    pub fn whole_vertex_edges(&self, v: VertexId) -> Option<&[f32]> {
+        if self.whole_edges.is_empty() {
+            return None;
+        }
+        self.whole_edges.get(&v.0).map(Vec::as_slice)
+    }
+    /// Every vertex with [`Mesh::whole_vertex_edges`], in vertex order.
+    pub fn whole_vertex_edges_all(&self) -> impl Iterator<Item = (VertexId, &[f32])> + '_ {
+        self.whole_edges
+            .iter()
+            .map(|(&v, s)| (VertexId(v), s.as_slice()))
+    }
+    /// Sets [`Mesh::whole_vertex_edges`] of `v`: the values that are semi-sharp, sorted (none
+    /// removes them).
+    pub fn set_whole_vertex_edges(&mut self, v: VertexId, values: &[f32]) {
+        let mut s: Vec<f32> = values
+            .iter()
+            .copied()
+            .filter(|&x| crate::sharpness::is_semi_sharp(x))
+            .collect();
+        if s.is_empty() {
+            self.whole_edges.remove(&v.0);
+        } else {
+            s.sort_unstable_by(f32::total_cmp);
+            self.whole_edges.insert(v.0, s);
+        }
     }
     /// The scheme options.
     #[inline]

@@ -7,8 +7,7 @@
 //! sharpness along a crease: each child gets `3/4` of its parent's sharpness plus `1/4` of the
 //! average of the other semi-sharp edges at that end, minus one. The vertex rules and masks that
 //! read these values live in `subdiv-rules` (`crease.rs`, which re-exports this module); the
-//! arithmetic is here because [`crate::PolygonSoup::split_nonmanifold`] needs it too
-//! ([`crease_vertex_schedule`]).
+//! arithmetic is here because [`crate::Mesh::set_whole_vertex_edges`] needs it too.
 
 use crate::options::{CreaseMethod, SHARPNESS_INFINITE};
 
@@ -121,10 +120,9 @@ pub fn fractional_weight(
 /// any of them is sharp, and at the level `k` where the last run out it blends into the crease
 /// rule by the weight `w` of [`fractional_weight`] (OpenSubdiv's
 /// `ComputeFractionalWeightAtVertex`: the average over the sharpness that runs out then). The
-/// result `k + w` is the vertex sharpness that alone gives the same schedule, read by
-/// [`crate::PolygonSoup::split_nonmanifold`] for copies of a non-manifold crease vertex that do
-/// not hold the semi-sharp edges, and by the seam curves of `subdiv-rules` to compare the
-/// copies' schedules. `edges`: the sharpness of the vertex's edges (any order; values that are
+/// result `k + w` is the vertex sharpness that alone gives the same schedule, read by the seam
+/// curves of `subdiv-rules` to compare the schedules of the copies of a non-manifold crease
+/// vertex. `edges`: the sharpness of the vertex's edges (any order; values that are
 /// not semi-sharp are ignored). 0 when nothing semi-sharp is there (a crease from the start).
 /// For a vertex sharpness alone it returns that sharpness, bit for bit.
 pub fn crease_vertex_schedule(method: CreaseMethod, vertex_sharpness: f32, edges: &[f32]) -> f32 {

@@ -73,6 +73,10 @@ pub struct PolygonSoup {
     pub face_lines: Vec<u32>,
     /// Tag lines read but not applied, in file order (see [`crate::TagWarning`]).
     pub warnings: Vec<crate::TagWarning>,
+    /// `(copy, values)`: the semi-sharp edge sharpness of the whole non-manifold vertex each
+    /// copy stands for, set by [`PolygonSoup::split_nonmanifold`]
+    /// ([`Mesh::whole_vertex_edges`](crate::Mesh::whole_vertex_edges)).
+    pub whole_vertex_edges: Vec<(i64, Vec<f32>)>,
     /// Face-varying values (OBJ `vt`); see [`PolygonSoup::uv_indices`].
     pub uvs: Vec<glam::Vec2>,
     /// The value of every face corner (aligned with `face_indices`, 0-based, signed so that bad
@@ -304,6 +308,11 @@ impl PolygonSoup {
                 f: t.f + bf,
                 line: None,
             }));
+            out.whole_vertex_edges.extend(
+                self.whole_vertex_edges
+                    .iter()
+                    .map(|(v, s)| (v + bv, s.clone())),
+            );
         }
         out
     }

@@ -14,6 +14,9 @@ use subdiv_mesh::CreaseMethod;
 #[cfg(test)]
 use subdiv_mesh::SHARPNESS_INFINITE;
 
+mod whole;
+pub use whole::{child_whole_vertex_edges, far_semi_sharp, rule_with_whole, semi_sharp_excluding};
+
 pub use subdiv_mesh::sharpness::{
     child_edge_sharpness, child_edge_sharpness_around, crease_vertex_schedule, decrement,
     fractional_weight, is_infinite, is_semi_sharp, is_sharp, is_smooth, semi_sharp_sum,

@@ -11,7 +11,9 @@ use subdiv_mesh::{
     CreaseMethod, EdgeId, FaceId, HalfedgeId, Mesh, PolygonSoup, TriangleSubdivision, VertexId,
 };
 
-use crate::crease::{VertexRules, decrement, edge_crease_weight, is_sharp};
+use crate::crease::{
+    VertexRules, child_whole_vertex_edges, decrement, edge_crease_weight, is_sharp,
+};
 use crate::{Depth, Point, RulesError, Scheme, catmark, loop_scheme};
 
 /// One uniform refinement step of the whole mesh.
@@ -225,12 +227,19 @@ impl<'m, P: Point> RefineKernel<'m, P> {
         }
         self.child_edge_sharpness.clear();
         self.child_edge_sharpness.resize(self.halfedges.len(), 0.0);
-        let rules = VertexRules::new(
-            self.method,
-            mesh.vertex_sharpness(v),
-            &self.edge_sharpness,
-            &mut self.child_edge_sharpness,
-        );
+        let vs = mesh.vertex_sharpness(v);
+        let rules = match mesh.whole_vertex_edges(v) {
+            None => VertexRules::new(
+                self.method,
+                vs,
+                &self.edge_sharpness,
+                &mut self.child_edge_sharpness,
+            ),
+            Some(whole) => {
+                let (es, cs) = (&self.edge_sharpness, &mut self.child_edge_sharpness);
+                VertexRules::with_whole(self.method, vs, es, whole, cs, &mut Vec::new())
+            }
+        };
         for (k, &h) in self.halfedges.iter().enumerate() {
             self.child_sharp[h.idx()] = self.child_edge_sharpness[k];
         }
@@ -363,6 +372,13 @@ impl<'m, P: Point> RefineKernel<'m, P> {
             if is_sharp(s) {
                 let s = if decays(v) { decrement(s) } else { s };
                 child.set_vertex_sharpness(v, s.max(child.vertex_sharpness(v)));
+            }
+        }
+        for (v, whole) in mesh.whole_vertex_edges_all() {
+            if decays(v) {
+                child.set_whole_vertex_edges(v, &child_whole_vertex_edges(self.method, whole));
+            } else {
+                child.set_whole_vertex_edges(v, whole);
             }
         }
     }

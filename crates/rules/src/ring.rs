@@ -15,7 +15,9 @@
 use glam::{DVec3, Vec3};
 use subdiv_mesh::{CreaseMethod, Mesh, TriangleSubdivision, VertexId};
 
-use crate::crease::{Rule, VertexRules, child_edge_sharpness, edge_crease_weight, is_semi_sharp};
+use crate::crease::{
+    Rule, VertexRules, child_edge_sharpness, edge_crease_weight, far_semi_sharp, is_semi_sharp,
+};
 use crate::{Scheme, catmark, loop_scheme};
 
 mod sided;
@@ -31,6 +33,9 @@ pub struct Ring {
     triangles: TriangleSubdivision,
     center: DVec3,
     vertex_sharpness: f32,
+    /// The whole vertex's semi-sharp values at a copy of a non-manifold vertex
+    /// ([`Mesh::whole_vertex_edges`]); empty elsewhere.
+    whole: Vec<f32>,
     boundary: bool,
     edges: Vec<DVec3>,
     sharp: Vec<f32>,
@@ -45,6 +50,7 @@ pub struct Ring {
     cs: Vec<f32>,
     tmp_edges: Vec<DVec3>,
     tmp_far: Vec<(f32, u32)>,
+    tmp_whole: Vec<f32>,
 }
 
 impl Ring {
@@ -73,6 +79,9 @@ impl Ring {
         self.triangles = mesh.options().triangles;
         self.center = pos(v);
         self.vertex_sharpness = mesh.vertex_sharpness(v);
+        self.whole.clear();
+        self.whole
+            .extend_from_slice(mesh.whole_vertex_edges(v).unwrap_or(&[]));
         self.boundary = mesh.is_boundary_vertex(v);
         self.edges.clear();
         self.sharp.clear();
@@ -89,16 +98,7 @@ impl Ring {
             self.edges.push(pos(w));
             self.sharp.push(mesh.edge_sharpness(h.edge()));
             let far = if chaikin {
-                let mut sum = 0.0f32;
-                let mut n = 0u32;
-                for g in mesh.outgoing(w) {
-                    let s = mesh.edge_sharpness(g.edge());
-                    if g.edge() != h.edge() && is_semi_sharp(s) {
-                        sum += s;
-                        n += 1;
-                    }
-                }
-                (sum, n)
+                far_semi_sharp(mesh, h)
             } else {
                 (0.0, 0)
             };
@@ -153,6 +153,7 @@ impl Ring {
         self.triangles = TriangleSubdivision::Catmark;
         self.center = center;
         self.vertex_sharpness = vertex_sharpness;
+        self.whole.clear();
         self.boundary = boundary;
         self.edges.clear();
         self.edges.extend_from_slice(edges);
@@ -186,6 +187,7 @@ impl Ring {
         self.triangles = TriangleSubdivision::Catmark;
         self.center = center;
         self.vertex_sharpness = vertex_sharpness;
+        self.whole.clear();
         self.boundary = boundary;
         self.edges.clear();
         self.edges.extend_from_slice(edges);
@@ -238,6 +240,29 @@ impl Ring {
     pub fn vertex_sharpness(&self) -> f32 {
         self.vertex_sharpness
     }
+    /// The sharpness of the ring's edges (after [`Ring::refine`]: of their children).
+    #[inline]
+    pub fn edge_sharpnesses(&self) -> &[f32] {
+        &self.sharp
+    }
+    /// The whole vertex's semi-sharp values at a copy of a non-manifold vertex
+    /// ([`Mesh::whole_vertex_edges`]; after [`Ring::refine`]: their children); empty elsewhere.
+    #[inline]
+    pub fn whole(&self) -> &[f32] {
+        &self.whole
+    }
+    /// The child sharpness at the centre of every ring edge, as [`Ring::refine`] gives them
+    /// (the whole vertex's values included at a copy of a non-manifold vertex).
+    pub fn child_edge_sharpness(&self, child: &mut Vec<f32>) {
+        child.clear();
+        child.resize(self.sharp.len(), 0.0);
+        if self.whole.is_empty() {
+            crate::crease::child_edge_sharpness_around(self.method, &self.sharp, child);
+        } else {
+            let (vs, mut cw) = (self.vertex_sharpness, Vec::new());
+            VertexRules::with_whole(self.method, vs, &self.sharp, &self.whole, child, &mut cw);
+        }
+    }
     /// Unit normal of face `i` of the ring (Newell's method relative to a corner,
     /// [`subdiv_mesh::newell_area`], over the whole polygon; for Loop the
     /// triangle spanned by the centre and edges `i`, `i+1`).
@@ -275,6 +300,7 @@ impl Ring {
     /// non-quad faces for Catmull-Clark).
     pub fn needs_refinement(&self) -> bool {
         is_semi_sharp(self.vertex_sharpness)
+            || !self.whole.is_empty()
             || self.sharp.iter().any(|&s| is_semi_sharp(s))
             || (self.scheme == Scheme::CatmullClark
                 && (0..self.num_faces()).any(|i| self.face_inner(i).len() != 1))
@@ -286,12 +312,18 @@ impl Ring {
         let nf = self.num_faces();
         self.cs.clear();
         self.cs.resize(n, 0.0);
-        let rules = VertexRules::new(
-            self.method,
-            self.vertex_sharpness,
-            &self.sharp,
-            &mut self.cs,
-        );
+        let rules = if self.whole.is_empty() {
+            VertexRules::new(
+                self.method,
+                self.vertex_sharpness,
+                &self.sharp,
+                &mut self.cs,
+            )
+        } else {
+            let (vs, whole) = (self.vertex_sharpness, &self.whole);
+            let (sharp, cs) = (&self.sharp, &mut self.cs);
+            VertexRules::with_whole(self.method, vs, sharp, whole, cs, &mut self.tmp_whole)
+        };
         self.tmp_edges.clear();
         self.tmp_far.clear();
         match self.scheme {
@@ -378,6 +410,9 @@ impl Ring {
         std::mem::swap(&mut self.edges, &mut self.tmp_edges);
         std::mem::swap(&mut self.far, &mut self.tmp_far);
         std::mem::swap(&mut self.sharp, &mut self.cs);
+        if !self.whole.is_empty() {
+            std::mem::swap(&mut self.whole, &mut self.tmp_whole);
+        }
         self.vertex_sharpness = crate::crease::decrement(self.vertex_sharpness);
     }
 

@@ -134,7 +134,9 @@ fn chain_ends(mesh: &Mesh, v: VertexId) -> Option<Ends> {
         let ends = (ChainEnd::Crease(sharp[0]), ChainEnd::Crease(sharp[1]));
         // Semi-sharp edges keep it a corner for a while too: one vertex sharpness with the
         // same schedule, the same bits in every copy that has it.
-        let schedule = crease_vertex_schedule(mesh.options().crease, vs, &ring);
+        // At a copy given the whole vertex's values, those (its own among them).
+        let values = mesh.whole_vertex_edges(v).unwrap_or(&ring);
+        let schedule = crease_vertex_schedule(mesh.options().crease, vs, values);
         Some((ends.0, ends.1, schedule))
     } else {
         None

@@ -5,7 +5,7 @@
 use glam::Vec3A;
 use subdiv_mesh::{CreaseMethod, FaceId, HalfedgeId, Mesh, VertexId};
 use subdiv_rules::Scheme;
-use subdiv_rules::crease::{is_infinite, is_semi_sharp};
+use subdiv_rules::crease::{far_semi_sharp, is_infinite};
 
 use crate::table::Table;
 use crate::worker::Worker;
@@ -306,16 +306,7 @@ fn gather_far(t: &mut Table, mesh: &Mesh, vid: &TableVertices) {
             let Some(h) = mesh.find_halfedge(a, b) else {
                 continue;
             };
-            let mut sum = 0.0;
-            let mut cnt = 0;
-            for g in mesh.outgoing(b) {
-                let sh = mesh.edge_sharpness(g.edge());
-                if g.edge() != h.edge() && is_semi_sharp(sh) {
-                    sum += sh;
-                    cnt += 1;
-                }
-            }
-            t.far_semi_sharp[side][s as usize] = (sum, cnt);
+            t.far_semi_sharp[side][s as usize] = far_semi_sharp(mesh, h);
         }
     }
 }

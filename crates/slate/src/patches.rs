@@ -104,6 +104,9 @@ pub(crate) fn local_level1(
     for v in mesh.vertices() {
         if vmap[v.idx()] != u32::MAX {
             sub.set_vertex_sharpness(VertexId(vmap[v.idx()]), mesh.vertex_sharpness(v));
+            if let Some(whole) = mesh.whole_vertex_edges(v) {
+                sub.set_whole_vertex_edges(VertexId(vmap[v.idx()]), whole);
+            }
         }
     }
     let level1 = refine_uniform(&sub, Scheme::CatmullClark)?;

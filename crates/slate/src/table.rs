@@ -15,7 +15,7 @@
 
 use glam::Vec3A;
 use subdiv_rules::Ring;
-use subdiv_rules::crease::is_semi_sharp;
+use subdiv_rules::crease::{is_semi_sharp, semi_sharp_excluding};
 
 /// Direction index: 0 = +i (E), 1 = +j (N), 2 = -i (W), 3 = -j (S) — counter-clockwise.
 pub(crate) const DI: [i32; 4] = [1, 0, -1, 0];
@@ -333,6 +333,8 @@ pub(crate) struct Corner {
     /// evaluation of the corner refines `ring` in place, while the Chaikin rule at neighbouring
     /// points still needs it afterwards ([`far_info`]).
     pub sharp: Vec<f32>,
+    /// The ring's whole-vertex values at the table's level (`Ring::whole`), kept with `sharp`.
+    pub whole: Vec<f32>,
     /// Ring index of the edge along the patch side leaving this corner.
     pub ih: usize,
     pub valence: usize,
@@ -346,6 +348,8 @@ impl Corner {
         self.sharp.clear();
         self.sharp
             .extend((0..self.ring.valence()).map(|r| self.ring.edge_sharpness(r)));
+        self.whole.clear();
+        self.whole.extend_from_slice(self.ring.whole());
     }
 }
 
@@ -406,16 +410,7 @@ pub(crate) fn far_info(
         if ci == i && cj == j && c.active {
             let m = c.valence;
             let excl_idx = ring_index_of_dir(c, d, d2, excl).unwrap_or(usize::MAX);
-            let mut sum = 0.0;
-            let mut cnt = 0;
-            for r in 0..m {
-                let s = c.sharp[r];
-                if r != excl_idx && is_semi_sharp(s) {
-                    sum += s;
-                    cnt += 1;
-                }
-            }
-            return (sum, cnt);
+            return semi_sharp_excluding(&c.sharp[..m], excl_idx, &c.whole);
         }
     }
     if (0..=n).contains(&i) && (0..=n).contains(&j) {

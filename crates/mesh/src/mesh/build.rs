@@ -123,5 +123,6 @@ fn assemble(
         groups: soup.groups.clone(),
         options: soup.options,
         uv: None,
+        whole_edges: Default::default(),
     }
 }

@@ -18,23 +18,21 @@
 //! each copy refines and takes its limit exactly where OpenSubdiv puts the one vertex; the copies
 //! coincide. A semi-sharp vertex sharpness at a crease vertex is carried by every copy, so
 //! every copy is a corner while it lasts and blends into the crease rule at the same level by
-//! the same weight, as the whole vertex does. Semi-sharp edges at a crease vertex make the
-//! whole vertex a corner while they last (three sharp edges), then blend it into the crease by
-//! the average of what runs out last (OpenSubdiv's fractional weight over all the vertex's
-//! edges): that schedule is one vertex sharpness (`sharpness::crease_vertex_schedule`), given to
-//! every copy whose own edges and tag do not already give it. Where a copy cannot be given the
-//! whole vertex's rule at every level (Chaikin creases spread over several copies whose own
-//! decay differs from the whole vertex's, which averages over all of them; semi-sharp edges in several copies whose own transition weights
-//! differ from the whole vertex's; a crease vertex whose copy misses one of its two
-//! non-manifold edges), the cage is refused with
-//! [`MeshError::UnsupportedNonManifold`] naming the vertex, rather than refined differently.
+//! the same weight, as the whole vertex does. Semi-sharp edges at a non-manifold vertex enter
+//! OpenSubdiv's rule (three sharp edges or more: a corner), its fractional weight (the average
+//! of what runs out) and the Chaikin decay of each (the average of the others) over all the
+//! vertex's edges, every copy's together: so every copy carries the values of all of them
+//! ([`Mesh::whole_vertex_edges`](crate::Mesh::whole_vertex_edges)), and every vertex rule reads
+//! those in place of the copy's own semi-sharp edges. A crease vertex with a copy that holds
+//! neither or only one of its two non-manifold edges (a closed fan touching it) is refused
+//! with [`MeshError::UnsupportedNonManifold`] naming the vertex, rather than refined
+//! differently: that copy's ring lacks the crease neighbours OpenSubdiv's rule reads.
 
 use std::collections::HashMap;
 
 use super::{CornerTag, CreaseTag, HoleTag, PolygonSoup, find_root};
 use crate::error::MeshError;
-use crate::options::{BoundaryInterpolation, BoundaryNoneRule, CreaseMethod, SHARPNESS_INFINITE};
-use crate::sharpness::{child_edge_sharpness_around, crease_vertex_schedule};
+use crate::options::{BoundaryInterpolation, BoundaryNoneRule, SHARPNESS_INFINITE};
 
 /// What [`PolygonSoup::split_nonmanifold`] found (vertex indices of the cage as read, 0-based).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -156,20 +154,10 @@ impl PolygonSoup {
         let marks = self.nonmanifold_corners(&uses, &nm_edges, &found, &nm_count, &mut parent)?;
         let (remap, created) = self.copy_extra_fans(&mut parent);
         self.retag_copies(&remap, &created);
-        // After the copied tags, which they replace (the last corner tag of a vertex holds).
-        if !marks.vertex_sharpness.is_empty() {
-            let mut copy_of: HashMap<(i64, usize), i64> = HashMap::new();
-            for (c, &w) in remap.iter().enumerate() {
-                copy_of.insert((self.face_indices[c], find_root(&mut parent, c)), w);
-            }
-            for &(v, root, sharpness) in &marks.vertex_sharpness {
-                if let Some(&w) = copy_of.get(&(i64::from(v), root)) {
-                    self.corners.push(CornerTag {
-                        v: w,
-                        sharpness,
-                        line: None,
-                    });
-                }
+        for (v, values) in &marks.whole {
+            let copies = created.iter().filter(|c| c.0 == *v).map(|c| c.1);
+            for w in std::iter::once(*v).chain(copies) {
+                self.whole_vertex_edges.push((i64::from(w), values.clone()));
             }
         }
         // Every use of a non-manifold edge: an infinitely sharp boundary edge of its piece.
@@ -349,7 +337,6 @@ impl PolygonSoup {
                 }
             }
         }
-        let chaikin = self.options.crease == crate::options::CreaseMethod::Chaikin;
         let mut faces_at = vec![0usize; self.positions.len()];
         for &v in &self.face_indices {
             faces_at[v as usize] += 1;
@@ -358,28 +345,16 @@ impl PolygonSoup {
         for &(v, _) in &found.vertices {
             let edges = &at[&(v as i64)];
             let vs = vertex_sharp.get(&(v as i64)).copied().unwrap_or(0.0);
-            let semi = |s: f32| s > 0.0 && s < SHARPNESS_INFINITE;
-            let semi_edges: Vec<&(f32, bool, Vec<usize>)> =
-                edges.iter().filter(|e| semi(e.0)).collect();
-            // Chaikin's decay at the vertex averages its semi-sharp edges, all copies'
-            // together, while each copy averages its own (a semi-sharp edge has one fan): they
-            // must decay alike, as where all are in one copy.
-            let mut semi_fans: Vec<usize> = semi_edges.iter().flat_map(|e| e.2.clone()).collect();
-            semi_fans.sort_unstable();
-            semi_fans.dedup();
-            let by_copy: Vec<Vec<f32>> = semi_fans
+            // OpenSubdiv decides the rule, the fractional weight and the Chaikin decay over all
+            // the vertex's semi-sharp edges, every copy's together: every copy carries them
+            // (`Mesh::whole_vertex_edges`), and its vertex rules read them in place of its own.
+            let semi: Vec<f32> = edges
                 .iter()
-                .map(|r| {
-                    let of_r = semi_edges.iter().filter(|e| e.2.contains(r));
-                    of_r.map(|e| e.0).collect()
-                })
+                .map(|e| e.0)
+                .filter(|&s| s > 0.0 && s < SHARPNESS_INFINITE)
                 .collect();
-            if chaikin && by_copy.len() > 1 && !copies_decay_alike(&by_copy) {
-                return Err(unsupported(
-                    self,
-                    v,
-                    "Chaikin creases at a non-manifold vertex",
-                ));
+            if !semi.is_empty() {
+                marks.whole.push((v, semi));
             }
             // OpenSubdiv keeps a non-manifold vertex unsharpened only on an interior
             // non-manifold crease: exactly two non-manifold edges, no boundary edge (one face)
@@ -406,122 +381,18 @@ impl PolygonSoup {
                     "a copy without both non-manifold edges",
                 ));
             }
-            if semi_edges.is_empty() {
-                // A semi-sharp vertex sharpness goes to every copy with its tag.
-                continue;
-            }
-            // Semi-sharp edges make the whole vertex a corner while they last, then blend it
-            // into the crease by the average of what runs out last: each copy gets the vertex
-            // sharpness with that schedule (`crease_vertex_schedule`) unless its own edges
-            // and tag already give it.
-            let method = self.options.crease;
-            let values: Vec<f32> = semi_edges.iter().map(|e| e.0).collect();
-            let whole = crease_vertex_schedule(method, vs, &values);
-            for &r in &all {
-                let own: Vec<f32> = semi_edges
-                    .iter()
-                    .filter(|e| e.2.contains(&r))
-                    .map(|e| e.0)
-                    .collect();
-                let gives =
-                    |s: f32| crease_vertex_schedule(method, s, &own).to_bits() == whole.to_bits();
-                if !own.is_empty() && gives(vs) {
-                    continue;
-                }
-                let Some(s) = copy_vertex_sharpness(method, &own, whole, gives) else {
-                    return Err(unsupported(
-                        self,
-                        v,
-                        "semi-sharp creases at a non-manifold crease vertex that its copies cannot share",
-                    ));
-                };
-                marks.vertex_sharpness.push((v, r, s));
-            }
         }
         Ok(marks)
     }
 }
 
 /// What [`PolygonSoup::split_nonmanifold`] tags on the copies besides the sharp edges: the
-/// vertices OpenSubdiv makes corners (every copy), and `(vertex, fan root, sharpness)` for the
-/// copies of a crease vertex that carry its semi-sharp schedule as a vertex sharpness.
+/// vertices OpenSubdiv makes corners, and the semi-sharp edge values of the vertices holding
+/// some (every copy of each).
 #[derive(Default)]
 struct NonManifoldMarks {
     corners: Vec<u32>,
-    vertex_sharpness: Vec<(u32, usize, f32)>,
-}
-
-/// The vertex sharpness that gives a copy of a crease vertex, holding the semi-sharp creases
-/// `own`, the whole vertex's schedule `whole` (`gives` checks one, bit for bit): `whole` itself
-/// where none of `own` runs out with the last (or their average is the whole vertex's);
-/// otherwise `k + x` with `x` chosen so that the average of `x` and the copy's own creases
-/// running out at level `k` is the whole vertex's weight `w`
-/// (`x = w (1 + n) - sum`, which must lie in `(0, 1]`; the nearest values in `f32` are tried
-/// until one gives the same bits). `None` where no vertex sharpness gives it.
-fn copy_vertex_sharpness(
-    method: CreaseMethod,
-    own: &[f32],
-    whole: f32,
-    gives: impl Fn(f32) -> bool,
-) -> Option<f32> {
-    if gives(whole) {
-        return Some(whole);
-    }
-    // whole = k + w with 0 < w <= 1; the copy's own creases at level k (their decay there is
-    // the whole vertex's: `copies_decay_alike`), those still sharp running out with the last.
-    let k = f64::from(whole).ceil() - 1.0;
-    let w = f64::from(whole) - k;
-    let mut at_k: Vec<f32> = own.to_vec();
-    let mut next = vec![0.0f32; own.len()];
-    for _ in 0..k as usize {
-        child_edge_sharpness_around(method, &at_k, &mut next);
-        std::mem::swap(&mut at_k, &mut next);
-    }
-    let last: Vec<f64> = at_k
-        .iter()
-        .filter(|&&s| s > 0.0)
-        .map(|&s| f64::from(s))
-        .collect();
-    let x = w * (1.0 + last.len() as f64) - last.iter().sum::<f64>();
-    if !(x > 0.0 && x <= 1.0) {
-        return None;
-    }
-    let base = (k + x) as f32;
-    (0..64i32)
-        .map(|i| {
-            f32::from_bits(
-                (base.to_bits() as i32 + if i % 2 == 0 { i / 2 } else { -(i + 1) / 2 }) as u32,
-            )
-        })
-        .find(|&c| c > k as f32 && gives(c))
-}
-
-/// Whether every copy's own Chaikin decay of its semi-sharp edges at a vertex (`by_copy`, one
-/// list per copy) gives the whole vertex's at every level, within rounding: Chaikin averages
-/// the other semi-sharp edges at the vertex, and a copy sees only its own (they agree where
-/// the averages agree, or where the decay runs out either way).
-fn copies_decay_alike(by_copy: &[Vec<f32>]) -> bool {
-    let mut by_copy = by_copy.to_vec();
-    for _ in 0..=SHARPNESS_INFINITE as u32 {
-        let all = by_copy.concat();
-        if all.iter().all(|&s| s <= 0.0) {
-            return true;
-        }
-        let mut whole = vec![0.0f32; all.len()];
-        child_edge_sharpness_around(CreaseMethod::Chaikin, &all, &mut whole);
-        let mut k = 0;
-        for own in &mut by_copy {
-            let mut child = vec![0.0f32; own.len()];
-            child_edge_sharpness_around(CreaseMethod::Chaikin, own, &mut child);
-            let alike = |(a, b): (&f32, &f32)| (a - b).abs() <= 1e-6 * b.abs().max(1.0);
-            if !child.iter().zip(&whole[k..k + own.len()]).all(alike) {
-                return false;
-            }
-            k += own.len();
-            *own = child;
-        }
-    }
-    true
+    whole: Vec<(u32, Vec<f32>)>,
 }
 
 fn unsupported(soup: &PolygonSoup, vertex: u32, why: &'static str) -> MeshError {

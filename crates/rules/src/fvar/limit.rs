@@ -15,7 +15,7 @@ use glam::{DVec3, Vec2};
 use subdiv_mesh::{FaceVarying, HalfedgeId, Mesh, VertexId};
 
 use super::{Channel, Span, sibling_corners, siblings, spans, vertex_mismatch};
-use crate::crease::{Rule, is_semi_sharp};
+use crate::crease::{is_semi_sharp, rule_with_whole};
 use crate::{Depth, MAX_DEPTH, RulesError, Scheme, catmark, loop_scheme};
 
 /// The limit face-varying values of `mesh`'s UVs (`None` without UVs), one value per distinct
@@ -181,7 +181,8 @@ impl RingValues {
                 self.diag.push(ch.value(mesh.next(mesh.next(h))).as_dvec3());
             }
         }
-        let rule = Rule::determine(mesh.vertex_sharpness(v), &self.sharpness);
+        let whole = mesh.whole_vertex_edges(v);
+        let rule = rule_with_whole(mesh.vertex_sharpness(v), &self.sharpness, whole);
         match scheme {
             Scheme::CatmullClark => catmark::limit(centre, &self.edges, &self.diag, rule).0,
             Scheme::Loop => {

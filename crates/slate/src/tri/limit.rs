@@ -3,7 +3,7 @@
 //! boundary sides.
 
 use glam::{DVec3, Vec3A};
-use subdiv_rules::crease::is_semi_sharp;
+use subdiv_rules::crease::semi_sharp_excluding;
 use subdiv_rules::loop_scheme::{SmoothLimitMask, regular_limit};
 
 use super::worker::{TriWorker, side_ring};
@@ -132,11 +132,8 @@ impl TriWorker {
         }
         let v = corner.valence;
         let skip = (corner.r0 + t) % v;
-        (0..v)
-            .filter(|&i| i != skip)
-            .map(|i| corner.ring.edge_sharpness(i))
-            .filter(|&x| is_semi_sharp(x))
-            .fold((0.0, 0), |(a, k), x| (a + x, k + 1))
+        let ring = &corner.ring;
+        semi_sharp_excluding(&ring.edge_sharpnesses()[..v], skip, ring.whole())
     }
 
     /// The limit of corner `c` (its ring is consumed: call once, after the last step).

@@ -12,9 +12,7 @@ use glam::{DVec3, Vec3A};
 use subdiv_mesh::{CreaseMethod, Mesh, VertexId};
 
 use super::layout::{TriLayout, TriPatch};
-use subdiv_rules::crease::{
-    VertexRules, child_edge_sharpness_around, edge_crease_weight, is_semi_sharp,
-};
+use subdiv_rules::crease::{VertexRules, edge_crease_weight, is_semi_sharp};
 use subdiv_rules::loop_scheme::{
     beta, edge_point, regular_vertex_point, smooth_edge_point, smooth_vertex_point, vertex_point,
 };
@@ -40,7 +38,6 @@ pub(crate) struct Corner {
     pub ring: Ring,
     /// Child sharpness of the two patch sides at this corner (towards corner `c + 1`, `c + 2`).
     child_sides: [f32; 2],
-    scratch: Vec<f32>,
     child: Vec<f32>,
 }
 
@@ -245,13 +242,7 @@ impl TriWorker {
                 corner.child_sides = [0.0; 2];
             } else {
                 let v = corner.valence;
-                corner.scratch.clear();
-                corner
-                    .scratch
-                    .extend((0..v).map(|i| corner.ring.edge_sharpness(i)));
-                corner.child.clear();
-                corner.child.resize(v, 0.0);
-                child_edge_sharpness_around(method, &corner.scratch, &mut corner.child);
+                corner.ring.child_edge_sharpness(&mut corner.child);
                 corner.child_sides = [corner.child[corner.r0], corner.child[(corner.r0 + 1) % v]];
             }
         }

@@ -20,7 +20,29 @@ pub(super) fn apply_tags(
 ) -> Result<(), MeshError> {
     apply_creases(mesh, soup, edge_map)?;
     apply_corners(mesh, soup)?;
+    apply_whole_vertex_edges(mesh, soup)?;
     apply_holes(mesh, soup)
+}
+
+/// The whole vertex's edge sharpness of the copies of a non-manifold crease vertex
+/// ([`Mesh::whole_vertex_edges`]).
+fn apply_whole_vertex_edges(mesh: &mut Mesh, soup: &PolygonSoup) -> Result<(), MeshError> {
+    let nv = mesh.num_vertices() as u32;
+    for (v, values) in &soup.whole_vertex_edges {
+        if *v < 0 || *v >= nv as i64 {
+            return Err(MeshError::TagMissingVertex {
+                tag: "whole-vertex edges",
+                vertex: *v,
+                count: nv,
+                line: None,
+            });
+        }
+        for &s in values {
+            valid_sharpness("whole-vertex edges", s, None)?;
+        }
+        mesh.set_whole_vertex_edges(VertexId(*v as u32), values);
+    }
+    Ok(())
 }
 
 /// `s` clamped to [`SHARPNESS_INFINITE`], or the error if it is NaN, infinite or negative.

@@ -47,48 +47,51 @@ fn copies_sharpness(mesh: &Mesh) -> Vec<f32> {
     s
 }
 
-/// Semi-sharp creases at a crease vertex make the whole vertex a corner while they last: the
-/// copies that do not hold them, or whose own creases run out earlier, get the vertex
-/// sharpness with the whole vertex's schedule; the copy holding the last one keeps its own.
+/// The whole vertex's semi-sharp values of vertex 1 (0-based) and its copies.
+fn copies_whole(mesh: &Mesh) -> Vec<Option<Vec<f32>>> {
+    let at = mesh.position(VertexId(1));
+    mesh.vertices()
+        .filter(|&v| mesh.position(v) == at)
+        .map(|v| mesh.whole_vertex_edges(v).map(<[f32]>::to_vec))
+        .collect()
+}
+
+/// Semi-sharp creases at a non-manifold vertex: every copy carries all of them (sorted), its
+/// own and the other copies', whatever the crease method; the vertex sharpness stays the tag's.
 #[test]
-fn semi_sharp_creases_at_a_crease_vertex_reach_every_copy() {
-    // 1-4 (1.5, first fan) outlasts 1-10 (0.5, third fan): a corner for one level, then the
-    // crease by 0.5 (the 1.5 edge's 0.5).
-    let mesh = split(&format!(
-        "{FINS}t crease 2/1/0 1 4 1.5\nt crease 2/1/0 1 10 0.5\n"
-    ))
-    .unwrap();
-    assert_eq!(copies_sharpness(&mesh), vec![0.0, 1.5, 1.5]);
-    // With a vertex sharpness of 0.25 too, the copy holding 1.5 keeps its tag.
-    let mesh = split(&format!(
-        "{FINS}t crease 2/1/0 1 4 1.5\nt crease 2/1/0 1 10 0.5\nt corner 1/1/0 1 0.25\n"
-    ))
-    .unwrap();
-    assert_eq!(copies_sharpness(&mesh), vec![0.25, 1.5, 1.5]);
-    // 1-4 (1.3) and 1-7 (1.5) run out together: the whole vertex blends by 0.4 after one
-    // level; the first copy gets 1.5 (its own 0.3 and the tag's 0.5 average 0.4), the second
-    // 1.3, the third 1.4.
-    let mesh = split(&format!(
-        "{FINS}t crease 2/1/0 1 4 1.3\nt crease 2/1/0 1 7 1.5\n"
-    ))
-    .unwrap();
-    let got = copies_sharpness(&mesh);
-    for (g, want) in got.iter().zip([1.3f32, 1.4, 1.5]) {
-        assert!((g - want).abs() < 1e-6, "{got:?}");
+fn every_copy_carries_the_whole_vertex_semi_sharp_edges() {
+    for (tags, want) in [
+        // In one copy, in two, in three (1.9, 1.1, 1.1: refused before, as no vertex sharpness
+        // gave the first copy the whole vertex's weight of 0.367 after one level).
+        ("t crease 2/1/0 1 4 1.5\n", vec![1.5]),
+        (
+            "t crease 2/1/0 1 4 1.5\nt crease 2/1/0 1 10 0.5\n",
+            vec![0.5, 1.5],
+        ),
+        (
+            "t crease 2/1/0 1 4 1.9\nt crease 2/1/0 1 7 1.1\nt crease 2/1/0 1 10 1.1\n",
+            vec![1.1, 1.1, 1.9],
+        ),
+        // Chaikin creases in copies that decay differently alone (refused before).
+        (
+            "t crease 2/1/0 1 4 2\nt crease 2/1/0 1 7 1.5\nt creasemethod 0/0/1 chaikin\n",
+            vec![1.5, 2.0],
+        ),
+        // At a corner (infinite tag): the Chaikin decay still averages all of them.
+        (
+            "t corner 1/1/0 1 10\nt crease 2/1/0 1 4 2\nt crease 2/1/0 1 7 1.5\n\
+             t creasemethod 0/0/1 chaikin\n",
+            vec![1.5, 2.0],
+        ),
+    ] {
+        let mesh = split(&format!("{FINS}{tags}")).unwrap();
+        assert_eq!(copies_whole(&mesh), vec![Some(want); 3], "{tags}");
+        let corner = tags.contains("corner");
+        let vs = if corner { SHARPNESS_INFINITE } else { 0.0 };
+        assert_eq!(copies_sharpness(&mesh), vec![vs; 3], "{tags}");
     }
-    // Chaikin creases of 2 in two copies: averaged at the vertex they decay as each alone
-    // (1, then 0), so the copies differ only by the schedule (a corner for two levels).
-    let mesh = split(&format!(
-        "{FINS}t crease 2/1/0 1 4 2\nt crease 2/1/0 1 7 2\nt creasemethod 0/0/1 chaikin\n"
-    ))
-    .unwrap();
-    assert_eq!(copies_sharpness(&mesh), vec![0.0, 0.0, 2.0]);
-    // Chaikin creases in one copy: its own decay is the whole vertex's.
-    let mesh = split(&format!(
-        "{FINS}t crease 2/1/0 1 4 2\nt creasemethod 0/0/1 chaikin\n"
-    ))
-    .unwrap();
-    assert_eq!(copies_sharpness(&mesh), vec![0.0, 2.0, 2.0]);
+    // Without semi-sharp creases there is nothing to carry.
+    assert_eq!(copies_whole(&split(FINS).unwrap()), vec![None; 3]);
 }
 
 /// `edge-and-corner` sharpens the vertices with a single face in the whole cage, not a copy of
@@ -115,26 +118,6 @@ fn edge_and_corner_sharpens_the_whole_cages_one_face_vertices() {
 
 #[test]
 fn what_the_pieces_cannot_carry_is_refused_naming_the_vertex() {
-    // Semi-sharp creases running out together in three copies (1.9, 1.1, 1.1: the whole
-    // vertex blends by 0.3667 after one level; the first copy's own 0.9 averaged with any
-    // weight in (0, 1] stays above it).
-    let (v, why) = refused(&format!(
-        "{FINS}t crease 2/1/0 1 4 1.9\nt crease 2/1/0 1 7 1.1\nt crease 2/1/0 1 10 1.1\n"
-    ));
-    assert_eq!(
-        (v, why),
-        (
-            1,
-            "semi-sharp creases at a non-manifold crease vertex that its copies cannot share"
-        )
-    );
-    // Chaikin creases at a corner (infinite tag) in two of its copies, whose decay there
-    // averages them (2 next to 1.5: 0.875; alone 1).
-    let (v, why) = refused(&format!(
-        "{FINS}t corner 1/1/0 1 10\nt crease 2/1/0 1 4 2\nt crease 2/1/0 1 7 1.5\n\
-         t creasemethod 0/0/1 chaikin\n"
-    ));
-    assert_eq!((v, why), (1, "Chaikin creases at a non-manifold vertex"));
     // A closed tetrahedron touching the crease vertex: its copy lacks both non-manifold edges.
     let (v, why) = refused(&format!(
         "{FINS}v 1 0.5 -1\nv 1.5 0.3 -1.2\nv 0.7 0.2 -1.1\n\
