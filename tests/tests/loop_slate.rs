@@ -190,3 +190,14 @@ fn loop_slates_follow_boundary_interpolation() {
         }
     }
 }
+
+/// The Loop slate against OpenSubdiv's limits (`fixtures/loop_slate/`, `ref_osd ... loop local`
+/// at levels 1-3): Chaikin creases at a general corner, whose sides' limits read the corner's
+/// sharpness at the table's level after the corner's own limit.
+#[test]
+fn chaikin_creases_at_a_corner_agree_with_opensubdiv() {
+    use subdiv_tests::osd_compare::{Tessellator, assert_fixture_dir_agrees};
+    assert_fixture_dir_agrees("loop_slate", 0.05, 6, |_| {
+        vec![Tessellator::Uniform, Tessellator::Slate]
+    });
+}

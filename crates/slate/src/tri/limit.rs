@@ -136,7 +136,8 @@ impl TriWorker {
         semi_sharp_excluding(&ring.edge_sharpnesses()[..v], skip, ring.whole())
     }
 
-    /// The limit of corner `c` (its ring is consumed: call once, after the last step).
+    /// The limit of corner `c`, after the last step (from a copy of its ring, which stays at the
+    /// table's level for the sides' Chaikin far-end sharpness, `far_at_corner`).
     pub(crate) fn limit_corner(&mut self, s: &mut LimitScratch, c: usize) -> LimitPoint {
         let origin = self.origin.as_dvec3();
         let method = self.method;
@@ -175,7 +176,10 @@ impl TriWorker {
             let (p, nrm) = s.ring.limit();
             (p, nrm, None)
         } else {
-            let (p, nrm) = corner.ring.limit_sided(&mut s.faces);
+            // On a copy: the ring stays at the table's level, where `far_at_corner` reads the
+            // Chaikin rule's sharpness for the sides' limits.
+            s.ring.clone_from(&corner.ring);
+            let (p, nrm) = s.ring.limit_sided(&mut s.faces);
             let sided = s.faces.get(corner.r0).map(|f| f.as_vec3a());
             (p, nrm, sided)
         };
