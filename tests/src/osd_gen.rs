@@ -51,7 +51,15 @@ pub fn random_cage(seed: u64, index: u64) -> OsdCage {
             // Its own stream for the creases at fin strips, so the non-manifold shapes stay
             // the ones earlier runs drew.
             let mut crease_rng = Rng::for_case(seed ^ 0x0C4E_A5E0, index);
-            (corners, creases) = add_nonmanifold(&mut nm_rng, &mut crease_rng, &mut b, loop_scheme);
+            // And for the closed fans at fin strips (crease copies).
+            let mut copy_rng = Rng::for_case(seed ^ 0x0C0F_1E5D, index);
+            (corners, creases) = add_nonmanifold(
+                &mut nm_rng,
+                &mut crease_rng,
+                &mut copy_rng,
+                &mut b,
+                loop_scheme,
+            );
         }
         let mut cage = OsdCage {
             positions: b.pos,

@@ -23,7 +23,7 @@ const NORMAL_DEG: f64 = 0.05;
 
 #[test]
 fn nonmanifold_cages_agree_with_opensubdiv() {
-    assert_fixture_dir_agrees("nonmanifold", NORMAL_DEG, 150, |_| {
+    assert_fixture_dir_agrees("nonmanifold", NORMAL_DEG, 186, |_| {
         vec![Tessellator::Uniform, Tessellator::Slate]
     });
 }
@@ -81,13 +81,31 @@ fn seam_copies_agree_to_the_bit_in_the_uniform_slates() {
             }
             for group in seams.groups() {
                 let h = group[0].halfedge(0);
-                for s in 0..=1u32 << depth {
+                // An end vertex's copies: one may hold two copies of the edge (a fan leaving
+                // and returning through it).
+                let ends = |end: glam::Vec3| {
+                    let mut vs: Vec<u32> = group
+                        .iter()
+                        .flat_map(|e| mesh.edge_vertices(*e))
+                        .filter(|&v| mesh.position(v) == end)
+                        .map(|v| v.0)
+                        .collect();
+                    vs.sort_unstable();
+                    vs.dedup();
+                    vs.len()
+                };
+                let last = 1u32 << depth;
+                for s in 0..=last {
                     let p = seams.point(&mesh, h, s, depth).unwrap().to_array();
                     let n = count.get(&p.map(f32::to_bits)).copied().unwrap_or(0);
+                    let copies = match s {
+                        0 => ends(mesh.position(mesh.from(h))),
+                        _ if s == last => ends(mesh.position(mesh.to(h))),
+                        _ => group.len(),
+                    };
                     assert!(
-                        n >= group.len(),
-                        "{name} depth {depth}: point {s} of {} copies is in the output {n} times",
-                        group.len()
+                        n >= copies,
+                        "{name} depth {depth}: point {s} of {copies} copies is in the output {n} times",
                     );
                     checked += 1;
                 }

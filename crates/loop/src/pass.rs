@@ -127,8 +127,13 @@ pub(crate) fn pass(
     previous.extend_from_slice(&cur.previous);
     for v in mesh.vertices() {
         if need[v.idx()] {
-            let p = kernel
-                .vertex_point_without(v, &[], |h| by_level && inside_family(mesh, &cur.green, h));
+            let skip = |h| by_level && inside_family(mesh, &cur.green, h);
+            let mut p = kernel.vertex_point_without(v, &[], skip);
+            if let Some(m) = mesh.crease_copy_of(v) {
+                // The copy holding the crease's edges gives the point (this copy's rules still
+                // gave its edges' child sharpness).
+                p = kernel.vertex_point_without(m, &[], skip);
+            }
             if closure.moves[v.idx()] {
                 previous[v.idx()] = positions[v.idx()];
                 positions[v.idx()] = p;

@@ -52,6 +52,8 @@ pub struct Mesh {
     /// [`Mesh::whole_vertex_edges`]: sorted semi-sharp values, by vertex; empty for almost
     /// every mesh.
     whole_edges: std::collections::BTreeMap<u32, Vec<f32>>,
+    /// [`Mesh::crease_copy_of`]: copy -> the copy it takes its points from.
+    crease_copies: std::collections::BTreeMap<u32, u32>,
 }
 
 impl Mesh {
@@ -160,6 +162,37 @@ impl Mesh {
         self.whole_edges
             .iter()
             .map(|(&v, s)| (VertexId(v), s.as_slice()))
+    }
+    /// Where `v` is a copy of a non-manifold crease vertex whose ring lacks one or both of the
+    /// vertex's two non-manifold edges (a closed fan touching the vertex, or a fan that leaves
+    /// and returns through the same non-manifold edge), the copy that holds both: OpenSubdiv's
+    /// crease rule reads the far ends of those two edges, which only that copy's ring has, so
+    /// `v` takes that copy's vertex points and limit at every level (see
+    /// [`PolygonSoup::split_nonmanifold`](crate::PolygonSoup::split_nonmanifold)). `None`
+    /// elsewhere.
+    #[inline]
+    pub fn crease_copy_of(&self, v: VertexId) -> Option<VertexId> {
+        if self.crease_copies.is_empty() {
+            return None;
+        }
+        self.crease_copies.get(&v.0).map(|&m| VertexId(m))
+    }
+    /// Every `(copy, the copy it takes its points from)` of [`Mesh::crease_copy_of`].
+    pub fn crease_copies(&self) -> impl Iterator<Item = (VertexId, VertexId)> + '_ {
+        self.crease_copies
+            .iter()
+            .map(|(&v, &m)| (VertexId(v), VertexId(m)))
+    }
+    /// Sets [`Mesh::crease_copy_of`] of `v` (`None` removes it).
+    pub fn set_crease_copy_of(&mut self, v: VertexId, master: Option<VertexId>) {
+        match master {
+            Some(m) if m != v => {
+                self.crease_copies.insert(v.0, m.0);
+            }
+            _ => {
+                self.crease_copies.remove(&v.0);
+            }
+        }
     }
     /// Sets [`Mesh::whole_vertex_edges`] of `v`: the values that are semi-sharp, sorted (none
     /// removes them).

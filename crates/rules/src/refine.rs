@@ -307,6 +307,10 @@ impl<'m, P: Point> RefineKernel<'m, P> {
         for v in mesh.vertices() {
             points.push(self.vertex_point(v, fp));
         }
+        // A copy lacking the crease's edges takes the point of the copy that holds them.
+        for (v, m) in mesh.crease_copies() {
+            points[v.idx()] = points[m.idx()];
+        }
         points.extend_from_slice(fp);
         for e in mesh.edges() {
             points.push(self.edge_point(e, |h| match scheme {
@@ -334,7 +338,8 @@ impl<'m, P: Point> RefineKernel<'m, P> {
     /// `midpoint(e)` is the child vertex of split edge `e` (`None`: the edge is kept whole);
     /// `decays(v)` says whether `v` was refined this step. The halves of a split crease edge get
     /// the child sharpness recorded by the vertex rules; a kept edge keeps its sharpness; a
-    /// refined vertex's sharpness decays by one, a kept one's stays.
+    /// refined vertex's sharpness decays by one, a kept one's stays; the whole vertex's values
+    /// of a copy of a non-manifold vertex decay likewise, and its crease copy stays.
     pub fn transfer_sharpness(
         &self,
         child: &mut Mesh,
@@ -374,6 +379,9 @@ impl<'m, P: Point> RefineKernel<'m, P> {
                 child.set_vertex_sharpness(v, s.max(child.vertex_sharpness(v)));
             }
         }
+        for (v, m) in mesh.crease_copies() {
+            child.set_crease_copy_of(v, Some(m));
+        }
         for (v, whole) in mesh.whole_vertex_edges_all() {
             if decays(v) {
                 child.set_whole_vertex_edges(v, &child_whole_vertex_edges(self.method, whole));
@@ -381,58 +389,6 @@ impl<'m, P: Point> RefineKernel<'m, P> {
                 child.set_whole_vertex_edges(v, whole);
             }
         }
-    }
-}
-
-/// Refuses two triangles on the same three vertices. Loop refinement connects the edge points
-/// of every triangle; for such a pair it would connect the same three edge points twice (parallel
-/// edges, which a [`Mesh`] cannot hold). Such triangles always share an edge, so checking each
-/// face against its neighbours finds them. Refinement never creates new pairs.
-/// Refuses two triangles on the same three vertices ([`RulesError::DoubledTriangle`]): Loop
-/// refinement cannot refine such a two-face pillow. Every Loop path calls it before refining.
-pub fn check_doubled_triangles(mesh: &Mesh) -> Result<(), RulesError> {
-    let sorted = |f| {
-        let mut k: Vec<u32> = mesh.face_vertices(f).iter().map(|v| v.0).collect();
-        k.sort_unstable();
-        k
-    };
-    for f in mesh.faces() {
-        let h0 = mesh.face_halfedge(f);
-        for h in [h0, mesh.next(h0), mesh.prev(h0)] {
-            let g = mesh.face(h.twin());
-            if g.is_some() && g.0 < f.0 && sorted(f) == sorted(g) {
-                return Err(RulesError::DoubledTriangle {
-                    face: f.0,
-                    other: g.0,
-                });
-            }
-        }
-    }
-    Ok(())
-}
-
-/// Largest coordinate magnitude of a mesh to refine or tessellate ([`check_coordinates`]).
-/// Subdivision sums weighted points in `f32`: near `f32::MAX` (3.4e38) they overflow to
-/// infinity, while below this bound even a sum of a million weighted points stays finite.
-pub const MAX_COORDINATE: f32 = 1e30;
-
-/// Refuses the first vertex with a coordinate beyond [`MAX_COORDINATE`]. Checked on the cage by
-/// [`refine_uniform_levels`] (and so [`tessellate_uniform`](crate::tessellate_uniform)) and
-/// the slate tessellator, not on refined meshes, whose points may exceed a cage at the bound by
-/// rounding.
-pub fn check_coordinates(mesh: &Mesh) -> Result<(), RulesError> {
-    let pos = mesh.positions();
-    match pos
-        .iter()
-        .position(|p| p.abs().max_element() > MAX_COORDINATE)
-    {
-        Some(v) => Err(RulesError::HugeCoordinate {
-            vertex: v as u32,
-            x: pos[v].x,
-            y: pos[v].y,
-            z: pos[v].z,
-        }),
-        None => Ok(()),
     }
 }
 
@@ -509,6 +465,9 @@ fn check_size(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<(), RulesErro
     }
     Ok(())
 }
+
+mod checks;
+pub use checks::{MAX_COORDINATE, check_coordinates, check_doubled_triangles};
 
 #[cfg(test)]
 mod tests {

@@ -36,6 +36,10 @@ pub struct Ring {
     /// The whole vertex's semi-sharp values at a copy of a non-manifold vertex
     /// ([`Mesh::whole_vertex_edges`]); empty elsewhere.
     whole: Vec<f32>,
+    /// At a copy of a non-manifold crease vertex that lacks the crease's edges
+    /// ([`Mesh::crease_copy_of`]): the ring of the copy that holds them, whose centre this
+    /// ring's centre follows at every level and whose limit it takes.
+    master: Option<Box<Ring>>,
     boundary: bool,
     edges: Vec<DVec3>,
     sharp: Vec<f32>,
@@ -82,6 +86,16 @@ impl Ring {
         self.whole.clear();
         self.whole
             .extend_from_slice(mesh.whole_vertex_edges(v).unwrap_or(&[]));
+        self.master = match mesh.crease_copy_of(v) {
+            Some(m) if !mesh.is_isolated(m) => {
+                let mut ring = self.master.take().unwrap_or_default();
+                // Through `dyn`, so that this call instantiates one `load_at` whatever `pos`.
+                let pos: &dyn Fn(VertexId) -> DVec3 = &pos;
+                ring.load_at(mesh, pos, m, scheme);
+                Some(ring)
+            }
+            _ => None,
+        };
         self.boundary = mesh.is_boundary_vertex(v);
         self.edges.clear();
         self.sharp.clear();
@@ -154,6 +168,7 @@ impl Ring {
         self.center = center;
         self.vertex_sharpness = vertex_sharpness;
         self.whole.clear();
+        self.master = None;
         self.boundary = boundary;
         self.edges.clear();
         self.edges.extend_from_slice(edges);
@@ -188,6 +203,7 @@ impl Ring {
         self.center = center;
         self.vertex_sharpness = vertex_sharpness;
         self.whole.clear();
+        self.master = None;
         self.boundary = boundary;
         self.edges.clear();
         self.edges.extend_from_slice(edges);
@@ -251,6 +267,12 @@ impl Ring {
     pub fn whole(&self) -> &[f32] {
         &self.whole
     }
+    /// `true` at a copy of a non-manifold crease vertex that takes another copy's points
+    /// ([`Mesh::crease_copy_of`]).
+    #[inline]
+    pub fn has_master(&self) -> bool {
+        self.master.is_some()
+    }
     /// The child sharpness at the centre of every ring edge, as [`Ring::refine`] gives them
     /// (the whole vertex's values included at a copy of a non-manifold vertex).
     pub fn child_edge_sharpness(&self, child: &mut Vec<f32>) {
@@ -301,6 +323,7 @@ impl Ring {
     pub fn needs_refinement(&self) -> bool {
         is_semi_sharp(self.vertex_sharpness)
             || !self.whole.is_empty()
+            || self.master.as_ref().is_some_and(|m| m.needs_refinement())
             || self.sharp.iter().any(|&s| is_semi_sharp(s))
             || (self.scheme == Scheme::CatmullClark
                 && (0..self.num_faces()).any(|i| self.face_inner(i).len() != 1))
@@ -413,6 +436,10 @@ impl Ring {
         if !self.whole.is_empty() {
             std::mem::swap(&mut self.whole, &mut self.tmp_whole);
         }
+        if let Some(m) = self.master.as_mut() {
+            m.refine();
+            self.center = m.center;
+        }
         self.vertex_sharpness = crate::crease::decrement(self.vertex_sharpness);
     }
 
@@ -427,6 +454,9 @@ impl Ring {
     /// (in place) as far as needed. The normal is oriented like the faces; it is zero only for a
     /// fully degenerate neighbourhood.
     pub fn limit(&mut self) -> (DVec3, DVec3) {
+        if let Some(m) = self.master.as_mut() {
+            return m.limit();
+        }
         let parts = self.limit_parts();
         finish_limit(&parts, self.center, &self.edges, self.num_faces())
     }
@@ -437,6 +467,11 @@ impl Ring {
     /// (face `i` between edges `i` and `i + 1`) in `faces`: the crease tangent crossed with that
     /// side's cross tangent. `faces` is left empty where the surface has one tangent plane.
     pub fn limit_sided(&mut self, faces: &mut Vec<DVec3>) -> (DVec3, DVec3) {
+        if let Some(m) = self.master.as_mut() {
+            // The crease's sides are the other copy's faces: none of this ring's.
+            faces.clear();
+            return m.limit();
+        }
         let parts = self.limit_parts();
         let nf = self.num_faces();
         sided_normals(&parts, &parts.sides, self.center, &self.edges, nf, faces);

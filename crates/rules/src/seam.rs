@@ -114,6 +114,8 @@ impl Chain {
 /// module notes): a corner, or a crease with the far ends of its two infinitely sharp edges and
 /// its vertex sharpness.
 fn chain_ends(mesh: &Mesh, v: VertexId) -> Option<Ends> {
+    // A copy lacking the crease's edges moves as the copy that holds them.
+    let v = mesh.crease_copy_of(v).unwrap_or(v);
     let vs = mesh.vertex_sharpness(v);
     let mut sharp = [VertexId::NONE; 2];
     let mut count = 0usize;
@@ -143,11 +145,12 @@ fn chain_ends(mesh: &Mesh, v: VertexId) -> Option<Ends> {
     }
 }
 
-/// What lies beyond `v` on the chain through the seam edge from `v` to `other`.
-fn beyond(ends: Ends, other: VertexId) -> ChainEnd {
+/// What lies beyond `v` on the chain through the seam edge from `v` to `other`: the crease end
+/// that is not `other` (nor a copy of it, where the ends are a crease copy's other copy's).
+fn beyond(mesh: &Mesh, ends: Ends, other: VertexId) -> ChainEnd {
     match ends {
         (ChainEnd::Crease(x), ChainEnd::Crease(y), _) => {
-            if x == other {
+            if x == other || key(mesh.position(x)) == key(mesh.position(other)) {
                 ChainEnd::Crease(y)
             } else {
                 ChainEnd::Crease(x)
@@ -201,8 +204,8 @@ impl SeamCurves {
             let c = Curve {
                 a,
                 b,
-                beyond_a: beyond(ea, b),
-                beyond_b: beyond(eb, a),
+                beyond_a: beyond(mesh, ea, b),
+                beyond_b: beyond(mesh, eb, a),
                 sharp: [ea.2, eb.2],
             };
             let (chain, sharp, _) = Self::canonical(mesh, &c);

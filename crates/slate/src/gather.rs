@@ -87,7 +87,9 @@ impl GatherPlan {
             boundary |= u8::from(on_boundary) << k;
             // Sharp edges at an interior valence-4 corner are table edges like any other (the
             // general step's rules handle them); a corner tag has no place in the table.
-            if valence != 4 || on_boundary || mesh.vertex_sharpness(v) > 0.0 {
+            // A crease copy's centre follows another copy's ring (`Ring`): never regular.
+            let follows = mesh.crease_copy_of(v).is_some();
+            if valence != 4 || on_boundary || mesh.vertex_sharpness(v) > 0.0 || follows {
                 active |= 1 << k;
                 // The corner array's ring: the vertex and all its edges.
                 sided |= on_boundary
@@ -95,7 +97,7 @@ impl GatherPlan {
                     || mesh
                         .outgoing(v)
                         .any(|h| is_infinite(mesh.edge_sharpness(h.edge())));
-                if on_boundary || mesh.vertex_sharpness(v) > 0.0 {
+                if on_boundary || mesh.vertex_sharpness(v) > 0.0 || follows {
                     regular = false;
                 }
             } else {

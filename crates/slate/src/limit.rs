@@ -143,8 +143,10 @@ impl Worker {
             let c = &self.corners[k];
             if c.active {
                 let r = &c.ring;
-                return is_infinite(r.vertex_sharpness())
-                    || (0..r.valence()).any(|e| is_infinite(r.edge_sharpness(e)));
+                // A crease copy's limit is the other copy's, without sides of its own.
+                return !r.has_master()
+                    && (is_infinite(r.vertex_sharpness())
+                        || (0..r.valence()).any(|e| is_infinite(r.edge_sharpness(e))));
             }
         }
         if self.regular {

@@ -41,6 +41,26 @@ pub(crate) fn local_level1(
             }
         }
     }
+    // A crease copy takes the points of the copy holding the crease's edges
+    // (`Mesh::crease_copy_of`), which lies in another piece: that copy's faces are refined too.
+    if mesh.crease_copies().next().is_some() {
+        let mut masters = Vec::new();
+        for f in mesh.faces().filter(|f| keep[f.idx()]) {
+            masters.extend(
+                mesh.face_vertices(f)
+                    .iter()
+                    .filter_map(|&v| mesh.crease_copy_of(v)),
+            );
+        }
+        for m in masters {
+            for h in mesh.outgoing(m) {
+                let f = mesh.face(h);
+                if f.is_some() {
+                    keep[f.idx()] = true;
+                }
+            }
+        }
+    }
     // Sub-mesh of the kept faces, with their sharpness.
     let mut vmap = vec![u32::MAX; mesh.num_vertices()];
     let mut soup = subdiv_mesh::PolygonSoup {
@@ -106,6 +126,9 @@ pub(crate) fn local_level1(
             sub.set_vertex_sharpness(VertexId(vmap[v.idx()]), mesh.vertex_sharpness(v));
             if let Some(whole) = mesh.whole_vertex_edges(v) {
                 sub.set_whole_vertex_edges(VertexId(vmap[v.idx()]), whole);
+            }
+            if let Some(m) = mesh.crease_copy_of(v).filter(|m| vmap[m.idx()] != u32::MAX) {
+                sub.set_crease_copy_of(VertexId(vmap[v.idx()]), Some(VertexId(vmap[m.idx()])));
             }
         }
     }

@@ -75,11 +75,9 @@ impl Worker {
     /// whose general edge points `write_corner` replaces. So such a patch switches to the regular
     /// rules for its remaining steps and its limits, with bit-identical results.
     fn table_is_regular(&self) -> bool {
-        if self
-            .corners
-            .iter()
-            .any(|c| c.active && (c.boundary || c.ring.vertex_sharpness() > 0.0))
-        {
+        if self.corners.iter().any(|c| {
+            c.active && (c.boundary || c.ring.vertex_sharpness() > 0.0 || c.ring.has_master())
+        }) {
             return false;
         }
         let t = &self.t[self.cur];

@@ -21,6 +21,7 @@ pub const NONMANIFOLD_PERCENT: u64 = 15;
 pub(super) fn add_nonmanifold(
     rng: &mut Rng,
     crease_rng: &mut Rng,
+    copy_rng: &mut Rng,
     b: &mut Builder,
     loop_scheme: bool,
 ) -> (Vec<(u32, f32)>, Vec<Crease>) {
@@ -60,6 +61,9 @@ pub(super) fn add_nonmanifold(
                 }
                 if crease_rng.chance(50) {
                     creases.extend(fin_strip_creases(crease_rng, &b.faces, c, [a, d, m]));
+                }
+                if copy_rng.chance(COPY_PERCENT) {
+                    add_closed_fan(copy_rng, b, c, [a, d], len, loop_scheme);
                 }
             }
             0 => {
@@ -112,6 +116,85 @@ pub(super) fn add_nonmanifold(
         }
     }
     (corners, creases)
+}
+
+/// The share of fin strips (percent) that get a closed fan at their middle vertex
+/// ([`add_closed_fan`]).
+const COPY_PERCENT: u64 = 25;
+
+/// A fan of faces at the fin strip's middle vertex `c` whose copy holds neither or only one of
+/// its two non-manifold edges `c-a`, `c-d` (`ends`): a closed tetrahedron touching `c`, a cone
+/// of three triangles leaving and returning through one of the edges, or (Catmull-Clark) a
+/// cube of quads touching `c` at a corner. The copy takes the points of one holding both
+/// (`Mesh::crease_copy_of`).
+fn add_closed_fan(
+    rng: &mut Rng,
+    b: &mut Builder,
+    c: u32,
+    ends: [u32; 2],
+    len: f64,
+    loop_scheme: bool,
+) {
+    let pc = b.pos[c as usize];
+    let twist: [f64; 3] = std::array::from_fn(|_| 0.2 * len * rng.unit() as f64);
+    let at = |k: [f64; 3]| -> [f64; 3] { std::array::from_fn(|i| pc[i] + len * k[i] + twist[i]) };
+    match rng.below(if loop_scheme { 2 } else { 3 }) {
+        0 => {
+            let t: Vec<u32> = [[1.0, 0.4, -1.0], [0.3, 1.0, -1.2], [-0.6, 0.2, -1.1]]
+                .iter()
+                .map(|&k| b.vertex(at(k)))
+                .collect();
+            b.faces.extend([
+                vec![c, t[1], t[0]],
+                vec![c, t[2], t[1]],
+                vec![c, t[0], t[2]],
+                vec![t[0], t[1], t[2]],
+            ]);
+        }
+        1 => {
+            let x = ends[rng.below(2)];
+            let (p, q) = (
+                b.vertex(at([0.6, 0.5, -1.0])),
+                b.vertex(at([0.2, -0.4, -1.1])),
+            );
+            b.faces
+                .extend([vec![c, x, p], vec![c, p, q], vec![c, q, x]]);
+        }
+        _ => {
+            // Corners 1..8 of a unit cube, corner 0 at `c`.
+            let cube = [
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 1.0],
+                [1.0, 0.0, 1.0],
+                [1.0, 1.0, 1.0],
+                [0.0, 1.0, 1.0],
+            ];
+            let ids: Vec<u32> = cube
+                .iter()
+                .enumerate()
+                .map(|(i, k)| {
+                    if i == 0 {
+                        c
+                    } else {
+                        b.vertex(at([k[0], k[1], -k[2] - 0.2]))
+                    }
+                })
+                .collect();
+            for f in [
+                [0, 3, 2, 1],
+                [4, 5, 6, 7],
+                [0, 1, 5, 4],
+                [2, 3, 7, 6],
+                [0, 4, 7, 3],
+                [1, 2, 6, 5],
+            ] {
+                b.faces.push(f.iter().map(|&k| ids[k]).collect());
+            }
+        }
+    }
 }
 
 /// A crease tag of an [`OsdCage`]: its two vertices and its sharpness.

@@ -154,6 +154,18 @@ impl PolygonSoup {
         let marks = self.nonmanifold_corners(&uses, &nm_edges, &found, &nm_count, &mut parent)?;
         let (remap, created) = self.copy_extra_fans(&mut parent);
         self.retag_copies(&remap, &created);
+        if !marks.crease_copies.is_empty() {
+            let mut copy_of: HashMap<(i64, usize), i64> = HashMap::new();
+            for (c, &w) in remap.iter().enumerate() {
+                copy_of.insert((self.face_indices[c], find_root(&mut parent, c)), w);
+            }
+            for &(v, r, m) in &marks.crease_copies {
+                let at = |root| copy_of.get(&(i64::from(v), root)).copied();
+                if let (Some(w), Some(wm)) = (at(r), at(m)) {
+                    self.crease_copies.push((w, wm));
+                }
+            }
+        }
         for (v, values) in &marks.whole {
             let copies = created.iter().filter(|c| c.0 == *v).map(|c| c.1);
             for w in std::iter::once(*v).chain(copies) {
@@ -369,17 +381,22 @@ impl PolygonSoup {
                 marks.corners.push(v);
                 continue;
             }
-            // The crease rule along its two non-manifold edges, which every copy must hold.
+            // The crease rule along its two non-manifold edges reads their far ends: a copy
+            // whose ring lacks one takes the points of one that holds both.
             let nm: Vec<&Vec<usize>> = edges.iter().filter(|e| e.1).map(|e| &e.2).collect();
             let mut all: Vec<usize> = edges.iter().flat_map(|e| e.2.iter().copied()).collect();
             all.sort_unstable();
             all.dedup();
-            if all.iter().any(|r| !nm.iter().all(|fans| fans.contains(r))) {
+            let holds_both = |r: &usize| nm.iter().all(|fans| fans.contains(r));
+            let Some(&master) = all.iter().find(|r| holds_both(r)) else {
                 return Err(unsupported(
                     self,
                     v,
-                    "a copy without both non-manifold edges",
+                    "no copy holds both non-manifold edges",
                 ));
+            };
+            for &r in all.iter().filter(|r| !holds_both(r)) {
+                marks.crease_copies.push((v, r, master));
             }
         }
         Ok(marks)
@@ -393,6 +410,8 @@ impl PolygonSoup {
 struct NonManifoldMarks {
     corners: Vec<u32>,
     whole: Vec<(u32, Vec<f32>)>,
+    /// `(vertex, fan root, fan root of the copy holding both non-manifold edges)`.
+    crease_copies: Vec<(u32, usize, usize)>,
 }
 
 fn unsupported(soup: &PolygonSoup, vertex: u32, why: &'static str) -> MeshError {

@@ -46,7 +46,15 @@ impl VertexRules {
             *e = if is_semi_sharp(s) { 0.0 } else { s };
         }
         ext[n..].copy_from_slice(whole);
-        let rules = VertexRules::new(method, vertex_sharpness, ext, cext);
+        let mut rules = VertexRules::new(method, vertex_sharpness, ext, cext);
+        // The crease's two edges are the ring's own infinitely sharp ones, but at a crease copy
+        // that lacks them (`Mesh::crease_copy_of`), whose point is the other copy's: there a
+        // crease through a whole-vertex value is no rule of this ring.
+        let own = |r: Rule| match r {
+            Rule::Crease([_, j]) if j >= n => Rule::Corner,
+            r => r,
+        };
+        (rules.parent, rules.child) = (own(rules.parent), own(rules.child));
         for (i, (c, &s)) in child_edges.iter_mut().zip(edge_sharpness).enumerate() {
             *c = if is_semi_sharp(s) {
                 // Its value is among the whole vertex's (equal values decay alike).

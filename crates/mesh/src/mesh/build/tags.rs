@@ -24,8 +24,9 @@ pub(super) fn apply_tags(
     apply_holes(mesh, soup)
 }
 
-/// The whole vertex's edge sharpness of the copies of a non-manifold crease vertex
-/// ([`Mesh::whole_vertex_edges`]).
+/// The whole vertex's edge sharpness of the copies of a non-manifold vertex
+/// ([`Mesh::whole_vertex_edges`]) and the copies that take another's points
+/// ([`Mesh::crease_copy_of`]).
 fn apply_whole_vertex_edges(mesh: &mut Mesh, soup: &PolygonSoup) -> Result<(), MeshError> {
     let nv = mesh.num_vertices() as u32;
     for (v, values) in &soup.whole_vertex_edges {
@@ -41,6 +42,19 @@ fn apply_whole_vertex_edges(mesh: &mut Mesh, soup: &PolygonSoup) -> Result<(), M
             valid_sharpness("whole-vertex edges", s, None)?;
         }
         mesh.set_whole_vertex_edges(VertexId(*v as u32), values);
+    }
+    for &(v, m) in &soup.crease_copies {
+        for x in [v, m] {
+            if x < 0 || x >= nv as i64 {
+                return Err(MeshError::TagMissingVertex {
+                    tag: "crease copy",
+                    vertex: x,
+                    count: nv,
+                    line: None,
+                });
+            }
+        }
+        mesh.set_crease_copy_of(VertexId(v as u32), Some(VertexId(m as u32)));
     }
     Ok(())
 }

@@ -116,14 +116,46 @@ fn edge_and_corner_sharpens_the_whole_cages_one_face_vertices() {
     assert_eq!(mesh.vertex_sharpness(VertexId(3)), SHARPNESS_INFINITE);
 }
 
+/// A copy of a crease vertex whose ring lacks one or both of its non-manifold edges takes the
+/// points of the first copy that holds both.
 #[test]
-fn what_the_pieces_cannot_carry_is_refused_naming_the_vertex() {
-    // A closed tetrahedron touching the crease vertex: its copy lacks both non-manifold edges.
-    let (v, why) = refused(&format!(
+fn a_copy_without_the_crease_edges_follows_one_with_them() {
+    // A closed tetrahedron touching vertex 1 (0-based): its copy holds neither edge.
+    let mesh = split(&format!(
         "{FINS}v 1 0.5 -1\nv 1.5 0.3 -1.2\nv 0.7 0.2 -1.1\n\
          f 2 14 13\nf 2 15 14\nf 2 13 15\nf 13 14 15\n"
-    ));
-    assert_eq!((v, why), (1, "a copy without both non-manifold edges"));
+    ))
+    .unwrap();
+    let copies: Vec<(VertexId, VertexId)> = mesh.crease_copies().collect();
+    assert_eq!(copies.len(), 1);
+    let (copy, master) = copies[0];
+    assert_eq!(mesh.position(copy), mesh.position(VertexId(1)));
+    assert_eq!(mesh.position(master), mesh.position(VertexId(1)));
+    // The master holds both infinitely sharp edges; the copy none.
+    let sharp = |v| {
+        mesh.outgoing(v)
+            .filter(|h| mesh.edge_sharpness(h.edge()) >= SHARPNESS_INFINITE)
+            .count()
+    };
+    assert_eq!((sharp(master), sharp(copy)), (2, 0));
+    // A cone of triangles leaving and returning through the edge 1-2 (1-based).
+    let mesh = split(&format!(
+        "{FINS}v 0.5 0.5 -1\nv 1 0.2 -1.2\nf 2 1 13\nf 2 13 14\nf 2 14 1\n"
+    ))
+    .unwrap();
+    assert_eq!(mesh.crease_copies().count(), 1);
+}
+
+#[test]
+fn what_the_pieces_cannot_carry_is_refused_naming_the_vertex() {
+    // Cones leaving and returning through each non-manifold edge of a crease vertex, two on
+    // each: no copy holds both edges.
+    let text = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0.5 1 0\nv 0.5 0.5 1\nv 0.5 -1 0\nv 0.5 0 -1\n\
+                v 1.5 1 0\nv 1.5 0.5 1\nv 1.5 -1 0\nv 1.5 0 -1\n\
+                f 2 1 4\nf 2 4 5\nf 2 5 1\nf 2 1 6\nf 2 6 7\nf 2 7 1\n\
+                f 2 3 8\nf 2 8 9\nf 2 9 3\nf 2 3 10\nf 2 10 11\nf 2 11 3\n";
+    let (v, why) = refused(text);
+    assert_eq!((v, why), (1, "no copy holds both non-manifold edges"));
     // Without the tags the cage is read.
     assert!(split(FINS).is_ok());
 }
