@@ -23,10 +23,13 @@
 //! of what runs out) and the Chaikin decay of each (the average of the others) over all the
 //! vertex's edges, every copy's together: so every copy carries the values of all of them
 //! ([`Mesh::whole_vertex_edges`](crate::Mesh::whole_vertex_edges)), and every vertex rule reads
-//! those in place of the copy's own semi-sharp edges. A crease vertex with a copy that holds
-//! neither or only one of its two non-manifold edges (a closed fan touching it) is refused
-//! with [`MeshError::UnsupportedNonManifold`] naming the vertex, rather than refined
-//! differently: that copy's ring lacks the crease neighbours OpenSubdiv's rule reads.
+//! those in place of the copy's own semi-sharp edges. A copy of a crease vertex that holds
+//! neither or only one of its two non-manifold edges (a closed fan touching it, or a fan that
+//! leaves and returns through the same edge) lacks the crease neighbours OpenSubdiv's rule
+//! reads: it takes the points of a copy that holds both at every level
+//! ([`Mesh::crease_copy_of`](crate::Mesh::crease_copy_of)). Where no copy holds both, the cage
+//! is refused with [`MeshError::UnsupportedNonManifold`] naming the vertex, rather than refined
+//! differently.
 
 use std::collections::HashMap;
 
