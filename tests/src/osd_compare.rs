@@ -283,7 +283,7 @@ fn check_normals(
 /// No infinitely sharp edge or vertex at `v` of a refined mesh (nor a crease copy).
 pub fn is_smooth_point(m: &Mesh, v: VertexId) -> bool {
     // A crease copy lies on the whole vertex's crease, whichever edges its ring holds.
-    m.crease_copy_of(v).is_none()
+    m.crease_ends(v).is_none()
         && m.vertex_sharpness(v) < subdiv_mesh::SHARPNESS_INFINITE
         && !m.is_isolated(v)
         && m.outgoing(v)

@@ -46,20 +46,6 @@ fn located_error_cases() -> Vec<(&'static str, String, &'static str, u32)> {
             "invalid coordinate 'zero'",
             2,
         ),
-        // Non-manifold cages are refined as OpenSubdiv does, except where subdiv's manifold
-        // pieces cannot carry OpenSubdiv's rule (docs/testing.md). Here: a vertex with exactly
-        // two non-manifold edges (OpenSubdiv's crease rule along them), each made of two cones
-        // of triangles that leave and return through it: no copy holds both edges.
-        (
-            "nonmanifold-edge",
-            "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0.5 1 0\nv 0.5 0.5 1\nv 0.5 -1 0\nv 0.5 0 -1\n\
-             v 1.5 1 0\nv 1.5 0.5 1\nv 1.5 -1 0\nv 1.5 0 -1\nf 2 1 4\nf 2 4 5\nf 2 5 1\n\
-             f 2 1 6\nf 2 6 7\nf 2 7 1\nf 2 3 8\nf 2 8 9\nf 2 9 3\nf 2 3 10\nf 2 10 11\n\
-             f 2 11 3\n"
-                .into(),
-            "vertex 1 is non-manifold and cannot be refined as OpenSubdiv does",
-            2,
-        ),
         (
             "crease-edge",
             format!("{QUAD_HEAD}f 1 2 3 4\nt crease 2/1/0 0 2 1\n"),

@@ -129,10 +129,10 @@ pub(crate) fn pass(
         if need[v.idx()] {
             let skip = |h| by_level && inside_family(mesh, &cur.green, h);
             let mut p = kernel.vertex_point_without(v, &[], skip);
-            if let Some(m) = mesh.crease_copy_of(v) {
-                // The copy holding the crease's edges gives the point (this copy's rules still
-                // gave its edges' child sharpness).
-                p = kernel.vertex_point_without(m, &[], skip);
+            if let Some(ends) = mesh.crease_ends(v) {
+                // A copy lacking the crease's edges: the crease rule over them (its own rules
+                // still gave its edges' child sharpness).
+                p = kernel.crease_copy_point(v, ends);
             }
             if closure.moves[v.idx()] {
                 previous[v.idx()] = positions[v.idx()];

@@ -99,19 +99,6 @@ pub enum MeshError {
         /// 1-based line of the vertex, if known.
         line: Option<u32>,
     },
-    /// A non-manifold vertex whose OpenSubdiv rule the manifold pieces subdiv cuts the cage
-    /// into cannot all carry (see `PolygonSoup::split_nonmanifold`).
-    #[error(
-        "vertex {vertex} is non-manifold and cannot be refined as OpenSubdiv does ({why}); repair it with --split-nonmanifold"
-    )]
-    UnsupportedNonManifold {
-        /// The vertex (0-based, as read).
-        vertex: u32,
-        /// What is not supported there.
-        why: &'static str,
-        /// 1-based line of the vertex, if known.
-        line: Option<u32>,
-    },
     /// Two faces traverse their shared edge in the same direction.
     #[error(
         "faces {face} and {other} traverse edge {a}->{b} in the same direction (inconsistent orientation)"
@@ -228,7 +215,6 @@ impl MeshError {
             | MeshError::NonFinite { line, .. }
             | MeshError::NonManifoldEdge { line, .. }
             | MeshError::NonManifoldVertex { line, .. }
-            | MeshError::UnsupportedNonManifold { line, .. }
             | MeshError::InconsistentOrientation { line, .. }
             | MeshError::TagMissingEdge { line, .. }
             | MeshError::TagMissingVertex { line, .. }

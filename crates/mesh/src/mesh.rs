@@ -52,8 +52,8 @@ pub struct Mesh {
     /// [`Mesh::whole_vertex_edges`]: sorted semi-sharp values, by vertex; empty for almost
     /// every mesh.
     whole_edges: std::collections::BTreeMap<u32, Vec<f32>>,
-    /// [`Mesh::crease_copy_of`]: copy -> the copy it takes its points from.
-    crease_copies: std::collections::BTreeMap<u32, u32>,
+    /// [`Mesh::crease_ends`], by vertex.
+    crease_ends: std::collections::BTreeMap<u32, [HalfedgeId; 2]>,
 }
 
 impl Mesh {
@@ -165,32 +165,37 @@ impl Mesh {
     }
     /// Where `v` is a copy of a non-manifold crease vertex whose ring lacks one or both of the
     /// vertex's two non-manifold edges (a closed fan touching the vertex, or a fan that leaves
-    /// and returns through the same non-manifold edge), the copy that holds both: OpenSubdiv's
-    /// crease rule reads the far ends of those two edges, which only that copy's ring has, so
-    /// `v` takes that copy's vertex points and limit at every level (see
-    /// [`PolygonSoup::split_nonmanifold`](crate::PolygonSoup::split_nonmanifold)). `None`
-    /// elsewhere.
+    /// and returns through the same non-manifold edge): those two edges, as half-edges leaving
+    /// copies of the vertex (other copies than `v`). OpenSubdiv's crease rule reads their far
+    /// ends, which `v`'s ring lacks, so `v`'s points are the crease rule's over them at every
+    /// level (see [`PolygonSoup::split_nonmanifold`](crate::PolygonSoup::split_nonmanifold)).
+    /// `None` elsewhere.
     #[inline]
-    pub fn crease_copy_of(&self, v: VertexId) -> Option<VertexId> {
-        if self.crease_copies.is_empty() {
+    pub fn crease_ends(&self, v: VertexId) -> Option<[HalfedgeId; 2]> {
+        if self.crease_ends.is_empty() {
             return None;
         }
-        self.crease_copies.get(&v.0).map(|&m| VertexId(m))
+        self.crease_ends.get(&v.0).copied()
     }
-    /// Every `(copy, the copy it takes its points from)` of [`Mesh::crease_copy_of`].
-    pub fn crease_copies(&self) -> impl Iterator<Item = (VertexId, VertexId)> + '_ {
-        self.crease_copies
-            .iter()
-            .map(|(&v, &m)| (VertexId(v), VertexId(m)))
+    /// The copy holding both edges of [`Mesh::crease_ends`] where one does (`None` where they
+    /// leave different copies, or `v` is no crease copy).
+    #[inline]
+    pub fn crease_copy_of(&self, v: VertexId) -> Option<VertexId> {
+        let [a, b] = self.crease_ends(v)?;
+        (self.from(a) == self.from(b)).then(|| self.from(a))
     }
-    /// Sets [`Mesh::crease_copy_of`] of `v` (`None` removes it).
-    pub fn set_crease_copy_of(&mut self, v: VertexId, master: Option<VertexId>) {
-        match master {
-            Some(m) if m != v => {
-                self.crease_copies.insert(v.0, m.0);
+    /// Every `(copy, crease ends)` of [`Mesh::crease_ends`], in vertex order.
+    pub fn crease_ends_all(&self) -> impl Iterator<Item = (VertexId, [HalfedgeId; 2])> + '_ {
+        self.crease_ends.iter().map(|(&v, &h)| (VertexId(v), h))
+    }
+    /// Sets [`Mesh::crease_ends`] of `v` (`None` removes it).
+    pub fn set_crease_ends(&mut self, v: VertexId, ends: Option<[HalfedgeId; 2]>) {
+        match ends {
+            Some(h) => {
+                self.crease_ends.insert(v.0, h);
             }
-            _ => {
-                self.crease_copies.remove(&v.0);
+            None => {
+                self.crease_ends.remove(&v.0);
             }
         }
     }

@@ -77,10 +77,11 @@ pub struct PolygonSoup {
     /// copy stands for, set by [`PolygonSoup::split_nonmanifold`]
     /// ([`Mesh::whole_vertex_edges`](crate::Mesh::whole_vertex_edges)).
     pub whole_vertex_edges: Vec<(i64, Vec<f32>)>,
-    /// `(copy, master)`: copies of a non-manifold crease vertex that take the points of the
-    /// copy holding its two non-manifold edges, set by [`PolygonSoup::split_nonmanifold`]
-    /// ([`Mesh::crease_copy_of`](crate::Mesh::crease_copy_of)).
-    pub crease_copies: Vec<(i64, i64)>,
+    /// `(copy, [(from, to); 2])`: copies of a non-manifold crease vertex whose ring lacks its
+    /// two non-manifold edges, and those edges (leaving other copies), set by
+    /// [`PolygonSoup::split_nonmanifold`]
+    /// ([`Mesh::crease_ends`](crate::Mesh::crease_ends)).
+    pub crease_copies: Vec<(i64, [(i64, i64); 2])>,
     /// Face-varying values (OBJ `vt`); see [`PolygonSoup::uv_indices`].
     pub uvs: Vec<glam::Vec2>,
     /// The value of every face corner (aligned with `face_indices`, 0-based, signed so that bad
@@ -312,8 +313,11 @@ impl PolygonSoup {
                 f: t.f + bf,
                 line: None,
             }));
-            out.crease_copies
-                .extend(self.crease_copies.iter().map(|&(v, m)| (v + bv, m + bv)));
+            out.crease_copies.extend(
+                self.crease_copies
+                    .iter()
+                    .map(|&(v, e)| (v + bv, e.map(|(a, b)| (a + bv, b + bv)))),
+            );
             out.whole_vertex_edges.extend(
                 self.whole_vertex_edges
                     .iter()

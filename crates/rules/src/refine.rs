@@ -251,6 +251,30 @@ impl<'m, P: Point> RefineKernel<'m, P> {
         }
     }
 
+    /// The vertex point of a crease copy `v` ([`Mesh::crease_ends`]): the whole vertex's rules
+    /// (its vertex sharpness and whole-vertex values, two infinitely sharp edges) over the far
+    /// ends of `ends`, which `v`'s ring lacks; what the copy holding them computes, to the bit.
+    pub fn crease_copy_point(&self, v: VertexId, ends: [HalfedgeId; 2]) -> P {
+        let mesh = self.mesh;
+        let e = ends.map(|h| self.pos[mesh.to(h).idx()]);
+        let sharp = [subdiv_mesh::SHARPNESS_INFINITE; 2];
+        let whole = mesh.whole_vertex_edges(v).unwrap_or(&[]);
+        let vs = mesh.vertex_sharpness(v);
+        let rules = VertexRules::with_whole(
+            self.method,
+            vs,
+            &sharp,
+            whole,
+            &mut [0.0; 2],
+            &mut Vec::new(),
+        );
+        let centre = self.pos[v.idx()];
+        match self.scheme {
+            Scheme::CatmullClark => catmark::vertex_point(centre, &e, &[], &rules),
+            Scheme::Loop => loop_scheme::vertex_point(centre, &e, &rules),
+        }
+    }
+
     /// The child sharpness of `h`'s edge at `h`'s origin (after that vertex's
     /// [`RefineKernel::vertex_point`]).
     #[inline]
@@ -307,9 +331,10 @@ impl<'m, P: Point> RefineKernel<'m, P> {
         for v in mesh.vertices() {
             points.push(self.vertex_point(v, fp));
         }
-        // A copy lacking the crease's edges takes the point of the copy that holds them.
-        for (v, m) in mesh.crease_copies() {
-            points[v.idx()] = points[m.idx()];
+        // A copy lacking the crease's edges: the crease rule over them (its own rules gave
+        // its edges' child sharpness).
+        for (v, ends) in mesh.crease_ends_all() {
+            points[v.idx()] = self.crease_copy_point(v, ends);
         }
         points.extend_from_slice(fp);
         for e in mesh.edges() {
@@ -379,8 +404,15 @@ impl<'m, P: Point> RefineKernel<'m, P> {
                 child.set_vertex_sharpness(v, s.max(child.vertex_sharpness(v)));
             }
         }
-        for (v, m) in mesh.crease_copies() {
-            child.set_crease_copy_of(v, Some(m));
+        for (v, ends) in mesh.crease_ends_all() {
+            // The crease's edges one level down: their halves at the vertex's copies.
+            let child_ends = ends.map(|h| {
+                let to = midpoint(h.edge()).unwrap_or(mesh.to(h));
+                child.find_halfedge(mesh.from(h), to)
+            });
+            if let [Some(a), Some(b)] = child_ends {
+                child.set_crease_ends(v, Some([a, b]));
+            }
         }
         for (v, whole) in mesh.whole_vertex_edges_all() {
             if decays(v) {

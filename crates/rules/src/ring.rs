@@ -39,6 +39,8 @@ pub struct Ring {
     /// ([`Mesh::crease_copy_of`]): the ring of the copy that holds them, whose centre this
     /// ring's centre follows at every level and whose limit it takes.
     master: Option<Box<Ring>>,
+    /// With a `master` of just the crease's two edges: the normal is this ring's own.
+    own_normal: bool,
     boundary: bool,
     edges: Vec<DVec3>,
     sharp: Vec<f32>,
@@ -295,6 +297,11 @@ impl Ring {
     /// (in place) as far as needed. The normal is oriented like the faces; it is zero only for a
     /// fully degenerate neighbourhood.
     pub fn limit(&mut self) -> (DVec3, DVec3) {
+        if self.own_normal {
+            let parts = self.limit_parts();
+            let (_, normal) = finish_limit(&parts, self.center, &self.edges, self.num_faces());
+            return (self.master_limit(), normal);
+        }
         if let Some(m) = self.master.as_mut() {
             return m.limit();
         }
@@ -308,15 +315,20 @@ impl Ring {
     /// (face `i` between edges `i` and `i + 1`) in `faces`: the crease tangent crossed with that
     /// side's cross tangent. `faces` is left empty where the surface has one tangent plane.
     pub fn limit_sided(&mut self, faces: &mut Vec<DVec3>) -> (DVec3, DVec3) {
-        if let Some(m) = self.master.as_mut() {
-            // The crease's sides are the other copy's faces: none of this ring's.
+        if self.master.is_some() {
+            // The crease's sides are the other copies' faces: none of this ring's.
             faces.clear();
-            return m.limit();
+            return self.limit();
         }
         let parts = self.limit_parts();
         let nf = self.num_faces();
         sided_normals(&parts, &parts.sides, self.center, &self.edges, nf, faces);
         finish_limit(&parts, self.center, &self.edges, nf)
+    }
+
+    /// The limit position of the master ring (a crease copy's).
+    fn master_limit(&mut self) -> DVec3 {
+        self.master.as_mut().map_or(self.center, |m| m.limit().0)
     }
 
     /// Refines as far as [`Ring::limit`] needs, then evaluates the limit masks: the linear part

@@ -114,9 +114,14 @@ impl Chain {
 /// module notes): a corner, or a crease with the far ends of its two infinitely sharp edges and
 /// its vertex sharpness.
 fn chain_ends(mesh: &Mesh, v: VertexId) -> Option<Ends> {
-    // A copy lacking the crease's edges moves as the copy that holds them.
-    let v = mesh.crease_copy_of(v).unwrap_or(v);
     let vs = mesh.vertex_sharpness(v);
+    if let Some(ends) = mesh.crease_ends(v) {
+        // A copy lacking the crease's edges moves by the crease rule over them.
+        let values = mesh.whole_vertex_edges(v).unwrap_or(&[]);
+        let schedule = crease_vertex_schedule(mesh.options().crease, vs, values);
+        let [a, b] = ends.map(|h| ChainEnd::Crease(mesh.to(h)));
+        return Some((a, b, schedule));
+    }
     let mut sharp = [VertexId::NONE; 2];
     let mut count = 0usize;
     let mut ring = Vec::new();

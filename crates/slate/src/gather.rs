@@ -88,7 +88,7 @@ impl GatherPlan {
             // Sharp edges at an interior valence-4 corner are table edges like any other (the
             // general step's rules handle them); a corner tag has no place in the table.
             // A crease copy's centre follows another copy's ring (`Ring`): never regular.
-            let follows = mesh.crease_copy_of(v).is_some();
+            let follows = mesh.crease_ends(v).is_some();
             if valence != 4 || on_boundary || mesh.vertex_sharpness(v) > 0.0 || follows {
                 active |= 1 << k;
                 // The corner array's ring: the vertex and all its edges.

@@ -41,16 +41,19 @@ pub(crate) fn local_level1(
             }
         }
     }
-    // A crease copy takes the points of the copy holding the crease's edges
-    // (`Mesh::crease_copy_of`), which lies in another piece: that copy's faces are refined too.
-    if mesh.crease_copies().next().is_some() {
+    // A crease copy's points are the crease rule's over edges of other copies
+    // (`Mesh::crease_ends`), in other pieces: those copies' faces are refined too.
+    if mesh.crease_ends_all().next().is_some() {
         let mut masters = Vec::new();
         for f in mesh.faces().filter(|f| keep[f.idx()]) {
-            masters.extend(
-                mesh.face_vertices(f)
-                    .iter()
-                    .filter_map(|&v| mesh.crease_copy_of(v)),
-            );
+            for &v in mesh.face_vertices(f) {
+                masters.extend(
+                    mesh.crease_ends(v)
+                        .into_iter()
+                        .flatten()
+                        .map(|h| mesh.from(h)),
+                );
+            }
         }
         for m in masters {
             for h in mesh.outgoing(m) {
@@ -127,8 +130,12 @@ pub(crate) fn local_level1(
             if let Some(whole) = mesh.whole_vertex_edges(v) {
                 sub.set_whole_vertex_edges(VertexId(vmap[v.idx()]), whole);
             }
-            if let Some(m) = mesh.crease_copy_of(v).filter(|m| vmap[m.idx()] != u32::MAX) {
-                sub.set_crease_copy_of(VertexId(vmap[v.idx()]), Some(VertexId(vmap[m.idx()])));
+            if let Some(ends) = mesh.crease_ends(v) {
+                let at = |w: VertexId| Some(VertexId(vmap[w.idx()])).filter(|x| x.0 != u32::MAX);
+                let find = |h| sub.find_halfedge(at(mesh.from(h))?, at(mesh.to(h))?);
+                if let [Some(a), Some(b)] = ends.map(find) {
+                    sub.set_crease_ends(VertexId(vmap[v.idx()]), Some([a, b]));
+                }
             }
         }
     }

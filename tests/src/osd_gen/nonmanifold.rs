@@ -65,6 +65,9 @@ pub(super) fn add_nonmanifold(
                 if copy_rng.chance(COPY_PERCENT) {
                     add_closed_fan(copy_rng, b, c, [a, d], len, loop_scheme);
                 }
+                if copy_rng.chance(COPY_PERCENT) {
+                    add_cone_star(copy_rng, b, c, len);
+                }
             }
             0 => {
                 // A fin on a-c, either way round.
@@ -125,8 +128,8 @@ const COPY_PERCENT: u64 = 25;
 /// A fan of faces at the fin strip's middle vertex `c` whose copy holds neither or only one of
 /// its two non-manifold edges `c-a`, `c-d` (`ends`): a closed tetrahedron touching `c`, a cone
 /// of three triangles leaving and returning through one of the edges, or (Catmull-Clark) a
-/// cube of quads touching `c` at a corner. The copy takes the points of one holding both
-/// (`Mesh::crease_copy_of`).
+/// cube of quads touching `c` at a corner. The copy takes the crease rule over the edges of
+/// one holding both (`Mesh::crease_ends`).
 fn add_closed_fan(
     rng: &mut Rng,
     b: &mut Builder,
@@ -193,6 +196,28 @@ fn add_closed_fan(
             ] {
                 b.faces.push(f.iter().map(|&k| ids[k]).collect());
             }
+        }
+    }
+}
+
+/// A component of its own beside vertex `c`: a vertex with exactly two non-manifold edges,
+/// each made of two cones of three triangles that leave and return through it, so that no copy
+/// of the vertex holds both (`Mesh::crease_ends` across copies).
+fn add_cone_star(rng: &mut Rng, b: &mut Builder, c: u32, len: f64) {
+    let pc = b.pos[c as usize];
+    let at = |b: &mut Builder, rng: &mut Rng, k: [f64; 3]| -> u32 {
+        let p: [f64; 3] = std::array::from_fn(|i| pc[i] + len * (k[i] + 0.15 * rng.unit() as f64));
+        b.vertex(p)
+    };
+    let a = at(b, rng, [1.0, 0.0, 2.0]);
+    let m = at(b, rng, [2.0, 0.0, 2.0]);
+    let d = at(b, rng, [3.0, 0.0, 2.0]);
+    for (x, dx) in [(a, 1.5), (d, 2.5)] {
+        for side in [1.0, -1.0] {
+            let p = at(b, rng, [dx, side, 2.0]);
+            let q = at(b, rng, [dx, 0.5 * side, 2.0 + side]);
+            b.faces
+                .extend([vec![m, x, p], vec![m, p, q], vec![m, q, x]]);
         }
     }
 }

@@ -124,6 +124,6 @@ fn assemble(
         options: soup.options,
         uv: None,
         whole_edges: Default::default(),
-        crease_copies: Default::default(),
+        crease_ends: Default::default(),
     }
 }

@@ -26,10 +26,8 @@
 //! those in place of the copy's own semi-sharp edges. A copy of a crease vertex that holds
 //! neither or only one of its two non-manifold edges (a closed fan touching it, or a fan that
 //! leaves and returns through the same edge) lacks the crease neighbours OpenSubdiv's rule
-//! reads: it takes the points of a copy that holds both at every level
-//! ([`Mesh::crease_copy_of`](crate::Mesh::crease_copy_of)). Where no copy holds both, the cage
-//! is refused with [`MeshError::UnsupportedNonManifold`] naming the vertex, rather than refined
-//! differently.
+//! reads: its points are the crease rule's over those edges in the copies that hold them, at
+//! every level ([`Mesh::crease_ends`](crate::Mesh::crease_ends)). Nothing is refused.
 
 use std::collections::HashMap;
 
@@ -162,10 +160,10 @@ impl PolygonSoup {
             for (c, &w) in remap.iter().enumerate() {
                 copy_of.insert((self.face_indices[c], find_root(&mut parent, c)), w);
             }
-            for &(v, r, m) in &marks.crease_copies {
-                let at = |root| copy_of.get(&(i64::from(v), root)).copied();
-                if let (Some(w), Some(wm)) = (at(r), at(m)) {
-                    self.crease_copies.push((w, wm));
+            for &(v, r, ends) in &marks.crease_copies {
+                if let Some(&w) = copy_of.get(&(i64::from(v), r)) {
+                    self.crease_copies
+                        .push((w, ends.map(|(c, f)| (remap[c], remap[f]))));
                 }
             }
         }
@@ -323,7 +321,8 @@ impl PolygonSoup {
             vertex_sharp.insert(t.v, t.sharpness);
         }
         // Per non-manifold vertex: its edges' sharpness and, per edge, the fans that use it.
-        let mut at: HashMap<i64, Vec<(f32, bool, Vec<usize>)>> = found
+        // Per use, the face corners at the vertex and at the far end too.
+        let mut at: HashMap<i64, Vec<AtEdge>> = found
             .vertices
             .iter()
             .map(|&(v, _)| (v as i64, Vec::new()))
@@ -337,18 +336,18 @@ impl PolygonSoup {
             };
             for v in [a, b] {
                 if let Some(list) = at.get_mut(&v) {
-                    let fans = u
+                    let corners: Vec<(usize, usize)> = u
                         .iter()
                         .map(|e| {
-                            let c = if self.face_indices[e.corner] == v {
-                                e.corner
+                            if self.face_indices[e.corner] == v {
+                                (e.corner, e.next)
                             } else {
-                                e.next
-                            };
-                            find_root(parent, c)
+                                (e.next, e.corner)
+                            }
                         })
                         .collect();
-                    list.push((s, nm, fans));
+                    let fans = corners.iter().map(|c| find_root(parent, c.0)).collect();
+                    list.push((s, nm, fans, corners));
                 }
             }
         }
@@ -385,21 +384,26 @@ impl PolygonSoup {
                 continue;
             }
             // The crease rule along its two non-manifold edges reads their far ends: a copy
-            // whose ring lacks one takes the points of one that holds both.
-            let nm: Vec<&Vec<usize>> = edges.iter().filter(|e| e.1).map(|e| &e.2).collect();
+            // whose ring lacks one takes the crease rule over the edges of copies that hold
+            // them, one copy holding both where there is one.
+            let mut nm: Vec<&AtEdge> = edges.iter().filter(|e| e.1).collect();
+            // In the order of their far ends (the uses come in hash order).
+            nm.sort_unstable_by_key(|e| self.face_indices[e.3[0].1]);
             let mut all: Vec<usize> = edges.iter().flat_map(|e| e.2.iter().copied()).collect();
             all.sort_unstable();
             all.dedup();
-            let holds_both = |r: &usize| nm.iter().all(|fans| fans.contains(r));
-            let Some(&master) = all.iter().find(|r| holds_both(r)) else {
-                return Err(unsupported(
-                    self,
-                    v,
-                    "no copy holds both non-manifold edges",
-                ));
+            let holds_both = |r: &usize| nm.iter().all(|e| e.2.contains(r));
+            let master = all.iter().copied().find(holds_both);
+            // The use of edge `e` in fan `master`, else in its first fan.
+            let end = |e: &AtEdge| {
+                let k = master.and_then(|m| e.2.iter().position(|&r| r == m));
+                e.3[k.unwrap_or(0)]
             };
-            for &r in all.iter().filter(|r| !holds_both(r)) {
-                marks.crease_copies.push((v, r, master));
+            if nm.len() == 2 {
+                let ends = [end(nm[0]), end(nm[1])];
+                for &r in all.iter().filter(|r| !holds_both(r)) {
+                    marks.crease_copies.push((v, r, ends));
+                }
             }
         }
         Ok(marks)
@@ -413,17 +417,18 @@ impl PolygonSoup {
 struct NonManifoldMarks {
     corners: Vec<u32>,
     whole: Vec<(u32, Vec<f32>)>,
-    /// `(vertex, fan root, fan root of the copy holding both non-manifold edges)`.
-    crease_copies: Vec<(u32, usize, usize)>,
+    /// `(vertex, fan root, the face corners (at the vertex, at the far end) of a use of each
+    /// non-manifold edge)`: the copies lacking them.
+    crease_copies: Vec<(u32, usize, [CornerPair; 2])>,
 }
 
-fn unsupported(soup: &PolygonSoup, vertex: u32, why: &'static str) -> MeshError {
-    MeshError::UnsupportedNonManifold {
-        vertex,
-        why,
-        line: soup.vertex_line(vertex as usize),
-    }
-}
+/// The face corners of a use of an edge: at the vertex, at the far end.
+type CornerPair = (usize, usize);
+
+/// An edge at a non-manifold vertex: its sharpness as OpenSubdiv takes it, whether it is
+/// non-manifold, and per use the fan (corner class root) at the vertex and the face corners
+/// at the vertex and at the far end.
+type AtEdge = (f32, bool, Vec<usize>, Vec<CornerPair>);
 
 #[cfg(test)]
 mod tests;

@@ -32,12 +32,20 @@ impl Ring {
         self.whole.clear();
         self.whole
             .extend_from_slice(mesh.whole_vertex_edges(v).unwrap_or(&[]));
-        self.master = match mesh.crease_copy_of(v) {
-            Some(m) if !mesh.is_isolated(m) => {
+        self.own_normal = false;
+        self.master = match (mesh.crease_ends(v), mesh.crease_copy_of(v)) {
+            (Some(_), Some(m)) => {
                 let mut ring = self.master.take().unwrap_or_default();
                 // Through `dyn`, so that this call instantiates one `load_at` whatever `pos`.
                 let pos: &dyn Fn(VertexId) -> DVec3 = &pos;
                 ring.load_at(mesh, pos, m, scheme);
+                Some(ring)
+            }
+            (Some(ends), None) => {
+                // No copy holds both edges: a ring of just them gives the crease's points.
+                let mut ring = self.master.take().unwrap_or_default();
+                ring.load_crease(mesh, pos(v), ends.map(|h| pos(mesh.to(h))), v, scheme);
+                self.own_normal = true;
                 Some(ring)
             }
             _ => None,
@@ -75,6 +83,35 @@ impl Ring {
             }
         }
         true
+    }
+
+    /// The ring of a crease copy `v` whose crease edges (ending at `ends`) leave different
+    /// copies ([`Mesh::crease_ends`]): the two infinitely sharp edges alone, with `v`'s vertex
+    /// sharpness and whole-vertex values, and one face between them that no rule of theirs
+    /// reads (the crease and corner rules read only the two ends; edge points on infinitely
+    /// sharp edges are midpoints). Its centre and limit position are the crease's; its normal
+    /// means nothing.
+    fn load_crease(
+        &mut self,
+        mesh: &Mesh,
+        center: DVec3,
+        ends: [DVec3; 2],
+        v: VertexId,
+        scheme: Scheme,
+    ) {
+        let method = mesh.options().crease;
+        let vs = mesh.vertex_sharpness(v);
+        let sharp = [subdiv_mesh::SHARPNESS_INFINITE; 2];
+        let far = [(0.0, 0); 2];
+        match scheme {
+            Scheme::CatmullClark => {
+                let diag = [ends[0] + ends[1] - center];
+                self.load_quads(method, center, vs, true, &ends, &sharp, &far, &diag);
+            }
+            Scheme::Loop => self.load_triangles(method, center, vs, true, &ends, &sharp, &far),
+        }
+        self.whole
+            .extend_from_slice(mesh.whole_vertex_edges(v).unwrap_or(&[]));
     }
 
     /// Loads the ring of vertex `v` like [`Ring::load`], and writes the outgoing half-edges in
@@ -115,6 +152,7 @@ impl Ring {
         self.vertex_sharpness = vertex_sharpness;
         self.whole.clear();
         self.master = None;
+        self.own_normal = false;
         self.boundary = boundary;
         self.edges.clear();
         self.edges.extend_from_slice(edges);
@@ -150,6 +188,7 @@ impl Ring {
         self.vertex_sharpness = vertex_sharpness;
         self.whole.clear();
         self.master = None;
+        self.own_normal = false;
         self.boundary = boundary;
         self.edges.clear();
         self.edges.extend_from_slice(edges);

@@ -112,7 +112,7 @@ impl TriLayout {
         for v in mesh.vertices() {
             let mut smooth = mesh.vertex_sharpness(v) <= 0.0
                 && !mesh.is_isolated(v)
-                && mesh.crease_copy_of(v).is_none();
+                && mesh.crease_ends(v).is_none();
             for h in mesh.outgoing(v) {
                 ring_verts.push(mesh.to(h).0);
                 smooth &= mesh.edge_sharpness(h.edge()) <= 0.0 && mesh.face(h).is_some();

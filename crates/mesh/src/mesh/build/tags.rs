@@ -26,7 +26,7 @@ pub(super) fn apply_tags(
 
 /// The whole vertex's edge sharpness of the copies of a non-manifold vertex
 /// ([`Mesh::whole_vertex_edges`]) and the copies that take another's points
-/// ([`Mesh::crease_copy_of`]).
+/// ([`Mesh::crease_ends`]).
 fn apply_whole_vertex_edges(mesh: &mut Mesh, soup: &PolygonSoup) -> Result<(), MeshError> {
     let nv = mesh.num_vertices() as u32;
     for (v, values) in &soup.whole_vertex_edges {
@@ -43,18 +43,34 @@ fn apply_whole_vertex_edges(mesh: &mut Mesh, soup: &PolygonSoup) -> Result<(), M
         }
         mesh.set_whole_vertex_edges(VertexId(*v as u32), values);
     }
-    for &(v, m) in &soup.crease_copies {
-        for x in [v, m] {
-            if x < 0 || x >= nv as i64 {
-                return Err(MeshError::TagMissingVertex {
-                    tag: "crease copy",
-                    vertex: x,
-                    count: nv,
-                    line: None,
-                });
-            }
+    for (v, ends) in &soup.crease_copies {
+        let missing = |x: i64| MeshError::TagMissingVertex {
+            tag: "crease copy",
+            vertex: x,
+            count: nv,
+            line: None,
+        };
+        if *v < 0 || *v >= nv as i64 {
+            return Err(missing(*v));
         }
-        mesh.set_crease_copy_of(VertexId(v as u32), Some(VertexId(m as u32)));
+        let mut hs = [crate::HalfedgeId(0); 2];
+        for (h, &(a, b)) in hs.iter_mut().zip(ends) {
+            let (Ok(a), Ok(b)) = (u32::try_from(a), u32::try_from(b)) else {
+                return Err(missing(a.min(b)));
+            };
+            let (a, b) = (a as i64, b as i64);
+            if a >= nv as i64 || b >= nv as i64 {
+                return Err(missing(a.max(b)));
+            }
+            *h = mesh
+                .find_halfedge(VertexId(a as u32), VertexId(b as u32))
+                .ok_or(MeshError::TagMissingEdge {
+                    a: a as u32,
+                    b: b as u32,
+                    line: None,
+                })?;
+        }
+        mesh.set_crease_ends(VertexId(*v as u32), Some(hs));
     }
     Ok(())
 }

@@ -14,14 +14,6 @@ fn split(text: &str) -> Result<Mesh, MeshError> {
     Mesh::from_soup(&soup)
 }
 
-/// The reason `split` refuses `text` for, and the vertex it names.
-fn refused(text: &str) -> (u32, &'static str) {
-    match split(text) {
-        Err(MeshError::UnsupportedNonManifold { vertex, why, .. }) => (vertex, why),
-        other => panic!("expected a refusal, got {other:?}"),
-    }
-}
-
 #[test]
 fn a_semi_sharp_vertex_at_a_crease_vertex_goes_to_every_copy() {
     let mesh = split(&format!("{FINS}t corner 1/1/0 1 1.5\n")).unwrap();
@@ -117,7 +109,7 @@ fn edge_and_corner_sharpens_the_whole_cages_one_face_vertices() {
 }
 
 /// A copy of a crease vertex whose ring lacks one or both of its non-manifold edges takes the
-/// points of the first copy that holds both.
+/// crease rule over those of the first copy that holds both.
 #[test]
 fn a_copy_without_the_crease_edges_follows_one_with_them() {
     // A closed tetrahedron touching vertex 1 (0-based): its copy holds neither edge.
@@ -126,9 +118,17 @@ fn a_copy_without_the_crease_edges_follows_one_with_them() {
          f 2 14 13\nf 2 15 14\nf 2 13 15\nf 13 14 15\n"
     ))
     .unwrap();
-    let copies: Vec<(VertexId, VertexId)> = mesh.crease_copies().collect();
+    let copies: Vec<VertexId> = mesh.crease_ends_all().map(|(v, _)| v).collect();
     assert_eq!(copies.len(), 1);
-    let (copy, master) = copies[0];
+    let copy = copies[0];
+    let master = mesh.crease_copy_of(copy).unwrap();
+    // Its crease ends: the two non-manifold edges of vertex 1, leaving the master.
+    let ends = mesh.crease_ends(copy).unwrap();
+    let far: Vec<VertexId> = ends.iter().map(|&h| mesh.to(h)).collect();
+    assert_eq!(
+        far.iter().map(|&w| mesh.position(w)).collect::<Vec<_>>(),
+        vec![mesh.position(VertexId(0)), mesh.position(VertexId(2))]
+    );
     assert_eq!(mesh.position(copy), mesh.position(VertexId(1)));
     assert_eq!(mesh.position(master), mesh.position(VertexId(1)));
     // The master holds both infinitely sharp edges; the copy none.
@@ -143,21 +143,33 @@ fn a_copy_without_the_crease_edges_follows_one_with_them() {
         "{FINS}v 0.5 0.5 -1\nv 1 0.2 -1.2\nf 2 1 13\nf 2 13 14\nf 2 14 1\n"
     ))
     .unwrap();
-    assert_eq!(mesh.crease_copies().count(), 1);
+    assert_eq!(mesh.crease_ends_all().count(), 1);
 }
 
+/// Where no copy holds both non-manifold edges (cones of triangles leaving and returning
+/// through each edge, two on each), every copy takes the crease rule over edges of two
+/// different copies.
 #[test]
-fn what_the_pieces_cannot_carry_is_refused_naming_the_vertex() {
-    // Cones leaving and returning through each non-manifold edge of a crease vertex, two on
-    // each: no copy holds both edges.
+fn without_a_copy_holding_both_edges_the_copies_share_two() {
     let text = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0.5 1 0\nv 0.5 0.5 1\nv 0.5 -1 0\nv 0.5 0 -1\n\
                 v 1.5 1 0\nv 1.5 0.5 1\nv 1.5 -1 0\nv 1.5 0 -1\n\
                 f 2 1 4\nf 2 4 5\nf 2 5 1\nf 2 1 6\nf 2 6 7\nf 2 7 1\n\
                 f 2 3 8\nf 2 8 9\nf 2 9 3\nf 2 3 10\nf 2 10 11\nf 2 11 3\n";
-    let (v, why) = refused(text);
-    assert_eq!((v, why), (1, "no copy holds both non-manifold edges"));
-    // Without the tags the cage is read.
-    assert!(split(FINS).is_ok());
+    let mesh = split(text).unwrap();
+    let copies: Vec<(VertexId, [crate::HalfedgeId; 2])> = mesh.crease_ends_all().collect();
+    assert_eq!(copies.len(), 4);
+    for (v, ends) in copies {
+        assert_eq!(mesh.crease_copy_of(v), None);
+        let far: Vec<_> = ends.iter().map(|&h| mesh.position(mesh.to(h))).collect();
+        assert_eq!(
+            far,
+            vec![mesh.position(VertexId(0)), mesh.position(VertexId(2))]
+        );
+        assert!(
+            ends.iter()
+                .all(|&h| mesh.position(mesh.from(h)) == mesh.position(VertexId(1)))
+        );
+    }
 }
 
 /// `interpolateboundary none`: the faces at a vertex with a boundary edge of the cage become
