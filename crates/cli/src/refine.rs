@@ -52,12 +52,15 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
     let r = r.with_context(|| format!("{input}: refining"))?;
     let ms = t0.elapsed().as_secs_f64() * 1e3;
     if format == OutputFormat::Obj {
-        if let Some((v, _)) = r.mesh.mesh.whole_vertex_edges_all().next() {
+        let m = &r.mesh.mesh;
+        let carried = m.whole_vertex_edges_all().map(|(v, _)| v);
+        if let Some(v) = carried.chain(m.crease_ends_all().map(|(v, _)| v)).min() {
             // No OBJ tag says it: the file refines on as the pieces alone would.
             log::warn!(
-                "{}: vertex {} (and others like it) is a copy of a non-manifold vertex whose \
-                 semi-sharp edges are still sharp; the OBJ cage cannot say so, and refines on \
-                 differently from the cage it came from",
+                "{}: vertex {} (and others like it) is a copy of a non-manifold vertex that \
+                 follows the whole vertex's rule (its semi-sharp edges, or crease edges its \
+                 piece lacks); the OBJ cage cannot say so, and refines on differently from \
+                 the cage it came from",
                 a.output.display(),
                 v.0
             );
