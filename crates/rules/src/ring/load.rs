@@ -144,23 +144,9 @@ impl Ring {
         far: &[(f32, u32)],
         diag: &[DVec3],
     ) {
-        self.scheme = Scheme::CatmullClark;
-        self.method = method;
         // Quads only: the triangle rule never applies.
-        self.triangles = TriangleSubdivision::Catmark;
-        self.center = center;
-        self.vertex_sharpness = vertex_sharpness;
-        self.whole.clear();
-        self.master = None;
-        self.own_normal = false;
-        self.boundary = boundary;
-        self.edges.clear();
-        self.edges.extend_from_slice(edges);
-        self.sharp.clear();
-        self.sharp.extend_from_slice(sharp);
-        self.far.clear();
-        self.far.extend_from_slice(far);
-        self.inner.clear();
+        let ring = (center, vertex_sharpness, boundary);
+        self.load_parts(Scheme::CatmullClark, method, ring, edges, sharp, far);
         self.inner.extend_from_slice(diag);
         self.inner_off.clear();
         self.inner_off.extend(0..=diag.len() as u32);
@@ -181,15 +167,34 @@ impl Ring {
         sharp: &[f32],
         far: &[(f32, u32)],
     ) {
-        self.scheme = Scheme::Loop;
+        let ring = (center, vertex_sharpness, boundary);
+        self.load_parts(Scheme::Loop, method, ring, edges, sharp, far);
+        let faces = if boundary {
+            edges.len().saturating_sub(1)
+        } else {
+            edges.len()
+        };
+        self.inner_off.resize(faces + 1, 0);
+    }
+
+    /// What [`Ring::load_quads`] and [`Ring::load_triangles`] share: `ring` is the centre, its
+    /// vertex sharpness and whether it is on the boundary; the faces are left empty.
+    fn load_parts(
+        &mut self,
+        scheme: Scheme,
+        method: CreaseMethod,
+        ring: (DVec3, f32, bool),
+        edges: &[DVec3],
+        sharp: &[f32],
+        far: &[(f32, u32)],
+    ) {
+        self.scheme = scheme;
         self.method = method;
         self.triangles = TriangleSubdivision::Catmark;
-        self.center = center;
-        self.vertex_sharpness = vertex_sharpness;
+        (self.center, self.vertex_sharpness, self.boundary) = ring;
         self.whole.clear();
         self.master = None;
         self.own_normal = false;
-        self.boundary = boundary;
         self.edges.clear();
         self.edges.extend_from_slice(edges);
         self.sharp.clear();
@@ -198,11 +203,5 @@ impl Ring {
         self.far.extend_from_slice(far);
         self.inner.clear();
         self.inner_off.clear();
-        let faces = if boundary {
-            edges.len().saturating_sub(1)
-        } else {
-            edges.len()
-        };
-        self.inner_off.resize(faces + 1, 0);
     }
 }
