@@ -17,8 +17,14 @@
 //! pyramids touching the cage at one vertex (bow-ties), fin strips (two fins on consecutive
 //! edges: a vertex with exactly two non-manifold edges, half of them with a semi-sharp vertex
 //! sharpness), and now and then a bare vertex; subdiv
-//! refines them as OpenSubdiv does (`PolygonSoup::split_nonmanifold`). Cages subdiv refuses
-//! (the non-manifold configurations it does not support, see there) are drawn again.
+//! refines them as OpenSubdiv does (`PolygonSoup::split_nonmanifold`).
+//!
+//! Every cage the generator finishes is meant to be valid, so it never hides a refusal:
+//! [`draw_cage`] reports each finished cage that subdiv refused before the one it returns
+//! ([`Draw::refused`]) and a sharpened form that subdiv refused, where the unsharpened cage is
+//! returned in its place ([`Draw::fell_back`]). `cargo xtask fuzz-osd` counts both as
+//! disagreements. (Redraws before a cage is finished, for a triangulation or a topology step
+//! that is not manifold, are the generator's own and involve no subdiv code.)
 //!
 //! Of the cages with `interpolateboundary none`, a share
 //! ([`boundary_none::SHARP_NONE_PERCENT`], from a stream of their own) get infinite crease
@@ -30,8 +36,55 @@ use std::f64::consts::TAU;
 use crate::fuzz::Rng;
 use crate::osd_cage::{OsdCage, is_manifold};
 
-/// Cage `index` of the run with `seed` (independent of the other indices).
+/// Cage `index` of the run with `seed` (independent of the other indices): the cage of
+/// [`draw_cage`], whatever subdiv refused on the way.
 pub fn random_cage(seed: u64, index: u64) -> OsdCage {
+    draw_cage(seed, index).cage
+}
+
+/// A finished cage that subdiv refused, with its error.
+#[derive(Clone, Debug)]
+pub struct Refusal {
+    /// The cage as drawn.
+    pub cage: OsdCage,
+    /// subdiv's error.
+    pub error: String,
+}
+
+/// One draw of the generator: the cage, and every finished cage subdiv refused on the way.
+#[derive(Clone, Debug)]
+pub struct Draw {
+    /// The cage drawn.
+    pub cage: OsdCage,
+    /// Finished cages refused before `cage`, each redrawn (in order).
+    pub refused: Vec<Refusal>,
+    /// The sharpened-boundary form of `cage` (see [`boundary_none`]), refused, in whose place
+    /// `cage` (its simpler, unsharpened form) is returned.
+    pub fell_back: Option<Refusal>,
+}
+
+impl Draw {
+    /// The first refusal of a cage the generator meant to be valid, if any.
+    pub fn first_refusal(&self) -> Option<&Refusal> {
+        self.refused.first().or(self.fell_back.as_ref())
+    }
+}
+
+/// Cage `index` of the run with `seed`, with what subdiv refused while drawing it.
+pub fn draw_cage(seed: u64, index: u64) -> Draw {
+    draw_cage_with(seed, index, &|c| {
+        c.mesh().map(drop).map_err(|e| e.to_string())
+    })
+}
+
+/// [`draw_cage`] with `accept` in place of subdiv's own validation (for tests of the
+/// accounting): a cage `accept` refuses is recorded and redrawn as subdiv's refusals are.
+pub fn draw_cage_with(
+    seed: u64,
+    index: u64,
+    accept: &dyn Fn(&OsdCage) -> Result<(), String>,
+) -> Draw {
+    let mut refused = Vec::new();
     let mut rng = Rng::for_case(seed ^ 0x05D0_05D0, index);
     // Its own stream, so that the manifold cages are the ones earlier runs drew at each index.
     let mut nm_rng = Rng::for_case(seed ^ 0x0A0B_0C0D, index);
@@ -77,19 +130,32 @@ pub fn random_cage(seed: u64, index: u64) -> OsdCage {
         }
         jitter(&mut rng, &mut cage);
         add_tags(&mut rng, &mut cage);
-        if cage.mesh().is_err() {
+        if let Err(error) = accept(&cage) {
+            refused.push(Refusal { cage, error });
             continue;
         }
         // Its own stream too: the other cages stay the ones earlier runs drew.
         let mut none_rng = Rng::for_case(seed ^ 0x0B0D_0000, index);
+        let mut fell_back = None;
         if cage.boundary == Some(0) && none_rng.chance(boundary_none::SHARP_NONE_PERCENT) {
             let mut sharp = cage.clone();
             boundary_none::sharpen_boundary(&mut none_rng, &mut sharp);
-            if sharp.mesh().is_ok() {
-                return sharp;
+            match accept(&sharp) {
+                Ok(()) => {
+                    return Draw {
+                        cage: sharp,
+                        refused,
+                        fell_back,
+                    };
+                }
+                Err(error) => fell_back = Some(Refusal { cage: sharp, error }),
             }
         }
-        return cage;
+        return Draw {
+            cage,
+            refused,
+            fell_back,
+        };
     }
 }
 

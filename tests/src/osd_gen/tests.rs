@@ -8,7 +8,13 @@ fn cages_are_valid_reproducible_and_varied() {
     // `none` cages with a boundary vertex whose boundary edges are all infinitely sharp.
     let mut sharp_none = 0;
     for i in 0..300 {
-        let c = random_cage(7, i);
+        let draw = draw_cage(7, i);
+        assert!(
+            draw.first_refusal().is_none(),
+            "cage {i}: subdiv refused a cage drawn valid: {:?}",
+            draw.first_refusal().map(|r| &r.error)
+        );
+        let c = draw.cage;
         let mut soup = subdiv_mesh::parse_obj(&c.to_obj()).unwrap();
         let found = soup.split_nonmanifold().unwrap();
         fins += usize::from(found.edges.iter().any(|e| e.2 >= 3));
@@ -68,6 +74,50 @@ fn cages_are_valid_reproducible_and_varied() {
         "vertices with two non-manifold edges {chains}, with a semi-sharp tag {semi_chains}, \
          with semi-sharp creases {crease_chains}"
     );
+}
+
+/// A refusal is recorded, never hidden: the refused cage, its error and the redraw are
+/// reported; a refused sharpened form is reported as a fall-back.
+#[test]
+fn refusals_and_fall_backs_are_reported() {
+    let calls = std::cell::Cell::new(0);
+    let refuse_first = |_: &crate::osd_cage::OsdCage| {
+        calls.set(calls.get() + 1);
+        if calls.get() == 1 {
+            Err("refused for the test".to_string())
+        } else {
+            Ok(())
+        }
+    };
+    let d = draw_cage_with(7, 3, &refuse_first);
+    assert_eq!(d.refused.len(), 1);
+    assert_eq!(d.refused[0].error, "refused for the test");
+    assert_eq!(
+        d.first_refusal().map(|r| &r.error),
+        Some(&d.refused[0].error)
+    );
+    assert_ne!(d.refused[0].cage, d.cage, "the redraw is another cage");
+    // A cage whose sharpened form exists: refusing only that form falls back.
+    let (index, sharp) = (0..400)
+        .find_map(|i| {
+            let plain = draw_cage_with(5, i, &|c| {
+                if has_fully_sharp_boundary_vertex(c) {
+                    Err("sharp".into())
+                } else {
+                    Ok(())
+                }
+            });
+            // Only where the plain cage was not refused too, so that both draws agree.
+            let plain_kept = plain.refused.is_empty();
+            plain.fell_back.filter(|_| plain_kept).map(|f| (i, f.cage))
+        })
+        .expect("seed 5 draws a sharpened `none` cage among 400");
+    let d = draw_cage(5, index);
+    assert_eq!(
+        d.cage, sharp,
+        "without the refusal the sharpened form is drawn"
+    );
+    assert!(d.first_refusal().is_none());
 }
 
 /// Whether a boundary vertex of `c` has only boundary edges tagged infinitely sharp.
