@@ -10,7 +10,12 @@
 //! within 0.05 degrees). A disagreeing cage is printed with its seed and index, shrunk (faces
 //! and tags dropped while it still disagrees) and written to
 //! `<target>/fuzz-osd/failing-<seed>-<index>.obj`; the smallest also to `failing-<seed>.obj`.
-//! The last line is `fuzz-osd: <passed>/<total> cages agree`; any disagreement exits non-zero.
+//! Every cage the generator draws is meant to be valid: a finished cage that subdiv refused
+//! while drawing (`Draw::refused`) or a refused sharpened form (`Draw::fell_back`) is a
+//! disagreement of that index, shrunk and written like any other.
+//! The last line is `fuzz-osd: <passed>/<total> cages agree (<r> refused, <f> fell back)`, where
+//! `refused` counts the indices at which subdiv refused a cage drawn valid and `fell back` those
+//! whose sharpened form it refused; any disagreement exits non-zero.
 //! With `--fvar` each cage also gets random UV seams and a random face-varying option
 //! (`subdiv_tests::osd_fvar::cage_obj_with_uvs`), compared with `xtask/osd/ref_fvar.cpp`
 //! (OpenSubdiv's `InterpolateFaceVarying`, then `LimitFaceVarying` of the refined values against
@@ -28,7 +33,7 @@ use subdiv_tests::Reference;
 use subdiv_tests::osd_cage::OsdCage;
 use subdiv_tests::osd_compare::{Tessellator, compare};
 use subdiv_tests::osd_fvar::{cage_obj_with_uvs, compare_fvar, compare_fvar_values, parse_fvar};
-use subdiv_tests::osd_gen::random_cage;
+use subdiv_tests::osd_gen::{Draw, draw_cage};
 
 use crate::bench_osd::{INSTALL, osd_present};
 
@@ -90,6 +95,57 @@ struct Failure {
     index: u64,
     level: u32,
     what: String,
+    /// The cage that disagrees (a refused one where subdiv refused a cage drawn valid).
+    cage: OsdCage,
+}
+
+/// What a round counted.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Tally {
+    pub total: u64,
+    pub agreed: u64,
+    /// Indices at which subdiv refused a finished cage that the generator drew valid.
+    pub refused: u64,
+    /// Indices whose sharpened form subdiv refused (the unsharpened cage was drawn instead).
+    pub fell_back: u64,
+}
+
+impl Tally {
+    /// The summary line.
+    pub fn line(&self) -> String {
+        format!(
+            "fuzz-osd: {}/{} cages agree ({} refused, {} fell back)",
+            self.agreed, self.total, self.refused, self.fell_back
+        )
+    }
+
+    pub fn all_agree(&self) -> bool {
+        self.agreed == self.total
+    }
+}
+
+/// The disagreement a draw carries before any comparison: a refusal of a cage the generator
+/// meant to be valid (the refused cage and the error), `None` when subdiv took every cage.
+fn draw_refusal(draw: &Draw) -> Option<(OsdCage, String)> {
+    if let Some(r) = draw.refused.first() {
+        return Some((
+            r.cage.clone(),
+            format!(
+                "subdiv refuses a cage drawn valid ({} redraw(s)): {}",
+                draw.refused.len(),
+                r.error
+            ),
+        ));
+    }
+    draw.fell_back.as_ref().map(|r| {
+        (
+            r.cage.clone(),
+            format!(
+                "subdiv refuses the sharpened form of a cage drawn valid (fell back to the unsharpened cage): {}",
+                r.error
+            ),
+        )
+    })
 }
 
 /// The command: exits non-zero on a disagreement, with the summary as the last line.
@@ -100,35 +156,39 @@ pub fn command(root: &Path, o: &Options) -> Result<()> {
         );
         return Ok(());
     }
-    let (passed, total) = run(root, o)?;
-    println!("fuzz-osd: {passed}/{total} cages agree");
-    if passed != total {
+    let tally = run(root, o)?;
+    println!("{}", tally.line());
+    if !tally.all_agree() {
         std::process::exit(1);
     }
     Ok(())
 }
 
-/// The short round of `cargo xtask test`: installs libosd-dev as root when missing, skips with
-/// a note otherwise.
-pub fn short_round(root: &Path) -> Result<()> {
+/// Makes sure OpenSubdiv 3.5 (libosd-dev) is installed, installing it as root; `Err` says
+/// why it is not.
+pub fn ensure_osd() -> Result<(), String> {
     let others = [
         ("Fedora", "dnf install opensubdiv-devel"),
         ("Arch", "pacman -S opensubdiv"),
     ];
-    if !crate::vulkan::ensure_optional(
+    crate::vulkan::ensure_optional(
         "OpenSubdiv 3.5 (libosd-dev)",
         &["libosd-dev"],
         &others,
+        &crate::vulkan::System,
         &osd_present,
-    ) {
-        return Ok(());
-    }
-    let (passed, total) = run(root, &SHORT_ROUND)?;
-    println!("fuzz-osd: {passed}/{total} cages agree");
-    if passed != total {
+    )
+}
+
+/// The short round of `cargo xtask test` (OpenSubdiv installed: see [`ensure_osd`]).
+pub fn short_round(root: &Path) -> Result<()> {
+    let tally = run(root, &SHORT_ROUND)?;
+    println!("{}", tally.line());
+    if !tally.all_agree() {
         bail!(
-            "fuzz-osd: {} of {total} random cages disagree with OpenSubdiv",
-            total - passed
+            "fuzz-osd: {} of {} random cages disagree with OpenSubdiv",
+            tally.total - tally.agreed,
+            tally.total
         );
     }
     Ok(())
@@ -278,8 +338,8 @@ impl Harness {
     }
 }
 
-/// Runs the round; returns (agreeing cages, cages).
-fn run(root: &Path, o: &Options) -> Result<(u64, u64)> {
+/// Runs the round and counts it.
+fn run(root: &Path, o: &Options) -> Result<Tally> {
     let harness = Harness {
         exe: build_harness(root, "ref_osd")?,
         fvar_exe: if o.fvar {
@@ -297,6 +357,7 @@ fn run(root: &Path, o: &Options) -> Result<(u64, u64)> {
     };
     let start = Instant::now();
     let next = AtomicU64::new(0);
+    let (refused, fell_back) = (AtomicU64::new(0), AtomicU64::new(0));
     let failures = Mutex::new(Vec::new());
     let workers = std::thread::available_parallelism()
         .map_or(2, |n| n.get())
@@ -309,18 +370,29 @@ fn run(root: &Path, o: &Options) -> Result<(u64, u64)> {
                     let Some(&index) = indices.get(k as usize) else {
                         break;
                     };
-                    let cage = random_cage(o.seed, index);
+                    let draw = draw_cage(o.seed, index);
+                    refused.fetch_add(u64::from(!draw.refused.is_empty()), Ordering::Relaxed);
+                    fell_back.fetch_add(u64::from(draw.fell_back.is_some()), Ordering::Relaxed);
                     let name = format!("cage-{}-{index}", o.seed);
-                    if let Err((level, what)) = harness.check(&cage, &name, o.levels) {
+                    let failed = match draw_refusal(&draw) {
+                        Some((cage, what)) => Some((cage, o.levels.0, what)),
+                        None => harness
+                            .check(&draw.cage, &name, o.levels)
+                            .err()
+                            .map(|(level, what)| (draw.cage, level, what)),
+                    };
+                    if let Some((cage, level, what)) = failed {
                         println!(
                             "fuzz-osd: DISAGREE seed {} cage {index} level {level} ({}): {what}",
                             o.seed,
                             cage.features()
                         );
-                        failures
-                            .lock()
-                            .expect("no panic")
-                            .push(Failure { index, level, what });
+                        failures.lock().expect("no panic").push(Failure {
+                            index,
+                            level,
+                            what,
+                            cage,
+                        });
                     }
                     if (k + 1).is_multiple_of(1000) {
                         eprintln!(
@@ -345,14 +417,19 @@ fn run(root: &Path, o: &Options) -> Result<(u64, u64)> {
         total,
         start.elapsed().as_secs_f64()
     );
-    Ok((total - failures.len() as u64, total))
+    Ok(Tally {
+        total,
+        agreed: total - failures.len() as u64,
+        refused: refused.into_inner(),
+        fell_back: fell_back.into_inner(),
+    })
 }
 
 /// Shrinks up to eight failing cages and writes them; the smallest also as `failing-<seed>.obj`.
 fn report(h: &Harness, o: &Options, failures: &[Failure]) -> Result<()> {
     let mut smallest: Option<OsdCage> = None;
     for f in failures.iter().take(8) {
-        let (small, what) = h.shrink(random_cage(o.seed, f.index), f.level, f.what.clone());
+        let (small, what) = h.shrink(f.cage.clone(), f.level, f.what.clone());
         let path = h.dir.join(format!("failing-{}-{}.obj", o.seed, f.index));
         let note = format!(
             "# fuzz-osd: seed {} cage {} level {} ({})\n# {}\n",

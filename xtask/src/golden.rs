@@ -200,7 +200,8 @@ pub fn run(root: &Path, options: &Options) -> Result<()> {
         "golden images"
     });
     vulkan::ensure_driver()?;
-    let validation = Path::new(vulkan::VALIDATION_LAYER_MANIFEST).exists();
+    let validation = Path::new(vulkan::VALIDATION_LAYER_MANIFEST).exists()
+        || std::env::var(subdiv_vk::REQUIRE_VALIDATION_ENV).as_deref() == Ok("1");
     let exe = crate::build_subdiv(false)?;
     let mode = match options.mode {
         Mode::Auto => {

@@ -222,53 +222,68 @@ pub fn on_path(program: &str) -> bool {
         .is_some_and(|p| std::env::split_paths(&p).any(|d| d.join(program).is_file()))
 }
 
-/// Optional test dependencies: present already, installed now with apt (as root), or missing
-/// with a note (not root, or apt failed). Returns whether they are usable.
+/// What installing a test dependency needs of the machine: apt, root and the install itself
+/// (a trait, so that the tests can stand in for a machine without them).
+pub trait Installer {
+    fn has_apt(&self) -> bool;
+    fn is_root(&self) -> bool;
+    /// Runs the shell command `cmd`; whether it succeeded.
+    fn run(&self, cmd: &str) -> bool;
+}
+
+/// This machine.
+pub struct System;
+
+impl Installer for System {
+    fn has_apt(&self) -> bool {
+        has_apt()
+    }
+    fn is_root(&self) -> bool {
+        is_root()
+    }
+    fn run(&self, cmd: &str) -> bool {
+        Command::new("sh")
+            .args(["-c", cmd])
+            .env("DEBIAN_FRONTEND", "noninteractive")
+            .status()
+            .is_ok_and(|s| s.success())
+    }
+}
+
+/// A test dependency: present already, or installed now with apt (as root). `Err` says why it
+/// is unusable (no apt, not root, the install failed) and how to install it; the caller decides
+/// whether that skips its checks or fails the run (see [`crate::checks`]).
 pub fn ensure_optional(
     what: &str,
     packages: &[&str],
     others: &[(&str, &str)],
+    system: &dyn Installer,
     present: &dyn Fn() -> bool,
-) -> bool {
+) -> Result<(), String> {
     if present() {
-        return true;
+        return Ok(());
     }
-    if !has_apt() {
-        eprintln!(
-            "xtask: {}; those checks are skipped",
-            non_debian_message(what, packages, others)
-        );
-        return false;
+    if !system.has_apt() {
+        return Err(non_debian_message(what, packages, others));
     }
     let cmd = format!(
         "apt-get update && apt-get install -y {}",
         packages.join(" ")
     );
-    if !is_root() {
-        eprintln!(
-            "xtask: {what} missing; those checks are skipped. Install with:\n    sudo sh -c '{cmd}'"
-        );
-        return false;
+    if !system.is_root() {
+        return Err(format!(
+            "{what} missing and not root. Install with:\n    sudo sh -c '{cmd}'"
+        ));
     }
     eprintln!("xtask: {what} missing; installing: {cmd}");
-    let ok = Command::new("sh")
-        .args(["-c", &cmd])
-        .env("DEBIAN_FRONTEND", "noninteractive")
-        .status()
-        .is_ok_and(|s| s.success());
-    if !ok || !present() {
-        eprintln!(
-            "xtask: installing {} failed; those checks are skipped",
-            packages.join(" ")
-        );
-        return false;
+    if !system.run(&cmd) || !present() {
+        return Err(format!("{what} missing: installing with `{cmd}` failed"));
     }
-    true
+    Ok(())
 }
 
-/// Makes sure the Khronos validation layer is installed (so Vulkan tests run with validation);
-/// returns whether it is.
-pub fn ensure_validation_layer() -> bool {
+/// Makes sure the Khronos validation layer is installed (so Vulkan tests run with validation).
+pub fn ensure_validation_layer() -> Result<(), String> {
     ensure_optional(
         "the Vulkan validation layer",
         &["vulkan-validationlayers"],
@@ -276,13 +291,14 @@ pub fn ensure_validation_layer() -> bool {
             ("Fedora/RHEL", "dnf install vulkan-validation-layers"),
             ("Arch Linux", "pacman -S vulkan-validation-layers"),
         ],
+        &System,
         &|| Path::new(VALIDATION_LAYER_MANIFEST).exists(),
     )
 }
 
 /// Makes sure `xvfb-run` and the X11 libraries winit needs are installed (for the window
-/// tests); returns whether they are.
-pub fn ensure_xvfb() -> bool {
+/// tests).
+pub fn ensure_xvfb() -> Result<(), String> {
     let others = [
         (
             "Fedora/RHEL",
@@ -293,9 +309,13 @@ pub fn ensure_xvfb() -> bool {
             "pacman -S xorg-server-xvfb libx11 libxcursor libxrandr libxi libxkbcommon-x11",
         ),
     ];
-    ensure_optional("Xvfb or the X11 libraries", X11_PACKAGES, &others, &|| {
-        on_path("xvfb-run") && X11_LIBRARIES.iter().all(|l| library_present(l))
-    })
+    ensure_optional(
+        "Xvfb or the X11 libraries",
+        X11_PACKAGES,
+        &others,
+        &System,
+        &|| on_path("xvfb-run") && X11_LIBRARIES.iter().all(|l| library_present(l)),
+    )
 }
 
 #[cfg(test)]

@@ -15,6 +15,9 @@ use crate::error::{Result, VkError, VkResultExt};
 
 /// Environment variable that turns the Khronos validation layer on (`1`).
 pub const VALIDATION_ENV: &str = "SUBDIV_VK_VALIDATION";
+/// When `1`, [`Validation::IfAvailable`] requires the layer: a test harness that has made sure
+/// the layer is installed (`cargo xtask test`) sets it, so that no test runs unvalidated.
+pub const REQUIRE_VALIDATION_ENV: &str = "SUBDIV_VK_REQUIRE_VALIDATION";
 /// Environment variable with a substring of the device name to prefer.
 pub const DEVICE_ENV: &str = "SUBDIV_VK_DEVICE";
 
@@ -28,7 +31,8 @@ pub enum Validation {
     /// When the environment variable [`VALIDATION_ENV`] is `1`; then the layer must be installed.
     #[default]
     FromEnv,
-    /// Whenever the layer is installed (what the crate's tests use).
+    /// Whenever the layer is installed (what the crate's tests use); with the environment
+    /// variable [`REQUIRE_VALIDATION_ENV`] set to `1`, as [`Validation::Required`].
     IfAvailable,
     /// Always; an error if the layer is missing.
     Required,
@@ -262,8 +266,10 @@ fn validation_wanted(entry: &ash::Entry, policy: Validation) -> Result<bool> {
             }
             on
         }
-        Validation::IfAvailable => layer_available(entry, VALIDATION_LAYER)?,
-        Validation::Required => {
+        Validation::IfAvailable if std::env::var(REQUIRE_VALIDATION_ENV).as_deref() != Ok("1") => {
+            layer_available(entry, VALIDATION_LAYER)?
+        }
+        Validation::IfAvailable | Validation::Required => {
             if !layer_available(entry, VALIDATION_LAYER)? {
                 return Err(VkError::ValidationLayerMissing);
             }

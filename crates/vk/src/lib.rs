@@ -57,7 +57,9 @@ mod shaders;
 pub mod golden;
 pub mod viewer;
 
-pub use context::{ContextOptions, DEVICE_ENV, VALIDATION_ENV, Validation, ValidationLog};
+pub use context::{
+    ContextOptions, DEVICE_ENV, REQUIRE_VALIDATION_ENV, VALIDATION_ENV, Validation, ValidationLog,
+};
 pub use error::{Result, VkError};
 pub use image_io::{EXR_CHANNELS, ExrChannel, read_exr, read_png, write_exr, write_png};
 pub use offscreen::{AuxImage, Renderer};

@@ -65,7 +65,11 @@ pub fn subdiv() -> Command {
             root().join("target/mesa-shader-cache"),
         );
     }
-    if Path::new(VALIDATION_LAYER).exists() {
+    // With SUBDIV_VK_REQUIRE_VALIDATION=1 (`cargo xtask test`) validation is asked for even
+    // when the layer looks absent, so that the binary fails rather than runs unvalidated.
+    if Path::new(VALIDATION_LAYER).exists()
+        || std::env::var("SUBDIV_VK_REQUIRE_VALIDATION").as_deref() == Ok("1")
+    {
         c.env("SUBDIV_VK_VALIDATION", "1");
     }
     c
