@@ -20,8 +20,9 @@ pub struct BenchArgs {
 
 #[derive(clap::Subcommand, Debug)]
 pub enum BenchWhat {
-    /// Slate tessellation throughput. Last line:
-    /// `limit_points_per_s=<f> patches_per_s=<f> slate_bytes_per_thread=<n>`.
+    /// Slate tessellation throughput of a frame: limit points, normals and indices written each
+    /// run (`--points-only`: points and normals into reused indices). Last line:
+    /// `limit_points_per_s=<f> patches_per_s=<f> slate_bytes_per_thread=<n> timed=<what>`.
     Tessellate(BenchTessellateArgs),
     /// Frame rate of the paper's Fig. 12 scene rendered headless, one line per frame:
     /// `frame=<i> fps=<f> triangles=<n> maxsd=<cap> patches=<n0>,<n1>,..` (patches per depth).
@@ -54,6 +55,22 @@ pub struct BenchTessellateArgs {
     /// there) instead of refining non-manifold cages as OpenSubdiv does.
     #[arg(long)]
     pub split_nonmanifold: bool,
+    /// Time only limit points and normals, into output whose indices were written once before
+    /// the timed runs (a renderer that keeps the index buffer of an unchanged layout); by
+    /// default every run writes the indices too, as each new tessellation does.
+    #[arg(long)]
+    pub points_only: bool,
+}
+
+impl BenchTessellateArgs {
+    /// What one timed run writes: the `timed=` field of the output lines.
+    fn timed(&self) -> &'static str {
+        if self.points_only {
+            "points+normals"
+        } else {
+            "points+normals+indices"
+        }
+    }
 }
 
 pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
@@ -86,7 +103,8 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
     let layout = PatchLayout::new(&mesh, a.depth)
         .map_err(|e| anyhow::anyhow!("{}: {e}", a.input.display()))?;
     let setup = t0.elapsed().as_secs_f64();
-    // Warm-up, then timed runs into the same output buffers (per-frame steady state). The runs
+    // Warm-up, then timed runs into the same output buffers: each run writes points and normals,
+    // and the indices too unless `--points-only` (a renderer keeping an index buffer). The runs
     // are timed inside the pool, as a renderer thread of that pool would call the tessellator:
     // the hand-off from this thread into the pool (a wake-up and a sleep) is not measured.
     let bar = crate::progress::bar(a.runs as u64 + 1, "runs");
@@ -95,6 +113,9 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
         bar.inc(1);
         let mut times = Vec::with_capacity(a.runs);
         for _ in 0..a.runs {
+            if !a.points_only {
+                out.invalidate_topology();
+            }
             let t = Instant::now();
             tessellate_layout_into(&mesh, &layout, &mut out)?;
             times.push(t.elapsed().as_secs_f64());
@@ -109,7 +130,7 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
     let points = out.positions.len() as f64;
     let patches = layout.num_patches() as f64;
     out!(
-        "input={} depth={} threads={} patches={} limit_points={} quads={} setup_ms={:.3} median_ms={:.3} min_ms={:.3}",
+        "input={} depth={} threads={} patches={} limit_points={} quads={} setup_ms={:.3} median_ms={:.3} min_ms={:.3} timed={}",
         a.input.display(),
         a.depth,
         threads,
@@ -118,13 +139,15 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
         out.num_faces(),
         setup * 1e3,
         med * 1e3,
-        times.iter().copied().fold(f64::INFINITY, f64::min) * 1e3
+        times.iter().copied().fold(f64::INFINITY, f64::min) * 1e3,
+        a.timed()
     );
     out!(
-        "limit_points_per_s={:.0} patches_per_s={:.0} slate_bytes_per_thread={}",
+        "limit_points_per_s={:.0} patches_per_s={:.0} slate_bytes_per_thread={} timed={}",
         points / med,
         patches / med,
-        slate_bytes_per_thread(a.depth, layout.max_valence())
+        slate_bytes_per_thread(a.depth, layout.max_valence()),
+        a.timed()
     );
     Ok(ExitCode::SUCCESS)
 }
@@ -146,6 +169,9 @@ fn bench_loop(
     let times = pool.install(|| -> anyhow::Result<_> {
         let mut times = Vec::with_capacity(a.runs);
         for _ in 0..a.runs {
+            if !a.points_only {
+                out.invalidate_topology();
+            }
             let t = Instant::now();
             tessellate_loop_layout_into(mesh, &layout, &mut out)?;
             times.push(t.elapsed().as_secs_f64());
@@ -156,7 +182,7 @@ fn bench_loop(
     let med = median(times.clone());
     let patches = layout.patches().len();
     out!(
-        "input={} scheme=loop depth={} threads={} patches={} limit_points={} triangles={} setup_ms={:.3} median_ms={:.3} min_ms={:.3}",
+        "input={} scheme=loop depth={} threads={} patches={} limit_points={} triangles={} setup_ms={:.3} median_ms={:.3} min_ms={:.3} timed={}",
         a.input.display(),
         a.depth,
         threads,
@@ -165,13 +191,15 @@ fn bench_loop(
         out.num_faces(),
         setup * 1e3,
         med * 1e3,
-        times.iter().copied().fold(f64::INFINITY, f64::min) * 1e3
+        times.iter().copied().fold(f64::INFINITY, f64::min) * 1e3,
+        a.timed()
     );
     out!(
-        "limit_points_per_s={:.0} patches_per_s={:.0} slate_bytes_per_thread={}",
+        "limit_points_per_s={:.0} patches_per_s={:.0} slate_bytes_per_thread={} timed={}",
         out.positions.len() as f64 / med,
         patches as f64 / med,
-        tri_slate_bytes_per_thread(a.depth, mesh.max_valence())
+        tri_slate_bytes_per_thread(a.depth, mesh.max_valence()),
+        a.timed()
     );
     Ok(ExitCode::SUCCESS)
 }

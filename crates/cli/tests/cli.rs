@@ -471,6 +471,45 @@ fn quiet_verbose_and_no_progress_bar_when_piped() {
     }
 }
 
+/// `bench tessellate` says what it timed: a frame (points, normals and indices) by default,
+/// points and normals with `--points-only`; both tessellate the same points.
+#[test]
+fn bench_tessellate_says_what_it_timed() {
+    let fields = |args: &[&str]| -> Vec<(String, String)> {
+        let (code, stdout, err) = run(args);
+        assert_eq!(code, 0, "{err}");
+        let last = stdout.lines().last().unwrap_or_default().to_string();
+        let first = stdout.lines().next().unwrap_or_default().to_string();
+        assert!(last.starts_with("limit_points_per_s="), "{stdout}");
+        format!("{first} {last}")
+            .split_whitespace()
+            .filter_map(|kv| kv.split_once('='))
+            .map(|(k, v)| (k.to_string(), v.to_string()))
+            .collect()
+    };
+    let get = |f: &[(String, String)], k: &str| -> Vec<String> {
+        f.iter()
+            .filter(|(n, _)| n == k)
+            .map(|(_, v)| v.clone())
+            .collect()
+    };
+    let cube = fixtures().join("reference/shapes/catmark_cube.obj");
+    let tet = fixtures().join("reference/shapes/loop_icosahedron.obj");
+    for (cage, scheme) in [(&cube, "catmull-clark"), (&tet, "loop")] {
+        let c = cage.to_str().unwrap();
+        let base = ["bench", "tessellate", c, "--scheme", scheme, "--depth", "3"];
+        let frame = fields(&[&base[..], &["--runs", "2"]].concat());
+        let points = fields(&[&base[..], &["--runs", "2", "--points-only"]].concat());
+        assert_eq!(
+            get(&frame, "timed"),
+            ["points+normals+indices"; 2],
+            "{frame:?}"
+        );
+        assert_eq!(get(&points, "timed"), ["points+normals"; 2], "{points:?}");
+        assert_eq!(get(&frame, "limit_points"), get(&points, "limit_points"));
+    }
+}
+
 /// `subdiv view --help` lists the viewer's keys and mouse.
 #[test]
 fn view_help_lists_the_keys() {
