@@ -69,6 +69,7 @@ impl Checks {
         self.results.push((name, outcome));
     }
 
+    #[cfg(test)]
     pub fn outcome(&self, name: &str) -> Option<&Outcome> {
         self.results
             .iter()
