@@ -31,7 +31,9 @@ pub struct AdaptiveArgs {
     #[arg(long)]
     pub pixel_error: Option<f32>,
     /// With --pixel-error: also keep the normals interpolated across the drawn triangles within
-    /// DEG degrees of the limit normals on 99 % of the visible pixels (180: silhouettes only)
+    /// DEG degrees of the limit normals on 99 % of the visible pixels off line pixels (where the
+    /// limit normal turns by more than DEG to a neighbouring pixel: crease lines, folds), or
+    /// within what uniform --max-depth reaches where that is worse (180: silhouettes only)
     /// [default: 10].
     #[arg(long, value_name = "DEG", requires = "pixel_error")]
     pub shading_error: Option<f32>,

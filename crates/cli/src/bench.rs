@@ -30,7 +30,7 @@ pub enum BenchWhat {
     /// Image error against the true surface (a deeper uniform tessellation): uniform depths
     /// 0..=max, curvature-adaptive and pixel error 2, 1, 0.5; last lines, one per configuration:
     /// `config=<name> triangles=<n> silhouette_px_max=<f> silhouette_px_p99=<f>
-    /// shading_deg_p99=<f> update_ms=<f> render_ms=<f>`.
+    /// shading_deg_p99=<f> update_ms=<f> render_ms=<f> shading_deg_p99_off_lines=<f>`.
     Quality(crate::bench_quality::BenchQualityArgs),
 }
 

@@ -51,7 +51,9 @@ pub struct BenchQualityArgs {
     pub runs: usize,
     /// The pixel-error configurations' normal tolerance in degrees: the angle between the limit
     /// normal and the normal interpolated across the drawn triangles that 99 % of the visible
-    /// pixels stay within (180: silhouettes only).
+    /// pixels off line pixels stay within (where the limit normal turns by more than DEG to a
+    /// neighbouring pixel), or what uniform --max-depth reaches where that is worse (180:
+    /// silhouettes only); also the turn that makes a line pixel in shading_deg_p99_off_lines.
     #[arg(long, value_name = "DEG", default_value_t = DEFAULT_SHADING_ERROR_DEG)]
     pub shading_error: f32,
     /// Give each extra fan of faces at a non-manifold vertex its own vertex (the surface opens

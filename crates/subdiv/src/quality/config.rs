@@ -287,6 +287,10 @@ pub struct ConfigQuality {
     /// 99th percentile of the shading angle over the pixels covered by both, all cameras, in
     /// degrees.
     pub shading_deg_p99: f32,
+    /// The same over the pixels off the reference's line pixels (where the true normal turns
+    /// by more than the run's shading tolerance to a neighbouring pixel: crease lines, folds).
+    /// What `--shading-error` bounds.
+    pub shading_deg_p99_off_lines: f32,
     /// Median time to produce the geometry, in milliseconds.
     pub update_ms: f64,
     /// Median `render_discard` time, in milliseconds.
@@ -295,19 +299,20 @@ pub struct ConfigQuality {
 
 impl fmt::Display for ConfigQuality {
     /// `config=<name> triangles=<n> silhouette_px_max=<f> silhouette_px_p99=<f>
-    /// shading_deg_p99=<f> update_ms=<f> render_ms=<f>`
+    /// shading_deg_p99=<f> update_ms=<f> render_ms=<f> shading_deg_p99_off_lines=<f>`
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
             "config={} triangles={} silhouette_px_max={:.3} silhouette_px_p99={:.3} \
-             shading_deg_p99={:.3} update_ms={:.3} render_ms={:.3}",
+             shading_deg_p99={:.3} update_ms={:.3} render_ms={:.3} shading_deg_p99_off_lines={:.3}",
             self.config.name(),
             self.triangles,
             self.silhouette_px_max,
             self.silhouette_px_p99,
             self.shading_deg_p99,
             self.update_ms,
-            self.render_ms
+            self.render_ms,
+            self.shading_deg_p99_off_lines
         )
     }
 }

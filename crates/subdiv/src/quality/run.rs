@@ -11,7 +11,7 @@ use subdiv_vk::{RenderMesh, RenderOptions, Renderer, View, VkError};
 
 use super::config::{Config, ConfigQuality, QualityError, QualityParams};
 use super::metrics::{
-    FrameErrors, SUPERSAMPLE, area_coverage, compare_with_distance, quantile,
+    FrameErrors, SUPERSAMPLE, area_coverage, compare_with_distance, line_pixels, quantile,
     sample_silhouette_distance,
 };
 use crate::{DynamicSubdivision, Scene, frame_limit, uniform_limit, view_for};
@@ -24,6 +24,8 @@ struct ReferenceFrame {
     normals: Vec<[f32; 3]>,
     /// Per pixel: distance to the reference's silhouette (supersampled mask and contours).
     distance: Vec<f32>,
+    /// Per pixel: a line pixel at the run's shading tolerance ([`line_pixels`]).
+    lines: Vec<bool>,
 }
 
 /// What the cameras of one configuration add up to.
@@ -33,6 +35,7 @@ struct Tally {
     silhouette_max: f32,
     silhouette: Vec<f32>,
     shading: Vec<f32>,
+    shading_off_lines: Vec<f32>,
     update_ms: Vec<f64>,
     render_ms: Vec<f64>,
 }
@@ -45,6 +48,7 @@ impl Tally {
             silhouette_px_max: self.silhouette_max,
             silhouette_px_p99: quantile(&self.silhouette, 0.99),
             shading_deg_p99: quantile(&self.shading, 0.99),
+            shading_deg_p99_off_lines: quantile(&self.shading_off_lines, 0.99),
             update_ms: median(self.update_ms),
             render_ms: median(self.render_ms),
         }
@@ -156,12 +160,20 @@ impl<'a> QualityRun<'a> {
             if !coverage.contains(&true) {
                 return Err(QualityError::EmptyReference { camera: i });
             }
+            let lines = line_pixels(
+                &coverage,
+                &normals,
+                w as usize,
+                h as usize,
+                params.shading_error_deg,
+            );
             frames.push(ReferenceFrame {
                 camera,
                 view,
                 coverage,
                 normals,
                 distance,
+                lines,
             });
         }
         Ok(QualityRun {
@@ -311,6 +323,7 @@ impl<'a> QualityRun<'a> {
             &f.coverage,
             &f.normals,
             &f.distance,
+            &f.lines,
         ))
     }
 
@@ -333,6 +346,7 @@ impl<'a> QualityRun<'a> {
             .fold(tally.silhouette_max, f32::max);
         tally.silhouette.extend(e.silhouette_px);
         tally.shading.extend(e.shading_deg);
+        tally.shading_off_lines.extend(e.shading_deg_off_lines);
         let options = render_options();
         let render_err = |source| QualityError::Render {
             config: name.to_string(),
