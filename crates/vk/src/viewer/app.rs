@@ -138,7 +138,7 @@ struct App<'s> {
 const ZERO_EXTENT_POLL: Duration = Duration::from_millis(50);
 
 /// How long a [`Fault::RequestSize`] holds back the faults after it.
-const REQUEST_SIZE_WAIT: Duration = Duration::from_millis(500);
+const REQUEST_SIZE_WAIT: Duration = Duration::from_secs(1);
 
 impl App<'_> {
     fn fail(&mut self, event_loop: &ActiveEventLoop, error: VkError) {
@@ -260,9 +260,9 @@ impl App<'_> {
                     return;
                 }
                 Fault::Minimize => window.set_minimized(true),
-                Fault::ZeroWindow(d) => self.zero_window_until = Some(now + d),
+                Fault::ZeroWindow(d) => self.zero_window_until = now.checked_add(d),
                 Fault::ZeroSurface(d) => {
-                    gpu.injected.zero_surface_until = Some(now + d);
+                    gpu.injected.zero_surface_until = now.checked_add(d);
                     gpu.swapchain_dirty = true;
                 }
                 Fault::Acquire(f) => gpu.injected.acquire.push_back(f),
@@ -607,9 +607,11 @@ impl ApplicationHandler for App<'_> {
 
     /// Draws again only when something changed or frames run back to back
     /// ([`App::continuous`]); otherwise the loop sleeps until the next event.
+    /// While the window or its surface is 0×0 it only looks at the size again,
+    /// every [`ZERO_EXTENT_POLL`].
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
         if self.zero_extent {
-            // Nothing can be drawn: look again every ZERO_EXTENT_POLL instead of spinning.
+            // Nothing can be drawn: look again later instead of spinning.
             let now = Instant::now();
             let next = match self.next_zero_check {
                 Some(t) if now < t => t,
@@ -617,7 +619,7 @@ impl ApplicationHandler for App<'_> {
                     if let Some(window) = self.window.as_ref() {
                         window.request_redraw();
                     }
-                    now + ZERO_EXTENT_POLL
+                    now.checked_add(ZERO_EXTENT_POLL).unwrap_or(now)
                 }
             };
             self.next_zero_check = Some(next);

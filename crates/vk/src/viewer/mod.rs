@@ -145,7 +145,7 @@ pub struct ViewerOptions {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Fault {
     /// Ask the window system for this inner size (`request_inner_size`). Later faults wait
-    /// until the window has that size, or half a second.
+    /// until the window has that size, or a second.
     RequestSize([u32; 2]),
     /// Ask the window system to minimise the window (`set_minimized(true)`).
     Minimize,
