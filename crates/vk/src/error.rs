@@ -96,6 +96,16 @@ pub enum VkError {
     /// The window system failed (viewer only).
     #[error("window system error: {0}")]
     Window(String),
+    /// The window's Vulkan surface was lost (`VK_ERROR_SURFACE_LOST_KHR`) and creating it
+    /// again did not help (viewer only).
+    #[error(
+        "the window's Vulkan surface was lost {times} times in a row and could not be \
+         recreated; is the display still there?"
+    )]
+    SurfaceLost {
+        /// Losses in a row, without a frame presented in between.
+        times: u32,
+    },
     /// The frame source of the viewer reported an error.
     #[error("frame source failed: {0}")]
     FrameSource(String),

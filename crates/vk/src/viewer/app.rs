@@ -1,6 +1,7 @@
 //! The viewer's winit application: window, input, camera, frame pacing,
 //! title and screenshots. The GPU side lives in [`super::gpu`].
 
+use std::collections::VecDeque;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -13,10 +14,10 @@ use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
 use winit::keyboard::{Key, ModifiersState, NamedKey};
 use winit::window::{Window, WindowId};
 
-use super::gpu::Gpu;
+use super::gpu::{Drawn, Gpu};
 use super::hud::{self, HudState};
 use super::input::{Drag, drag, draws_continuously};
-use super::{FrameRequest, FrameSource, ViewerOptions, ViewerReport};
+use super::{Fault, FrameRequest, FrameSource, ViewerOptions, ViewerReport};
 use crate::error::{Result, VkError};
 use crate::image_io::write_png;
 use crate::scene::{OrbitCamera, RenderOptions, Shading, View};
@@ -33,6 +34,8 @@ pub(super) fn run(source: &mut dyn FrameSource, options: ViewerOptions) -> Resul
         .build()
         .map_err(|e| VkError::Window(e.to_string()))?;
     event_loop.set_control_flow(ControlFlow::Wait);
+    let mut faults = options.faults.clone();
+    faults.sort_by_key(|(frame, _)| *frame);
     let mut app = App {
         gpu: None,
         window: None,
@@ -60,11 +63,20 @@ pub(super) fn run(source: &mut dyn FrameSource, options: ViewerOptions) -> Resul
         report: ViewerReport::default(),
         error: None,
         options,
+        faults: faults.into(),
+        awaiting_size: None,
+        zero_window_until: None,
+        zero_extent: false,
+        next_zero_check: None,
     };
     let run = event_loop.run_app(&mut app);
     // Vulkan objects go before the window they present to.
     let log = app.gpu.as_ref().map(|g| g.ctx.validation_log());
     app.report.validation_enabled = app.gpu.as_ref().is_some_and(|g| g.ctx.validation_enabled());
+    if let Some(gpu) = app.gpu.as_mut() {
+        app.report.swapchain_extents = std::mem::take(&mut gpu.extents);
+        app.report.surface_recreations = gpu.surface_recreations;
+    }
     app.gpu = None;
     app.report.validation_messages = log.map(|l| l.take()).unwrap_or_default();
     app.window = None;
@@ -109,7 +121,24 @@ struct App<'s> {
     screenshot_requested: bool,
     report: ViewerReport,
     error: Option<VkError>,
+    /// [`ViewerOptions::faults`] not injected yet, by frame.
+    faults: VecDeque<(u64, Fault)>,
+    /// A [`Fault::RequestSize`] waiting for the window to take that size (since then).
+    awaiting_size: Option<(PhysicalSize<u32>, Instant)>,
+    /// [`Fault::ZeroWindow`]: until then the window's size reads 0×0.
+    zero_window_until: Option<Instant>,
+    /// The last redraw found the window or its surface 0×0.
+    zero_extent: bool,
+    /// While [`App::zero_extent`]: when to look at the size again.
+    next_zero_check: Option<Instant>,
 }
+
+/// How often a minimised (0×0) window is looked at again: no event need come when a
+/// surface regains its size, and drawing back to back would spin on an empty window.
+const ZERO_EXTENT_POLL: Duration = Duration::from_millis(50);
+
+/// How long a [`Fault::RequestSize`] holds back the faults after it.
+const REQUEST_SIZE_WAIT: Duration = Duration::from_secs(1);
 
 impl App<'_> {
     fn fail(&mut self, event_loop: &ActiveEventLoop, error: VkError) {
@@ -206,8 +235,46 @@ impl App<'_> {
         Some(self.camera?.view(aspect))
     }
 
+    /// Injects the [`ViewerOptions::faults`] due before this frame.
+    fn inject_faults(&mut self) {
+        let (Some(window), Some(gpu)) = (self.window.as_ref(), self.gpu.as_mut()) else {
+            return;
+        };
+        let now = Instant::now();
+        if let Some((size, since)) = self.awaiting_size {
+            if window.inner_size() != size && now.duration_since(since) < REQUEST_SIZE_WAIT {
+                return;
+            }
+            self.awaiting_size = None;
+        }
+        while let Some(&(frame, fault)) = self.faults.front()
+            && frame <= self.report.frames
+        {
+            self.faults.pop_front();
+            log::debug!("injecting {fault:?} before frame {frame}");
+            match fault {
+                Fault::RequestSize([w, h]) => {
+                    let size = PhysicalSize::new(w, h);
+                    let _ = window.request_inner_size(size);
+                    self.awaiting_size = Some((size, now));
+                    return;
+                }
+                Fault::Minimize => window.set_minimized(true),
+                Fault::ZeroWindow(d) => self.zero_window_until = now.checked_add(d),
+                Fault::ZeroSurface(d) => {
+                    gpu.injected.zero_surface_until = now.checked_add(d);
+                    gpu.swapchain_dirty = true;
+                }
+                Fault::Acquire(f) => gpu.injected.acquire.push_back(f),
+                Fault::Present(f) => gpu.injected.present.push_back(f),
+            }
+        }
+    }
+
     fn redraw(&mut self, event_loop: &ActiveEventLoop) -> Result<()> {
+        self.inject_faults();
         let Some(extent) = self.swapchain_extent()? else {
+            self.report.skipped_frames += 1;
             return Ok(());
         };
         let aspect = extent.width as f32 / extent.height as f32;
@@ -252,7 +319,7 @@ impl App<'_> {
             return Ok(());
         };
         let vertex_version = frame.vertex_version;
-        let image = gpu.draw(
+        let drawn = gpu.draw(
             &mesh,
             &request.view,
             &options,
@@ -260,6 +327,12 @@ impl App<'_> {
             vertex_version,
             shot,
         )?;
+        let Drawn::Presented(image) = drawn else {
+            // Out of date or surface lost: draw again at once, after the re-creation.
+            self.report.skipped_frames += 1;
+            self.dirty = true;
+            return Ok(());
+        };
         self.report.frames += 1;
         self.work_time = now.elapsed();
 
@@ -282,8 +355,9 @@ impl App<'_> {
         Ok(())
     }
 
-    /// The swapchain extent for this frame, (re)creating the swapchain if
-    /// needed; `None` before the window exists and while it is minimised.
+    /// The swapchain extent for this frame, (re)creating the surface and the
+    /// swapchain if needed; `None` before the window exists, while it or its
+    /// surface is 0×0 (minimised) and while the surface is lost.
     fn swapchain_extent(&mut self) -> Result<Option<vk::Extent2D>> {
         let Some(gpu) = self.gpu.as_mut() else {
             return Ok(None);
@@ -291,11 +365,31 @@ impl App<'_> {
         let Some(window) = self.window.as_ref() else {
             return Ok(None);
         };
-        let size = window.inner_size();
-        if size.width == 0 || size.height == 0 {
-            return Ok(None); // minimised
+        if gpu.surface_lost && !gpu.recreate_surface(window)? {
+            self.dirty = true;
+            return Ok(None);
         }
-        gpu.ensure_swapchain(size).map(Some)
+        let zero_window = self.zero_window_until.is_some_and(|t| Instant::now() < t);
+        let size = if zero_window {
+            PhysicalSize::new(0, 0)
+        } else {
+            window.inner_size()
+        };
+        let extent = if size.width == 0 || size.height == 0 {
+            None
+        } else {
+            gpu.ensure_swapchain(size)?
+        };
+        if gpu.surface_lost {
+            // Lost while (re)creating the swapchain: create the surface again at once.
+            self.dirty = true;
+            return Ok(None);
+        }
+        self.zero_extent = extent.is_none();
+        if extent.is_some() {
+            self.next_zero_check = None;
+        }
+        Ok(extent)
     }
 
     /// What the HUD shows for this frame (the source's triangles and depth cap to be filled in).
@@ -457,6 +551,8 @@ impl ApplicationHandler for App<'_> {
                 if let Some(gpu) = self.gpu.as_mut() {
                     gpu.swapchain_dirty = true;
                 }
+                // Look at the new size at once, even if it is 0×0 again.
+                self.zero_extent = false;
             }
             WindowEvent::RedrawRequested => {
                 if let Err(e) = self.redraw(event_loop) {
@@ -511,7 +607,25 @@ impl ApplicationHandler for App<'_> {
 
     /// Draws again only when something changed or frames run back to back
     /// ([`App::continuous`]); otherwise the loop sleeps until the next event.
+    /// While the window or its surface is 0×0 it only looks at the size again,
+    /// every [`ZERO_EXTENT_POLL`].
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        if self.zero_extent {
+            // Nothing can be drawn: look again later instead of spinning.
+            let now = Instant::now();
+            let next = match self.next_zero_check {
+                Some(t) if now < t => t,
+                _ => {
+                    if let Some(window) = self.window.as_ref() {
+                        window.request_redraw();
+                    }
+                    now.checked_add(ZERO_EXTENT_POLL).unwrap_or(now)
+                }
+            };
+            self.next_zero_check = Some(next);
+            event_loop.set_control_flow(ControlFlow::WaitUntil(next));
+            return;
+        }
         let continuous = self.continuous();
         event_loop.set_control_flow(if continuous {
             ControlFlow::Poll

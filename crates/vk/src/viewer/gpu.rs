@@ -1,10 +1,14 @@
 //! The viewer's GPU state: Vulkan context, pipelines and the frames in flight,
 //! and the drawing of one frame into the swapchain.
 
+use std::collections::VecDeque;
+use std::time::Instant;
+
 use ash::{khr, vk};
 use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
 use winit::window::Window;
 
+use super::SwapchainFault;
 use super::swapchain::{Swapchain, record_blit};
 use crate::context::{Context, ContextOptions};
 use crate::error::{Result, VkError, VkResultExt};
@@ -15,6 +19,10 @@ use crate::scene::{self, Layout, RenderMesh, RenderOptions, View};
 
 /// Frames in flight: the CPU builds frame n+1 while the GPU draws frame n.
 const FRAMES_IN_FLIGHT: usize = 2;
+
+/// Surface losses in a row (no frame presented in between) that are recovered from by
+/// creating the surface again; one more ends the viewer with [`VkError::SurfaceLost`].
+const SURFACE_RETRIES: u32 = 3;
 
 struct Slot {
     cmd: vk::CommandBuffer,
@@ -39,6 +47,40 @@ pub(super) struct Gpu {
     pub(super) swapchain: Option<Swapchain>,
     pub(super) swapchain_dirty: bool,
     pub(super) format: vk::SurfaceFormatKHR,
+    /// The surface reported `VK_ERROR_SURFACE_LOST_KHR`: create it again before the next frame.
+    pub(super) surface_lost: bool,
+    /// Surface losses since the last frame presented.
+    losses: u32,
+    /// Times the surface was created again.
+    pub(super) surface_recreations: u64,
+    /// The extent of each swapchain created, in order.
+    pub(super) extents: Vec<[u32; 2]>,
+    /// Faults injected by tests ([`super::Fault`]).
+    pub(super) injected: Injected,
+}
+
+/// Results the next swapchain calls are made to report ([`super::Fault`]).
+#[derive(Default)]
+pub(super) struct Injected {
+    pub(super) acquire: VecDeque<SwapchainFault>,
+    pub(super) present: VecDeque<SwapchainFault>,
+    /// Until then the surface's current extent reads 0×0.
+    pub(super) zero_surface_until: Option<Instant>,
+}
+
+impl Injected {
+    pub(super) fn zero_surface(&self) -> bool {
+        self.zero_surface_until.is_some_and(|t| Instant::now() < t)
+    }
+}
+
+/// What [`Gpu::draw`] did.
+pub(super) enum Drawn {
+    /// Nothing: the swapchain was out of date or the surface lost (marked for
+    /// re-creation before the next frame).
+    Skipped,
+    /// The frame was rendered and presented; with the screenshot, if one was asked for.
+    Presented(Option<image::RgbaImage>),
 }
 
 /// One frame's mesh, packed on the CPU before waiting for the slot.
@@ -62,20 +104,10 @@ impl Gpu {
             .display_handle()
             .map_err(|e| VkError::Window(e.to_string()))?
             .as_raw();
-        let handle = window
-            .window_handle()
-            .map_err(|e| VkError::Window(e.to_string()))?
-            .as_raw();
         let extensions = ash_window::enumerate_required_extensions(display)
             .call("enumerate surface extensions")?;
-        let factory = |entry: &ash::Entry, instance: &ash::Instance| {
-            // SAFETY: `display` and `handle` are the live raw handles of `window`;
-            // the instance was created with the extensions ash-window listed for
-            // this display; the window outlives the surface, because the viewer
-            // drops the GPU state (whose context destroys the surface) first.
-            unsafe { ash_window::create_surface(entry, instance, display, handle, None) }
-                .call("vkCreate*SurfaceKHR")
-        };
+        let factory =
+            |entry: &ash::Entry, instance: &ash::Instance| create_surface(entry, instance, window);
         let ctx = Context::new(options, extensions, Some(&factory))?;
         let pipelines = Pipelines::new(&ctx)?;
         let loader = khr::swapchain::Device::new(&ctx.instance, &ctx.device);
@@ -89,6 +121,11 @@ impl Gpu {
             swapchain: None,
             swapchain_dirty: true,
             format: vk::SurfaceFormatKHR::default(),
+            surface_lost: false,
+            losses: 0,
+            surface_recreations: 0,
+            extents: Vec::new(),
+            injected: Injected::default(),
         };
         let (surface_loader, surface) = gpu.surface()?;
         // SAFETY: the physical device and the surface were both created from
@@ -97,12 +134,7 @@ impl Gpu {
             surface_loader.get_physical_device_surface_formats(gpu.ctx.physical, surface)
         }
         .call("vkGetPhysicalDeviceSurfaceFormatsKHR")?;
-        // UNORM formats keep the shader's values, so the window equals headless renders.
-        gpu.format = [vk::Format::B8G8R8A8_UNORM, vk::Format::R8G8B8A8_UNORM]
-            .iter()
-            .find_map(|f| formats.iter().find(|s| s.format == *f).copied())
-            .or_else(|| formats.first().copied())
-            .ok_or(VkError::Window("the surface offers no formats".into()))?;
+        gpu.format = pick_format(&formats)?;
         let pool_info = vk::CommandPoolCreateInfo::default()
             .queue_family_index(gpu.ctx.queue_family)
             .flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER);
@@ -125,6 +157,55 @@ impl Gpu {
             .ok_or(VkError::Window("no surface".into()))
     }
 
+    /// Creates the surface again after `VK_ERROR_SURFACE_LOST_KHR`, and marks the swapchain
+    /// for re-creation; returns whether it worked (`false`: lost again, retry next frame).
+    /// Fails with [`VkError::SurfaceLost`] after [`SURFACE_RETRIES`] losses in a row.
+    pub(super) fn recreate_surface(&mut self, window: &Window) -> Result<bool> {
+        self.losses += 1;
+        if self.losses > SURFACE_RETRIES {
+            return Err(VkError::SurfaceLost { times: self.losses });
+        }
+        log::warn!("the window's Vulkan surface was lost; creating it again");
+        // SAFETY: the device is live. Once it is idle, no submission uses the
+        // swapchain's semaphores and no presentation waits on them.
+        unsafe { self.ctx.device.device_wait_idle() }.call("vkDeviceWaitIdle")?;
+        // A swapchain goes before its surface.
+        if let Some(s) = self.swapchain.take() {
+            self.destroy_swapchain(s);
+        }
+        self.swapchain_dirty = true;
+        if let Some((loader, old)) = self.ctx.surface.take() {
+            // SAFETY: the surface was created from this instance, its swapchain is
+            // destroyed above, and it is taken out of the context: destroyed once.
+            unsafe { loader.destroy_surface(old, None) };
+            let raw = create_surface(&self.ctx.entry, &self.ctx.instance, window)?;
+            self.ctx.surface = Some((loader, raw));
+        }
+        let (loader, surface) = self.surface()?;
+        let (physical, family) = (self.ctx.physical, self.ctx.queue_family);
+        // SAFETY: the physical device and the new surface come from this
+        // context's instance, and `family` is one of the device's queue families.
+        let support =
+            unsafe { loader.get_physical_device_surface_support(physical, family, surface) };
+        let Some(support) = unless_lost(support, "vkGetPhysicalDeviceSurfaceSupportKHR")? else {
+            return Ok(false);
+        };
+        if !support {
+            return Err(VkError::Window(
+                "the viewer's queue cannot present to the recreated surface".into(),
+            ));
+        }
+        // SAFETY: as above.
+        let formats = unsafe { loader.get_physical_device_surface_formats(physical, surface) };
+        let Some(formats) = unless_lost(formats, "vkGetPhysicalDeviceSurfaceFormatsKHR")? else {
+            return Ok(false);
+        };
+        self.format = pick_format(&formats)?;
+        self.surface_lost = false;
+        self.surface_recreations += 1;
+        Ok(true)
+    }
+
     /// Draws and presents one frame with `overlay` on top; with `screenshot`, waits for it and
     /// returns the image.
     pub(super) fn draw(
@@ -135,9 +216,9 @@ impl Gpu {
         overlay: &Overlay,
         vertex_version: Option<u64>,
         screenshot: bool,
-    ) -> Result<Option<image::RgbaImage>> {
+    ) -> Result<Drawn> {
         let Some(extent) = self.swapchain.as_ref().map(|s| s.extent) else {
-            return Ok(None);
+            return Ok(Drawn::Skipped);
         };
         let index = self.next;
         // CPU work first (overlaps the GPU's previous frame): pack the mesh,
@@ -166,13 +247,13 @@ impl Gpu {
 
         // Acquire before touching the fence, so an out-of-date swapchain leaves it signalled.
         let Some(image_index) = self.acquire(acquired)? else {
-            return Ok(None);
+            return Ok(Drawn::Skipped);
         };
         let mesh_buffer = self.prepare_slot(index, extent, &packed)?;
         let slot = &self.slots[index];
         let (Some(target), Some(swapchain)) = (slot.target.as_ref(), self.swapchain.as_ref())
         else {
-            return Ok(None);
+            return Ok(Drawn::Skipped);
         };
         let swap_image = swapchain
             .images
@@ -206,9 +287,23 @@ impl Gpu {
         record_blit(device, cmd, target.color.raw, swap_image, extent);
         let presented =
             self.submit_and_present(cmd, fence, (acquired, rendered), swapchain.raw, image_index)?;
+        // An injected fault replaces a success only: the image was presented, as it is
+        // when a real out-of-date or lost-surface presentation is rejected.
+        let presented = match (presented, self.injected.present.pop_front()) {
+            (Ok(_), Some(SwapchainFault::OutOfDate)) => Err(vk::Result::ERROR_OUT_OF_DATE_KHR),
+            (Ok(_), Some(SwapchainFault::Suboptimal)) => Ok(true),
+            (Ok(_), Some(SwapchainFault::SurfaceLost)) => Err(vk::Result::ERROR_SURFACE_LOST_KHR),
+            (presented, _) => presented,
+        };
+        // The frame was rendered either way (the screenshot below is valid); a rejected
+        // presentation only means the next frame needs a new swapchain or surface.
         match presented {
-            Ok(suboptimal) => self.swapchain_dirty |= suboptimal,
+            Ok(suboptimal) => {
+                self.swapchain_dirty |= suboptimal;
+                self.losses = 0;
+            }
             Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => self.swapchain_dirty = true,
+            Err(vk::Result::ERROR_SURFACE_LOST_KHR) => self.surface_lost = true,
             Err(result) => {
                 return Err(VkError::Vulkan {
                     call: "vkQueuePresentKHR",
@@ -217,29 +312,45 @@ impl Gpu {
             }
         }
         if !screenshot {
-            return Ok(None);
+            return Ok(Drawn::Presented(None));
         }
         // SAFETY: `fence` belongs to this device and was just submitted with this frame.
         unsafe { device.wait_for_fences(&[fence], true, u64::MAX) }.call("vkWaitForFences")?;
-        target.read_color().map(Some)
+        target
+            .read_color()
+            .map(|image| Drawn::Presented(Some(image)))
     }
 
     /// Acquires the next swapchain image, signalling `acquired`; `None` (and
-    /// the swapchain marked for re-creation) when it is out of date.
+    /// the swapchain or the surface marked for re-creation) when it is out of
+    /// date or the surface is lost.
     fn acquire(&mut self, acquired: vk::Semaphore) -> Result<Option<u32>> {
         let swapchain_raw = self
             .swapchain
             .as_ref()
             .map_or(vk::SwapchainKHR::null(), |s| s.raw);
-        // SAFETY: `swapchain_raw` is this loader's current swapchain (`draw`
-        // read its extent); `acquired` has no pending operation: its last wait
-        // was in this slot's previous submission, which completed when the
-        // slot's fence signalled (waited on by `draw` just before). An error
-        // between this acquire and the submit would leave it signalled, but
-        // every error from `draw` ends the viewer.
-        let acquire = unsafe {
-            self.loader
-                .acquire_next_image(swapchain_raw, u64::MAX, acquired, vk::Fence::null())
+        // An injected error acquires nothing (`acquired` stays unsignalled, as
+        // after a real error); an injected suboptimal result acquires an image.
+        let acquire = match self.injected.acquire.pop_front() {
+            Some(SwapchainFault::OutOfDate) => Err(vk::Result::ERROR_OUT_OF_DATE_KHR),
+            Some(SwapchainFault::SurfaceLost) => Err(vk::Result::ERROR_SURFACE_LOST_KHR),
+            injected => {
+                // SAFETY: `swapchain_raw` is this loader's current swapchain (`draw`
+                // read its extent); `acquired` has no pending operation: its last wait
+                // was in this slot's previous submission, which completed when the
+                // slot's fence signalled (waited on by `draw` just before). An error
+                // between this acquire and the submit would leave it signalled, but
+                // every error from `draw` ends the viewer.
+                unsafe {
+                    self.loader.acquire_next_image(
+                        swapchain_raw,
+                        u64::MAX,
+                        acquired,
+                        vk::Fence::null(),
+                    )
+                }
+                .map(|(i, suboptimal)| (i, suboptimal || injected.is_some()))
+            }
         };
         match acquire {
             Ok((i, suboptimal)) => {
@@ -248,6 +359,10 @@ impl Gpu {
             }
             Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => {
                 self.swapchain_dirty = true;
+                Ok(None)
+            }
+            Err(vk::Result::ERROR_SURFACE_LOST_KHR) => {
+                self.surface_lost = true;
                 Ok(None)
             }
             Err(result) => Err(VkError::Vulkan {
@@ -333,6 +448,51 @@ impl Gpu {
         };
         slot.vertex_version = packed.vertex_version;
         Ok(mesh_buffer)
+    }
+}
+
+/// Creates a Vulkan surface for `window`.
+fn create_surface(
+    entry: &ash::Entry,
+    instance: &ash::Instance,
+    window: &Window,
+) -> Result<vk::SurfaceKHR> {
+    let display = window
+        .display_handle()
+        .map_err(|e| VkError::Window(e.to_string()))?
+        .as_raw();
+    let handle = window
+        .window_handle()
+        .map_err(|e| VkError::Window(e.to_string()))?
+        .as_raw();
+    // SAFETY: `display` and `handle` are the live raw handles of `window`; the
+    // instance was created with the extensions ash-window lists for this
+    // display; the window outlives the surface, because the viewer drops the
+    // GPU state (whose context destroys the surface) first.
+    unsafe { ash_window::create_surface(entry, instance, display, handle, None) }
+        .call("vkCreate*SurfaceKHR")
+}
+
+/// The swapchain format: UNORM keeps the shader's values, so the window equals
+/// headless renders; else the surface's first.
+fn pick_format(formats: &[vk::SurfaceFormatKHR]) -> Result<vk::SurfaceFormatKHR> {
+    [vk::Format::B8G8R8A8_UNORM, vk::Format::R8G8B8A8_UNORM]
+        .iter()
+        .find_map(|f| formats.iter().find(|s| s.format == *f).copied())
+        .or_else(|| formats.first().copied())
+        .ok_or(VkError::Window("the surface offers no formats".into()))
+}
+
+/// `Ok(None)` for `VK_ERROR_SURFACE_LOST_KHR`, which the viewer recovers from by
+/// creating the surface again; other errors name `call`.
+pub(super) fn unless_lost<T>(
+    result: std::result::Result<T, vk::Result>,
+    call: &'static str,
+) -> Result<Option<T>> {
+    match result {
+        Ok(v) => Ok(Some(v)),
+        Err(vk::Result::ERROR_SURFACE_LOST_KHR) => Ok(None),
+        Err(result) => Err(VkError::Vulkan { call, result }),
     }
 }
 

@@ -133,6 +133,45 @@ pub struct ViewerOptions {
     pub screenshot_path: PathBuf,
     /// Vulkan loader and validation options.
     pub context: ContextOptions,
+    /// Test hook: faults injected before frame `n` is drawn (sorted by `n`), so that tests
+    /// under Xvfb run the real recovery code. Empty outside tests.
+    #[doc(hidden)]
+    pub faults: Vec<(u64, Fault)>,
+}
+
+/// A fault [`ViewerOptions::faults`] injects: a window-system request made for real, or
+/// a result the viewer's next Vulkan call is made to report. Test hook, not a stable API.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Fault {
+    /// Ask the window system for this inner size (`request_inner_size`). Later faults wait
+    /// until the window has that size, or a second.
+    RequestSize([u32; 2]),
+    /// Ask the window system to minimise the window (`set_minimized(true)`).
+    Minimize,
+    /// For this long the window reports an inner size of 0×0, as a minimised window does
+    /// on Windows.
+    ZeroWindow(Duration),
+    /// For this long the surface reports a current extent of 0×0, and the swapchain is
+    /// marked for re-creation as a resize marks it: a window minimised under a compositor.
+    ZeroSurface(Duration),
+    /// The next `vkAcquireNextImageKHR` reports this (out of date and surface lost
+    /// without acquiring an image, suboptimal with one).
+    Acquire(SwapchainFault),
+    /// The next `vkQueuePresentKHR` presents, then reports this.
+    Present(SwapchainFault),
+}
+
+/// A result [`Fault::Acquire`] and [`Fault::Present`] inject. Test hook.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SwapchainFault {
+    /// `VK_ERROR_OUT_OF_DATE_KHR`.
+    OutOfDate,
+    /// `VK_SUBOPTIMAL_KHR`.
+    Suboptimal,
+    /// `VK_ERROR_SURFACE_LOST_KHR`.
+    SurfaceLost,
 }
 
 impl Default for ViewerOptions {
@@ -149,6 +188,7 @@ impl Default for ViewerOptions {
             screenshot_after: None,
             screenshot_path: PathBuf::from("screenshot.png"),
             context: ContextOptions::default(),
+            faults: Vec::new(),
         }
     }
 }
@@ -166,6 +206,14 @@ pub struct ViewerReport {
     pub validation_enabled: bool,
     /// Validation-layer messages (empty unless the layer was enabled).
     pub validation_messages: Vec<String>,
+    /// Redraws that drew nothing: the window or its surface was 0×0 (minimised), or the
+    /// swapchain was out of date or the surface lost when an image was acquired.
+    pub skipped_frames: u64,
+    /// The extent of each swapchain created, in order: one per (re)creation after a
+    /// resize, an out-of-date or suboptimal swapchain, or a lost surface.
+    pub swapchain_extents: Vec<[u32; 2]>,
+    /// Times the window's surface was lost and created again.
+    pub surface_recreations: u64,
 }
 
 /// Opens a window and runs the viewer until it is closed (or the screenshot

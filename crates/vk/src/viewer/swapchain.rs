@@ -4,7 +4,7 @@
 use ash::vk;
 use winit::dpi::PhysicalSize;
 
-use super::gpu::Gpu;
+use super::gpu::{Gpu, unless_lost};
 use crate::error::{Result, VkError, VkResultExt};
 
 pub(super) struct Swapchain {
@@ -16,28 +16,42 @@ pub(super) struct Swapchain {
 }
 
 impl Gpu {
-    /// (Re)creates the swapchain when needed; returns its extent.
-    pub(super) fn ensure_swapchain(&mut self, size: PhysicalSize<u32>) -> Result<vk::Extent2D> {
+    /// (Re)creates the swapchain when needed; returns its extent. `None`: no
+    /// frame can be drawn now, because the surface is 0×0 (a minimised window;
+    /// the swapchain stays marked for re-creation) or was lost
+    /// ([`Gpu::surface_lost`] set).
+    pub(super) fn ensure_swapchain(
+        &mut self,
+        size: PhysicalSize<u32>,
+    ) -> Result<Option<vk::Extent2D>> {
         if !self.swapchain_dirty
             && let Some(s) = &self.swapchain
         {
-            return Ok(s.extent);
+            return Ok(Some(s.extent));
         }
         let (surface_loader, surface) = self.surface()?;
         // SAFETY: the physical device and the surface were both created from
         // this context's instance, which outlives the call.
         let caps = unsafe {
             surface_loader.get_physical_device_surface_capabilities(self.ctx.physical, surface)
-        }
-        .call("vkGetPhysicalDeviceSurfaceCapabilitiesKHR")?;
+        };
         // SAFETY: as above.
         let modes = unsafe {
             surface_loader.get_physical_device_surface_present_modes(self.ctx.physical, surface)
+        };
+        let caps = unless_lost(caps, "vkGetPhysicalDeviceSurfaceCapabilitiesKHR")?;
+        let modes = unless_lost(modes, "vkGetPhysicalDeviceSurfacePresentModesKHR")?;
+        let (Some(mut caps), Some(modes)) = (caps, modes) else {
+            self.surface_lost = true;
+            return Ok(None);
+        };
+        if self.injected.zero_surface() {
+            caps.current_extent = vk::Extent2D::default();
         }
-        .call("vkGetPhysicalDeviceSurfacePresentModesKHR")?;
         let extent = swap_extent(&caps, size);
         if extent.width == 0 || extent.height == 0 {
-            return Err(VkError::Window("the window has zero size".into()));
+            // A swapchain cannot be 0×0: keep the old one until the window has a size again.
+            return Ok(None);
         }
         let mode = present_mode(&modes);
         let mut count = caps.min_image_count + 1;
@@ -70,11 +84,15 @@ impl Gpu {
         if let Some(old) = old {
             self.destroy_swapchain(old);
         }
-        let raw = created.call("vkCreateSwapchainKHR")?;
+        let Some(raw) = unless_lost(created, "vkCreateSwapchainKHR")? else {
+            self.surface_lost = true;
+            return Ok(None);
+        };
         let swapchain = self.swapchain_parts(raw, extent)?;
         self.swapchain = Some(swapchain);
         self.swapchain_dirty = false;
-        Ok(extent)
+        self.extents.push([extent.width, extent.height]);
+        Ok(Some(extent))
     }
 
     /// Wraps a new swapchain with its images and one semaphore per image;
