@@ -1,11 +1,17 @@
 //! `cargo xtask bench-osd [--install]`: OpenSubdiv 3.5 (Debian `libosd-dev`) beside the slates.
 //!
-//! Compiles `xtask/osd/bench_osd.cpp` with g++ against `/usr/include/opensubdiv` and `-losdCPU`
-//! into `<target>/osd/`, runs it on the benchmark cages of `CAGES` (Catmull-Clark and Loop) at
-//! their depths (OpenSubdiv cold uniform refine + limit with tangents, limit-stencil setup and
-//! evaluation; see the program's header), runs `subdiv bench tessellate --scheme ..` (release
-//! build, `--threads 1` and `2`) on the same cages and depths, and prints both side by side.
-//! Without libosd-dev it prints how to install it and exits successfully; `--install` installs it with apt when running as root.
+//! Compiles `xtask/osd/bench_osd.cpp` with `g++ -O3 -march=native` against
+//! `/usr/include/opensubdiv` and `-losdCPU` into `<target>/osd/`. For each benchmark cage of
+//! `CAGES` (Catmull-Clark and Loop) and depth it runs, interleaved over [`ROUNDS`] rounds, the
+//! C++ program (OpenSubdiv cold uniform refine + limit with tangents, limit-stencil setup and
+//! evaluation; see the program's header) and `subdiv bench tessellate --scheme ..` (release
+//! build): one thread and two writing a frame (points, normals, indices), and one thread
+//! `--points-only`. Each figure is the median over the rounds of each program's own median;
+//! the point counts of both sides must be equal. It prints the table and writes everything the
+//! programs printed, with the command, commit, date, host and load average, to
+//! `docs/bench/bench-osd-<date>-<commit>.txt` (the raw file that docs/performance.md quotes).
+//! Without libosd-dev it fails naming the install command; `--install` installs it with apt
+//! when running as root.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -31,6 +37,10 @@ const CAGES: &[(&str, &str, std::ops::RangeInclusive<u32>)] = &[
     ("../shared/meshes/tri_armadillo_52k.obj", "loop", 2..=3),
 ];
 const HEADER: &str = "/usr/include/opensubdiv/far/topologyRefiner.h";
+/// The C++ harness's compiler flags: as fast as the host allows, as the slates are (AVX2).
+pub const HARNESS_FLAGS: &[&str] = &["-O3", "-march=native", "-std=c++14"];
+/// Interleaved rounds per cage and depth (OpenSubdiv, then each subdiv configuration).
+const ROUNDS: usize = 3;
 pub const INSTALL: &str = "apt-get install -y libosd-dev";
 
 pub fn osd_present() -> bool {
@@ -93,7 +103,8 @@ fn field(f: &[(String, f64)], key: &str) -> Result<f64> {
 /// Compiles the C++ benchmark unless the binary is newer than its source.
 fn build_program(root: &Path, target: &Path) -> Result<PathBuf> {
     let src = root.join("xtask/osd/bench_osd.cpp");
-    let exe = target.join("osd/bench_osd");
+    // Named by its flags, so a binary built with other flags is never reused.
+    let exe = target.join("osd/bench_osd-O3-native");
     let modified = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
     if modified(&exe).is_some_and(|e| modified(&src).is_some_and(|s| e >= s)) {
         return Ok(exe);
@@ -102,7 +113,8 @@ fn build_program(root: &Path, target: &Path) -> Result<PathBuf> {
     println!("bench-osd: compiling {}", src.display());
     output(
         Command::new("g++")
-            .args(["-O2", "-std=c++14", "-o"])
+            .args(HARNESS_FLAGS)
+            .arg("-o")
             .arg(&exe)
             .arg(&src)
             .arg("-losdCPU"),
@@ -111,17 +123,74 @@ fn build_program(root: &Path, target: &Path) -> Result<PathBuf> {
     Ok(exe)
 }
 
+/// The subdiv configurations timed beside OpenSubdiv: (label, threads, extra arguments).
+const SLATE_RUNS: [(&str, &str, &[&str]); 3] = [
+    ("frame 1t", "1", &[]),
+    ("frame 2t", "2", &[]),
+    ("points-only 1t", "1", &["--points-only"]),
+];
+
 struct Row {
     cage: String,
     depth: u32,
     points: f64,
-    /// limit points/s, patches/s with 1 and 2 threads.
-    slate: [(f64, f64); 2],
+    /// limit points/s and patches/s of each of [`SLATE_RUNS`].
+    slate: [(f64, f64); 3],
+    slate_setup_ms: f64,
     slate_bytes: f64,
     osd_cold: f64,
     osd_setup_ms: f64,
     osd_eval: f64,
     osd_evaln: f64,
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
+}
+
+/// The load average as /proc/loadavg gives it (1, 5, 15 minutes), or `unknown`.
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg").map_or_else(
+        |_| "unknown".into(),
+        |t| t.split_whitespace().take(3).collect::<Vec<_>>().join(" "),
+    )
+}
+
+/// The header of a raw benchmark file: command, commit (with `+dirty` for local changes), date,
+/// host and load average.
+pub fn raw_header(root: &Path, command: &str) -> String {
+    let git = |args: &[&str]| {
+        Command::new("git")
+            .current_dir(root)
+            .args(args)
+            .output()
+            .ok()
+            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+            .unwrap_or_default()
+    };
+    let dirty = !git(&["status", "--porcelain", "--untracked-files=no"]).is_empty();
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split_once(':'))
+                .map(|(_, v)| v.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown".into());
+    let date = Command::new("date")
+        .args(["-u", "+%Y-%m-%dT%H:%M:%SZ"])
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+        .unwrap_or_default();
+    format!(
+        "# command: {command}\n# commit: {}{}\n# date: {date}\n# host: {cpu}, {} threads\n# load average at start: {}\n",
+        git(&["rev-parse", "--short=12", "HEAD"]),
+        if dirty { "+dirty" } else { "" },
+        std::thread::available_parallelism().map_or(0, |n| n.get()),
+        load_average()
+    )
 }
 
 pub fn run(root: &Path) -> Result<()> {
@@ -139,11 +208,10 @@ pub fn run(root: &Path) -> Result<()> {
                 bail!("installing libosd-dev failed ({status})");
             }
         } else {
-            println!(
-                "bench-osd: skipped: OpenSubdiv 3.5 (Debian libosd-dev) is not installed. Install it with\n    \
+            bail!(
+                "OpenSubdiv 3.5 (Debian libosd-dev) is not installed. Install it with\n    \
                  sudo {INSTALL}\nor, as root, run `cargo xtask bench-osd --install`."
             );
-            return Ok(());
         }
     }
     let target = crate::target_dir();
@@ -156,94 +224,182 @@ pub fn run(root: &Path) -> Result<()> {
     let subdiv = target
         .join("release")
         .join(format!("subdiv{}", std::env::consts::EXE_SUFFIX));
-
+    let mut raw = raw_header(root, "cargo xtask bench-osd");
+    raw.push_str(&format!(
+        "# harness: g++ {} xtask/osd/bench_osd.cpp -losdCPU\n# rounds: {ROUNDS}, interleaved: bench_osd, then subdiv {}\n",
+        HARNESS_FLAGS.join(" "),
+        SLATE_RUNS.map(|r| r.0).join(", ")
+    ));
     let mut rows = Vec::new();
     for (cage, scheme, depths) in CAGES {
         let path = root.join(cage);
         if !path.exists() {
-            eprintln!("bench-osd: {} is absent: skipped", path.display());
-            continue;
+            bail!(
+                "{} is absent (the benchmark cages are part of the comparison)",
+                path.display()
+            );
         }
-        let osd_scheme = if *scheme == "loop" { "loop" } else { "catmark" };
         for depth in depths.clone() {
-            let runs = if depth >= 5 { "5" } else { "9" };
-            let o = output(
-                Command::new(&osd)
-                    .arg(&path)
-                    .arg(depth.to_string())
-                    .arg(runs)
-                    .arg(osd_scheme),
-            )?;
-            let o = fields(&o, "osd ")?;
-            let mut slate = [(0.0, 0.0); 2];
-            let mut slate_bytes = 0.0;
-            for (i, threads) in ["1", "2"].into_iter().enumerate() {
-                let s = output(
-                    Command::new(&subdiv)
-                        .args(["bench", "tessellate"])
-                        .arg(&path)
-                        .args(["--depth", &depth.to_string(), "--threads", threads])
-                        .args(["--scheme", scheme]),
-                )?;
-                let s = fields(&s, "limit_points_per_s=")?;
-                slate[i] = (
-                    field(&s, "limit_points_per_s")?,
-                    field(&s, "patches_per_s")?,
-                );
-                slate_bytes = field(&s, "slate_bytes_per_thread")?;
-            }
-            let name = Path::new(cage)
-                .file_stem()
-                .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
-            let row = Row {
-                cage: if *scheme == "loop" {
-                    format!("{name} (Loop)")
-                } else {
-                    name
-                },
-                depth,
-                points: field(&o, "points")?,
-                slate,
-                slate_bytes,
-                osd_cold: field(&o, "cold_pts_per_s")?,
-                osd_setup_ms: field(&o, "stencil_setup_ms")?,
-                osd_eval: field(&o, "stencil_eval_pts_per_s")?,
-                osd_evaln: field(&o, "stencil_evaln_pts_per_s")?,
-            };
+            let row = measure(&osd, &subdiv, cage, &path, scheme, depth, &mut raw)?;
             eprintln!("bench-osd: {} depth {depth} done", row.cage);
             rows.push(row);
         }
     }
+    raw.push_str(&format!("# load average at end: {}\n", load_average()));
+    let table = table(&rows);
+    println!("{table}");
+    raw.push_str(&table);
+    let commit = raw
+        .lines()
+        .find_map(|l| l.strip_prefix("# commit: "))
+        .unwrap_or("unknown")
+        .to_string();
+    let date = raw
+        .lines()
+        .find_map(|l| l.strip_prefix("# date: "))
+        .and_then(|d| d.get(..10))
+        .unwrap_or("unknown")
+        .to_string();
+    let dir = root.join("docs/bench");
+    std::fs::create_dir_all(&dir)?;
+    let file = dir.join(format!("bench-osd-{date}-{commit}.txt"));
+    std::fs::write(&file, raw)?;
+    println!("bench-osd: raw output written to {}", file.display());
+    Ok(())
+}
 
+/// One cage at one depth: [`ROUNDS`] interleaved rounds of OpenSubdiv and each subdiv
+/// configuration, every program's output appended to `raw`.
+fn measure(
+    osd: &Path,
+    subdiv: &Path,
+    cage: &str,
+    path: &Path,
+    scheme: &str,
+    depth: u32,
+    raw: &mut String,
+) -> Result<Row> {
+    let osd_scheme = if scheme == "loop" { "loop" } else { "catmark" };
+    let runs = if depth >= 5 { "5" } else { "9" };
+    let mut osd_rounds: Vec<Vec<(String, f64)>> = Vec::new();
+    let mut slate_rounds: [Vec<Vec<(String, f64)>>; 3] = Default::default();
+    for round in 0..ROUNDS {
+        let args = [depth.to_string(), runs.to_string(), osd_scheme.to_string()];
+        let o = output(Command::new(osd).arg(path).args(&args))?;
+        raw.push_str(&format!(
+            "$ bench_osd {cage} {} (round {round})\n{o}",
+            args.join(" ")
+        ));
+        osd_rounds.push(fields(&o, "osd ")?);
+        for (k, (_, threads, extra)) in SLATE_RUNS.iter().enumerate() {
+            let d = depth.to_string();
+            let args = [
+                "bench",
+                "tessellate",
+                cage,
+                "--depth",
+                &d,
+                "--threads",
+                threads,
+                "--scheme",
+                scheme,
+            ];
+            let mut cmd = Command::new(subdiv);
+            cmd.args(&args[..2]).arg(path).args(&args[3..]).args(*extra);
+            let s = output(&mut cmd)?;
+            raw.push_str(&format!(
+                "$ subdiv {} {} (round {round})\n{s}",
+                args.join(" "),
+                extra.join(" ")
+            ));
+            // Both lines: the first has the counts and setup, the last the rates.
+            let mut f = fields(&s, "input=")?;
+            f.extend(fields(&s, "limit_points_per_s=")?);
+            slate_rounds[k].push(f);
+        }
+    }
+    let med = |rounds: &[Vec<(String, f64)>], key: &str| -> Result<f64> {
+        Ok(median(
+            rounds
+                .iter()
+                .map(|f| field(f, key))
+                .collect::<Result<Vec<_>>>()?,
+        ))
+    };
+    let points = med(&osd_rounds, "points")?;
+    for rounds in &slate_rounds {
+        let subdiv_points = med(rounds, "limit_points")?;
+        if subdiv_points != points {
+            bail!(
+                "{cage} depth {depth}: subdiv tessellates {subdiv_points} limit points, OpenSubdiv {points}"
+            );
+        }
+    }
+    let mut slate = [(0.0, 0.0); 3];
+    for (k, rounds) in slate_rounds.iter().enumerate() {
+        slate[k] = (
+            med(rounds, "limit_points_per_s")?,
+            med(rounds, "patches_per_s")?,
+        );
+    }
+    let name = Path::new(cage)
+        .file_stem()
+        .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
+    Ok(Row {
+        cage: if scheme == "loop" {
+            format!("{name} (Loop)")
+        } else {
+            name
+        },
+        depth,
+        points,
+        slate,
+        slate_setup_ms: med(&slate_rounds[0], "setup_ms")?,
+        slate_bytes: med(&slate_rounds[0], "slate_bytes_per_thread")?,
+        osd_cold: med(&osd_rounds, "cold_pts_per_s")?,
+        osd_setup_ms: med(&osd_rounds, "stencil_setup_ms")?,
+        osd_eval: med(&osd_rounds, "stencil_eval_pts_per_s")?,
+        osd_evaln: med(&osd_rounds, "stencil_evaln_pts_per_s")?,
+    })
+}
+
+/// The comparison as a Markdown table.
+fn table(rows: &[Row]) -> String {
     let m = |x: f64| format!("{:.2}M", x / 1e6);
-    println!(
-        "\nlimit points (position + normal) per second; M = 1e6. slate: `subdiv bench tessellate` \
-         (layout built once, output reused); OSD: OpenSubdiv 3.5 Far, float, single thread"
+    let mut t = String::from(
+        "\nlimit points (position + normal) per second, M = 1e6, each the median of the rounds' \
+         medians. frame: `subdiv bench tessellate` writing points, normals and indices per run; \
+         points-only: `--points-only`. OSD: OpenSubdiv 3.5 Far, float, one thread; eval+n: \
+         LimitStencilTable UpdateValues + UpdateDerivs + normals; setup: stencil table (OSD) and \
+         layout (subdiv) from the cage\n",
     );
-    println!(
-        "| cage | N | points | slate 1t | slate 2t | 2t/1t | patches/s 1t | slate B/thread | OSD cold | 1t/cold | \
-         OSD stencil eval | 1t/eval | OSD eval+normals | OSD stencil setup ms |"
+    t.push_str(
+        "| cage | N | points | frame 1t | frame 2t | 2t/1t | points-only 1t | OSD eval+n | \
+         frame 1t / eval+n | OSD eval | OSD cold | 1t / cold | patches/s 1t | slate B/thread | \
+         layout setup ms | OSD stencil setup ms |\n",
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
-    for r in &rows {
+    t.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for r in rows {
         let s1 = r.slate[0].0;
-        println!(
-            "| {} | {} | {} | {} | {} | {:.2}x | {} | {} | {} | {:.1}x | {} | {:.2}x | {} | {:.1} |",
+        t.push_str(&format!(
+            "| {} | {} | {} | {} | {} | {:.2}x | {} | {} | {:.2}x | {} | {} | {:.1}x | {} | {} | {:.2} | {:.1} |\n",
             r.cage,
             r.depth,
             r.points,
             m(s1),
             m(r.slate[1].0),
             r.slate[1].0 / s1,
-            m(r.slate[0].1),
-            r.slate_bytes,
+            m(r.slate[2].0),
+            m(r.osd_evaln),
+            s1 / r.osd_evaln,
+            m(r.osd_eval),
             m(r.osd_cold),
             s1 / r.osd_cold,
-            m(r.osd_eval),
-            s1 / r.osd_eval,
-            m(r.osd_evaln),
+            m(r.slate[0].1),
+            r.slate_bytes,
+            r.slate_setup_ms,
             r.osd_setup_ms
-        );
+        ));
     }
-    Ok(())
+    t
 }
