@@ -458,3 +458,57 @@ fn report(h: &Harness, o: &Options, failures: &[Failure]) -> Result<()> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use subdiv_tests::osd_gen::{Refusal, draw_cage_with};
+
+    /// A refusal while drawing, or of the sharpened form, is a disagreement carrying the
+    /// refused cage; a draw without one is compared as usual.
+    #[test]
+    fn refusals_are_disagreements() {
+        let calls = std::cell::Cell::new(0);
+        let draw = draw_cage_with(1, 0, &|_| {
+            calls.set(calls.get() + 1);
+            if calls.get() == 1 {
+                Err("no".into())
+            } else {
+                Ok(())
+            }
+        });
+        let (cage, what) = draw_refusal(&draw).expect("a disagreement");
+        assert_eq!(cage, draw.refused[0].cage);
+        assert!(
+            what.contains("refuses a cage drawn valid") && what.ends_with("no"),
+            "{what}"
+        );
+        let sharp = Draw {
+            fell_back: Some(Refusal {
+                cage: draw.cage.clone(),
+                error: "sharp".into(),
+            }),
+            refused: Vec::new(),
+            ..draw.clone()
+        };
+        let (_, what) = draw_refusal(&sharp).expect("a disagreement");
+        assert!(what.contains("fell back"), "{what}");
+        let clean = Draw {
+            refused: Vec::new(),
+            fell_back: None,
+            ..draw
+        };
+        assert!(draw_refusal(&clean).is_none());
+        let t = Tally {
+            total: 10,
+            agreed: 8,
+            refused: 1,
+            fell_back: 1,
+        };
+        assert_eq!(
+            t.line(),
+            "fuzz-osd: 8/10 cages agree (1 refused, 1 fell back)"
+        );
+        assert!(!t.all_agree());
+    }
+}
