@@ -161,31 +161,44 @@ mod tests {
         },
     ];
 
+    /// The dependencies of `cargo xtask test`'s optional checks: (check, what, package).
+    const DEPENDENCIES: [(&str, &str, &str); 3] = [
+        (
+            "fuzz-osd round",
+            "OpenSubdiv 3.5 (libosd-dev)",
+            "libosd-dev",
+        ),
+        (
+            "validation layer",
+            "the Vulkan validation layer",
+            "vulkan-validationlayers",
+        ),
+        ("window tests (Xvfb)", "Xvfb or the X11 libraries", "xvfb"),
+    ];
+
+    /// `package` as `cargo xtask test` asks for it, on `machine` where it is not installed.
+    fn missing_on(what: &str, package: &str, machine: &Machine) -> Result<(), String> {
+        ensure_optional(what, &[package], &[], machine, &|| false)
+    }
+
     /// libosd-dev as `cargo xtask test` asks for it, on `machine` where it is not installed.
     fn libosd_on(machine: &Machine) -> Result<(), String> {
-        ensure_optional(
-            "OpenSubdiv 3.5 (libosd-dev)",
-            &["libosd-dev"],
-            &[],
-            machine,
-            &|| false,
-        )
+        missing_on(DEPENDENCIES[0].1, DEPENDENCIES[0].2, machine)
     }
 
     #[test]
-    fn a_missing_libosd_fails_under_ci_on_every_path() {
-        for machine in &MISSING {
-            let why = libosd_on(machine).expect_err("libosd is missing");
-            assert!(why.contains("libosd-dev"), "{why}");
-            let mut checks = Checks::new(true);
-            checks.record("cargo tests", Ok(()));
-            checks.unavailable("fuzz-osd round", &why);
-            assert!(matches!(
-                checks.outcome("fuzz-osd round"),
-                Some(Outcome::Failed(_))
-            ));
-            assert_eq!(checks.summary(), "xtask: 1 passed, 1 failed, 0 skipped");
-            assert!(checks.finish().is_err());
+    fn a_missing_dependency_fails_under_ci_on_every_path() {
+        for (check, what, package) in DEPENDENCIES {
+            for machine in &MISSING {
+                let why = missing_on(what, package, machine).expect_err("it is missing");
+                assert!(why.contains(package), "{why}");
+                let mut checks = Checks::new(true);
+                checks.record("cargo tests", Ok(()));
+                checks.unavailable(check, &why);
+                assert!(matches!(checks.outcome(check), Some(Outcome::Failed(_))));
+                assert_eq!(checks.summary(), "xtask: 1 passed, 1 failed, 0 skipped");
+                assert!(checks.finish().is_err());
+            }
         }
     }
 

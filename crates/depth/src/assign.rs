@@ -20,7 +20,8 @@ use crate::sphere::Sphere;
 /// many silhouettes whatever the depth (helmet40: uniform depth 5 has 4.7°, its contour pixels
 /// are 15 % of the image), and the budget then raises every face it counts to `max_depth`
 /// without lowering the percentile: 2° and 4° draw 1.78 M and 1.69 M triangles there for 8.1°
-/// and 8.5°, 8° 1.25 M for 8.1°, 10° 1.04 M for 9.1° (docs/performance.md, "Line pixels").
+/// and 8.5°, 8° 1.25 M for 8.1°, 10° 1.04 M for 9.1° (raw outputs:
+/// docs/bench/quality/quality_helmet_line{_s2,_s4,_s8,}.txt).
 /// 10° is the smallest swept tolerance with which the mode meets issue 12's targets on both the
 /// pawn and helmet40 (8° misses helmet40 by 1.4 points); a normal off by `θ` moves diffuse
 /// intensity `n · l` by at most `sin θ` of full scale (17 % at 10°), so lower it for still
@@ -31,7 +32,7 @@ pub const DEFAULT_SHADING_ERROR_DEG: f32 = 10.0;
 /// around a vertex lie within this angle of its limit normal, and the chord of a sub-patch `rho`
 /// pixels in radius whose normals turn by `alpha` deviates by about `rho * alpha / 4` pixels
 /// ([`priority`]): 0.17 px at `rho` = 4 px ([`DEFAULT_PROJECTED_SIZE`]). Swept 5°, 10°, 20°
-/// (docs/performance.md, "The curvature mode's defaults"): with the 1..4 px band, 5° costs
+/// (raw outputs: docs/bench/quality/quality_sweep_*.txt): with the 1..4 px band, 5° costs
 /// 6-33 % more triangles for at most 0.03° less shading error, 20° saves up to 22 % and has up
 /// to a third more shading error (teapot).
 pub const DEFAULT_CONE_APERTURE_DEG: f32 = 10.0;

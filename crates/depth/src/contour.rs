@@ -8,8 +8,9 @@
 //! by `δ` from the limit surface (a parabola of curvature `κ`: `δ = κ h² / 8`), that turn is
 //! `κ h = 8 δ / h`: it halves with every level (the silhouette's *position* error, `δ`, falls
 //! by four), which is why the contour pixels set `shading_deg_p99` on scenes with many
-//! silhouettes (helmet40 in docs/performance.md: 15 % of the covered pixels lie within a pixel
-//! of a contour, and they hold two thirds of the pixels beyond uniform depth 4's p99). The turn
+//! silhouettes (helmet40, measured 2026-11-30, in the history of docs/performance.md: 15 % of
+//! the covered pixels lie within a pixel of a contour, and they hold two thirds of the pixels
+//! beyond uniform depth 4's p99). The turn
 //! is view-independent and follows from the chord errors already measured
 //! ([`PatchError::deviation`]); the pixels it applies to are the contour's length on screen.
 //!
