@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use subdiv::rules::Scheme;
+use subdiv::rules::{Request, Scheme};
 use subdiv::slate::{
     PatchLayout, TriLayout, slate_bytes_per_thread, tessellate_layout, tessellate_layout_into,
     tessellate_loop, tessellate_loop_layout_into, tri_slate_bytes_per_thread,
@@ -60,6 +60,8 @@ pub struct BenchTessellateArgs {
     /// default every run writes the indices too, as each new tessellation does.
     #[arg(long)]
     pub points_only: bool,
+    #[command(flatten)]
+    pub limit: crate::limit_args::LimitArgs,
 }
 
 impl BenchTessellateArgs {
@@ -92,6 +94,10 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
     let mesh = cage.mesh;
     anyhow::ensure!(a.depth >= 1, "--depth must be at least 1");
     anyhow::ensure!(a.runs >= 1, "--runs must be at least 1");
+    let depth = a.depth;
+    let input = a.input.display().to_string();
+    a.limit
+        .check(&mesh, Request::Uniform { scheme, depth }, &input)?;
     let threads = a.threads.unwrap_or_else(rayon::current_num_threads);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)

@@ -12,7 +12,7 @@ use glam::Vec3;
 use subdiv::depth::DepthParams;
 use subdiv::mesh::{Camera, Mesh};
 use subdiv::quality::{QualityParams, QualityRun, quantile};
-use subdiv::rules::Depth;
+use subdiv::rules::{Depth, Request, Scheme};
 use subdiv::vk::{RenderMesh, RenderOptions, Renderer};
 use subdiv::{BuiltinScene, DynamicSubdivision, Scene, frame_limit, view_for};
 
@@ -64,6 +64,8 @@ pub struct BenchFramerateArgs {
     /// Depth of the reference surface for --error-every (default: --max-depth + 1).
     #[arg(long)]
     pub reference_depth: Option<Depth>,
+    #[command(flatten)]
+    pub limit: crate::limit_args::LimitArgs,
 }
 
 /// The camera of frame `i`: it orbits the scene centre about the y axis, looking at it from
@@ -138,6 +140,16 @@ fn check(a: &BenchFramerateArgs) -> anyhow::Result<()> {
 pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
     check(a)?;
     let cage = BuiltinScene::from(a.scene).cage()?;
+    let label = format!("scene {}", value_name(&a.scene));
+    let scheme = Scheme::CatmullClark;
+    let max_depth = a.max_depth;
+    a.limit
+        .check(&cage, Request::Adaptive { scheme, max_depth }, &label)?;
+    if a.error_every.is_some() {
+        let depth = a.reference_depth.unwrap_or(max_depth.saturating_add(1));
+        a.limit
+            .check(&cage, Request::Uniform { scheme, depth }, &label)?;
+    }
     let nf = cage.num_faces();
     let (lo, hi) = cage.bounds();
     let mut node = DynamicSubdivision::new(

@@ -10,11 +10,12 @@ use subdiv::BuiltinScene;
 use subdiv::depth::DEFAULT_SHADING_ERROR_DEG;
 use subdiv::mesh::Camera;
 use subdiv::quality::{Config, CurvatureParams, QualityParams, QualityRun, orbit_cameras};
-use subdiv::rules::{Depth, Scheme};
+use subdiv::rules::{Depth, Request, Scheme};
 use subdiv::vk::Renderer;
 
 use crate::camera_args::CameraArgs;
 use crate::choices::{SceneName, SchemeName, value_name};
+use crate::limit_args::LimitArgs;
 
 /// The camera of `subdiv bench framerate`'s first frame, in `--eye-relative` terms: the default
 /// camera of `--scene helmet40` here.
@@ -75,6 +76,8 @@ pub struct BenchQualityArgs {
     /// adjustment); repeat the flag to measure several.
     #[arg(long, value_parser = parse_size_band, value_name = "MIN,MAX|off")]
     pub projected_size: Vec<SizeBand>,
+    #[command(flatten)]
+    pub limit: LimitArgs,
 }
 
 /// A kind of configuration of `subdiv bench quality`.
@@ -214,6 +217,16 @@ pub fn run(a: &BenchQualityArgs) -> anyhow::Result<ExitCode> {
         }
         (None, None) => bail!("give an input cage or --scene helmet40"),
     };
+    // The reference is the largest tessellation; the adaptive configurations are bounded by
+    // every face at the maximum depth.
+    let depth = params.reference_depth();
+    a.limit
+        .check(&cage, Request::Uniform { scheme, depth }, &a.label())?;
+    if configs.iter().any(|c| !matches!(c, Config::Uniform(_))) {
+        let max_depth = params.max_depth;
+        a.limit
+            .check(&cage, Request::Adaptive { scheme, max_depth }, &a.label())?;
+    }
     let (lo, hi) = cage.bounds();
     let base = a.base_camera(lo, hi);
     let cameras = orbit_cameras(&base, a.orbit);

@@ -12,6 +12,7 @@ mod camera_args;
 mod choices;
 mod doi_args;
 mod info;
+mod limit_args;
 mod load;
 mod logger;
 mod progress;

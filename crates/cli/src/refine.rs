@@ -11,6 +11,7 @@ use subdiv::{OutputFormat, SurfaceExport, VertexScalar, write_export};
 use crate::camera_args::CameraArgs;
 use crate::choices::value_name;
 use crate::doi_args::DoiArgs;
+use crate::limit_args::LimitArgs;
 
 #[derive(clap::Args, Debug)]
 #[command(mut_arg("doi", |a| a.required(true)))]
@@ -35,6 +36,8 @@ pub struct RefineArgs {
     /// there) instead of refining non-manifold cages as OpenSubdiv does.
     #[arg(long)]
     pub split_nonmanifold: bool,
+    #[command(flatten)]
+    pub limit: LimitArgs,
 }
 
 pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
@@ -42,6 +45,12 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
     let format = OutputFormat::from_path(&a.output)?;
     let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, a.prim.as_deref())?;
     let setup = a.doi.setup(cage.mesh, &input)?;
+    let steps = a.doi.steps;
+    a.limit.check(
+        &setup.cage,
+        subdiv::rules::Request::Refine { steps },
+        &input,
+    )?;
     let (lo, hi) = setup.cage.bounds();
     let (mesh, doi, threshold) = (&setup.cage, &setup.doi, setup.opts.threshold);
     let camera = a.camera.camera(lo, hi);

@@ -107,7 +107,7 @@ fn run_doi(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     let options = style.render_options()?;
     let t0 = Instant::now();
     let label = a.surface.label();
-    let setup = a.surface.doi.setup(a.surface.load_cage()?, &label)?;
+    let setup = a.surface.doi_setup()?;
     let (lo, hi) = setup.bounds();
     let camera = a.camera.camera(lo, hi);
     let spinner = crate::progress::spinner(format!("refining ({} steps)", a.surface.doi.steps));

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::{Context, bail};
 use glam::Vec3;
 use subdiv::mesh::{Camera, Mesh};
-use subdiv::rules::{Depth, Scheme};
+use subdiv::rules::{Depth, Request, Scheme};
 use subdiv::vk::{RenderOptions, Shading};
 use subdiv::{BuiltinScene, DynamicSubdivision, Scene};
 
@@ -14,6 +14,7 @@ use crate::adaptive_args::AdaptiveArgs;
 use crate::camera_args::{CameraArgs, parse_vec3};
 use crate::choices::{SceneName, SchemeName, ShadingName, value_name};
 use crate::doi_args::DoiArgs;
+use crate::limit_args::LimitArgs;
 
 /// Which surface to tessellate.
 #[derive(clap::Args, Debug, Clone)]
@@ -57,12 +58,25 @@ pub struct SurfaceArgs {
     pub face_depths: Option<String>,
     #[command(flatten)]
     pub doi: DoiArgs,
+    #[command(flatten)]
+    pub limit: LimitArgs,
 }
 
 /// Uniform depth when neither `--depth` nor an adaptive camera is given.
 pub const DEFAULT_DEPTH: subdiv::rules::Depth = 3;
 
 impl SurfaceArgs {
+    /// The DoI set-up of `--doi` for the cage, refused beyond `--max-triangles` or this
+    /// machine's memory (every face refined at every step).
+    pub fn doi_setup(&self) -> anyhow::Result<subdiv::DoiSetup> {
+        let label = self.label();
+        let setup = self.doi.setup(self.load_cage()?, &label)?;
+        let steps = self.doi.steps;
+        self.limit
+            .check(&setup.cage, Request::Refine { steps }, &label)?;
+        Ok(setup)
+    }
+
     /// Refuses DoI options without the DoI that uses them (as `subdiv refine` does).
     pub fn check_doi_options(&self) -> anyhow::Result<()> {
         self.doi.check()
@@ -108,6 +122,8 @@ impl SurfaceArgs {
     pub fn uniform_scene(&self) -> anyhow::Result<(Scene, SchemeName)> {
         let (cage, scheme) = self.load_cage_scheme()?;
         let depth = self.uniform_depth();
+        self.limit
+            .check(&cage, Request::Uniform { scheme, depth }, &self.label())?;
         let spinner = crate::progress::spinner(format!("tessellating at depth {depth}"));
         let scene = Scene::uniform(&cage, scheme, depth);
         spinner.finish_and_clear();
@@ -134,6 +150,12 @@ impl SurfaceArgs {
     /// method, fixed face depths).
     pub fn adaptive_node(&self, mesh: Mesh, scheme: Scheme) -> anyhow::Result<DynamicSubdivision> {
         let faces = mesh.num_faces();
+        let max_depth = self.adaptive.max_depth();
+        self.limit.check(
+            &mesh,
+            Request::Adaptive { scheme, max_depth },
+            &self.label(),
+        )?;
         let mut node = self
             .adaptive
             .node(mesh, scheme)

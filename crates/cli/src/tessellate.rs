@@ -7,7 +7,7 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use subdiv::mesh::Mesh;
-use subdiv::rules::Scheme;
+use subdiv::rules::{Request, Scheme};
 use subdiv::stitch::FrameGeometry;
 use subdiv::{
     DoiKind, DynamicSubdivision, OutputFormat, VertexScalar, depth_histogram, doi_face_depths,
@@ -18,6 +18,7 @@ use crate::adaptive_args::AdaptiveArgs;
 use crate::camera_args::CameraArgs;
 use crate::choices::{DoiName, SchemeName, value_name};
 use crate::doi_args::{DoiChoice, doi_error};
+use crate::limit_args::LimitArgs;
 
 #[derive(clap::Args, Debug)]
 #[command(mut_arg("doi", |a| a
@@ -43,6 +44,8 @@ pub struct TessellateArgs {
     pub camera: CameraArgs,
     #[command(flatten)]
     pub adaptive: AdaptiveArgs,
+    #[command(flatten)]
+    pub limit: LimitArgs,
     /// Print patches per depth, triangles and the uniform count at the maximum depth.
     #[arg(long)]
     pub stats: bool,
@@ -93,6 +96,8 @@ fn run_uniform(
     depth: subdiv::rules::Depth,
 ) -> anyhow::Result<ExitCode> {
     let input = a.input.display();
+    a.limit
+        .check(mesh, Request::Uniform { scheme, depth }, &input.to_string())?;
     let t0 = Instant::now();
     let spinner = crate::progress::spinner(format!("tessellating at depth {depth}"));
     let t = subdiv::uniform_limit(mesh, scheme, depth);
@@ -119,6 +124,9 @@ fn run_uniform(
 /// Loop).
 fn run_adaptive(a: &TessellateArgs, mesh: Mesh, scheme: Scheme) -> anyhow::Result<ExitCode> {
     let input = a.input.display().to_string();
+    let max_depth = a.adaptive.max_depth();
+    a.limit
+        .check(&mesh, Request::Adaptive { scheme, max_depth }, &input)?;
     let t0 = Instant::now();
     let (lo, hi) = mesh.bounds();
     let camera = a.camera.camera(lo, hi);

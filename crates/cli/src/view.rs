@@ -105,7 +105,7 @@ fn run_doi(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     style.doi_values = true;
     let render = style.render_options()?;
     let label = a.surface.label();
-    let setup = a.surface.doi.setup(a.surface.load_cage()?, &label)?;
+    let setup = a.surface.doi_setup()?;
     let (lo, hi) = setup.bounds();
     let (camera, orbit) = start_camera(a, lo, hi);
     let title = format!(

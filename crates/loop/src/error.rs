@@ -65,6 +65,10 @@ pub enum LoopError {
         /// The limit ([`crate::MAX_TRIANGLES`]).
         limit: u64,
     },
+    /// The step could not fit in this machine's memory (every triangle refined): refused before
+    /// allocating, with the size asked for ([`subdiv_rules::budget`]).
+    #[error(transparent)]
+    OutputTooLarge(#[from] subdiv_rules::OutputTooLarge),
     /// A corner of a refined triangle has no face-varying value (a bug: every corner is a
     /// parent corner or a split edge's midpoint).
     #[error("internal error: corner at vertex {vertex} of a triangle from face {face} has no UV")]

@@ -183,6 +183,8 @@ pub fn loop_step_with(
 ) -> Result<(AdaptiveMesh, StepStats), LoopError> {
     let mesh = &cur.mesh;
     mesh.check_triangles()?;
+    // Refuse before allocating: a step at most quadruples every triangle.
+    subdiv_rules::Budget::machine().check(mesh, subdiv_rules::Request::Refine { steps: 1 })?;
     check_len("face levels", cur.level.len(), mesh.num_faces())?;
     check_len(
         "previous positions",

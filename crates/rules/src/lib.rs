@@ -7,7 +7,9 @@
 //! them sit the exact limit of a single vertex by local ring refinement ([`Ring`],
 //! [`limit_point`]), the uniform whole-mesh refinement ([`refine_uniform`]), the uniform
 //! depth-N limit tessellation ([`tessellate_uniform`]) and the points on the copies of a
-//! non-manifold edge, bit-identical in every copy ([`SeamCurves`]).
+//! non-manifold edge, bit-identical in every copy ([`SeamCurves`]). [`budget`] estimates the
+//! size of every output (exact for uniform depth, bounds for the adaptive paths) and refuses a
+//! request beyond this machine's memory with [`OutputTooLarge`] before anything is allocated.
 //!
 //! Results agree with Pixar's OpenSubdiv 3.5 (boundaries, creases, corners, n-gons, any valence),
 //! except that semi-sharp creases always give the true limit surface.
@@ -23,6 +25,7 @@
 //! # Ok::<(), subdiv_mesh::MeshError>(())
 //! ```
 
+pub mod budget;
 pub mod catmark;
 pub mod crease;
 mod fvar;
@@ -33,6 +36,7 @@ mod refine;
 mod ring;
 mod seam;
 
+pub use budget::{Budget, OutOfMemory, OutputSize, OutputTooLarge, Request};
 pub use fvar::{
     FVarChildren, FVarRegion, face_uvs, limit_face_varying, limit_face_varying_exact,
     refine_face_varying_part, semi_sharp_levels,
@@ -132,6 +136,13 @@ pub enum RulesError {
         /// Its position.
         z: f32,
     },
+    /// The output would not fit in this machine's memory (or a caller's triangle limit): refused
+    /// before allocating, with the size asked for ([`budget`]).
+    #[error(transparent)]
+    OutputTooLarge(#[from] OutputTooLarge),
+    /// A big buffer could not be allocated.
+    #[error(transparent)]
+    OutOfMemory(#[from] OutOfMemory),
     /// A refined mesh failed validation (a bug: refinement of a valid mesh is valid).
     #[error("internal error: refined mesh is invalid: {0}")]
     Internal(subdiv_mesh::MeshError),

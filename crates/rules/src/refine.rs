@@ -490,7 +490,10 @@ pub fn refined_face_count(mesh: &Mesh, scheme: Scheme, depth: Depth) -> u64 {
     }
 }
 
+/// Refuses a refinement beyond this machine's memory (the size it asks for in the error), then
+/// one beyond [`MAX_REFINED_FACES`].
 fn check_size(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<(), RulesError> {
+    crate::Budget::machine().check(mesh, crate::Request::Uniform { scheme, depth })?;
     let faces = refined_face_count(mesh, scheme, depth);
     if faces > MAX_REFINED_FACES {
         return Err(RulesError::TooDeep { depth, faces });

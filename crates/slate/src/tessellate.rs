@@ -3,7 +3,11 @@
 use glam::Vec3A;
 use rayon::prelude::*;
 use subdiv_mesh::Mesh;
-use subdiv_rules::{Depth, LimitMesh, MAX_DEPTH, RulesError, Scheme, limit_surface};
+use subdiv_rules::budget::try_resize;
+use subdiv_rules::{
+    Budget, Depth, LimitMesh, MAX_DEPTH, OutOfMemory, OutputTooLarge, Request, RulesError, Scheme,
+    limit_surface,
+};
 
 use crate::layout::{Patch, PatchLayout};
 use crate::pool::thread_worker;
@@ -29,6 +33,13 @@ pub enum SlateError {
         /// Points it would produce.
         points: u64,
     },
+    /// The tessellation would not fit in this machine's memory: refused before allocating, with
+    /// the size asked for ([`subdiv_rules::budget`]).
+    #[error(transparent)]
+    OutputTooLarge(#[from] OutputTooLarge),
+    /// An output buffer could not be allocated.
+    #[error(transparent)]
+    OutOfMemory(#[from] OutOfMemory),
     /// Set-up failed (local level-1 refinement).
     #[error(transparent)]
     Rules(#[from] RulesError),
@@ -135,7 +146,14 @@ pub fn tessellate(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateError> {
             max: MAX_DEPTH,
         });
     }
-    // Refuse before allocating: about (2^depth)^2 points per quad of the cage.
+    // Refuse before allocating: beyond this machine's memory, then beyond `MAX_POINTS`.
+    Budget::machine().check(
+        mesh,
+        Request::Uniform {
+            scheme: Scheme::CatmullClark,
+            depth,
+        },
+    )?;
     let corners: u64 = mesh.faces().map(|f| mesh.face_size(f) as u64).sum();
     let estimate = corners.saturating_mul(1u64 << (2 * depth)) / 4;
     if estimate > MAX_POINTS {
@@ -182,8 +200,8 @@ pub fn tessellate_layout_into(
     }
     let max_depth = depth.max(DEFAULT_MAX_DEPTH);
     let np = layout.num_points();
-    result.positions.resize(np, [0.0; 3]);
-    result.normals.resize(np, [0.0; 3]);
+    try_resize(&mut result.positions, np, [0.0; 3], "limit positions")?;
+    try_resize(&mut result.normals, np, [0.0; 3], "limit normals")?;
     for &v in &layout.isolated {
         result.positions[v.idx()] = mesh.position(v).to_array();
         result.normals[v.idx()] = [0.0; 3];
@@ -203,8 +221,9 @@ pub fn tessellate_layout_into(
     if write_faces {
         // Until the quads are written, the output holds no layout's faces.
         result.invalidate_topology();
-        result.face_indices.resize(total * 4, 0);
+        try_resize(&mut result.face_indices, total * 4, 0, "quad indices")?;
         result.face_offsets.clear();
+        subdiv_rules::budget::try_reserve(&mut result.face_offsets, total + 1, "quad offsets")?;
         result
             .face_offsets
             .extend((0..=total as u32).map(|i| i * 4));

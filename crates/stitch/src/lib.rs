@@ -43,6 +43,13 @@ pub enum AssemblyError {
         /// Points needed.
         points: u64,
     },
+    /// Every face at the maximum depth would not fit in this machine's memory: refused before
+    /// allocating, with the size asked for ([`subdiv_rules::budget`]: an upper bound).
+    #[error(transparent)]
+    OutputTooLarge(#[from] subdiv_rules::OutputTooLarge),
+    /// A frame buffer could not be allocated.
+    #[error(transparent)]
+    OutOfMemory(#[from] subdiv_rules::OutOfMemory),
     /// A new vertex position is NaN or infinite.
     #[error("vertex {vertex} has a non-finite position")]
     NonFinite {

@@ -25,6 +25,7 @@ mod emit;
 
 use rayon::prelude::*;
 use subdiv_mesh::Mesh;
+use subdiv_rules::{Budget, Request, Scheme};
 use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, TriLayout, tri_lattice_len, tri_patch_lattice};
 
 use crate::{AssemblyError, FrameGeometry};
@@ -57,14 +58,32 @@ pub struct TriAssembler {
 impl TriAssembler {
     /// Sets up the patches of `mesh` (triangles only; what Loop refuses is a
     /// [`AssemblyError::Rules`]); `max_depth` is the deepest depth that will be requested, at
-    /// most [`MAX_DEPTH`].
+    /// most [`MAX_DEPTH`]. A cage whose frames could be beyond this machine's memory with every
+    /// face at `max_depth` is refused with [`AssemblyError::OutputTooLarge`].
     pub fn new(mesh: &Mesh, max_depth: Depth) -> Result<TriAssembler, AssemblyError> {
+        TriAssembler::with_budget(mesh, max_depth, &Budget::machine())
+    }
+
+    /// [`TriAssembler::new`] checked against `budget` instead of this machine's memory.
+    pub fn with_budget(
+        mesh: &Mesh,
+        max_depth: Depth,
+        budget: &Budget,
+    ) -> Result<TriAssembler, AssemblyError> {
         if max_depth > MAX_DEPTH {
             return Err(AssemblyError::TooDeep {
                 depth: max_depth,
                 max: MAX_DEPTH,
             });
         }
+        // Refuse before allocating: every face at the maximum depth beyond the budget.
+        budget.check(
+            mesh,
+            Request::Adaptive {
+                scheme: Scheme::Loop,
+                max_depth,
+            },
+        )?;
         let layout = TriLayout::new(mesh, 1)?;
         let n = layout.patches().len();
         Ok(TriAssembler {
@@ -133,7 +152,7 @@ impl TriAssembler {
         self.check_size(&required)?;
         let recomputed = self.recompute_blocks(mesh, &required);
         if recomputed > 0 || out.positions.is_empty() {
-            self.concatenate_blocks(out);
+            self.concatenate_blocks(out)?;
         }
         out.vertex_version = self.version;
         out.patches_recomputed = recomputed;
@@ -239,10 +258,11 @@ impl TriAssembler {
     }
 
     /// Rebuilds the vertex buffer from the lattices and bumps the vertex version.
-    fn concatenate_blocks(&mut self, out: &mut FrameGeometry) {
+    fn concatenate_blocks(&mut self, out: &mut FrameGeometry) -> Result<(), AssemblyError> {
         let blocks = self.blocks.iter().map(|b| (&b.pos[..], &b.nrm[..]));
-        out.concatenate(blocks, &mut self.block_start);
+        out.concatenate(blocks, &mut self.block_start)?;
         self.version += 1;
+        Ok(())
     }
 
     /// Where frame vertex `index` comes from: (face, lattice depth, lattice index), for tests

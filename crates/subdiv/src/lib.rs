@@ -78,6 +78,29 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
+//! # Resource limits
+//! Every entry point that can produce large output estimates it before allocating
+//! ([`rules::budget`]: exact for a uniform depth, a bound for the adaptive path at its maximum
+//! depth and for DoI-driven refinement) and refuses a request beyond this machine's memory with
+//! [`rules::OutputTooLarge`], which states the size asked for: in
+//! [`SceneError::Slate`]/[`SceneError::Rules`] ([`uniform_limit`], [`Scene::uniform`]),
+//! [`slate::SlateError::OutputTooLarge`], [`stitch::AssemblyError::OutputTooLarge`]
+//! ([`DynamicSubdivision`]), [`RefineError::OutputTooLarge`] ([`refine_adaptive`],
+//! [`Refiner`]) and [`rules::RulesError::OutputTooLarge`]. A caller's own limit (the CLI's
+//! `--max-triangles`) is a [`rules::Budget`] checked first:
+//! ```
+//! use subdiv::{mesh::parse_obj, mesh::Mesh, rules::{Budget, Request, Scheme}};
+//! let cube = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
+//!             f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+//! let mesh = Mesh::from_soup(&parse_obj(cube)?)?;
+//! let request = Request::Uniform { scheme: Scheme::CatmullClark, depth: 3 };
+//! let size = Budget::machine().with_max_triangles(Some(768)).check(&mesh, request)?;
+//! assert_eq!((size.faces, size.triangles, size.vertices), (384, 768, 386));
+//! let e = Budget::machine().with_max_triangles(Some(767)).check(&mesh, request).unwrap_err();
+//! assert!(e.to_string().ends_with("the limit is 767 triangles"));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
 //! # Rendering a result
 //! A [`Scene`] packs a tessellation for the renderer (per-vertex scalars, crease normals);
 //! [`view_for`] turns the tessellator's camera into the renderer's view. (`no_run`: rendering

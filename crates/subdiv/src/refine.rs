@@ -18,6 +18,10 @@ pub enum RefineError {
     /// The adaptive Loop step refused its input.
     #[error(transparent)]
     Loop(#[from] LoopError),
+    /// Every face refined at every step would not fit in this machine's memory: refused before
+    /// the first step, with the size asked for ([`subdiv_rules::budget`]: an upper bound).
+    #[error(transparent)]
+    OutputTooLarge(#[from] subdiv_rules::OutputTooLarge),
     /// A step would produce too many triangles.
     #[error("step {step} would produce {faces} triangles (limit {limit})")]
     TooLarge {
@@ -55,7 +59,9 @@ pub struct Refined {
 
 /// Refines `mesh` adaptively (Isenberg, Hartmann & König 2003, §3): before every step the DoI is
 /// evaluated on the current mesh (with `ctx.step` and `ctx.steps` set), the faces above the
-/// threshold are selected, and one [`subdiv_loop::loop_step`] is taken.
+/// threshold are selected, and one [`subdiv_loop::loop_step`] is taken. A refinement whose
+/// bound (every face refined at every step: `4^steps` times the triangles) is beyond this
+/// machine's memory is refused first with [`RefineError::OutputTooLarge`].
 ///
 /// ```
 /// use subdiv::{refine_adaptive, Balance, RefineOptions};
@@ -81,6 +87,8 @@ pub fn refine_adaptive(
         }
         .into());
     }
+    subdiv_rules::Budget::machine()
+        .check(mesh, subdiv_rules::Request::Refine { steps: opts.steps })?;
     let mut cur = AdaptiveMesh::new(mesh.clone())?;
     let mut steps = Vec::with_capacity(opts.steps as usize);
     let (mut scratch, mut values, mut sel) = (Vec::new(), Vec::new(), Vec::new());

@@ -28,7 +28,9 @@ pub enum SceneError {
 
 /// The uniform limit tessellation of `mesh` at `depth` on the slate tessellators: quad slates
 /// for Catmull-Clark, triangular slates for Loop. A cage with face-varying data (UVs) gets its
-/// face-varying limit values at every corner (`LimitMesh::uvs`).
+/// face-varying limit values at every corner (`LimitMesh::uvs`). A depth whose output is beyond
+/// this machine's memory is refused before anything is allocated
+/// ([`SlateError::OutputTooLarge`], with the size asked for).
 pub fn uniform_limit(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<LimitMesh, SceneError> {
     let t0 = std::time::Instant::now();
     let limit = match scheme {

@@ -6,8 +6,10 @@ use std::cell::Cell;
 use glam::Vec3A;
 use rayon::prelude::*;
 use subdiv_mesh::Mesh;
+use subdiv_rules::budget::{try_reserve, try_resize};
 use subdiv_rules::{
-    Depth, LimitMesh, MAX_DEPTH, RulesError, Scheme, check_doubled_triangles, tessellate_uniform,
+    Budget, Depth, LimitMesh, MAX_DEPTH, Request, RulesError, Scheme, check_doubled_triangles,
+    tessellate_uniform,
 };
 
 use super::layout::{TriLayout, TriPatch, interior_offset};
@@ -44,6 +46,14 @@ pub fn tessellate_loop(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateErro
             max: MAX_DEPTH,
         });
     }
+    // Refuse before allocating: beyond this machine's memory, then beyond `MAX_POINTS`.
+    Budget::machine().check(
+        mesh,
+        Request::Uniform {
+            scheme: Scheme::Loop,
+            depth,
+        },
+    )?;
     let estimate = (mesh.num_faces() as u64).saturating_mul(1u64 << (2 * depth)) / 2;
     if estimate > MAX_POINTS {
         return Err(SlateError::TooLarge {
@@ -88,8 +98,8 @@ pub fn tessellate_loop_layout_into(
     }
     let n = 1u32 << depth;
     let np = layout.num_points();
-    result.positions.resize(np, [0.0; 3]);
-    result.normals.resize(np, [0.0; 3]);
+    try_resize(&mut result.positions, np, [0.0; 3], "limit positions")?;
+    try_resize(&mut result.normals, np, [0.0; 3], "limit normals")?;
     for &v in &layout.isolated {
         result.positions[v.idx()] = mesh.position(v).to_array();
         result.normals[v.idx()] = [0.0; 3];
@@ -104,8 +114,9 @@ pub fn tessellate_loop_layout_into(
     if write_faces {
         // Until the triangles are written, the output holds no layout's faces.
         result.invalidate_topology();
-        result.face_indices.resize(total * 3, 0);
+        try_resize(&mut result.face_indices, total * 3, 0, "triangle indices")?;
         result.face_offsets.clear();
+        try_reserve(&mut result.face_offsets, total + 1, "triangle offsets")?;
         result
             .face_offsets
             .extend((0..=total as u32).map(|i| i * 3));

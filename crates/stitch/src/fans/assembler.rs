@@ -5,6 +5,7 @@
 
 use rayon::prelude::*;
 use subdiv_mesh::{HalfedgeId, Mesh};
+use subdiv_rules::{Budget, Request, Scheme};
 use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, PatchSet, thread_worker};
 
 use super::edges::Frame;
@@ -75,14 +76,35 @@ pub struct Assembler {
 impl Assembler {
     /// Sets up the patches of `mesh`. `max_depth` is the deepest depth that will be requested;
     /// it is at most [`MAX_ADAPTIVE_DEPTH`] (a patch next to a deeper one is computed one level
-    /// deeper for its fan centres).
+    /// deeper for its fan centres). A cage whose frames could be beyond this machine's memory
+    /// with every face at `max_depth` is refused with [`AssemblyError::OutputTooLarge`].
     pub fn new(mesh: &Mesh, max_depth: Depth) -> Result<Assembler, AssemblyError> {
+        Assembler::with_budget(mesh, max_depth, &Budget::machine())
+    }
+
+    /// [`Assembler::new`] checked against `budget` instead of this machine's memory
+    /// ([`Budget::unlimited`]: frames are still refused one by one beyond [`MAX_POINTS`]).
+    ///
+    /// [`MAX_POINTS`]: subdiv_slate::MAX_POINTS
+    pub fn with_budget(
+        mesh: &Mesh,
+        max_depth: Depth,
+        budget: &Budget,
+    ) -> Result<Assembler, AssemblyError> {
         if max_depth > MAX_ADAPTIVE_DEPTH {
             return Err(AssemblyError::TooDeep {
                 depth: max_depth,
                 max: MAX_ADAPTIVE_DEPTH,
             });
         }
+        // Refuse before allocating: every face at the maximum depth beyond the budget.
+        budget.check(
+            mesh,
+            Request::Adaptive {
+                scheme: Scheme::CatmullClark,
+                max_depth,
+            },
+        )?;
         let set = PatchSet::new(mesh)?;
         let units = set
             .units()
@@ -184,7 +206,7 @@ impl Assembler {
         let recomputed = self.recompute_blocks(mesh, &required);
         // Vertex buffer: the blocks, concatenated.
         if recomputed > 0 || out.positions.is_empty() {
-            self.concatenate_blocks(out);
+            self.concatenate_blocks(out)?;
         }
         out.vertex_version = self.version;
         out.patches_recomputed = recomputed;
@@ -325,11 +347,12 @@ impl Assembler {
 
     /// Rebuilds the vertex buffer from the blocks (and their start offsets) and bumps the
     /// vertex version.
-    fn concatenate_blocks(&mut self, out: &mut FrameGeometry) {
+    fn concatenate_blocks(&mut self, out: &mut FrameGeometry) -> Result<(), AssemblyError> {
         let blocks = self.blocks.iter().map(|b| (&b.pos[..], &b.nrm[..]));
-        out.concatenate(blocks, &mut self.block_start);
+        out.concatenate(blocks, &mut self.block_start)?;
         out.vertex_depth.clear();
         self.version += 1;
+        Ok(())
     }
 
     /// Depth per vertex (of the patch whose block holds it, at this frame's depth).
@@ -501,7 +524,7 @@ mod tests {
             Assembler::new(&mesh, max + 1),
             Err(AssemblyError::TooDeep { depth, max: m }) if depth == max + 1 && m == max
         ));
-        assert!(Assembler::new(&mesh, max).is_ok());
+        assert!(Assembler::with_budget(&mesh, max, &Budget::unlimited()).is_ok());
         let mut asm = Assembler::new(&mesh, 2).unwrap();
         let mut g = FrameGeometry::default();
         let err = asm.frame(&mesh, &[1; 5], &[true; 6], &mut g).unwrap_err();
@@ -527,7 +550,7 @@ mod tests {
         // 36 patches at depth 11 need 36 * 2049^2 > MAX_POINTS cached points.
         let mesh = grid(6);
         let max = subdiv_slate::MAX_DEPTH - 1;
-        let mut asm = Assembler::new(&mesh, max).unwrap();
+        let mut asm = Assembler::with_budget(&mesh, max, &Budget::unlimited()).unwrap();
         let mut g = FrameGeometry::default();
         let err = asm
             .frame(&mesh, &[max; 36], &[true; 36], &mut g)

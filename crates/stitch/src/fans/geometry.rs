@@ -37,7 +37,7 @@ impl FrameGeometry {
         &mut self,
         blocks: impl Iterator<Item = (&'a [[f32; 3]], &'a [[f32; 3]])> + Clone,
         block_start: &mut [u32],
-    ) {
+    ) -> Result<(), subdiv_rules::OutOfMemory> {
         let mut acc = 0u32;
         let mut n = 0;
         for (i, (pos, _)) in blocks.clone().enumerate() {
@@ -48,10 +48,14 @@ impl FrameGeometry {
         block_start[n] = acc;
         self.positions.clear();
         self.normals.clear();
+        let total = acc as usize;
+        subdiv_rules::budget::try_reserve(&mut self.positions, total, "frame positions")?;
+        subdiv_rules::budget::try_reserve(&mut self.normals, total, "frame normals")?;
         for (pos, nrm) in blocks {
             self.positions.extend_from_slice(pos);
             self.normals.extend_from_slice(nrm);
         }
+        Ok(())
     }
 
     /// Number of triangles.
