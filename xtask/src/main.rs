@@ -251,14 +251,16 @@ fn test() -> Result<()> {
         }
         Err(_) => Command::new(&cargo_exe),
     };
-    c.current_dir(root()).args(["test", "--workspace"]);
+    // Every test binary runs, so that one failure does not hide the others.
+    c.current_dir(root())
+        .args(["test", "--workspace", "--no-fail-fast"]);
     c.env("SUBDIV_VK_REQUIRE_DRIVER", "1");
     if validation.is_ok() {
         // Every Vulkan test then runs validated or fails.
         c.env(subdiv_vk::REQUIRE_VALIDATION_ENV, "1");
     }
     vulkan::configure(&mut c, &root());
-    step("running cargo tests (cargo test --workspace)");
+    step("running cargo tests (cargo test --workspace --no-fail-fast)");
     let tests = run(c);
     let tests_ok = tests.is_ok();
     checks.record("cargo tests", tests);

@@ -6,7 +6,7 @@ mod common;
 
 use common::{assert_clean_failure, root, run_ok, subdiv};
 
-const KEYS: [&str; 7] = [
+const KEYS: [&str; 8] = [
     "config",
     "triangles",
     "silhouette_px_max",
@@ -14,6 +14,7 @@ const KEYS: [&str; 7] = [
     "shading_deg_p99",
     "update_ms",
     "render_ms",
+    "shading_deg_p99_off_lines",
 ];
 
 fn cube() -> String {
