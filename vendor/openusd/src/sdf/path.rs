@@ -379,6 +379,13 @@ impl Path {
     /// ""            -> None
     /// ```
     pub fn parent(&self) -> Option<Path> {
+        // subdiv: a name read from a file may hold a `}` without its `{` (`/A.b}c`, whose
+        // "parent" `/A.b}` would be its own parent): only a strictly shorter path is a
+        // parent, so that walking the ancestors always ends.
+        self.parent_unchecked().filter(|p| p.path.len() < self.path.len())
+    }
+
+    fn parent_unchecked(&self) -> Option<Path> {
         if self.path.is_empty() || self.path == "/" {
             return None;
         }

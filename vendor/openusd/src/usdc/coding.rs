@@ -18,8 +18,10 @@ pub fn encoded_buffer_size<T: PrimInt>(count: usize) -> usize {
     if count == 0 {
         0
     } else {
+        // subdiv: saturating, as `count` comes from the file.
         let sz = mem::size_of::<T>();
-        sz + (count * 2).div_ceil(8) + (sz * count)
+        sz.saturating_add(count.saturating_mul(2).div_ceil(8))
+            .saturating_add(sz.saturating_mul(count))
     }
 }
 
@@ -41,7 +43,15 @@ where
         codes_reader.read_pod::<i32>()? as i64
     };
 
-    let num_code_bytes = (count * 2).div_ceil(8);
+    // subdiv: `count` comes from the file; the code table (two bits per integer) must be in
+    // `data` before anything is allocated for the integers.
+    let num_code_bytes = count.saturating_mul(2).div_ceil(8);
+    if data.len().saturating_sub(mem::size_of::<T>()) < num_code_bytes {
+        bail!(
+            "{count} encoded integers need {num_code_bytes} code bytes, the data holds {}",
+            data.len()
+        );
+    }
 
     let mut ints_reader = {
         let offset = mem::size_of::<T>() + num_code_bytes;

@@ -50,6 +50,8 @@ pub struct CrateFile<R> {
     pub paths: Vec<sdf::Path>,
     // All specs.
     pub specs: Vec<Spec>,
+    /// subdiv: the stream's length in bytes, to bound the sizes read from it.
+    pub len: u64,
 }
 
 impl<R> CrateFile<R> {
@@ -63,6 +65,8 @@ impl<R> CrateFile<R> {
 impl<R: io::Read + io::Seek> CrateFile<R> {
     /// Read structural sections of a crate file.
     pub fn open(mut reader: R) -> Result<Self> {
+        let len = reader.seek(io::SeekFrom::End(0))?;
+        reader.seek(io::SeekFrom::Start(0))?;
         let bootstrap = Self::read_header(&mut reader)?;
 
         let mut file = CrateFile {
@@ -75,6 +79,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
             fieldsets: Vec::new(),
             paths: Vec::new(),
             specs: Vec::new(),
+            len,
         };
 
         file.read_sections().context("Unable to read sections")?;
@@ -334,6 +339,13 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
         } else {
             // Read # of paths.
             let path_count = self.reader.read_count()?;
+            // subdiv: the count comes from the file; each path takes at least two bits of the
+            // compressed integers that follow (LZ4 expands a byte at most 255 times).
+            let left = self.len.saturating_sub(self.reader.stream_position()?) as usize;
+            ensure!(
+                path_count <= left.saturating_mul(4 * 256),
+                "PATHS section claims {path_count} paths, more than its {left} bytes can hold"
+            );
             self.paths = vec![sdf::Path::default(); path_count];
 
             self.read_compressed_paths()?;
@@ -547,11 +559,14 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
     fn read_compressed<T: Default + NoUninit + AnyBitPattern>(&mut self, estimated_count: usize) -> Result<Vec<T>> {
         // Read data to memory.
         let compressed_size = self.reader.read_count()?;
-        let mut input = vec![0_u8; compressed_size];
-        self.reader.read_exact(&mut input)?;
+        // subdiv: both sizes come from the file. The input is read as far as the stream holds
+        // it (`read_vec`), and the output never exceeds what LZ4 can expand the input to (at
+        // most 255 bytes per input byte), so an absurd size is an error, not an allocation.
+        let input: Vec<u8> = self.reader.read_vec(compressed_size)?;
+        let most = compressed_size.saturating_mul(256).saturating_add(64) / mem::size_of::<T>().max(1);
 
         // Decompress to output buffer.
-        let mut output = vec![T::default(); estimated_count];
+        let mut output = vec![T::default(); estimated_count.min(most)];
         let actual_size = decompress_lz4(&input, cast_slice_mut(&mut output))?;
 
         let actual_count = actual_size / mem::size_of::<T>();
@@ -898,7 +913,10 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
             return Ok(Vec::default());
         }
 
-        let flat: Vec<T> = self.reader.read_vec(count * N)?;
+        let flat_count = count
+            .checked_mul(N)
+            .with_context(|| format!("Array of {count} x {N} elements overflows the address space"))?;
+        let flat: Vec<T> = self.reader.read_vec(flat_count)?;
 
         // Reinterpret the flat vec as a vec of fixed-size arrays. `chunks_exact(N)`
         // always yields slices of exactly N elements, so `try_into` cannot fail.
@@ -1537,9 +1555,23 @@ impl<R: io::Read> ReadExt for R {
             return Ok(Vec::new());
         }
 
-        let mut vec = vec![T::default(); count];
-        self.read_exact(cast_slice_mut(&mut vec))
+        // subdiv: the count comes from the file. Read the bytes first, growing the buffer as
+        // they arrive, so that a count beyond the end of the stream is an error and not an
+        // allocation of that size (which aborts the process when it fails).
+        let size = count
+            .checked_mul(mem::size_of::<T>())
+            .with_context(|| format!("Unable to read vec: {count} elements overflow the address space"))?;
+        let mut bytes = Vec::new();
+        io::Read::read_to_end(&mut io::Read::take(&mut *self, size as u64), &mut bytes)
             .context("Unable to read vec")?;
+        ensure!(
+            bytes.len() == size,
+            "Unable to read vec: {count} elements need {size} bytes, the stream holds {}",
+            bytes.len()
+        );
+
+        let mut vec = vec![T::default(); count];
+        cast_slice_mut(&mut vec).copy_from_slice(&bytes);
 
         Ok(vec)
     }
