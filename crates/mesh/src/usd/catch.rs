@@ -50,10 +50,10 @@ fn payload_text(payload: &(dyn std::any::Any + Send)) -> String {
         .unwrap_or_else(|| "a panic without a message".to_string())
 }
 
-/// A source path from the crate's name on (`openusd-0.6.0/src/usdc/reader.rs`), without the
-/// registry directory in front of it.
+/// A source path from the crate's name on (`openusd-0.6.0/src/usdc/reader.rs` from the
+/// registry, `openusd/src/usdc/reader.rs` vendored), without the directories in front of it.
 fn short_path(file: &str) -> &str {
-    match file.rfind("openusd-") {
+    match file.rfind("openusd") {
         Some(i) => &file[i..],
         None => file,
     }
