@@ -398,13 +398,18 @@ fn points(cage: &Cage) -> String {
     format!("[{}]", v.join(", "))
 }
 
-/// A sharpness: mostly sensible, sometimes negative, NaN, infinite or huge.
+/// A sharpness: mostly semi-sharp up to 4 or infinitely sharp (10), sometimes negative, NaN,
+/// infinite or huge. Semi-sharp values stay at or below 4 because the slate's UVs of a cage
+/// with `primvars:st` refine the whole cage uniformly to the sharpness's level (exponential in
+/// it: sharpness 9 on a large cage runs for minutes, see docs/testing.md), which is not what
+/// this fuzzer is after.
 fn sharpness(rng: &mut Rng) -> String {
-    if rng.chance(90) {
-        format!("{}", rng.below(44) as f32 / 4.0)
-    } else {
-        rng.pick(&["-1", "nan", "inf", "1e30", "-0", "1e-45"])
-            .to_string()
+    match rng.below(20) {
+        0 | 1 => rng
+            .pick(&["-1", "nan", "inf", "1e30", "-0", "1e-45"])
+            .to_string(),
+        2 => "10".to_string(),
+        _ => format!("{}", rng.below(17) as f32 / 4.0),
     }
 }
 
