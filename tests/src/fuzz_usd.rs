@@ -329,7 +329,7 @@ fn xform_ops(rng: &mut Rng, s: &mut String, ind: &str, st: Style) {
                     .map(|i| {
                         if i % 5 == 0 {
                             "1".to_string()
-                        } else if i >= 12 && i < 15 {
+                        } else if (12..15).contains(&i) {
                             rng.range(-3, 3).to_string()
                         } else if rng.chance(10) {
                             format!("{}", rng.unit())
