@@ -110,9 +110,10 @@ fn key(what: &str, dir: &Path) -> String {
     first.chars().filter(|c| !c.is_ascii_digit()).collect()
 }
 
-/// A temporary folder of this process.
-fn temp_dir() -> PathBuf {
-    let d = std::env::temp_dir().join(format!("subdiv-fuzz-usd-{}", std::process::id()));
+/// A temporary folder of this process and test (the tests run in parallel, and each removes
+/// its own folder).
+fn temp_dir(test: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("subdiv-fuzz-usd-{}-{test}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap_or_else(|e| panic!("{}: {e}", d.display()));
     d
 }
@@ -124,7 +125,7 @@ fn fuzz_usd() {
     let first = env_u64("SUBDIV_FUZZ_FIRST", 0);
     let keep = env_u64("SUBDIV_FUZZ_KEEP", 0) != 0;
     let seeds = Seeds::load();
-    let dir = temp_dir();
+    let dir = temp_dir("fuzz");
     let current: Current = Arc::new(Mutex::new((first, Instant::now(), None)));
     watchdog(current.clone(), seed, dir.clone());
     let t0 = Instant::now();
@@ -242,8 +243,7 @@ fn report(seed: u64, failures: &BTreeMap<String, Seen>) {
 /// The checker tells good and refused stages apart, and every seed reads.
 #[test]
 fn harness_classifies_stages() {
-    let dir = temp_dir().join("harness");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = temp_dir("harness");
     let write = |name: &str, text: &[u8]| {
         let p = dir.join(name);
         std::fs::write(&p, text).unwrap();
