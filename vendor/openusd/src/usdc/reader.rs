@@ -548,6 +548,14 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
         }
     }
 
+    /// subdiv: the capacity to reserve for `count` elements read one by one from here on: each
+    /// takes at least a byte of the stream, so no more than the bytes left (`count` comes from
+    /// the file, and reserving it whole could overflow or abort on a failed allocation).
+    fn capacity_for(&mut self, count: usize) -> Result<usize> {
+        let left = self.len.saturating_sub(self.reader.stream_position()?);
+        Ok(count.min(usize::try_from(left).unwrap_or(usize::MAX)))
+    }
+
     /// Reads a lz4 compressed data and returns decompressed raw bytes.
     ///
     /// Format expected:
@@ -1222,7 +1230,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
 
                 let list = self.read_list_op(value, |file: &mut Self| {
                     let count = file.reader.read_count()?;
-                    let mut vec = Vec::with_capacity(count);
+                    let mut vec = Vec::with_capacity(file.capacity_for(count)?);
 
                     for _ in 0..count {
                         let reference = file.read_reference()?;
@@ -1324,7 +1332,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
             Type::PayloadListOp => {
                 let list = self.read_list_op(value, |file: &mut Self| {
                     let count = file.reader.read_count()?;
-                    let mut vec = Vec::with_capacity(count);
+                    let mut vec = Vec::with_capacity(file.capacity_for(count)?);
                     for _ in 0..count {
                         let payload = file.read_payload()?;
                         vec.push(payload);
@@ -1344,7 +1352,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
                 self.set_position(value.payload())?;
 
                 let count = self.reader.read_count()?;
-                let mut map = HashMap::with_capacity(count);
+                let mut map = HashMap::with_capacity(self.capacity_for(count)?);
 
                 for _ in 0..count {
                     let key = self.read_string()?;
@@ -1448,7 +1456,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
                 ensure!(!value.is_inlined());
                 self.set_position(value.payload())?;
                 let count = self.reader.read_count()?;
-                let mut pairs = Vec::with_capacity(count);
+                let mut pairs = Vec::with_capacity(self.capacity_for(count)?);
                 for _ in 0..count {
                     let src_idx: u32 = self.reader.read_pod()?;
                     let tgt_idx: u32 = self.reader.read_pod()?;
