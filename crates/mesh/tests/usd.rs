@@ -368,6 +368,13 @@ fn absurd_sizes_in_a_crate_file_are_errors_not_allocations() {
         ),
         "the USD reader failed while reading prim /World/Cube: index out of bounds",
     ));
+    // A list op's element count (the references of /World/Cube) made huge: reserving it whole
+    // overflowed the capacity (a panic) or, a little smaller, would abort. Now the elements are
+    // read until one names a string that is not there (a panic, caught).
+    files.push((
+        patched_scene("alloc_references.usdc", &[(1808, 0x23)]),
+        "the USD reader failed while reading prim /World/Cube: index out of bounds",
+    ));
     for (p, want) in files {
         let e = read_usd(&p, &UsdReadOptions::default()).unwrap_err();
         let msg = e.to_string();
