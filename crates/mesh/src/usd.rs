@@ -30,7 +30,8 @@
 //!
 //! Every problem is a [`UsdError`] naming the file, the prim and the attribute; topology errors
 //! are the [`MeshError`]s of [`Mesh::from_soup`] for that prim alone (its own face and vertex
-//! numbers).
+//! numbers). A panic inside the `openusd` reader (a defect of the reader, on malformed input) is
+//! caught and returned as [`UsdError::ReaderPanic`].
 
 mod catch;
 mod prim;
