@@ -9,7 +9,8 @@
 //!
 //! Properties: nothing panics out of `read_cage` (a panic inside the third-party `openusd`
 //! parser is caught at `subdiv-mesh`'s boundary and becomes `UsdError::ReaderPanic`, counted and
-//! listed here as a parser defect, not a failure; one raised in subdiv's own code is a failure);
+//! listed here as a parser defect, not a failure; one whose location is outside `openusd`, in
+//! subdiv's own code or the standard library, is a failure);
 //! no case runs over 60 s (a watchdog aborts the run, printing the case); every refusal is a
 //! typed `UsdError` whose message starts with the file's path; every cage built tessellates to
 //! finite output.
