@@ -100,18 +100,25 @@ fn raw_bytes(rng: &mut Rng) -> Vec<u8> {
         .collect()
 }
 
-/// A few byte-level edits: flip, insert, delete, truncate, duplicate a span.
-fn mutate(rng: &mut Rng, mut b: Vec<u8>) -> Vec<u8> {
-    const INS: &[u8] = b"vft0123456789-/ .\n#e+naif\x00\xff";
+/// A few byte-level edits of OBJ text (see [`mutate_with`]).
+fn mutate(rng: &mut Rng, b: Vec<u8>) -> Vec<u8> {
+    mutate_with(rng, b, b"vft0123456789-/ .\n#e+naif\x00\xff")
+}
+
+/// One to six byte-level edits: flip a bit, insert a byte of `alphabet`, delete, truncate,
+/// duplicate a span elsewhere.
+pub fn mutate_with(rng: &mut Rng, mut b: Vec<u8>, alphabet: &[u8]) -> Vec<u8> {
+    const INS: &[u8] = b"\x00";
+    let ins = if alphabet.is_empty() { INS } else { alphabet };
     for _ in 0..1 + rng.below(6) {
         if b.is_empty() {
-            b.push(*rng.pick(INS));
+            b.push(*rng.pick(ins));
             continue;
         }
         let i = rng.below(b.len());
         match rng.below(5) {
             0 => b[i] ^= 1 << rng.below(8),
-            1 => b.insert(i, *rng.pick(INS)),
+            1 => b.insert(i, *rng.pick(ins)),
             2 => {
                 b.remove(i);
             }

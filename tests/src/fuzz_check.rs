@@ -18,7 +18,9 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, Once};
 
-use subdiv_mesh::{Mesh, MeshError, ObjError, PolygonSoup, parse_obj};
+use subdiv_mesh::{
+    CageError, CageOptions, Mesh, MeshError, ObjError, PolygonSoup, UsdError, parse_obj, read_cage,
+};
 use subdiv_rules::{LimitMesh, RulesError, Scheme, tessellate_uniform};
 
 /// A property an input broke: the stage and what happened.
@@ -153,6 +155,71 @@ pub fn check(bytes: &[u8]) -> Result<Outcome, Failure> {
             Ok(outcome)
         }
     }
+}
+
+/// How far a USD case got: the [`Outcome`] and, for a refusal, the [`UsdError`] variant.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UsdOutcome {
+    /// `ParseRefused` when the stage could not be read (`Io`, `Open`, `ReaderPanic`),
+    /// `MeshRefused` for the other refusals, or `Tessellated`.
+    pub outcome: Outcome,
+    /// The variant of the refusal (`Open`, `Attribute`, ...); `None` when tessellated.
+    pub refusal: Option<&'static str>,
+    /// For a `ReaderPanic`, its message (a defect of the `openusd` parser, caught).
+    pub panic: Option<String>,
+}
+
+/// Runs one USD file through `read_cage` (the product's reading path, default options) and, if
+/// a cage is built, the depth-1 tessellations of [`check`]. Properties: nothing panics out of
+/// `read_cage` (a panic inside `openusd` is caught at `subdiv-mesh`'s boundary and becomes
+/// `UsdError::ReaderPanic`, which must point into `openusd`, not subdiv's own code); every
+/// refusal is a typed `UsdError` whose message starts with the file's path; a built cage
+/// tessellates to finite output.
+pub fn check_usd(path: &std::path::Path) -> Result<UsdOutcome, Failure> {
+    const STAGE: &str = "read_cage(usd)";
+    let file = path.display().to_string();
+    let read = guard(STAGE, || read_cage(path, &CageOptions::default()))?;
+    let e = match read {
+        Ok(cage) => {
+            if cage.mesh.num_faces() == 0 {
+                return fail(STAGE, "built a cage without faces".into());
+            }
+            tessellate_all(&cage.mesh)?;
+            return Ok(UsdOutcome {
+                outcome: Outcome::Tessellated,
+                refusal: None,
+                panic: None,
+            });
+        }
+        Err(CageError::Usd(e)) => e,
+        Err(e) => return fail(STAGE, format!("not a USD error: {e:?}")),
+    };
+    let msg = e.to_string();
+    if !msg.starts_with(&file) || msg.trim() == file && !matches!(e, UsdError::Io { .. }) {
+        return fail(STAGE, format!("error does not name the file: {msg}"));
+    }
+    let (outcome, refusal) = match &e {
+        UsdError::Io { .. } => (Outcome::ParseRefused, "Io"),
+        UsdError::Open { .. } => (Outcome::ParseRefused, "Open"),
+        UsdError::ReaderPanic { .. } => (Outcome::ParseRefused, "ReaderPanic"),
+        UsdError::NoMesh { .. } => (Outcome::MeshRefused, "NoMesh"),
+        UsdError::NoSuchMesh { .. } => (Outcome::MeshRefused, "NoSuchMesh"),
+        UsdError::Attribute { .. } => (Outcome::MeshRefused, "Attribute"),
+        UsdError::Invalid { .. } => (Outcome::MeshRefused, "Invalid"),
+        UsdError::Mixed { .. } => (Outcome::MeshRefused, "Mixed"),
+    };
+    let panic = match &e {
+        UsdError::ReaderPanic { msg, .. } if !msg.contains("(at openusd") => {
+            return fail(STAGE, format!("a panic outside the parser: {e}"));
+        }
+        UsdError::ReaderPanic { doing, msg, .. } => Some(format!("while {doing}: {msg}")),
+        _ => None,
+    };
+    Ok(UsdOutcome {
+        outcome,
+        refusal: Some(refusal),
+        panic,
+    })
 }
 
 /// A refusal must say something and, for input from a file, name a line of it.

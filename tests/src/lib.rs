@@ -240,6 +240,7 @@ pub mod fuzz;
 pub mod fuzz_check;
 pub mod fuzz_lines;
 pub mod fuzz_topo;
+pub mod fuzz_usd;
 pub mod osd_cage;
 pub mod osd_compare;
 pub mod osd_fvar;

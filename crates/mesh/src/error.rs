@@ -315,6 +315,17 @@ pub enum UsdError {
         /// What is wrong.
         err: MeshError,
     },
+    /// The `openusd` reader panicked on this file: a defect of the third-party parser, caught at
+    /// this crate's boundary so that the caller gets an error instead of an unwinding thread.
+    #[error("{path}: the USD reader failed while {doing}: {msg}")]
+    ReaderPanic {
+        /// The file.
+        path: String,
+        /// What was being read (`opening the stage`, `reading prim /World/Mesh`, ...).
+        doing: String,
+        /// The panic's message and where in the reader it was raised.
+        msg: String,
+    },
     /// Merged prims disagree on an attribute that subdiv keeps per mesh.
     #[error("{path}: {attr} differs between {a} and {b}; read one mesh with --prim")]
     Mixed {

@@ -30,8 +30,10 @@
 //!
 //! Every problem is a [`UsdError`] naming the file, the prim and the attribute; topology errors
 //! are the [`MeshError`]s of [`Mesh::from_soup`] for that prim alone (its own face and vertex
-//! numbers).
+//! numbers). A panic inside the `openusd` reader (a defect of the reader, on malformed input) is
+//! caught and returned as [`UsdError::ReaderPanic`].
 
+mod catch;
 mod prim;
 
 use std::path::Path;
@@ -43,6 +45,7 @@ use crate::error::{MeshError, UsdError};
 use crate::mesh::Mesh;
 use crate::soup::{CornerTag, CreaseTag, HoleTag, PolygonSoup};
 
+use catch::{Doing, catch_reader};
 use prim::read_mesh_prim;
 
 /// The `subdivisionScheme` of a USD mesh.
@@ -185,30 +188,19 @@ pub fn read_usd(path: impl AsRef<Path>, opts: &UsdReadOptions) -> Result<UsdMesh
 
 /// Reads the mesh prims of a USD stage into one soup, without validating the merged topology
 /// (each prim is validated on its own, so errors name the prim's own faces and vertices).
+///
+/// A panic inside the `openusd` reader is caught here and returned as
+/// [`UsdError::ReaderPanic`].
 pub fn read_usd_soup(path: impl AsRef<Path>, prim: Option<&str>) -> Result<UsdCage, UsdError> {
     let path = path.as_ref();
     let file = path.display().to_string();
     if let Err(source) = std::fs::metadata(path) {
         return Err(UsdError::Io { path: file, source });
     }
-    let stage = Stage::open(&file).map_err(|e| UsdError::Open {
-        path: file.clone(),
-        msg: format!("{e:#}"),
-    })?;
-    let meshes = mesh_prims(&stage, &file)?;
-    let chosen: Vec<String> = match prim {
-        Some(p) => {
-            if !meshes.iter().any(|m| m == p) {
-                return Err(prim_not_found(&stage, &file, p, &meshes));
-            }
-            vec![p.to_string()]
-        }
-        None if meshes.is_empty() => return Err(UsdError::NoMesh { path: file }),
-        None => meshes,
-    };
+    let prims = catch_reader(&file, |doing| read_stage(&file, prim, doing))?;
     let mut cage = UsdCage::default();
-    for p in &chosen {
-        let one = read_mesh_prim(&stage, &file, p)?;
+    for (p, one) in prims {
+        let one = one?;
         // Validated as the reader builds it: non-manifold prims cut as OpenSubdiv refines them.
         let mut alone = one.soup.clone();
         let built = alone
@@ -217,7 +209,7 @@ pub fn read_usd_soup(path: impl AsRef<Path>, prim: Option<&str>) -> Result<UsdCa
         if let Err(err) = built {
             return Err(UsdError::Invalid {
                 path: file,
-                prim: p.clone(),
+                prim: p,
                 attr: attribute_of(&err),
                 err,
             });
@@ -225,6 +217,48 @@ pub fn read_usd_soup(path: impl AsRef<Path>, prim: Option<&str>) -> Result<UsdCa
         merge(&mut cage, one, &file)?;
     }
     Ok(cage)
+}
+
+/// The part of [`read_usd_soup`] that calls the `openusd` reader, inside the panic boundary
+/// (`doing` follows the steps): the chosen prims, each read or the error reading it (the list
+/// ends at the first error, so errors come in the order the prims are read and checked).
+#[allow(clippy::type_complexity)]
+fn read_stage(
+    file: &str,
+    prim: Option<&str>,
+    doing: &Doing,
+) -> Result<Vec<(String, Result<prim::PrimMesh, UsdError>)>, UsdError> {
+    let file = file.to_string();
+    let stage = Stage::open(&file).map_err(|e| UsdError::Open {
+        path: file.clone(),
+        msg: format!("{e:#}"),
+    })?;
+    doing.set("listing the mesh prims");
+    let meshes = mesh_prims(&stage, &file)?;
+    let chosen: Vec<String> = match prim {
+        Some(p) => {
+            if !meshes.iter().any(|m| m == p) {
+                doing.set(format!("looking up prim {p}"));
+                return Err(prim_not_found(&stage, &file, p, &meshes));
+            }
+            vec![p.to_string()]
+        }
+        None if meshes.is_empty() => return Err(UsdError::NoMesh { path: file }),
+        None => meshes,
+    };
+    let mut read = Vec::new();
+    for p in chosen {
+        doing.set(format!("reading prim {p}"));
+        let one = read_mesh_prim(&stage, &file, &p);
+        let failed = one.is_err();
+        read.push((p, one));
+        if failed {
+            break;
+        }
+    }
+    doing.set("closing the stage");
+    drop(stage);
+    Ok(read)
 }
 
 /// The paths of the active, defined mesh prims, in traversal order.

@@ -298,3 +298,127 @@ fn left_handed_and_mirrored_meshes_wind_counter_clockwise_in_world_space() {
         assert!((v - scale / 6.0).abs() < 1e-6, "{name}: volume {v}");
     }
 }
+
+/// `scene.usdc` with some bytes replaced (offset, new value), written to a temporary file.
+fn patched_scene(name: &str, patch: &[(usize, u8)]) -> PathBuf {
+    let mut b = std::fs::read(fixture("scene.usdc")).unwrap();
+    for &(at, v) in patch {
+        b[at] = v;
+    }
+    let p = temp_dir().join(name);
+    std::fs::write(&p, b).unwrap();
+    p
+}
+
+/// Crate files (found by the fuzzer, `tests/tests/fuzz_usd.rs`) whose counts made the reader
+/// allocate terabytes, which aborted the process; the vendored reader now bounds them by the
+/// bytes the file holds, so each is a typed error naming the file.
+#[test]
+fn absurd_sizes_in_a_crate_file_are_errors_not_allocations() {
+    // (file, what the error says)
+    let mut files: Vec<(PathBuf, &str)> = [
+        (
+            "alloc_1.usdc",
+            "Unable to read TOKENS section: Unable to read vec",
+        ),
+        (
+            "alloc_110.usdc",
+            "Unable to read SPECS section: Unable to read vec",
+        ),
+        (
+            "alloc_172.usdc",
+            "Unable to read PATHS section: Unable to read vec",
+        ),
+    ]
+    .iter()
+    .map(|&(n, want)| (fixture("fuzz").join(n), want))
+    .collect();
+    // `scene.usdc` with the element count of an int array (`faceVertexCounts`) made huge...
+    files.push((
+        patched_scene("alloc_ints.usdc", &[(457, 0xdb)]),
+        "faceVertexCounts: failed to decode field \"default\" at /World/Cube.faceVertexCounts: Unable to read vec",
+    ));
+    // ... of another int array, ...
+    files.push((
+        patched_scene(
+            "alloc_a.usdc",
+            &[(337, 0xfd), (338, 0xff), (339, 0xff), (340, 0xff), (822, 0), (823, 0), (826, 0), (827, 0)],
+        ),
+        "creaseIndices: failed to decode field \"default\" at /World/Cube.creaseIndices: Unable to read vec",
+    ));
+    // ... of the path table ...
+    files.push((
+        patched_scene(
+            "alloc_b.usdc",
+            &[(237, 0x01), (455, 0xcf), (2171, 0x80), (2407, 0x2c)],
+        ),
+        "Unable to read PATHS section: Unable to read vec",
+    ));
+    // ... and of a token array (whose reading then panics on a token index out of range).
+    files.push((
+        patched_scene(
+            "alloc_tokens.usdc",
+            &[
+                (228, 0xff),
+                (232, 0x00),
+                (852, 0x94),
+                (983, 0x7f),
+                (984, 0x00),
+            ],
+        ),
+        "the USD reader failed while reading prim /World/Cube: index out of bounds",
+    ));
+    // A list op's element count (the references of /World/Cube) made huge: reserving it whole
+    // overflowed the capacity (a panic) or, a little smaller, would abort. Now the elements are
+    // read until one names a string that is not there (a panic, caught).
+    files.push((
+        patched_scene("alloc_references.usdc", &[(1808, 0x23)]),
+        "the USD reader failed while reading prim /World/Cube: index out of bounds",
+    ));
+    for (p, want) in files {
+        let e = read_usd(&p, &UsdReadOptions::default()).unwrap_err();
+        let msg = e.to_string();
+        assert!(msg.starts_with(&format!("{}: ", p.display())), "{msg}");
+        assert!(msg.contains(want), "{msg}\n  wanted: {want}");
+    }
+}
+
+/// A crate file (found by the fuzzer) with a property name holding a `}`: the reader's walk
+/// up the path's ancestors never ended. Now it ends, and the file reads as far as it goes.
+#[test]
+fn a_path_with_a_stray_brace_has_ancestors_that_end() {
+    let p = fixture("fuzz").join("hang_path_parent.usdc");
+    let e = read_usd(&p, &UsdReadOptions::default()).unwrap_err();
+    assert!(
+        matches!(&e, UsdError::Invalid { prim, attr: "faceVertexIndices", .. } if prim == "/World/M0"),
+        "{e:?}"
+    );
+}
+
+/// A panic inside openusd (here an index out of range while it builds the paths of a crate
+/// file whose path table was altered) is a typed error naming the file and the step.
+#[test]
+fn a_panic_in_the_reader_is_a_typed_error() {
+    let p = patched_scene(
+        "panics.usdc",
+        &[(2105, 0xfe), (2106, 0xff), (2107, 0xff), (2108, 0x14)],
+    );
+    let e = read_usd(&p, &UsdReadOptions::default()).unwrap_err();
+    let msg = e.to_string();
+    assert!(matches!(e, UsdError::ReaderPanic { .. }), "{e:?}");
+    let want = format!(
+        "{}: the USD reader failed while opening the stage: ",
+        p.display()
+    );
+    assert!(msg.starts_with(&want), "{msg}");
+    assert!(
+        msg.contains("index out of bounds") && msg.contains("(at openusd"),
+        "{msg}"
+    );
+    // The same through read_cage.
+    let e = read_cage(&p, &CageOptions::default()).unwrap_err();
+    assert!(
+        matches!(e, CageError::Usd(UsdError::ReaderPanic { .. })),
+        "{e:?}"
+    );
+}
