@@ -285,3 +285,19 @@ fn junk(rng: &mut Rng, s: &mut String, nl: &str, percent: u64) {
     s.push_str(rng.pick::<&str>(LINES));
     s.push_str(nl);
 }
+
+/// The environment variable `name` as a number (decimal, or hex after `0x`), or `default`
+/// when it is unset; a value that is not a number fails the test that asked, naming it.
+pub fn env_u64(name: &str, default: u64) -> u64 {
+    match std::env::var(name) {
+        Ok(s) => {
+            let s = s.trim();
+            let v = match s.strip_prefix("0x") {
+                Some(h) => u64::from_str_radix(h, 16),
+                None => s.parse(),
+            };
+            v.unwrap_or_else(|_| panic!("{name}={s}: not a number"))
+        }
+        Err(_) => default,
+    }
+}

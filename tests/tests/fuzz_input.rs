@@ -18,27 +18,13 @@ use std::io::Write as _;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use subdiv_tests::fuzz::{Rng, input};
+use subdiv_tests::fuzz::{Rng, env_u64, input};
 use subdiv_tests::fuzz_check::{Outcome, check, guard};
 
 const DEFAULT_SEED: u64 = 0x13F0;
 const DEFAULT_CASES: u64 = 5000;
 /// A case running longer than this is a hang (the largest inputs take milliseconds).
 const HANG: Duration = Duration::from_secs(60);
-
-fn env_u64(name: &str, default: u64) -> u64 {
-    match std::env::var(name) {
-        Ok(s) => {
-            let s = s.trim();
-            let v = match s.strip_prefix("0x") {
-                Some(h) => u64::from_str_radix(h, 16),
-                None => s.parse(),
-            };
-            v.unwrap_or_else(|_| panic!("{name}={s}: not a number"))
-        }
-        Err(_) => default,
-    }
-}
 
 /// The case now running, for the hang watchdog: (index, start, input).
 type Current = Arc<Mutex<(u64, Instant, Vec<u8>)>>;

@@ -35,15 +35,8 @@ use subdiv_mesh::{Camera, Mesh};
 use subdiv_rules::Scheme;
 use subdiv_stitch::FrameGeometry;
 use subdiv_tests::fixture_files;
-use subdiv_tests::fuzz::Rng;
+use subdiv_tests::fuzz::{Rng, env_u64};
 use subdiv_tests::osd_gen::random_cage;
-
-fn env_u64(name: &str, default: u64) -> u64 {
-    std::env::var(name)
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(default)
-}
 
 /// Open edges the frame must have away from non-manifold edges: along every cage edge with
 /// exactly one drawn face, 2^depth of that face (`on`: the split mesh's copies of non-manifold
