@@ -10,8 +10,9 @@ use subdiv_rules::Scheme;
 use subdiv_vk::{RenderMesh, RenderOptions, Renderer, View, VkError};
 
 use super::config::{Config, ConfigQuality, QualityError, QualityParams};
+use super::lines::line_pixels;
 use super::metrics::{
-    FrameErrors, SUPERSAMPLE, area_coverage, compare_with_distance, line_pixels, quantile,
+    FrameErrors, SUPERSAMPLE, area_coverage, compare_with_distance, quantile,
     sample_silhouette_distance,
 };
 use crate::{DynamicSubdivision, Scene, frame_limit, uniform_limit, view_for};
