@@ -3,6 +3,8 @@
 //! touching at their tips, random soups), then cage-level mutations (flipped, duplicated or
 //! dropped faces, bad indices, short faces, isolated vertices, degenerate or extreme positions).
 
+use subdiv_test_support::Soup;
+
 use crate::fuzz::{Cage, Rng};
 
 /// A random topology and its family name.
@@ -35,25 +37,24 @@ fn p(x: f32, y: f32, z: f32) -> [f32; 3] {
 fn grid(rng: &mut Rng) -> Cage {
     let (w, h) = (rng.range(1, 6), rng.range(1, 6));
     let tri = rng.chance(40);
-    let mut c = Cage::default();
-    for j in 0..=h {
-        for i in 0..=w {
-            c.pos.push(p(i as f32, j as f32, 0.3 * rng.unit()));
-        }
+    cage(subdiv_test_support::grid(
+        w as u32,
+        h as u32,
+        tri,
+        |i, j| p(i as f32, j as f32, 0.3 * rng.unit()),
+    ))
+}
+
+/// The soup as a cage.
+fn cage(s: Soup) -> Cage {
+    Cage {
+        pos: s.positions,
+        faces: s
+            .faces
+            .iter()
+            .map(|f| f.iter().map(|&v| v as i64).collect())
+            .collect(),
     }
-    let id = |i: i64, j: i64| j * (w + 1) + i;
-    for j in 0..h {
-        for i in 0..w {
-            let q = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
-            if tri {
-                c.faces.push(vec![q[0], q[1], q[2]]);
-                c.faces.push(vec![q[0], q[2], q[3]]);
-            } else {
-                c.faces.push(q.to_vec());
-            }
-        }
-    }
-    c
 }
 
 /// A closed prism over an n-gon: two n-gon caps and n quads.
@@ -77,25 +78,7 @@ fn prism(rng: &mut Rng) -> Cage {
 
 /// The unit cube, outward-oriented quads.
 pub fn cube() -> Cage {
-    let mut c = Cage::default();
-    for k in 0..8 {
-        c.pos.push(p(
-            (k & 1) as f32,
-            ((k >> 1) & 1) as f32,
-            ((k >> 2) & 1) as f32,
-        ));
-    }
-    for f in [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ] {
-        c.faces.push(f.to_vec());
-    }
-    c
+    cage(subdiv_test_support::cube())
 }
 
 /// Valence `n`: a disk of triangles around vertex 0, closed into a bipyramid when `closed`.

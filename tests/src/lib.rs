@@ -6,23 +6,7 @@ use std::path::PathBuf;
 
 use glam::DVec3;
 
-/// The repository's `fixtures/` directory.
-pub fn fixtures() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("..")
-        .join("fixtures")
-}
-
-/// All files in `fixtures/<dir>` with extension `ext`, sorted.
-pub fn fixture_files(dir: &str, ext: &str) -> Vec<PathBuf> {
-    let mut v: Vec<PathBuf> = std::fs::read_dir(fixtures().join(dir))
-        .unwrap_or_else(|e| panic!("fixtures/{dir}: {e}"))
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == ext))
-        .collect();
-    v.sort();
-    v
-}
+pub use subdiv_test_support::{fixture_files, fixtures};
 
 /// An OpenSubdiv reference limit file (`fixtures/reference/limit/<shape>.L<n>.txt`).
 #[derive(Debug, Clone)]

@@ -209,23 +209,13 @@ fn base_shape(rng: &mut Rng, loop_scheme: bool) -> Builder {
 /// An open `w` x `h` grid, quads or triangles.
 fn grid(rng: &mut Rng, tri: bool) -> Builder {
     let (w, h) = (rng.range(1, 5) as u32, rng.range(1, 5) as u32);
-    let mut b = Builder::default();
-    for j in 0..=h {
-        for i in 0..=w {
-            b.vertex([i as f64, j as f64, 0.4 * rng.unit() as f64]);
-        }
+    let g = subdiv_test_support::grid(w, h, tri, |i, j| {
+        [i as f64, j as f64, 0.4 * rng.unit() as f64]
+    });
+    Builder {
+        pos: g.positions,
+        faces: g.faces,
     }
-    let id = |i: u32, j: u32| j * (w + 1) + i;
-    for j in 0..h {
-        for i in 0..w {
-            push_quad(
-                &mut b,
-                [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)],
-                tri,
-            );
-        }
-    }
-    b
 }
 
 fn push_quad(b: &mut Builder, q: [u32; 4], tri: bool) {

@@ -1,68 +1,24 @@
 //! Adaptive Loop tessellation (issue 14 items 3 and 4): watertight to the bit over every
 //! triangle fixture × random cameras × random depths, in every depth mode.
 
-use std::collections::HashMap;
-
 use glam::Vec3;
 use subdiv::DynamicSubdivision;
 use subdiv_depth::DepthParams;
 use subdiv_mesh::{Camera, Mesh};
 use subdiv_rules::Scheme;
 use subdiv_stitch::FrameGeometry;
+use subdiv_test_support::Rng;
 
-/// A small deterministic generator (xorshift).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn unit(&mut self) -> f32 {
-        (self.next() % 1_000_000) as f32 / 1_000_000.0
-    }
+/// Uniform in `[0, 1)` in steps of 1e-6.
+fn unit(rng: &mut Rng) -> f32 {
+    rng.below(1_000_000) as f32 / 1_000_000.0
 }
 
 /// After welding bitwise equal positions: no degenerate triangle, every directed edge used
 /// once, and the same open edges as by index (shared points are one vertex). Returns the open
 /// edges.
 fn open_edges(name: &str, g: &FrameGeometry) -> usize {
-    let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
-    let id: Vec<u32> = g
-        .positions
-        .iter()
-        .map(|p| {
-            let n = weld.len() as u32;
-            *weld.entry(p.map(f32::to_bits)).or_insert(n)
-        })
-        .collect();
-    let count = |id: &dyn Fn(u32) -> u32| {
-        let mut dir: HashMap<(u32, u32), u32> = HashMap::new();
-        for t in g.indices.chunks(3) {
-            let t = [id(t[0]), id(t[1]), id(t[2])];
-            assert!(
-                t[0] != t[1] && t[1] != t[2] && t[0] != t[2],
-                "{name}: degenerate triangle {t:?}"
-            );
-            for k in 0..3 {
-                *dir.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
-            }
-        }
-        for (&(a, b), &c) in &dir {
-            assert_eq!(c, 1, "{name}: directed edge {a}->{b} used {c} times");
-        }
-        dir.keys()
-            .filter(|&&(a, b)| !dir.contains_key(&(b, a)))
-            .count()
-    };
-    let welded = count(&|i| id[i as usize]);
-    assert_eq!(
-        welded,
-        count(&|i| i),
-        "{name}: open edges by position vs. by index"
-    );
-    welded
+    subdiv_test_support::open_edges(name, &g.positions, &g.indices)
 }
 
 /// The open edges a frame must have: cage edges with one drawn face (the boundary, holes,
@@ -95,15 +51,15 @@ fn expected_open(mesh: &Mesh, g: &FrameGeometry) -> usize {
 
 fn random_camera(rng: &mut Rng, mesh: &Mesh) -> Camera {
     let (lo, hi) = mesh.bounds();
-    let dir = Vec3::new(rng.unit() - 0.5, rng.unit() - 0.5, rng.unit() - 0.5).normalize_or(Vec3::Z);
+    let dir = Vec3::new(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5).normalize_or(Vec3::Z);
     // From close up (parts of the cage behind the eye or beside the view) to far away.
-    let dist = 0.6 + 4.0 * rng.unit();
-    Camera::eye_relative(lo, hi, dir * dist, 30.0 + 40.0 * rng.unit(), 640, 480)
+    let dist = 0.6 + 4.0 * unit(rng);
+    Camera::eye_relative(lo, hi, dir * dist, 30.0 + 40.0 * unit(rng), 640, 480)
 }
 
 #[test]
 fn adaptive_loop_is_watertight_on_every_triangle_fixture() {
-    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    let mut rng = Rng::xorshift(0x2545_f491_4f6c_dd1d);
     let cages = subdiv_tests::loop_cages();
     assert!(cages.len() >= 11, "{} loop cages", cages.len());
     for (name, mesh) in cages {
@@ -118,7 +74,7 @@ fn adaptive_loop_is_watertight_on_every_triangle_fixture() {
         let modes = [
             params,
             DepthParams {
-                pixel_error: Some(0.5 + 2.0 * rng.unit()),
+                pixel_error: Some(0.5 + 2.0 * unit(&mut rng)),
                 ..params
             },
             DepthParams {
@@ -141,7 +97,7 @@ fn adaptive_loop_is_watertight_on_every_triangle_fixture() {
         node.set_params(params).unwrap();
         for round in 0..3 {
             let depths: Vec<u8> = (0..nf)
-                .map(|_| (rng.next() % (max_depth as u64 + 1)) as u8)
+                .map(|_| (rng.next_u64() % (max_depth as u64 + 1)) as u8)
                 .collect();
             node.set_face_depths(Some(depths.clone())).unwrap();
             let camera = random_camera(&mut rng, &mesh);

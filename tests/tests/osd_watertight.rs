@@ -34,6 +34,7 @@ use subdiv_depth::DepthParams;
 use subdiv_mesh::{Camera, Mesh};
 use subdiv_rules::Scheme;
 use subdiv_stitch::FrameGeometry;
+use subdiv_test_support::weld_values;
 use subdiv_tests::fixture_files;
 use subdiv_tests::fuzz::{Rng, env_u64};
 use subdiv_tests::osd_gen::random_cage;
@@ -134,16 +135,7 @@ fn check_watertight(
     want_open: usize,
     seams: &HashMap<u32, usize>,
 ) -> Result<(), String> {
-    let mut ids: HashMap<[u32; 3], u32> = HashMap::new();
-    let weld: Vec<u32> = g
-        .positions
-        .iter()
-        .map(|p| {
-            let key = p.map(|x| if x == 0.0 { 0 } else { x.to_bits() });
-            let n = ids.len() as u32;
-            *ids.entry(key).or_insert(n)
-        })
-        .collect();
+    let weld = weld_values(&g.positions);
     // Per welded edge: uses each way, the first use's own (unwelded) vertices, and whether
     // another use names it with other vertices (only welding joins them).
     type Uses = (u32, u32, Option<(u32, u32)>, bool);

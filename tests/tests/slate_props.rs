@@ -174,9 +174,8 @@ fn valence_360_pole() {
 fn creases_at_every_depth() {
     // A cube with semi-sharp edges of sharpness 0.5 .. 6.5 on different edges: the slate output
     // equals the whole-mesh reference at every depth up to 5 (past every crease's end).
-    let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
-f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n\
-t crease 2/1/0 0 1 0.5\nt crease 2/1/0 1 3 1.5\nt crease 2/1/0 3 2 2.5\nt crease 2/1/0 2 0 6.5\nt crease 2/1/0 4 5 10\nt corner 1/1/0 7 3.5\n";
+    let text = subdiv_test_support::cube().obj()
+        + "t crease 2/1/0 0 1 0.5\nt crease 2/1/0 1 3 1.5\nt crease 2/1/0 3 2 2.5\nt crease 2/1/0 2 0 6.5\nt crease 2/1/0 4 5 10\nt corner 1/1/0 7 3.5\n";
     for chaikin in [false, true] {
         let text = if chaikin {
             format!("{text}t creasemethod 0/0/1 chaikin\n")

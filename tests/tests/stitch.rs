@@ -1,49 +1,20 @@
 //! Adaptive assembly: crack-free (bitwise) for random per-face depths, on every fixture cage.
 
-use std::collections::HashMap;
-
 use glam::DVec3;
 use subdiv_mesh::{Mesh, MeshStats, ReadOptions, VertexId, read_obj_with};
 use subdiv_rules::{Scheme, refine_uniform_levels};
 use subdiv_stitch::{Assembler, FanMethod, FrameGeometry};
+use subdiv_test_support::{Rng, indexed_open_edges, shape};
 use subdiv_tests::PointGrid;
 
 fn cages() -> Vec<(String, Mesh)> {
     subdiv_tests::catmull_clark_cages()
 }
 
-/// A small deterministic generator (xorshift).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-}
-
 /// Every edge of the triangle mesh has two triangles using it in opposite directions, except
 /// the cage's own boundary; returns the number of open edges.
 fn check_closed(name: &str, g: &FrameGeometry) -> usize {
-    let mut dir: HashMap<(u32, u32), u32> = HashMap::new();
-    for t in g.indices.chunks(3) {
-        assert!(
-            t[0] != t[1] && t[1] != t[2] && t[0] != t[2],
-            "{name}: degenerate triangle {t:?}"
-        );
-        for k in 0..3 {
-            *dir.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
-        }
-    }
-    let mut open = 0;
-    for (&(a, b), &c) in &dir {
-        assert_eq!(c, 1, "{name}: directed edge {a}->{b} used {c} times");
-        if !dir.contains_key(&(b, a)) {
-            open += 1;
-        }
-    }
-    open
+    indexed_open_edges(name, &g.indices)
 }
 
 /// An interior vertex of valence 2 with the smooth or dart rule and no semi-sharpness left (as in
@@ -83,7 +54,7 @@ fn corner_mask_points(mesh: &Mesh, depth: u8) -> Vec<DVec3> {
 
 #[test]
 fn random_depths_are_watertight() {
-    let mut rng = Rng(0x9e3779b97f4a7c15);
+    let mut rng = Rng::xorshift(0x9e3779b97f4a7c15);
     for (name, mesh) in cages() {
         let stats = MeshStats::of(&mesh);
         let maxd = if mesh.num_faces() > 500 { 3 } else { 4 };
@@ -104,7 +75,7 @@ fn random_depths_are_watertight() {
         let mut g = FrameGeometry::default();
         for round in 0..12 {
             let depth: Vec<u8> = (0..nu)
-                .map(|_| (rng.next() % (maxd as u64 + 1)) as u8)
+                .map(|_| (rng.next_u64() % (maxd as u64 + 1)) as u8)
                 .collect();
             let method = if round % 3 == 2 {
                 FanMethod::Simple
@@ -201,45 +172,13 @@ fn cache_reuses_blocks_while_depths_do_not_rise() {
 }
 
 fn fixtures_shape(n: &str) -> std::path::PathBuf {
-    subdiv_tests::fixtures()
-        .join("reference/shapes")
-        .join(format!("{n}.obj"))
+    shape(&format!("{n}.obj"))
 }
 
 /// Welds identical coordinates, then checks every edge has two triangles in opposite
 /// directions; returns the number of open (boundary) edges.
 fn welded_open_edges(name: &str, g: &FrameGeometry) -> usize {
-    let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
-    let id: Vec<u32> = g
-        .positions
-        .iter()
-        .map(|p| {
-            let n = weld.len() as u32;
-            *weld.entry(p.map(f32::to_bits)).or_insert(n)
-        })
-        .collect();
-    let mut dir: HashMap<(u32, u32), u32> = HashMap::new();
-    for t in g.indices.chunks(3) {
-        let t = [id[t[0] as usize], id[t[1] as usize], id[t[2] as usize]];
-        assert!(
-            t[0] != t[1] && t[1] != t[2] && t[0] != t[2],
-            "{name}: degenerate triangle after welding"
-        );
-        for k in 0..3 {
-            *dir.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
-        }
-    }
-    let mut open = 0;
-    for (&(a, b), &c) in &dir {
-        assert_eq!(
-            c, 1,
-            "{name}: welded edge {a}->{b} used {c} times (T-junction or flip)"
-        );
-        if !dir.contains_key(&(b, a)) {
-            open += 1;
-        }
-    }
-    open
+    subdiv_test_support::welded_open_edges(name, &g.positions, &g.indices)
 }
 
 #[test]
@@ -247,8 +186,8 @@ fn random_cameras_are_watertight() {
     use subdiv::DynamicSubdivision;
     use subdiv_depth::DepthParams;
     use subdiv_mesh::Camera;
-    let mut rng = Rng(0x2545F4914F6CDD1D);
-    let mut unit = || (rng.next() % 2001) as f32 / 1000.0 - 1.0;
+    let mut rng = Rng::xorshift(0x2545F4914F6CDD1D);
+    let mut unit = || (rng.next_u64() % 2001) as f32 / 1000.0 - 1.0;
     for (name, mesh) in cages() {
         let stats = MeshStats::of(&mesh);
         let holes = mesh.faces().filter(|&f| mesh.is_hole(f)).count();
