@@ -128,12 +128,9 @@ mod tests {
             .args
     }
 
-    const CUBE: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
-        g bottom\nf 1 3 4 2\ng top\nf 5 6 8 7\ng sides\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
-
     #[test]
     fn quads_need_triangulate_and_focus_names_groups() {
-        let input = temp("cube.obj", CUBE);
+        let input = temp("cube.obj", &subdiv_test_support::grouped_cube_obj());
         let out = input.with_file_name("out.obj");
         let (i, o) = (input.to_str().unwrap(), out.to_str().unwrap());
         let e = run(&args(&[i, "--doi", "dihedral", "-o", o]))

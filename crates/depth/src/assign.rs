@@ -360,16 +360,15 @@ mod tests {
         }
     }
 
-    /// A cube (8 vertices, 6 quads), optionally without its top face (open).
+    /// The cube `[-1, 1]^3` (8 vertices, 6 quads, its `y = 1` face last), optionally without
+    /// that top face (open).
     fn cube(open: bool) -> Mesh {
-        let mut obj = String::from(
-            "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\n\
-             f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 1 5 7 3\nf 2 4 8 6\n",
-        );
+        let mut c = subdiv_test_support::cube().map_positions(|p| p.map(|x| 2.0 * x - 1.0));
+        let top = c.faces.remove(3);
         if !open {
-            obj.push_str("f 3 7 8 4\n");
+            c.faces.push(top);
         }
-        Mesh::from_soup(&subdiv_mesh::parse_obj(&obj).unwrap()).unwrap()
+        Mesh::from_soup(&subdiv_mesh::parse_obj(&c.obj()).unwrap()).unwrap()
     }
 
     #[test]

@@ -94,23 +94,11 @@ mod tests {
     use super::*;
     use subdiv_mesh::PolygonSoup;
 
+    /// An `n x n` grid of quads centred on the origin, at height `f(x, y)`.
     fn grid(n: i32, f: impl Fn(f32, f32) -> f32) -> Mesh {
-        let mut p = Vec::new();
-        for j in 0..=n {
-            for i in 0..=n {
-                let (x, y) = ((i - n / 2) as f32, (j - n / 2) as f32);
-                p.push(Vec3::new(x, y, f(x, y)));
-            }
-        }
-        let w = (n + 1) as u32;
-        let faces: Vec<Vec<u32>> = (0..n as u32)
-            .flat_map(|j| (0..n as u32).map(move |i| (i, j)))
-            .map(|(i, j)| {
-                let a = j * w + i;
-                vec![a, a + 1, a + w + 1, a + w]
-            })
-            .collect();
-        Mesh::from_soup(&PolygonSoup::from_faces(p, &faces)).unwrap()
+        let g = subdiv_test_support::height_grid(n as u32, false, -(n / 2) as f32, f);
+        let p = g.positions.into_iter().map(Vec3::from).collect();
+        Mesh::from_soup(&PolygonSoup::from_faces(p, &g.faces)).unwrap()
     }
 
     /// A cage vertex of valence 2 takes OpenSubdiv's corner limit masks through `Ring::limit`:
@@ -118,9 +106,8 @@ mod tests {
     /// pillow's corner are back to back, so no cone holds them and it gets the most depth.
     #[test]
     fn valence2_vertex_uses_the_corner_masks() {
-        let text = std::fs::read_to_string(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../fixtures/reference/shapes/catmark_pillow_valence2.obj"
+        let text = std::fs::read_to_string(subdiv_test_support::fixture(
+            "reference/shapes/catmark_pillow_valence2.obj",
         ))
         .unwrap();
         let mesh = Mesh::from_soup(&subdiv_mesh::parse_obj(&text).unwrap()).unwrap();
@@ -146,9 +133,8 @@ mod tests {
     fn loop_rings_give_loop_limits_and_cone_depths() {
         // The Loop icosahedron: all vertices alike (valence 5), limit points on a sphere
         // inside the cage, the same curvature depth everywhere, deeper for a narrower cone.
-        let text = std::fs::read_to_string(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../fixtures/reference/shapes/loop_icosahedron.obj"
+        let text = std::fs::read_to_string(subdiv_test_support::fixture(
+            "reference/shapes/loop_icosahedron.obj",
         ))
         .unwrap();
         let mesh = Mesh::from_soup(&subdiv_mesh::parse_obj(&text).unwrap()).unwrap();

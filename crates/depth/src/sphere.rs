@@ -151,9 +151,6 @@ mod tests {
     use subdiv_mesh::parse_obj;
     use subdiv_rules::tessellate_uniform;
 
-    const CUBE: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
-                        f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
-
     /// Every limit point of a fine uniform tessellation lies in its cage face's sphere.
     fn assert_contains(mesh: &Mesh, spheres: &[Sphere], depth: Depth) {
         assert_contains_scheme(mesh, spheres, depth, Scheme::CatmullClark);
@@ -178,7 +175,8 @@ mod tests {
 
     #[test]
     fn spheres_contain_the_limit_surface() {
-        let cube = Mesh::from_soup(&parse_obj(CUBE).unwrap()).unwrap();
+        let cube =
+            Mesh::from_soup(&parse_obj(&subdiv_test_support::cube().obj()).unwrap()).unwrap();
         let s = face_spheres(&cube);
         assert_contains(&cube, &s, 4);
         // Tight: well inside the unit cube's face circle grown by its 1-ring (radius 1.5).
@@ -196,10 +194,7 @@ mod tests {
     #[test]
     fn loop_spheres_contain_the_loop_limit_surface() {
         // Every Loop fixture (creases, semi-sharp creases, boundaries, corners, high valence).
-        let dir = concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../fixtures/reference/shapes"
-        );
+        let dir = subdiv_test_support::fixture("reference/shapes");
         let mut seen = 0;
         for entry in std::fs::read_dir(dir).unwrap() {
             let path = entry.unwrap().path();
@@ -218,7 +213,8 @@ mod tests {
 
     #[test]
     fn level_zero_hull_is_looser_but_contains() {
-        let cube = Mesh::from_soup(&parse_obj(CUBE).unwrap()).unwrap();
+        let cube =
+            Mesh::from_soup(&parse_obj(&subdiv_test_support::cube().obj()).unwrap()).unwrap();
         let identity: Vec<u32> = (0..6).collect();
         let coarse = hull_spheres(&cube, &identity, 6);
         assert_contains(&cube, &coarse, 4);

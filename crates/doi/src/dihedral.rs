@@ -74,22 +74,9 @@ mod tests {
     use subdiv_mesh::PolygonSoup;
 
     fn grid(n: u32, height: impl Fn(f32, f32) -> f32) -> Mesh {
-        let mut p = Vec::new();
-        for j in 0..=n {
-            for i in 0..=n {
-                let (x, y) = (i as f32, j as f32);
-                p.push(Vec3::new(x, y, height(x, y)));
-            }
-        }
-        let id = |i: u32, j: u32| j * (n + 1) + i;
-        let mut f = Vec::new();
-        for j in 0..n {
-            for i in 0..n {
-                f.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-                f.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-            }
-        }
-        Mesh::from_soup(&PolygonSoup::from_faces(p, &f)).unwrap()
+        let g = subdiv_test_support::height_grid(n, true, 0.0, height);
+        let p = g.positions.into_iter().map(Vec3::from).collect();
+        Mesh::from_soup(&PolygonSoup::from_faces(p, &g.faces)).unwrap()
     }
 
     #[test]

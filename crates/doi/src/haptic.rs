@@ -432,27 +432,11 @@ mod tests {
         assert!(v.iter().all(|&e| e.abs() < 1e-5), "{v:?}");
         // A bumpy grid: where the normals at an edge's two ends differ, the patches do not
         // join G1.
-        let n = 4u32;
-        let mut p = Vec::new();
-        for j in 0..=n {
-            for i in 0..=n {
-                let (x, y) = (i as f32, j as f32);
-                p.push(Vec3::new(
-                    x,
-                    y,
-                    0.3 * (1.7 * x).sin() * (1.1 * y + 0.4).cos(),
-                ));
-            }
-        }
-        let id = |i: u32, j: u32| j * (n + 1) + i;
-        let mut f = Vec::new();
-        for j in 0..n {
-            for i in 0..n {
-                f.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-                f.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-            }
-        }
-        let m = Mesh::from_soup(&PolygonSoup::from_faces(p, &f)).unwrap();
+        let g = subdiv_test_support::height_grid(4, true, 0.0, |x, y| {
+            0.3 * (1.7 * x).sin() * (1.1 * y + 0.4).cos()
+        });
+        let p = g.positions.into_iter().map(Vec3::from).collect();
+        let m = Mesh::from_soup(&PolygonSoup::from_faces(p, &g.faces)).unwrap();
         HapticG1
             .evaluate(&m, &DoiContext::default(), &mut v)
             .unwrap();

@@ -272,8 +272,10 @@ mod tests {
                 < 1e-6
         );
         // A compact object's computed skeleton collapses to its centre.
-        let cube: Vec<Vec3> = (0..8)
-            .map(|i| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32))
+        let cube: Vec<Vec3> = subdiv_test_support::cube()
+            .positions
+            .into_iter()
+            .map(Vec3::from)
             .collect();
         let s = principal_axis_skeleton(&cube).unwrap();
         assert_eq!(s.len(), 1);

@@ -278,22 +278,9 @@ mod tests {
 
     /// A regular (n+1)^2 quad grid with heights from `f`.
     fn quad_grid(n: i32, f: impl Fn(f32, f32) -> f32) -> Mesh {
-        let mut p = Vec::new();
-        for j in 0..=n {
-            for i in 0..=n {
-                let (x, y) = ((i - n / 2) as f32, (j - n / 2) as f32);
-                p.push(Vec3::new(x, y, f(x, y)));
-            }
-        }
-        let w = (n + 1) as u32;
-        let mut faces = Vec::new();
-        for j in 0..n as u32 {
-            for i in 0..n as u32 {
-                let a = j * w + i;
-                faces.push(vec![a, a + 1, a + w + 1, a + w]);
-            }
-        }
-        Mesh::from_soup(&PolygonSoup::from_faces(p, &faces)).unwrap()
+        let g = subdiv_test_support::height_grid(n as u32, false, -(n / 2) as f32, f);
+        let p = g.positions.into_iter().map(Vec3::from).collect();
+        Mesh::from_soup(&PolygonSoup::from_faces(p, &g.faces)).unwrap()
     }
 
     /// A regular triangle lattice (unit spacing) with heights from `f`.

@@ -563,8 +563,7 @@ mod tests {
     /// internal error from the refined mesh's validation).
     #[test]
     fn huge_coordinates_are_refused_and_the_bound_is_safe() {
-        let cube = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
-                    f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+        let cube = &subdiv_test_support::cube().obj();
         let mut m = Mesh::from_soup(&parse_obj(cube).unwrap()).unwrap();
         m.positions_mut()[6].y = 3.4e38;
         for depth in [0, 1] {

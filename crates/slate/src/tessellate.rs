@@ -459,10 +459,7 @@ mod tests {
     fn ownership_is_a_partition() {
         // Every output point is owned by exactly one patch (or is an isolated vertex).
         for (name, text) in [
-            (
-                "cube",
-                "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\nf 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n",
-            ),
+            ("cube", subdiv_test_support::cube().obj().as_str()),
             (
                 "tri+quad",
                 "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 9 9 9\nf 1 2 3 4\nf 2 5 3\n",

@@ -13,33 +13,12 @@ pub(crate) fn single_quad() -> Mesh {
 
 /// The unit cube: 6 quads, closed, every vertex of valence 3.
 pub(crate) fn cube() -> Mesh {
-    mesh(
-        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
-         f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n",
-    )
+    mesh(&subdiv_test_support::cube().obj())
 }
 
 /// A `k x k` grid of quads in the plane (open, interior vertices of valence 4).
 pub(crate) fn grid(k: usize) -> Mesh {
-    let mut obj = String::new();
-    for y in 0..=k {
-        for x in 0..=k {
-            obj += &format!("v {x} {y} 0\n");
-        }
-    }
-    let id = |x: usize, y: usize| y * (k + 1) + x + 1;
-    for y in 0..k {
-        for x in 0..k {
-            obj += &format!(
-                "f {} {} {} {}\n",
-                id(x, y),
-                id(x + 1, y),
-                id(x + 1, y + 1),
-                id(x, y + 1)
-            );
-        }
-    }
-    mesh(&obj)
+    mesh(&subdiv_test_support::height_grid(k as u32, false, 0.0, |_, _| 0.0).obj())
 }
 
 /// A pentagon with two rings of quads around it (an open disc): face 0 is the pentagon, faces

@@ -368,18 +368,7 @@ mod tests {
     use super::*;
     use crate::worker::Worker;
 
-    /// xorshift64*: reproducible test values without a dependency.
-    struct Rng(u64);
-
-    impl Rng {
-        fn next(&mut self) -> f32 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            let r = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d);
-            (r >> 40) as f32 / (1u64 << 24) as f32
-        }
-    }
+    use subdiv_test_support::Rng;
 
     /// A table of grid size `n` whose points lie on a bumpy surface of scale `scale`, with some
     /// exceptional points (`kind`): coincident rows (zero tangents), overflowing and NaN ones.
@@ -390,21 +379,21 @@ mod tests {
         for j in 0..n + 3 {
             for i in 0..n + 3 {
                 let (x, y) = (i as f32, j as f32);
-                let z = rng.next() - 0.5;
+                let z = rng.next_f32() - 0.5;
                 let mut p = Vec3A::new(x + 0.3 * z, y - 0.2 * z, z * z) * scale;
                 match kind {
                     // Three coincident rows: degenerate tangents below, at and above them.
                     1 if (5..8).contains(&j) => p = Vec3A::splat(scale),
                     // A flat patch: tangents exactly in the plane.
                     2 => p.z = 0.0,
-                    3 if rng.next() < 0.02 => p.x = 3.0e38,
-                    4 if rng.next() < 0.02 => p.y = f32::NAN,
+                    3 if rng.next_f32() < 0.02 => p.x = 3.0e38,
+                    4 if rng.next_f32() < 0.02 => p.y = f32::NAN,
                     _ => {}
                 }
                 t.positions[j * t.stride + i] = p;
             }
         }
-        w.origin32 = Vec3A::new(rng.next(), -rng.next(), 100.0 * rng.next()) * scale;
+        w.origin32 = Vec3A::new(rng.next_f32(), -rng.next_f32(), 100.0 * rng.next_f32()) * scale;
     }
 
     #[test]
@@ -414,7 +403,7 @@ mod tests {
             return;
         }
         let mut w = Worker::new(5);
-        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        let mut rng = Rng::xorshift_star(0x9e37_79b9_7f4a_7c15);
         let mut scratch = vec![0.0; scratch_len(32)];
         let mut cases = 0;
         for n in 9..=32 {

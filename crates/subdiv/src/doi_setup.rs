@@ -371,11 +371,10 @@ mod tests {
     use super::*;
     use subdiv_mesh::parse_obj;
 
-    const CUBE: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
-        g bottom\nf 1 3 4 2\ng top\nf 5 6 8 7\ng sides\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
-
+    /// The unit cube in three groups: `bottom` (face 0), `top` (face 1) and `sides`.
     fn cube() -> Mesh {
-        Mesh::from_soup(&parse_obj(CUBE).unwrap()).unwrap()
+        let obj = subdiv_test_support::grouped_cube_obj();
+        Mesh::from_soup(&parse_obj(&obj).unwrap()).unwrap()
     }
 
     #[test]

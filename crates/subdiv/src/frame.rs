@@ -59,8 +59,7 @@ mod tests {
 
     #[test]
     fn frame_limit_keeps_referenced_vertices_and_their_depths() {
-        let cube = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
-                    f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+        let cube = &subdiv_test_support::cube().obj();
         let mesh = Mesh::from_soup(&parse_obj(cube).unwrap()).unwrap();
         let (lo, hi) = mesh.bounds();
         let mut node = DynamicSubdivision::new(mesh, DepthParams::default()).unwrap();
@@ -93,8 +92,7 @@ mod tests {
 
     #[test]
     fn adaptive_frames_carry_the_one_sided_normals_of_the_uniform_path() {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../../fixtures/scenes/box_8_sharp_edges.obj");
+        let path = subdiv_test_support::fixture("scenes/box_8_sharp_edges.obj");
         let mesh = subdiv_mesh::read_obj(path).unwrap();
         let truth = crate::uniform_limit(&mesh, subdiv_rules::Scheme::CatmullClark, 4).unwrap();
         // The uniform path's one-sided normals per point (by position).

@@ -196,13 +196,12 @@ mod tests {
 
     /// The cage of a cube with every edge infinitely sharp: its limit surface is the cube.
     fn sharp_cube(scheme: Scheme) -> Mesh {
-        let quads = "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
-        let tris = "f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\nf 3 8 4\n\
-                    f 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n";
-        let faces = if scheme == Scheme::Loop { tris } else { quads };
-        let text = format!(
-            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n{faces}"
-        );
+        let cube = subdiv_test_support::cube();
+        let text = if scheme == Scheme::Loop {
+            cube.triangulated().obj()
+        } else {
+            cube.obj()
+        };
         let mut cage = Mesh::from_soup(&subdiv_mesh::parse_obj(&text).unwrap()).unwrap();
         for e in 0..cage.num_edges() as u32 {
             let e = subdiv_mesh::EdgeId(e);
@@ -242,11 +241,7 @@ mod tests {
 
     #[test]
     fn uniform_scenes_carry_the_depth_and_refuse_empty_surfaces() {
-        let cube = subdiv_mesh::parse_obj(
-            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
-             f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n",
-        )
-        .unwrap();
+        let cube = subdiv_mesh::parse_obj(&subdiv_test_support::cube().obj()).unwrap();
         let cage = Mesh::from_soup(&cube).unwrap();
         let scene = Scene::uniform(&cage, Scheme::CatmullClark, 2).unwrap();
         assert_eq!(scene.faces, 6 * 16);

@@ -8,21 +8,9 @@ use crate::LoopError;
 
 /// A regular triangle strip grid of `n x n` quads cut into triangles, in the plane z = 0.
 fn grid(n: u32) -> Mesh {
-    let mut p = Vec::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            p.push(Vec3::new(i as f32, j as f32, 0.0));
-        }
-    }
-    let id = |i: u32, j: u32| j * (n + 1) + i;
-    let mut f = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            f.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-            f.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
-    Mesh::from_soup(&PolygonSoup::from_faces(p, &f)).unwrap()
+    let g = subdiv_test_support::height_grid(n, true, 0.0, |_, _| 0.0);
+    let p = g.positions.into_iter().map(Vec3::from).collect();
+    Mesh::from_soup(&PolygonSoup::from_faces(p, &g.faces)).unwrap()
 }
 
 /// Midpoints for every split edge, appended after the existing vertices.

@@ -5,36 +5,16 @@ use super::*;
 use crate::options::{BoundaryInterpolation, SHARPNESS_INFINITE};
 use crate::soup::{CornerTag, CreaseTag, HoleTag};
 
+fn soup(s: subdiv_test_support::Soup) -> PolygonSoup {
+    PolygonSoup::from_faces(s.positions.into_iter().map(Vec3::from).collect(), &s.faces)
+}
+
 fn grid(n: u32) -> PolygonSoup {
-    let mut p = Vec::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            p.push(Vec3::new(i as f32, j as f32, 0.0));
-        }
-    }
-    let mut faces = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            let a = j * (n + 1) + i;
-            faces.push(vec![a, a + 1, a + n + 2, a + n + 1]);
-        }
-    }
-    PolygonSoup::from_faces(p, &faces)
+    soup(subdiv_test_support::height_grid(n, false, 0.0, |_, _| 0.0))
 }
 
 fn cube() -> PolygonSoup {
-    let p = (0..8)
-        .map(|i| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32))
-        .collect();
-    let faces = [
-        vec![0, 2, 3, 1],
-        vec![4, 5, 7, 6],
-        vec![0, 1, 5, 4],
-        vec![2, 6, 7, 3],
-        vec![0, 4, 6, 2],
-        vec![1, 3, 7, 5],
-    ];
-    PolygonSoup::from_faces(p, &faces)
+    soup(subdiv_test_support::cube())
 }
 
 #[test]

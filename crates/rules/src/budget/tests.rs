@@ -2,8 +2,6 @@ use super::*;
 use crate::{refine_uniform_levels, tessellate_uniform};
 use subdiv_mesh::parse_obj;
 
-const CUBE: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
-                    f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
 /// An open cage with a pentagon, a triangle and a quad (boundary edges, n-gons).
 const MIXED: &str = "v 0 0 0\nv 2 0 0\nv 3 1 0\nv 1 2 0\nv -1 1 0\nv 3 -1 0\nv 1 -1.5 0\n\
                      v 0 -1 0\nf 1 2 3 4 5\nf 2 6 3\nf 1 8 7 2\n";
@@ -17,8 +15,9 @@ fn mesh(text: &str) -> Mesh {
 /// and boundaries, both schemes.
 #[test]
 fn uniform_estimate_is_the_real_size() {
+    let cube = subdiv_test_support::cube().obj();
     for (text, scheme) in [
-        (CUBE, Scheme::CatmullClark),
+        (cube.as_str(), Scheme::CatmullClark),
         (MIXED, Scheme::CatmullClark),
         (TET, Scheme::Loop),
         (TET, Scheme::CatmullClark),
@@ -45,7 +44,7 @@ fn uniform_estimate_is_the_real_size() {
 /// an overflow panic, and are refused by any finite memory.
 #[test]
 fn huge_requests_saturate_and_are_refused() {
-    let m = mesh(CUBE);
+    let m = mesh(&subdiv_test_support::cube().obj());
     for request in [
         Request::Uniform {
             scheme: Scheme::CatmullClark,
@@ -73,7 +72,7 @@ fn huge_requests_saturate_and_are_refused() {
 /// naming the limit.
 #[test]
 fn triangle_limit_is_exact() {
-    let m = mesh(CUBE);
+    let m = mesh(&subdiv_test_support::cube().obj());
     let request = Request::Uniform {
         scheme: Scheme::CatmullClark,
         depth: 3,

@@ -217,8 +217,7 @@ mod tests {
 
     #[test]
     fn corners_of_a_sharp_cube_have_one_side_per_face() {
-        let cube = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
-                    f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+        let cube = &subdiv_test_support::cube().obj();
         let mut mesh = Mesh::from_soup(&subdiv_mesh::parse_obj(cube).unwrap()).unwrap();
         for e in 0..mesh.num_edges() {
             mesh.set_edge_sharpness(subdiv_mesh::EdgeId(e as u32), 10.0);

@@ -262,25 +262,18 @@ impl QuadRingStencil {
 mod tests {
     use super::*;
 
-    /// A small deterministic generator (xorshift) for test configurations.
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> f64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-        fn point(&mut self, scale: f64) -> DVec3 {
-            DVec3::new(self.next(), self.next(), self.next()) * scale
-        }
+    use subdiv_test_support::Rng;
+
+    /// A point in `[0, scale)^3`.
+    fn point(rng: &mut Rng, scale: f64) -> DVec3 {
+        DVec3::new(rng.next_f64(), rng.next_f64(), rng.next_f64()) * scale
     }
 
     /// The stencil gives what the ring gives, for creases of every kind (integer, fractional,
     /// infinite, Chaikin with far-end information), boundaries and valences 2 to 6.
     #[test]
     fn stencil_matches_ring_limit() {
-        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        let mut rng = Rng::xorshift(0x9e37_79b9_7f4a_7c15);
         let choices = [0.0f32, 0.0, 0.5, 1.0, 1.5, 2.0, 3.25, 10.0];
         let mut checked = 0;
         let mut sided = 0;
@@ -291,32 +284,32 @@ mod tests {
                 CreaseMethod::Chaikin
             };
             let boundary = case % 5 == 0;
-            let m = 2 + (rng.next() * 5.0) as usize;
+            let m = 2 + (rng.next_f64() * 5.0) as usize;
             if !boundary && m < 3 {
                 continue;
             }
             let nd = if boundary { m - 1 } else { m };
             let sharp: Vec<f32> = (0..m)
-                .map(|_| choices[(rng.next() * choices.len() as f64) as usize])
+                .map(|_| choices[(rng.next_f64() * choices.len() as f64) as usize])
                 .collect();
             let far: Vec<(f32, u32)> = (0..m)
                 .map(|_| {
-                    let c = (rng.next() * 3.0) as u32;
-                    (c as f32 * (0.5 + rng.next() as f32 * 2.0), c)
+                    let c = (rng.next_f64() * 3.0) as u32;
+                    (c as f32 * (0.5 + rng.next_f64() as f32 * 2.0), c)
                 })
                 .collect();
             // A bumpy ring around the origin.
-            let center = rng.point(0.3);
+            let center = point(&mut rng, 0.3);
             let edges: Vec<DVec3> = (0..m)
                 .map(|i| {
                     let a = std::f64::consts::TAU * i as f64 / m as f64;
-                    DVec3::new(a.cos(), a.sin(), 0.0) + rng.point(0.2)
+                    DVec3::new(a.cos(), a.sin(), 0.0) + point(&mut rng, 0.2)
                 })
                 .collect();
             let diag: Vec<DVec3> = (0..nd)
                 .map(|i| {
                     let a = std::f64::consts::TAU * (i as f64 + 0.5) / m as f64;
-                    DVec3::new(a.cos(), a.sin(), 0.0) * 1.4 + rng.point(0.2)
+                    DVec3::new(a.cos(), a.sin(), 0.0) * 1.4 + point(&mut rng, 0.2)
                 })
                 .collect();
             let st = QuadRingStencil::new(method, boundary, &sharp, &far, nd);
@@ -344,7 +337,7 @@ mod tests {
     /// scale and offset and on degenerate ones (flat, collapsed), where it must hand over.
     #[test]
     fn quick_normal_keeps_every_bit() {
-        let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+        let mut rng = Rng::xorshift(0x2545_f491_4f6c_dd1d);
         let choices = [0.0f32, 0.0, 0.5, 1.0, 2.0, 3.0, 6.0, 10.0];
         let (mut quick, mut full) = (Vec::new(), Vec::new());
         let mut decided = 0;
@@ -358,14 +351,14 @@ mod tests {
             let m = if case % 2 == 0 { 4 } else { 3 + case % 4 };
             let nd = if boundary { m - 1 } else { m };
             let sharp: Vec<f32> = (0..m)
-                .map(|_| choices[(rng.next() * choices.len() as f64) as usize])
+                .map(|_| choices[(rng.next_f64() * choices.len() as f64) as usize])
                 .collect();
             let far = vec![(0.0, 0); m];
             let st = QuadRingStencil::new(method, boundary, &sharp, &far, nd);
             // Scales from 1e-6 to 1e3, offsets from 1e-2 to 1e2, and every tenth ring flat or
             // collapsed.
             let scale = 10f64.powi((case % 10) as i32 - 6);
-            let offset = rng.point(10f64.powi(((case / 10) % 5) as i32 - 2));
+            let offset = point(&mut rng, 10f64.powi(((case / 10) % 5) as i32 - 2));
             let squash = match case % 10 {
                 0 => DVec3::new(1.0, 1.0, 0.0),
                 5 => DVec3::ZERO,
@@ -373,7 +366,7 @@ mod tests {
             };
             let pt = |rng: &mut Rng, a: f64, r: f64| {
                 offset
-                    + (DVec3::new(a.cos() * r, a.sin() * r, 0.0) + rng.point(0.3)) * squash * scale
+                    + (DVec3::new(a.cos() * r, a.sin() * r, 0.0) + point(rng, 0.3)) * squash * scale
             };
             let center = pt(&mut rng, 0.0, 0.0);
             let edges: Vec<DVec3> = (0..m)

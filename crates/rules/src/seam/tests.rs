@@ -101,8 +101,7 @@ fn seam_points_are_the_limit_surface() {
 
 #[test]
 fn manifold_cages_and_semi_sharp_chains_are_left_alone() {
-    let cube = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
-                f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+    let cube = &subdiv_test_support::cube().obj();
     let mesh = split(cube);
     let seams = SeamCurves::new(&mesh);
     assert!(seams.is_empty() && seams.groups().is_empty());

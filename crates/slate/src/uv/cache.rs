@@ -122,10 +122,7 @@ mod tests {
     use subdiv_rules::LimitMesh;
 
     fn cage(name: &str) -> Mesh {
-        let path = format!(
-            "{}/../../fixtures/meshes/fvar/{name}.obj",
-            env!("CARGO_MANIFEST_DIR")
-        );
+        let path = subdiv_test_support::fixture(&format!("meshes/fvar/{name}.obj"));
         Mesh::from_soup(&parse_obj(&std::fs::read_to_string(path).unwrap()).unwrap()).unwrap()
     }
 

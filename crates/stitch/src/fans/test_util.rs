@@ -1,41 +1,24 @@
 //! Shared fixtures of the unit tests: small cages, a one-call frame and watertightness checks.
 
-use std::collections::HashMap;
-
 use subdiv_mesh::{Mesh, parse_obj};
 
 use super::{Assembler, FanMethod, FrameGeometry};
 
 /// The unit cube, outward counter-clockwise faces (6 quads, closed).
 pub(super) fn cube() -> Mesh {
-    let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
-               f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
-    Mesh::from_soup(&parse_obj(obj).unwrap()).unwrap()
+    Mesh::from_soup(&parse_obj(&subdiv_test_support::cube().obj()).unwrap()).unwrap()
 }
 
 /// A flat `k x k` grid of quads in the `z = 0` plane (open: `4k` boundary edges).
 pub(super) fn grid(k: usize) -> Mesh {
-    let mut obj = String::new();
-    for j in 0..=k {
-        for i in 0..=k {
-            obj += &format!("v {i} {j} 0\n");
-        }
-    }
-    for j in 0..k {
-        for i in 0..k {
-            let a = j * (k + 1) + i + 1;
-            obj += &format!("f {a} {} {} {}\n", a + 1, a + k + 2, a + k + 1);
-        }
-    }
-    Mesh::from_soup(&parse_obj(&obj).unwrap()).unwrap()
+    let soup = subdiv_test_support::height_grid(k as u32, false, 0.0, |_, _| 0.0);
+    Mesh::from_soup(&parse_obj(&soup.obj()).unwrap()).unwrap()
 }
 
 /// A closed triangular prism: faces 0 and 1 are triangles, 2..=4 quads (all level-1 units:
 /// every quad touches a triangle).
 pub(super) fn prism() -> Mesh {
-    let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\n\
-               f 1 3 2\nf 4 5 6\nf 1 2 5 4\nf 1 4 6 3\nf 2 3 6 5\n";
-    Mesh::from_soup(&parse_obj(obj).unwrap()).unwrap()
+    Mesh::from_soup(&parse_obj(&subdiv_test_support::prism().obj()).unwrap()).unwrap()
 }
 
 /// The unit cube with its top split into two triangles: face 0 (the bottom, away from the
@@ -65,55 +48,11 @@ pub(super) fn frame(
 /// then after welding vertices with bitwise equal positions; returns the number of open
 /// (unpaired) edges after welding, which both passes must agree on.
 pub(crate) fn open_edges(g: &FrameGeometry) -> usize {
-    let by_index = open_edges_with(g, |i| i);
-    let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
-    let id: Vec<u32> = g
-        .positions
-        .iter()
-        .map(|p| {
-            let n = weld.len() as u32;
-            *weld.entry(p.map(f32::to_bits)).or_insert(n)
-        })
-        .collect();
-    let welded = open_edges_with(g, |i| id[i as usize]);
-    assert_eq!(by_index, welded, "open edges by index vs. by position");
-    welded
+    subdiv_test_support::open_edges("frame", &g.positions, &g.indices)
 }
 
-fn open_edges_with(g: &FrameGeometry, id: impl Fn(u32) -> u32) -> usize {
-    assert_eq!(g.indices.len() % 3, 0);
-    let mut dir: HashMap<(u32, u32), u32> = HashMap::new();
-    for t in g.indices.chunks(3) {
-        let t = [id(t[0]), id(t[1]), id(t[2])];
-        assert!(
-            t[0] != t[1] && t[1] != t[2] && t[0] != t[2],
-            "degenerate triangle {t:?}"
-        );
-        for k in 0..3 {
-            *dir.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
-        }
-    }
-    let mut open = 0;
-    for (&(a, b), &c) in &dir {
-        assert_eq!(c, 1, "directed edge {a}->{b} used {c} times");
-        if !dir.contains_key(&(b, a)) {
-            open += 1;
-        }
-    }
-    open
-}
-
-/// A small deterministic generator (xorshift).
-pub(crate) struct Rng(pub(crate) u64);
-
-impl Rng {
-    pub(crate) fn below(&mut self, n: u64) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0 % n
-    }
-}
+/// The generator of the unit tests (their seeds are xorshift64 seeds: `Rng::xorshift`).
+pub(crate) use subdiv_test_support::Rng;
 
 /// The unit cube with its bottom face replaced by two quads around a new vertex 9 that share
 /// the two consecutive edges 1-9 and 9-4: vertex 9 is interior with valence 2. `rot` rotates the

@@ -9,10 +9,7 @@ use super::*;
 use crate::fans::test_util::{Rng, open_edges};
 
 fn fixture(name: &str) -> Mesh {
-    let path = format!(
-        "{}/../../fixtures/reference/shapes/{name}.obj",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let path = subdiv_test_support::shape(&format!("{name}.obj"));
     let text = std::fs::read_to_string(&path).unwrap();
     Mesh::from_soup(&parse_obj(&text).unwrap()).unwrap()
 }
@@ -60,7 +57,7 @@ fn frame(mesh: &Mesh, depth: &[Depth], active: &[bool]) -> (TriAssembler, FrameG
 
 #[test]
 fn random_depths_are_watertight_on_every_loop_fixture() {
-    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut rng = Rng::xorshift(0x9e37_79b9_7f4a_7c15);
     for name in FIXTURES {
         let mesh = fixture(name);
         let nf = mesh.num_faces();
@@ -117,7 +114,7 @@ fn every_depth_pair_across_an_edge_is_watertight() {
 /// within rounding where a finer (or the only drawn) neighbour writes a shared point instead.
 #[test]
 fn drawn_points_are_the_uniform_tessellation_at_the_patch_depth() {
-    let mut rng = Rng(77);
+    let mut rng = Rng::xorshift(77);
     for name in [
         "loop_cubes_semisharp",
         "loop_saddle_edgecorner",

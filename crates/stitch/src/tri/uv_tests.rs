@@ -10,10 +10,7 @@ use super::*;
 use crate::fans::test_util::{Rng, open_edges};
 
 fn fvar(name: &str) -> String {
-    let path = format!(
-        "{}/../../fixtures/meshes/fvar/{name}.obj",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let path = subdiv_test_support::fixture(&format!("meshes/fvar/{name}.obj"));
     std::fs::read_to_string(path).unwrap()
 }
 
@@ -79,7 +76,7 @@ fn reference(mesh: &Mesh, d: Depth) -> Vec<(usize, [f32; 3], [f32; 2])> {
 
 #[test]
 fn mixed_depth_corners_take_the_deepest_uniform_uvs_on_one_side() {
-    let mut rng = Rng(0x5eed_0016);
+    let mut rng = Rng::xorshift(0x5eed_0016);
     for (name, mesh) in cages() {
         let nf = mesh.num_faces();
         let top: Depth = 3;

@@ -11,16 +11,12 @@ use super::*;
 
 /// The unit cube: face 0 is `z = 0`, face 1 is `z = 1`, faces 2..=5 the sides.
 fn cube() -> Mesh {
-    let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
-               f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
-    Mesh::from_soup(&parse_obj(obj).unwrap()).unwrap()
+    Mesh::from_soup(&parse_obj(&subdiv_test_support::cube().obj()).unwrap()).unwrap()
 }
 
 /// A closed triangular prism (two triangles, three quads).
 fn prism() -> Mesh {
-    let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\n\
-               f 1 3 2\nf 4 5 6\nf 1 2 5 4\nf 1 4 6 3\nf 2 3 6 5\n";
-    Mesh::from_soup(&parse_obj(obj).unwrap()).unwrap()
+    Mesh::from_soup(&parse_obj(&subdiv_test_support::prism().obj()).unwrap()).unwrap()
 }
 
 fn params(max_depth: Depth) -> DepthParams {
@@ -40,30 +36,8 @@ fn camera_on_z(dist: f32) -> Camera {
 /// After welding bitwise equal positions, every edge of a closed surface has exactly two
 /// triangles, in opposite directions.
 fn assert_closed(g: &FrameGeometry) {
-    let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
-    let id: Vec<u32> = g
-        .positions
-        .iter()
-        .map(|p| {
-            let n = weld.len() as u32;
-            *weld.entry(p.map(f32::to_bits)).or_insert(n)
-        })
-        .collect();
-    let mut dir: HashMap<(u32, u32), u32> = HashMap::new();
-    for t in g.indices.chunks(3) {
-        let t = [id[t[0] as usize], id[t[1] as usize], id[t[2] as usize]];
-        assert!(
-            t[0] != t[1] && t[1] != t[2] && t[0] != t[2],
-            "degenerate {t:?}"
-        );
-        for k in 0..3 {
-            *dir.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
-        }
-    }
-    for (&(a, b), &c) in &dir {
-        assert_eq!(c, 1, "edge {a}->{b} used {c} times");
-        assert!(dir.contains_key(&(b, a)), "open edge {a}->{b}");
-    }
+    let open = subdiv_test_support::welded_open_edges("frame", &g.positions, &g.indices);
+    assert_eq!(open, 0, "open edges");
 }
 
 #[test]
@@ -193,10 +167,7 @@ fn frame_rate_control_toggles() {
 
 /// The Loop icosahedron.
 fn icosahedron() -> Mesh {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../fixtures/reference/shapes/loop_icosahedron.obj"
-    );
+    let path = subdiv_test_support::fixture("reference/shapes/loop_icosahedron.obj");
     Mesh::from_soup(&parse_obj(&std::fs::read_to_string(path).unwrap()).unwrap()).unwrap()
 }
 
@@ -297,15 +268,7 @@ fn fin_from(obj: &str) -> Mesh {
 /// The segments of a frame used by three triangles after welding bitwise equal positions (on
 /// a fin, its non-manifold edge), checking that no edge has more than three.
 fn fin_segments(g: &subdiv_stitch::FrameGeometry) -> usize {
-    let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
-    let id: Vec<u32> = g
-        .positions
-        .iter()
-        .map(|p| {
-            let n = weld.len() as u32;
-            *weld.entry(p.map(f32::to_bits)).or_insert(n)
-        })
-        .collect();
+    let id = subdiv_test_support::weld(&g.positions);
     let mut uses: HashMap<(u32, u32), u32> = HashMap::new();
     for t in g.indices.chunks(3) {
         for k in 0..3 {
