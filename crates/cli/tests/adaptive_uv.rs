@@ -4,7 +4,8 @@
 
 mod common;
 
-use common::{fixtures, run, tmp};
+use common::{run, tmp};
+use subdiv_test_support::fixtures;
 
 #[test]
 fn adaptive_tessellation_writes_texture_coordinates() {

@@ -4,7 +4,8 @@
 
 mod common;
 
-use common::{assert_clean_failure, root, run_ok, subdiv};
+use common::{assert_clean_failure, run_ok, subdiv};
+use subdiv_test_support::shape;
 
 const KEYS: [&str; 8] = [
     "config",
@@ -18,10 +19,7 @@ const KEYS: [&str; 8] = [
 ];
 
 fn cube() -> String {
-    root()
-        .join("fixtures/reference/shapes/catmark_cube.obj")
-        .to_string_lossy()
-        .into_owned()
+    shape("catmark_cube.obj").to_string_lossy().into_owned()
 }
 
 /// The fields of a result line, checked against [`KEYS`] in order; numbers parse and are finite.

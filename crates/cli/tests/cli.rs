@@ -3,7 +3,8 @@
 
 mod common;
 
-use common::{fixtures, run, tmp};
+use common::{run, tmp};
+use subdiv_test_support::fixtures;
 
 const QUAD_HEAD: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
 

@@ -3,7 +3,8 @@
 
 mod common;
 
-use common::{assert_fails, fixtures, run, tmp};
+use common::{assert_fails, run, tmp};
+use subdiv_test_support::fixtures;
 
 fn usd(name: &str) -> String {
     fixtures().join("usd").join(name).display().to_string()

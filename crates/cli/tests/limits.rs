@@ -6,10 +6,13 @@
 
 mod common;
 
-use common::{assert_clean_failure, fixtures, run, subdiv, tmp};
+use common::{assert_clean_failure, run, subdiv, tmp};
 
 fn fixture(rel: &str) -> String {
-    fixtures().join(rel).to_str().unwrap().to_string()
+    subdiv_test_support::fixture(rel)
+        .to_str()
+        .unwrap()
+        .to_string()
 }
 
 fn pawn() -> String {

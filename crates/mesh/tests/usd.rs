@@ -2,7 +2,7 @@
 //! cage of the OBJ that Pixar's USD library made from it (`fixtures/usd/make_fixtures.py`), and
 //! bad input gets a typed error naming file, prim and attribute.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use subdiv_mesh::{
     BoundaryInterpolation, CageError, CageOptions, FaceVaryingLinear, Mesh, TriangleSubdivision,
@@ -10,9 +10,7 @@ use subdiv_mesh::{
 };
 
 fn fixture(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../fixtures/usd")
-        .join(name)
+    subdiv_test_support::fixture("usd").join(name)
 }
 
 fn usd(name: &str, prim: Option<&str>) -> Result<subdiv_mesh::UsdMesh, UsdError> {

@@ -3,13 +3,10 @@
 //! values, unindexed values and left-handed winding map corner by corner; bad or unsupported
 //! forms give typed errors naming file, prim and attribute.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use subdiv_mesh::{FVarLinearInterpolation, UsdReadOptions, read_obj, read_usd};
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures")
-}
+use subdiv_test_support::fixtures;
 
 fn temp_dir() -> PathBuf {
     let d = std::env::temp_dir().join(format!("subdiv-usd-uv-test-{}", std::process::id()));
@@ -43,8 +40,12 @@ fn corner_uvs(m: &subdiv_mesh::Mesh) -> Vec<[f32; 2]> {
 
 #[test]
 fn cube_uv_stage_is_its_obj_twin() {
-    let u = read_usd(root().join("usd/cube_uv.usda"), &UsdReadOptions::default()).unwrap();
-    let o = read_obj(root().join("meshes/fvar/cube_uv.obj")).unwrap();
+    let u = read_usd(
+        fixtures().join("usd/cube_uv.usda"),
+        &UsdReadOptions::default(),
+    )
+    .unwrap();
+    let o = read_obj(fixtures().join("meshes/fvar/cube_uv.obj")).unwrap();
     assert_eq!(corner_uvs(&u.mesh), corner_uvs(&o));
     assert_eq!(u.mesh.options().fvar, FVarLinearInterpolation::CornersOnly);
     assert_eq!(u.mesh.options().fvar, o.options().fvar);

@@ -16,10 +16,11 @@
 //! `SLATE_HASHES_BLESS=1 cargo test -p subdiv-slate --test output_hashes` rewrites the file.
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use subdiv_rules::LimitMesh;
 use subdiv_slate::{PatchLayout, tessellate, tessellate_layout_into};
+use subdiv_test_support::fixtures;
 
 /// Deepest depth checked.
 const MAX_DEPTH: subdiv_rules::Depth = 6;
@@ -78,10 +79,6 @@ fn trig_fingerprint() -> u64 {
         h.bytes(&x.to_bits().to_le_bytes());
     }
     h.0
-}
-
-fn fixtures() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures")
 }
 
 /// Every fixture cage (OpenSubdiv's shapes of both schemes and the real meshes), by file stem.

@@ -3,8 +3,6 @@
 //! with the same layout; every other case writes them. Each output is compared with a fresh
 //! tessellation of the same layout, so stale faces fail.
 
-use std::path::Path;
-
 use subdiv_mesh::{Mesh, read_obj};
 use subdiv_rules::LimitMesh;
 use subdiv_slate::{
@@ -12,8 +10,7 @@ use subdiv_slate::{
 };
 
 fn shape(name: &str) -> Mesh {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/reference/shapes");
-    read_obj(dir.join(name)).expect("fixture")
+    read_obj(subdiv_test_support::shape(name)).expect("fixture")
 }
 
 /// Tessellates `layout` into `out`, checks the result against a fresh output and returns

@@ -11,12 +11,7 @@ use subdiv::{
     DoiKind, DoiOptions, DoiSetup, DynamicSubdivision, OutputFormat, SurfaceExport, VertexScalar,
     frame_limit, uniform_limit, write_export, write_surface,
 };
-
-fn shape(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../fixtures/reference/shapes")
-        .join(name)
-}
+use subdiv_test_support::{fixture, shape};
 
 fn out_dir() -> PathBuf {
     let d = std::env::temp_dir().join(format!("subdiv-export-test-{}", std::process::id()));
@@ -274,7 +269,7 @@ fn output_format_follows_the_extension() {
 /// keeps the position and the UV of its face corner in the tessellation.
 #[test]
 fn uvs_of_a_tessellated_cage_reach_the_export() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/meshes/fvar/cube_uv.obj");
+    let path = fixture("meshes/fvar/cube_uv.obj");
     let cube = read_obj(path).unwrap();
     let t = uniform_limit(&cube, Scheme::CatmullClark, 2).unwrap();
     assert_eq!(t.uv_indices.len(), t.face_indices.len(), "UVs per corner");
@@ -323,8 +318,7 @@ fn uvs_of_a_tessellated_cage_reach_the_export() {
 /// the `.glb` re-read by the `gltf` crate holds `TEXCOORD_0`, one per vertex (issue 16 item 3).
 #[test]
 fn uvs_of_a_refined_cage_reach_the_export() {
-    let path =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/meshes/fvar/tri_seam.obj");
+    let path = fixture("meshes/fvar/tri_seam.obj");
     let cage = read_obj(path).unwrap();
     let (lo, hi) = cage.bounds();
     let camera = Camera::eye_relative(lo, hi, Vec3::new(0.3, 0.4, 2.5), 45.0, 640, 480);

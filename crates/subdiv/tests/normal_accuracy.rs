@@ -139,7 +139,7 @@ fn check(m: &OwnedMesh, truth: &Truth) -> Checked {
 /// The fixture cages: the reference shapes and the scenes (the scenes hold the box with
 /// infinitely sharp edges, the shapes few of those).
 fn cages() -> Vec<(String, Mesh, Scheme)> {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures");
+    let root = subdiv_test_support::fixtures();
     let mut paths: Vec<_> = ["reference/shapes", "scenes"]
         .iter()
         .flat_map(|d| std::fs::read_dir(root.join(d)).unwrap())

@@ -2,16 +2,14 @@
 //! makes from it, `fixtures/usd/make_fixtures.py`): same limit points, normals and faces, bit
 //! for bit, with the scheme the stage names.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use subdiv::mesh::{CageOptions, UsdScheme, read_cage, read_obj};
 use subdiv::rules::Scheme;
 use subdiv::uniform_limit;
 
 fn fixture(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../fixtures/usd")
-        .join(name)
+    subdiv_test_support::fixture("usd").join(name)
 }
 
 #[test]

@@ -33,15 +33,7 @@ pub fn lavapipe_icd() -> Option<PathBuf> {
 pub const VALIDATION_LAYER: &str =
     "/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json";
 
-/// The workspace root.
-pub fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// `fixtures/` of the workspace.
-pub fn fixtures() -> PathBuf {
-    root().join("fixtures")
-}
+pub use subdiv_test_support::root;
 
 /// A path in this test process's scratch directory.
 pub fn tmp(name: &str) -> PathBuf {

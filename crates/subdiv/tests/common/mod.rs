@@ -1,27 +1,16 @@
 //! Set-up shared by the image-based bound tests: the fixture cages and a renderer (skipped,
 //! with a message, where no Vulkan driver is installed unless `SUBDIV_VK_REQUIRE_DRIVER=1`).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
+
+use subdiv_test_support::fixture_files;
 
 use subdiv::vk::{ContextOptions, Renderer, Validation, VkError};
 
-/// The workspace root.
-pub fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
 /// Every fixture cage (`fixtures/reference/shapes`, `fixtures/scenes`), sorted per folder.
 pub fn cages() -> Vec<PathBuf> {
-    let mut out = Vec::new();
-    for dir in ["fixtures/reference/shapes", "fixtures/scenes"] {
-        let mut files: Vec<PathBuf> = std::fs::read_dir(root().join(dir))
-            .unwrap()
-            .map(|e| e.unwrap().path())
-            .filter(|p| p.extension().is_some_and(|x| x == "obj"))
-            .collect();
-        files.sort();
-        out.extend(files);
-    }
+    let mut out = fixture_files("reference/shapes", "obj");
+    out.extend(fixture_files("scenes", "obj"));
     out
 }
 
