@@ -8,7 +8,7 @@ use subdiv::DynamicSubdivision;
 use subdiv_depth::DepthParams;
 use subdiv_mesh::{Camera, Mesh};
 use subdiv_rules::Scheme;
-use subdiv_stitch::FrameGeometry;
+use subdiv_stitch::AdaptiveFrame;
 
 /// A small deterministic generator (xorshift).
 struct Rng(u64);
@@ -27,10 +27,11 @@ impl Rng {
 /// After welding bitwise equal positions: no degenerate triangle, every directed edge used
 /// once, and the same open edges as by index (shared points are one vertex). Returns the open
 /// edges.
-fn open_edges(name: &str, g: &FrameGeometry) -> usize {
+fn open_edges(name: &str, g: &AdaptiveFrame) -> usize {
     let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
     let id: Vec<u32> = g
-        .positions
+        .surface()
+        .positions()
         .iter()
         .map(|p| {
             let n = weld.len() as u32;
@@ -39,7 +40,7 @@ fn open_edges(name: &str, g: &FrameGeometry) -> usize {
         .collect();
     let count = |id: &dyn Fn(u32) -> u32| {
         let mut dir: HashMap<(u32, u32), u32> = HashMap::new();
-        for t in g.indices.chunks(3) {
+        for t in g.surface().face_indices().chunks(3) {
             let t = [id(t[0]), id(t[1]), id(t[2])];
             assert!(
                 t[0] != t[1] && t[1] != t[2] && t[0] != t[2],
@@ -67,10 +68,10 @@ fn open_edges(name: &str, g: &FrameGeometry) -> usize {
 
 /// The open edges a frame must have: cage edges with one drawn face (the boundary, holes,
 /// culled neighbours), each in `2^depth` segments of its deeper drawn side.
-fn expected_open(mesh: &Mesh, g: &FrameGeometry) -> usize {
+fn expected_open(mesh: &Mesh, g: &AdaptiveFrame) -> usize {
     let mut sides = vec![(0u32, 0u8); mesh.num_edges()];
     for f in mesh.faces() {
-        let d = g.unit_depth[f.idx()];
+        let d = g.unit_depth()[f.idx()];
         if d == u8::MAX {
             continue;
         }
@@ -148,7 +149,7 @@ fn adaptive_loop_is_watertight_on_every_triangle_fixture() {
             let g = node.update(&camera, None).unwrap().clone();
             let label = format!("{name} random depths round {round}");
             assert_eq!(open_edges(&label, &g), expected_open(&mesh, &g), "{label}");
-            for (drawn, given) in g.unit_depth.iter().zip(&depths) {
+            for (drawn, given) in g.unit_depth().iter().zip(&depths) {
                 assert!(drawn == given || *drawn == u8::MAX, "{label}");
             }
         }

@@ -4,7 +4,7 @@ use std::collections::HashMap;
 
 use subdiv_mesh::{Mesh, parse_obj};
 
-use super::{Assembler, FanMethod, FrameGeometry};
+use super::{AdaptiveFrame, Assembler, FanMethod};
 
 /// The unit cube, outward counter-clockwise faces (6 quads, closed).
 pub(super) fn cube() -> Mesh {
@@ -53,10 +53,10 @@ pub(super) fn frame(
     depth: &[u8],
     active: &[bool],
     method: FanMethod,
-) -> FrameGeometry {
+) -> AdaptiveFrame {
     let mut asm = Assembler::new(mesh, max_depth).unwrap();
     asm.set_method(method);
-    let mut g = FrameGeometry::default();
+    let mut g = AdaptiveFrame::default();
     asm.frame(mesh, depth, active, &mut g).unwrap();
     g
 }
@@ -64,11 +64,12 @@ pub(super) fn frame(
 /// Checks that no directed edge is used twice and no triangle is degenerate, first by index,
 /// then after welding vertices with bitwise equal positions; returns the number of open
 /// (unpaired) edges after welding, which both passes must agree on.
-pub(crate) fn open_edges(g: &FrameGeometry) -> usize {
+pub(crate) fn open_edges(g: &AdaptiveFrame) -> usize {
     let by_index = open_edges_with(g, |i| i);
     let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
     let id: Vec<u32> = g
-        .positions
+        .surface()
+        .positions()
         .iter()
         .map(|p| {
             let n = weld.len() as u32;
@@ -80,10 +81,10 @@ pub(crate) fn open_edges(g: &FrameGeometry) -> usize {
     welded
 }
 
-fn open_edges_with(g: &FrameGeometry, id: impl Fn(u32) -> u32) -> usize {
-    assert_eq!(g.indices.len() % 3, 0);
+fn open_edges_with(g: &AdaptiveFrame, id: impl Fn(u32) -> u32) -> usize {
+    assert_eq!(g.surface().face_indices().len() % 3, 0);
     let mut dir: HashMap<(u32, u32), u32> = HashMap::new();
-    for t in g.indices.chunks(3) {
+    for t in g.surface().face_indices().chunks(3) {
         let t = [id(t[0]), id(t[1]), id(t[2])];
         assert!(
             t[0] != t[1] && t[1] != t[2] && t[0] != t[2],

@@ -39,10 +39,11 @@ fn camera_on_z(dist: f32) -> Camera {
 
 /// After welding bitwise equal positions, every edge of a closed surface has exactly two
 /// triangles, in opposite directions.
-fn assert_closed(g: &FrameGeometry) {
+fn assert_closed(g: &AdaptiveFrame) {
     let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
     let id: Vec<u32> = g
-        .positions
+        .surface()
+        .positions()
         .iter()
         .map(|p| {
             let n = weld.len() as u32;
@@ -50,7 +51,7 @@ fn assert_closed(g: &FrameGeometry) {
         })
         .collect();
     let mut dir: HashMap<(u32, u32), u32> = HashMap::new();
-    for t in g.indices.chunks(3) {
+    for t in g.surface().face_indices().chunks(3) {
         let t = [id[t[0] as usize], id[t[1] as usize], id[t[2] as usize]];
         assert!(
             t[0] != t[1] && t[1] != t[2] && t[0] != t[2],
@@ -79,7 +80,7 @@ fn back_faces_stay_at_depth_zero_front_faces_go_deeper() {
         assert_eq!(a.class[f], Class::Silhouette, "side face {f}");
         assert!(a.depth[f] > 0);
     }
-    assert_eq!(g.unit_depth, a.depth);
+    assert_eq!(g.unit_depth(), a.depth);
     assert!(g.num_triangles() < node.uniform_triangles_at(3));
     assert_closed(&g);
     // From the other side the roles swap.
@@ -98,7 +99,7 @@ fn culled_back_faces_are_not_drawn() {
     };
     let mut node = DynamicSubdivision::new(cube(), p).unwrap();
     let g = node.update(&camera_on_z(20.0), None).unwrap();
-    assert_eq!(g.unit_depth[0], u8::MAX);
+    assert_eq!(g.unit_depth()[0], u8::MAX);
     assert!(!node.assignment().active[0]);
     assert!(node.assignment().active[1..].iter().all(|&x| x));
 }
@@ -119,7 +120,7 @@ fn fixed_face_depths_are_checked_and_used() {
     node.set_face_depths(Some(depths.clone())).unwrap();
     // The camera sees face 0 from behind, but the fixed depths win.
     let g = node.update(&camera_on_z(20.0), None).unwrap().clone();
-    assert_eq!(g.unit_depth, depths);
+    assert_eq!(g.unit_depth(), depths);
     assert_eq!(node.assignment().depth, depths);
     assert_closed(&g);
     // Back to view-dependent depths.
@@ -243,7 +244,7 @@ fn loop_node_runs_every_adaptive_mode_watertight() {
     let depths: Vec<Depth> = (0..nf).map(|f| (f % 5) as Depth).collect();
     node.set_face_depths(Some(depths.clone())).unwrap();
     let g = node.update(&camera, None).unwrap().clone();
-    assert_eq!(g.unit_depth, depths);
+    assert_eq!(g.unit_depth(), depths);
     assert_closed(&g);
     node.set_face_depths(Some(vec![2; nf])).unwrap();
     let g = node.update(&camera, None).unwrap();
@@ -296,10 +297,11 @@ fn fin_from(obj: &str) -> Mesh {
 
 /// The segments of a frame used by three triangles after welding bitwise equal positions (on
 /// a fin, its non-manifold edge), checking that no edge has more than three.
-fn fin_segments(g: &subdiv_stitch::FrameGeometry) -> usize {
+fn fin_segments(g: &subdiv_stitch::AdaptiveFrame) -> usize {
     let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
     let id: Vec<u32> = g
-        .positions
+        .surface()
+        .positions()
         .iter()
         .map(|p| {
             let n = weld.len() as u32;
@@ -307,7 +309,7 @@ fn fin_segments(g: &subdiv_stitch::FrameGeometry) -> usize {
         })
         .collect();
     let mut uses: HashMap<(u32, u32), u32> = HashMap::new();
-    for t in g.indices.chunks(3) {
+    for t in g.surface().face_indices().chunks(3) {
         for k in 0..3 {
             let (a, b) = (id[t[k] as usize], id[t[(k + 1) % 3] as usize]);
             *uses.entry((a.min(b), a.max(b))).or_insert(0) += 1;
@@ -322,7 +324,7 @@ fn faces_on_a_nonmanifold_edge_share_one_depth_and_its_points() {
     let mut node = DynamicSubdivision::new(fin(), params(3)).unwrap();
     node.set_face_depths(Some(vec![1, 2, 3])).unwrap();
     let g = node.update(&camera_on_z(5.0), None).unwrap().clone();
-    assert_eq!(g.unit_depth, vec![3, 3, 3]);
+    assert_eq!(g.unit_depth(), vec![3, 3, 3]);
     // After welding, the fin edge has 2^3 segments of three triangles each.
     assert_eq!(
         fin_segments(&g),
@@ -342,7 +344,7 @@ fn a_level1_face_on_a_nonmanifold_edge_lifts_its_copies() {
     let mut node = DynamicSubdivision::new(mesh, params(3)).unwrap();
     node.set_face_depths(Some(vec![0, 0, 0])).unwrap();
     let g = node.update(&camera_on_z(5.0), None).unwrap().clone();
-    assert_eq!(g.unit_depth, vec![1, 1, 1]);
+    assert_eq!(g.unit_depth(), vec![1, 1, 1]);
     assert_eq!(
         fin_segments(&g),
         2,
