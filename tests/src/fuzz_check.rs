@@ -380,39 +380,42 @@ fn tessellate_all(m: &Mesh) -> Result<(), Failure> {
 
 /// Finite points and normals, well-formed face lists, indices in range.
 fn check_limit(stage: &'static str, t: &LimitMesh) -> Result<(), Failure> {
-    let n = t.positions.len();
-    if t.normals.len() != n {
-        return fail(stage, format!("{} normals for {n} points", t.normals.len()));
+    let n = t.positions().len();
+    if t.normals().len() != n {
+        return fail(
+            stage,
+            format!("{} normals for {n} points", t.normals().len()),
+        );
     }
     if let Some(i) = t
-        .positions
+        .positions()
         .iter()
         .position(|p| !p.iter().all(|x| x.is_finite()))
     {
         return fail(
             stage,
-            format!("point {i} is not finite: {:?}", t.positions[i]),
+            format!("point {i} is not finite: {:?}", t.positions()[i]),
         );
     }
     if let Some(i) = t
-        .normals
+        .normals()
         .iter()
         .position(|p| !p.iter().all(|x| x.is_finite()))
     {
         return fail(
             stage,
-            format!("normal {i} is not finite: {:?}", t.normals[i]),
+            format!("normal {i} is not finite: {:?}", t.normals()[i]),
         );
     }
-    let offsets_ok = t.face_offsets.first().is_none_or(|&o| o == 0)
-        && t.face_offsets.windows(2).all(|w| w[0] < w[1])
-        && t.face_offsets
+    let offsets_ok = t.face_offsets().first().is_none_or(|&o| o == 0)
+        && t.face_offsets().windows(2).all(|w| w[0] < w[1])
+        && t.face_offsets()
             .last()
-            .is_none_or(|&o| o as usize == t.face_indices.len());
+            .is_none_or(|&o| o as usize == t.face_indices().len());
     if !offsets_ok {
         return fail(stage, "malformed face offsets".into());
     }
-    if let Some(&i) = t.face_indices.iter().find(|&&i| i as usize >= n) {
+    if let Some(&i) = t.face_indices().iter().find(|&&i| i as usize >= n) {
         return fail(stage, format!("face index {i} out of range ({n} points)"));
     }
     Ok(())

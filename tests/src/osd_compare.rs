@@ -81,7 +81,7 @@ pub fn compare(
     if weld.kept.len() != reference.num("V") || t.num_faces() != reference.num("F") {
         return Err(format!(
             "counts: ours V={} (welded {}) F={}, reference V={} F={}",
-            t.positions.len(),
+            t.positions().len(),
             weld.kept.len(),
             t.num_faces(),
             reference.num("V"),
@@ -103,7 +103,7 @@ pub fn compare(
 }
 
 fn dvec(t: &LimitMesh) -> Vec<DVec3> {
-    t.positions
+    t.positions()
         .iter()
         .map(|p| glam::Vec3::from(*p).as_dvec3())
         .collect()
@@ -262,7 +262,7 @@ fn check_normals(
             continue;
         }
         n_smooth += 1;
-        let on = glam::Vec3::from(t.normals[map[i]]).as_dvec3();
+        let on = glam::Vec3::from(t.normals()[map[i]]).as_dvec3();
         // Fully degenerate tangents: OpenSubdiv's du x dv and subdiv's normal are both zero
         // (seed 13 cage 16024), which is agreement; one zero normal alone is not.
         if on == DVec3::ZERO && *rn == DVec3::ZERO {

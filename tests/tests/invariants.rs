@@ -95,7 +95,7 @@ fn tessellation_counts_and_closure() {
         for depth in 0..=2 {
             let t = tessellate_uniform(&mesh, scheme, depth).unwrap();
             let refined = refine_uniform_levels(&mesh, scheme, depth).unwrap();
-            assert_eq!(t.positions.len(), refined.num_vertices());
+            assert_eq!(t.positions().len(), refined.num_vertices());
             assert_eq!(
                 t.num_faces(),
                 refined.faces().filter(|&f| !refined.is_hole(f)).count()
@@ -110,10 +110,10 @@ fn tessellation_counts_and_closure() {
                 "{}: Euler characteristic changed at depth {depth}",
                 path.display()
             );
-            for p in &t.positions {
+            for p in t.positions() {
                 assert!(p.iter().all(|c| c.is_finite()));
             }
-            for n in &t.normals {
+            for n in t.normals() {
                 let l = glam::Vec3::from(*n).length();
                 assert!(
                     (l - 1.0).abs() < 1e-4,

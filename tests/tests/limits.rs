@@ -54,7 +54,7 @@ fn uniform_estimate_equals_the_output() {
             };
             let s = estimate(&mesh, Request::Uniform { scheme, depth });
             let what = format!("{name} {scheme:?} depth {depth}");
-            assert_eq!(s.vertices, t.positions.len() as u64, "{what}: vertices");
+            assert_eq!(s.vertices, t.positions().len() as u64, "{what}: vertices");
             assert_eq!(s.faces, t.num_faces() as u64, "{what}: faces");
             assert_eq!(s.triangles, t.triangles().len() as u64 / 3, "{what}");
             checked += 1;
@@ -135,9 +135,9 @@ fn adaptive_frames_stay_within_the_bound() {
                     bound.triangles
                 );
                 assert!(
-                    g.positions.len() as u64 <= bound.vertices,
+                    g.surface().positions().len() as u64 <= bound.vertices,
                     "{what}: {} vertices, bound {}",
-                    g.positions.len(),
+                    g.surface().positions().len(),
                     bound.vertices
                 );
             }
@@ -239,7 +239,7 @@ fn uniform_entry_points_refuse_beyond_memory() {
     }
     match subdiv::Scene::uniform(&bunny, Scheme::Loop, 12) {
         Err(SceneError::Slate(SlateError::OutputTooLarge(e))) => assert_memory(&e, lp, 3674),
-        r => panic!("{:?}", r.map(|s| s.faces)),
+        r => panic!("{:?}", r.map(|s| s.faces())),
     }
     match subdiv_rules::refine_uniform_levels(&bunny, Scheme::Loop, 12) {
         Err(RulesError::OutputTooLarge(e)) => assert_memory(&e, lp, 3674),

@@ -6,7 +6,7 @@ use subdiv::DynamicSubdivision;
 use subdiv_depth::DepthParams;
 use subdiv_mesh::{Camera, Mesh};
 use subdiv_rules::Scheme;
-use subdiv_stitch::FrameGeometry;
+use subdiv_stitch::AdaptiveFrame;
 use subdiv_test_support::Rng;
 
 /// Uniform in `[0, 1)` in steps of 1e-6.
@@ -17,16 +17,16 @@ fn unit(rng: &mut Rng) -> f32 {
 /// After welding bitwise equal positions: no degenerate triangle, every directed edge used
 /// once, and the same open edges as by index (shared points are one vertex). Returns the open
 /// edges.
-fn open_edges(name: &str, g: &FrameGeometry) -> usize {
-    subdiv_test_support::open_edges(name, &g.positions, &g.indices)
+fn open_edges(name: &str, g: &AdaptiveFrame) -> usize {
+    subdiv_test_support::open_edges(name, g.surface().positions(), g.surface().face_indices())
 }
 
 /// The open edges a frame must have: cage edges with one drawn face (the boundary, holes,
 /// culled neighbours), each in `2^depth` segments of its deeper drawn side.
-fn expected_open(mesh: &Mesh, g: &FrameGeometry) -> usize {
+fn expected_open(mesh: &Mesh, g: &AdaptiveFrame) -> usize {
     let mut sides = vec![(0u32, 0u8); mesh.num_edges()];
     for f in mesh.faces() {
-        let d = g.unit_depth[f.idx()];
+        let d = g.unit_depth()[f.idx()];
         if d == u8::MAX {
             continue;
         }
@@ -104,7 +104,7 @@ fn adaptive_loop_is_watertight_on_every_triangle_fixture() {
             let g = node.update(&camera, None).unwrap().clone();
             let label = format!("{name} random depths round {round}");
             assert_eq!(open_edges(&label, &g), expected_open(&mesh, &g), "{label}");
-            for (drawn, given) in g.unit_depth.iter().zip(&depths) {
+            for (drawn, given) in g.unit_depth().iter().zip(&depths) {
                 assert!(drawn == given || *drawn == u8::MAX, "{label}");
             }
         }

@@ -15,24 +15,24 @@ fn dv(p: &[f32; 3]) -> DVec3 {
 /// Matches `a`'s points to `b`'s (one to one, within `tol`) and `a`'s faces to `b`'s; returns
 /// the largest position error and normal angle (degrees).
 fn compare(a: &LimitMesh, b: &LimitMesh, tol: f64) -> Result<(f64, f64), String> {
-    if a.positions.len() != b.positions.len() || a.num_faces() != b.num_faces() {
+    if a.positions().len() != b.positions().len() || a.num_faces() != b.num_faces() {
         return Err(format!(
             "counts {} / {} vs {} / {}",
-            a.positions.len(),
+            a.positions().len(),
             a.num_faces(),
-            b.positions.len(),
+            b.positions().len(),
             b.num_faces()
         ));
     }
-    let pb: Vec<DVec3> = b.positions.iter().map(dv).collect();
+    let pb: Vec<DVec3> = b.positions().iter().map(dv).collect();
     let grid = PointGrid::new(&pb, (tol * 100.0).max(1e-9));
-    let mut map = vec![0usize; a.positions.len()];
+    let mut map = vec![0usize; a.positions().len()];
     let (mut max_err, mut max_deg) = (0.0f64, 0.0f64);
-    for (i, p) in a.positions.iter().enumerate() {
+    for (i, p) in a.positions().iter().enumerate() {
         let (j, d) = grid.nearest(dv(p));
         map[i] = j;
         max_err = max_err.max(d);
-        let (na, nb) = (dv(&a.normals[i]), dv(&b.normals[j]));
+        let (na, nb) = (dv(&a.normals()[i]), dv(&b.normals()[j]));
         if na.length() > 0.5 && nb.length() > 0.5 {
             let deg = na.normalize().dot(nb.normalize()).clamp(-1.0, 1.0).acos();
             max_deg = max_deg.max(deg.to_degrees());
@@ -58,14 +58,14 @@ fn compare(a: &LimitMesh, b: &LimitMesh, tol: f64) -> Result<(f64, f64), String>
     let mut corner_of: HashMap<(usize, Vec<usize>), [f32; 3]> = HashMap::new();
     for i in 0..b.num_faces() {
         let f: Vec<usize> = b.face(i).iter().map(|&x| x as usize).collect();
-        let base = b.face_offsets[i] as usize;
+        let base = b.face_offsets()[i] as usize;
         for (k, &v) in f.iter().enumerate() {
             corner_of.insert((v, canonical_face(&f)), b.corner_normal(base + k));
         }
     }
     for i in 0..a.num_faces() {
         let f: Vec<usize> = a.face(i).iter().map(|&x| map[x as usize]).collect();
-        let base = a.face_offsets[i] as usize;
+        let base = a.face_offsets()[i] as usize;
         for (k, &v) in f.iter().enumerate() {
             let want = dv(&corner_of[&(v, canonical_face(&f))]);
             let got = dv(&a.corner_normal(base + k));

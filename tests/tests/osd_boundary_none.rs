@@ -41,10 +41,10 @@ fn boundary_none_cages_agree_with_opensubdiv() {
 /// The points the drawn faces of the uniform tessellation use, and its triangle count.
 fn uniform_cover(mesh: &Mesh, scheme: Scheme, depth: Depth) -> (Vec<DVec3>, usize) {
     let t = tessellate_uniform(mesh, scheme, depth).unwrap();
-    let mut used = vec![false; t.positions.len()];
+    let mut used = vec![false; t.positions().len()];
     let mut triangles = 0;
-    for w in t.face_offsets.windows(2) {
-        let f = &t.face_indices[w[0] as usize..w[1] as usize];
+    for w in t.face_offsets().windows(2) {
+        let f = &t.face_indices()[w[0] as usize..w[1] as usize];
         triangles += f.len() - 2;
         for &i in f {
             used[i as usize] = true;
@@ -52,7 +52,7 @@ fn uniform_cover(mesh: &Mesh, scheme: Scheme, depth: Depth) -> (Vec<DVec3>, usiz
     }
     let points = (0..used.len())
         .filter(|&i| used[i])
-        .map(|i| Vec3::from(t.positions[i]).as_dvec3())
+        .map(|i| Vec3::from(t.positions()[i]).as_dvec3())
         .collect();
     (points, triangles)
 }
@@ -70,15 +70,15 @@ fn adaptive_cover(mesh: &Mesh, scheme: Scheme, depth: Depth) -> (Vec<DVec3>, usi
     let (lo, hi) = mesh.bounds();
     let camera = Camera::eye_relative(lo, hi, Vec3::new(0.2, 0.3, 3.0), 45.0, 640, 480);
     let g = node.update(&camera, None).unwrap();
-    let mut used = vec![false; g.positions.len()];
-    for &i in &g.indices {
+    let mut used = vec![false; g.surface().positions().len()];
+    for &i in g.surface().face_indices() {
         used[i as usize] = true;
     }
     let points = (0..used.len())
         .filter(|&i| used[i])
-        .map(|i| Vec3::from(g.positions[i]).as_dvec3())
+        .map(|i| Vec3::from(g.surface().positions()[i]).as_dvec3())
         .collect();
-    (points, g.indices.len() / 3)
+    (points, g.surface().face_indices().len() / 3)
 }
 
 /// Every point of `a` has one of `b` within `tol`; the first that has not, if any.

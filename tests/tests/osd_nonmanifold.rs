@@ -76,7 +76,7 @@ fn seam_copies_agree_to_the_bit_in_the_uniform_slates() {
             }
             .unwrap();
             let mut count: HashMap<[u32; 3], usize> = HashMap::new();
-            for p in &t.positions {
+            for p in t.positions() {
                 *count.entry(p.map(f32::to_bits)).or_default() += 1;
             }
             for group in seams.groups() {

@@ -32,8 +32,8 @@ use glam::Vec3;
 use subdiv::DynamicSubdivision;
 use subdiv_depth::DepthParams;
 use subdiv_mesh::{Camera, Mesh};
-use subdiv_rules::Scheme;
-use subdiv_stitch::FrameGeometry;
+use subdiv_rules::{LimitMesh, Scheme};
+use subdiv_stitch::AdaptiveFrame;
 use subdiv_test_support::weld_values;
 use subdiv_tests::fixture_files;
 use subdiv_tests::fuzz::{Rng, env_u64};
@@ -42,18 +42,18 @@ use subdiv_tests::osd_gen::random_cage;
 /// Open edges the frame must have away from non-manifold edges: along every cage edge with
 /// exactly one drawn face, 2^depth of that face (`on`: the split mesh's copies of non-manifold
 /// edges, counted by [`seam_segments`] instead).
-fn expected_open_edges(mesh: &Mesh, g: &FrameGeometry, on: &[Option<usize>]) -> usize {
+fn expected_open_edges(mesh: &Mesh, g: &AdaptiveFrame, on: &[Option<usize>]) -> usize {
     let drawn = |h| {
         let f = mesh.face(h);
-        f.is_some() && g.unit_depth[f.idx()] != u8::MAX
+        f.is_some() && g.unit_depth()[f.idx()] != u8::MAX
     };
     mesh.edges()
         .filter(|e| on.get(e.idx()).is_none_or(|c| c.is_none()))
         .map(|e| {
             let (a, b) = (drawn(e.halfedge(0)), drawn(e.halfedge(1)));
             match (a, b) {
-                (true, false) => 1usize << g.unit_depth[mesh.face(e.halfedge(0)).idx()],
-                (false, true) => 1usize << g.unit_depth[mesh.face(e.halfedge(1)).idx()],
+                (true, false) => 1usize << g.unit_depth()[mesh.face(e.halfedge(0)).idx()],
+                (false, true) => 1usize << g.unit_depth()[mesh.face(e.halfedge(1)).idx()],
                 _ => 0,
             }
         })
@@ -94,7 +94,7 @@ fn nonmanifold_edges(obj: &str, mesh: &Mesh) -> (Vec<Option<usize>>, usize) {
 /// inner edges, used once each way by one piece's triangles.
 fn seam_segments(
     mesh: &Mesh,
-    g: &FrameGeometry,
+    g: &AdaptiveFrame,
     on: &[Option<usize>],
     count: usize,
 ) -> HashMap<u32, usize> {
@@ -105,8 +105,8 @@ fn seam_segments(
         let depths: Vec<u8> = [e.halfedge(0), e.halfedge(1)]
             .iter()
             .map(|&h| mesh.face(h))
-            .filter(|f| f.is_some() && g.unit_depth[f.idx()] != u8::MAX)
-            .map(|f| g.unit_depth[f.idx()])
+            .filter(|f| f.is_some() && g.unit_depth()[f.idx()] != u8::MAX)
+            .map(|f| g.unit_depth()[f.idx()])
             .collect();
         if let Some(&d) = depths.iter().max() {
             let s = &mut seams[c];
@@ -131,16 +131,16 @@ fn seam_segments(
 /// cage's non-manifold edges ([`seam_segments`]). Triangles that welding makes degenerate are
 /// left out (they cover nothing).
 fn check_watertight(
-    g: &FrameGeometry,
+    g: &LimitMesh,
     want_open: usize,
     seams: &HashMap<u32, usize>,
 ) -> Result<(), String> {
-    let weld = weld_values(&g.positions);
+    let weld = weld_values(g.positions());
     // Per welded edge: uses each way, the first use's own (unwelded) vertices, and whether
     // another use names it with other vertices (only welding joins them).
     type Uses = (u32, u32, Option<(u32, u32)>, bool);
     let mut uses: HashMap<(u32, u32), Uses> = HashMap::new();
-    for t in g.indices.chunks(3) {
+    for t in g.face_indices().chunks(3) {
         let w = [
             weld[t[0] as usize],
             weld[t[1] as usize],
@@ -178,7 +178,7 @@ fn check_watertight(
         *got.entry(fw + bw).or_default() += 1;
         example
             .entry(fw + bw)
-            .or_insert_with(|| g.positions[weld.iter().position(|&w| w == a).unwrap_or(0)]);
+            .or_insert_with(|| g.positions()[weld.iter().position(|&w| w == a).unwrap_or(0)]);
     }
     if got != want {
         let mut diff: Vec<String> = got
@@ -248,7 +248,7 @@ fn check_cage(obj: &str, seed: u64, index: u64, failures: &mut Vec<String>) -> u
             frames += 1;
             let open = expected_open_edges(&mesh, g, &on);
             let seams = seam_segments(&mesh, g, &on, count);
-            if let Err(e) = check_watertight(g, open, &seams) {
+            if let Err(e) = check_watertight(g.surface(), open, &seams) {
                 let mode = if pixel { "pixel-error" } else { "curvature" };
                 failures.push(format!(
                     "seed {seed} cage {index} {scheme:?} {mode} camera {shot}: {e}"
@@ -320,11 +320,14 @@ fn the_check_finds_cracks() {
     let g = node.update(&cam, None).expect("frame").clone();
     let want = expected_open_edges(&mesh, &g, &[]);
     let none = HashMap::new();
-    check_watertight(&g, want, &none).expect("the real frame is watertight");
-    let mut cracked = g.clone();
-    cracked.indices.truncate(cracked.indices.len() - 3);
+    let s = g.surface();
+    check_watertight(s, want, &none).expect("the real frame is watertight");
+    let with = |tris: Vec<u32>| {
+        LimitMesh::from_triangles(s.positions().to_vec(), s.normals().to_vec(), tris).unwrap()
+    };
+    let tris = s.face_indices();
+    let cracked = with(tris[..tris.len() - 3].to_vec());
     assert!(check_watertight(&cracked, want, &none).is_err());
-    let mut doubled = g.clone();
-    doubled.indices.extend_from_slice(&g.indices[..3]);
+    let doubled = with([tris, &tris[..3]].concat());
     assert!(check_watertight(&doubled, want, &none).is_err());
 }

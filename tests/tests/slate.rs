@@ -18,25 +18,25 @@ fn dv(p: &[f32; 3]) -> DVec3 {
 /// Compares two tessellations as point sets with the same faces; returns the max position error
 /// and max normal angle (degrees, at points with both normals nonzero).
 fn compare(a: &LimitMesh, b: &LimitMesh, tol: f64) -> Result<(f64, f64), String> {
-    if a.positions.len() != b.positions.len() || a.num_faces() != b.num_faces() {
+    if a.positions().len() != b.positions().len() || a.num_faces() != b.num_faces() {
         return Err(format!(
             "counts {} / {} vs {} / {}",
-            a.positions.len(),
+            a.positions().len(),
             a.num_faces(),
-            b.positions.len(),
+            b.positions().len(),
             b.num_faces()
         ));
     }
-    let pb: Vec<DVec3> = b.positions.iter().map(dv).collect();
+    let pb: Vec<DVec3> = b.positions().iter().map(dv).collect();
     let grid = PointGrid::new(&pb, (tol * 100.0).max(1e-9));
-    let mut map = vec![0usize; a.positions.len()];
+    let mut map = vec![0usize; a.positions().len()];
     let mut max_err = 0.0f64;
     let mut max_deg = 0.0f64;
-    for (i, p) in a.positions.iter().enumerate() {
+    for (i, p) in a.positions().iter().enumerate() {
         let (j, d) = grid.nearest(dv(p));
         map[i] = j;
         max_err = max_err.max(d);
-        let (na, nb) = (dv(&a.normals[i]), dv(&b.normals[j]));
+        let (na, nb) = (dv(&a.normals()[i]), dv(&b.normals()[j]));
         if na.length() > 0.5 && nb.length() > 0.5 {
             max_deg = max_deg.max(
                 na.normalize()

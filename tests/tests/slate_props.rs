@@ -49,16 +49,16 @@ fn distinct_points_closed_output_and_thread_independence() {
             );
             // Every vertex is a distinct limit point (shared points stored once).
             let distinct: HashSet<[u32; 3]> =
-                t1.positions.iter().map(|p| p.map(f32::to_bits)).collect();
-            let referenced: HashSet<u32> = t1.face_indices.iter().copied().collect();
+                t1.positions().iter().map(|p| p.map(f32::to_bits)).collect();
+            let referenced: HashSet<u32> = t1.face_indices().iter().copied().collect();
             assert_eq!(
                 distinct.len(),
-                t1.positions.len(),
+                t1.positions().len(),
                 "{name} depth {depth}: repeated limit points"
             );
             assert_eq!(
                 referenced.len() + stats.isolated_vertices,
-                t1.positions.len(),
+                t1.positions().len(),
                 "{name} depth {depth}: unreferenced vertices"
             );
             // Every edge has one or two faces, consistently oriented; only boundary edges have one,
@@ -81,7 +81,7 @@ fn distinct_points_closed_output_and_thread_independence() {
                     "{name} depth {depth}: open edges"
                 );
             }
-            for n in &t1.normals {
+            for n in t1.normals() {
                 assert!(
                     (Vec3::from(*n).length() - 1.0).abs() < 1e-3,
                     "{name} depth {depth}: normal {n:?}"
@@ -159,11 +159,11 @@ fn valence_360_pole() {
             let r =
                 subdiv_rules::tessellate_uniform(&mesh, subdiv_rules::Scheme::CatmullClark, depth)
                     .unwrap();
-            assert_eq!(s.positions.len(), r.positions.len());
+            assert_eq!(s.positions().len(), r.positions().len());
             // The pole's limit (vertex 0 in both) agrees.
-            let (a, b) = (Vec3::from(s.positions[0]), Vec3::from(r.positions[0]));
+            let (a, b) = (Vec3::from(s.positions()[0]), Vec3::from(r.positions()[0]));
             assert!((a - b).length() < 1e-5, "pole limit {a} vs {b}");
-            assert!(Vec3::from(s.normals[0]).dot(Vec3::Z) > 0.999);
+            assert!(Vec3::from(s.normals()[0]).dot(Vec3::Z) > 0.999);
             let (und, dup) = edge_use(&s);
             assert!(!dup && und.values().all(|&c| c <= 2));
         }
@@ -189,12 +189,12 @@ fn creases_at_every_depth() {
                 subdiv_rules::tessellate_uniform(&mesh, subdiv_rules::Scheme::CatmullClark, depth)
                     .unwrap();
             let rp: HashSet<[i64; 3]> = r
-                .positions
+                .positions()
                 .iter()
                 .map(|p| p.map(|c| (c * 1e5).round() as i64))
                 .collect();
             let mut missing = 0;
-            for p in &s.positions {
+            for p in s.positions() {
                 let q = p.map(|c| (c * 1e5).round() as i64);
                 // Allow rounding at the grid boundary: look at the neighbouring cells too.
                 let found = (-1..=1).any(|dx| {
@@ -210,7 +210,7 @@ fn creases_at_every_depth() {
                 missing, 0,
                 "chaikin={chaikin} depth {depth}: {missing} slate points not in the reference"
             );
-            assert_eq!(s.positions.len(), r.positions.len());
+            assert_eq!(s.positions().len(), r.positions().len());
         }
     }
 }

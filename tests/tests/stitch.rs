@@ -3,7 +3,7 @@
 use glam::DVec3;
 use subdiv_mesh::{Mesh, MeshStats, ReadOptions, VertexId, read_obj_with};
 use subdiv_rules::{Scheme, refine_uniform_levels};
-use subdiv_stitch::{Assembler, FanMethod, FrameGeometry};
+use subdiv_stitch::{Assembler, FanMethod, AdaptiveFrame};
 use subdiv_test_support::{Rng, indexed_open_edges, shape};
 use subdiv_tests::PointGrid;
 
@@ -13,8 +13,8 @@ fn cages() -> Vec<(String, Mesh)> {
 
 /// Every edge of the triangle mesh has two triangles using it in opposite directions, except
 /// the cage's own boundary; returns the number of open edges.
-fn check_closed(name: &str, g: &FrameGeometry) -> usize {
-    indexed_open_edges(name, &g.indices)
+fn check_closed(name: &str, g: &AdaptiveFrame) -> usize {
+    indexed_open_edges(name, g.surface().face_indices())
 }
 
 /// An interior vertex of valence 2 with the smooth or dart rule and no semi-sharpness left (as in
@@ -65,14 +65,14 @@ fn random_depths_are_watertight() {
         // Reference points: the uniform tessellation one level deeper than any patch.
         let uni = subdiv_slate::tessellate(&mesh, maxd + 1).unwrap();
         let pts: Vec<DVec3> = uni
-            .positions
+            .positions()
             .iter()
             .map(|p| glam::Vec3::from(*p).as_dvec3())
             .collect();
         let grid = PointGrid::new(&pts, tol * 10.0);
         // Blocks are evaluated at most one level below the deepest face.
         let corner_masked = corner_mask_points(&mesh, maxd + 1);
-        let mut g = FrameGeometry::default();
+        let mut g = AdaptiveFrame::default();
         for round in 0..12 {
             let depth: Vec<u8> = (0..nu)
                 .map(|_| (rng.next_u64() % (maxd as u64 + 1)) as u8)
@@ -109,8 +109,8 @@ fn random_depths_are_watertight() {
                 );
             }
             // Every referenced vertex is a limit point of the surface.
-            for &i in g.indices.iter().step_by(7) {
-                let p = glam::Vec3::from(g.positions[i as usize]).as_dvec3();
+            for &i in g.surface().face_indices().iter().step_by(7) {
+                let p = glam::Vec3::from(g.surface().positions()[i as usize]).as_dvec3();
                 let (_, d) = grid.nearest(p);
                 let masked = || corner_masked.iter().any(|q| (*q - p).length() <= tol);
                 assert!(
@@ -127,7 +127,7 @@ fn uniform_depths_equal_uniform_tessellation() {
     for (name, mesh) in cages().into_iter().take(8) {
         let nu = mesh.num_faces();
         let mut asm = Assembler::new(&mesh, 3).unwrap();
-        let mut g = FrameGeometry::default();
+        let mut g = AdaptiveFrame::default();
         for d in 1..=3u8 {
             asm.frame(&mesh, &vec![d; nu], &vec![true; nu], &mut g)
                 .unwrap();
@@ -137,7 +137,7 @@ fn uniform_depths_equal_uniform_tessellation() {
             let (p, _, idx) = g.compact();
             assert_eq!(
                 p.len(),
-                uni.positions.len(),
+                uni.positions().len(),
                 "{name} depth {d}: vertex count"
             );
             assert_eq!(idx.len(), 6 * quads);
@@ -150,24 +150,24 @@ fn cache_reuses_blocks_while_depths_do_not_rise() {
     let mesh = read_obj_with(fixtures_shape("catmark_helmet"), ReadOptions::default()).unwrap();
     let nu = mesh.num_faces();
     let mut asm = Assembler::new(&mesh, 4).unwrap();
-    let mut g = FrameGeometry::default();
+    let mut g = AdaptiveFrame::default();
     asm.frame(&mesh, &vec![3; nu], &vec![true; nu], &mut g)
         .unwrap();
-    assert_eq!(g.patches_recomputed, asm.patch_set().patches().len());
-    let v0 = g.vertex_version;
+    assert_eq!(g.patches_recomputed(), asm.patch_set().patches().len());
+    let v0 = g.vertex_version();
     // Lower every depth: nothing recomputed, vertices unchanged.
     asm.frame(&mesh, &vec![2; nu], &vec![true; nu], &mut g)
         .unwrap();
-    assert_eq!(g.patches_recomputed, 0);
-    assert_eq!(g.vertex_version, v0);
+    assert_eq!(g.patches_recomputed(), 0);
+    assert_eq!(g.vertex_version(), v0);
     // Raise one face: only the patches that need more detail are recomputed.
     let mut d = vec![2u8; nu];
     d[0] = 4;
     asm.frame(&mesh, &d, &vec![true; nu], &mut g).unwrap();
     assert!(
-        g.patches_recomputed >= 1 && g.patches_recomputed < asm.patch_set().patches().len() / 2
+        g.patches_recomputed() >= 1 && g.patches_recomputed() < asm.patch_set().patches().len() / 2
     );
-    assert_ne!(g.vertex_version, v0);
+    assert_ne!(g.vertex_version(), v0);
     assert!(check_closed("helmet", &g) > 0); // the helmet is open
 }
 
@@ -177,8 +177,8 @@ fn fixtures_shape(n: &str) -> std::path::PathBuf {
 
 /// Welds identical coordinates, then checks every edge has two triangles in opposite
 /// directions; returns the number of open (boundary) edges.
-fn welded_open_edges(name: &str, g: &FrameGeometry) -> usize {
-    subdiv_test_support::welded_open_edges(name, &g.positions, &g.indices)
+fn welded_open_edges(name: &str, g: &AdaptiveFrame) -> usize {
+    subdiv_test_support::welded_open_edges(name, g.surface().positions(), g.surface().face_indices())
 }
 
 #[test]
@@ -248,10 +248,11 @@ fn moving_the_cage_updates_the_surface() {
     node.set_positions(&moved).unwrap();
     let after = node.update(&cam, None).unwrap();
     // Twice the cage, twice the limit surface (the same camera sees it bigger, depths may differ).
-    let max = |g: &FrameGeometry| {
-        g.indices
+    let max = |g: &AdaptiveFrame| {
+        g.surface()
+            .face_indices()
             .iter()
-            .map(|&i| glam::Vec3::from(g.positions[i as usize]).length())
+            .map(|&i| glam::Vec3::from(g.surface().positions()[i as usize]).length())
             .fold(0.0f32, f32::max)
     };
     assert!((max(after) / max(&before) - 2.0).abs() < 1e-3);

@@ -10,7 +10,7 @@ use std::collections::HashMap;
 use glam::DVec3;
 use subdiv_mesh::{FVarLinearInterpolation, Mesh, parse_obj};
 use subdiv_rules::{LimitMesh, Scheme, tessellate_uniform};
-use subdiv_stitch::{Assembler, FrameGeometry};
+use subdiv_stitch::{AdaptiveFrame, Assembler};
 use subdiv_tests::{PointGrid, fixtures};
 
 fn uv_cages() -> Vec<(String, Mesh)> {
@@ -44,9 +44,9 @@ fn close(a: [f32; 2], b: [f32; 2]) -> bool {
 
 /// The distinct UVs of the reference at each of its points.
 fn values_at_points(r: &LimitMesh) -> Vec<Vec<[f32; 2]>> {
-    let mut at = vec![Vec::<[f32; 2]>::new(); r.positions.len()];
-    for (c, &v) in r.face_indices.iter().enumerate() {
-        let uv = uv_of(&r.uvs, r.uv_indices[c]);
+    let mut at = vec![Vec::<[f32; 2]>::new(); r.positions().len()];
+    for (c, &v) in r.face_indices().iter().enumerate() {
+        let uv = uv_of(r.uvs(), r.uv_indices()[c]);
         let list = &mut at[v as usize];
         if !list.iter().any(|&x| close(x, uv)) {
             list.push(uv);
@@ -55,9 +55,9 @@ fn values_at_points(r: &LimitMesh) -> Vec<Vec<[f32; 2]>> {
     at
 }
 
-fn frame(mesh: &Mesh, depths: &[u8]) -> FrameGeometry {
+fn frame(mesh: &Mesh, depths: &[u8]) -> AdaptiveFrame {
     let mut asm = Assembler::new(mesh, 4).unwrap();
-    let mut g = FrameGeometry::default();
+    let mut g = AdaptiveFrame::default();
     asm.frame(mesh, depths, &vec![true; depths.len()], &mut g)
         .unwrap();
     g
@@ -73,11 +73,20 @@ fn uniform_frames_carry_the_slate_uvs() {
         };
         for d in min..=3u8 {
             let g = frame(&mesh, &vec![d; mesh.num_faces()]);
-            assert_eq!(g.uv_indices.len(), g.indices.len(), "{name}");
+            assert_eq!(
+                g.surface().uv_indices().len(),
+                g.surface().face_indices().len(),
+                "{name}"
+            );
             let s = subdiv_slate::tessellate(&mesh, d).unwrap();
-            let ps: Vec<DVec3> = s.positions.iter().map(dv).collect();
+            let ps: Vec<DVec3> = s.positions().iter().map(dv).collect();
             let grid = PointGrid::new(&ps, 1e-3);
-            let map: Vec<usize> = g.positions.iter().map(|p| grid.nearest(dv(p)).0).collect();
+            let map: Vec<usize> = g
+                .surface()
+                .positions()
+                .iter()
+                .map(|p| grid.nearest(dv(p)).0)
+                .collect();
             // Every three corners of a slate quad name it.
             let mut quads: HashMap<[usize; 3], usize> = HashMap::new();
             for q in 0..s.num_faces() {
@@ -92,14 +101,16 @@ fn uniform_frames_carry_the_slate_uvs() {
                 }
             }
             for t in 0..g.num_triangles() {
-                let ids: Vec<usize> = (0..3).map(|k| map[g.indices[3 * t + k] as usize]).collect();
+                let ids: Vec<usize> = (0..3)
+                    .map(|k| map[g.surface().face_indices()[3 * t + k] as usize])
+                    .collect();
                 let mut key = ids.clone();
                 key.sort_unstable();
                 let q = quads[&[key[0], key[1], key[2]]];
                 for (k, &v) in ids.iter().enumerate() {
                     let c = s.face(q).iter().position(|&x| x as usize == v).unwrap();
-                    let want = uv_of(&s.uvs, s.uv_indices[s.face_offsets[q] as usize + c]);
-                    let got = uv_of(&g.uvs, g.uv_indices[3 * t + k]);
+                    let want = uv_of(s.uvs(), s.uv_indices()[s.face_offsets()[q] as usize + c]);
+                    let got = uv_of(g.surface().uvs(), g.surface().uv_indices()[3 * t + k]);
                     assert!(
                         close(got, want),
                         "{name} depth {d} triangle {t}: {got:?} vs {want:?}"
@@ -117,7 +128,7 @@ fn mixed_depth_frames_keep_seams_and_do_not_jump_elsewhere() {
     for (name, mesh) in uv_cages() {
         let r = tessellate_uniform(&mesh, Scheme::CatmullClark, 4).unwrap();
         let at = values_at_points(&r);
-        let pr: Vec<DVec3> = r.positions.iter().map(dv).collect();
+        let pr: Vec<DVec3> = r.positions().iter().map(dv).collect();
         let grid = PointGrid::new(&pr, 1e-3);
         for _ in 0..4 {
             let depths: Vec<u8> = (0..mesh.num_faces())
@@ -129,11 +140,20 @@ fn mixed_depth_frames_keep_seams_and_do_not_jump_elsewhere() {
                 })
                 .collect();
             let g = frame(&mesh, &depths);
-            assert_eq!(g.uv_indices.len(), g.indices.len(), "{name}");
-            let map: Vec<usize> = g.positions.iter().map(|p| grid.nearest(dv(p)).0).collect();
+            assert_eq!(
+                g.surface().uv_indices().len(),
+                g.surface().face_indices().len(),
+                "{name}"
+            );
+            let map: Vec<usize> = g
+                .surface()
+                .positions()
+                .iter()
+                .map(|p| grid.nearest(dv(p)).0)
+                .collect();
             // Each corner: one of the reference's values at its point.
-            for (c, &v) in g.indices.iter().enumerate() {
-                let uv = uv_of(&g.uvs, g.uv_indices[c]);
+            for (c, &v) in g.surface().face_indices().iter().enumerate() {
+                let uv = uv_of(g.surface().uvs(), g.surface().uv_indices()[c]);
                 let options = &at[map[v as usize]];
                 assert!(
                     options.iter().any(|&x| close(x, uv)),
@@ -144,7 +164,10 @@ fn mixed_depth_frames_keep_seams_and_do_not_jump_elsewhere() {
             let mut edges: HashMap<(u32, u32), Vec<(usize, usize)>> = HashMap::new();
             for t in 0..g.num_triangles() {
                 for k in 0..3 {
-                    let (a, b) = (g.indices[3 * t + k], g.indices[3 * t + (k + 1) % 3]);
+                    let (a, b) = (
+                        g.surface().face_indices()[3 * t + k],
+                        g.surface().face_indices()[3 * t + (k + 1) % 3],
+                    );
                     edges
                         .entry((a.min(b), a.max(b)))
                         .or_default()
@@ -161,8 +184,8 @@ fn mixed_depth_frames_keep_seams_and_do_not_jump_elsewhere() {
                     (*b, corner_of(&g, s0, *b), corner_of(&g, s1, *b)),
                 ] {
                     let (u0, u1) = (
-                        uv_of(&g.uvs, g.uv_indices[c0]),
-                        uv_of(&g.uvs, g.uv_indices[c1]),
+                        uv_of(g.surface().uvs(), g.surface().uv_indices()[c0]),
+                        uv_of(g.surface().uvs(), g.surface().uv_indices()[c1]),
                     );
                     if !close(u0, u1) {
                         assert!(
@@ -179,8 +202,8 @@ fn mixed_depth_frames_keep_seams_and_do_not_jump_elsewhere() {
 }
 
 /// The corner (of the two in `side`) that references vertex `v`.
-fn corner_of(g: &FrameGeometry, side: (usize, usize), v: u32) -> usize {
-    if g.indices[side.0] == v {
+fn corner_of(g: &AdaptiveFrame, side: (usize, usize), v: u32) -> usize {
+    if g.surface().face_indices()[side.0] == v {
         side.0
     } else {
         side.1
@@ -193,7 +216,7 @@ fn frames_of_a_cage_without_uvs_carry_none() {
     mesh.clear_uv();
     let g = frame(&mesh, &[0, 1, 2, 3, 2, 1]);
     assert!(g.num_triangles() > 0);
-    assert!(g.uvs.is_empty() && g.uv_indices.is_empty());
+    assert!(g.surface().uvs().is_empty() && g.surface().uv_indices().is_empty());
     let s = subdiv_slate::tessellate(&mesh, 2).unwrap();
-    assert!(s.uvs.is_empty() && s.uv_indices.is_empty());
+    assert!(s.uvs().is_empty() && s.uv_indices().is_empty());
 }

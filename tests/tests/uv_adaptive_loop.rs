@@ -12,7 +12,7 @@ use std::collections::HashMap;
 use glam::DVec3;
 use subdiv_mesh::{FVarLinearInterpolation, Mesh, parse_obj};
 use subdiv_rules::{Scheme, tessellate_uniform};
-use subdiv_stitch::{FrameGeometry, TriAssembler};
+use subdiv_stitch::{AdaptiveFrame, TriAssembler};
 use subdiv_tests::{PointGrid, fixtures};
 
 fn loop_uv_cages() -> Vec<(String, Mesh)> {
@@ -47,11 +47,14 @@ fn close(a: [f32; 2], b: [f32; 2]) -> bool {
     (a[0] - b[0]).abs() <= 1e-5 && (a[1] - b[1]).abs() <= 1e-5
 }
 
-fn frame(asm: &mut TriAssembler, mesh: &Mesh, depths: &[u8]) -> FrameGeometry {
-    let mut g = FrameGeometry::default();
+fn frame(asm: &mut TriAssembler, mesh: &Mesh, depths: &[u8]) -> AdaptiveFrame {
+    let mut g = AdaptiveFrame::default();
     asm.frame(mesh, depths, &vec![true; depths.len()], &mut g)
         .unwrap();
-    assert_eq!(g.uv_indices.len(), g.indices.len());
+    assert_eq!(
+        g.surface().uv_indices().len(),
+        g.surface().face_indices().len()
+    );
     g
 }
 
@@ -63,10 +66,14 @@ fn uniform_loop_frames_carry_the_slate_uvs() {
             let g = frame(&mut asm, &mesh, &vec![d; mesh.num_faces()]);
             let s = subdiv_slate::tessellate_loop(&mesh, d).unwrap();
             // Same triangles in the same order (face by face, lattice rows).
-            assert_eq!(g.indices.len(), s.face_indices.len(), "{name} {d}");
-            for c in 0..g.indices.len() {
-                let got = g.uvs[g.uv_indices[c] as usize];
-                let want = s.uvs[s.uv_indices[c] as usize];
+            assert_eq!(
+                g.surface().face_indices().len(),
+                s.face_indices().len(),
+                "{name} {d}"
+            );
+            for c in 0..g.surface().face_indices().len() {
+                let got = g.surface().uvs()[g.surface().uv_indices()[c] as usize];
+                let want = s.uvs()[s.uv_indices()[c] as usize];
                 assert_eq!(got, want, "{name} depth {d} corner {c}");
             }
         }
@@ -80,14 +87,14 @@ fn mixed_depth_loop_frames_keep_seams_and_do_not_jump_elsewhere() {
     for (name, mesh) in loop_uv_cages() {
         let top = 3u8;
         let r = tessellate_uniform(&mesh, Scheme::Loop, top).unwrap();
-        let mut at = vec![Vec::<[f32; 2]>::new(); r.positions.len()];
-        for (c, &v) in r.face_indices.iter().enumerate() {
-            let uv = r.uvs[r.uv_indices[c] as usize];
+        let mut at = vec![Vec::<[f32; 2]>::new(); r.positions().len()];
+        for (c, &v) in r.face_indices().iter().enumerate() {
+            let uv = r.uvs()[r.uv_indices()[c] as usize];
             if !at[v as usize].iter().any(|&x| close(x, uv)) {
                 at[v as usize].push(uv);
             }
         }
-        let pr: Vec<DVec3> = r.positions.iter().map(dv).collect();
+        let pr: Vec<DVec3> = r.positions().iter().map(dv).collect();
         let grid = PointGrid::new(&pr, 1e-3);
         let mut asm = TriAssembler::new(&mesh, top).unwrap();
         for _ in 0..4 {
@@ -101,9 +108,14 @@ fn mixed_depth_loop_frames_keep_seams_and_do_not_jump_elsewhere() {
                 .collect();
             depths[0] = top;
             let g = frame(&mut asm, &mesh, &depths);
-            let map: Vec<usize> = g.positions.iter().map(|p| grid.nearest(dv(p)).0).collect();
-            for (c, &v) in g.indices.iter().enumerate() {
-                let uv = g.uvs[g.uv_indices[c] as usize];
+            let map: Vec<usize> = g
+                .surface()
+                .positions()
+                .iter()
+                .map(|p| grid.nearest(dv(p)).0)
+                .collect();
+            for (c, &v) in g.surface().face_indices().iter().enumerate() {
+                let uv = g.surface().uvs()[g.surface().uv_indices()[c] as usize];
                 let options = &at[map[v as usize]];
                 assert!(
                     options.iter().any(|&x| close(x, uv)),
@@ -115,7 +127,10 @@ fn mixed_depth_loop_frames_keep_seams_and_do_not_jump_elsewhere() {
             for t in 0..g.num_triangles() {
                 for k in 0..3 {
                     let (c0, c1) = (3 * t + k, 3 * t + (k + 1) % 3);
-                    let (a, b) = (g.indices[c0], g.indices[c1]);
+                    let (a, b) = (
+                        g.surface().face_indices()[c0],
+                        g.surface().face_indices()[c1],
+                    );
                     let key = (a.min(b), a.max(b));
                     edges
                         .entry(key)
@@ -130,8 +145,8 @@ fn mixed_depth_loop_frames_keep_seams_and_do_not_jump_elsewhere() {
                     "{name} {depths:?}: an open or non-manifold edge"
                 );
                 for (end, v) in [(0, *a), (1, *b)] {
-                    let u0 = g.uvs[g.uv_indices[sides[0][end]] as usize];
-                    let u1 = g.uvs[g.uv_indices[sides[1][end]] as usize];
+                    let u0 = g.surface().uvs()[g.surface().uv_indices()[sides[0][end]] as usize];
+                    let u1 = g.surface().uvs()[g.surface().uv_indices()[sides[1][end]] as usize];
                     if !close(u0, u1) {
                         assert!(
                             at[map[v as usize]].len() > 1,

@@ -110,8 +110,8 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
         .map_err(|e| anyhow::anyhow!("{}: {e}", a.input.display()))?;
     let setup = t0.elapsed().as_secs_f64();
     // Warm-up, then timed runs into the same output buffers: each run writes points and normals,
-    // and the indices too unless `--points-only` (a renderer keeping an index buffer). The runs
-    // are timed inside the pool, as a renderer thread of that pool would call the tessellator:
+    // and the indices too (its faces removed first) unless `--points-only` (a renderer keeping
+    // an index buffer). The runs are timed inside the pool, as a renderer thread of that pool would call the tessellator:
     // the hand-off from this thread into the pool (a wake-up and a sleep) is not measured.
     let bar = crate::progress::bar(a.runs as u64 + 1, "runs");
     let out_times = pool.install(|| -> anyhow::Result<_> {
@@ -120,7 +120,7 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
         let mut times = Vec::with_capacity(a.runs);
         for _ in 0..a.runs {
             if !a.points_only {
-                out.invalidate_topology();
+                out.clear_faces();
             }
             let t = Instant::now();
             tessellate_layout_into(&mesh, &layout, &mut out)?;
@@ -133,7 +133,7 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
     bar.finish_and_clear();
     let (out, times) = out_times?;
     let med = median(times.clone());
-    let points = out.positions.len() as f64;
+    let points = out.num_vertices() as f64;
     let patches = layout.num_patches() as f64;
     out!(
         "input={} depth={} threads={} patches={} limit_points={} quads={} setup_ms={:.3} median_ms={:.3} min_ms={:.3} timed={}",
@@ -141,7 +141,7 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
         a.depth,
         threads,
         layout.num_patches(),
-        out.positions.len(),
+        out.num_vertices(),
         out.num_faces(),
         setup * 1e3,
         med * 1e3,
@@ -176,7 +176,7 @@ fn bench_loop(
         let mut times = Vec::with_capacity(a.runs);
         for _ in 0..a.runs {
             if !a.points_only {
-                out.invalidate_topology();
+                out.clear_faces();
             }
             let t = Instant::now();
             tessellate_loop_layout_into(mesh, &layout, &mut out)?;
@@ -193,7 +193,7 @@ fn bench_loop(
         a.depth,
         threads,
         patches,
-        out.positions.len(),
+        out.num_vertices(),
         out.num_faces(),
         setup * 1e3,
         med * 1e3,
@@ -202,7 +202,7 @@ fn bench_loop(
     );
     out!(
         "limit_points_per_s={:.0} patches_per_s={:.0} slate_bytes_per_thread={} timed={}",
-        out.positions.len() as f64 / med,
+        out.num_vertices() as f64 / med,
         patches as f64 / med,
         tri_slate_bytes_per_thread(a.depth, mesh.max_valence()),
         a.timed()

@@ -14,7 +14,7 @@ use subdiv::mesh::{Camera, Mesh};
 use subdiv::quality::{QualityParams, QualityRun, quantile};
 use subdiv::rules::{Depth, Request, Scheme};
 use subdiv::vk::{RenderMesh, RenderOptions, Renderer};
-use subdiv::{BuiltinScene, DynamicSubdivision, Scene, frame_limit, view_for};
+use subdiv::{BuiltinScene, DynamicSubdivision, Scene, view_for};
 
 use crate::camera_args::parse_size;
 use crate::choices::{SceneName, value_name};
@@ -197,9 +197,9 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
         }
         let g = node.update(&camera, last)?;
         let mesh = RenderMesh {
-            positions: &g.positions,
-            normals: &g.normals,
-            triangles: &g.indices,
+            positions: g.surface().positions(),
+            normals: g.surface().normals(),
+            triangles: g.surface().face_indices(),
             ..Default::default()
         };
         if let (Some(r), false) = (renderer.as_mut(), a.no_render) {
@@ -227,8 +227,7 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
         if let (Some(run), Some(r), Some(k)) = (&errors, renderer.as_mut(), a.error_every)
             && i % k == 0
         {
-            let (limit, depths) = frame_limit(node.geometry());
-            let scene = Scene::from_limit(limit, depths);
+            let scene = Scene::from_limit(&node.geometry().surface().referenced_only());
             let e = run.frame_errors(r, &scene, i / k, &format!("frame {i}"))?;
             let max = e.silhouette_px.iter().copied().fold(0.0f32, f32::max);
             line.push_str(&format!(

@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use anyhow::Context;
 use subdiv::mesh::write_mesh_obj;
-use subdiv::{OutputFormat, SurfaceExport, VertexScalar, write_export};
+use subdiv::{OutputFormat, write_surface};
 
 use crate::camera_args::CameraArgs;
 use crate::choices::value_name;
@@ -76,9 +76,7 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
         }
         write_mesh_obj(&a.output, &r.mesh.mesh)?;
     } else {
-        let (limit, dois) = setup.refined_surface(&r, &camera)?;
-        let surface = SurfaceExport::from_limit(&limit, Some((VertexScalar::Doi, dois)));
-        write_export(&a.output, &surface)?;
+        write_surface(&a.output, &setup.refined_surface(&r, &camera)?)?;
     }
     out!(
         "refined {input} with the {} DoI (threshold {threshold}, {} steps, {}): {} -> {} triangles in {ms:.1} ms -> {}",

@@ -8,7 +8,7 @@ use anyhow::{Context, bail};
 use subdiv::mesh::Camera;
 use subdiv::mesh::glam::Vec3;
 use subdiv::vk::{RenderOptions, Renderer, View};
-use subdiv::{Scene, depth_histogram, frame_limit, view_for};
+use subdiv::{Scene, depth_histogram, view_for};
 
 use crate::camera_args::CameraArgs;
 use crate::choices::value_name;
@@ -85,7 +85,7 @@ fn draw_seen_from(
 ) -> anyhow::Result<ExitCode> {
     let view = view_for(camera, lo, hi);
     if a.style.silhouettes {
-        scene.mesh.lines = Some(scene.silhouette_lines(view.eye));
+        scene.set_lines(Some(scene.silhouette_lines(view.eye)));
     }
     draw_and_report(
         a,
@@ -114,7 +114,7 @@ fn run_doi(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     let scene = setup.scene(&camera);
     spinner.finish_and_clear();
     let mut scene = scene.with_context(|| label.clone())?;
-    let note = setup.summary(scene.faces);
+    let note = setup.summary(scene.faces());
     let tessellate_ms = t0.elapsed().as_secs_f64() * 1e3;
     draw_seen_from(
         a,
@@ -145,8 +145,7 @@ fn run_adaptive(a: &RenderArgs) -> anyhow::Result<ExitCode> {
         bail!("{}: nothing to draw (every face culled)", a.surface.label());
     }
     let histogram = depth_histogram(g);
-    let (limit, depths) = frame_limit(g);
-    let mut scene = Scene::from_limit(limit, depths);
+    let mut scene = Scene::from_limit(&g.surface().referenced_only());
     let tessellate_ms = t0.elapsed().as_secs_f64() * 1e3;
     let view = view_for(&camera, lo, hi);
     let mut lines = Vec::new();
@@ -158,7 +157,7 @@ fn run_adaptive(a: &RenderArgs) -> anyhow::Result<ExitCode> {
         options.show_lines = true;
     }
     if !lines.is_empty() {
-        scene.mesh.lines = Some(lines);
+        scene.set_lines(Some(lines));
     }
     let note = format!(
         "adaptive, max depth {}, patches per depth {histogram}",
@@ -181,7 +180,7 @@ fn run_adaptive(a: &RenderArgs) -> anyhow::Result<ExitCode> {
 fn draw_and_report(a: &RenderArgs, d: &Drawing<'_>) -> anyhow::Result<ExitCode> {
     let t1 = Instant::now();
     let mut renderer = Renderer::new()?;
-    let mesh = d.scene.mesh.as_render_mesh();
+    let mesh = d.scene.render_mesh();
     let image = if let Some(exr) = &a.exr {
         let (image, aux) = renderer.render_with_aux(&mesh, d.view, d.size, d.options)?;
         subdiv::vk::write_exr(exr, &aux)?;
@@ -191,7 +190,7 @@ fn draw_and_report(a: &RenderArgs, d: &Drawing<'_>) -> anyhow::Result<ExitCode> 
     };
     subdiv::vk::write_png(&a.output, &image)?;
     let render_ms = t1.elapsed().as_secs_f64() * 1e3;
-    let line_note = match (&d.scene.mesh.lines, a.style.silhouettes) {
+    let line_note = match (d.scene.lines(), a.style.silhouettes) {
         (Some(l), true) => format!(", {} line segments", l.len() / 2),
         _ => String::new(),
     };
@@ -199,7 +198,7 @@ fn draw_and_report(a: &RenderArgs, d: &Drawing<'_>) -> anyhow::Result<ExitCode> 
         "rendered {}: {} faces, {} triangles{} ({}, {} shading) at {}x{} on {}: \
          tessellated in {:.1} ms, rendered in {:.1} ms -> {}{}",
         a.surface.label(),
-        d.scene.faces,
+        d.scene.faces(),
         mesh.triangle_count(),
         line_note,
         d.note,

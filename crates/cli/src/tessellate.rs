@@ -8,10 +8,10 @@ use anyhow::{Context, bail};
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use subdiv::mesh::Mesh;
 use subdiv::rules::{Request, Scheme};
-use subdiv::stitch::FrameGeometry;
+use subdiv::stitch::AdaptiveFrame;
 use subdiv::{
     DoiKind, DynamicSubdivision, OutputFormat, VertexScalar, depth_histogram, doi_face_depths,
-    frame_limit, make_doi, write_surface,
+    make_doi, write_surface,
 };
 
 use crate::adaptive_args::AdaptiveArgs;
@@ -104,11 +104,12 @@ fn run_uniform(
     spinner.finish_and_clear();
     let t = t.map_err(|e| anyhow::anyhow!("{input}: {e}"))?;
     let ms = t0.elapsed().as_secs_f64() * 1e3;
-    let depths = vec![depth as f32; t.positions.len()];
-    write_surface(&a.output, &t, Some((VertexScalar::Depth, depths)))?;
+    let mut t = t;
+    t.set_scalar(VertexScalar::Depth, vec![depth as f32; t.num_vertices()])?;
+    write_surface(&a.output, &t)?;
     out!(
         "tessellated {input}: {} vertices, {} faces ({}, depth {depth}) in {ms:.1} ms -> {}",
-        t.positions.len(),
+        t.num_vertices(),
         t.num_faces(),
         value_name(&SchemeName::from(scheme)),
         a.output.display()
@@ -159,12 +160,12 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh, scheme: Scheme) -> anyhow::Resul
     let ms = t0.elapsed().as_secs_f64() * 1e3;
     // The referenced vertices, the triangles with their one-sided corner normals, and the
     // depth of each vertex's patch.
-    let (limit, depths) = frame_limit(g);
-    write_surface(&a.output, &limit, Some((VertexScalar::Depth, depths)))?;
+    let limit = g.surface().referenced_only();
+    write_surface(&a.output, &limit)?;
     out!(
         "tessellated {input}: {} vertices, {} triangles (adaptive, max depth {}) in {ms:.1} ms -> {}",
-        limit.positions.len(),
-        limit.face_indices.len() / 3,
+        limit.num_vertices(),
+        limit.num_faces(),
         a.adaptive.max_depth(),
         a.output.display()
     );
@@ -176,7 +177,7 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh, scheme: Scheme) -> anyhow::Resul
 
 /// `--stats` of the adaptive tessellation: patches per depth, triangles, and the uniform
 /// counts it compares with.
-fn print_stats(a: &TessellateArgs, node: &DynamicSubdivision, g: &FrameGeometry) {
+fn print_stats(a: &TessellateArgs, node: &DynamicSubdivision, g: &AdaptiveFrame) {
     out!("patches per depth: {}", depth_histogram(g));
     let tris = g.num_triangles();
     let uni = node.uniform_triangles();

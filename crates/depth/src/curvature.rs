@@ -141,7 +141,7 @@ mod tests {
         let lim = subdiv_rules::tessellate_uniform(&mesh, Scheme::Loop, 0).unwrap();
         let v = VertexData::compute_scheme(&mesh, Scheme::Loop, 10.0, 6);
         for (k, p) in v.limit.iter().enumerate() {
-            let want = Vec3::from(lim.positions[k]);
+            let want = Vec3::from(lim.positions()[k]);
             assert!((*p - want).length() < 1e-5, "{p} vs {want}");
             assert!(p.length() < mesh.position(VertexId(k as u32)).length());
         }

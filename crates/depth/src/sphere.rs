@@ -162,7 +162,7 @@ mod tests {
         for (g, a) in anc.iter().enumerate() {
             let s = spheres[*a as usize];
             for &v in lim.face(g) {
-                let p = Vec3::from(lim.positions[v as usize]);
+                let p = Vec3::from(lim.positions()[v as usize]);
                 let d = (p - s.centre).length();
                 assert!(
                     d <= s.radius,

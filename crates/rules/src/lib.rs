@@ -41,7 +41,10 @@ pub use fvar::{
     FVarChildren, FVarRegion, face_uvs, limit_face_varying, limit_face_varying_exact,
     refine_face_varying_part, semi_sharp_levels,
 };
-pub use limit::{LimitMesh, TopologyKey, TopologyStamp, limit_surface, tessellate_uniform};
+pub use limit::{
+    KeyedWrite, LimitMesh, LimitMeshError, TopologyKey, TriangleBuffers, VertexScalar,
+    limit_surface, tessellate_uniform,
+};
 pub use point::{Point, centroid};
 pub use refine::{
     MAX_COORDINATE, MAX_REFINED_FACES, RefineKernel, check_coordinates, check_doubled_triangles,

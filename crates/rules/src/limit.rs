@@ -1,160 +1,19 @@
 //! Limit surfaces of whole meshes: push-to-limit and the uniform depth-N tessellation.
 
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 use rayon::prelude::*;
-use subdiv_mesh::{Mesh, ObjData, VertexId};
+use subdiv_mesh::{Mesh, VertexId};
 
 use crate::refine::refine_uniform_levels_f64;
 use crate::ring::Ring;
 use crate::{Depth, RulesError, Scheme};
 
+mod mesh;
+mod split;
 mod topology;
-pub use topology::{TopologyKey, TopologyStamp};
-
-/// A tessellated limit surface: one limit point and unit normal per vertex, polygons, and
-/// one-sided normals of the face corners where the surface has a crease or a corner.
-///
-/// A tessellator called again into the same mesh with the same layout (a slate
-/// `PatchLayout` or `TriLayout`) keeps `face_offsets` and `face_indices`, which depend on the
-/// layout alone ([`LimitMesh::topology_written`] says whether it wrote them). Whoever changes
-/// those two fields by hand calls [`LimitMesh::invalidate_topology`] before tessellating into
-/// the mesh again.
-#[derive(Clone, Debug, Default)]
-pub struct LimitMesh {
-    /// Limit positions.
-    pub positions: Vec<[f32; 3]>,
-    /// Unit limit normals (zero only where the surface is fully degenerate). At a point on a
-    /// crease or a corner of the limit surface this is the mean of its sides' normals; the faces
-    /// there take theirs from `corner_normals`.
-    pub normals: Vec<[f32; 3]>,
-    /// Start of each face in `face_indices`, plus a final end offset.
-    pub face_offsets: Vec<u32>,
-    /// Vertex indices of all faces, counter-clockwise.
-    pub face_indices: Vec<u32>,
-    /// One-sided unit normals of face corners, ascending by corner (index into
-    /// `face_indices`): the exact limit normal of the corner's face's side at a point where
-    /// the limit surface has a crease (sharp, or semi-sharp still sharp at the limit) or a
-    /// corner. Every other corner takes its vertex's normal.
-    pub corner_normals: Vec<(u32, [f32; 3])>,
-    /// Face-varying values (UVs), when the cage has them: the face-varying *limit* at each
-    /// limit point ([`limit_face_varying_exact`](crate::limit_face_varying_exact): OpenSubdiv's
-    /// `LimitFaceVarying` once no semi-sharp feature is left), one per side of a seam; see
-    /// `uv_indices`. (Refined meshes, e.g.
-    /// `subdiv refine`, carry refined values instead: they are not limit surfaces.)
-    pub uvs: Vec<[f32; 2]>,
-    /// The value in `uvs` of every face corner (aligned with `face_indices`); empty when the
-    /// cage has no face-varying data.
-    pub uv_indices: Vec<u32>,
-    /// Which layout the faces were written for (bookkeeping, not content: ignored by `==`).
-    pub topology: TopologyStamp,
-}
-
-impl PartialEq for LimitMesh {
-    fn eq(&self, o: &LimitMesh) -> bool {
-        // Destructured so that a new field cannot be forgotten here.
-        let LimitMesh {
-            positions,
-            normals,
-            face_offsets,
-            face_indices,
-            corner_normals,
-            uvs,
-            uv_indices,
-            topology: _,
-        } = self;
-        *positions == o.positions
-            && *normals == o.normals
-            && *face_offsets == o.face_offsets
-            && *face_indices == o.face_indices
-            && *corner_normals == o.corner_normals
-            && *uvs == o.uvs
-            && *uv_indices == o.uv_indices
-    }
-}
-
-impl LimitMesh {
-    /// Number of faces.
-    pub fn num_faces(&self) -> usize {
-        self.face_offsets.len().saturating_sub(1)
-    }
-    /// The vertex indices of face `i`.
-    pub fn face(&self, i: usize) -> &[u32] {
-        &self.face_indices[self.face_offsets[i] as usize..self.face_offsets[i + 1] as usize]
-    }
-    /// The normal of face corner `c` (an index into `face_indices`): its one-sided normal
-    /// where it has one, its vertex's normal otherwise.
-    pub fn corner_normal(&self, c: usize) -> [f32; 3] {
-        match self
-            .corner_normals
-            .binary_search_by_key(&(c as u32), |&(k, _)| k)
-        {
-            Ok(k) => self.corner_normals[k].1,
-            Err(_) => self.normals[self.face_indices[c] as usize],
-        }
-    }
-    /// Triangle list (each polygon as a fan from its first vertex).
-    pub fn triangles(&self) -> Vec<u32> {
-        let mut t = Vec::with_capacity(self.face_indices.len() * 3);
-        for i in 0..self.num_faces() {
-            let f = self.face(i);
-            for k in 1..f.len() - 1 {
-                t.extend_from_slice(&[f[0], f[k], f[k + 1]]);
-            }
-        }
-        t
-    }
-    /// The distinct polygon edges (for wireframes; no triangulation diagonals).
-    pub fn edges(&self) -> Vec<[u32; 2]> {
-        let mut e: Vec<[u32; 2]> = Vec::with_capacity(self.face_indices.len());
-        for i in 0..self.num_faces() {
-            let f = self.face(i);
-            for k in 0..f.len() {
-                let (a, b) = (f[k], f[(k + 1) % f.len()]);
-                e.push([a.min(b), a.max(b)]);
-            }
-        }
-        e.sort_unstable();
-        e.dedup();
-        e
-    }
-    /// Axis-aligned bounds `(min, max)`.
-    pub fn bounds(&self) -> (Vec3, Vec3) {
-        self.positions.iter().fold(
-            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-            |(lo, hi), p| {
-                let p = Vec3::from(*p);
-                (lo.min(p), hi.max(p))
-            },
-        )
-    }
-    /// Drops the values of `uvs` no corner references (renumbering `uv_indices` in order of
-    /// first use).
-    pub fn compact_uvs(&mut self) {
-        let mut map = vec![u32::MAX; self.uvs.len()];
-        let mut uvs = Vec::new();
-        for i in &mut self.uv_indices {
-            let m = &mut map[*i as usize];
-            if *m == u32::MAX {
-                *m = uvs.len() as u32;
-                uvs.push(self.uvs[*i as usize]);
-            }
-            *i = *m;
-        }
-        self.uvs = uvs;
-    }
-    /// A view for [`subdiv_mesh::write_obj`].
-    pub fn obj_data(&self) -> ObjData<'_> {
-        ObjData {
-            positions: &self.positions,
-            normals: Some(&self.normals),
-            face_offsets: &self.face_offsets,
-            face_indices: &self.face_indices,
-            corner_normals: &self.corner_normals,
-            uvs: &self.uvs,
-            uv_indices: &self.uv_indices,
-        }
-    }
-}
+pub use mesh::{KeyedWrite, LimitMesh, LimitMeshError, TriangleBuffers, VertexScalar};
+pub use topology::TopologyKey;
+use topology::TopologyStamp;
 
 /// Push-to-limit: the exact limit point and normal of every vertex of `mesh`, and its visible
 /// faces (holes left out), in parallel.
@@ -237,6 +96,7 @@ fn limit_surface_from(
             .map(|fv| fv.values.iter().map(|t| t.to_array()).collect())
             .unwrap_or_default(),
         uv_indices,
+        scalar: None,
         topology: TopologyStamp::default(),
     }
 }
@@ -255,7 +115,7 @@ fn limit_surface_from(
 /// let mesh = Mesh::from_soup(&parse_obj(tet)?)?;
 /// let t = tessellate_uniform(&mesh, Scheme::Loop, 2).unwrap();
 /// assert_eq!(t.num_faces(), 4 * 16);
-/// assert_eq!(t.positions.len(), 4 + 6 + 24); // V - E + F = 2 at level 2
+/// assert_eq!(t.positions().len(), 4 + 6 + 24); // V - E + F = 2 at level 2
 /// # Ok::<(), subdiv_mesh::MeshError>(())
 /// ```
 pub fn tessellate_uniform(
@@ -317,7 +177,7 @@ mod tests {
             let t = tessellate_uniform(&m, Scheme::CatmullClark, depth).unwrap();
             let scale = (1u32 << depth) as f32;
             let mut checked = 0;
-            for p in &t.positions {
+            for p in t.positions() {
                 let (x, y) = (p[0], p[1]);
                 // Interior region only (two cage rings away from the boundary).
                 if x.abs() <= 2.0 && y.abs() <= 2.0 {
@@ -334,7 +194,7 @@ mod tests {
         }
         // Limit normals are the surface normal (-2x, -4y, 1).
         let t = tessellate_uniform(&m, Scheme::CatmullClark, 1).unwrap();
-        for (p, n) in t.positions.iter().zip(&t.normals) {
+        for (p, n) in t.positions().iter().zip(t.normals()) {
             if p[0].abs() <= 2.0 && p[1].abs() <= 2.0 {
                 let want = Vec3::new(-2.0 * p[0], -4.0 * p[1], 1.0).normalize();
                 assert!(Vec3::from(*n).dot(want) > 0.99999, "normal at {p:?}: {n:?}");
@@ -351,7 +211,7 @@ mod tests {
         for (depth, offset) in [(0u8, 0.5f32), (1, 0.5)] {
             let t = tessellate_uniform(&m, Scheme::Loop, depth).unwrap();
             let mut checked = 0;
-            for p in t.positions.iter() {
+            for p in t.positions().iter() {
                 if p[0].abs() <= 1.5 && p[1].abs() <= 1.5 {
                     let want = p[0] * p[0] + p[1] * p[1] + offset;
                     assert!(
@@ -381,7 +241,7 @@ mod tests {
             }
         }
         let t = tessellate_uniform(&m, Scheme::CatmullClark, 2).unwrap();
-        for p in &t.positions {
+        for p in t.positions() {
             if p[1] == 0.0 && p[0].abs() <= 2.0 {
                 assert!((p[2] - (p[0] * p[0] + 1.0 / 3.0)).abs() < 1e-4, "{p:?}");
             }

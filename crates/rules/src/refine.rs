@@ -585,9 +585,9 @@ mod tests {
         }
         let t = crate::tessellate_uniform(&m, Scheme::CatmullClark, 3).unwrap();
         assert!(
-            t.positions
+            t.positions()
                 .iter()
-                .chain(&t.normals)
+                .chain(t.normals())
                 .flatten()
                 .all(|x| x.is_finite())
         );

@@ -278,7 +278,7 @@ fn main() {
             let layout = PatchLayout::new(&mesh, depth as subdiv_slate::Depth)
                 .expect("fixture cage tessellates");
             let mut out = tessellate_layout(&mesh, &layout).expect("fixture cage tessellates");
-            let points = out.positions.len();
+            let points = out.positions().len();
 
             // Same point set on both sides (count and order-independent sums).
             let mut refiner = cage.refiner();
@@ -296,7 +296,7 @@ fn main() {
             );
             let mut upos = Vec::new();
             osdrs_refine_limit_pos(&cage, depth, &mut upos);
-            let (a, b, u) = (sums(&out.positions), sums(&pos), sums(&upos));
+            let (a, b, u) = (sums(out.positions()), sums(&pos), sums(&upos));
             let rel = |x: [f64; 4]| {
                 (0..4).map(|k| (a[k] - x[k]).abs()).fold(0.0, f64::max) / a[3].max(1.0)
             };

@@ -548,7 +548,7 @@ mod tests {
                     assert_eq!(directed.len(), 2 * undirected.len(), "{name}: closed");
                 }
                 let chi =
-                    out.positions.len() as i64 - undirected.len() as i64 + out.num_faces() as i64;
+                    out.positions().len() as i64 - undirected.len() as i64 + out.num_faces() as i64;
                 assert_eq!(chi, euler, "{name} depth {depth}: Euler characteristic");
             }
         }

@@ -3,7 +3,6 @@
 use glam::Vec3A;
 use rayon::prelude::*;
 use subdiv_mesh::Mesh;
-use subdiv_rules::budget::try_resize;
 use subdiv_rules::{
     Budget, Depth, LimitMesh, MAX_DEPTH, OutOfMemory, OutputTooLarge, Request, RulesError, Scheme,
     limit_surface,
@@ -40,6 +39,9 @@ pub enum SlateError {
     /// An output buffer could not be allocated.
     #[error(transparent)]
     OutOfMemory(#[from] OutOfMemory),
+    /// The output broke an invariant of [`LimitMesh`] (a tessellator bug, not the cage's).
+    #[error(transparent)]
+    Output(#[from] subdiv_rules::LimitMeshError),
     /// Set-up failed (local level-1 refinement).
     #[error(transparent)]
     Rules(#[from] RulesError),
@@ -128,7 +130,7 @@ impl SharedOut {
 /// let mesh = Mesh::from_soup(&parse_obj(cube)?)?;
 /// let t = subdiv_slate::tessellate(&mesh, 3).unwrap();
 /// assert_eq!(t.num_faces(), 6 * 64);
-/// assert_eq!(t.positions.len(), 6 * 64 + 2);
+/// assert_eq!(t.positions().len(), 6 * 64 + 2);
 /// # Ok::<(), subdiv_mesh::MeshError>(())
 /// ```
 pub fn tessellate(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateError> {
@@ -137,7 +139,7 @@ pub fn tessellate(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateError> {
     if depth == 0 {
         let mut out = limit_surface(mesh, Scheme::CatmullClark);
         // The cage vertices on seams, the same bits in every copy (as at any depth).
-        subdiv_rules::SeamCurves::new(mesh).write_uniform(mesh, 0, 0, &mut out.positions);
+        subdiv_rules::SeamCurves::new(mesh).write_uniform(mesh, 0, 0, out.positions_mut());
         return Ok(out);
     }
     if depth > MAX_DEPTH {
@@ -181,9 +183,8 @@ pub fn tessellate_layout(mesh: &Mesh, layout: &PatchLayout) -> Result<LimitMesh,
 /// (the positions, normals, one-sided corner normals and UVs are written every call).
 /// [`LimitMesh::topology_written`] tells the caller whether this call wrote them (a renderer
 /// uploads its index buffer again only then). Another layout (another depth, another cage, a
-/// hole changed: each a new layout, whose key no other layout has), an output another
-/// tessellator wrote, or one whose face lists changed length, gets its quads written; after
-/// changing them by hand, call [`LimitMesh::invalidate_topology`].
+/// hole changed: each a new layout, whose key no other layout has), or an output whose faces
+/// another tessellator wrote or that changed since, gets its quads written.
 pub fn tessellate_layout_into(
     mesh: &Mesh,
     layout: &PatchLayout,
@@ -200,12 +201,6 @@ pub fn tessellate_layout_into(
     }
     let max_depth = depth.max(DEFAULT_MAX_DEPTH);
     let np = layout.num_points();
-    try_resize(&mut result.positions, np, [0.0; 3], "limit positions")?;
-    try_resize(&mut result.normals, np, [0.0; 3], "limit normals")?;
-    for &v in &layout.isolated {
-        result.positions[v.idx()] = mesh.position(v).to_array();
-        result.normals[v.idx()] = [0.0; 3];
-    }
     // Face ranges by prefix sum over visible patches.
     let quads_of = |p: &Patch| {
         if p.visible {
@@ -216,32 +211,23 @@ pub fn tessellate_layout_into(
     };
     let total: usize = layout.patches.iter().map(quads_of).sum();
     // The quads and their offsets depend on the layout alone: written once per layout, kept
-    // by the calls that follow into the same output (`LimitMesh::has_topology`).
-    let write_faces = !result.has_topology(layout.key, total, total * 4);
-    if write_faces {
-        // Until the quads are written, the output holds no layout's faces.
-        result.invalidate_topology();
-        try_resize(&mut result.face_indices, total * 4, 0, "quad indices")?;
-        result.face_offsets.clear();
-        subdiv_rules::budget::try_reserve(&mut result.face_offsets, total + 1, "quad offsets")?;
-        result
-            .face_offsets
-            .extend((0..=total as u32).map(|i| i * 4));
+    // by the calls that follow into the same output.
+    let w = result.write_keyed(layout.key, np, total, 4)?;
+    for &v in &layout.isolated {
+        w.positions[v.idx()] = mesh.position(v).to_array();
+        w.normals[v.idx()] = [0.0; 3];
     }
     let out = SharedOut {
-        pos: result.positions.as_mut_ptr(),
-        nrm: result.normals.as_mut_ptr(),
+        pos: w.positions.as_mut_ptr(),
+        nrm: w.normals.as_mut_ptr(),
         len: np,
     };
+    let write_faces = w.faces.is_some();
     // Split the index buffer into one chunk per patch (empty ones where the quads are kept);
     // `starts[k]`: patch `k`'s first corner.
     let mut chunks: Vec<&mut [u32]> = Vec::with_capacity(layout.patches.len());
     let mut starts: Vec<u32> = Vec::with_capacity(layout.patches.len());
-    let mut rest: &mut [u32] = if write_faces {
-        &mut result.face_indices
-    } else {
-        &mut []
-    };
+    let mut rest: &mut [u32] = w.faces.unwrap_or_default();
     let mut start = 0u32;
     for p in &layout.patches {
         let corners = quads_of(p) * 4;
@@ -284,14 +270,15 @@ pub fn tessellate_layout_into(
         )
         .map(|(_, acc)| acc)
         .collect();
-    result.set_topology(layout.key, write_faces);
     // Corner normals in patch order: ascending, as each patch's are.
-    result.corner_normals.clear();
-    for (k, slot, n) in sided.into_iter().flatten() {
-        result.corner_normals.push((starts[k as usize] + slot, n));
-    }
+    result.write_corner_normals(
+        sided
+            .into_iter()
+            .flatten()
+            .map(|(k, slot, n)| (starts[k as usize] + slot, n)),
+    );
     // Points on seams from their chains: the copies of a non-manifold edge agree to the bit.
-    layout.write_seam_points(mesh, &mut result.positions);
+    layout.write_seam_points(mesh, result.positions_mut());
     // Face-varying limit values, only for a cage with UVs (`uv.rs`).
     crate::uv::quad_uvs(mesh, layout, result)
 }
@@ -519,9 +506,9 @@ mod tests {
         mesh.positions_mut()[4].x = -subdiv_rules::MAX_COORDINATE;
         let t = tessellate(&mesh, 2).unwrap();
         assert!(
-            t.positions
+            t.positions()
                 .iter()
-                .chain(&t.normals)
+                .chain(t.normals())
                 .flatten()
                 .all(|x| x.is_finite())
         );

@@ -28,23 +28,26 @@ use crate::layout::PatchLayout;
 use crate::tessellate::SlateError;
 use crate::tri::TriLayout;
 
-/// Sets `out.uvs` and `out.uv_indices` for the Catmull-Clark slate output of `layout` (cleared
+/// Sets the UVs of the Catmull-Clark slate output of `layout` (cleared
 /// when the cage has no UVs).
 pub(crate) fn quad_uvs(
     mesh: &Mesh,
     layout: &PatchLayout,
     out: &mut LimitMesh,
 ) -> Result<(), SlateError> {
-    out.uvs.clear();
-    out.uv_indices.clear();
-    if mesh.uv().is_none() || layout.uv_cache.restore(mesh, out) {
+    let (mut uvs, mut idx) = out.take_uvs();
+    if mesh.uv().is_none() {
+        return Ok(());
+    }
+    if layout.uv_cache.restore(mesh, &mut uvs, &mut idx) {
+        out.set_uvs(uvs, idx)?;
         return Ok(());
     }
     let depth = layout.depth;
     let Some(lev) = LevelUvs::new(mesh, Scheme::CatmullClark, depth)? else {
         return Ok(());
     };
-    out.uv_indices.reserve(out.face_indices.len());
+    idx.reserve(out.face_indices().len());
     let mut k = 0usize;
     for f in mesh.faces() {
         // A regular quad is one level-0 patch; any other face one level-1 patch per corner.
@@ -64,13 +67,13 @@ pub(crate) fn quad_uvs(
             for j in 0..n {
                 for i in 0..n {
                     for (x, y) in [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)] {
-                        out.uv_indices.push(lev.value_at(p.level, sub, f, x, y, e));
+                        idx.push(lev.value_at(p.level, sub, f, x, y, e));
                     }
                 }
             }
         }
     }
-    out.uvs = lev.values;
+    out.set_uvs(lev.values, idx)?;
     out.compact_uvs();
     layout.uv_cache.keep(mesh, out);
     Ok(())
@@ -251,16 +254,19 @@ fn quad_cell(
     )
 }
 
-/// Sets `out.uvs` and `out.uv_indices` for the Loop slate output of `layout` (cleared when the
+/// Sets the UVs of the Loop slate output of `layout` (cleared when the
 /// cage has no UVs).
 pub(crate) fn tri_uvs(
     mesh: &Mesh,
     layout: &TriLayout,
     out: &mut LimitMesh,
 ) -> Result<(), SlateError> {
-    out.uvs.clear();
-    out.uv_indices.clear();
-    if mesh.uv().is_none() || layout.uv_cache.restore(mesh, out) {
+    let (mut uvs, mut idx) = out.take_uvs();
+    if mesh.uv().is_none() {
+        return Ok(());
+    }
+    if layout.uv_cache.restore(mesh, &mut uvs, &mut idx) {
+        out.set_uvs(uvs, idx)?;
         return Ok(());
     }
     let depth = layout.depth;
@@ -268,7 +274,7 @@ pub(crate) fn tri_uvs(
         return Ok(());
     };
     let n = 1u32 << depth;
-    out.uv_indices.reserve(out.face_indices.len());
+    idx.reserve(out.face_indices().len());
     for (f, p) in mesh.faces().zip(&layout.patches) {
         if !p.visible {
             continue;
@@ -276,7 +282,7 @@ pub(crate) fn tri_uvs(
         // The order of the slate's triangles: rows `b`, up and down triangles interleaved.
         let mut emit = |pts: [(u32, u32); 3]| {
             for (x, y) in pts {
-                out.uv_indices.push(lev.tri_value_at(f, x, y, depth));
+                idx.push(lev.tri_value_at(f, x, y, depth));
             }
         };
         for b in 0..n {
@@ -288,7 +294,7 @@ pub(crate) fn tri_uvs(
             }
         }
     }
-    out.uvs = lev.values;
+    out.set_uvs(lev.values, idx)?;
     out.compact_uvs();
     layout.uv_cache.keep(mesh, out);
     Ok(())

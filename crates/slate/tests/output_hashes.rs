@@ -50,15 +50,15 @@ impl Fnv {
 
 fn hash(t: &LimitMesh) -> u64 {
     let mut h = Fnv::new();
-    h.u32(t.positions.len() as u32);
-    h.f32s(t.positions.as_flattened());
-    h.f32s(t.normals.as_flattened());
-    h.u32(t.face_offsets.len() as u32);
-    for &x in t.face_offsets.iter().chain(&t.face_indices) {
+    h.u32(t.positions().len() as u32);
+    h.f32s(t.positions().as_flattened());
+    h.f32s(t.normals().as_flattened());
+    h.u32(t.face_offsets().len() as u32);
+    for &x in t.face_offsets().iter().chain(t.face_indices()) {
         h.u32(x);
     }
-    h.u32(t.corner_normals.len() as u32);
-    for (k, n) in &t.corner_normals {
+    h.u32(t.corner_normals().len() as u32);
+    for (k, n) in t.corner_normals() {
         h.u32(*k);
         h.f32s(n);
     }
@@ -171,12 +171,12 @@ fn lines() -> String {
             for pool in &pools {
                 pool.install(|| {
                     let t = tessellate(&mesh, depth).expect("tessellation");
-                    hashes.push((hash(&t), t.positions.len()));
+                    hashes.push((hash(&t), t.positions().len()));
                     if depth >= 1 {
                         let layout = PatchLayout::new(&mesh, depth).expect("layout");
                         let mut again = t.clone();
                         tessellate_layout_into(&mesh, &layout, &mut again).expect("tessellation");
-                        hashes.push((hash(&again), again.positions.len()));
+                        hashes.push((hash(&again), again.positions().len()));
                     }
                 });
             }
@@ -185,7 +185,7 @@ fn lines() -> String {
                 subdiv_slate::set_simd(false);
                 let t = pools[1].install(|| tessellate(&mesh, depth).expect("tessellation"));
                 subdiv_slate::set_simd(true);
-                hashes.push((hash(&t), t.positions.len()));
+                hashes.push((hash(&t), t.positions().len()));
             }
             assert!(
                 hashes.iter().all(|h| *h == hashes[0]),
@@ -222,12 +222,12 @@ fn loop_lines() -> String {
             for pool in &pools {
                 pool.install(|| {
                     let t = subdiv_slate::tessellate_loop(&mesh, depth).expect("tessellation");
-                    hashes.push((hash(&t), t.positions.len()));
+                    hashes.push((hash(&t), t.positions().len()));
                     let layout = subdiv_slate::TriLayout::new(&mesh, depth).expect("layout");
                     let mut again = t.clone();
                     subdiv_slate::tessellate_loop_layout_into(&mesh, &layout, &mut again)
                         .expect("tessellation");
-                    hashes.push((hash(&again), again.positions.len()));
+                    hashes.push((hash(&again), again.positions().len()));
                 });
             }
             assert!(

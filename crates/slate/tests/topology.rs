@@ -41,12 +41,12 @@ fn quads_are_kept_only_for_the_same_layout() {
     assert!(quads_into(&pawn, &a, &mut out), "first call");
     assert!(!quads_into(&pawn, &a, &mut out), "same layout: kept");
     // The positions move, the topology does not: kept, and the points follow.
-    let before = out.positions.clone();
+    let before = out.positions().to_vec();
     for p in pawn.positions_mut() {
         p.y += 0.5;
     }
     assert!(!quads_into(&pawn, &a, &mut out), "moved cage: kept");
-    assert_ne!(out.positions, before);
+    assert_ne!(out.positions(), before);
     // Another layout of the same cage and depth (the same faces, another key).
     let b = PatchLayout::new(&pawn, 2).unwrap();
     assert!(quads_into(&pawn, &b, &mut out), "another layout");
@@ -69,21 +69,22 @@ fn quads_are_kept_only_for_the_same_layout() {
 }
 
 #[test]
-fn quads_changed_by_hand_or_by_another_tessellator_are_written() {
+fn quads_changed_or_written_by_another_tessellator_are_written() {
     let pawn = shape("catmark_pawn.obj");
     let layout = PatchLayout::new(&pawn, 2).unwrap();
     let mut out = LimitMesh::default();
     assert!(quads_into(&pawn, &layout, &mut out));
-    // Changed by hand, then invalidated.
-    out.face_indices[5] = 0;
-    out.face_offsets[3] = 1;
-    out.invalidate_topology();
-    assert!(quads_into(&pawn, &layout, &mut out), "invalidated");
-    // A face list of another length.
-    out.face_indices.truncate(100);
-    assert!(quads_into(&pawn, &layout, &mut out), "shorter indices");
-    out.face_offsets.push(7);
-    assert!(quads_into(&pawn, &layout, &mut out), "longer offsets");
+    // The faces removed.
+    out.clear_faces();
+    assert!(quads_into(&pawn, &layout, &mut out), "faces removed");
+    // Rewritten as a triangle list (as the adaptive frame writes its surface).
+    out.write_triangles(subdiv_rules::VertexScalar::Depth, |b| {
+        b.triangles.truncate(99);
+        b.corner_normals.clear();
+        b.uv_indices.clear();
+    })
+    .unwrap();
+    assert!(quads_into(&pawn, &layout, &mut out), "another face list");
     // A clone keeps no key.
     let mut copy = out.clone();
     assert!(quads_into(&pawn, &layout, &mut copy), "a clone");
@@ -136,8 +137,7 @@ fn triangles_are_kept_only_for_the_same_layout() {
     assert!(tris_into(&holed, &d, &mut out), "a hole");
     let e = TriLayout::new(&tet, 2).unwrap();
     assert!(tris_into(&tet, &e, &mut out), "another cage");
-    out.face_indices[0] = 1;
-    out.invalidate_topology();
-    assert!(tris_into(&tet, &e, &mut out), "invalidated");
+    out.clear_faces();
+    assert!(tris_into(&tet, &e, &mut out), "faces removed");
     assert!(!tris_into(&tet, &e, &mut out));
 }

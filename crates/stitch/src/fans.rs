@@ -17,7 +17,7 @@
 //! stride `2^(c - d)`), and only the index buffer is rebuilt.
 //!
 //! The pieces: [`Assembler`] (the per-mesh patch structure and block cache, `assembler`),
-//! [`FrameGeometry`] (what a frame produced, `geometry`), per-edge resolution and owners and the
+//! [`AdaptiveFrame`] (what a frame produced: its surface and depths, `geometry`), per-edge resolution and owners and the
 //! point ids derived from them (`edges`), index-buffer emission with plain quads and fans
 //! ([`FanMethod`], `index`), and grid coordinates of patch sides (`grid`).
 
@@ -31,5 +31,6 @@ mod index;
 pub(crate) mod test_util;
 
 pub use assembler::{Assembler, MAX_ADAPTIVE_DEPTH};
-pub use geometry::FrameGeometry;
+pub use geometry::AdaptiveFrame;
+pub(crate) use geometry::concatenate;
 pub use index::FanMethod;

@@ -8,6 +8,9 @@
 //! [`Assembler`] keeps each patch's tessellation between frames and recomputes only patches whose
 //! depth rose. Loop's triangular patches are joined the same way by [`TriAssembler`] (module
 //! [`tri`]): fans from the coarser patch's lattice points through the finer side's points.
+//! Both write an [`AdaptiveFrame`]: the frame's surface as a triangle-list
+//! [`LimitMesh`](subdiv_rules::LimitMesh) (the output type of every tessellator, its scalar the
+//! depth of each vertex's patch) and the depth of each cage face.
 //!
 //! **Invariants.** Watertight to the bit: every point shared by two patches is written by one
 //! owner (the deeper side) and referenced through it, so after assembly every interior edge has
@@ -17,7 +20,7 @@
 pub mod fans;
 pub mod tri;
 
-pub use fans::{Assembler, FanMethod, FrameGeometry, MAX_ADAPTIVE_DEPTH};
+pub use fans::{AdaptiveFrame, Assembler, FanMethod, MAX_ADAPTIVE_DEPTH};
 pub use tri::TriAssembler;
 
 /// Errors of the assembly ([`Assembler`], [`TriAssembler`]).
@@ -47,6 +50,9 @@ pub enum AssemblyError {
     /// allocating, with the size asked for ([`subdiv_rules::budget`]: an upper bound).
     #[error(transparent)]
     OutputTooLarge(#[from] subdiv_rules::OutputTooLarge),
+    /// The frame broke an invariant of its surface (an assembler bug, not the cage's).
+    #[error(transparent)]
+    Output(#[from] subdiv_rules::LimitMeshError),
     /// A frame buffer could not be allocated.
     #[error(transparent)]
     OutOfMemory(#[from] subdiv_rules::OutOfMemory),

@@ -25,10 +25,10 @@ mod emit;
 
 use rayon::prelude::*;
 use subdiv_mesh::Mesh;
-use subdiv_rules::{Budget, Request, Scheme};
+use subdiv_rules::{Budget, Request, Scheme, TriangleBuffers, VertexScalar};
 use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, TriLayout, tri_lattice_len, tri_patch_lattice};
 
-use crate::{AssemblyError, FrameGeometry};
+use crate::{AdaptiveFrame, AssemblyError};
 use emit::TriFrame;
 
 /// A patch's cached lattice.
@@ -111,9 +111,9 @@ impl TriAssembler {
 
     /// Triangles of the patch lattices per depth in frame `g` (index = depth): `4^d` per drawn
     /// face, before the fans that join different depths.
-    pub fn triangles_per_depth(&self, g: &FrameGeometry) -> Vec<u64> {
+    pub fn triangles_per_depth(&self, g: &AdaptiveFrame) -> Vec<u64> {
         let mut v = Vec::new();
-        for &d in &g.unit_depth {
+        for &d in g.unit_depth() {
             if d == u8::MAX {
                 continue;
             }
@@ -133,7 +133,7 @@ impl TriAssembler {
         mesh: &Mesh,
         depth: &[Depth],
         active: &[bool],
-        out: &mut FrameGeometry,
+        out: &mut AdaptiveFrame,
     ) -> Result<(), AssemblyError> {
         let nf = self.layout.patches().len();
         if depth.len() != nf || active.len() != nf {
@@ -151,64 +151,77 @@ impl TriAssembler {
         let required = owners.required_depths(mesh, &self.layout, &depth, &active);
         self.check_size(&required)?;
         let recomputed = self.recompute_blocks(mesh, &required);
-        if recomputed > 0 || out.positions.is_empty() {
-            self.concatenate_blocks(out)?;
-        }
+        let relink = recomputed > 0 || out.surface.num_vertices() == 0;
+        out.surface.write_triangles(VertexScalar::Depth, |b| {
+            self.write_frame(mesh, &depth, &active, &owners, relink, b)
+        })??;
         out.vertex_version = self.version;
         out.patches_recomputed = recomputed;
-        out.vertex_depth.clear();
-        out.vertex_depth.resize(out.positions.len(), 0.0);
-        for (f, &d) in depth.iter().enumerate() {
-            let range = self.block_start[f] as usize..self.block_start[f + 1] as usize;
-            out.vertex_depth[range].fill(d as f32);
-        }
-        let with_uvs = self.level_uvs(mesh, &depth, &active, out)?;
-        let uvs = self.uvs.as_ref().filter(|_| with_uvs);
-        let fr = TriFrame {
-            layout: &self.layout,
-            depth: &depth,
-            owners: &owners,
-            blocks: &self.blocks,
-            block_start: &self.block_start,
-        };
-        fr.emit_frame(
-            &active,
-            uvs,
-            &mut out.indices,
-            &mut out.corner_normals,
-            &mut out.uv_indices,
-        );
         out.unit_depth = (0..nf)
             .map(|f| if active[f] { depth[f] } else { u8::MAX })
             .collect();
         Ok(())
     }
 
+    /// Writes the frame's surface into `b`: the vertex buffer (the lattices, concatenated) when
+    /// `relink`, the vertex depths, the face-varying values and the triangles.
+    fn write_frame(
+        &mut self,
+        mesh: &Mesh,
+        depth: &[Depth],
+        active: &[bool],
+        owners: &emit::Owners,
+        relink: bool,
+        b: &mut TriangleBuffers<'_>,
+    ) -> Result<(), AssemblyError> {
+        if relink {
+            self.concatenate_blocks(b)?;
+        }
+        b.scalar.clear();
+        b.scalar.resize(b.positions.len(), 0.0);
+        for (f, &d) in depth.iter().enumerate() {
+            let range = self.block_start[f] as usize..self.block_start[f + 1] as usize;
+            b.scalar[range].fill(d as f32);
+        }
+        let with_uvs = self.level_uvs(mesh, depth, active, b.uvs)?;
+        let uvs = self.uvs.as_ref().filter(|_| with_uvs);
+        let fr = TriFrame {
+            layout: &self.layout,
+            depth,
+            owners,
+            blocks: &self.blocks,
+            block_start: &self.block_start,
+        };
+        fr.emit_frame(active, uvs, b.triangles, b.corner_normals, b.uv_indices);
+        Ok(())
+    }
+
     /// Readies `self.uvs`, the face-varying limit values for this frame, refined again only when
-    /// a deeper level than the cached one is needed, with their values in `out.uvs`; `false`
-    /// (and `out.uvs` empty) without UVs or with nothing drawn. Every drawn point is a lattice point at most at the deepest drawn depth
-    /// (fans use only points of the finer side's lattice), so that level suffices.
+    /// a deeper level than the cached one is needed, with their values in `out_uvs`; `false`
+    /// (and `out_uvs` empty) without UVs or with nothing drawn. Every drawn point is a lattice
+    /// point at most at the deepest drawn depth (fans use only points of the finer side's
+    /// lattice), so that level suffices.
     fn level_uvs(
         &mut self,
         mesh: &Mesh,
         depth: &[Depth],
         active: &[bool],
-        out: &mut FrameGeometry,
+        out_uvs: &mut Vec<[f32; 2]>,
     ) -> Result<bool, AssemblyError> {
         let deepest = (0..depth.len())
             .filter(|&f| active[f])
             .map(|f| depth[f])
             .max();
         let (true, Some(level)) = (mesh.uv().is_some(), deepest) else {
-            out.uvs.clear();
+            out_uvs.clear();
             return Ok(false);
         };
         if self.uvs.as_ref().is_none_or(|u| u.level() < level) {
             self.uvs = LevelUvs::new(mesh, subdiv_rules::Scheme::Loop, level)?;
-            out.uvs.clear();
+            out_uvs.clear();
         }
-        if out.uvs.is_empty() {
-            out.uvs = self
+        if out_uvs.is_empty() {
+            *out_uvs = self
                 .uvs
                 .as_ref()
                 .map(|u| u.values.clone())
@@ -258,9 +271,9 @@ impl TriAssembler {
     }
 
     /// Rebuilds the vertex buffer from the lattices and bumps the vertex version.
-    fn concatenate_blocks(&mut self, out: &mut FrameGeometry) -> Result<(), AssemblyError> {
+    fn concatenate_blocks(&mut self, b: &mut TriangleBuffers<'_>) -> Result<(), AssemblyError> {
         let blocks = self.blocks.iter().map(|b| (&b.pos[..], &b.nrm[..]));
-        out.concatenate(blocks, &mut self.block_start)?;
+        crate::fans::concatenate(b, blocks, &mut self.block_start)?;
         self.version += 1;
         Ok(())
     }

@@ -8,7 +8,7 @@ use subdiv_doi::{
     HapticPoint, Silhouette, ViewAngle, closest_surface_point, read_skeleton,
 };
 use subdiv_mesh::{Camera, Mesh, MeshError, triangulate};
-use subdiv_rules::{Depth, LimitMesh};
+use subdiv_rules::{Depth, LimitMesh, LimitMeshError, VertexScalar};
 
 use crate::{Balance, RefineError, RefineOptions, Refined, Scene, refine_adaptive};
 
@@ -92,6 +92,9 @@ pub enum DoiSetupError {
     /// The refinement failed.
     #[error("refining")]
     Refine(#[source] RefineError),
+    /// The refined surface broke an invariant of its output type.
+    #[error(transparent)]
+    Output(#[from] LimitMeshError),
 }
 
 /// A DoI choice and its options.
@@ -301,18 +304,19 @@ impl DoiSetup {
     /// limit, with vertex normals) with each vertex's largest DoI over its faces as the scalar.
     pub fn scene(&self, camera: &Camera) -> Result<Scene, DoiSetupError> {
         let r = self.run(*camera).map_err(DoiSetupError::Refine)?;
-        let (limit, scalar) = self.refined_surface(&r, camera)?;
-        Ok(Scene::from_limit(limit, scalar))
+        let limit = self.refined_surface(&r, camera)?;
+        Ok(Scene::from_limit(&limit))
     }
 
     /// A refinement of this set-up for `camera` as a surface to draw or write: the refined mesh
     /// (not pushed to the limit) with vertex normals, one-sided normals along sharp edges, its
-    /// refined UVs when the cage has UVs, and each vertex's largest DoI over its faces.
+    /// refined UVs when the cage has UVs, and each vertex's largest DoI over its faces as its
+    /// scalar.
     pub fn refined_surface(
         &self,
         r: &Refined,
         camera: &Camera,
-    ) -> Result<(LimitMesh, Vec<f32>), DoiSetupError> {
+    ) -> Result<LimitMesh, DoiSetupError> {
         let m = &r.mesh.mesh;
         let ctx = self.context(*camera);
         let (mut scratch, mut values) = (Vec::new(), Vec::new());
@@ -338,18 +342,17 @@ impl DoiSetup {
             let uvs = fv.values.iter().map(|t| t.to_array()).collect();
             (uvs, fv.indices.clone())
         });
-        let limit = LimitMesh {
-            positions: m.positions().iter().map(|p| p.to_array()).collect(),
-            normals: normals.iter().map(|n| n.to_array()).collect(),
-            face_offsets: offsets.to_vec(),
-            face_indices: indices.iter().map(|v| v.0).collect(),
-            // Sharp edges shade as creases: each sector of a vertex its own normal.
-            corner_normals: crate::crease_normals::sector_corner_normals(m, &normals),
-            uvs,
-            uv_indices,
-            ..LimitMesh::default()
-        };
-        Ok((limit, scalar))
+        let mut limit = LimitMesh::new(
+            m.positions().iter().map(|p| p.to_array()).collect(),
+            normals.iter().map(|n| n.to_array()).collect(),
+            offsets.to_vec(),
+            indices.iter().map(|v| v.0).collect(),
+        )?;
+        // Sharp edges shade as creases: each sector of a vertex its own normal.
+        limit.set_corner_normals(crate::crease_normals::sector_corner_normals(m, &normals))?;
+        limit.set_uvs(uvs, uv_indices)?;
+        limit.set_scalar(VertexScalar::Doi, scalar)?;
+        Ok(limit)
     }
 
     /// One line about a refinement of this set-up to `triangles` triangles:
@@ -435,10 +438,11 @@ mod tests {
         let (lo, hi) = setup.bounds();
         let camera = Camera::eye_relative(lo, hi, Vec3::new(0.8, 0.5, 2.2), 45.0, 64, 48);
         let scene = setup.scene(&camera).unwrap();
-        assert!(scene.faces > 12 && scene.faces <= 12 * 16);
-        let scalars = scene.mesh.scalars.as_ref().unwrap();
+        assert!(scene.faces() > 12 && scene.faces() <= 12 * 16);
+        let (kind, scalars) = scene.surface().scalar().unwrap();
+        assert_eq!(kind, VertexScalar::Doi);
         assert!(scalars.iter().all(|s| s.is_finite()) && scalars.iter().any(|&s| s > 0.0));
-        let line = setup.summary(scene.faces);
+        let line = setup.summary(scene.faces());
         assert!(
             line.starts_with("dihedral DoI, threshold 30, 2 steps: 12 -> "),
             "{line}"

@@ -13,7 +13,7 @@ use subdiv_depth::{
 use subdiv_mesh::{Camera, Mesh};
 use subdiv_rules::Scheme;
 use subdiv_slate::Depth;
-use subdiv_stitch::{Assembler, AssemblyError, FanMethod, FrameGeometry, TriAssembler};
+use subdiv_stitch::{AdaptiveFrame, Assembler, AssemblyError, FanMethod, TriAssembler};
 
 use crate::{patch_errors, patch_errors_loop};
 
@@ -66,7 +66,7 @@ pub struct DynamicSubdivision {
     controller: Option<FrameRateController>,
     fixed_depths: Option<Vec<Depth>>,
     assignment: Assignment,
-    geometry: FrameGeometry,
+    geometry: AdaptiveFrame,
     seams: Seams,
 }
 
@@ -100,7 +100,7 @@ impl DynamicSubdivision {
             controller: None,
             fixed_depths: None,
             assignment: Assignment::default(),
-            geometry: FrameGeometry::default(),
+            geometry: AdaptiveFrame::default(),
             seams,
         })
     }
@@ -243,7 +243,7 @@ impl DynamicSubdivision {
         &self.assignment
     }
     /// The last frame's geometry.
-    pub fn geometry(&self) -> &FrameGeometry {
+    pub fn geometry(&self) -> &AdaptiveFrame {
         &self.geometry
     }
 
@@ -254,7 +254,7 @@ impl DynamicSubdivision {
         &mut self,
         camera: &Camera,
         last_frame_time: Option<f32>,
-    ) -> Result<&FrameGeometry, AssemblyError> {
+    ) -> Result<&AdaptiveFrame, AssemblyError> {
         if self.params.pixel_error.is_some() {
             self.patch_errors();
         }

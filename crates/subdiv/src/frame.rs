@@ -1,48 +1,16 @@
-//! Frames of the adaptive tessellation ([`FrameGeometry`]) in the terms of a uniform one.
+//! Summaries of adaptive frames ([`AdaptiveFrame`]).
 
-use subdiv_rules::LimitMesh;
-use subdiv_stitch::FrameGeometry;
-
-/// The triangles of an adaptive frame as a [`LimitMesh`] (referenced vertices only, the
-/// frame's one-sided corner normals at creases and its UVs) and the per-vertex depths of their
-/// patches.
-pub fn frame_limit(g: &FrameGeometry) -> (LimitMesh, Vec<f32>) {
-    let mut map = vec![u32::MAX; g.positions.len()];
-    let mut limit = LimitMesh {
-        positions: Vec::new(),
-        normals: Vec::new(),
-        face_offsets: (0..=g.indices.len() as u32 / 3).map(|i| i * 3).collect(),
-        face_indices: Vec::with_capacity(g.indices.len()),
-        // Triangle corners index `indices` one to one.
-        corner_normals: g.corner_normals.clone(),
-        uvs: g.uvs.clone(),
-        uv_indices: g.uv_indices.clone(),
-        ..LimitMesh::default()
-    };
-    let mut depths = Vec::new();
-    for &i in &g.indices {
-        let m = &mut map[i as usize];
-        if *m == u32::MAX {
-            *m = limit.positions.len() as u32;
-            limit.positions.push(g.positions[i as usize]);
-            limit.normals.push(g.normals[i as usize]);
-            depths.push(g.vertex_depth[i as usize]);
-        }
-        limit.face_indices.push(*m);
-    }
-    limit.compact_uvs();
-    (limit, depths)
-}
+use subdiv_stitch::AdaptiveFrame;
 
 /// `0:a 1:b ...` patches (cage faces) per depth, with the culled count.
-pub fn depth_histogram(g: &FrameGeometry) -> String {
+pub fn depth_histogram(g: &AdaptiveFrame) -> String {
     let per: Vec<String> = g
         .units_per_depth()
         .iter()
         .enumerate()
         .map(|(d, n)| format!("{d}:{n}"))
         .collect();
-    let culled = g.unit_depth.iter().filter(|&&d| d == u8::MAX).count();
+    let culled = g.unit_depth().iter().filter(|&&d| d == u8::MAX).count();
     let mut s = per.join(" ");
     if culled > 0 {
         s.push_str(&format!(" culled:{culled}"));
@@ -58,23 +26,19 @@ mod tests {
     use subdiv_mesh::{Camera, Mesh, glam::Vec3, parse_obj};
 
     #[test]
-    fn frame_limit_keeps_referenced_vertices_and_their_depths() {
+    fn referenced_frames_keep_their_vertices_and_depths() {
         let cube = &subdiv_test_support::cube().obj();
         let mesh = Mesh::from_soup(&parse_obj(cube).unwrap()).unwrap();
         let (lo, hi) = mesh.bounds();
         let mut node = DynamicSubdivision::new(mesh, DepthParams::default()).unwrap();
         let camera = Camera::eye_relative(lo, hi, Vec3::new(0.8, 0.5, 2.2), 45.0, 320, 240);
         let g = node.update(&camera, None).unwrap();
-        let (limit, depths) = frame_limit(g);
+        let limit = g.surface().referenced_only();
         assert_eq!(limit.num_faces(), g.num_triangles());
-        assert_eq!(depths.len(), limit.positions.len());
-        assert!(limit.positions.len() <= g.positions.len());
-        assert!(
-            limit
-                .face_indices
-                .iter()
-                .all(|&i| (i as usize) < limit.positions.len())
-        );
+        let (_, depths) = limit.scalar().unwrap();
+        assert_eq!(depths.len(), limit.num_vertices());
+        assert!(limit.num_vertices() <= g.surface().num_vertices());
+        limit.check().unwrap();
         let histogram = depth_histogram(g);
         assert!(histogram.starts_with("0:"), "{histogram}");
         let patches: usize = histogram
@@ -97,8 +61,8 @@ mod tests {
         let truth = crate::uniform_limit(&mesh, subdiv_rules::Scheme::CatmullClark, 4).unwrap();
         // The uniform path's one-sided normals per point (by position).
         let mut sides: Vec<([f32; 3], Vec<[f32; 3]>)> = Vec::new();
-        for &(c, n) in &truth.corner_normals {
-            let p = truth.positions[truth.face_indices[c as usize] as usize];
+        for &(c, n) in truth.corner_normals() {
+            let p = truth.positions()[truth.face_indices()[c as usize] as usize];
             match sides
                 .iter_mut()
                 .find(|(q, _)| Vec3::from(*q).distance(p.into()) < 1e-5)
@@ -120,12 +84,12 @@ mod tests {
         ] {
             node.set_face_depths(Some(depths.to_vec())).unwrap();
             let g = node.update(&camera, None).unwrap();
-            let (limit, _) = frame_limit(g);
+            let limit = g.surface().referenced_only();
             let mut checked = 0;
-            for (t, tri) in limit.face_indices.chunks(3).enumerate() {
+            for (t, tri) in limit.face_indices().chunks(3).enumerate() {
                 let p: Vec<Vec3> = tri
                     .iter()
-                    .map(|&i| limit.positions[i as usize].into())
+                    .map(|&i| limit.positions()[i as usize].into())
                     .collect();
                 let flat = (p[1] - p[0]).cross(p[2] - p[0]).normalize();
                 for (k, &pk) in p.iter().enumerate() {
@@ -137,9 +101,9 @@ mod tests {
                     };
                     let c = (3 * t + k) as u32;
                     let got = limit
-                        .corner_normals
+                        .corner_normals()
                         .binary_search_by_key(&c, |&(i, _)| i)
-                        .map(|x| limit.corner_normals[x].1)
+                        .map(|x| limit.corner_normals()[x].1)
                         .unwrap_or_else(|_| {
                             panic!("{depths:?}: corner {c} at {:?} has no one-sided normal", pk)
                         });

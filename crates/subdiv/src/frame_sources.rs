@@ -3,10 +3,10 @@
 //! culling camera.
 
 use glam::Vec3;
-use subdiv_rules::LimitMesh;
 use subdiv_vk::viewer::{FrameRequest, FrameSource, SourceFrame};
-use subdiv_vk::{OwnedMesh, RenderMesh, Shading};
+use subdiv_vk::{RenderMesh, Shading};
 
+use crate::scene::render_mesh;
 use crate::{DoiSetup, DynamicSubdivision, Scene, Silhouettes, camera_from_view, depth_histogram};
 
 /// The error type of [`FrameSource::frame`].
@@ -27,8 +27,7 @@ fn chain(e: &dyn std::error::Error) -> String {
 /// A uniform scene: fixed limit-surface vertices; silhouettes follow the culling camera (the
 /// view camera unless it is frozen).
 pub struct UniformSource {
-    mesh: OwnedMesh,
-    silhouettes: Silhouettes,
+    scene: Scene,
     lines: Vec<[f32; 3]>,
     faces: String,
     status: String,
@@ -39,7 +38,7 @@ pub struct UniformSource {
 impl UniformSource {
     /// The source showing `scene`.
     pub fn new(scene: Scene) -> UniformSource {
-        let depth = scene.mesh.scalars.as_ref().and_then(|s| {
+        let depth = scene.surface().scalar().and_then(|(_, s)| {
             s.iter()
                 .copied()
                 .filter(|d| d.is_finite())
@@ -48,10 +47,9 @@ impl UniformSource {
         });
         UniformSource {
             depth,
-            faces: format!("{} faces", scene.faces),
+            faces: format!("{} faces", scene.faces()),
             status: String::new(),
-            mesh: scene.mesh,
-            silhouettes: scene.silhouettes,
+            scene,
             lines: Vec::new(),
         }
     }
@@ -60,8 +58,8 @@ impl UniformSource {
 impl FrameSource for UniformSource {
     fn frame(&mut self, request: &FrameRequest) -> Result<SourceFrame<'_>, FrameError> {
         if request.silhouettes {
-            self.silhouettes.lines_into(
-                &self.mesh.positions,
+            self.scene.silhouettes().lines_into(
+                self.scene.surface().positions(),
                 request.cull_view.eye,
                 &mut self.lines,
             );
@@ -75,7 +73,7 @@ impl FrameSource for UniformSource {
         Ok(SourceFrame {
             mesh: RenderMesh {
                 lines: Some(&self.lines),
-                ..self.mesh.as_render_mesh()
+                ..self.scene.render_mesh()
             },
             status: &self.status,
             // Positions, normals and depth scalars never change.
@@ -122,16 +120,8 @@ impl FrameSource for AdaptiveSource {
         let g = self.node.geometry();
         self.lines.clear();
         if request.silhouettes {
-            let limit = LimitMesh {
-                positions: g.positions.clone(),
-                normals: g.normals.clone(),
-                face_offsets: (0..=g.indices.len() as u32 / 3).map(|i| i * 3).collect(),
-                face_indices: g.indices.clone(),
-                corner_normals: Vec::new(),
-                ..Default::default()
-            };
-            Silhouettes::new(&limit).lines_into(
-                &g.positions,
+            Silhouettes::new(g.surface()).lines_into(
+                g.surface().positions(),
                 request.cull_view.eye,
                 &mut self.lines,
             );
@@ -143,19 +133,15 @@ impl FrameSource for AdaptiveSource {
         self.status = format!(
             "patches per depth {} | maxsd {cap} | {} patches recomputed",
             depth_histogram(g),
-            g.patches_recomputed
+            g.patches_recomputed()
         );
         Ok(SourceFrame {
             mesh: RenderMesh {
-                positions: &g.positions,
-                normals: &g.normals,
-                triangles: &g.indices,
-                edges: None,
-                scalars: Some(&g.vertex_depth),
                 lines: Some(&self.lines),
+                ..render_mesh(g.surface())
             },
             status: &self.status,
-            vertex_version: Some(g.vertex_version),
+            vertex_version: Some(g.vertex_version()),
             depth_cap: Some(u32::from(cap)),
         })
     }
@@ -204,15 +190,15 @@ impl FrameSource for DoiSource {
         if stale {
             let camera = camera_from_view(&request.cull_view, request.size);
             let scene = self.setup.scene(&camera).map_err(|e| chain(&e))?;
-            self.note = self.setup.summary(scene.faces);
+            self.note = self.setup.summary(scene.faces());
             self.scene = Some(scene);
             self.refined_for = Some(key);
             self.version += 1;
         }
         let scene = self.scene.as_ref().expect("refined above");
         if request.silhouettes {
-            scene.silhouettes.lines_into(
-                &scene.mesh.positions,
+            scene.silhouettes().lines_into(
+                scene.surface().positions(),
                 request.cull_view.eye,
                 &mut self.lines,
             );
@@ -227,7 +213,7 @@ impl FrameSource for DoiSource {
         Ok(SourceFrame {
             mesh: RenderMesh {
                 lines: Some(&self.lines),
-                ..scene.mesh.as_render_mesh()
+                ..scene.render_mesh()
             },
             status: &self.status,
             vertex_version: Some(self.version),

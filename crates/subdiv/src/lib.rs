@@ -23,11 +23,11 @@
 //! - `refine.rs`: DoI-driven refinement ([`refine_adaptive`], [`Refiner`]);
 //! - `doi_setup.rs`: from a DoI choice and its options to a [`Doi`](doi::Doi) and a ready
 //!   refinement ([`DoiKind`], [`DoiOptions`], [`DoiSetup`], [`doi_face_depths`]);
-//! - `scene.rs`: the tessellated [`Scene`] the renderer draws ([`uniform_limit`] tessellation,
-//!   per-vertex scalars, normals split at creases);
+//! - `scene.rs`: the uniform tessellation ([`uniform_limit`]) and [`Scene`], the drawing helper
+//!   that holds a [`LimitMesh`] in the form the renderer draws (split at one-sided normals) with
+//!   its edges, silhouettes and lines;
 //! - `silhouettes.rs`: [`Silhouettes`] extraction;
-//! - `frame.rs`: adaptive frames as a [`LimitMesh`](rules::LimitMesh) ([`frame_limit`],
-//!   [`depth_histogram`]);
+//! - `frame.rs`: summaries of adaptive frames ([`depth_histogram`]);
 //! - `camera.rs`: [`Camera`](mesh::Camera) to and from the renderer's [`View`](vk::View) and
 //!   [`OrbitCamera`](vk::OrbitCamera) ([`view_for`], [`orbit_camera`], [`camera_from_view`]);
 //! - `frame_sources.rs`: the viewer's [`FrameSource`](vk::viewer::FrameSource)s
@@ -102,7 +102,8 @@
 //! ```
 //!
 //! # Rendering a result
-//! A [`Scene`] packs a tessellation for the renderer (per-vertex scalars, crease normals);
+//! A [`Scene`] holds a tessellation in the form the renderer draws (per-vertex scalars, crease
+//! normals);
 //! [`view_for`] turns the tessellator's camera into the renderer's view. (`no_run`: rendering
 //! needs a Vulkan driver.)
 //! ```no_run
@@ -115,10 +116,10 @@
 //! let (lo, hi) = scene.bounds();
 //! let camera = Camera::eye_relative(lo, hi, Vec3::new(0.8, 0.5, 2.2), 45.0, 320, 240);
 //! let view = view_for(&camera, lo, hi);
-//! scene.mesh.lines = Some(scene.silhouette_lines(view.eye));
+//! scene.set_lines(Some(scene.silhouette_lines(view.eye)));
 //! let options = RenderOptions { shading: Shading::Depth, show_lines: true, ..Default::default() };
 //! let mut renderer = Renderer::new()?;
-//! let image = renderer.render(&scene.mesh.as_render_mesh(), &view, [320, 240], &options)?;
+//! let image = renderer.render(&scene.render_mesh(), &view, [320, 240], &options)?;
 //! write_png("cube.png", &image)?;
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
@@ -144,16 +145,15 @@ pub use doi_setup::{
     DoiKind, DoiOptions, DoiSetup, DoiSetupError, check_doi_options, doi_face_depths, make_doi,
 };
 pub use dynamic::DynamicSubdivision;
-pub use export::{
-    ExportError, OutputFormat, SurfaceExport, VertexScalar, write_export, write_surface,
-};
-pub use frame::{depth_histogram, frame_limit};
+pub use export::{ExportError, OutputFormat, write_surface};
+pub use frame::depth_histogram;
 pub use frame_sources::{AdaptiveSource, DoiSource, UniformSource};
 pub use patch_error::{SAMPLE_LEVELS, patch_errors};
 pub use patch_error_tri::patch_errors_loop;
 pub use refine::{Balance, RefineError, RefineOptions, Refined, Refiner, refine_adaptive};
 pub use scene::{Scene, SceneError, uniform_limit};
 pub use silhouettes::Silhouettes;
+pub use subdiv_rules::{LimitMesh, VertexScalar};
 
 pub use subdiv_depth as depth;
 pub use subdiv_doi as doi;

@@ -1,14 +1,12 @@
-//! The tessellated scene: a limit-surface tessellation packed for the renderer, with one scalar
-//! per vertex (the subdivision depth, or a DoI value), one-sided normals at creases, and what
-//! silhouette extraction needs.
-
-use std::collections::HashMap;
+//! The uniform limit tessellation, and the drawing helper [`Scene`]: a tessellation in the
+//! form the renderer draws (one normal per vertex, split at one-sided normals), with its scalar
+//! (the subdivision depth, or a DoI value), polygon edges and what silhouette extraction needs.
 
 use glam::Vec3;
 use subdiv_mesh::Mesh;
-use subdiv_rules::{Depth, LimitMesh, RulesError, Scheme};
+use subdiv_rules::{Depth, LimitMesh, LimitMeshError, RulesError, Scheme, VertexScalar};
 use subdiv_slate::SlateError;
-use subdiv_vk::OwnedMesh;
+use subdiv_vk::RenderMesh;
 
 use crate::Silhouettes;
 
@@ -21,6 +19,9 @@ pub enum SceneError {
     /// The Loop refinement refused the cage.
     #[error(transparent)]
     Rules(#[from] RulesError),
+    /// The tessellation broke an invariant of its output type.
+    #[error(transparent)]
+    Output(#[from] LimitMeshError),
     /// The tessellation has no faces (e.g. every face of the cage is a hole).
     #[error("the limit surface has no faces to draw")]
     Empty,
@@ -44,56 +45,83 @@ pub fn uniform_limit(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<LimitM
     log::debug!(
         "uniform {scheme:?} depth {depth}: {} faces -> {} limit points, {} faces in {:.1} ms",
         mesh.num_faces(),
-        limit.positions.len(),
+        limit.num_vertices(),
         limit.num_faces(),
         t0.elapsed().as_secs_f64() * 1e3
     );
     Ok(limit)
 }
 
-/// A tessellated surface ready to draw: the render mesh (with per-vertex scalars) and what
-/// silhouette extraction needs.
+/// What the renderer draws of a tessellated surface: its split form
+/// ([`LimitMesh::split_sided`]: triangles, one normal per vertex, the surface's scalar), the
+/// polygon edges for wireframes, what silhouette extraction needs, and the lines drawn on top.
 pub struct Scene {
-    /// Positions, limit normals, triangles, polygon edges and scalars (no lines).
-    pub mesh: OwnedMesh,
-    /// Faces per edge, face normals and centres, for silhouettes.
-    pub silhouettes: Silhouettes,
-    /// Polygons of the tessellation.
-    pub faces: usize,
+    /// The split surface; vertex `i` of the tessellation keeps index `i`.
+    surface: LimitMesh,
+    edges: Vec<[u32; 2]>,
+    silhouettes: Silhouettes,
+    faces: usize,
+    lines: Option<Vec<[f32; 3]>>,
 }
 
 impl Scene {
     /// The uniform tessellation of `cage` at `depth` as a scene; every vertex's scalar is
     /// `depth`. A tessellation without faces is [`SceneError::Empty`].
     pub fn uniform(cage: &Mesh, scheme: Scheme, depth: Depth) -> Result<Scene, SceneError> {
-        let limit = uniform_limit(cage, scheme, depth)?;
+        let mut limit = uniform_limit(cage, scheme, depth)?;
         if limit.num_faces() == 0 {
             return Err(SceneError::Empty);
         }
         // Uniform tessellation: every vertex sits at the same subdivision depth. The adaptive
-        // tessellator hands per-vertex depths of its patches to `from_limit` instead.
-        let depths = vec![depth as f32; limit.positions.len()];
-        Ok(Scene::from_limit(limit, depths))
+        // tessellator sets per-vertex depths of its patches instead.
+        let depths = vec![depth as f32; limit.num_vertices()];
+        limit.set_scalar(VertexScalar::Depth, depths)?;
+        Ok(Scene::from_limit(&limit))
     }
 
-    /// A scene from a tessellation and one scalar per vertex (the subdivision depth that
-    /// [`Shading::Depth`](subdiv_vk::Shading::Depth) colours, or a DoI value).
-    pub fn from_limit(limit: LimitMesh, vertex_depths: Vec<f32>) -> Scene {
-        let silhouettes = Silhouettes::new(&limit);
-        let faces = limit.num_faces();
-        let mut mesh = OwnedMesh {
-            triangles: Vec::new(),
-            edges: Some(limit.edges()),
-            scalars: Some(vertex_depths),
-            lines: None,
-            positions: limit.positions.clone(),
-            normals: limit.normals.clone(),
-        };
-        split_sided_vertices(&limit, &mut mesh);
+    /// A scene of a tessellation, with its scalar (the subdivision depth that
+    /// [`Shading::Depth`](subdiv_vk::Shading::Depth) colours, or a DoI value) when it has one.
+    pub fn from_limit(limit: &LimitMesh) -> Scene {
         Scene {
-            mesh,
-            silhouettes,
-            faces,
+            surface: limit.split_sided(false),
+            edges: limit.edges(),
+            silhouettes: Silhouettes::new(limit),
+            faces: limit.num_faces(),
+            lines: None,
+        }
+    }
+
+    /// The split surface drawn ([`LimitMesh::split_sided`] without UVs).
+    pub fn surface(&self) -> &LimitMesh {
+        &self.surface
+    }
+
+    /// Faces per edge, face normals and centres, for silhouettes.
+    pub fn silhouettes(&self) -> &Silhouettes {
+        &self.silhouettes
+    }
+
+    /// Polygons of the tessellation.
+    pub fn faces(&self) -> usize {
+        self.faces
+    }
+
+    /// The line segments drawn on top (pairs of endpoints), if any.
+    pub fn lines(&self) -> Option<&[[f32; 3]]> {
+        self.lines.as_deref()
+    }
+
+    /// Sets the line segments drawn on top (e.g. [`Scene::silhouette_lines`]).
+    pub fn set_lines(&mut self, lines: Option<Vec<[f32; 3]>>) {
+        self.lines = lines;
+    }
+
+    /// The buffers the renderer uploads: triangles, normals, scalars, polygon edges, lines.
+    pub fn render_mesh(&self) -> RenderMesh<'_> {
+        RenderMesh {
+            edges: Some(&self.edges),
+            lines: self.lines.as_deref(),
+            ..render_mesh(&self.surface)
         }
     }
 
@@ -101,98 +129,32 @@ impl Scene {
     pub fn silhouette_lines(&self, eye: Vec3) -> Vec<[f32; 3]> {
         let mut lines = Vec::new();
         self.silhouettes
-            .lines_into(&self.mesh.positions, eye, &mut lines);
+            .lines_into(self.surface.positions(), eye, &mut lines);
         lines
     }
 
     /// Axis-aligned bounds of the tessellation.
     pub fn bounds(&self) -> (Vec3, Vec3) {
-        self.mesh.positions.iter().fold(
-            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-            |(lo, hi), p| (lo.min(Vec3::from(*p)), hi.max(Vec3::from(*p))),
-        )
+        self.surface.bounds()
     }
 }
 
-/// Triangulates `limit` into `mesh` (a fan per polygon) with the one-sided normals of the
-/// tessellation at creases and corners.
-///
-/// A point on a crease has one normal per side; a face corner with a one-sided normal gets a
-/// vertex of its own per distinct normal (position copied bit for bit, so the surface stays
-/// watertight, and scalar copied; edges and silhouettes keep the shared vertices).
-pub(crate) fn split_sided_vertices(limit: &LimitMesh, mesh: &mut OwnedMesh) {
-    let mut copies: HashMap<(u32, [u32; 3]), u32> = HashMap::new();
-    let mut sided = limit.corner_normals.iter().peekable();
-    let mut corner = Vec::new();
-    for f in 0..limit.num_faces() {
-        corner.clear();
-        for c in limit.face_offsets[f]..limit.face_offsets[f + 1] {
-            let v = limit.face_indices[c as usize];
-            let Some(&(_, n)) = sided.next_if(|&&(k, _)| k == c) else {
-                corner.push(v);
-                continue;
-            };
-            let id = *copies.entry((v, n.map(f32::to_bits))).or_insert_with(|| {
-                mesh.positions.push(limit.positions[v as usize]);
-                mesh.normals.push(n);
-                if let Some(s) = mesh.scalars.as_mut() {
-                    s.push(s[v as usize]);
-                }
-                mesh.positions.len() as u32 - 1
-            });
-            corner.push(id);
-        }
-        for k in 1..corner.len() - 1 {
-            mesh.triangles
-                .extend_from_slice(&[corner[0], corner[k], corner[k + 1]]);
-        }
+/// The triangle buffers of a triangle-list surface (no one-sided corner normals drawn: the
+/// [`LimitMesh::split_sided`] form shows them), its scalar as the render scalars.
+pub(crate) fn render_mesh(s: &LimitMesh) -> RenderMesh<'_> {
+    RenderMesh {
+        positions: s.positions(),
+        normals: s.normals(),
+        triangles: s.face_indices(),
+        edges: None,
+        scalars: s.scalar().map(|(_, v)| v),
+        lines: None,
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::silhouettes::tests::cube;
-
-    #[test]
-    fn corners_with_one_sided_normals_get_their_own_vertices() {
-        // The cube with the normal of its face at every corner: all 24 corners are split, and
-        // corners sharing a vertex and a normal share the copy.
-        let mut limit = cube();
-        let p = |i: u32| Vec3::from(limit.positions[i as usize]);
-        limit.corner_normals = (0..limit.face_indices.len() as u32)
-            .map(|c| {
-                let f = &limit.face_indices[(c / 4 * 4) as usize..][..4];
-                let n = (p(f[1]) - p(f[0])).cross(p(f[2]) - p(f[1])).normalize();
-                (c, n.to_array())
-            })
-            .collect();
-        let scene = Scene::from_limit(limit.clone(), vec![1.0; 8]);
-        let m = &scene.mesh;
-        assert_eq!(m.positions.len(), 8 + 24);
-        assert_eq!(m.triangles.len(), 6 * 2 * 3);
-        assert!(m.triangles.iter().all(|&i| i >= 8));
-        for t in m.triangles.chunks(3) {
-            let n: Vec<Vec3> = t
-                .iter()
-                .map(|&i| Vec3::from(m.normals[i as usize]))
-                .collect();
-            assert!(
-                n[0] == n[1] && n[1] == n[2] && n[0].abs().max_element() == 1.0,
-                "{n:?}"
-            );
-            // Copies keep the position's bits.
-            for &i in t {
-                assert!(limit.positions.contains(&m.positions[i as usize]));
-            }
-        }
-        assert_eq!(m.scalars.as_ref().unwrap().len(), m.positions.len());
-        assert_eq!(m.edges.as_ref().unwrap().len(), 12);
-        // Without one-sided normals nothing is split, however far the normals lean.
-        limit.corner_normals.clear();
-        let scene = Scene::from_limit(limit, vec![0.0; 8]);
-        assert_eq!(scene.mesh.positions.len(), 8);
-    }
 
     /// The cage of a cube with every edge infinitely sharp: its limit surface is the cube.
     fn sharp_cube(scheme: Scheme) -> Mesh {
@@ -220,15 +182,16 @@ mod tests {
         for (scheme, depths) in [(Scheme::CatmullClark, 0..=3), (Scheme::Loop, 0..=2)] {
             let cage = sharp_cube(scheme);
             for depth in depths {
-                let m = Scene::uniform(&cage, scheme, depth).unwrap().mesh;
-                for t in m.triangles.chunks(3) {
+                let scene = Scene::uniform(&cage, scheme, depth).unwrap();
+                let m = scene.surface();
+                for t in m.face_indices().chunks(3) {
                     let p: Vec<Vec3> = t
                         .iter()
-                        .map(|&i| Vec3::from(m.positions[i as usize]))
+                        .map(|&i| Vec3::from(m.positions()[i as usize]))
                         .collect();
                     let flat = (p[1] - p[0]).cross(p[2] - p[0]).normalize();
                     for &i in t {
-                        let n = Vec3::from(m.normals[i as usize]);
+                        let n = Vec3::from(m.normals()[i as usize]);
                         assert!(
                             n.dot(flat) > 1.0 - 1e-6,
                             "{scheme:?} depth {depth}: normal {n} on face {flat}"
@@ -244,16 +207,9 @@ mod tests {
         let cube = subdiv_mesh::parse_obj(&subdiv_test_support::cube().obj()).unwrap();
         let cage = Mesh::from_soup(&cube).unwrap();
         let scene = Scene::uniform(&cage, Scheme::CatmullClark, 2).unwrap();
-        assert_eq!(scene.faces, 6 * 16);
-        assert!(
-            scene
-                .mesh
-                .scalars
-                .as_ref()
-                .unwrap()
-                .iter()
-                .all(|&s| s == 2.0)
-        );
+        assert_eq!(scene.faces(), 6 * 16);
+        let (kind, depths) = scene.surface().scalar().unwrap();
+        assert!(kind == VertexScalar::Depth && depths.iter().all(|&s| s == 2.0));
         let (lo, hi) = scene.bounds();
         assert!(lo.cmpge(Vec3::ZERO).all() && hi.cmple(Vec3::ONE).all());
         let e = Scene::uniform(&cage, Scheme::Loop, 1).err().unwrap();

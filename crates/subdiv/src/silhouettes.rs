@@ -19,8 +19,8 @@ pub struct Silhouettes {
 impl Silhouettes {
     /// Face adjacency and face normals of `limit`.
     pub fn new(limit: &LimitMesh) -> Silhouettes {
-        let p = |i: u32| Vec3::from(limit.positions[i as usize]);
-        let mut keyed: Vec<([u32; 2], u32)> = Vec::with_capacity(limit.face_indices.len());
+        let p = |i: u32| Vec3::from(limit.positions()[i as usize]);
+        let mut keyed: Vec<([u32; 2], u32)> = Vec::with_capacity(limit.face_indices().len());
         let mut face_normal = Vec::with_capacity(limit.num_faces());
         let mut face_centre = Vec::with_capacity(limit.num_faces());
         for f in 0..limit.num_faces() {
@@ -28,7 +28,7 @@ impl Silhouettes {
             let centre = vs.iter().map(|&v| p(v)).sum::<Vec3>() / vs.len() as f32;
             let mut n: Vec3 = vs
                 .iter()
-                .map(|&v| Vec3::from(limit.normals[v as usize]))
+                .map(|&v| Vec3::from(limit.normals()[v as usize]))
                 .sum();
             if n.length_squared() < 1e-12 {
                 // Newell's normal of the polygon (relative to a corner).
@@ -116,14 +116,9 @@ pub(crate) mod tests {
             [0, 4, 6, 2],
             [1, 3, 7, 5],
         ];
-        LimitMesh {
-            positions,
-            normals,
-            face_offsets: (0..=6).map(|i| i * 4).collect(),
-            face_indices: faces.iter().flatten().copied().collect(),
-            corner_normals: Vec::new(),
-            ..Default::default()
-        }
+        let offsets = (0..=6).map(|i| i * 4).collect();
+        let indices = faces.iter().flatten().copied().collect();
+        LimitMesh::new(positions, normals, offsets, indices).unwrap()
     }
 
     #[test]
@@ -134,22 +129,26 @@ pub(crate) mod tests {
         let mut lines = Vec::new();
         // Looking down -z: the +z face faces the eye; in perspective the four side faces face
         // away, so the silhouette is the outline of the +z face.
-        s.lines_into(&limit.positions, Vec3::new(0.0, 0.0, 100.0), &mut lines);
+        s.lines_into(limit.positions(), Vec3::new(0.0, 0.0, 100.0), &mut lines);
         assert_eq!(lines.len(), 8, "{lines:?}");
         assert!(lines.iter().all(|p| p[2] == 1.0));
         // Seen from a corner direction, three faces face the eye: six silhouette edges.
-        s.lines_into(&limit.positions, Vec3::new(10.0, 11.0, 12.0), &mut lines);
+        s.lines_into(limit.positions(), Vec3::new(10.0, 11.0, 12.0), &mut lines);
         assert_eq!(lines.len(), 12);
         // Closed: the contours are the silhouette edges.
-        s.contours_into(&limit.positions, Vec3::new(10.0, 11.0, 12.0), &mut lines);
+        s.contours_into(limit.positions(), Vec3::new(10.0, 11.0, 12.0), &mut lines);
         assert_eq!(lines.len(), 12);
         // Without the -z face the cube is open: its four edges are contours from anywhere.
-        let mut open = limit.clone();
-        open.face_indices.drain(0..4);
-        open.face_offsets = (0..=5).map(|f| 4 * f).collect();
+        let open = LimitMesh::new(
+            limit.positions().to_vec(),
+            limit.normals().to_vec(),
+            (0..=5).map(|f| 4 * f).collect(),
+            limit.face_indices()[4..].to_vec(),
+        )
+        .unwrap();
         let s = Silhouettes::new(&open);
         assert_eq!((s.edges.len(), s.boundary.len()), (8, 4));
-        s.contours_into(&open.positions, Vec3::new(0.0, 0.0, 100.0), &mut lines);
+        s.contours_into(open.positions(), Vec3::new(0.0, 0.0, 100.0), &mut lines);
         assert_eq!(lines.len(), 8 + 8, "{lines:?}");
     }
 }

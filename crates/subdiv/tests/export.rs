@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 use subdiv::mesh::{Camera, glam::Vec3, read_obj};
 use subdiv::rules::Scheme;
 use subdiv::{
-    DoiKind, DoiOptions, DoiSetup, DynamicSubdivision, OutputFormat, SurfaceExport, VertexScalar,
-    frame_limit, uniform_limit, write_export, write_surface,
+    DoiKind, DoiOptions, DoiSetup, DynamicSubdivision, LimitMesh, OutputFormat, VertexScalar,
+    uniform_limit, write_surface,
 };
 use subdiv_test_support::{fixture, shape};
 
@@ -21,13 +21,13 @@ fn out_dir() -> PathBuf {
 
 /// Uniform (creases: one-sided normals), adaptive (per-vertex depths), DoI-refined (per-vertex
 /// DoI) surfaces, and one with texture coordinates.
-fn surfaces() -> Vec<(&'static str, SurfaceExport)> {
+fn surfaces() -> Vec<(&'static str, LimitMesh)> {
     let cube = read_obj(shape("catmark_single_crease.obj")).unwrap();
-    let t = uniform_limit(&cube, Scheme::CatmullClark, 2).unwrap();
-    let depths = vec![2.0; t.positions.len()];
-    let uniform = SurfaceExport::from_limit(&t, Some((VertexScalar::Depth, depths)));
+    let mut uniform = uniform_limit(&cube, Scheme::CatmullClark, 2).unwrap();
+    let depths = vec![2.0; uniform.num_vertices()];
+    uniform.set_scalar(VertexScalar::Depth, depths).unwrap();
     assert!(
-        uniform.positions.len() > t.positions.len(),
+        uniform.split_sided(true).num_vertices() > uniform.num_vertices(),
         "crease corners get vertices of their own"
     );
 
@@ -37,9 +37,8 @@ fn surfaces() -> Vec<(&'static str, SurfaceExport)> {
     // Close to the pawn: near patches deep, far ones shallow.
     let camera = Camera::eye_relative(lo, hi, Vec3::new(0.3, -0.9, 0.6), 45.0, 640, 480);
     let g = node.update(&camera, None).unwrap();
-    let (limit, depths) = frame_limit(g);
-    let adaptive = SurfaceExport::from_limit(&limit, Some((VertexScalar::Depth, depths)));
-    let (dmin, dmax) = min_max(&adaptive.scalar.as_ref().unwrap().1);
+    let adaptive = g.surface().referenced_only();
+    let (dmin, dmax) = min_max(adaptive.scalar().unwrap().1);
     assert!(
         dmin < dmax,
         "the adaptive frame mixes depths: {dmin}..{dmax}"
@@ -48,18 +47,17 @@ fn surfaces() -> Vec<(&'static str, SurfaceExport)> {
     let tetra = read_obj(shape("loop_tetrahedron.obj")).unwrap();
     let setup = DoiSetup::new(tetra, &DoiOptions::new(DoiKind::Dihedral)).unwrap();
     let r = setup.run(camera).unwrap();
-    let (limit, dois) = setup.refined_surface(&r, &camera).unwrap();
-    let refined = SurfaceExport::from_limit(&limit, Some((VertexScalar::Doi, dois)));
+    let refined = setup.refined_surface(&r, &camera).unwrap();
 
-    let mut textured = uniform.clone();
-    textured.uvs = Some(
-        textured
-            .positions
-            .iter()
-            .map(|p| [p[0], p[1] * 0.5])
-            .collect(),
-    );
-    textured.scalar = None;
+    let mut textured = uniform.split_sided(false);
+    let uvs = textured
+        .positions()
+        .iter()
+        .map(|p| [p[0], p[1] * 0.5])
+        .collect();
+    let corners = textured.face_indices().to_vec();
+    textured.set_uvs(uvs, corners).unwrap();
+    textured.clear_scalar();
     vec![
         ("uniform", uniform),
         ("adaptive", adaptive),
@@ -109,7 +107,14 @@ fn check_accessor<const N: usize>(a: &gltf::Accessor, data: &[[f32; N]], what: &
     assert_eq!(json_vec(a.max()), hi, "{what}: max");
 }
 
-fn check_gltf(path: &Path, s: &SurfaceExport, what: &str) {
+/// The texture coordinates of a surface split with its UVs, one per vertex.
+fn vertex_uvs(s: &LimitMesh) -> Option<Vec<[f32; 2]>> {
+    (!s.uv_indices().is_empty()).then(|| s.uvs().to_vec())
+}
+
+/// Checks the glTF file written for `limit` against its split form.
+fn check_gltf(path: &Path, limit: &LimitMesh, what: &str) {
+    let s = &limit.split_sided(true);
     // `open` validates the document (indices, byte ranges, required bounds).
     let doc = gltf::Gltf::open(path).unwrap_or_else(|e| panic!("{what}: {e}"));
     let buffers: Vec<Vec<u8>> = doc
@@ -124,20 +129,20 @@ fn check_gltf(path: &Path, s: &SurfaceExport, what: &str) {
     assert_eq!(prim.mode(), gltf::mesh::Mode::Triangles, "{what}");
     let reader = prim.reader(|b| Some(&buffers[b.index()][..]));
     let pos: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
-    assert_eq!(pos, s.positions, "{what}");
+    assert_eq!(pos, s.positions(), "{what}");
     let nrm: Vec<[f32; 3]> = reader.read_normals().unwrap().collect();
-    assert_eq!(nrm, s.normals, "{what}");
+    assert_eq!(nrm, s.normals(), "{what}");
     let idx: Vec<u32> = reader.read_indices().unwrap().into_u32().collect();
-    assert_eq!(idx, s.triangles, "{what}");
+    assert_eq!(idx, s.face_indices(), "{what}");
     let uv = reader
         .read_tex_coords(0)
         .map(|t| t.into_f32().collect::<Vec<_>>());
-    assert_eq!(uv, s.uvs, "{what}");
+    assert_eq!(uv, vertex_uvs(s), "{what}");
     let ia = prim.indices().unwrap();
-    assert_eq!(ia.count(), s.triangles.len(), "{what}");
+    assert_eq!(ia.count(), s.face_indices().len(), "{what}");
     let (lo, hi) = (
-        s.triangles.iter().min().unwrap(),
-        s.triangles.iter().max().unwrap(),
+        s.face_indices().iter().min().unwrap(),
+        s.face_indices().iter().max().unwrap(),
     );
     let index_bound = |v: Option<gltf::json::Value>| v.unwrap()[0].as_u64().unwrap();
     assert_eq!(index_bound(ia.min()), u64::from(*lo), "{what}");
@@ -145,9 +150,9 @@ fn check_gltf(path: &Path, s: &SurfaceExport, what: &str) {
     let mut custom = Vec::new();
     for (semantic, a) in prim.attributes() {
         match semantic {
-            gltf::Semantic::Positions => check_accessor(&a, &s.positions, what),
-            gltf::Semantic::Normals => check_accessor(&a, &s.normals, what),
-            gltf::Semantic::TexCoords(0) => check_accessor(&a, s.uvs.as_ref().unwrap(), what),
+            gltf::Semantic::Positions => check_accessor(&a, s.positions(), what),
+            gltf::Semantic::Normals => check_accessor(&a, s.normals(), what),
+            gltf::Semantic::TexCoords(0) => check_accessor(&a, s.uvs(), what),
             gltf::Semantic::Extras(name) => {
                 let values: Vec<f32> =
                     gltf::accessor::Iter::<f32>::new(a.clone(), |b| Some(&buffers[b.index()][..]))
@@ -161,14 +166,16 @@ fn check_gltf(path: &Path, s: &SurfaceExport, what: &str) {
         }
     }
     let want: Vec<(String, Vec<f32>)> = s
-        .scalar
+        .scalar()
         .iter()
-        .map(|(k, v)| (k.gltf_attribute().to_string(), v.clone()))
+        .map(|(k, v)| (k.gltf_attribute().to_string(), v.to_vec()))
         .collect();
     assert_eq!(custom, want, "{what}");
 }
 
-fn check_ply(path: &Path, s: &SurfaceExport, what: &str) {
+/// Checks the PLY file written for `limit` against its split form.
+fn check_ply(path: &Path, limit: &LimitMesh, what: &str) {
+    let s = &limit.split_sided(true);
     use ply_rs_bw::ply::{DefaultElement, Encoding, Property};
     let mut f = std::fs::File::open(path).unwrap();
     let ply = ply_rs_bw::parser::Parser::<DefaultElement>::new()
@@ -183,22 +190,22 @@ fn check_ply(path: &Path, s: &SurfaceExport, what: &str) {
         other => panic!("{what}: property {k}: {other:?}"),
     };
     let verts = &ply.payload["vertex"];
-    assert_eq!(verts.len(), s.positions.len(), "{what}");
+    assert_eq!(verts.len(), s.num_vertices(), "{what}");
     for (i, v) in verts.iter().enumerate() {
         assert_eq!(
             [float(v, "x"), float(v, "y"), float(v, "z")],
-            s.positions[i],
+            s.positions()[i],
             "{what}"
         );
         assert_eq!(
             [float(v, "nx"), float(v, "ny"), float(v, "nz")],
-            s.normals[i],
+            s.normals()[i],
             "{what}"
         );
-        if let Some(uv) = &s.uvs {
+        if let Some(uv) = vertex_uvs(s) {
             assert_eq!([float(v, "s"), float(v, "t")], uv[i], "{what}");
         }
-        if let Some((k, values)) = &s.scalar {
+        if let Some((k, values)) = s.scalar() {
             assert_eq!(float(v, k.ply_property()), values[i], "{what}");
         }
     }
@@ -211,7 +218,7 @@ fn check_ply(path: &Path, s: &SurfaceExport, what: &str) {
         })
         .collect();
     assert_eq!(faces.len() * 3, idx.len(), "{what}: triangles only");
-    assert_eq!(idx, s.triangles, "{what}");
+    assert_eq!(idx, s.face_indices(), "{what}");
 }
 
 #[test]
@@ -220,7 +227,7 @@ fn gltf_and_ply_files_reread_exactly() {
     for (name, s) in surfaces() {
         for ext in ["glb", "gltf", "ply"] {
             let path = dir.join(format!("{name}.{ext}"));
-            write_export(&path, &s).unwrap();
+            write_surface(&path, &s).unwrap();
             let what = format!("{name}.{ext}");
             match OutputFormat::from_path(&path).unwrap() {
                 OutputFormat::Ply => check_ply(&path, &s, &what),
@@ -242,24 +249,24 @@ fn output_format_follows_the_extension() {
         ("ply", OutputFormat::Ply),
     ] {
         let p = dir.join(format!("cube.{ext}"));
-        assert_eq!(write_surface(&p, &t, None).unwrap(), format);
+        assert_eq!(write_surface(&p, &t).unwrap(), format);
         assert!(p.exists());
     }
     // OBJ keeps the polygons; glTF and PLY hold their triangles.
     assert_eq!(read_obj(dir.join("cube.obj")).unwrap().num_faces(), 24);
     assert!(dir.join("cube.bin").exists(), "the .gltf data beside it");
-    let e = write_surface(dir.join("cube.stl"), &t, None).unwrap_err();
+    let e = write_surface(dir.join("cube.stl"), &t).unwrap_err();
     assert!(e.to_string().contains("unknown output format"), "{e}");
-    let bad = SurfaceExport {
-        positions: vec![[0.0; 3]; 3],
-        normals: vec![[0.0, 0.0, 1.0]; 3],
-        triangles: vec![0, 1, 3],
-        ..Default::default()
-    };
-    let e = write_export(dir.join("bad.glb"), &bad).unwrap_err();
+    // A surface with an index out of range cannot be made; one without faces is not written.
+    let e = LimitMesh::from_triangles(vec![[0.0; 3]; 3], vec![[0.0, 0.0, 1.0]; 3], vec![0, 1, 3])
+        .unwrap_err();
     assert!(
-        e.to_string()
-            .ends_with("bad.glb: triangle index 3 for 3 positions"),
+        e.to_string().ends_with("vertex index 3 for 3 values"),
+        "{e}"
+    );
+    let e = write_surface(dir.join("bad.glb"), &LimitMesh::default()).unwrap_err();
+    assert!(
+        e.to_string().ends_with("bad.glb: no triangles to write"),
         "{e}"
     );
 }
@@ -271,46 +278,44 @@ fn output_format_follows_the_extension() {
 fn uvs_of_a_tessellated_cage_reach_the_export() {
     let path = fixture("meshes/fvar/cube_uv.obj");
     let cube = read_obj(path).unwrap();
-    let t = uniform_limit(&cube, Scheme::CatmullClark, 2).unwrap();
-    assert_eq!(t.uv_indices.len(), t.face_indices.len(), "UVs per corner");
-    let s = SurfaceExport::from_limit(
-        &t,
-        Some((VertexScalar::Depth, vec![2.0; t.positions.len()])),
+    let mut t = uniform_limit(&cube, Scheme::CatmullClark, 2).unwrap();
+    assert_eq!(
+        t.uv_indices().len(),
+        t.face_indices().len(),
+        "UVs per corner"
     );
-    let uvs = s.uvs.as_ref().expect("the export carries the UVs");
-    assert_eq!(uvs.len(), s.positions.len());
+    t.set_scalar(VertexScalar::Depth, vec![2.0; t.num_vertices()])
+        .unwrap();
+    let s = t.split_sided(true);
+    let uvs = vertex_uvs(&s).expect("the export carries the UVs");
+    assert_eq!(uvs.len(), s.num_vertices());
     assert!(
-        s.positions.len() > t.positions.len(),
+        s.num_vertices() > t.num_vertices(),
         "seams split vertices: {} -> {}",
-        t.positions.len(),
-        s.positions.len()
+        t.num_vertices(),
+        s.num_vertices()
     );
     s.check().unwrap();
     // Walk the faces as the export fans them and compare corner by corner.
-    let mut tri = s.triangles.chunks(3);
+    let mut tri = s.face_indices().chunks(3);
     for f in 0..t.num_faces() {
-        let c: Vec<usize> = (t.face_offsets[f]..t.face_offsets[f + 1])
+        let c: Vec<usize> = (t.face_offsets()[f]..t.face_offsets()[f + 1])
             .map(|c| c as usize)
             .collect();
         for k in 1..c.len() - 1 {
             let out = tri.next().expect("one triangle per fan step");
             for (&o, &corner) in out.iter().zip(&[c[0], c[k], c[k + 1]]) {
-                let v = t.face_indices[corner] as usize;
-                assert_eq!(s.positions[o as usize], t.positions[v]);
-                assert_eq!(uvs[o as usize], t.uvs[t.uv_indices[corner] as usize]);
+                let v = t.face_indices()[corner] as usize;
+                assert_eq!(s.positions()[o as usize], t.positions()[v]);
+                assert_eq!(uvs[o as usize], t.uvs()[t.uv_indices()[corner] as usize]);
             }
         }
     }
     assert!(tri.next().is_none());
     // And the file: a .glb re-read by the gltf crate holds TEXCOORD_0 as exported.
     let glb = out_dir().join("cube_uv.glb");
-    write_surface(
-        &glb,
-        &t,
-        Some((VertexScalar::Depth, vec![2.0; t.positions.len()])),
-    )
-    .unwrap();
-    check_gltf(&glb, &s, "cube_uv.glb");
+    write_surface(&glb, &t).unwrap();
+    check_gltf(&glb, &t, "cube_uv.glb");
 }
 
 /// A cage with UVs refined where a DoI says (`subdiv refine`): the export carries the refined
@@ -328,29 +333,29 @@ fn uvs_of_a_refined_cage_reach_the_export() {
     let r = setup.run(camera).unwrap();
     let m = &r.mesh.mesh;
     let fv = m.uv().expect("the refined mesh carries the UVs");
-    let (limit, dois) = setup.refined_surface(&r, &camera).unwrap();
+    let limit = setup.refined_surface(&r, &camera).unwrap();
     assert!(r.mesh.green.num_green_faces() > 0, "a partial refinement");
-    assert_eq!(limit.uv_indices, fv.indices);
-    let s = SurfaceExport::from_limit(&limit, Some((VertexScalar::Doi, dois.clone())));
-    let uvs = s.uvs.as_ref().expect("the export carries the UVs");
-    assert_eq!(uvs.len(), s.positions.len());
+    assert_eq!(limit.uv_indices(), fv.indices);
+    let s = limit.split_sided(true);
+    let uvs = vertex_uvs(&s).expect("the export carries the UVs");
+    assert_eq!(uvs.len(), s.num_vertices());
     // At least one vertex per distinct (vertex, value) pair: the seam splits vertices.
     let mut pairs: Vec<(u32, u32)> = limit
-        .face_indices
+        .face_indices()
         .iter()
-        .zip(&limit.uv_indices)
+        .zip(limit.uv_indices())
         .map(|(&v, &t)| (v, t))
         .collect();
     pairs.sort_unstable();
     pairs.dedup();
     assert!(pairs.len() > m.num_vertices());
-    assert!(s.positions.len() >= pairs.len());
-    for (c, &o) in s.triangles.iter().enumerate() {
-        let (v, t) = (limit.face_indices[c], limit.uv_indices[c]);
-        assert_eq!(s.positions[o as usize], limit.positions[v as usize]);
-        assert_eq!(uvs[o as usize], limit.uvs[t as usize]);
+    assert!(s.num_vertices() >= pairs.len());
+    for (c, &o) in s.face_indices().iter().enumerate() {
+        let (v, t) = (limit.face_indices()[c], limit.uv_indices()[c]);
+        assert_eq!(s.positions()[o as usize], limit.positions()[v as usize]);
+        assert_eq!(uvs[o as usize], limit.uvs()[t as usize]);
     }
     let glb = out_dir().join("tri_seam_refined.glb");
-    write_surface(&glb, &limit, Some((VertexScalar::Doi, dois))).unwrap();
-    check_gltf(&glb, &s, "tri_seam_refined.glb");
+    write_surface(&glb, &limit).unwrap();
+    check_gltf(&glb, &limit, "tri_seam_refined.glb");
 }

@@ -9,11 +9,11 @@
 use std::collections::HashMap;
 
 use glam::{DVec3, Vec3};
+use subdiv::LimitMesh;
 use subdiv::depth::DepthParams;
 use subdiv::mesh::{Camera, Mesh, VertexId, read_obj};
 use subdiv::rules::{Ring, Scheme, refine_uniform_levels};
-use subdiv::vk::OwnedMesh;
-use subdiv::{DynamicSubdivision, Scene, frame_limit};
+use subdiv::{DynamicSubdivision, Scene};
 
 const MAX_DEGREES: f64 = 0.05;
 
@@ -82,13 +82,13 @@ struct Checked {
     what: String,
 }
 
-/// Checks every triangle corner of `m`.
-fn check(m: &OwnedMesh, truth: &Truth) -> Checked {
+/// Checks every triangle corner of `m` (a scene's split surface).
+fn check(m: &LimitMesh, truth: &Truth) -> Checked {
     let (mut checked, mut sided, mut worst, mut what) = (0, 0, 0.0f64, String::new());
-    for (t, tri) in m.triangles.chunks(3).enumerate() {
+    for (t, tri) in m.face_indices().chunks(3).enumerate() {
         let p: Vec<Vec3> = tri
             .iter()
-            .map(|&i| m.positions[i as usize].into())
+            .map(|&i| m.positions()[i as usize].into())
             .collect();
         let flat = (p[1] - p[0])
             .cross(p[2] - p[0])
@@ -109,7 +109,7 @@ fn check(m: &OwnedMesh, truth: &Truth) -> Checked {
                     .max_by(|a, b| a.dot(flat).total_cmp(&b.dot(flat)))
                     .unwrap()
             };
-            let got = Vec3::from(m.normals[i as usize]).as_dvec3();
+            let got = Vec3::from(m.normals()[i as usize]).as_dvec3();
             let angle = got
                 .normalize()
                 .dot(want)
@@ -179,7 +179,7 @@ fn uniform_scenes_hand_out_exact_limit_normals() {
                 sided: s,
                 worst,
                 what,
-            } = check(&scene.mesh, &truth);
+            } = check(scene.surface(), &truth);
             (total, sided) = (total + corners, sided + s);
             worst_all = worst_all.max(worst);
             if worst > MAX_DEGREES {
@@ -228,14 +228,13 @@ fn adaptive_frames_hand_out_exact_limit_normals() {
                 .collect();
             node.set_face_depths(Some(depths)).unwrap();
             let g = node.update(&camera, None).unwrap();
-            let (limit, d) = frame_limit(g);
-            let scene = Scene::from_limit(limit, d);
+            let scene = Scene::from_limit(&g.surface().referenced_only());
             let Checked {
                 corners,
                 sided: s,
                 worst,
                 what,
-            } = check(&scene.mesh, &truth);
+            } = check(scene.surface(), &truth);
             println!("{name} round {round}: {corners} corners ({s} one-sided), worst {worst:.5}°");
             sided += s;
             if worst > MAX_DEGREES {

@@ -31,11 +31,15 @@ fn usd_cages_tessellate_to_the_surface_of_their_obj() {
         for depth in 1..=3 {
             let a = uniform_limit(&cage.mesh, scheme, depth).unwrap();
             let b = uniform_limit(&reference, scheme, depth).unwrap();
-            assert!(!a.positions.is_empty(), "{usd}");
-            assert_eq!(a.positions, b.positions, "{usd} depth {depth}");
-            assert_eq!(a.normals, b.normals, "{usd} depth {depth}");
-            assert_eq!(a.face_indices, b.face_indices, "{usd} depth {depth}");
-            assert_eq!(a.corner_normals, b.corner_normals, "{usd} depth {depth}");
+            assert!(!a.positions().is_empty(), "{usd}");
+            assert_eq!(a.positions(), b.positions(), "{usd} depth {depth}");
+            assert_eq!(a.normals(), b.normals(), "{usd} depth {depth}");
+            assert_eq!(a.face_indices(), b.face_indices(), "{usd} depth {depth}");
+            assert_eq!(
+                a.corner_normals(),
+                b.corner_normals(),
+                "{usd} depth {depth}"
+            );
         }
     }
     // bilinear and none name no scheme of subdiv.

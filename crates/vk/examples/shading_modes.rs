@@ -4,19 +4,12 @@
 
 mod common;
 
-use subdiv_vk::{OrbitCamera, RenderMesh, RenderOptions, Renderer, Shading};
+use subdiv_vk::{OrbitCamera, RenderOptions, Renderer, Shading};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let out = std::path::PathBuf::from(std::env::args().nth(1).unwrap_or_else(|| "out/vk".into()));
     let t = common::torus(48, 24);
-    let mesh = RenderMesh {
-        positions: &t.positions,
-        normals: &t.normals,
-        triangles: &t.triangles,
-        edges: Some(&t.edges),
-        scalars: Some(&t.scalars),
-        lines: Some(&t.silhouette),
-    };
+    let mesh = t.render_mesh();
     let size = [480, 360];
     let view = OrbitCamera::framing_mesh(&mesh).view(size[0] as f32 / size[1] as f32);
     let mut renderer = Renderer::new()?;

@@ -5,13 +5,14 @@
 mod common;
 
 use subdiv_vk::viewer::{self, FrameRequest, FrameSource, SourceFrame, ViewerOptions};
-use subdiv_vk::{OwnedMesh, Shading};
+use subdiv_vk::{RenderMesh, Shading};
 
 /// Stands in for the adaptive tessellator: a finer torus while the frame rate
 /// is above target, a coarser one below, when frame-rate control is on.
 struct Adaptive {
     level: u32,
-    mesh: OwnedMesh,
+    torus: Option<common::Torus>,
+    scalars: Vec<f32>,
     status: String,
 }
 
@@ -29,20 +30,26 @@ impl FrameSource for Adaptive {
                 self.level -= 1;
             }
         }
-        if previous != self.level || self.mesh.positions.is_empty() {
-            let n = 12 << self.level;
-            self.mesh = common::torus(n, n / 2).into_owned();
-        }
+        let n = 12 << self.level;
+        let torus = match self.torus.take() {
+            Some(t) if previous == self.level => t,
+            _ => common::torus(n, n / 2),
+        };
+        let torus = self.torus.insert(torus);
         if request.shading == Shading::Doi {
             // A smooth "interest" value: height above the torus plane.
-            let doi: Vec<f32> = self.mesh.positions.iter().map(|p| p[1]).collect();
-            self.mesh.scalars = Some(doi);
+            self.scalars = torus.positions.iter().map(|p| p[1]).collect();
         } else if request.shading == Shading::Depth {
-            self.mesh.scalars = Some(vec![self.level as f32; self.mesh.positions.len()]);
+            self.scalars = vec![self.level as f32; torus.positions.len()];
+        } else {
+            self.scalars.clone_from(&torus.scalars);
         }
         self.status = format!("level {}", self.level);
         Ok(SourceFrame {
-            mesh: self.mesh.as_render_mesh(),
+            mesh: RenderMesh {
+                scalars: Some(&self.scalars),
+                ..torus.render_mesh()
+            },
             status: &self.status,
             vertex_version: None,
             depth_cap: Some(self.level),
@@ -72,7 +79,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let mut source = Adaptive {
         level: 2,
-        mesh: OwnedMesh::default(),
+        torus: None,
+        scalars: Vec::new(),
         status: String::new(),
     };
     let report = viewer::run(&mut source, options)?;

@@ -63,7 +63,7 @@ pub use context::{
 pub use error::{Result, VkError};
 pub use image_io::{EXR_CHANNELS, ExrChannel, read_exr, read_png, write_exr, write_png};
 pub use offscreen::{AuxImage, Renderer};
-pub use scene::{OrbitCamera, OwnedMesh, RenderMesh, RenderOptions, Shading, View};
+pub use scene::{OrbitCamera, RenderMesh, RenderOptions, Shading, View};
 
 pub use glam;
 pub use image;

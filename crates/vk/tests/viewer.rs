@@ -7,36 +7,39 @@
 use subdiv_vk::glam::Vec3;
 use subdiv_vk::viewer::{self, FrameRequest, FrameSource, SourceFrame, ViewerOptions};
 use subdiv_vk::{
-    ContextOptions, OrbitCamera, OwnedMesh, RenderOptions, Renderer, Shading, Validation,
+    ContextOptions, OrbitCamera, RenderMesh, RenderOptions, Renderer, Shading, Validation,
 };
 
+/// The octahedron's vertices (also its normals).
+static POSITIONS: [[f32; 3]; 6] = [
+    [1.0, 0.0, 0.0],
+    [-1.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    [0.0, -1.0, 0.0],
+    [0.0, 0.0, 1.0],
+    [0.0, 0.0, -1.0],
+];
+static TRIANGLES: [u32; 24] = [
+    0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5,
+];
+static SCALARS: [f32; 6] = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0];
+static LINE: [[f32; 3]; 2] = [[-1.2, 0.0, 0.0], [1.2, 0.0, 0.0]];
+
 /// An octahedron-ish test shape with per-vertex depth scalars and a line.
-fn shape() -> OwnedMesh {
-    let positions = vec![
-        [1.0, 0.0, 0.0],
-        [-1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.0, -1.0, 0.0],
-        [0.0, 0.0, 1.0],
-        [0.0, 0.0, -1.0],
-    ];
-    let normals = positions.clone();
-    let triangles = vec![
-        0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5,
-    ];
-    OwnedMesh {
-        positions,
-        normals,
-        triangles,
+fn shape() -> RenderMesh<'static> {
+    RenderMesh {
+        positions: &POSITIONS,
+        normals: &POSITIONS,
+        triangles: &TRIANGLES,
         edges: None,
-        scalars: Some(vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0]),
-        lines: Some(vec![[-1.2, 0.0, 0.0], [1.2, 0.0, 0.0]]),
+        scalars: Some(&SCALARS),
+        lines: Some(&LINE),
     }
 }
 
 /// Counts the frames it is asked for and checks the requests.
 struct Counting {
-    mesh: OwnedMesh,
+    mesh: RenderMesh<'static>,
     frames: u64,
 }
 
@@ -53,7 +56,7 @@ impl FrameSource for Counting {
         // Same vertices every frame: from the third frame on, both per-frame
         // buffers keep them and only indices and lines are uploaded.
         Ok(SourceFrame {
-            mesh: self.mesh.as_render_mesh(),
+            mesh: self.mesh,
             status: "test",
             vertex_version: Some(7),
             depth_cap: Some(5),
@@ -117,12 +120,7 @@ fn screenshot_after_n_frames_equals_headless_render() {
     let shot = subdiv_vk::read_png(&path).unwrap();
     let mesh = shape();
     let expected = headless
-        .render(
-            &mesh.as_render_mesh(),
-            &camera.view(160.0 / 120.0),
-            [160, 120],
-            &render,
-        )
+        .render(&mesh, &camera.view(160.0 / 120.0), [160, 120], &render)
         .unwrap();
     assert!(
         shot == expected,

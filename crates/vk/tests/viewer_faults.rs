@@ -17,7 +17,7 @@ use subdiv_vk::viewer::{
     ViewerReport,
 };
 use subdiv_vk::{
-    ContextOptions, OrbitCamera, OwnedMesh, RenderOptions, Renderer, Shading, Validation, VkError,
+    ContextOptions, OrbitCamera, RenderMesh, RenderOptions, Renderer, Shading, Validation, VkError,
 };
 
 /// Set in the child process that runs one test's viewer.
@@ -62,32 +62,34 @@ fn in_own_process(name: &str, body: impl FnOnce()) {
     eprint!("{stderr}");
 }
 
+/// The octahedron's vertices (also its normals).
+static POSITIONS: [[f32; 3]; 6] = [
+    [1.0, 0.0, 0.0],
+    [-1.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    [0.0, -1.0, 0.0],
+    [0.0, 0.0, 1.0],
+    [0.0, 0.0, -1.0],
+];
+static TRIANGLES: [u32; 24] = [
+    0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5,
+];
+static SCALARS: [f32; 6] = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0];
+
 /// An octahedron.
-fn shape() -> OwnedMesh {
-    let positions = vec![
-        [1.0, 0.0, 0.0],
-        [-1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.0, -1.0, 0.0],
-        [0.0, 0.0, 1.0],
-        [0.0, 0.0, -1.0],
-    ];
-    let normals = positions.clone();
-    let triangles = vec![
-        0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5,
-    ];
-    OwnedMesh {
-        positions,
-        normals,
-        triangles,
-        scalars: Some(vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0]),
+fn shape() -> RenderMesh<'static> {
+    RenderMesh {
+        positions: &POSITIONS,
+        normals: &POSITIONS,
+        triangles: &TRIANGLES,
+        scalars: Some(&SCALARS),
         ..Default::default()
     }
 }
 
 /// Serves [`shape`] and records the image size of every request.
 struct Recording {
-    mesh: OwnedMesh,
+    mesh: RenderMesh<'static>,
     sizes: Vec<[u32; 2]>,
 }
 
@@ -103,7 +105,7 @@ impl FrameSource for Recording {
         );
         self.sizes.push(request.size);
         Ok(SourceFrame {
-            mesh: self.mesh.as_render_mesh(),
+            mesh: self.mesh,
             status: "",
             vertex_version: Some(1),
             depth_cap: None,
@@ -209,7 +211,7 @@ fn headless() -> RgbaImage {
     let [w, h] = SIZE;
     let image = renderer
         .render(
-            &shape().as_render_mesh(),
+            &shape(),
             &camera().view(w as f32 / h as f32),
             SIZE,
             &render_options(),

@@ -33,7 +33,7 @@ fn uniform_estimate_is_the_real_size() {
             );
             assert_eq!(s.faces, refined.num_faces() as u64, "{scheme:?} {depth}");
             let t = tessellate_uniform(&m, scheme, depth).unwrap();
-            assert_eq!(s.vertices, t.positions.len() as u64);
+            assert_eq!(s.vertices, t.positions().len() as u64);
             assert_eq!(s.faces, t.num_faces() as u64);
             assert_eq!(s.triangles, t.triangles().len() as u64 / 3);
         }

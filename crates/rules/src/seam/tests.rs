@@ -74,7 +74,7 @@ fn check_limit(text: &str) {
         for s in 0..=n {
             let p = seams.point(&mesh, h, s, depth).unwrap();
             let nearest = reference
-                .positions
+                .positions()
                 .iter()
                 .map(|q| (Vec3::from(*q) - p).length())
                 .fold(f32::INFINITY, f32::min);

@@ -135,11 +135,11 @@ mod tests {
                         let (id, owned) = TriLayout::point_id(q, n, i, j);
                         let k = tri_lattice_index(n, i, j) as usize;
                         if owned {
-                            assert_eq!(pos[k], uni.positions[id as usize], "({i}, {j})");
-                            assert_eq!(nrm[k], uni.normals[id as usize], "({i}, {j})");
+                            assert_eq!(pos[k], uni.positions()[id as usize], "({i}, {j})");
+                            assert_eq!(nrm[k], uni.normals()[id as usize], "({i}, {j})");
                         } else {
                             let d = glam::Vec3::from(pos[k])
-                                - glam::Vec3::from(uni.positions[id as usize]);
+                                - glam::Vec3::from(uni.positions()[id as usize]);
                             assert!(d.length() < 1e-5, "({i}, {j}) {d}");
                         }
                     }
@@ -154,7 +154,7 @@ mod tests {
             assert_eq!(pos.len(), 3);
             for (c, k) in [(0, 0), (1, 1), (2, 2)] {
                 let d = glam::Vec3::from(pos[k])
-                    - glam::Vec3::from(uni.positions[p.corners[c] as usize]);
+                    - glam::Vec3::from(uni.positions()[p.corners[c] as usize]);
                 assert!(d.length() < 1e-5, "corner {c}: {d}");
             }
         }

@@ -6,7 +6,6 @@ use std::cell::Cell;
 use glam::Vec3A;
 use rayon::prelude::*;
 use subdiv_mesh::Mesh;
-use subdiv_rules::budget::{try_reserve, try_resize};
 use subdiv_rules::{
     Budget, Depth, LimitMesh, MAX_DEPTH, Request, RulesError, Scheme, check_doubled_triangles,
     tessellate_uniform,
@@ -28,7 +27,7 @@ use crate::tessellate::{MAX_POINTS, SharedOut, SlateError};
 /// let mesh = Mesh::from_soup(&parse_obj(tet)?)?;
 /// let t = subdiv_slate::tessellate_loop(&mesh, 3).unwrap();
 /// assert_eq!(t.num_faces(), 4 * 64);
-/// assert_eq!(t.positions.len(), 4 * 64 / 2 + 2);
+/// assert_eq!(t.positions().len(), 4 * 64 / 2 + 2);
 /// # Ok::<(), subdiv_mesh::MeshError>(())
 /// ```
 pub fn tessellate_loop(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateError> {
@@ -37,7 +36,7 @@ pub fn tessellate_loop(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateErro
         // The cage's own limit points.
         let mut out = tessellate_uniform(mesh, Scheme::Loop, 0)?;
         // The cage vertices on seams, the same bits in every copy (as at any depth).
-        subdiv_rules::SeamCurves::new(mesh).write_uniform(mesh, 0, 0, &mut out.positions);
+        subdiv_rules::SeamCurves::new(mesh).write_uniform(mesh, 0, 0, out.positions_mut());
         return Ok(out);
     }
     if depth > MAX_DEPTH {
@@ -81,7 +80,7 @@ pub(crate) fn check_loop_cage(mesh: &Mesh) -> Result<(), RulesError> {
 /// once per layout and output, kept by the calls that follow with the same layout (positions,
 /// normals, one-sided corner normals and UVs are written every call), as in
 /// [`crate::tessellate_layout_into`]: [`LimitMesh::topology_written`] says whether this call
-/// wrote them, [`LimitMesh::invalidate_topology`] forces it.
+/// wrote them.
 pub fn tessellate_loop_layout_into(
     mesh: &Mesh,
     layout: &TriLayout,
@@ -98,41 +97,25 @@ pub fn tessellate_loop_layout_into(
     }
     let n = 1u32 << depth;
     let np = layout.num_points();
-    try_resize(&mut result.positions, np, [0.0; 3], "limit positions")?;
-    try_resize(&mut result.normals, np, [0.0; 3], "limit normals")?;
-    for &v in &layout.isolated {
-        result.positions[v.idx()] = mesh.position(v).to_array();
-        result.normals[v.idx()] = [0.0; 3];
-    }
     let per_patch = (n * n) as usize;
     let tris_of = |p: &TriPatch| if p.visible { per_patch } else { 0 };
     let total: usize = layout.patches.iter().map(tris_of).sum();
     // The triangles and their offsets depend on the layout alone: written once per layout,
-    // kept by the calls that follow into the same output (`LimitMesh::has_topology`).
-    let key = layout.key.0;
-    let write_faces = !result.has_topology(key, total, total * 3);
-    if write_faces {
-        // Until the triangles are written, the output holds no layout's faces.
-        result.invalidate_topology();
-        try_resize(&mut result.face_indices, total * 3, 0, "triangle indices")?;
-        result.face_offsets.clear();
-        try_reserve(&mut result.face_offsets, total + 1, "triangle offsets")?;
-        result
-            .face_offsets
-            .extend((0..=total as u32).map(|i| i * 3));
+    // kept by the calls that follow into the same output.
+    let w = result.write_keyed(layout.key.0, np, total, 3)?;
+    for &v in &layout.isolated {
+        w.positions[v.idx()] = mesh.position(v).to_array();
+        w.normals[v.idx()] = [0.0; 3];
     }
     let out = SharedOut {
-        pos: result.positions.as_mut_ptr(),
-        nrm: result.normals.as_mut_ptr(),
+        pos: w.positions.as_mut_ptr(),
+        nrm: w.normals.as_mut_ptr(),
         len: np,
     };
+    let write_faces = w.faces.is_some();
     // One chunk of the index buffer per patch (empty ones where the triangles are kept).
     let mut chunks: Vec<&mut [u32]> = Vec::with_capacity(layout.patches.len());
-    let mut rest: &mut [u32] = if write_faces {
-        &mut result.face_indices
-    } else {
-        &mut []
-    };
+    let mut rest: &mut [u32] = w.faces.unwrap_or_default();
     for p in &layout.patches {
         let (a, b) = rest.split_at_mut(if write_faces { tris_of(p) * 3 } else { 0 });
         chunks.push(a);
@@ -148,17 +131,14 @@ pub fn tessellate_loop_layout_into(
             run_patch(wk, scratch, mesh, layout, p, depth, &out, tris)
         })
         .collect();
-    result.set_topology(key, write_faces);
-    result.corner_normals.clear();
     let mut start = 0u32;
-    for (p, slots) in layout.patches.iter().zip(sided) {
-        result
-            .corner_normals
-            .extend(slots.into_iter().map(|(k, nrm)| (start + k, nrm)));
+    result.write_corner_normals(layout.patches.iter().zip(sided).flat_map(|(p, slots)| {
+        let s = start;
         start += 3 * tris_of(p) as u32;
-    }
+        slots.into_iter().map(move |(k, nrm)| (s + k, nrm))
+    }));
     // Points on seams from their chains: the copies of a non-manifold edge agree to the bit.
-    layout.write_seam_points(mesh, &mut result.positions);
+    layout.write_seam_points(mesh, result.positions_mut());
     // Face-varying limit values, only for a cage with UVs (`uv.rs`).
     crate::uv::tri_uvs(mesh, layout, result)
 }

@@ -87,13 +87,13 @@ struct Kept {
 pub(crate) struct UvCache(OnceLock<Kept>);
 
 impl UvCache {
-    /// Writes the kept UVs into `out` (whose UV vectors are empty) when `mesh` is the cage they
-    /// were computed for, but for its positions; `false` otherwise.
-    pub(crate) fn restore(&self, mesh: &Mesh, out: &mut LimitMesh) -> bool {
+    /// Writes the kept UVs into `uvs` and `idx` (empty) when `mesh` is the cage they were
+    /// computed for, but for its positions; `false` otherwise.
+    pub(crate) fn restore(&self, mesh: &Mesh, uvs: &mut Vec<[f32; 2]>, idx: &mut Vec<u32>) -> bool {
         match self.0.get() {
             Some(k) if k.key.matches(mesh) => {
-                out.uvs.extend_from_slice(&k.uvs);
-                out.uv_indices.extend_from_slice(&k.uv_indices);
+                uvs.extend_from_slice(&k.uvs);
+                idx.extend_from_slice(&k.uv_indices);
                 true
             }
             _ => false,
@@ -105,8 +105,8 @@ impl UvCache {
         if self.0.get().is_none() {
             let _ = self.0.set(Kept {
                 key: UvKey::new(mesh),
-                uvs: out.uvs.clone(),
-                uv_indices: out.uv_indices.clone(),
+                uvs: out.uvs().to_vec(),
+                uv_indices: out.uv_indices().to_vec(),
             });
         }
     }
@@ -139,7 +139,7 @@ mod tests {
     }
 
     fn uvs(t: &LimitMesh) -> (Vec<[f32; 2]>, Vec<u32>) {
-        (t.uvs.clone(), t.uv_indices.clone())
+        (t.uvs().to_vec(), t.uv_indices().to_vec())
     }
 
     #[test]
@@ -155,7 +155,7 @@ mod tests {
         ] {
             tessellate_layout_into(&m, &layout, &mut out).unwrap();
             let fresh = tessellate(&m, 3).unwrap();
-            assert!(!fresh.uv_indices.is_empty());
+            assert!(!fresh.uv_indices().is_empty());
             assert_eq!(uvs(&out), uvs(&fresh));
         }
         let tri = cage("tri_seam");
@@ -168,7 +168,7 @@ mod tests {
         ] {
             tessellate_loop_layout_into(&m, &layout, &mut out).unwrap();
             let fresh = tessellate_loop(&m, 3).unwrap();
-            assert!(!fresh.uv_indices.is_empty());
+            assert!(!fresh.uv_indices().is_empty());
             assert_eq!(uvs(&out), uvs(&fresh));
         }
         // A cage without UVs after one with: none.
@@ -177,6 +177,6 @@ mod tests {
         let layout = PatchLayout::new(&cube, 2).unwrap();
         tessellate_layout_into(&cube, &layout, &mut out).unwrap();
         tessellate_layout_into(&plain, &layout, &mut out).unwrap();
-        assert!(out.uvs.is_empty() && out.uv_indices.is_empty());
+        assert!(out.uvs().is_empty() && out.uv_indices().is_empty());
     }
 }

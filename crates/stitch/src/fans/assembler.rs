@@ -5,11 +5,11 @@
 
 use rayon::prelude::*;
 use subdiv_mesh::{HalfedgeId, Mesh};
-use subdiv_rules::{Budget, Request, Scheme};
+use subdiv_rules::{Budget, Request, Scheme, TriangleBuffers, VertexScalar};
 use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, PatchSet, thread_worker};
 
 use super::edges::Frame;
-use super::geometry::FrameGeometry;
+use super::geometry::{AdaptiveFrame, concatenate};
 use super::index::FanMethod;
 use crate::AssemblyError;
 
@@ -158,9 +158,9 @@ impl Assembler {
     /// Quads of the patch grids per depth in frame `g` (index = depth), before the fans that
     /// join different depths: what Settgast et al. Fig. 6 counts. A unit at depth `d` has
     /// `4^d` quads, a level-1 unit of `n` patches `n * 4^(d - 1)`; undrawn units count nothing.
-    pub fn quads_per_depth(&self, g: &FrameGeometry) -> Vec<u64> {
+    pub fn quads_per_depth(&self, g: &AdaptiveFrame) -> Vec<u64> {
         let mut v = Vec::new();
-        for (unit, &d) in self.set.units().iter().zip(&g.unit_depth) {
+        for (unit, &d) in self.set.units().iter().zip(g.unit_depth()) {
             if d == u8::MAX {
                 continue;
             }
@@ -188,7 +188,7 @@ impl Assembler {
         mesh: &Mesh,
         depth: &[Depth],
         active: &[bool],
-        out: &mut FrameGeometry,
+        out: &mut AdaptiveFrame,
     ) -> Result<(), AssemblyError> {
         let nu = self.set.units().len();
         if depth.len() != nu || active.len() != nu {
@@ -204,52 +204,74 @@ impl Assembler {
         let required = self.required_depths(mesh, &depth, active);
         self.check_size(&required)?;
         let recomputed = self.recompute_blocks(mesh, &required);
-        // Vertex buffer: the blocks, concatenated.
-        if recomputed > 0 || out.positions.is_empty() {
-            self.concatenate_blocks(out)?;
-        }
+        let relink = recomputed > 0 || out.surface.num_vertices() == 0;
+        out.surface.write_triangles(VertexScalar::Depth, |b| {
+            self.write_frame(mesh, &depth, active, relink, b)
+        })??;
         out.vertex_version = self.version;
         out.patches_recomputed = recomputed;
+        out.unit_depth = (0..nu)
+            .map(|u| if active[u] { depth[u] } else { u8::MAX })
+            .collect();
+        Ok(())
+    }
+
+    /// Writes the frame's surface into `b`: the vertex buffer (the blocks, concatenated) when
+    /// `relink`, the vertex depths, the face-varying values and the triangles.
+    fn write_frame(
+        &mut self,
+        mesh: &Mesh,
+        depth: &[Depth],
+        active: &[bool],
+        relink: bool,
+        b: &mut TriangleBuffers<'_>,
+    ) -> Result<(), AssemblyError> {
+        if relink {
+            self.concatenate_blocks(b)?;
+        }
+        self.fill_vertex_depth(depth, b);
+        // Face-varying values: every corner's point lies on a grid at most one level below the
+        // deepest drawn unit (fan centres, subdivided edges).
+        let deepest = (0..depth.len())
+            .filter(|&u| active[u])
+            .map(|u| depth[u])
+            .max();
+        if let (true, Some(d)) = (mesh.uv().is_some(), deepest) {
+            let level = d + 1;
+            if self.uvs.as_ref().is_none_or(|u| u.level() < level) {
+                self.uvs = LevelUvs::new(mesh, subdiv_rules::Scheme::CatmullClark, level)?;
+                b.uvs.clear();
+            }
+            if b.uvs.is_empty() {
+                *b.uvs = self
+                    .uvs
+                    .as_ref()
+                    .map(|u| u.values.clone())
+                    .unwrap_or_default();
+            }
+        }
+        let uvs = match (mesh.uv().is_some(), deepest) {
+            (true, Some(_)) => self.uvs.as_ref(),
+            _ => None,
+        };
         let fr = Frame::new(
             mesh,
             &self.set,
             &self.units,
-            &depth,
+            depth,
             active,
             &self.blocks,
             &self.block_start,
         );
-        self.fill_vertex_depth(&depth, out);
-        // Face-varying values: every corner's point lies on a grid at most one level below the
-        // deepest drawn unit (fan centres, subdivided edges).
-        let deepest = (0..nu).filter(|&u| active[u]).map(|u| depth[u]).max();
-        let uvs = match (mesh.uv().is_some(), deepest) {
-            (true, Some(d)) => {
-                let level = d + 1;
-                if self.uvs.as_ref().is_none_or(|u| u.level() < level) {
-                    self.uvs = LevelUvs::new(mesh, subdiv_rules::Scheme::CatmullClark, level)?;
-                    out.uvs.clear();
-                }
-                let u = self.uvs.as_ref();
-                if out.uvs.is_empty() {
-                    out.uvs = u.map(|u| u.values.clone()).unwrap_or_default();
-                }
-                u
-            }
-            _ => None,
-        };
         // Index buffer: each patch's triangles, in parallel, then concatenated in patch order.
         fr.emit_frame(
             active,
             self.method,
             uvs,
-            &mut out.indices,
-            &mut out.corner_normals,
-            &mut out.uv_indices,
+            b.triangles,
+            b.corner_normals,
+            b.uv_indices,
         );
-        out.unit_depth = (0..nu)
-            .map(|u| if active[u] { depth[u] } else { u8::MAX })
-            .collect();
         Ok(())
     }
 
@@ -347,22 +369,20 @@ impl Assembler {
 
     /// Rebuilds the vertex buffer from the blocks (and their start offsets) and bumps the
     /// vertex version.
-    fn concatenate_blocks(&mut self, out: &mut FrameGeometry) -> Result<(), AssemblyError> {
+    fn concatenate_blocks(&mut self, b: &mut TriangleBuffers<'_>) -> Result<(), AssemblyError> {
         let blocks = self.blocks.iter().map(|b| (&b.pos[..], &b.nrm[..]));
-        out.concatenate(blocks, &mut self.block_start)?;
-        out.vertex_depth.clear();
+        concatenate(b, blocks, &mut self.block_start)?;
         self.version += 1;
         Ok(())
     }
 
     /// Depth per vertex (of the patch whose block holds it, at this frame's depth).
-    fn fill_vertex_depth(&self, depth: &[Depth], out: &mut FrameGeometry) {
-        out.vertex_depth.clear();
-        out.vertex_depth.resize(out.positions.len(), 0.0);
+    fn fill_vertex_depth(&self, depth: &[Depth], b: &mut TriangleBuffers<'_>) {
+        b.scalar.clear();
+        b.scalar.resize(b.positions.len(), 0.0);
         for (i, p) in self.set.patches().iter().enumerate() {
             let d = depth[p.unit as usize] as f32;
-            out.vertex_depth[self.block_start[i] as usize..self.block_start[i + 1] as usize]
-                .fill(d);
+            b.scalar[self.block_start[i] as usize..self.block_start[i + 1] as usize].fill(d);
         }
     }
 }
@@ -402,7 +422,7 @@ mod tests {
         // faces 3..=6 quads next to them (4 level-1 quads each).
         let mesh = split_cube();
         let mut asm = Assembler::new(&mesh, 4).unwrap();
-        let mut g = FrameGeometry::default();
+        let mut g = AdaptiveFrame::default();
         let depth = [0, 1, 2, 1, 3, 2, 1];
         let mut active = [true; 7];
         active[6] = false;
@@ -419,16 +439,16 @@ mod tests {
     fn cache_recomputes_only_patches_whose_depth_rose() {
         let mesh = cube();
         let mut asm = Assembler::new(&mesh, 4).unwrap();
-        let mut g = FrameGeometry::default();
+        let mut g = AdaptiveFrame::default();
         asm.frame(&mesh, &[2; 6], &[true; 6], &mut g).unwrap();
         assert_eq!(g.patches_recomputed, 6);
         let v0 = g.vertex_version;
-        let pos0 = g.positions.clone();
+        let pos0 = g.surface().positions().to_vec();
         // Lower every depth: blocks reused, vertex buffer untouched.
         asm.frame(&mesh, &[1; 6], &[true; 6], &mut g).unwrap();
         assert_eq!(g.patches_recomputed, 0);
         assert_eq!(g.vertex_version, v0);
-        assert_eq!(g.positions, pos0);
+        assert_eq!(g.surface().positions(), pos0);
         assert_eq!(g.num_triangles(), 6 * 8);
         assert_eq!(open_edges(&g), 0);
         // Raise face 0 above the cache: face 0 and its four fanning neighbours, not face 1.
@@ -459,13 +479,13 @@ mod tests {
         let mesh = prism();
         let mut depth = [1u8, 2, 1, 3, 2];
         let mut asm = Assembler::new(&mesh, 3).unwrap();
-        let mut g = FrameGeometry::default();
+        let mut g = AdaptiveFrame::default();
         asm.frame(&mesh, &[3; 5], &[true; 5], &mut g).unwrap();
         asm.frame(&mesh, &depth, &[true; 5], &mut g).unwrap();
         assert_eq!(g.patches_recomputed, 0);
         assert_eq!(open_edges(&g), 0);
         let mut fresh_asm = Assembler::new(&mesh, 3).unwrap();
-        let mut fresh = FrameGeometry::default();
+        let mut fresh = AdaptiveFrame::default();
         fresh_asm
             .frame(&mesh, &depth, &[true; 5], &mut fresh)
             .unwrap();
@@ -478,7 +498,7 @@ mod tests {
         }
         // Depth 0 is clamped to the triangle's minimum depth 1: the same frame.
         depth[0] = 0;
-        let mut clamped = FrameGeometry::default();
+        let mut clamped = AdaptiveFrame::default();
         fresh_asm
             .frame(&mesh, &depth, &[true; 5], &mut clamped)
             .unwrap();
@@ -492,10 +512,10 @@ mod tests {
         let g = super::super::test_util::frame(&mesh, 2, &depth, &[true; 6], FanMethod::Subdivided);
         assert_eq!(g.unit_depth, depth);
         assert_eq!(g.units_per_depth(), vec![2, 2, 2]);
-        assert_eq!(g.vertex_depth.len(), g.positions.len());
-        assert_eq!(g.normals.len(), g.positions.len());
-        for &i in &g.indices {
-            let d = g.vertex_depth[i as usize];
+        assert_eq!(g.vertex_depth().len(), g.surface().positions().len());
+        assert_eq!(g.surface().normals().len(), g.surface().positions().len());
+        for &i in g.surface().face_indices() {
+            let d = g.vertex_depth()[i as usize];
             assert!((0.0..=2.0).contains(&d) && d.fract() == 0.0);
         }
     }
@@ -512,7 +532,7 @@ mod tests {
             super::super::test_util::frame(&mesh, 2, &[200; 5], &[true; 5], FanMethod::Subdivided);
         let two =
             super::super::test_util::frame(&mesh, 2, &[2; 5], &[true; 5], FanMethod::Subdivided);
-        assert_eq!(deep.indices, two.indices);
+        assert_eq!(deep.surface().face_indices(), two.surface().face_indices());
         assert_eq!(deep.unit_depth, vec![2; 5]);
     }
 
@@ -526,7 +546,7 @@ mod tests {
         ));
         assert!(Assembler::with_budget(&mesh, max, &Budget::unlimited()).is_ok());
         let mut asm = Assembler::new(&mesh, 2).unwrap();
-        let mut g = FrameGeometry::default();
+        let mut g = AdaptiveFrame::default();
         let err = asm.frame(&mesh, &[1; 5], &[true; 6], &mut g).unwrap_err();
         assert!(matches!(
             err,
@@ -539,7 +559,7 @@ mod tests {
         assert!(err.to_string().contains("5 entries"), "{err}");
         let err = asm.frame(&mesh, &[1; 6], &[true; 7], &mut g).unwrap_err();
         assert!(matches!(err, AssemblyError::Length { want: 6, .. }));
-        assert!(g.indices.is_empty());
+        assert!(g.surface().face_indices().is_empty());
         // The assembler stays usable.
         asm.frame(&mesh, &[1; 6], &[true; 6], &mut g).unwrap();
         assert_eq!(g.num_triangles(), 48);
@@ -551,14 +571,14 @@ mod tests {
         let mesh = grid(6);
         let max = subdiv_slate::MAX_DEPTH - 1;
         let mut asm = Assembler::with_budget(&mesh, max, &Budget::unlimited()).unwrap();
-        let mut g = FrameGeometry::default();
+        let mut g = AdaptiveFrame::default();
         let err = asm
             .frame(&mesh, &[max; 36], &[true; 36], &mut g)
             .unwrap_err();
         let want = 36 * ((1u64 << max) + 1).pow(2);
         assert!(want > subdiv_slate::MAX_POINTS);
         assert!(matches!(err, AssemblyError::TooLarge { points } if points == want));
-        assert!(g.positions.is_empty());
+        assert!(g.surface().positions().is_empty());
         asm.frame(&mesh, &[1; 36], &[true; 36], &mut g).unwrap();
         assert_eq!(g.patches_recomputed, 36);
         assert_eq!(open_edges(&g), 24 * 2);

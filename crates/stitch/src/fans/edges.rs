@@ -270,7 +270,7 @@ impl<'a> Frame<'a> {
 #[cfg(test)]
 mod tests {
     use super::super::test_util::{cube, split_cube};
-    use super::super::{Assembler, FrameGeometry};
+    use super::super::{AdaptiveFrame, Assembler};
 
     #[test]
     fn the_deeper_side_owns_an_edge_and_both_sides_see_the_same_points() {
@@ -281,7 +281,7 @@ mod tests {
             depth[nf - 1] = 2;
             let active = vec![true; nf];
             let mut asm = Assembler::new(&mesh, 3).unwrap();
-            asm.frame(&mesh, &depth, &active, &mut FrameGeometry::default())
+            asm.frame(&mesh, &depth, &active, &mut AdaptiveFrame::default())
                 .unwrap();
             asm.with_frame(&mesh, &depth, &active, |fr| {
                 for e in mesh.edges() {
@@ -321,7 +321,7 @@ mod tests {
         let mut active = [true; 6];
         active[0] = false;
         let mut asm = Assembler::new(&mesh, 3).unwrap();
-        asm.frame(&mesh, &depth, &active, &mut FrameGeometry::default())
+        asm.frame(&mesh, &depth, &active, &mut AdaptiveFrame::default())
             .unwrap();
         asm.with_frame(&mesh, &depth, &active, |fr| {
             for e in mesh.edges() {

@@ -301,7 +301,7 @@ mod tests {
                         (3 * (n - 1) + 1).pow(2)
                     };
                     assert_eq!(pos.len(), want, "{name} depth {d}: vertices");
-                    assert_eq!(idx.len(), g.indices.len());
+                    assert_eq!(idx.len(), g.surface().face_indices().len());
                     assert_eq!(open_edges(&g), open_per_level << d, "{name} depth {d}");
                 }
             }
@@ -354,7 +354,7 @@ mod tests {
         assert_eq!(sub.num_triangles(), simple.num_triangles() + 4 * 2);
         assert_eq!(sub.compact().0.len(), simple.compact().0.len() + 4);
         // Same vertex buffer: the method changes only the index buffer.
-        assert_eq!(sub.positions, simple.positions);
+        assert_eq!(sub.surface().positions(), simple.surface().positions());
     }
 
     #[test]

@@ -2,7 +2,7 @@
 
 use subdiv_mesh::{Mesh, parse_obj};
 
-use super::{Assembler, FanMethod, FrameGeometry};
+use super::{AdaptiveFrame, Assembler, FanMethod};
 
 /// The unit cube, outward counter-clockwise faces (6 quads, closed).
 pub(super) fn cube() -> Mesh {
@@ -36,10 +36,10 @@ pub(super) fn frame(
     depth: &[u8],
     active: &[bool],
     method: FanMethod,
-) -> FrameGeometry {
+) -> AdaptiveFrame {
     let mut asm = Assembler::new(mesh, max_depth).unwrap();
     asm.set_method(method);
-    let mut g = FrameGeometry::default();
+    let mut g = AdaptiveFrame::default();
     asm.frame(mesh, depth, active, &mut g).unwrap();
     g
 }
@@ -47,8 +47,8 @@ pub(super) fn frame(
 /// Checks that no directed edge is used twice and no triangle is degenerate, first by index,
 /// then after welding vertices with bitwise equal positions; returns the number of open
 /// (unpaired) edges after welding, which both passes must agree on.
-pub(crate) fn open_edges(g: &FrameGeometry) -> usize {
-    subdiv_test_support::open_edges("frame", &g.positions, &g.indices)
+pub(crate) fn open_edges(g: &AdaptiveFrame) -> usize {
+    subdiv_test_support::open_edges("frame", g.surface().positions(), g.surface().face_indices())
 }
 
 /// The generator of the unit tests (their seeds are xorshift64 seeds: `Rng::xorshift`).

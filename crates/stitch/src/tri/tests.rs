@@ -28,7 +28,7 @@ const FIXTURES: [&str; 9] = [
 
 /// Open edges the frame must have: the drawn cage edges with one drawn side, each in
 /// `2^resolution` segments.
-fn expected_open(mesh: &Mesh, asm: &TriAssembler, g: &FrameGeometry) -> usize {
+fn expected_open(mesh: &Mesh, asm: &TriAssembler, g: &AdaptiveFrame) -> usize {
     let mut sides = vec![(0u32, 0u8); mesh.num_edges()];
     for (f, p) in asm.layout().patches().iter().enumerate() {
         let d = g.unit_depth[f];
@@ -48,9 +48,9 @@ fn expected_open(mesh: &Mesh, asm: &TriAssembler, g: &FrameGeometry) -> usize {
         .sum()
 }
 
-fn frame(mesh: &Mesh, depth: &[Depth], active: &[bool]) -> (TriAssembler, FrameGeometry) {
+fn frame(mesh: &Mesh, depth: &[Depth], active: &[bool]) -> (TriAssembler, AdaptiveFrame) {
     let mut asm = TriAssembler::new(mesh, 5).unwrap();
-    let mut g = FrameGeometry::default();
+    let mut g = AdaptiveFrame::default();
     asm.frame(mesh, depth, active, &mut g).unwrap();
     (asm, g)
 }
@@ -130,7 +130,7 @@ fn drawn_points_are_the_uniform_tessellation_at_the_patch_depth() {
         for _ in 0..4 {
             let depth: Vec<Depth> = (0..nf).map(|_| 1 + rng.below(4) as Depth).collect();
             let (asm, g) = frame(&mesh, &depth, &vec![true; nf]);
-            for &v in &g.indices {
+            for &v in g.surface().face_indices() {
                 let (f, c, k) = asm.vertex_source(v).unwrap();
                 let n = 1u32 << c;
                 let j = (0..=n)
@@ -140,13 +140,13 @@ fn drawn_points_are_the_uniform_tessellation_at_the_patch_depth() {
                 let i = k - subdiv_slate::tri_lattice_index(n, 0, j);
                 let p = &layouts[c as usize - 1].patches()[f];
                 let (id, owned) = TriLayout::point_id(p, n, i, j);
-                let want = uniform[c as usize].positions[id as usize];
-                let got = g.positions[v as usize];
+                let want = uniform[c as usize].positions()[id as usize];
+                let got = g.surface().positions()[v as usize];
                 if owned {
                     assert_eq!(got, want, "{name} face {f} ({i}, {j}) at depth {c}");
                     assert_eq!(
-                        g.normals[v as usize],
-                        uniform[c as usize].normals[id as usize]
+                        g.surface().normals()[v as usize],
+                        uniform[c as usize].normals()[id as usize]
                     );
                     exact += 1;
                 } else {
@@ -165,7 +165,7 @@ fn cache_recomputes_only_patches_whose_depth_rose() {
     let mesh = fixture("loop_icosahedron");
     let nf = mesh.num_faces();
     let mut asm = TriAssembler::new(&mesh, 4).unwrap();
-    let mut g = FrameGeometry::default();
+    let mut g = AdaptiveFrame::default();
     asm.frame(&mesh, &vec![3; nf], &vec![true; nf], &mut g)
         .unwrap();
     assert_eq!(g.patches_recomputed, nf);
@@ -199,7 +199,7 @@ fn bad_input_is_an_error_not_a_panic() {
         Err(AssemblyError::TooDeep { .. })
     ));
     let mut asm = TriAssembler::new(&tet, 3).unwrap();
-    let mut g = FrameGeometry::default();
+    let mut g = AdaptiveFrame::default();
     let err = asm.frame(&tet, &[1; 3], &[true; 4], &mut g).unwrap_err();
     assert!(matches!(
         err,

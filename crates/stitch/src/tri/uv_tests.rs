@@ -40,21 +40,30 @@ fn uniform_depth_frames_have_the_loop_slates_uvs() {
     for (name, mesh) in cages() {
         let nf = mesh.num_faces();
         let mut asm = TriAssembler::new(&mesh, 4).unwrap();
-        let mut g = FrameGeometry::default();
+        let mut g = AdaptiveFrame::default();
         for d in 1..=3 {
             asm.frame(&mesh, &vec![d; nf], &vec![true; nf], &mut g)
                 .unwrap();
             let s = tessellate_loop(&mesh, d).unwrap();
-            assert_eq!(g.indices.len(), s.face_indices.len(), "{name} {d}");
-            assert_eq!(g.uv_indices.len(), g.indices.len(), "{name} {d}");
-            for c in 0..g.indices.len() {
-                let p = g.positions[g.indices[c] as usize];
+            assert_eq!(
+                g.surface().face_indices().len(),
+                s.face_indices().len(),
+                "{name} {d}"
+            );
+            assert_eq!(
+                g.surface().uv_indices().len(),
+                g.surface().face_indices().len(),
+                "{name} {d}"
+            );
+            for c in 0..g.surface().face_indices().len() {
+                let p = g.surface().positions()[g.surface().face_indices()[c] as usize];
                 assert!(
-                    close(p, s.positions[s.face_indices[c] as usize]),
+                    close(p, s.positions()[s.face_indices()[c] as usize]),
                     "{name} {d}"
                 );
                 assert_eq!(
-                    g.uvs[g.uv_indices[c] as usize], s.uvs[s.uv_indices[c] as usize],
+                    g.surface().uvs()[g.surface().uv_indices()[c] as usize],
+                    s.uvs()[s.uv_indices()[c] as usize],
                     "{name} depth {d} corner {c}"
                 );
             }
@@ -66,10 +75,10 @@ fn uniform_depth_frames_have_the_loop_slates_uvs() {
 fn reference(mesh: &Mesh, d: Depth) -> Vec<(usize, [f32; 3], [f32; 2])> {
     let s = tessellate_loop(mesh, d).unwrap();
     let per_face = 3usize << (2 * d);
-    (0..s.face_indices.len())
+    (0..s.face_indices().len())
         .map(|c| {
-            let p = s.positions[s.face_indices[c] as usize];
-            (c / per_face, p, s.uvs[s.uv_indices[c] as usize])
+            let p = s.positions()[s.face_indices()[c] as usize];
+            (c / per_face, p, s.uvs()[s.uv_indices()[c] as usize])
         })
         .collect()
 }
@@ -82,7 +91,7 @@ fn mixed_depth_corners_take_the_deepest_uniform_uvs_on_one_side() {
         let top: Depth = 3;
         let refs = reference(&mesh, top);
         let mut asm = TriAssembler::new(&mesh, top).unwrap();
-        let mut g = FrameGeometry::default();
+        let mut g = AdaptiveFrame::default();
         for round in 0..6 {
             // The first frames are shallow: the values are refined again when a frame needs a
             // deeper level. Face 0 is always at the top depth, the level of the reference.
@@ -94,13 +103,17 @@ fn mixed_depth_corners_take_the_deepest_uniform_uvs_on_one_side() {
             depth[0] = top;
             asm.frame(&mesh, &depth, &vec![true; nf], &mut g).unwrap();
             assert_eq!(open_edges(&g), 0, "{name}");
-            assert_eq!(g.uv_indices.len(), g.indices.len(), "{name}");
+            assert_eq!(
+                g.surface().uv_indices().len(),
+                g.surface().face_indices().len(),
+                "{name}"
+            );
             let mut pairs = std::collections::HashSet::new();
-            for t in 0..g.indices.len() / 3 {
+            for t in 0..g.surface().face_indices().len() / 3 {
                 let corners: Vec<([f32; 3], [f32; 2])> = (3 * t..3 * t + 3)
                     .map(|c| {
-                        let p = g.positions[g.indices[c] as usize];
-                        (p, g.uvs[g.uv_indices[c] as usize])
+                        let p = g.surface().positions()[g.surface().face_indices()[c] as usize];
+                        (p, g.surface().uvs()[g.surface().uv_indices()[c] as usize])
                     })
                     .collect();
                 for &(p, uv) in &corners {
@@ -141,8 +154,8 @@ fn cages_without_uvs_get_none() {
     let mesh =
         Mesh::from_soup(&parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap()).unwrap();
     let mut asm = TriAssembler::new(&mesh, 2).unwrap();
-    let mut g = FrameGeometry::default();
+    let mut g = AdaptiveFrame::default();
     asm.frame(&mesh, &[2], &[true], &mut g).unwrap();
-    assert!(!g.indices.is_empty());
-    assert!(g.uvs.is_empty() && g.uv_indices.is_empty());
+    assert!(!g.surface().face_indices().is_empty());
+    assert!(g.surface().uvs().is_empty() && g.surface().uv_indices().is_empty());
 }

@@ -35,8 +35,8 @@ fn camera_on_z(dist: f32) -> Camera {
 
 /// After welding bitwise equal positions, every edge of a closed surface has exactly two
 /// triangles, in opposite directions.
-fn assert_closed(g: &FrameGeometry) {
-    let open = subdiv_test_support::welded_open_edges("frame", &g.positions, &g.indices);
+fn assert_closed(g: &AdaptiveFrame) {
+    let open = subdiv_test_support::welded_open_edges("frame", g.surface().positions(), g.surface().face_indices());
     assert_eq!(open, 0, "open edges");
 }
 
@@ -53,7 +53,7 @@ fn back_faces_stay_at_depth_zero_front_faces_go_deeper() {
         assert_eq!(a.class[f], Class::Silhouette, "side face {f}");
         assert!(a.depth[f] > 0);
     }
-    assert_eq!(g.unit_depth, a.depth);
+    assert_eq!(g.unit_depth(), a.depth);
     assert!(g.num_triangles() < node.uniform_triangles_at(3));
     assert_closed(&g);
     // From the other side the roles swap.
@@ -72,7 +72,7 @@ fn culled_back_faces_are_not_drawn() {
     };
     let mut node = DynamicSubdivision::new(cube(), p).unwrap();
     let g = node.update(&camera_on_z(20.0), None).unwrap();
-    assert_eq!(g.unit_depth[0], u8::MAX);
+    assert_eq!(g.unit_depth()[0], u8::MAX);
     assert!(!node.assignment().active[0]);
     assert!(node.assignment().active[1..].iter().all(|&x| x));
 }
@@ -93,7 +93,7 @@ fn fixed_face_depths_are_checked_and_used() {
     node.set_face_depths(Some(depths.clone())).unwrap();
     // The camera sees face 0 from behind, but the fixed depths win.
     let g = node.update(&camera_on_z(20.0), None).unwrap().clone();
-    assert_eq!(g.unit_depth, depths);
+    assert_eq!(g.unit_depth(), depths);
     assert_eq!(node.assignment().depth, depths);
     assert_closed(&g);
     // Back to view-dependent depths.
@@ -214,7 +214,7 @@ fn loop_node_runs_every_adaptive_mode_watertight() {
     let depths: Vec<Depth> = (0..nf).map(|f| (f % 5) as Depth).collect();
     node.set_face_depths(Some(depths.clone())).unwrap();
     let g = node.update(&camera, None).unwrap().clone();
-    assert_eq!(g.unit_depth, depths);
+    assert_eq!(g.unit_depth(), depths);
     assert_closed(&g);
     node.set_face_depths(Some(vec![2; nf])).unwrap();
     let g = node.update(&camera, None).unwrap();
@@ -267,10 +267,10 @@ fn fin_from(obj: &str) -> Mesh {
 
 /// The segments of a frame used by three triangles after welding bitwise equal positions (on
 /// a fin, its non-manifold edge), checking that no edge has more than three.
-fn fin_segments(g: &subdiv_stitch::FrameGeometry) -> usize {
-    let id = subdiv_test_support::weld(&g.positions);
+fn fin_segments(g: &subdiv_stitch::AdaptiveFrame) -> usize {
+    let id = subdiv_test_support::weld(g.surface().positions());
     let mut uses: HashMap<(u32, u32), u32> = HashMap::new();
-    for t in g.indices.chunks(3) {
+    for t in g.surface().face_indices().chunks(3) {
         for k in 0..3 {
             let (a, b) = (id[t[k] as usize], id[t[(k + 1) % 3] as usize]);
             *uses.entry((a.min(b), a.max(b))).or_insert(0) += 1;
@@ -285,7 +285,7 @@ fn faces_on_a_nonmanifold_edge_share_one_depth_and_its_points() {
     let mut node = DynamicSubdivision::new(fin(), params(3)).unwrap();
     node.set_face_depths(Some(vec![1, 2, 3])).unwrap();
     let g = node.update(&camera_on_z(5.0), None).unwrap().clone();
-    assert_eq!(g.unit_depth, vec![3, 3, 3]);
+    assert_eq!(g.unit_depth(), vec![3, 3, 3]);
     // After welding, the fin edge has 2^3 segments of three triangles each.
     assert_eq!(
         fin_segments(&g),
@@ -305,7 +305,7 @@ fn a_level1_face_on_a_nonmanifold_edge_lifts_its_copies() {
     let mut node = DynamicSubdivision::new(mesh, params(3)).unwrap();
     node.set_face_depths(Some(vec![0, 0, 0])).unwrap();
     let g = node.update(&camera_on_z(5.0), None).unwrap().clone();
-    assert_eq!(g.unit_depth, vec![1, 1, 1]);
+    assert_eq!(g.unit_depth(), vec![1, 1, 1]);
     assert_eq!(
         fin_segments(&g),
         2,

@@ -10,31 +10,33 @@ use json::mesh::{Mode, Semantic};
 use json::validation::Checked::Valid;
 use json::validation::USize64;
 
-use super::{ExportError, SurfaceExport, write_file};
+use subdiv_rules::LimitMesh;
+
+use super::{ExportError, vertex_uvs, write_file};
 
 /// Writes `s` (checked) as glTF; `binary` for `.glb`, else JSON with the data in `STEM.bin`.
-pub(super) fn write(path: &Path, s: &SurfaceExport, binary: bool) -> Result<(), ExportError> {
+pub(super) fn write(path: &Path, s: &LimitMesh, binary: bool) -> Result<(), ExportError> {
     let file = path.display().to_string();
     let mut root = json::Root::default();
     root.asset.generator = Some(format!("subdiv {}", env!("CARGO_PKG_VERSION")));
     let mut bin = Vec::new();
     let mut attributes = BTreeMap::new();
-    let pos = push_floats(&mut root, &mut bin, &s.positions, Type::Vec3);
+    let pos = push_floats(&mut root, &mut bin, s.positions(), Type::Vec3);
     attributes.insert(Valid(Semantic::Positions), pos);
-    let nrm = push_floats(&mut root, &mut bin, &s.normals, Type::Vec3);
+    let nrm = push_floats(&mut root, &mut bin, s.normals(), Type::Vec3);
     attributes.insert(Valid(Semantic::Normals), nrm);
-    if let Some(uv) = &s.uvs {
+    if let Some(uv) = vertex_uvs(s) {
         let a = push_floats(&mut root, &mut bin, uv, Type::Vec2);
         attributes.insert(Valid(Semantic::TexCoords(0)), a);
     }
-    if let Some((kind, values)) = &s.scalar {
+    if let Some((kind, values)) = s.scalar() {
         let one: Vec<[f32; 1]> = values.iter().map(|&v| [v]).collect();
         let a = push_floats(&mut root, &mut bin, &one, Type::Scalar);
         // `Extras(name)` is written `_name`: application-specific attributes start with `_`.
         let name = kind.gltf_attribute().trim_start_matches('_').to_string();
         attributes.insert(Valid(Semantic::Extras(name)), a);
     }
-    let indices = push_indices(&mut root, &mut bin, &s.triangles);
+    let indices = push_indices(&mut root, &mut bin, s.face_indices());
     let sidecar = path.with_extension("bin");
     if !binary {
         let name = sidecar.file_name().and_then(|n| n.to_str());

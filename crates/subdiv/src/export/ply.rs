@@ -4,39 +4,42 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use super::{ExportError, SurfaceExport, write_file};
+use subdiv_rules::LimitMesh;
+
+use super::{ExportError, vertex_uvs, write_file};
 
 /// Writes `s` (checked) as binary little-endian PLY.
-pub(super) fn write(path: &Path, s: &SurfaceExport) -> Result<(), ExportError> {
-    let n = s.positions.len();
+pub(super) fn write(path: &Path, s: &LimitMesh) -> Result<(), ExportError> {
+    let n = s.positions().len();
     let mut head = String::from("ply\nformat binary_little_endian 1.0\ncomment made by subdiv\n");
     let _ = writeln!(head, "element vertex {n}");
     for p in ["x", "y", "z", "nx", "ny", "nz"] {
         let _ = writeln!(head, "property float {p}");
     }
-    if s.uvs.is_some() {
+    if vertex_uvs(s).is_some() {
         head.push_str("property float s\nproperty float t\n");
     }
-    if let Some((kind, _)) = &s.scalar {
+    if let Some((kind, _)) = s.scalar() {
         let _ = writeln!(head, "property float {}", kind.ply_property());
     }
-    let _ = writeln!(head, "element face {}", s.triangles.len() / 3);
+    let _ = writeln!(head, "element face {}", s.face_indices().len() / 3);
     head.push_str("property list uchar uint vertex_indices\nend_header\n");
-    let floats = 6 + if s.uvs.is_some() { 2 } else { 0 } + usize::from(s.scalar.is_some());
-    let mut out = Vec::with_capacity(head.len() + n * floats * 4 + s.triangles.len() / 3 * 13);
+    let floats =
+        6 + if vertex_uvs(s).is_some() { 2 } else { 0 } + usize::from(s.scalar().is_some());
+    let mut out = Vec::with_capacity(head.len() + n * floats * 4 + s.face_indices().len() / 3 * 13);
     out.extend_from_slice(head.as_bytes());
     for i in 0..n {
         let mut put = |x: f32| out.extend_from_slice(&x.to_le_bytes());
-        s.positions[i].into_iter().for_each(&mut put);
-        s.normals[i].into_iter().for_each(&mut put);
-        if let Some(uv) = &s.uvs {
+        s.positions()[i].into_iter().for_each(&mut put);
+        s.normals()[i].into_iter().for_each(&mut put);
+        if let Some(uv) = vertex_uvs(s) {
             uv[i].into_iter().for_each(&mut put);
         }
-        if let Some((_, v)) = &s.scalar {
+        if let Some((_, v)) = s.scalar() {
             put(v[i]);
         }
     }
-    for t in s.triangles.chunks_exact(3) {
+    for t in s.face_indices().chunks_exact(3) {
         out.push(3);
         for &i in t {
             out.extend_from_slice(&i.to_le_bytes());

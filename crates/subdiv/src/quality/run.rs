@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use subdiv_depth::DepthParams;
 use subdiv_mesh::{Camera, Mesh};
-use subdiv_rules::Scheme;
+use subdiv_rules::{Scheme, VertexScalar};
 use subdiv_vk::{RenderMesh, RenderOptions, Renderer, View, VkError};
 
 use super::config::{Config, ConfigQuality, QualityError, QualityParams};
@@ -15,7 +15,7 @@ use super::metrics::{
     FrameErrors, SUPERSAMPLE, area_coverage, compare_with_distance, quantile,
     sample_silhouette_distance,
 };
-use crate::{DynamicSubdivision, Scene, frame_limit, uniform_limit, view_for};
+use crate::{DynamicSubdivision, Scene, uniform_limit, view_for};
 
 /// The reference render of one camera.
 struct ReferenceFrame {
@@ -138,7 +138,7 @@ impl<'a> QualityRun<'a> {
             config: format!("reference (uniform depth {depth})"),
             source,
         })?;
-        let mesh = scene.mesh.as_render_mesh();
+        let mesh = scene.render_mesh();
         let (lo, hi) = cage.bounds();
         let [w, h] = params.size;
         let mut frames = Vec::with_capacity(cameras.len());
@@ -226,8 +226,12 @@ impl<'a> QualityRun<'a> {
                     let scene = match &scene {
                         Some(s) => s,
                         None => {
-                            let depths = vec![depth as f32; limit.positions.len()];
-                            scene.insert(Scene::from_limit(limit, depths))
+                            let mut limit = limit;
+                            let depths = vec![depth as f32; limit.num_vertices()];
+                            limit
+                                .set_scalar(VertexScalar::Depth, depths)
+                                .map_err(|e| scene_err(e.into()))?;
+                            scene.insert(Scene::from_limit(&limit))
                         }
                     };
                     self.compare(renderer, scene, i, &name, &mut tally)?;
@@ -258,8 +262,7 @@ impl<'a> QualityRun<'a> {
                     let t = Instant::now();
                     let g = node.update(&f.camera, None).map_err(adaptive_err)?;
                     tally.update_ms.push(elapsed_ms(t));
-                    let (limit, depths) = frame_limit(g);
-                    let scene = Scene::from_limit(limit, depths);
+                    let scene = Scene::from_limit(&g.surface().referenced_only());
                     self.compare(renderer, &scene, i, &name, &mut tally)?;
                 }
             }
@@ -305,7 +308,7 @@ impl<'a> QualityRun<'a> {
         name: &str,
     ) -> Result<FrameErrors, QualityError> {
         let f = self.frames.get(i).ok_or(QualityError::NoCameras)?;
-        let mesh = scene.mesh.as_render_mesh();
+        let mesh = scene.render_mesh();
         if mesh.triangle_count() == 0 {
             return Err(QualityError::EmptyFrame {
                 config: name.to_string(),
@@ -338,7 +341,7 @@ impl<'a> QualityRun<'a> {
         tally: &mut Tally,
     ) -> Result<(), QualityError> {
         let e = self.frame_errors(renderer, scene, i, name)?;
-        let mesh = scene.mesh.as_render_mesh();
+        let mesh = scene.render_mesh();
         tally.triangles = tally.triangles.max(mesh.triangle_count());
         tally.silhouette_max = e
             .silhouette_px
@@ -378,8 +381,8 @@ impl<'a> QualityRun<'a> {
 fn projected_contours(scene: &Scene, camera: &Camera) -> Vec<[[f32; 2]; 2]> {
     let mut lines = Vec::new();
     scene
-        .silhouettes
-        .contours_into(&scene.mesh.positions, camera.eye, &mut lines);
+        .silhouettes()
+        .contours_into(scene.surface().positions(), camera.eye, &mut lines);
     lines
         .chunks_exact(2)
         .filter_map(|ab| {

@@ -2,7 +2,7 @@
 
 use std::f32::consts::TAU;
 
-use subdiv_vk::OwnedMesh;
+use subdiv_vk::RenderMesh;
 
 /// A torus with quad edges (no diagonals), a per-quad "depth" and a smooth scalar.
 pub struct Torus {
@@ -64,16 +64,15 @@ pub fn torus(segments: u32, rings: u32) -> Torus {
 }
 
 impl Torus {
-    /// The torus as an owned mesh (for the viewer).
-    #[allow(dead_code)]
-    pub fn into_owned(self) -> OwnedMesh {
-        OwnedMesh {
-            positions: self.positions,
-            normals: self.normals,
-            triangles: self.triangles,
-            edges: Some(self.edges),
-            scalars: Some(self.scalars),
-            lines: Some(self.silhouette),
+    /// The torus's buffers for the renderer.
+    pub fn render_mesh(&self) -> RenderMesh<'_> {
+        RenderMesh {
+            positions: &self.positions,
+            normals: &self.normals,
+            triangles: &self.triangles,
+            edges: Some(&self.edges),
+            scalars: Some(&self.scalars),
+            lines: Some(&self.silhouette),
         }
     }
 }

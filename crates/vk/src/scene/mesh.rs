@@ -1,4 +1,4 @@
-//! The mesh types the renderer draws: borrowed [`RenderMesh`] and owned [`OwnedMesh`].
+//! The mesh the renderer draws: [`RenderMesh`], borrowed buffers.
 
 use glam::Vec3;
 
@@ -89,39 +89,6 @@ impl RenderMesh<'_> {
         let mut it = self.positions.iter().map(|p| Vec3::from_array(*p));
         let first = it.next()?;
         Some(it.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p))))
-    }
-}
-
-/// An owned mesh, for callers that build geometry on the fly (see
-/// [`OwnedMesh::as_render_mesh`]); it is also a [`crate::viewer::FrameSource`]
-/// that shows the same geometry every frame.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct OwnedMesh {
-    /// See [`RenderMesh::positions`].
-    pub positions: Vec<[f32; 3]>,
-    /// See [`RenderMesh::normals`].
-    pub normals: Vec<[f32; 3]>,
-    /// See [`RenderMesh::triangles`].
-    pub triangles: Vec<u32>,
-    /// See [`RenderMesh::edges`].
-    pub edges: Option<Vec<[u32; 2]>>,
-    /// See [`RenderMesh::scalars`].
-    pub scalars: Option<Vec<f32>>,
-    /// See [`RenderMesh::lines`].
-    pub lines: Option<Vec<[f32; 3]>>,
-}
-
-impl OwnedMesh {
-    /// Borrows the mesh for rendering.
-    pub fn as_render_mesh(&self) -> RenderMesh<'_> {
-        RenderMesh {
-            positions: &self.positions,
-            normals: &self.normals,
-            triangles: &self.triangles,
-            edges: self.edges.as_deref(),
-            scalars: self.scalars.as_deref(),
-            lines: self.lines.as_deref(),
-        }
     }
 }
 

@@ -10,7 +10,7 @@ mod options;
 mod pack;
 
 pub use camera::{OrbitCamera, View};
-pub use mesh::{OwnedMesh, RenderMesh};
+pub use mesh::RenderMesh;
 pub use options::{RenderOptions, Shading};
 pub(crate) use pack::{
     Layout, VERTEX_STRIDE, line_push_constants, mesh_push_constants, overlay_push_constants, pack,

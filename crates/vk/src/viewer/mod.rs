@@ -23,7 +23,7 @@ use std::time::Duration;
 
 use crate::context::ContextOptions;
 use crate::error::Result;
-use crate::scene::{OrbitCamera, OwnedMesh, RenderMesh, RenderOptions, Shading, View};
+use crate::scene::{OrbitCamera, RenderMesh, RenderOptions, Shading, View};
 
 /// The viewer's keys and mouse, as printed by `subdiv view` at start and in its `--help`.
 pub const KEY_HELP: &str = "\
@@ -89,14 +89,15 @@ pub trait FrameSource {
     ) -> std::result::Result<SourceFrame<'_>, Box<dyn std::error::Error + Send + Sync>>;
 }
 
-impl FrameSource for OwnedMesh {
+/// The same buffers every frame.
+impl FrameSource for RenderMesh<'_> {
     fn frame(
         &mut self,
         _request: &FrameRequest,
     ) -> std::result::Result<SourceFrame<'_>, Box<dyn std::error::Error + Send + Sync>> {
-        // The mesh cannot change while the viewer borrows it: one vertex version.
+        // The buffers cannot change while the viewer borrows them: one vertex version.
         Ok(SourceFrame {
-            mesh: self.as_render_mesh(),
+            mesh: *self,
             status: "",
             vertex_version: Some(0),
             depth_cap: None,
@@ -222,14 +223,14 @@ pub struct ViewerReport {
 /// winit allows one event loop per process, so call this at most once.
 ///
 /// ```no_run
-/// use subdiv_vk::OwnedMesh;
+/// use subdiv_vk::RenderMesh;
 /// use subdiv_vk::viewer::{self, ViewerOptions};
 ///
 /// # fn main() -> Result<(), subdiv_vk::VkError> {
-/// let mut mesh = OwnedMesh {
-///     positions: vec![[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 1.0, 0.0]],
-///     normals: vec![[0.0, 0.0, 1.0]; 3],
-///     triangles: vec![0, 1, 2],
+/// let mut mesh = RenderMesh {
+///     positions: &[[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 1.0, 0.0]],
+///     normals: &[[0.0, 0.0, 1.0]; 3],
+///     triangles: &[0, 1, 2],
 ///     ..Default::default()
 /// };
 /// let report = viewer::run(&mut mesh, ViewerOptions::default())?;
