@@ -81,12 +81,8 @@ fn uniform_frames_carry_the_slate_uvs() {
             let s = subdiv_slate::tessellate(&mesh, d).unwrap();
             let ps: Vec<DVec3> = s.positions().iter().map(dv).collect();
             let grid = PointGrid::new(&ps, 1e-3);
-            let map: Vec<usize> = g
-                .surface()
-                .positions()
-                .iter()
-                .map(|p| grid.nearest(dv(p)).0)
-                .collect();
+            let near = |p| grid.nearest(dv(p)).0;
+            let map: Vec<usize> = g.surface().positions().iter().map(near).collect();
             // Every three corners of a slate quad name it.
             let mut quads: HashMap<[usize; 3], usize> = HashMap::new();
             for q in 0..s.num_faces() {
@@ -140,20 +136,13 @@ fn mixed_depth_frames_keep_seams_and_do_not_jump_elsewhere() {
                 })
                 .collect();
             let g = frame(&mesh, &depths);
-            assert_eq!(
-                g.surface().uv_indices().len(),
-                g.surface().face_indices().len(),
-                "{name}"
-            );
-            let map: Vec<usize> = g
-                .surface()
-                .positions()
-                .iter()
-                .map(|p| grid.nearest(dv(p)).0)
-                .collect();
+            let s = g.surface();
+            assert_eq!(s.uv_indices().len(), s.face_indices().len(), "{name}");
+            let near = |p| grid.nearest(dv(p)).0;
+            let map: Vec<usize> = s.positions().iter().map(near).collect();
             // Each corner: one of the reference's values at its point.
-            for (c, &v) in g.surface().face_indices().iter().enumerate() {
-                let uv = uv_of(g.surface().uvs(), g.surface().uv_indices()[c]);
+            for (c, &v) in s.face_indices().iter().enumerate() {
+                let uv = uv_of(s.uvs(), s.uv_indices()[c]);
                 let options = &at[map[v as usize]];
                 assert!(
                     options.iter().any(|&x| close(x, uv)),

@@ -155,11 +155,7 @@ impl TriAssembler {
         out.surface.write_triangles(VertexScalar::Depth, |b| {
             self.write_frame(mesh, &depth, &active, &owners, relink, b)
         })??;
-        out.vertex_version = self.version;
-        out.patches_recomputed = recomputed;
-        out.unit_depth = (0..nf)
-            .map(|f| if active[f] { depth[f] } else { u8::MAX })
-            .collect();
+        out.set_bookkeeping(self.version, recomputed, &depth, &active);
         Ok(())
     }
 

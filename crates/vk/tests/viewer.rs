@@ -4,25 +4,15 @@
 //! Without `DISPLAY` (or without a Vulkan driver) it prints a note and passes,
 //! unless `SUBDIV_VK_REQUIRE_DISPLAY=1` is set.
 
+mod octahedron;
+
+use octahedron::{POSITIONS, SCALARS, TRIANGLES};
 use subdiv_vk::glam::Vec3;
 use subdiv_vk::viewer::{self, FrameRequest, FrameSource, SourceFrame, ViewerOptions};
 use subdiv_vk::{
     ContextOptions, OrbitCamera, RenderMesh, RenderOptions, Renderer, Shading, Validation,
 };
 
-/// The octahedron's vertices (also its normals).
-static POSITIONS: [[f32; 3]; 6] = [
-    [1.0, 0.0, 0.0],
-    [-1.0, 0.0, 0.0],
-    [0.0, 1.0, 0.0],
-    [0.0, -1.0, 0.0],
-    [0.0, 0.0, 1.0],
-    [0.0, 0.0, -1.0],
-];
-static TRIANGLES: [u32; 24] = [
-    0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5,
-];
-static SCALARS: [f32; 6] = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0];
 static LINE: [[f32; 3]; 2] = [[-1.2, 0.0, 0.0], [1.2, 0.0, 0.0]];
 
 /// An octahedron-ish test shape with per-vertex depth scalars and a line.

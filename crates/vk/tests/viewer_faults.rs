@@ -7,6 +7,9 @@
 //! this test binary again, filtered to that one test. Without `DISPLAY` (or without a Vulkan
 //! driver) the tests print a note and pass, unless `SUBDIV_VK_REQUIRE_DISPLAY=1` is set.
 
+mod octahedron;
+
+use octahedron::{POSITIONS, SCALARS, TRIANGLES};
 use std::process::Command;
 use std::time::{Duration, Instant};
 
@@ -61,20 +64,6 @@ fn in_own_process(name: &str, body: impl FnOnce()) {
     );
     eprint!("{stderr}");
 }
-
-/// The octahedron's vertices (also its normals).
-static POSITIONS: [[f32; 3]; 6] = [
-    [1.0, 0.0, 0.0],
-    [-1.0, 0.0, 0.0],
-    [0.0, 1.0, 0.0],
-    [0.0, -1.0, 0.0],
-    [0.0, 0.0, 1.0],
-    [0.0, 0.0, -1.0],
-];
-static TRIANGLES: [u32; 24] = [
-    0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5,
-];
-static SCALARS: [f32; 6] = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0];
 
 /// An octahedron.
 fn shape() -> RenderMesh<'static> {

@@ -118,21 +118,18 @@ mod tests {
         let p: Vec<[f32; 3]> = (0..8)
             .map(|i| [(i & 1) as f32, (i >> 1 & 1) as f32, (i >> 2 & 1) as f32])
             .collect();
-        let faces = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
+        // Six quads, counter-clockwise seen from outside.
+        let quads: [u32; 24] = [
+            0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5,
         ];
-        let idx: Vec<u32> = faces.iter().flatten().copied().collect();
+        let faces: Vec<&[u32]> = quads.chunks(4).collect();
+        let idx = quads.to_vec();
         let offsets = (0..=6).map(|i| i * 4).collect();
         let mut m = LimitMesh::new(p.clone(), vec![[0.0, 0.0, 1.0]; 8], offsets, idx).unwrap();
         let pv = |i: u32| glam::Vec3::from(p[i as usize]);
         let sided = (0..24u32)
             .map(|c| {
-                let f = &faces[(c / 4) as usize];
+                let f = faces[(c / 4) as usize];
                 let n = (pv(f[1]) - pv(f[0])).cross(pv(f[2]) - pv(f[1])).normalize();
                 (c, n.to_array())
             })

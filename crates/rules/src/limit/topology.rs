@@ -73,37 +73,28 @@ mod tests {
         assert_ne!(a, b);
         let mut m = LimitMesh::default();
         assert!(m.topology_written());
-        let w = m.write_keyed(a, 3, 1, 3).unwrap();
-        w.faces.unwrap().copy_from_slice(&[0, 1, 2]);
-        assert!(m.topology_written());
-        assert!(m.write_keyed(a, 3, 1, 3).unwrap().faces.is_none(), "kept");
-        assert!(!m.topology_written());
-        assert!(
-            m.write_keyed(b, 3, 1, 3).unwrap().faces.is_some(),
-            "another key"
-        );
-        m.write_keyed(a, 3, 1, 3)
-            .unwrap()
-            .faces
-            .unwrap()
-            .copy_from_slice(&[0, 1, 2]);
-        assert!(
-            m.write_keyed(a, 3, 2, 3).unwrap().faces.is_some(),
-            "other sizes"
-        );
-        m.write_keyed(a, 3, 1, 3)
-            .unwrap()
-            .faces
-            .unwrap()
-            .copy_from_slice(&[0, 1, 2]);
+        // Writes the faces for `key` and `faces` triangles if not kept; whether it wrote them.
+        let write = |m: &mut LimitMesh, key, faces: usize| {
+            let w = m.write_keyed(key, 3, faces, 3).unwrap();
+            let wrote = w.faces.is_some();
+            if let Some(f) = w.faces {
+                f.fill(0);
+            }
+            assert_eq!(m.topology_written(), wrote);
+            wrote
+        };
+        assert!(write(&mut m, a, 1), "first");
+        assert!(!write(&mut m, a, 1), "kept");
+        assert!(write(&mut m, b, 1), "another key");
+        assert!(write(&mut m, a, 1) && write(&mut m, a, 2), "other sizes");
+        assert!(write(&mut m, a, 1));
         // Equal content, different stamps: equal meshes; a clone has no key.
         let mut c = m.clone();
         assert_eq!(c, m);
-        assert!(c.topology_written());
-        assert!(c.write_keyed(a, 3, 1, 3).unwrap().faces.is_some());
+        assert!(c.topology_written() && write(&mut c, a, 1));
         // Removing the faces forgets the layout.
         m.clear_faces();
         assert!(m.topology_written() && m.num_faces() == 0);
-        assert!(m.write_keyed(a, 3, 1, 3).unwrap().faces.is_some());
+        assert!(write(&mut m, a, 1));
     }
 }

@@ -208,11 +208,7 @@ impl Assembler {
         out.surface.write_triangles(VertexScalar::Depth, |b| {
             self.write_frame(mesh, &depth, active, relink, b)
         })??;
-        out.vertex_version = self.version;
-        out.patches_recomputed = recomputed;
-        out.unit_depth = (0..nu)
-            .map(|u| if active[u] { depth[u] } else { u8::MAX })
-            .collect();
+        out.set_bookkeeping(self.version, recomputed, &depth, active);
         Ok(())
     }
 

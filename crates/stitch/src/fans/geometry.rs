@@ -57,6 +57,23 @@ impl AdaptiveFrame {
         self.surface.num_faces()
     }
 
+    /// Records the frame's vertex version, recomputed patches and unit depths (`depth[u]`
+    /// where `active[u]`, `u8::MAX` elsewhere). Shared by the quad and the triangle assemblers.
+    pub(crate) fn set_bookkeeping(
+        &mut self,
+        version: u64,
+        recomputed: usize,
+        depth: &[u8],
+        active: &[bool],
+    ) {
+        self.vertex_version = version;
+        self.patches_recomputed = recomputed;
+        self.unit_depth.clear();
+        let drawn = depth.iter().zip(active);
+        self.unit_depth
+            .extend(drawn.map(|(&d, &a)| if a { d } else { u8::MAX }));
+    }
+
     /// Number of units drawn at each depth (index = depth).
     pub fn units_per_depth(&self) -> Vec<usize> {
         let mut v = Vec::new();

@@ -66,13 +66,10 @@ pub fn torus(segments: u32, rings: u32) -> Torus {
 impl Torus {
     /// The torus's buffers for the renderer.
     pub fn render_mesh(&self) -> RenderMesh<'_> {
-        RenderMesh {
-            positions: &self.positions,
-            normals: &self.normals,
-            triangles: &self.triangles,
-            edges: Some(&self.edges),
-            scalars: Some(&self.scalars),
-            lines: Some(&self.silhouette),
-        }
+        let mut m = RenderMesh::default();
+        (m.positions, m.normals) = (&self.positions, &self.normals);
+        (m.triangles, m.edges) = (&self.triangles, Some(&self.edges[..]));
+        (m.scalars, m.lines) = (Some(&self.scalars[..]), Some(&self.silhouette[..]));
+        m
     }
 }
