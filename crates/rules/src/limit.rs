@@ -119,13 +119,7 @@ impl LimitMesh {
     }
     /// Axis-aligned bounds `(min, max)`.
     pub fn bounds(&self) -> (Vec3, Vec3) {
-        self.positions.iter().fold(
-            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-            |(lo, hi), p| {
-                let p = Vec3::from(*p);
-                (lo.min(p), hi.max(p))
-            },
-        )
+        subdiv_mesh::point_bounds(self.positions.iter().map(|p| Vec3::from(*p)))
     }
     /// Drops the values of `uvs` no corner references (renumbering `uv_indices` in order of
     /// first use).
