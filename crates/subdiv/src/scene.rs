@@ -6,11 +6,9 @@ use std::collections::HashMap;
 
 use glam::Vec3;
 use subdiv_mesh::Mesh;
-use subdiv_rules::{Depth, LimitMesh, RulesError, Scheme};
+use subdiv_rules::{Depth, LimitMesh, RulesError, Scheme, Silhouettes};
 use subdiv_slate::SlateError;
 use subdiv_vk::OwnedMesh;
-
-use crate::Silhouettes;
 
 /// Why a uniform tessellation could not be made or drawn.
 #[derive(Debug, thiserror::Error)]
@@ -107,10 +105,7 @@ impl Scene {
 
     /// Axis-aligned bounds of the tessellation.
     pub fn bounds(&self) -> (Vec3, Vec3) {
-        self.mesh.positions.iter().fold(
-            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-            |(lo, hi), p| (lo.min(Vec3::from(*p)), hi.max(Vec3::from(*p))),
-        )
+        subdiv_mesh::point_bounds(self.mesh.positions.iter().map(|p| Vec3::from(*p)))
     }
 }
 
@@ -152,13 +147,13 @@ pub(crate) fn split_sided_vertices(limit: &LimitMesh, mesh: &mut OwnedMesh) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::silhouettes::tests::cube;
 
     #[test]
     fn corners_with_one_sided_normals_get_their_own_vertices() {
         // The cube with the normal of its face at every corner: all 24 corners are split, and
         // corners sharing a vertex and a normal share the copy.
-        let mut limit = cube();
+        let cc = Scheme::CatmullClark;
+        let mut limit = subdiv_rules::tessellate_uniform(&sharp_cube(cc), cc, 0).unwrap();
         let p = |i: u32| Vec3::from(limit.positions[i as usize]);
         limit.corner_normals = (0..limit.face_indices.len() as u32)
             .map(|c| {

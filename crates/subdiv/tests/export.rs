@@ -5,10 +5,11 @@
 
 use std::path::{Path, PathBuf};
 
+use subdiv::doi::DoiKind;
 use subdiv::mesh::{Camera, glam::Vec3, read_obj};
 use subdiv::rules::Scheme;
 use subdiv::{
-    DoiKind, DoiOptions, DoiSetup, DynamicSubdivision, OutputFormat, SurfaceExport, VertexScalar,
+    DoiOptions, DoiSetup, DynamicSubdivision, OutputFormat, SurfaceExport, VertexScalar,
     frame_limit, uniform_limit, write_export, write_surface,
 };
 
