@@ -91,7 +91,7 @@ fn distinct_points_closed_output_and_thread_independence() {
     }
 }
 
-/// Workers are kept by their threads between tessellations (`subdiv_slate::thread_worker`): a
+/// Workers are kept by their threads between tessellations (inside `subdiv_slate`): a
 /// worker that has served every other cage (its stencil cache full of their configurations)
 /// gives the same bits as a fresh one.
 #[test]

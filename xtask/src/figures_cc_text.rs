@@ -227,7 +227,7 @@ pub fn markdown(d: &CcData) -> Result<String> {
         s,
         "**Image error** (`subdiv bench framerate --error-every {k:.0} --error-size {ew:.0}x{eh:.0}`): every {k:.0}th \
          frame is also rendered at {ew:.0}×{eh:.0} (3×3 samples per pixel) and compared with uniform depth {r:.0} \
-         seen from the same camera (the true surface; `subdiv::quality`, as `subdiv bench quality`): silhouette \
+         seen from the same camera (the true surface; `subdiv_quality`, as `subdiv bench quality`): silhouette \
          error = for each pixel where the coverage masks disagree, its distance in pixels to the reference \
          silhouette (per frame: the largest); shading error = the 99th percentile of the angle between the \
          normals inside both masks. The error renders are not part of the frame times.\n",

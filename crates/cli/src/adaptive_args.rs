@@ -2,12 +2,9 @@
 
 use anyhow::bail;
 use subdiv::DynamicSubdivision;
-use subdiv::depth::{DEFAULT_SHADING_ERROR_DEG, DepthParams};
+use subdiv::depth::{DEFAULT_MAX_DEPTH, DEFAULT_SHADING_ERROR_DEG, DepthParams};
 use subdiv::rules::{Depth, Scheme};
 use subdiv::stitch::{FanMethod, MAX_ADAPTIVE_DEPTH};
-
-/// Default `--max-depth` (the paper's `maxsd = 5`).
-pub const DEFAULT_MAX_DEPTH: Depth = 5;
 
 /// Flags of the view-dependent depth assignment. Every flag is optional so that the commands can
 /// tell which were given: any of them asks for the adaptive tessellation in `tessellate`,

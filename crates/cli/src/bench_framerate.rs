@@ -2,7 +2,7 @@
 //! rendered headless: fixed depths, or adaptive with frame-rate control at a target. Each frame
 //! prints its rate, triangles, cap, patches and quads per depth and the controller's share (0
 //! without control); with `--error-every K` every K-th
-//! frame also its image error against the true surface (`subdiv::quality`, untimed).
+//! frame also its image error against the true surface (`subdiv_quality`, untimed).
 
 use std::process::ExitCode;
 use std::time::Instant;
@@ -11,10 +11,10 @@ use anyhow::bail;
 use glam::Vec3;
 use subdiv::depth::DepthParams;
 use subdiv::mesh::{Camera, Mesh};
-use subdiv::quality::{QualityParams, QualityRun, quantile};
 use subdiv::rules::{Depth, Request, Scheme};
 use subdiv::vk::{RenderMesh, RenderOptions, Renderer};
 use subdiv::{BuiltinScene, DynamicSubdivision, Scene, view_for};
+use subdiv_quality::{QualityParams, QualityRun, quantile};
 
 use crate::camera_args::parse_size;
 use crate::choices::{SceneName, value_name};

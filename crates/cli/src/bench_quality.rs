@@ -7,11 +7,11 @@ use std::process::ExitCode;
 use anyhow::{Context, bail};
 use glam::Vec3;
 use subdiv::BuiltinScene;
-use subdiv::depth::DEFAULT_SHADING_ERROR_DEG;
+use subdiv::depth::{DEFAULT_MAX_DEPTH, DEFAULT_SHADING_ERROR_DEG};
 use subdiv::mesh::Camera;
-use subdiv::quality::{Config, CurvatureParams, QualityParams, QualityRun, orbit_cameras};
 use subdiv::rules::{Depth, Request, Scheme};
 use subdiv::vk::Renderer;
+use subdiv_quality::{Config, CurvatureParams, QualityParams, QualityRun, orbit_cameras};
 
 use crate::camera_args::CameraArgs;
 use crate::choices::{SceneName, SchemeName, value_name};
@@ -41,7 +41,7 @@ pub struct BenchQualityArgs {
     #[arg(long, default_value_t = 1)]
     pub orbit: usize,
     /// Deepest configuration: uniform depths 0..=N and the adaptive modes' max depth.
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = DEFAULT_MAX_DEPTH)]
     pub max_depth: Depth,
     /// Depth of the reference tessellation (default: max depth + 1); must be deeper than
     /// --max-depth.

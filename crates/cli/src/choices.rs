@@ -64,9 +64,9 @@ pub enum DoiName {
     Curvature,
 }
 
-impl From<DoiName> for subdiv::DoiKind {
-    fn from(d: DoiName) -> subdiv::DoiKind {
-        use subdiv::DoiKind;
+impl From<DoiName> for subdiv::doi::DoiKind {
+    fn from(d: DoiName) -> subdiv::doi::DoiKind {
+        use subdiv::doi::DoiKind;
         match d {
             DoiName::ViewAngle => DoiKind::ViewAngle,
             DoiName::Silhouette => DoiKind::Silhouette,
@@ -130,7 +130,7 @@ mod tests {
             assert_eq!(value_name(s).parse::<Scheme>().unwrap(), Scheme::from(*s));
         }
         for d in DoiName::value_variants() {
-            assert_eq!(value_name(d), subdiv::DoiKind::from(*d).name());
+            assert_eq!(value_name(d), subdiv::doi::DoiKind::from(*d).name());
         }
         for a in AggregateName::value_variants() {
             assert_eq!(

@@ -4,8 +4,9 @@
 
 use anyhow::anyhow;
 use glam::Vec3;
+use subdiv::doi::DoiKind;
 use subdiv::mesh::Mesh;
-use subdiv::{DoiKind, DoiOptions, DoiSetup, DoiSetupError};
+use subdiv::{DoiOptions, DoiSetup, DoiSetupError};
 
 use crate::camera_args::parse_vec3;
 use crate::choices::{AggregateName, DoiName};

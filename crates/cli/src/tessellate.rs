@@ -6,11 +6,12 @@ use std::time::Instant;
 
 use anyhow::{Context, bail};
 use clap::builder::{PossibleValuesParser, TypedValueParser};
+use subdiv::doi::DoiKind;
 use subdiv::mesh::Mesh;
 use subdiv::rules::{Request, Scheme};
 use subdiv::stitch::AdaptiveFrame;
 use subdiv::{
-    DoiKind, DynamicSubdivision, OutputFormat, VertexScalar, depth_histogram, doi_face_depths,
+    DynamicSubdivision, OutputFormat, VertexScalar, depth_histogram, doi_face_depths,
     make_doi, write_surface,
 };
 
@@ -65,7 +66,13 @@ pub struct TessellateArgs {
 /// `--doi` of `tessellate`: the DoIs that need neither a haptic interaction point nor Loop
 /// refinement.
 fn cage_doi_parser() -> impl TypedValueParser<Value = DoiName> {
-    PossibleValuesParser::new(["view-angle", "silhouette", "dihedral", "focus"])
+    let kinds = [
+        DoiKind::ViewAngle,
+        DoiKind::Silhouette,
+        DoiKind::Dihedral,
+        DoiKind::Focus,
+    ];
+    PossibleValuesParser::new(kinds.map(DoiKind::name))
         .map(|s| <DoiName as clap::ValueEnum>::from_str(&s, false).expect("a DoI name"))
 }
 

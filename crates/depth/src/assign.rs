@@ -8,12 +8,12 @@
 use glam::Vec3;
 use subdiv_mesh::{Camera, Mesh};
 
-use crate::Depth;
 use crate::contour::contour_pixels;
 use crate::curvature::VertexData;
 use crate::pixel_error::{PatchErrors, outside_view, pixel_error_depth};
 use crate::shading::raise_for_shading;
 use crate::sphere::Sphere;
+use crate::{DEFAULT_MAX_DEPTH, Depth};
 
 /// Default [`DepthParams::shading_error_deg`]: 10°, the 99th percentile of the image's normal
 /// error that the pixel-error mode aims at. Below about 5° it is out of reach on scenes with
@@ -56,7 +56,7 @@ pub const DEFAULT_PROJECTED_SIZE: (f32, f32) = (1.0, 4.0);
 /// The paper's user parameters, plus the pixel-error mode and back-face culling.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DepthParams {
-    /// Deepest depth (`maxsd`).
+    /// Deepest depth (`maxsd`). Default [`DEFAULT_MAX_DEPTH`].
     pub max_depth: Depth,
     /// `NormalConeAperture` in degrees. Default [`DEFAULT_CONE_APERTURE_DEG`].
     pub cone_aperture_deg: f32,
@@ -79,7 +79,7 @@ pub struct DepthParams {
 impl Default for DepthParams {
     fn default() -> Self {
         DepthParams {
-            max_depth: 5,
+            max_depth: DEFAULT_MAX_DEPTH,
             cone_aperture_deg: DEFAULT_CONE_APERTURE_DEG,
             classifier_eps: DEFAULT_CLASSIFIER_EPS,
             projected_size: Some(DEFAULT_PROJECTED_SIZE),

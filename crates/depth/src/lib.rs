@@ -5,7 +5,9 @@
 //! mesh ([`VertexData`]); per frame a back/front/silhouette classification and a projected-size
 //! adjustment ([`assign`]), or the least depth within a screen-space error ([`DepthParams::pixel_error`])
 //! raised where shading needs it over the whole image ([`shading`], with the pixels along
-//! silhouettes: [`contour`]);
+//! silhouettes: [`contour`]) from what is measured once per cage on the slates' patches
+//! ([`patch_errors`], [`patch_errors_loop`]: the one home of the pixel-error mode);
+//! one depth for the faces on the copies of a non-manifold edge ([`Seams`]);
 //! and frame-rate control by feedback ([`FrameRateController`]). A Degree of Interest can drive
 //! the depths instead ([`depths_from_face_values`]).
 //!
@@ -36,7 +38,10 @@ pub mod contour;
 mod controller;
 mod curvature;
 mod doi;
+mod patch_error;
+mod patch_error_tri;
 pub mod pixel_error;
+mod seams;
 pub mod shading;
 mod sphere;
 
@@ -48,9 +53,13 @@ pub use assign::{
 pub use controller::FrameRateController;
 pub use curvature::VertexData;
 pub use doi::depths_from_face_values;
+pub use patch_error::{SAMPLE_LEVELS, patch_errors};
+pub use patch_error_tri::patch_errors_loop;
 pub use pixel_error::{
     NormalCone, PatchError, PatchErrors, outside_view, pixel_error_depth, screen_scale,
 };
+pub use seams::Seams;
 pub use shading::{AreaElement, ScreenArea, ShadingError, raise_for_shading};
 pub use sphere::{SPHERE_FACE_BUDGET, SPHERE_LEVELS, Sphere, face_spheres, face_spheres_scheme};
 pub use subdiv_rules::{Depth, MAX_DEPTH};
+pub use subdiv_slate::DEFAULT_MAX_DEPTH;

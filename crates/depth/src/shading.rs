@@ -9,7 +9,7 @@
 //!
 //! So the bound is allotted over the whole visible surface:
 //!
-//! - **Once per cage** ([`ShadingError`], measured by `subdiv::patch_errors`): each face is cut
+//! - **Once per cage** ([`ShadingError`], measured by [`crate::patch_errors`]): each face is cut
 //!   into small *area elements* (centre, mean limit normal, world area), and for every depth the
 //!   world area of each element where the normal interpolated across the drawn triangles turns
 //!   further than the tolerance from the limit normal (its *outlier area*) — both normals

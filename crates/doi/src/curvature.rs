@@ -7,8 +7,8 @@
 use glam::Vec3;
 use subdiv_mesh::{Mesh, vertex_normals};
 
-use crate::DoiError;
 use crate::framework::{Doi, DoiContext, Domain};
+use crate::{DoiError, DoiKind};
 
 /// Per vertex, the largest angle (degrees) between the vertex normal (area-weighted) and the
 /// normals of the faces around it: 0 where the surface is flat around the vertex, about half the
@@ -38,7 +38,7 @@ pub struct Curvature;
 
 impl Doi for Curvature {
     fn name(&self) -> &'static str {
-        "curvature"
+        DoiKind::Curvature.name()
     }
     fn domain(&self) -> Domain {
         Domain::Vertices

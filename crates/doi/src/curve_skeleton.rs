@@ -28,6 +28,7 @@
 //! is what a focus distance needs.
 
 use glam::Vec3;
+use subdiv_mesh::UnionFind;
 
 /// An end branch whose tip is closer than this many radii to its branch node is removed.
 const SPUR: f32 = 1.5;
@@ -156,26 +157,18 @@ impl<'a> Graph<'a> {
             .max(f32::MIN_POSITIVE);
         let band = |v: usize| (d[v] / width) as u32;
         // Pieces of bands: union-find over edges inside a band.
-        let mut parent: Vec<u32> = (0..self.n as u32).collect();
-        fn find(p: &mut [u32], mut x: u32) -> u32 {
-            while p[x as usize] != x {
-                p[x as usize] = p[p[x as usize] as usize];
-                x = p[x as usize];
-            }
-            x
-        }
+        let mut parent = UnionFind::new(self.n);
         for &v in &verts {
             for &w in self.neighbours(v) {
                 if band(v) == band(w as usize) {
-                    let (a, b) = (find(&mut parent, v as u32), find(&mut parent, w));
-                    parent[a.max(b) as usize] = a.min(b);
+                    parent.union(v, w as usize);
                 }
             }
         }
         let mut node_of = vec![u32::MAX; self.n];
         let mut nodes: Vec<(Vec3, u32)> = Vec::new();
         for &v in &verts {
-            let r = find(&mut parent, v as u32) as usize;
+            let r = parent.find(v);
             if node_of[r] == u32::MAX {
                 node_of[r] = nodes.len() as u32;
                 nodes.push((Vec3::ZERO, 0));

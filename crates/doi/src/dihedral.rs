@@ -2,8 +2,8 @@
 
 use subdiv_mesh::{EdgeId, Mesh};
 
-use crate::DoiError;
 use crate::framework::{Doi, DoiContext, Domain};
+use crate::{DoiError, DoiKind};
 
 /// Eq. (3): `DoI_e = arccos(n_f1 · n_f2)`, the angle between the normals of the edge's two
 /// faces, in degrees. Concave edges "are never silhouette edges" and get 0, as do boundary
@@ -26,7 +26,7 @@ pub struct Dihedral;
 
 impl Doi for Dihedral {
     fn name(&self) -> &'static str {
-        "dihedral"
+        DoiKind::Dihedral.name()
     }
     fn domain(&self) -> Domain {
         Domain::Edges

@@ -10,10 +10,10 @@
 use glam::Vec3;
 use subdiv_mesh::{Mesh, closest_point_on_triangle};
 
-use crate::DoiError;
 use crate::curve_skeleton::curve_skeleton;
 use crate::framework::{Doi, DoiContext, Domain};
 use crate::skeleton::{polyline_distance, triangle_polyline_distance};
+use crate::{DoiError, DoiKind};
 
 /// How the distance to a focus object is measured.
 #[derive(Clone, Debug, PartialEq)]
@@ -271,7 +271,7 @@ impl Focus {
 
 impl Doi for Focus {
     fn name(&self) -> &'static str {
-        "focus"
+        DoiKind::Focus.name()
     }
     fn domain(&self) -> Domain {
         Domain::Faces

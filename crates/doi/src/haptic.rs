@@ -15,9 +15,9 @@
 use glam::Vec3;
 use subdiv_mesh::{EdgeId, FaceId, Mesh, closest_point_on_triangle, vertex_normals};
 
-use crate::DoiError;
 use crate::clough_tocher::{CloughTocher, clough_tocher_patches};
 use crate::framework::{Aggregate, Doi, DoiContext, Domain};
+use crate::{DoiError, DoiKind};
 
 /// The solution of eq. (5) for one first-row control point: `x = v1 q1 + v2 q2 + v3 q3 + r`
 /// with `v1 + v2 + v3 = 1` and `r` perpendicular to the plane of the `q`s.
@@ -271,7 +271,7 @@ impl Haptic {
 
 impl Doi for Haptic {
     fn name(&self) -> &'static str {
-        "haptic"
+        DoiKind::Haptic.name()
     }
     fn domain(&self) -> Domain {
         Domain::Faces

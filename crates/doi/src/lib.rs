@@ -12,6 +12,7 @@
 //!   (eq. 3), [`Haptic`] (Clough-Tocher G¹ error, eqs. 4–6, and the one-side criterion;
 //!   [`HapticG1`] alone) and [`HapticPoint`], [`Focus`]
 //!   (eq. 7); and a vertex-valued one, [`Curvature`] (the normal's turn at each vertex).
+//! - [`DoiKind`]: the DoIs a program chooses by name, the one home of those names.
 //!
 //! This crate computes interest values only. What is refined with them lives elsewhere:
 //! `subdiv-loop` refines a face selection adaptively, `subdiv-depth` maps face values to
@@ -46,6 +47,7 @@ mod error;
 mod focus;
 mod framework;
 mod haptic;
+mod kind;
 mod skeleton;
 mod view;
 
@@ -60,6 +62,7 @@ pub use haptic::{
     Combination, DEGENERATE_G1_ERROR, Haptic, HapticG1, HapticPoint, barycentric_combination,
     closest_face, closest_surface_point, edge_g1_error, g1_error, mean_edge_length, plane_crossing,
 };
+pub use kind::DoiKind;
 pub use skeleton::{
     parse_skeleton, polyline_distance, principal_axis_skeleton, read_skeleton, segment_distance,
     triangle_polyline_distance, triangle_segment_distance,
@@ -68,13 +71,3 @@ pub use view::{
     Silhouette, ViewAngle, is_silhouette, point_segment_distance, silhouette_distance,
     silhouette_segments, view_angle_deg,
 };
-
-/// The DoIs by command-line name, with their defaults.
-pub const DOI_NAMES: [&str; 6] = [
-    "view-angle",
-    "silhouette",
-    "dihedral",
-    "haptic",
-    "focus",
-    "curvature",
-];

@@ -4,8 +4,8 @@
 use glam::{Vec2, Vec3};
 use subdiv_mesh::{Camera, EdgeId, Mesh, face_normals};
 
-use crate::DoiError;
 use crate::framework::{Doi, DoiContext, Domain};
+use crate::{DoiError, DoiKind};
 
 /// The view-angle DoI, eq. (1): `DoI_f = n · v` for face normal `n` and the unit view ray `v`
 /// from the eye to the face centroid.
@@ -31,7 +31,7 @@ pub struct ViewAngle;
 
 impl Doi for ViewAngle {
     fn name(&self) -> &'static str {
-        "view-angle"
+        DoiKind::ViewAngle.name()
     }
     fn domain(&self) -> Domain {
         Domain::Faces
@@ -82,7 +82,7 @@ pub struct Silhouette;
 
 impl Doi for Silhouette {
     fn name(&self) -> &'static str {
-        "silhouette"
+        DoiKind::Silhouette.name()
     }
     fn domain(&self) -> Domain {
         Domain::Edges

@@ -1,5 +1,5 @@
 //! Geometric helpers shared by every crate: polygon normals that stay accurate on tiny faces,
-//! vertex normals, closest points, the triangle check and triangulation.
+//! vertex normals, point bounds, closest points, the triangle check and triangulation.
 //!
 //! One home per helper: the rules, the DoIs, the stitching and the renderer's silhouettes all
 //! call these instead of writing their own.
@@ -70,6 +70,23 @@ pub fn newell_area<T: Vector3>(corners: impl IntoIterator<Item = T>) -> T {
 #[inline]
 pub fn newell_normal(corners: impl IntoIterator<Item = Vec3>) -> Vec3 {
     newell_area(corners).normalize_or_zero()
+}
+
+/// Axis-aligned bounds `(min, max)` of `points`, per component the `min`/`max` of every
+/// point in order (`(+inf, -inf)` for none): the one home of point bounds, so the cage, the
+/// tessellations and the scenes agree to the bit.
+///
+/// ```
+/// use subdiv_mesh::{glam::Vec3, point_bounds};
+/// let (lo, hi) = point_bounds([Vec3::new(1.0, -2.0, 0.5), Vec3::new(-1.0, 3.0, 0.0)]);
+/// assert_eq!((lo, hi), (Vec3::new(-1.0, -2.0, 0.0), Vec3::new(1.0, 3.0, 0.5)));
+/// ```
+#[inline]
+pub fn point_bounds(points: impl IntoIterator<Item = Vec3>) -> (Vec3, Vec3) {
+    points.into_iter().fold(
+        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(p), hi.max(p)),
+    )
 }
 
 /// All face normals of `mesh` into `out` (one per face, [`Mesh::face_normal`]).

@@ -51,10 +51,12 @@ mod handle;
 mod mesh;
 mod obj;
 mod options;
+mod sector_normals;
 pub mod sharpness;
 mod soup;
 mod stats;
 mod tags;
+mod union_find;
 mod usd;
 
 pub use cage::{Cage, CageError, CageOptions, read_cage};
@@ -62,8 +64,8 @@ pub use camera::Camera;
 pub use error::{MeshError, ObjError, UsdError};
 pub use fvar::{FVarLinearInterpolation, FaceVarying};
 pub use geometry::{
-    Vector3, closest_point_on_triangle, face_normals, newell_area, newell_normal, triangulate,
-    vertex_normals,
+    Vector3, closest_point_on_triangle, face_normals, newell_area, newell_normal, point_bounds,
+    triangulate, vertex_normals,
 };
 pub use handle::{EdgeId, FaceId, HalfedgeId, VertexId};
 pub use mesh::{Mesh, Outgoing};
@@ -74,9 +76,11 @@ pub use obj::{
 pub use options::{
     BoundaryInterpolation, CreaseMethod, SHARPNESS_INFINITE, SchemeOptions, TriangleSubdivision,
 };
+pub use sector_normals::sector_corner_normals;
 pub use soup::{CornerTag, CreaseTag, HoleTag, NonManifold, PolygonSoup};
 pub use stats::MeshStats;
 pub use tags::{IgnoredTagKind, TagWarning};
+pub use union_find::UnionFind;
 pub use usd::{
     FaceVaryingLinear, UsdCage, UsdMesh, UsdReadOptions, UsdScheme, is_usd_path, read_usd,
     read_usd_soup,

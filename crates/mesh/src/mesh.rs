@@ -373,13 +373,7 @@ impl Mesh {
     }
     /// Axis-aligned bounding box `(min, max)` of all vertices.
     pub fn bounds(&self) -> (Vec3, Vec3) {
-        let mut lo = Vec3::splat(f32::INFINITY);
-        let mut hi = Vec3::splat(f32::NEG_INFINITY);
-        for p in &self.positions {
-            lo = lo.min(*p);
-            hi = hi.max(*p);
-        }
-        (lo, hi)
+        crate::point_bounds(self.positions.iter().copied())
     }
     /// Largest vertex valence (0 for a mesh without faces).
     pub fn max_valence(&self) -> usize {

@@ -4,6 +4,7 @@ use std::collections::HashMap;
 
 use glam::Vec3;
 
+use crate::UnionFind;
 use crate::options::SchemeOptions;
 
 mod nonmanifold;
@@ -167,10 +168,10 @@ impl PolygonSoup {
     }
 
     /// Union-find over face corners: two corners at the same vertex are in one fan when their
-    /// faces share an edge at that vertex. Returns the forest (`parent[corner]`).
-    fn corner_fans(&self) -> Vec<usize> {
+    /// faces share an edge at that vertex. Returns the forest.
+    fn corner_fans(&self) -> UnionFind {
         let nc = self.face_indices.len();
-        let mut parent: Vec<usize> = (0..nc).collect();
+        let mut parent = UnionFind::new(nc);
         let mut seen: HashMap<(i64, i64), usize> = HashMap::with_capacity(nc * 2);
         for f in 0..self.num_faces() {
             let s = self.face_offsets[f] as usize;
@@ -183,10 +184,7 @@ impl PolygonSoup {
                     self.face_indices[s + (k + 1) % n],
                 ] {
                     match seen.get(&(v, w)) {
-                        Some(&o) => {
-                            let (a, b) = (find_root(&mut parent, o), find_root(&mut parent, c));
-                            parent[a.max(b)] = a.min(b);
-                        }
+                        Some(&o) => parent.union(o, c),
                         None => {
                             seen.insert((v, w), c);
                         }
@@ -200,7 +198,7 @@ impl PolygonSoup {
     /// The fan holding a vertex's first corner keeps the vertex; every other fan gets a copy,
     /// appended to the positions. Returns the face indices remapped to the copies and the
     /// `(original, copy)` pairs. Out-of-range indices are left alone.
-    fn copy_extra_fans(&mut self, parent: &mut [usize]) -> (Vec<i64>, Vec<(u32, u32)>) {
+    fn copy_extra_fans(&mut self, parent: &mut UnionFind) -> (Vec<i64>, Vec<(u32, u32)>) {
         let nv = self.positions.len() as i64;
         let mut owner: HashMap<i64, usize> = HashMap::new();
         let mut copy_of_root: HashMap<usize, i64> = HashMap::new();
@@ -211,7 +209,7 @@ impl PolygonSoup {
             if v < 0 || v >= nv {
                 continue;
             }
-            let r = find_root(parent, c);
+            let r = parent.find(c);
             let first = *owner.entry(v).or_insert(r);
             if first == r {
                 continue;
@@ -260,15 +258,6 @@ impl PolygonSoup {
         }
         self.corners.extend(extra);
     }
-}
-
-/// The root of `x` in a union-find forest, halving the path on the way.
-fn find_root(p: &mut [usize], mut x: usize) -> usize {
-    while p[x] != x {
-        p[x] = p[p[x]];
-        x = p[x];
-    }
-    x
 }
 
 impl PolygonSoup {

@@ -2,6 +2,7 @@
 
 use std::collections::BTreeMap;
 
+use crate::UnionFind;
 use crate::mesh::Mesh;
 use crate::options::SHARPNESS_INFINITE;
 
@@ -95,23 +96,15 @@ impl MeshStats {
             .count();
         let holes = mesh.faces().filter(|&f| mesh.is_hole(f)).count();
         // Components: union-find over faces through shared edges.
-        let mut parent: Vec<u32> = (0..mesh.num_faces() as u32).collect();
-        fn find(p: &mut [u32], mut x: u32) -> u32 {
-            while p[x as usize] != x {
-                p[x as usize] = p[p[x as usize] as usize];
-                x = p[x as usize];
-            }
-            x
-        }
+        let mut parent = UnionFind::new(mesh.num_faces());
         for e in mesh.edges() {
             let (a, b) = (mesh.face(e.halfedge(0)), mesh.face(e.halfedge(1)));
             if a.is_some() && b.is_some() {
-                let (ra, rb) = (find(&mut parent, a.0), find(&mut parent, b.0));
-                parent[ra.max(rb) as usize] = ra.min(rb);
+                parent.union(a.idx(), b.idx());
             }
         }
-        let components = (0..mesh.num_faces() as u32)
-            .filter(|&f| find(&mut parent, f) == f)
+        let components = (0..mesh.num_faces())
+            .filter(|&f| parent.find(f) == f)
             .count();
         let euler = (mesh.num_vertices() - isolated) as i64 - mesh.num_edges() as i64
             + mesh.num_faces() as i64;

@@ -7,9 +7,11 @@
 //! them sit the exact limit of a single vertex by local ring refinement ([`Ring`],
 //! [`limit_point`]), the uniform whole-mesh refinement ([`refine_uniform`]), the uniform
 //! depth-N limit tessellation ([`tessellate_uniform`]) and the points on the copies of a
-//! non-manifold edge, bit-identical in every copy ([`SeamCurves`]). [`budget`] estimates the
-//! size of every output (exact for uniform depth, bounds for the adaptive paths) and refuses a
-//! request beyond this machine's memory with [`OutputTooLarge`] before anything is allocated.
+//! non-manifold edge, bit-identical in every copy ([`SeamCurves`]); beside the tessellation's
+//! output type ([`LimitMesh`]) its silhouette edges and contours for line drawing
+//! ([`Silhouettes`]). [`budget`] estimates the size of every output (exact for uniform depth,
+//! bounds for the adaptive paths) and refuses a request beyond this machine's memory with
+//! [`OutputTooLarge`] before anything is allocated.
 //!
 //! Results agree with Pixar's OpenSubdiv 3.5 (boundaries, creases, corners, n-gons, any valence),
 //! except that semi-sharp creases always give the true limit surface.
@@ -35,6 +37,7 @@ mod point;
 mod refine;
 mod ring;
 mod seam;
+mod silhouettes;
 
 pub use budget::{Budget, OutOfMemory, OutputSize, OutputTooLarge, Request};
 pub use fvar::{
@@ -52,6 +55,7 @@ pub use refine::{
 };
 pub use ring::{QuadRingStencil, Ring, limit_point, limit_point_with};
 pub use seam::SeamCurves;
+pub use silhouettes::Silhouettes;
 
 use thiserror::Error;
 

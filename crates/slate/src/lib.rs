@@ -20,7 +20,7 @@
 //!   only reference it (see [`PatchLayout`]). No two tasks write the same output element.
 //! - **Output identical for any thread count.** Every point is computed by its owner alone from
 //!   that patch's own gather, in a fixed order, and a worker's reuse between patches cannot
-//!   change results (see [`thread_worker`]), so the output is bit-identical whether it runs on
+//!   change results (see [`PatchGrids`]), so the output is bit-identical whether it runs on
 //!   one thread or many.
 //! - **The same bits with or without SIMD.** Where the CPU has AVX2 (detected at run time), the
 //!   interior limits run eight points per register and the regular step two (`wide`); every
@@ -46,7 +46,7 @@
 //! creases with the uniform or Chaikin rule, darts, corners), valences are limited only by memory
 //! (the corner arrays are sized from the mesh), n-gons and quads next to them are tessellated
 //! through their level-1 quads, limits are exact for semi-sharp creases, and patches run in
-//! parallel with one pair of slates per thread (kept between calls, see [`thread_worker`]).
+//! parallel with one pair of slates per thread (kept between calls, see [`PatchGrids`]).
 //!
 //! # Modules
 //!
@@ -54,7 +54,8 @@
 //!
 //! `table` (a slate's storage), `gather` (a patch's 1-neighbourhood into slate 0), `step` (one
 //! subdivision step), `limit` (limit points and normals; `wide` its interior loop eight points at a time), `worker` (a thread's slates and the
-//! pipeline of one patch), `pool` (the per-thread workers), `patches` and `layout` (per-mesh
+//! pipeline of one patch), `pool` (the per-thread workers, and [`PatchGrids`]: single patches at
+//! chosen depths for the adaptive assembler and the pixel-error mode), `patches` and `layout` (per-mesh
 //! set-up and output numbering), `tessellate` (the parallel driver).
 //!
 //! ```
@@ -84,16 +85,15 @@ mod worker;
 pub use grid::side_point;
 pub use layout::PatchLayout;
 pub use patches::{PatchRef, PatchSet, Unit};
-pub use pool::{KEEP_MAX_DEPTH, WorkerGuard, thread_worker};
+pub use pool::PatchGrids;
 pub use subdiv_rules::{Depth, MAX_DEPTH};
 pub use tessellate::{
     DEFAULT_MAX_DEPTH, MAX_POINTS, SlateError, slate_bytes_per_thread, tessellate,
     tessellate_layout, tessellate_layout_into,
 };
 pub use tri::{
-    TriLayout, TriPatch, TriSide, TriWorker, tessellate_loop, tessellate_loop_layout_into,
-    tri_lattice_index, tri_lattice_len, tri_patch_lattice, tri_slate_bytes_per_thread,
+    TriLayout, TriPatch, TriSide, tessellate_loop, tessellate_loop_layout_into, tri_lattice_index,
+    tri_lattice_len, tri_patch_lattice, tri_slate_bytes_per_thread,
 };
 pub use uv::LevelUvs;
 pub use wide::set_simd;
-pub use worker::Worker;

@@ -272,7 +272,7 @@ impl PatchSet {
     }
 
     /// Overwrites the points of patch `p`'s grid at `depth` (`pos`, row by row as
-    /// [`Worker::patch_grid`](crate::Worker::patch_grid) writes it) that lie on the cage's seams
+    /// [`PatchGrids::grid`](crate::PatchGrids::grid) writes it) that lie on the cage's seams
     /// with [`SeamCurves`]' values, the same bits in every copy of a non-manifold edge, at any
     /// depth and from any side, so the pieces of a non-manifold cage meet exactly. Nothing
     /// changes for a cage without seams.

@@ -1,12 +1,15 @@
-//! The per-thread worker pool: every thread keeps one [`Worker`] between tessellations.
+//! The per-thread worker pool: every thread keeps one [`Worker`] between tessellations, and
+//! [`PatchGrids`], the public way to tessellate single patches with it.
 
+use subdiv_mesh::Mesh;
 use subdiv_rules::Depth;
 
+use crate::patches::{PatchRef, PatchSet};
 use crate::worker::Worker;
 
 /// Deepest `max_depth` whose worker a thread keeps between tessellations (about 230 KB of tables
 /// and scratch at 6); deeper workers (megabytes) are freed when their job ends.
-pub const KEEP_MAX_DEPTH: Depth = 6;
+pub(crate) const KEEP_MAX_DEPTH: Depth = 6;
 
 thread_local! {
     static THREAD_WORKER: std::cell::Cell<Option<Box<Worker>>> = const { std::cell::Cell::new(None) };
@@ -21,15 +24,7 @@ thread_local! {
 ///
 /// Reuse cannot change results: every patch starts with a fresh gather, and the worker's only
 /// other state, its cache of limit stencils, is keyed by everything a stencil depends on.
-///
-/// ```
-/// let mut w = subdiv_slate::thread_worker(5);
-/// assert!(w.table_bytes() > 0);
-/// drop(w); // returned to this thread: the next call reuses the same slates
-/// let w2 = subdiv_slate::thread_worker(4);
-/// assert!(w2.table_bytes() >= subdiv_slate::Worker::new(4).table_bytes());
-/// ```
-pub fn thread_worker(max_depth: Depth) -> WorkerGuard {
+pub(crate) fn thread_worker(max_depth: Depth) -> WorkerGuard {
     let maxn = 1usize << max_depth;
     let cached = THREAD_WORKER.with(|c| c.take());
     let w = match cached {
@@ -46,7 +41,7 @@ pub fn thread_worker(max_depth: Depth) -> WorkerGuard {
 
 /// A worker lent by [`thread_worker`]; derefs to [`Worker`] and returns it to the thread on drop.
 #[derive(Debug)]
-pub struct WorkerGuard(Option<Box<Worker>>);
+pub(crate) struct WorkerGuard(Option<Box<Worker>>);
 
 impl std::ops::Deref for WorkerGuard {
     type Target = Worker;
@@ -77,6 +72,67 @@ impl Drop for WorkerGuard {
                 _ => Some(w),
             });
         });
+    }
+}
+
+/// Single patches of a [`PatchSet`] tessellated at chosen depths into the caller's buffers: what
+/// an adaptive assembler caches per patch and what the pixel-error mode samples. It holds the
+/// calling thread's slates for patches up to its `max_depth` (lent by the thread's pool and
+/// returned when it drops), so one per rayon task allocates nothing in steady state; the
+/// points are the same bits whichever thread or task computes them.
+///
+/// ```
+/// use subdiv_mesh::{parse_obj, Mesh};
+/// use subdiv_slate::{PatchGrids, PatchSet};
+/// let cube = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
+///             f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+/// let mesh = Mesh::from_soup(&parse_obj(cube)?)?;
+/// let set = PatchSet::new(&mesh)?;
+/// let mut grids = PatchGrids::new(&mesh, &set, 5);
+/// let (mut p, mut n, mut sided) = (vec![[0.0; 3]; 25], vec![[0.0; 3]; 25], Vec::new());
+/// grids.grid(&set.patches()[0], 2, &mut p, &mut n, &mut sided);
+/// assert!((p[12][2] - 0.0).abs() < 0.2); // the centre of face 0 (z = 0 side) lies near z = 0
+/// assert!(sided.is_empty()); // a smooth cube has no one-sided normals
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug)]
+pub struct PatchGrids<'a> {
+    mesh: &'a Mesh,
+    set: &'a PatchSet,
+    worker: WorkerGuard,
+}
+
+impl<'a> PatchGrids<'a> {
+    /// Patch grids of `set` (built for `mesh`) up to depth `max_depth`.
+    pub fn new(mesh: &'a Mesh, set: &'a PatchSet, max_depth: Depth) -> PatchGrids<'a> {
+        PatchGrids {
+            mesh,
+            set,
+            worker: thread_worker(max_depth),
+        }
+    }
+
+    /// Tessellates patch `p` at `depth` (at most the `max_depth` this was made for) and writes
+    /// the limit points and normals of its `(2^depth + 1)^2` grid into `pos` and `nrm`, row by
+    /// row (`i` along the patch's first edge, `j` along its last edge reversed), and into
+    /// `sided` (cleared first; grid index ascending) the one-sided limit normal of this patch's
+    /// side at the border points where the limit surface has a crease or a corner (see
+    /// `subdiv_rules::Ring::limit_sided`; `nrm` holds the averaged normal there). Points on the
+    /// cage's seams are the slate's own; [`PatchSet::write_seam_points`] replaces them.
+    ///
+    /// # Panics
+    /// If `pos` or `nrm` is shorter than the grid or `depth` exceeds the slates' depth.
+    pub fn grid(
+        &mut self,
+        p: &PatchRef,
+        depth: Depth,
+        pos: &mut [[f32; 3]],
+        nrm: &mut [[f32; 3]],
+        sided: &mut Vec<(u32, [f32; 3])>,
+    ) {
+        let source = self.set.source(self.mesh, p);
+        self.worker
+            .patch_grid_sided(source, p.src_face, depth, pos, nrm, sided);
     }
 }
 

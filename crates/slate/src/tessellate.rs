@@ -50,7 +50,9 @@ pub enum SlateError {
 /// Most limit points one tessellation may produce (about 3 GiB of positions and normals).
 pub const MAX_POINTS: u64 = 1 << 27;
 
-/// Default `max_depth` of the paper: slates are sized for at least this depth.
+/// The default `max_depth` of the paper (Settgast et al. 2004: `maxsd = 5`), the one home of
+/// that default (`subdiv_depth::DepthParams::default` reads it): slates are sized for at least
+/// this depth.
 pub const DEFAULT_MAX_DEPTH: Depth = 5;
 
 /// Output pointers shared by the patch tasks. Each output point has exactly one owner patch

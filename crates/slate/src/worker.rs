@@ -1,5 +1,5 @@
 //! The per-thread tessellation state ([`Worker`]): two slates, four corner arrays and scratch,
-//! and the whole pipeline of one patch ([`Worker::patch_grid`]: gather, steps, limits).
+//! and the whole pipeline of one patch ([`Worker::patch_grid_sided`]: gather, steps, limits).
 //!
 //! The stages live in their own modules: [`gather`](crate::gather) fills slate 0 from the mesh,
 //! [`step`](crate::step) subdivides one slate into the other, [`limit`](crate::limit) evaluates
@@ -15,7 +15,7 @@ use crate::wide::InteriorOut;
 
 /// Per-thread tessellation state: two slates and four corner arrays, allocated once.
 #[derive(Debug)]
-pub struct Worker {
+pub(crate) struct Worker {
     pub(crate) t: [Table; 2],
     pub(crate) corners: [Corner; 4],
     pub(crate) cur: usize,
@@ -110,34 +110,10 @@ impl Worker {
 
     /// Tessellates the quad `face` of `mesh` (whose 1-neighbourhood is all quads) at `depth` and
     /// writes the limit points and normals of its `(2^depth + 1)^2` grid, row by row (`i` along
-    /// the face's first edge, `j` along its last edge reversed).
-    ///
-    /// ```
-    /// use subdiv_mesh::{parse_obj, FaceId, Mesh};
-    /// let cube = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
-    ///             f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
-    /// let mesh = Mesh::from_soup(&parse_obj(cube)?)?;
-    /// let mut w = subdiv_slate::Worker::new(5);
-    /// let (mut p, mut n) = (vec![[0.0; 3]; 25], vec![[0.0; 3]; 25]);
-    /// w.patch_grid(&mesh, FaceId(0), 2, &mut p, &mut n);
-    /// assert!((p[12][2] - 0.0).abs() < 0.2); // the centre of face 0 (z = 0 side) lies near z = 0
-    /// # Ok::<(), subdiv_mesh::MeshError>(())
-    /// ```
-    pub fn patch_grid(
-        &mut self,
-        mesh: &Mesh,
-        face: FaceId,
-        depth: Depth,
-        pos: &mut [[f32; 3]],
-        nrm: &mut [[f32; 3]],
-    ) {
-        self.patch_grid_sided(mesh, face, depth, pos, nrm, &mut Vec::new());
-    }
-
-    /// [`Worker::patch_grid`], and in `sided` (cleared first; grid index ascending) the
-    /// one-sided limit normal of this patch's side at the border points where the limit
-    /// surface has a crease or a corner (see `subdiv_rules::Ring::limit_sided`). Positions and
-    /// `nrm` (the averaged normal there) are the same as [`Worker::patch_grid`]'s.
+    /// the face's first edge, `j` along its last edge reversed), and in `sided` (cleared first;
+    /// grid index ascending) the one-sided limit normal of this patch's side at the border
+    /// points where the limit surface has a crease or a corner (see
+    /// `subdiv_rules::Ring::limit_sided`; `nrm` holds the averaged normal there).
     pub fn patch_grid_sided(
         &mut self,
         mesh: &Mesh,

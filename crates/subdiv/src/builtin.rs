@@ -1,7 +1,7 @@
 //! Built-in scenes: cages that ship inside the library, for the figures and benchmarks.
 
 use glam::Vec3;
-use subdiv_mesh::{Mesh, MeshError, parse_obj};
+use subdiv_mesh::{Mesh, MeshError, parse_obj, point_bounds};
 
 /// Cage file of the built-in `helmet40` scene's model (`catmark_helmet`, 58 faces); `data/` links
 /// to `fixtures/reference/shapes/` so that `cargo package` ships the file inside the crate.
@@ -48,10 +48,7 @@ impl BuiltinScene {
 /// 8 x 5 grid in the XZ plane, 1.25 model widths apart.
 pub fn helmet40() -> Result<Mesh, BuiltinError> {
     let soup = parse_obj(HELMET_OBJ).map_err(BuiltinError::EmbeddedCage)?;
-    let (lo, hi) = soup.positions.iter().fold(
-        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-    );
+    let (lo, hi) = point_bounds(soup.positions.iter().copied());
     let ext = hi - lo;
     let step = 1.25 * ext.x.max(ext.z);
     let offsets: Vec<Vec3> = (0..5)

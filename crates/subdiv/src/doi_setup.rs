@@ -4,58 +4,13 @@
 
 use glam::Vec3;
 use subdiv_doi::{
-    Aggregate, Curvature, Dihedral, Doi, DoiContext, DoiError, Focus, FocusSpec, Haptic,
+    Aggregate, Curvature, Dihedral, Doi, DoiContext, DoiError, DoiKind, Focus, FocusSpec, Haptic,
     HapticPoint, Silhouette, ViewAngle, closest_surface_point, read_skeleton,
 };
 use subdiv_mesh::{Camera, Mesh, MeshError, triangulate};
 use subdiv_rules::{Depth, LimitMesh, LimitMeshError, VertexScalar};
 
 use crate::{Balance, RefineError, RefineOptions, Refined, Scene, refine_adaptive};
-
-/// The Degree-of-Interest functions a DoI set-up can build.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum DoiKind {
-    /// Angle between the view direction and the surface ([`ViewAngle`]).
-    ViewAngle,
-    /// Closeness to the silhouette ([`Silhouette`]).
-    Silhouette,
-    /// Dihedral angle at the edges ([`Dihedral`]).
-    Dihedral,
-    /// Haptic: the Clough-Tocher G1 error and one-side criterion ([`Haptic`], tolerance 5 % of
-    /// the mean edge length), or the neighbourhood of a haptic interaction point when one is
-    /// given ([`HapticPoint`]).
-    Haptic,
-    /// Distance to focus objects or a skeleton ([`Focus`]).
-    Focus,
-    /// How much the surface bends at each vertex ([`Curvature`]; vertex values, aggregated to
-    /// faces).
-    Curvature,
-}
-
-impl DoiKind {
-    /// Every kind, in the order of the paper's figures, then the vertex DoI.
-    pub const ALL: [DoiKind; 6] = [
-        DoiKind::ViewAngle,
-        DoiKind::Silhouette,
-        DoiKind::Dihedral,
-        DoiKind::Haptic,
-        DoiKind::Focus,
-        DoiKind::Curvature,
-    ];
-
-    /// The kind's name: `view-angle`, `silhouette`, `dihedral`, `haptic`, `focus` or
-    /// `curvature`.
-    pub fn name(self) -> &'static str {
-        match self {
-            DoiKind::ViewAngle => "view-angle",
-            DoiKind::Silhouette => "silhouette",
-            DoiKind::Dihedral => "dihedral",
-            DoiKind::Haptic => "haptic",
-            DoiKind::Focus => "focus",
-            DoiKind::Curvature => "curvature",
-        }
-    }
-}
 
 /// Why a DoI set-up was refused.
 #[derive(Debug, thiserror::Error)]
@@ -240,10 +195,10 @@ impl DoiSetup {
         check_doi_options(Some(o.kind), &o.focus, &o.skeletons, o.hip)?;
         let cage = if o.triangulate {
             triangulate(&cage).map_err(DoiSetupError::Triangulate)?
-        } else if let Some(face) = cage.faces().find(|&x| cage.face_size(x) != 3) {
+        } else if let Err(MeshError::NotTriangles { face, size }) = cage.check_triangles() {
             return Err(DoiSetupError::NotTriangles {
-                face: face.0,
-                size: cage.face_size(face),
+                face,
+                size: size as usize,
             });
         } else {
             cage
@@ -349,7 +304,7 @@ impl DoiSetup {
             indices.iter().map(|v| v.0).collect(),
         )?;
         // Sharp edges shade as creases: each sector of a vertex its own normal.
-        limit.set_corner_normals(crate::crease_normals::sector_corner_normals(m, &normals))?;
+        limit.set_corner_normals(subdiv_mesh::sector_corner_normals(m, &normals))?;
         limit.set_uvs(uvs, uv_indices)?;
         limit.set_scalar(VertexScalar::Doi, scalar)?;
         Ok(limit)
@@ -390,17 +345,6 @@ mod tests {
         assert!(matches!(e, DoiSetupError::HipWithoutHapticDoi));
         check_doi_options(Some(DoiKind::Haptic), &[], &[], hip).unwrap();
         check_doi_options(Some(DoiKind::Focus), &focus, &[], None).unwrap();
-        assert_eq!(
-            DoiKind::ALL.map(DoiKind::name),
-            [
-                "view-angle",
-                "silhouette",
-                "dihedral",
-                "haptic",
-                "focus",
-                "curvature"
-            ]
-        );
     }
 
     #[test]

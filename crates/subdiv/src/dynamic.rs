@@ -7,18 +7,13 @@
 //! triangles as patches, [`subdiv_stitch::TriAssembler`]) through the same depth assignment.
 
 use subdiv_depth::{
-    Assignment, DepthParams, FrameRateController, PatchErrors, Sphere, VertexData, assign,
-    face_spheres_scheme,
+    Assignment, DepthParams, FrameRateController, PatchErrors, Seams, Sphere, VertexData, assign,
+    face_spheres_scheme, patch_errors, patch_errors_loop,
 };
 use subdiv_mesh::{Camera, Mesh};
 use subdiv_rules::Scheme;
 use subdiv_slate::Depth;
 use subdiv_stitch::{AdaptiveFrame, Assembler, AssemblyError, FanMethod, TriAssembler};
-
-use crate::{patch_errors, patch_errors_loop};
-
-mod seams;
-use seams::Seams;
 
 /// The patch assembly of the node's scheme.
 #[derive(Debug)]
@@ -322,7 +317,7 @@ impl DynamicSubdivision {
     }
 
     /// What the pixel-error mode knows of each face (chord error per depth, shading outliers
-    /// for the current tolerance, normal cone; see [`crate::patch_errors`]), computed on first
+    /// for the current tolerance, normal cone; see [`subdiv_depth::patch_errors`]), computed on first
     /// use and again when the shading tolerance changes.
     pub fn patch_errors(&mut self) -> &PatchErrors {
         let tolerance = self.params.shading_error_deg.to_radians();
@@ -335,8 +330,8 @@ impl DynamicSubdivision {
         }
         let (mesh, max_depth) = (&self.mesh, self.params.max_depth);
         self.errors.get_or_insert_with(|| match &self.assembler {
-            Stitcher::Quads(a) => patch_errors(mesh, a, max_depth, tolerance),
-            Stitcher::Tris(a) => patch_errors_loop(mesh, a, max_depth, tolerance),
+            Stitcher::Quads(a) => patch_errors(mesh, a.patch_set(), max_depth, tolerance),
+            Stitcher::Tris(a) => patch_errors_loop(mesh, a.layout(), max_depth, tolerance),
         })
     }
 }

@@ -3,11 +3,12 @@
 //! culling camera.
 
 use glam::Vec3;
+use subdiv_rules::Silhouettes;
 use subdiv_vk::viewer::{FrameRequest, FrameSource, SourceFrame};
 use subdiv_vk::{RenderMesh, Shading};
 
 use crate::scene::render_mesh;
-use crate::{DoiSetup, DynamicSubdivision, Scene, Silhouettes, camera_from_view, depth_histogram};
+use crate::{DoiSetup, DynamicSubdivision, Scene, camera_from_view, depth_histogram};
 
 /// The error type of [`FrameSource::frame`].
 type FrameError = Box<dyn std::error::Error + Send + Sync>;

@@ -17,24 +17,24 @@
 //! | [`doi`] | Degree-of-Interest functions |
 //! | [`vk`] | the Vulkan renderer (plain buffers) |
 //!
-//! What lives here — everything the `subdiv` command, the viewer and the figures share:
-//! - `dynamic.rs`: [`DynamicSubdivision`] (the paper's per-frame `DynamicSubdivisionCC` node)
-//!   and [`patch_errors`] (what its pixel-error mode measures once per cage);
+//! What lives here is wiring only — everything the `subdiv` command, the viewer and the figures
+//! share; the algorithms live in the concern crates (the pixel-error mode's measurement and the
+//! seam depths in [`depth`], silhouettes in [`rules`], sector normals in [`mesh`]; image quality
+//! in the `subdiv-quality` crate, which renders through this one):
+//! - `dynamic.rs`: [`DynamicSubdivision`] (the paper's per-frame `DynamicSubdivisionCC` node);
 //! - `refine.rs`: DoI-driven refinement ([`refine_adaptive`], [`Refiner`]);
-//! - `doi_setup.rs`: from a DoI choice and its options to a [`Doi`](doi::Doi) and a ready
-//!   refinement ([`DoiKind`], [`DoiOptions`], [`DoiSetup`], [`doi_face_depths`]);
+//! - `doi_setup.rs`: from a DoI choice and its options ([`doi::DoiKind`]) to a [`Doi`](doi::Doi) and a ready
+//!   refinement ([`DoiOptions`], [`DoiSetup`], [`doi_face_depths`]);
 //! - `scene.rs`: the uniform tessellation ([`uniform_limit`]) and [`Scene`], the drawing helper
 //!   that holds a [`LimitMesh`] in the form the renderer draws (split at one-sided normals) with
 //!   its edges, silhouettes and lines;
-//! - `silhouettes.rs`: [`Silhouettes`] extraction;
 //! - `frame.rs`: summaries of adaptive frames ([`depth_histogram`]);
 //! - `camera.rs`: [`Camera`](mesh::Camera) to and from the renderer's [`View`](vk::View) and
 //!   [`OrbitCamera`](vk::OrbitCamera) ([`view_for`], [`orbit_camera`], [`camera_from_view`]);
 //! - `frame_sources.rs`: the viewer's [`FrameSource`](vk::viewer::FrameSource)s
 //!   ([`UniformSource`], [`AdaptiveSource`], [`DoiSource`]);
-//! - `builtin.rs`: built-in scenes ([`BuiltinScene`], [`helmet40`], the paper's Fig. 12).
-//! - `quality/`: image error of tessellations against the true surface, rendered
-//!   ([`quality::QualityRun`], what `subdiv bench quality` prints).
+//! - `builtin.rs`: built-in scenes ([`BuiltinScene`], [`helmet40`], the paper's Fig. 12);
+//! - `export.rs`, `export/`: surface output by extension ([`write_surface`], [`write_export`]).
 //!
 //! **Invariants.** Nothing here changes a cage the caller passed in; every frame's geometry is
 //! watertight to the bit (shared points are referenced through one owner patch); errors are
@@ -126,33 +126,25 @@
 
 mod builtin;
 mod camera;
-mod crease_normals;
 mod doi_setup;
 mod dynamic;
 mod export;
 mod frame;
 mod frame_sources;
-mod patch_error;
-mod patch_error_tri;
-pub mod quality;
 mod refine;
 mod scene;
-mod silhouettes;
 
 pub use builtin::{BuiltinError, BuiltinScene, helmet40};
 pub use camera::{camera_from_view, orbit_camera, radius_about, view_for};
 pub use doi_setup::{
-    DoiKind, DoiOptions, DoiSetup, DoiSetupError, check_doi_options, doi_face_depths, make_doi,
+    DoiOptions, DoiSetup, DoiSetupError, check_doi_options, doi_face_depths, make_doi,
 };
 pub use dynamic::DynamicSubdivision;
 pub use export::{ExportError, OutputFormat, write_surface};
 pub use frame::depth_histogram;
 pub use frame_sources::{AdaptiveSource, DoiSource, UniformSource};
-pub use patch_error::{SAMPLE_LEVELS, patch_errors};
-pub use patch_error_tri::patch_errors_loop;
 pub use refine::{Balance, RefineError, RefineOptions, Refined, Refiner, refine_adaptive};
 pub use scene::{Scene, SceneError, uniform_limit};
-pub use silhouettes::Silhouettes;
 pub use subdiv_rules::{LimitMesh, VertexScalar};
 
 pub use subdiv_depth as depth;

@@ -4,11 +4,9 @@
 
 use glam::Vec3;
 use subdiv_mesh::Mesh;
-use subdiv_rules::{Depth, LimitMesh, LimitMeshError, RulesError, Scheme, VertexScalar};
+use subdiv_rules::{Depth, LimitMesh, LimitMeshError, RulesError, Scheme, Silhouettes, VertexScalar};
 use subdiv_slate::SlateError;
 use subdiv_vk::RenderMesh;
-
-use crate::Silhouettes;
 
 /// Why a uniform tessellation could not be made or drawn.
 #[derive(Debug, thiserror::Error)]

@@ -5,10 +5,11 @@
 
 use std::path::{Path, PathBuf};
 
+use subdiv::doi::DoiKind;
 use subdiv::mesh::{Camera, glam::Vec3, read_obj};
 use subdiv::rules::Scheme;
 use subdiv::{
-    DoiKind, DoiOptions, DoiSetup, DynamicSubdivision, LimitMesh, OutputFormat, VertexScalar,
+    DoiOptions, DoiSetup, DynamicSubdivision, LimitMesh, OutputFormat, VertexScalar,
     uniform_limit, write_surface,
 };
 use subdiv_test_support::{fixture, shape};

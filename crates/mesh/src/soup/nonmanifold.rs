@@ -31,7 +31,8 @@
 
 use std::collections::HashMap;
 
-use super::{CornerTag, CreaseTag, HoleTag, PolygonSoup, find_root};
+use super::{CornerTag, CreaseTag, HoleTag, PolygonSoup};
+use crate::UnionFind;
 use crate::error::MeshError;
 use crate::options::{BoundaryInterpolation, BoundaryNoneRule, SHARPNESS_INFINITE};
 
@@ -116,7 +117,7 @@ impl PolygonSoup {
         }
         let uses = self.edge_uses();
         let nonmanifold_edge = |u: &[EdgeUse]| u.len() > 2 || (u.len() == 2 && u[0].up == u[1].up);
-        let mut parent: Vec<usize> = (0..self.face_indices.len()).collect();
+        let mut parent = UnionFind::new(self.face_indices.len());
         let mut nm_edges: HashMap<(i64, i64), u32> = HashMap::new();
         for (&(a, b), u) in &uses {
             if nonmanifold_edge(u) {
@@ -124,8 +125,7 @@ impl PolygonSoup {
             } else if u.len() == 2 {
                 // A manifold edge joins the fans of its two faces at both ends.
                 for (x, y) in [(u[0].corner, u[1].next), (u[0].next, u[1].corner)] {
-                    let (rx, ry) = (find_root(&mut parent, x), find_root(&mut parent, y));
-                    parent[rx.max(ry)] = rx.min(ry);
+                    parent.union(x, y);
                 }
             }
         }
@@ -158,7 +158,7 @@ impl PolygonSoup {
         if !marks.crease_copies.is_empty() {
             let mut copy_of: HashMap<(i64, usize), i64> = HashMap::new();
             for (c, &w) in remap.iter().enumerate() {
-                copy_of.insert((self.face_indices[c], find_root(&mut parent, c)), w);
+                copy_of.insert((self.face_indices[c], parent.find(c)), w);
             }
             for &(v, r, ends) in &marks.crease_copies {
                 if let Some(&w) = copy_of.get(&(i64::from(v), r)) {
@@ -288,13 +288,12 @@ impl PolygonSoup {
     }
 
     /// Number of fans (corner classes of `parent`) at every vertex.
-    fn fan_counts(&self, parent: &mut [usize], nv: usize) -> Vec<u32> {
+    fn fan_counts(&self, parent: &mut UnionFind, nv: usize) -> Vec<u32> {
         let mut roots: HashMap<(i64, usize), ()> = HashMap::new();
         let mut fans = vec![0u32; nv];
         for c in 0..self.face_indices.len() {
             let v = self.face_indices[c];
-            if (0..nv as i64).contains(&v) && roots.insert((v, find_root(parent, c)), ()).is_none()
-            {
+            if (0..nv as i64).contains(&v) && roots.insert((v, parent.find(c)), ()).is_none() {
                 fans[v as usize] += 1;
             }
         }
@@ -310,7 +309,7 @@ impl PolygonSoup {
         nm_edges: &HashMap<(i64, i64), u32>,
         found: &NonManifold,
         nm_count: &[u32],
-        parent: &mut [usize],
+        parent: &mut UnionFind,
     ) -> Result<NonManifoldMarks, MeshError> {
         let mut tagged: HashMap<(i64, i64), f32> = HashMap::new();
         for t in &self.creases {
@@ -346,7 +345,7 @@ impl PolygonSoup {
                             }
                         })
                         .collect();
-                    let fans = corners.iter().map(|c| find_root(parent, c.0)).collect();
+                    let fans = corners.iter().map(|c| parent.find(c.0)).collect();
                     list.push((s, nm, fans, corners));
                 }
             }

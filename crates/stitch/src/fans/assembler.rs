@@ -6,7 +6,7 @@
 use rayon::prelude::*;
 use subdiv_mesh::{HalfedgeId, Mesh};
 use subdiv_rules::{Budget, Request, Scheme, TriangleBuffers, VertexScalar};
-use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, PatchSet, thread_worker};
+use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, PatchSet, PatchGrids};
 
 use super::edges::Frame;
 use super::geometry::{AdaptiveFrame, concatenate};
@@ -25,7 +25,7 @@ pub(super) struct Block {
     pub(super) pos: Vec<[f32; 3]>,
     pub(super) nrm: Vec<[f32; 3]>,
     /// The patch's own one-sided limit normals at its border points on creases and corners:
-    /// (index in `pos`, normal), ascending (`Worker::patch_grid_sided`).
+    /// (index in `pos`, normal), ascending (`PatchGrids::grid`).
     pub(super) sided: Vec<(u32, [f32; 3])>,
 }
 
@@ -329,8 +329,8 @@ impl Assembler {
         let mut fresh: Vec<(usize, Block)> = todo
             .par_iter()
             .map_init(
-                || thread_worker(max_depth),
-                |w, &i| {
+                || PatchGrids::new(mesh, set, max_depth),
+                |grids, &i| {
                     let p = &set.patches()[i];
                     // Only patches with a required depth are recomputed (`None` is below any).
                     let d = required[i].unwrap_or_default();
@@ -341,14 +341,7 @@ impl Assembler {
                         nrm: vec![[0.0; 3]; n * n],
                         sided: Vec::new(),
                     };
-                    w.patch_grid_sided(
-                        set.source(mesh, p),
-                        p.src_face,
-                        d,
-                        &mut b.pos,
-                        &mut b.nrm,
-                        &mut b.sided,
-                    );
+                    grids.grid(p, d, &mut b.pos, &mut b.nrm, &mut b.sided);
                     // Seam points from their chains: the copies of a non-manifold edge, in
                     // different pieces and blocks, agree to the bit.
                     set.write_seam_points(mesh, p, d, &mut b.pos);

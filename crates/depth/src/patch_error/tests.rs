@@ -9,9 +9,9 @@ const CUBE: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 
 #[test]
 fn deviations_fall_with_depth_and_match_a_dense_check() {
     let mesh = Mesh::from_soup(&parse_obj(CUBE).unwrap()).unwrap();
-    let asm = Assembler::new(&mesh, 3).unwrap();
+    let set = PatchSet::new(&mesh).unwrap();
     let tolerance = 2f32.to_radians();
-    let e = patch_errors(&mesh, &asm, 3, tolerance);
+    let e = patch_errors(&mesh, &set, 3, tolerance);
     assert!(e.closed);
     assert_eq!(e.shading_tolerance, tolerance);
     for f in &e.faces {
@@ -71,8 +71,8 @@ fn open_meshes_are_not_closed_and_cones_merge() {
     let quad =
         Mesh::from_soup(&parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap())
             .unwrap();
-    let asm = Assembler::new(&quad, 2).unwrap();
-    let e = patch_errors(&quad, &asm, 2, 0.5f32.to_radians());
+    let set = PatchSet::new(&quad).unwrap();
+    let e = patch_errors(&quad, &set, 2, 0.5f32.to_radians());
     assert!(!e.closed);
     // A flat quad: the limit surface lies in the quad's plane; what remains is where its
     // outline leaves the chord triangles (a real gap on screen), falling with depth; the

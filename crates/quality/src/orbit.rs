@@ -3,7 +3,7 @@
 use std::f32::consts::TAU;
 
 use glam::{Quat, Vec3};
-use subdiv_mesh::Camera;
+use subdiv::mesh::Camera;
 
 /// `n` cameras evenly around `base.up` through `base.target`: camera `k` is `base` with its eye
 /// turned by `k · 360° / n` about that axis. Distance to the target, elevation over the plane
@@ -12,7 +12,7 @@ use subdiv_mesh::Camera;
 /// and walks around the model's `U` axis.
 ///
 /// ```
-/// use subdiv::quality::orbit_cameras;
+/// use subdiv_quality::orbit_cameras;
 /// use subdiv::mesh::{Camera, glam::Vec3};
 /// let base = Camera::new(Vec3::new(2.0, 1.0, 0.0), Vec3::ZERO, Vec3::Y, 45.0, 64, 48);
 /// let cams = orbit_cameras(&base, 4);

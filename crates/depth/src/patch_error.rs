@@ -1,17 +1,18 @@
-//! What the pixel-error mode measures once per cage ([`subdiv_depth::PatchErrors`]): for every
-//! cage face and depth, how far the triangles drawn at that depth stray from the limit surface
-//! and where the normals interpolated across them turn further than the shading tolerance from
-//! the limit normals (per area element, [`subdiv_depth::ShadingError`]), and a cone bounding the
-//! face's limit normals.
+//! What the pixel-error mode measures once per cage ([`PatchErrors`]): for every cage face and
+//! depth, how far the triangles drawn at that depth stray from the limit surface and where the
+//! normals interpolated across them turn further than the shading tolerance from the limit
+//! normals (per area element, [`ShadingError`]), and a cone bounding the face's limit normals.
+//! The patches are the slates' (Settgast et al. 2004, Section 3.2: [`PatchGrids`] tessellates
+//! each on its own), sampled [`SAMPLE_LEVELS`] deeper than the deepest drawn depth.
 
 use std::cell::RefCell;
 
 use glam::Vec3;
 use rayon::prelude::*;
-use subdiv_depth::{AreaElement, NormalCone, PatchError, PatchErrors, ShadingError};
 use subdiv_mesh::{FaceId, Mesh};
-use subdiv_slate::{Depth, MAX_DEPTH, thread_worker};
-use subdiv_stitch::Assembler;
+use subdiv_slate::{Depth, MAX_DEPTH, PatchGrids, PatchSet};
+
+use crate::{AreaElement, NormalCone, PatchError, PatchErrors, ShadingError};
 
 /// Levels beyond the deepest drawn depth at which the limit surface is sampled: at `+2` every
 /// drawn quad of the deepest depth holds a 5 × 5 grid of samples (corners, edge quarter points,
@@ -21,10 +22,10 @@ pub const SAMPLE_LEVELS: Depth = 2;
 
 /// Area elements per side of a patch (at most one per sample cell): 4 × 4 per patch, small
 /// enough that the view changes little across one (its projected-area density is taken at its
-/// centre, [`subdiv_depth::ScreenArea::density`]), few enough to weigh per frame.
+/// centre, [`crate::ScreenArea::density`]), few enough to weigh per frame.
 pub const ELEMENTS_PER_SIDE: usize = 4;
 
-/// Measures, for each cage face and depth `l <= max_depth`, the largest distance between the
+/// Measures, for each cage face of `mesh` (whose patches are `set`) and depth `l <= max_depth`, the largest distance between the
 /// limit surface and the triangles drawn at depth `l` (each grid quad split along its
 /// `(i, j)`–`(i + 1, j + 1)` diagonal, as `subdiv-stitch` draws it; the gap along the limit
 /// normal, or the whole gap near the cage's boundary and holes, see `Grid::triangle_deviation`)
@@ -35,11 +36,10 @@ pub const ELEMENTS_PER_SIDE: usize = 4;
 /// samples (normals between samples lean no further than that for a smooth patch).
 pub fn patch_errors(
     mesh: &Mesh,
-    asm: &Assembler,
+    set: &PatchSet,
     max_depth: Depth,
     shading_tolerance: f32,
 ) -> PatchErrors {
-    let set = asm.patch_set();
     let fine = (max_depth + SAMPLE_LEVELS).min(MAX_DEPTH);
     let depths = max_depth as usize + 1;
     // Footprint scales: blocks of 1, 2, 4, ... fine cells up to a quad patch's element.
@@ -51,18 +51,18 @@ pub fn patch_errors(
             || {
                 let buffers = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
                 (
-                    thread_worker(fine),
+                    PatchGrids::new(mesh, set, fine),
                     buffers,
                     RefCell::new(Scratch::default()),
                 )
             },
-            |(w, (pos, nrm, shade, sided), scratch), p| {
+            |(grids, (pos, nrm, shade, sided), scratch), p| {
                 // Level-1 patches are one level coarser than their face.
                 let l_fine = fine - p.level;
                 let n = 1usize << l_fine;
                 pos.resize((n + 1) * (n + 1), [0.0f32; 3]);
                 nrm.resize((n + 1) * (n + 1), [0.0f32; 3]);
-                w.patch_grid_sided(set.source(mesh, p), p.src_face, l_fine, pos, nrm, sided);
+                grids.grid(p, l_fine, pos, nrm, sided);
                 // What the renderer shades this patch with: its own side's normal on creases.
                 shade.clone_from(nrm);
                 for &(k, q) in sided.iter() {

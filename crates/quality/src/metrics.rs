@@ -82,7 +82,7 @@ pub fn area_coverage(
 /// Compares candidate and reference coverage masks and normals (row-major, `width × height`).
 ///
 /// ```
-/// use subdiv::quality::compare_frames;
+/// use subdiv_quality::compare_frames;
 /// let (w, h) = (8, 8);
 /// // Reference: the left half covered; candidate: one column more.
 /// let reference: Vec<bool> = (0..w * h).map(|i| i % w < 4).collect();

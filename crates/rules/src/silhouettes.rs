@@ -1,8 +1,11 @@
 //! Silhouette extraction on a tessellation: the edges between faces that face the eye and faces
-//! that face away, as line segments for the renderer.
+//! that face away, as line segments for the renderer (the silhouette edges of Isenberg et al.
+//! 2003, eq. 2, on the drawn surface), and the contours (those plus the boundary edges) that
+//! the image-quality measurement compares.
 
 use glam::Vec3;
-use subdiv_rules::LimitMesh;
+
+use crate::LimitMesh;
 
 /// Silhouette extraction: an interior edge is a silhouette edge when one of its two faces faces
 /// the eye and the other faces away. A face's normal is the mean of its vertices' limit normals
@@ -90,11 +93,11 @@ impl Silhouettes {
 }
 
 #[cfg(test)]
-pub(crate) mod tests {
+mod tests {
     use super::*;
 
     /// A unit cube as six quads (CCW seen from outside) with outward face normals at the corners.
-    pub(crate) fn cube() -> LimitMesh {
+    fn cube() -> LimitMesh {
         let positions: Vec<[f32; 3]> = (0..8)
             .map(|i| {
                 [

@@ -13,8 +13,8 @@ mod common;
 use common::{cages, renderer};
 use glam::Vec3;
 use subdiv::mesh::{Camera, ReadOptions, read_obj_with};
-use subdiv::quality::{Config, QualityParams, QualityRun, orbit_cameras};
 use subdiv::rules::Scheme;
+use subdiv_quality::{Config, QualityParams, QualityRun, orbit_cameras};
 
 /// Pixel errors checked; P = 4 lets most patches of these small images drop to depth 0–1.
 const PIXEL_ERRORS: [f32; 4] = [0.5, 1.0, 2.0, 4.0];

@@ -54,7 +54,7 @@ pub fn line_pixels(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::quality::metrics::{compare_with_distance, silhouette_distance};
+    use crate::metrics::{compare_with_distance, silhouette_distance};
 
     /// A crease down the middle of a covered square: the two columns beside it are line pixels
     /// above the crease's turn and none below; uncovered neighbours never make one; the errors

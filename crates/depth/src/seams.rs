@@ -4,21 +4,20 @@
 //! OpenSubdiv refines it): every piece has its own copy of a non-manifold edge, an infinitely
 //! sharp edge whose vertices coincide with the other copies'. Depth assignment and the stitch
 //! fans join depths only within one piece, so faces of different depths on the copies would
-//! put 2^depth segments each on the one edge of the surface: T-junctions, a crack (issue 13
-//! item 6). An infinitely sharp edge's limit curve depends only on its crease points (Settgast
-//! et al. 2004, Section 3.3; the crease rules of DeRose et al. 1998), so copies drawn at the
+//! put 2^depth segments each on the one edge of the surface: T-junctions, a crack. An
+//! infinitely sharp edge's limit curve depends only on its crease points (Settgast et al. 2004,
+//! Section 3.3; the crease rules of DeRose et al. 1998), so copies drawn at the
 //! same depth give the same points, to the bit since the tessellators write them from the
 //! chain (`subdiv_rules::SeamCurves`); [`Seams::raise`] draws every face on the copies of one
 //! edge at the largest of their depths, after assignment and before stitching.
 
 use subdiv_mesh::{FaceId, Mesh};
-use subdiv_rules::SeamCurves;
-use subdiv_slate::Depth;
+use subdiv_rules::{Depth, SeamCurves};
 
 /// The faces on each group of coincident, infinitely sharp cage edges (the copies of one
 /// non-manifold edge); empty for a manifold cage.
 #[derive(Debug, Default, Clone)]
-pub(crate) struct Seams {
+pub struct Seams {
     groups: Vec<Vec<FaceId>>,
 }
 
@@ -26,7 +25,7 @@ impl Seams {
     /// The faces on each of `mesh`'s seams (`subdiv_rules::SeamCurves::groups`: infinitely
     /// sharp edges grouped by their end points' bits, as the copies of a non-manifold edge
     /// coincide); keeps the groups with two or more faces.
-    pub(crate) fn new(mesh: &Mesh) -> Seams {
+    pub fn new(mesh: &Mesh) -> Seams {
         let mut groups: Vec<Vec<FaceId>> = SeamCurves::new(mesh)
             .groups()
             .iter()
@@ -49,12 +48,7 @@ impl Seams {
     /// counts as at least `min_depth(face)` (the stitcher's smallest depth for it: 1 for a
     /// face tessellated through its level-1 quads), so that the stitcher's clamp leaves the
     /// group at one depth.
-    pub(crate) fn raise(
-        &self,
-        depth: &mut [Depth],
-        active: &[bool],
-        min_depth: impl Fn(usize) -> Depth,
-    ) {
+    pub fn raise(&self, depth: &mut [Depth], active: &[bool], min_depth: impl Fn(usize) -> Depth) {
         let mut changed = !self.groups.is_empty();
         while changed {
             changed = false;

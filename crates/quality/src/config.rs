@@ -4,12 +4,12 @@
 
 use std::fmt;
 
-use subdiv_depth::{DEFAULT_SHADING_ERROR_DEG, DepthParams};
-use subdiv_rules::{Depth, MAX_DEPTH};
-use subdiv_stitch::{AssemblyError, MAX_ADAPTIVE_DEPTH};
-use subdiv_vk::VkError;
+use subdiv::depth::{DEFAULT_MAX_DEPTH, DEFAULT_SHADING_ERROR_DEG, DepthParams};
+use subdiv::rules::{Depth, MAX_DEPTH};
+use subdiv::stitch::{AssemblyError, MAX_ADAPTIVE_DEPTH};
+use subdiv::vk::VkError;
 
-use crate::SceneError;
+use subdiv::SceneError;
 
 /// One tessellation configuration of the comparison.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -128,7 +128,7 @@ impl Default for QualityParams {
     fn default() -> Self {
         QualityParams {
             size: [800, 600],
-            max_depth: 5,
+            max_depth: DEFAULT_MAX_DEPTH,
             reference_depth: None,
             timing_runs: 3,
             shading_error_deg: DEFAULT_SHADING_ERROR_DEG,

@@ -1,7 +1,7 @@
 //! The shading bound of the pixel-error mode against the true surface: with
 //! `--pixel-error P --shading-error DEG`, over the pixels off the reference's *line pixels*
 //! (where the true normal turns by more than DEG to a neighbouring pixel: crease lines, folds
-//! and strips narrower than a pixel, `subdiv::quality::line_pixels`), the 99th percentile of
+//! and strips narrower than a pixel, `subdiv_quality::line_pixels`), the 99th percentile of
 //! the angle between drawn and true normals (`shading_deg_p99_off_lines`) stays within
 //! `DEG + MARGIN_DEG` — or, where even the deepest depth drawn everywhere leaves more, within
 //! what that uniform tessellation reaches plus `MARGIN_DEG` — and the silhouette within
@@ -22,7 +22,7 @@ mod common;
 use common::{cages, renderer};
 use glam::Vec3;
 use subdiv::mesh::{Camera, ReadOptions, read_obj_with};
-use subdiv::quality::{Config, QualityParams, QualityRun, orbit_cameras};
+use subdiv_quality::{Config, QualityParams, QualityRun, orbit_cameras};
 
 /// Shading tolerances checked (degrees): the default and a stricter one.
 const TOLERANCES: [f32; 2] = [subdiv::depth::DEFAULT_SHADING_ERROR_DEG, 5.0];

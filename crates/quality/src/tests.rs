@@ -2,8 +2,8 @@
 //! `SUBDIV_VK_REQUIRE_DRIVER=1`), and the parameter checks (no driver needed).
 
 use glam::Vec3;
-use subdiv_mesh::{Camera, Mesh, parse_obj};
-use subdiv_vk::{ContextOptions, Renderer, Validation, VkError};
+use subdiv::mesh::{Camera, Mesh, parse_obj};
+use subdiv::vk::{ContextOptions, Renderer, Validation, VkError};
 
 use super::*;
 
@@ -167,7 +167,7 @@ fn curvature_configurations_name_and_apply_their_parameters() {
             d.cone_aperture_deg, d.classifier_eps
         )
     );
-    let base = subdiv_depth::DepthParams {
+    let base = subdiv::depth::DepthParams {
         max_depth: 3,
         ..Default::default()
     };

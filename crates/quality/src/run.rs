@@ -4,10 +4,10 @@
 
 use std::time::Instant;
 
-use subdiv_depth::DepthParams;
-use subdiv_mesh::{Camera, Mesh};
-use subdiv_rules::{Scheme, VertexScalar};
-use subdiv_vk::{RenderMesh, RenderOptions, Renderer, View, VkError};
+use subdiv::depth::DepthParams;
+use subdiv::mesh::{Camera, Mesh};
+use subdiv::rules::{Scheme, VertexScalar};
+use subdiv::vk::{RenderMesh, RenderOptions, Renderer, View, VkError};
 
 use super::config::{Config, ConfigQuality, QualityError, QualityParams};
 use super::lines::line_pixels;
@@ -15,7 +15,7 @@ use super::metrics::{
     FrameErrors, SUPERSAMPLE, area_coverage, compare_with_distance, quantile,
     sample_silhouette_distance,
 };
-use crate::{DynamicSubdivision, Scene, uniform_limit, view_for};
+use subdiv::{DynamicSubdivision, Scene, uniform_limit, view_for};
 
 /// The reference render of one camera.
 struct ReferenceFrame {
@@ -87,7 +87,7 @@ fn render_options() -> RenderOptions {
 /// cage's bounds). (`no_run`: rendering needs a Vulkan driver.)
 ///
 /// ```no_run
-/// use subdiv::quality::{Config, QualityParams, QualityRun, orbit_cameras};
+/// use subdiv_quality::{Config, QualityParams, QualityRun, orbit_cameras};
 /// use subdiv::mesh::{Camera, read_obj, glam::Vec3};
 /// use subdiv::vk::Renderer;
 /// let cage = read_obj("fixtures/reference/shapes/catmark_pawn.obj")?;
@@ -375,7 +375,7 @@ impl<'a> QualityRun<'a> {
     }
 }
 
-/// Every contour of `scene` seen by `camera` ([`crate::Silhouettes::contours_into`]: silhouette
+/// Every contour of `scene` seen by `camera` ([`subdiv::rules::Silhouettes::contours_into`]: silhouette
 /// and boundary edges, hidden or not), projected to pixels; segments reaching behind the eye are
 /// left out.
 fn projected_contours(scene: &Scene, camera: &Camera) -> Vec<[[f32; 2]; 2]> {

@@ -1,19 +1,20 @@
-//! What the pixel-error mode measures once per Loop cage ([`subdiv_depth::PatchErrors`]), as
+//! What the pixel-error mode measures once per Loop cage ([`PatchErrors`]), as
 //! [`crate::patch_errors`] does for Catmull-Clark: for every triangle patch and depth, how far
 //! the lattice triangles drawn at that depth stray from the limit surface, where the normals
 //! interpolated across them turn further than the shading tolerance from the limit normals (per
-//! area element, [`subdiv_depth::ShadingError`]), and a cone bounding the patch's limit normals.
+//! area element, [`ShadingError`]), and a cone bounding the patch's limit normals. The patches
+//! are the triangular slates' lattices ([`tri_patch_lattice`]).
 
 use glam::Vec3;
 use rayon::prelude::*;
-use subdiv_depth::{AreaElement, NormalCone, PatchError, PatchErrors, ShadingError};
 use subdiv_mesh::{FaceId, Mesh};
-use subdiv_slate::{Depth, MAX_DEPTH, tri_lattice_index, tri_patch_lattice};
-use subdiv_stitch::TriAssembler;
+use subdiv_slate::{Depth, MAX_DEPTH, TriLayout, tri_lattice_index, tri_patch_lattice};
 
 use crate::patch_error::{ELEMENTS_PER_SIDE, SAMPLE_LEVELS, Scratch, touches_outline};
+use crate::{AreaElement, NormalCone, PatchError, PatchErrors, ShadingError};
 
-/// [`crate::patch_errors`] for a Loop cage: per triangle and depth `l <= max_depth`, the
+/// [`crate::patch_errors`] for a Loop cage (`layout`: its triangular slates' layout, any depth):
+/// per triangle and depth `l <= max_depth`, the
 /// largest distance between the limit surface and the lattice triangles drawn at depth `l`
 /// (the gap along the limit normal, or the whole gap near the boundary and holes) and, per area
 /// element, the world area where the angle between limit and interpolated normals exceeds
@@ -22,11 +23,10 @@ use crate::patch_error::{ELEMENTS_PER_SIDE, SAMPLE_LEVELS, Scratch, touches_outl
 /// normals, widened by the largest angle between neighbouring samples.
 pub fn patch_errors_loop(
     mesh: &Mesh,
-    asm: &TriAssembler,
+    layout: &TriLayout,
     max_depth: Depth,
     shading_tolerance: f32,
 ) -> PatchErrors {
-    let layout = asm.layout();
     let fine = (max_depth + SAMPLE_LEVELS).min(MAX_DEPTH);
     // Footprint scales: blocks of 1, 2, 4, ... fine cells up to an element, as for quads.
     let scales = (fine as usize).saturating_sub(1).max(1);
@@ -319,16 +319,15 @@ mod tests {
     #[test]
     fn deviations_fall_with_depth_and_bound_a_dense_check() {
         let mesh = fixture("loop_icosahedron");
-        let asm = TriAssembler::new(&mesh, 3).unwrap();
-        let e = patch_errors_loop(&mesh, &asm, 3, 2f32.to_radians());
+        let layout = TriLayout::new(&mesh, 1).unwrap();
+        let e = patch_errors_loop(&mesh, &layout, 3, 2f32.to_radians());
         assert!(e.closed);
         assert_eq!(e.faces.len(), mesh.num_faces());
         // Depth-l lattice points against the depth-(l + 2) limit points of the same patch:
         // the measured deviation is the largest such gap.
-        let layout = asm.layout();
         let (mut pos, mut nrm, mut sided) = (Vec::new(), Vec::new(), Vec::new());
         let p = &layout.patches()[0];
-        tri_patch_lattice(&mesh, layout, p, 5, &mut pos, &mut nrm, &mut sided);
+        tri_patch_lattice(&mesh, &layout, p, 5, &mut pos, &mut nrm, &mut sided);
         for f in &e.faces {
             let d = &f.deviation;
             assert_eq!(d.len(), 4);
@@ -372,8 +371,8 @@ mod tests {
             &parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n").unwrap(),
         )
         .unwrap();
-        let asm = TriAssembler::new(&mesh, 2).unwrap();
-        let e = patch_errors_loop(&mesh, &asm, 2, 2f32.to_radians());
+        let layout = TriLayout::new(&mesh, 1).unwrap();
+        let e = patch_errors_loop(&mesh, &layout, 2, 2f32.to_radians());
         assert!(!e.closed);
         for f in &e.faces {
             assert!(f.shading.outlier_area.iter().all(|&a| a == 0.0), "{f:?}");

@@ -3,7 +3,8 @@
 //! shaded with its own normal, so creases stay crisp without one-sided limit normals.
 
 use glam::Vec3;
-use subdiv_mesh::{HalfedgeId, Mesh};
+
+use crate::{HalfedgeId, Mesh, UnionFind, newell_normal};
 
 /// A corner whose normal is further than this from its face's normal (cosine) is shaded with
 /// the face normal: 45°, the rule smooth shading of creases used before the tessellators gave
@@ -11,21 +12,12 @@ use subdiv_mesh::{HalfedgeId, Mesh};
 /// crease there, tagged or not).
 const FLAT_COS: f32 = std::f32::consts::FRAC_1_SQRT_2;
 
-fn find(parent: &mut [u32], mut x: u32) -> u32 {
-    while parent[x as usize] != x {
-        let up = parent[parent[x as usize] as usize];
-        parent[x as usize] = up;
-        x = up;
-    }
-    x
-}
-
 /// The corners (index into `mesh.face_lists().1`, ascending) whose normal differs from the
 /// vertex normal in `vertex_normals`, with their normal: at a vertex with two or more sectors
 /// (bounded by edges of positive sharpness), the sector's normal (its faces' normals weighted
 /// by their angle at the vertex); and at any corner whose normal is over 45° from its face's
 /// normal, the face normal.
-pub(crate) fn sector_corner_normals(mesh: &Mesh, vertex_normals: &[Vec3]) -> Vec<(u32, [f32; 3])> {
+pub fn sector_corner_normals(mesh: &Mesh, vertex_normals: &[Vec3]) -> Vec<(u32, [f32; 3])> {
     let (offsets, verts) = mesh.face_lists();
     let nc = verts.len();
     // The corner at the start of each face half-edge.
@@ -40,13 +32,8 @@ pub(crate) fn sector_corner_normals(mesh: &Mesh, vertex_normals: &[Vec3]) -> Vec
             start[h.idx()] = c as u32;
             h = mesh.next(h);
         }
-        // Newell's sum about the first corner (small faces far from the origin stay exact).
         let p = |k: usize| pos[verts[k].idx()];
-        let o = p(s);
-        let n: Vec3 = (s + 1..e.saturating_sub(1))
-            .map(|k| (p(k) - o).cross(p(k + 1) - o))
-            .sum();
-        face_normal[f.idx()] = n.normalize_or_zero();
+        face_normal[f.idx()] = newell_normal((s..e).map(p));
         for (c, w) in weight.iter_mut().enumerate().take(e).skip(s) {
             let prev = if c == s { e - 1 } else { c - 1 };
             let next = if c + 1 == e { s } else { c + 1 };
@@ -54,7 +41,7 @@ pub(crate) fn sector_corner_normals(mesh: &Mesh, vertex_normals: &[Vec3]) -> Vec
         }
     }
     // Corners of one vertex joined across its smooth interior edges.
-    let mut parent: Vec<u32> = (0..nc as u32).collect();
+    let mut parent = UnionFind::new(nc);
     let mut any_sharp = false;
     for h in (0..mesh.num_halfedges() as u32).map(HalfedgeId) {
         let t = h.twin();
@@ -70,8 +57,7 @@ pub(crate) fn sector_corner_normals(mesh: &Mesh, vertex_normals: &[Vec3]) -> Vec
             (start[h.idx()], start[mesh.next(t).idx()]),
             (start[mesh.next(h).idx()], start[t.idx()]),
         ] {
-            let (x, y) = (find(&mut parent, x), find(&mut parent, y));
-            parent[x as usize] = y;
+            parent.union(x as usize, y as usize);
         }
     }
     let face_of = |c: usize| offsets.partition_point(|&o| o as usize <= c) - 1;
@@ -80,7 +66,7 @@ pub(crate) fn sector_corner_normals(mesh: &Mesh, vertex_normals: &[Vec3]) -> Vec
     let mut sectors = vec![0u32; mesh.num_vertices()];
     if any_sharp {
         for c in 0..nc {
-            let r = find(&mut parent, c as u32) as usize;
+            let r = parent.find(c);
             if r == c {
                 sectors[verts[c].idx()] += 1;
             }
@@ -95,7 +81,7 @@ pub(crate) fn sector_corner_normals(mesh: &Mesh, vertex_normals: &[Vec3]) -> Vec
             let mut n = vertex_normals[v];
             let mut own = false;
             if sectors[v] > 1 {
-                let s = sector[find(&mut parent, c as u32) as usize].normalize_or_zero();
+                let s = sector[parent.find(c)].normalize_or_zero();
                 if s != Vec3::ZERO {
                     (n, own) = (s, true);
                 }
@@ -114,7 +100,7 @@ pub(crate) fn sector_corner_normals(mesh: &Mesh, vertex_normals: &[Vec3]) -> Vec
 #[cfg(test)]
 mod tests {
     use super::*;
-    use subdiv_mesh::parse_obj;
+    use crate::parse_obj;
 
     /// A tent: two triangles each side of a sharp ridge, 30° slopes.
     fn tent(sharp: bool) -> Mesh {
@@ -131,7 +117,7 @@ mod tests {
     #[test]
     fn a_sharp_ridge_splits_into_its_two_planes() {
         let m = tent(true);
-        let vn = subdiv_mesh::vertex_normals(&m);
+        let vn = crate::vertex_normals(&m);
         let c = sector_corner_normals(&m, &vn);
         let (_, verts) = m.face_lists();
         // The ridge vertices (2, 3) have one corner per face: 2 faces each side, 2 vertices,
@@ -152,7 +138,7 @@ mod tests {
         }
         // Unmarked, the ridge (30° off each plane) is smooth.
         let m = tent(false);
-        let vn = subdiv_mesh::vertex_normals(&m);
+        let vn = crate::vertex_normals(&m);
         assert!(sector_corner_normals(&m, &vn).is_empty());
     }
 }
