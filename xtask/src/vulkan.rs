@@ -193,6 +193,11 @@ pub fn configure(cmd: &mut Command, root: &Path) {
     cmd.env("MESA_SHADER_CACHE_DIR", cache);
 }
 
+/// The variable that makes every Vulkan context of the tests demand the validation layer: the
+/// value of `subdiv_vk::REQUIRE_VALIDATION_ENV` (xtask depends on no workspace crate; a test of
+/// `xtask-tools` holds the two equal).
+pub const REQUIRE_VALIDATION_ENV: &str = "SUBDIV_VK_REQUIRE_VALIDATION";
+
 /// The Khronos validation layer's manifest (Debian package `vulkan-validationlayers`).
 pub const VALIDATION_LAYER_MANIFEST: &str =
     "/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json";

@@ -17,6 +17,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use anyhow::{Context, Result, bail};
+use xtask::osd::{INSTALL, osd_present};
+use xtask::vulkan::is_root;
 
 /// The cages of the benchmark, their scheme and depths: Catmull-Clark on all-quad cages, Loop on
 /// all-triangle cages (the stencil locations use ptex face = cage face). A cage outside the
@@ -36,33 +38,10 @@ const CAGES: &[(&str, &str, std::ops::RangeInclusive<u32>)] = &[
     ("fixtures/meshes/tri_bunny_3k.obj", "loop", 2..=5),
     ("../shared/meshes/tri_armadillo_52k.obj", "loop", 2..=3),
 ];
-const HEADER: &str = "/usr/include/opensubdiv/far/topologyRefiner.h";
 /// The C++ harness's compiler flags: as fast as the host allows, as the slates are (AVX2).
 pub const HARNESS_FLAGS: &[&str] = &["-O3", "-march=native", "-std=c++14"];
 /// Interleaved rounds per cage and depth (OpenSubdiv, then each subdiv configuration).
 const ROUNDS: usize = 3;
-pub const INSTALL: &str = "apt-get install -y libosd-dev";
-
-pub fn osd_present() -> bool {
-    Path::new(HEADER).exists()
-        && [
-            "/usr/lib/x86_64-linux-gnu",
-            "/usr/lib/aarch64-linux-gnu",
-            "/usr/lib",
-            "/usr/lib64",
-            "/usr/local/lib",
-        ]
-        .iter()
-        .any(|d| Path::new(d).join("libosdCPU.so").exists())
-}
-
-fn is_root() -> bool {
-    Command::new("id")
-        .arg("-u")
-        .output()
-        .is_ok_and(|o| String::from_utf8_lossy(&o.stdout).trim() == "0")
-}
-
 /// Runs `cmd` and returns its stdout; fails with its stderr when it fails.
 pub fn output(cmd: &mut Command) -> Result<String> {
     let shown = format!("{cmd:?}");
@@ -193,8 +172,9 @@ pub fn raw_header(root: &Path, command: &str) -> String {
     )
 }
 
-pub fn run(root: &Path) -> Result<()> {
-    let install = std::env::args().skip(2).any(|a| a == "--install");
+/// `bench-osd [--install]` (`args`: what follows `bench-osd`).
+pub fn run(root: &Path, args: &[String]) -> Result<()> {
+    let install = args.iter().any(|a| a == "--install");
     if !osd_present() {
         if install && is_root() {
             let cmd = format!("apt-get update && {INSTALL}");
@@ -214,10 +194,10 @@ pub fn run(root: &Path) -> Result<()> {
             );
         }
     }
-    let target = crate::target_dir();
+    let target = xtask::target_dir();
     let osd = build_program(root, &target)?;
-    crate::run({
-        let mut c = crate::cargo();
+    xtask::run({
+        let mut c = xtask::cargo();
         c.args(["build", "--release", "-p", "subdiv-cli"]);
         c
     })?;

@@ -224,7 +224,7 @@ const FONT: &str = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 pub(crate) fn register_font() -> Result<()> {
     if !Path::new(FONT).exists() {
         let cmd = "apt-get update && apt-get install -y fonts-dejavu-core";
-        if !crate::vulkan::is_root() {
+        if !xtask::vulkan::is_root() {
             bail!(
                 "the plots need the DejaVu Sans font ({FONT}). Install it with:\n    sudo sh -c '{cmd}'\nthen run this command again"
             );

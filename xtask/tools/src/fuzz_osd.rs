@@ -35,7 +35,7 @@ use subdiv_tests::osd_compare::{Tessellator, compare};
 use subdiv_tests::osd_fvar::{cage_obj_with_uvs, compare_fvar, compare_fvar_values, parse_fvar};
 use subdiv_tests::osd_gen::{Draw, draw_cage};
 
-use crate::bench_osd::{INSTALL, osd_present};
+use xtask::osd::{INSTALL, osd_present};
 
 /// Normal tolerance (degrees) where the surface is smooth.
 const NORMAL_DEG: f64 = 0.05;
@@ -164,23 +164,7 @@ pub fn command(root: &Path, o: &Options) -> Result<()> {
     Ok(())
 }
 
-/// Makes sure OpenSubdiv 3.5 (libosd-dev) is installed, installing it as root; `Err` says
-/// why it is not.
-pub fn ensure_osd() -> Result<(), String> {
-    let others = [
-        ("Fedora", "dnf install opensubdiv-devel"),
-        ("Arch", "pacman -S opensubdiv"),
-    ];
-    crate::vulkan::ensure_optional(
-        "OpenSubdiv 3.5 (libosd-dev)",
-        &["libosd-dev"],
-        &others,
-        &crate::vulkan::System,
-        &osd_present,
-    )
-}
-
-/// The short round of `cargo xtask test` (OpenSubdiv installed: see [`ensure_osd`]).
+/// The short round of `cargo xtask test` (OpenSubdiv installed: see `xtask::osd::ensure_osd`).
 pub fn short_round(root: &Path) -> Result<()> {
     let tally = run(root, &SHORT_ROUND)?;
     println!("{}", tally.line());
@@ -197,7 +181,7 @@ pub fn short_round(root: &Path) -> Result<()> {
 /// Compiles `xtask/osd/<name>.cpp` unless the binary is newer than its source.
 fn build_harness(root: &Path, name: &str) -> Result<PathBuf> {
     let src = root.join(format!("xtask/osd/{name}.cpp"));
-    let exe = crate::target_dir().join(format!("osd/{name}"));
+    let exe = xtask::target_dir().join(format!("osd/{name}"));
     let modified = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
     if modified(&exe).is_some_and(|e| modified(&src).is_some_and(|s| e >= s)) {
         return Ok(exe);
@@ -347,7 +331,7 @@ fn run(root: &Path, o: &Options) -> Result<Tally> {
         } else {
             None
         },
-        dir: crate::target_dir().join("fuzz-osd"),
+        dir: xtask::target_dir().join("fuzz-osd"),
         seed: o.seed,
     };
     std::fs::create_dir_all(&harness.dir)?;

@@ -6,16 +6,19 @@
 //! Mesa (mean NVIDIA FLIP error within the scene's [`Scene::flip`] threshold), or within a mean /
 //! 99th-percentile channel error with `--tolerance`. A mismatch writes
 //! `target/golden/<scene>.actual.png` and `<scene>.diff.png` and fails; `--bless` rewrites the
-//! goldens instead. See `docs/golden.md`.
+//! goldens instead. See `docs/golden.md`. FLIP (C++) is compiled only with the `flip` feature,
+//! which xtask enables when the comparison is perceptual; without it a perceptual comparison
+//! fails before rendering, naming the command.
 
 use std::path::Path;
 use std::process::Command;
 
 use anyhow::{Context, Result, bail};
+#[cfg(feature = "flip")]
 use image::RgbaImage;
 use subdiv_vk::golden::{self, Tolerance, Verdict};
 
-use crate::vulkan;
+use xtask::vulkan;
 
 /// One golden scene: `subdiv render INPUT ARGS --size 320x240 -o ...`.
 pub struct Scene {
@@ -27,6 +30,7 @@ pub struct Scene {
     pub args: &'static [&'static str],
     /// Largest mean FLIP error (0..1) accepted off the pinned Mesa ([`DEFAULT_FLIP`] unless the
     /// scene sets its own with [`Scene::flip`]).
+    #[cfg_attr(not(feature = "flip"), allow(dead_code))]
     pub flip: f32,
 }
 
@@ -194,7 +198,7 @@ fn parse_tolerance(s: &str) -> Result<Tolerance> {
 
 /// Renders and compares (or blesses) the scenes; fails when any scene does not match.
 pub fn run(root: &Path, options: &Options) -> Result<()> {
-    crate::step(if options.bless {
+    xtask::step(if options.bless {
         "golden images (blessing)"
     } else {
         "golden images"
@@ -202,7 +206,7 @@ pub fn run(root: &Path, options: &Options) -> Result<()> {
     vulkan::ensure_driver()?;
     let validation = Path::new(vulkan::VALIDATION_LAYER_MANIFEST).exists()
         || std::env::var(subdiv_vk::REQUIRE_VALIDATION_ENV).as_deref() == Ok("1");
-    let exe = crate::build_subdiv(false)?;
+    let exe = xtask::build_subdiv("dev")?;
     let mode = match options.mode {
         Mode::Auto => {
             let mesa = vulkan::mesa_version();
@@ -224,6 +228,12 @@ pub fn run(root: &Path, options: &Options) -> Result<()> {
         }
         m => m,
     };
+    if mode == Mode::Perceptual && !options.bless && !cfg!(feature = "flip") {
+        bail!(
+            "the perceptual comparison needs NVIDIA FLIP, and xtask-tools was built without its \
+             `flip` feature: run `cargo xtask golden` (which enables it when needed)"
+        );
+    }
     let rendered_dir = root.join("target/golden/rendered");
     std::fs::create_dir_all(&rendered_dir)
         .with_context(|| format!("cannot create {}", rendered_dir.display()))?;
@@ -247,6 +257,7 @@ pub fn run(root: &Path, options: &Options) -> Result<()> {
 }
 
 /// FLIP statistics of a render against its golden.
+#[cfg(feature = "flip")]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FlipStats {
     /// Mean FLIP error over all pixels (0 = identical, 1 = as different as can be).
@@ -257,6 +268,7 @@ pub struct FlipStats {
 
 /// Runs NVIDIA's FLIP on two images of the same size (alpha ignored; the renders are opaque) and
 /// returns the statistics and the error map coloured with the magma table.
+#[cfg(feature = "flip")]
 pub fn flip(actual: &RgbaImage, expected: &RgbaImage) -> (FlipStats, RgbaImage) {
     let rgb = |img: &RgbaImage| {
         let data: Vec<u8> = img.pixels().flat_map(|p| [p[0], p[1], p[2]]).collect();
@@ -287,6 +299,7 @@ pub fn flip(actual: &RgbaImage, expected: &RgbaImage) -> (FlipStats, RgbaImage) 
 /// Compares one scene perceptually (mean FLIP within [`Scene::flip`]); prints the verdict,
 /// writes `<scene>.actual.png` and the FLIP map as `<scene>.diff.png` on failure, and returns
 /// whether it passed.
+#[cfg(feature = "flip")]
 fn compare_perceptual(
     scene: &Scene,
     actual: &RgbaImage,
@@ -412,6 +425,7 @@ fn render_and_compare(
             });
             continue;
         }
+        #[cfg(feature = "flip")]
         if mode == Mode::Perceptual {
             if !bar.suspend(|| compare_perceptual(scene, &actual, &expected, &out_dir))? {
                 failed.push(scene.name.to_string());
@@ -519,6 +533,7 @@ mod tests {
     }
 
     /// Like a render: a flat background and a shaded object (a smooth gradient) at `shift`.
+    #[cfg(feature = "flip")]
     fn picture(shift: u32) -> RgbaImage {
         RgbaImage::from_fn(160, 120, |x, y| {
             let inside = (50 + shift..110 + shift).contains(&x) && (30..90).contains(&y);
@@ -533,6 +548,7 @@ mod tests {
 
     /// `picture(0)` with the object's red and green raised by 1 on every `every`-th pixel
     /// (shading rounding as another Mesa/LLVM version gives it).
+    #[cfg(feature = "flip")]
     fn rounded(every: usize) -> RgbaImage {
         let mut n = picture(0);
         for (i, p) in n.pixels_mut().enumerate() {
@@ -544,6 +560,8 @@ mod tests {
         n
     }
 
+    /// With the `flip` feature: `cargo test -p xtask-tools --features flip`.
+    #[cfg(feature = "flip")]
     #[test]
     fn flip_tells_noise_from_a_change() {
         let a = picture(0);

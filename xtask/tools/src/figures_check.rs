@@ -20,7 +20,7 @@ pub fn section<'a>(doc: &'a str, begin: &str, end: &str) -> Option<&'a str> {
 }
 
 fn root() -> PathBuf {
-    crate::root()
+    xtask::root()
 }
 
 /// The first line where `want` (generated) and `got` (the document) differ, as an error.
