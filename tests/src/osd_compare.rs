@@ -23,7 +23,7 @@ pub enum Tessellator {
     /// `subdiv_rules::tessellate_uniform` (the whole-mesh path; Catmull-Clark and Loop).
     Uniform,
     /// The slate tessellators: `subdiv_slate::tessellate` (Catmull-Clark) or
-    /// `subdiv_slate::tessellate_loop` (Loop), by the reference's scheme.
+    /// `subdiv_slate::tessellate_tri` (Loop), by the reference's scheme.
     Slate,
 }
 
@@ -60,7 +60,7 @@ pub fn compare(
     let t = match which {
         Tessellator::Slate => match scheme {
             Scheme::CatmullClark => subdiv_slate::tessellate(mesh, level),
-            Scheme::Loop => subdiv_slate::tessellate_loop(mesh, level),
+            Scheme::Loop => subdiv_slate::tessellate_tri(mesh, level),
         }
         .map_err(|e| e.to_string())?,
         Tessellator::Uniform => {

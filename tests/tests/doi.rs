@@ -11,8 +11,8 @@ use subdiv_doi::{
     Silhouette, ViewAngle, closest_surface_point, clough_tocher_patches, face_values,
     plane_crossing, silhouette_distance, silhouette_segments,
 };
-use subdiv_loop::LoopError;
 use subdiv_mesh::{Camera, Mesh, MeshError, ReadOptions, read_obj_with, triangulate};
+use subdiv_redgreen::RedGreenError;
 use subdiv_rules::{Scheme, refine_uniform_levels};
 use subdiv_tests::fixtures;
 
@@ -301,7 +301,7 @@ fn quads_need_triangulation() {
     assert!(
         matches!(
             e,
-            RefineError::Loop(LoopError::Mesh(MeshError::NotTriangles {
+            RefineError::RedGreen(RedGreenError::Mesh(MeshError::NotTriangles {
                 face: 0,
                 size: 4
             }))
@@ -423,7 +423,7 @@ fn quality(name: &str) -> (Vec<String>, bool) {
 #[test]
 fn triangle_quality_does_not_decay_over_steps() {
     // With level balancing, the green bisection bound and every vertex read at the level being
-    // refined (subdiv-loop), the smallest angle after five steps stays above half the input's,
+    // refined (subdiv-redgreen), the smallest angle after five steps stays above half the input's,
     // for every DoI. Without balancing it does not: the plain closure is checked to decay, so
     // this test can tell the two apart.
     let (failed, plain_decays) = quality("tri_bunny_3k.obj");
@@ -435,7 +435,7 @@ fn triangle_quality_does_not_decay_over_steps() {
 fn triangle_quality_on_the_teapot() {
     // The lip is a ring of strips 2.8 × 0.15 holding the cage's smallest angle (3.09°): the
     // bound holds only because green bisections of their small angles are refined red instead
-    // and every vertex is read at the level being refined (subdiv_loop::loop_step).
+    // and every vertex is read at the level being refined (subdiv_redgreen::loop_step).
     let (failed, plain_decays) = quality("tri_teapot.obj");
     assert!(failed.is_empty(), "{failed:#?}");
     assert!(plain_decays);

@@ -7,8 +7,8 @@ use glam::Vec3;
 use subdiv::depth::DepthParams;
 use subdiv::{DynamicSubdivision, RefineError, SceneError, uniform_limit};
 use subdiv_doi::{Aggregate, Dihedral, DoiContext};
-use subdiv_loop::Balance;
 use subdiv_mesh::{Camera, Mesh};
+use subdiv_redgreen::Balance;
 use subdiv_rules::budget::{Limit, estimate, machine_memory};
 use subdiv_rules::{Depth, OutputTooLarge, Request, RulesError, Scheme};
 use subdiv_slate::SlateError;
@@ -229,7 +229,7 @@ fn uniform_entry_points_refuse_beyond_memory() {
         }
         r => panic!("{:?}", r.map(|t| t.num_faces())),
     }
-    match subdiv_slate::tessellate_loop(&bunny, 12) {
+    match subdiv_slate::tessellate_tri(&bunny, 12) {
         Err(SlateError::OutputTooLarge(e)) => assert_memory(&e, lp, 3674),
         r => panic!("{:?}", r.map(|t| t.num_faces())),
     }

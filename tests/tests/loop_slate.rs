@@ -91,7 +91,7 @@ fn loop_slates_equal_whole_mesh_refinement() {
         let diag = (hi - lo).length() as f64;
         let deepest = if mesh.num_faces() > 1000 { 3 } else { 5 };
         for depth in 0..=deepest {
-            let s = subdiv_slate::tessellate_loop(&mesh, depth).unwrap();
+            let s = subdiv_slate::tessellate_tri(&mesh, depth).unwrap();
             let r = tessellate_uniform(&mesh, Scheme::Loop, depth).unwrap();
             match compare(&s, &r, 1e-6 * diag) {
                 Ok((e, deg)) => {
@@ -121,7 +121,7 @@ fn loop_slates_are_thread_count_independent() {
                 .num_threads(threads)
                 .build()
                 .unwrap()
-                .install(|| subdiv_slate::tessellate_loop(&mesh, depth).unwrap())
+                .install(|| subdiv_slate::tessellate_tri(&mesh, depth).unwrap())
         };
         let one = run(1);
         for threads in [2, 3, 8] {
@@ -139,7 +139,7 @@ fn loop_slates_are_thread_count_independent() {
 fn loop_slates_are_watertight() {
     for (name, mesh) in loop_cages() {
         let depth = if mesh.num_faces() > 1000 { 2 } else { 3 };
-        let t = subdiv_slate::tessellate_loop(&mesh, depth).unwrap();
+        let t = subdiv_slate::tessellate_tri(&mesh, depth).unwrap();
         let triangles: Vec<u32> = (0..t.num_faces())
             .flat_map(|i| t.face(i).to_vec())
             .collect();
@@ -169,7 +169,7 @@ fn loop_slates_follow_boundary_interpolation() {
         let (lo, hi) = mesh.bounds();
         let diag = (hi - lo).length() as f64;
         for depth in 0..=3 {
-            let s = subdiv_slate::tessellate_loop(&mesh, depth).unwrap();
+            let s = subdiv_slate::tessellate_tri(&mesh, depth).unwrap();
             let r = tessellate_uniform(&mesh, Scheme::Loop, depth).unwrap();
             assert!(s.num_faces() > 0 || k == 0);
             if let Err(e) = compare(&s, &r, 1e-6 * diag) {

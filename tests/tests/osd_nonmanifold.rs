@@ -70,7 +70,7 @@ fn seam_copies_agree_to_the_bit_in_the_uniform_slates() {
         }
         for depth in 0..=4u8 {
             let t = if name.contains("loop") {
-                subdiv_slate::tessellate_loop(&mesh, depth)
+                subdiv_slate::tessellate_tri(&mesh, depth)
             } else {
                 subdiv_slate::tessellate(&mesh, depth)
             }

@@ -3,7 +3,7 @@
 use glam::DVec3;
 use subdiv_mesh::{Mesh, MeshStats, ReadOptions, VertexId, read_obj_with};
 use subdiv_rules::{Scheme, refine_uniform_levels};
-use subdiv_stitch::{Assembler, FanMethod, AdaptiveFrame};
+use subdiv_stitch::{AdaptiveFrame, Assembler, FanMethod};
 use subdiv_test_support::{Rng, indexed_open_edges, shape};
 use subdiv_tests::PointGrid;
 
@@ -178,7 +178,11 @@ fn fixtures_shape(n: &str) -> std::path::PathBuf {
 /// Welds identical coordinates, then checks every edge has two triangles in opposite
 /// directions; returns the number of open (boundary) edges.
 fn welded_open_edges(name: &str, g: &AdaptiveFrame) -> usize {
-    subdiv_test_support::welded_open_edges(name, g.surface().positions(), g.surface().face_indices())
+    subdiv_test_support::welded_open_edges(
+        name,
+        g.surface().positions(),
+        g.surface().face_indices(),
+    )
 }
 
 #[test]

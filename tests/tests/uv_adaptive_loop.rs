@@ -64,7 +64,7 @@ fn uniform_loop_frames_carry_the_slate_uvs() {
         let mut asm = TriAssembler::new(&mesh, 3).unwrap();
         for d in 1..=3u8 {
             let g = frame(&mut asm, &mesh, &vec![d; mesh.num_faces()]);
-            let s = subdiv_slate::tessellate_loop(&mesh, d).unwrap();
+            let s = subdiv_slate::tessellate_tri(&mesh, d).unwrap();
             // Same triangles in the same order (face by face, lattice rows).
             assert_eq!(
                 g.surface().face_indices().len(),

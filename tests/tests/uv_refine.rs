@@ -1,4 +1,4 @@
-//! UVs through DoI-driven adaptive Loop refinement (`subdiv-loop`, what `subdiv refine` runs;
+//! UVs through DoI-driven adaptive Loop refinement (`subdiv-redgreen`, what `subdiv refine` runs;
 //! issue 16 item 3), on the UV cages (`fixtures/meshes/fvar/tri_seam.obj`, and `cube_uv`,
 //! `grid_seam`, `grid_seam_crease` triangulated) under every face-varying option:
 //! - with every face selected at every step the channel is exactly uniform Loop face-varying
@@ -11,8 +11,8 @@
 use std::collections::HashMap;
 
 use glam::{DVec3, Vec2, Vec3};
-use subdiv_loop::{AdaptiveMesh, Balance, loop_step_with};
 use subdiv_mesh::{FVarLinearInterpolation, FaceId, Mesh, VertexId, parse_obj, triangulate};
+use subdiv_redgreen::{AdaptiveMesh, Balance, loop_step_with};
 use subdiv_rules::{Scheme, refine_uniform};
 use subdiv_tests::osd_fvar::{compare_fvar, parse_fvar};
 use subdiv_tests::{PointGrid, fixtures};
@@ -94,7 +94,7 @@ fn every_face_selected_matches_opensubdiv() {
         let mut a = AdaptiveMesh::new(cage.clone()).unwrap();
         for level in 1..=3u8 {
             let all = vec![true; a.mesh.num_faces()];
-            a = subdiv_loop::loop_step(&a, &all).unwrap().0;
+            a = subdiv_redgreen::loop_step(&a, &all).unwrap().0;
             let file = format!(
                 "reference/fvar/tri_seam.loop.o{}.L{level}.txt",
                 option.tag()

@@ -37,7 +37,7 @@ fn uv_cages() -> Vec<(String, Mesh, Vec<Scheme>)> {
 fn slates(mesh: &Mesh, scheme: Scheme, depth: u8) -> LimitMesh {
     match scheme {
         Scheme::CatmullClark => subdiv_slate::tessellate(mesh, depth).unwrap(),
-        Scheme::Loop => subdiv_slate::tessellate_loop(mesh, depth).unwrap(),
+        Scheme::Loop => subdiv_slate::tessellate_tri(mesh, depth).unwrap(),
     }
 }
 

@@ -7,7 +7,7 @@ use std::time::Instant;
 use subdiv::rules::{Request, Scheme};
 use subdiv::slate::{
     PatchLayout, TriLayout, slate_bytes_per_thread, tessellate_layout, tessellate_layout_into,
-    tessellate_loop, tessellate_loop_layout_into, tri_slate_bytes_per_thread,
+    tessellate_tri, tessellate_tri_layout_into, tri_slate_bytes_per_thread,
 };
 
 use crate::choices::SchemeName;
@@ -168,7 +168,7 @@ fn bench_loop(
     let t0 = Instant::now();
     // Validates the cage (triangles, no doubled triangle) and warms the workers.
     let mut out = pool
-        .install(|| tessellate_loop(mesh, a.depth))
+        .install(|| tessellate_tri(mesh, a.depth))
         .map_err(|e| anyhow::anyhow!("{}: {e}", a.input.display()))?;
     let layout = TriLayout::new(mesh, a.depth)?;
     let setup = t0.elapsed().as_secs_f64();
@@ -179,7 +179,7 @@ fn bench_loop(
                 out.clear_faces();
             }
             let t = Instant::now();
-            tessellate_loop_layout_into(mesh, &layout, &mut out)?;
+            tessellate_tri_layout_into(mesh, &layout, &mut out)?;
             times.push(t.elapsed().as_secs_f64());
             std::hint::black_box(&out);
         }

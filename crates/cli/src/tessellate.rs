@@ -11,8 +11,8 @@ use subdiv::mesh::Mesh;
 use subdiv::rules::{Request, Scheme};
 use subdiv::stitch::AdaptiveFrame;
 use subdiv::{
-    DynamicSubdivision, OutputFormat, VertexScalar, depth_histogram, doi_face_depths,
-    make_doi, write_surface,
+    DynamicSubdivision, OutputFormat, VertexScalar, depth_histogram, doi_face_depths, make_doi,
+    write_surface,
 };
 
 use crate::adaptive_args::AdaptiveArgs;

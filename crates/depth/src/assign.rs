@@ -384,8 +384,13 @@ mod tests {
         for open in [false, true] {
             let mesh = cube(open);
             assert_eq!(mesh.is_closed(), !open);
-            let vd = VertexData::compute(&mesh, p.cone_aperture_deg, p.max_depth);
-            let spheres = crate::sphere::face_spheres(&mesh);
+            let vd = VertexData::compute(
+                &mesh,
+                subdiv_rules::Scheme::CatmullClark,
+                p.cone_aperture_deg,
+                p.max_depth,
+            );
+            let spheres = crate::sphere::face_spheres(&mesh, subdiv_rules::Scheme::CatmullClark);
             let a = assign(&mesh, &vd, &spheres, None, &camera, &p);
             let back: Vec<usize> = (0..a.depth.len())
                 .filter(|&f| a.class[f] == Class::Back)

@@ -20,32 +20,22 @@ pub struct VertexData {
 }
 
 impl VertexData {
-    /// Computes limit points, normals and curvature depths of all cage vertices for cone aperture
-    /// `aperture_deg` (the paper's `NormalConeAperture`), capped at `max_depth`.
+    /// Computes limit points, normals and curvature depths of all cage vertices of the limit surface of
+    /// `scheme` (its rings refined with its rules) for cone aperture `aperture_deg` (the paper's `NormalConeAperture`), capped at `max_depth`.
     ///
     /// ```
     /// use subdiv_mesh::{parse_obj, Mesh};
     /// use subdiv_depth::VertexData;
+    /// use subdiv_rules::Scheme;
     /// let cube = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
     ///             f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
     /// let mesh = Mesh::from_soup(&parse_obj(cube)?)?;
-    /// let v = VertexData::compute(&mesh, 20.0, 5);
+    /// let v = VertexData::compute(&mesh, Scheme::CatmullClark, 20.0, 5);
     /// // A cube's corners are strongly curved: they need a few levels for a 20 degree cone.
     /// assert!(v.depth.iter().all(|&d| d >= 2));
     /// # Ok::<(), subdiv_mesh::MeshError>(())
     /// ```
-    pub fn compute(mesh: &Mesh, aperture_deg: f32, max_depth: Depth) -> VertexData {
-        VertexData::compute_scheme(mesh, Scheme::CatmullClark, aperture_deg, max_depth)
-    }
-
-    /// [`VertexData::compute`] for the limit surface of `scheme`: the rings are refined with
-    /// its rules (Loop's for a Loop cage, whose patches are its triangles).
-    pub fn compute_scheme(
-        mesh: &Mesh,
-        scheme: Scheme,
-        aperture_deg: f32,
-        max_depth: Depth,
-    ) -> VertexData {
+    pub fn compute(mesh: &Mesh, scheme: Scheme, aperture_deg: f32, max_depth: Depth) -> VertexData {
         let cos_a = (aperture_deg.to_radians() as f64).cos();
         let per: Vec<(Vec3, Vec3, Depth)> = (0..mesh.num_vertices() as u32)
             .into_par_iter()
@@ -113,7 +103,7 @@ mod tests {
         let mesh = Mesh::from_soup(&subdiv_mesh::parse_obj(&text).unwrap()).unwrap();
         let v = VertexId(0);
         assert_eq!(mesh.valence(v), 2);
-        let data = VertexData::compute(&mesh, 20.0, 5);
+        let data = VertexData::compute(&mesh, Scheme::CatmullClark, 20.0, 5);
         assert_eq!(data.limit[0], mesh.position(v));
         let p = mesh.position(v);
         let e: Vec<Vec3> = mesh
@@ -139,7 +129,7 @@ mod tests {
         .unwrap();
         let mesh = Mesh::from_soup(&subdiv_mesh::parse_obj(&text).unwrap()).unwrap();
         let lim = subdiv_rules::tessellate_uniform(&mesh, Scheme::Loop, 0).unwrap();
-        let v = VertexData::compute_scheme(&mesh, Scheme::Loop, 10.0, 6);
+        let v = VertexData::compute(&mesh, Scheme::Loop, 10.0, 6);
         for (k, p) in v.limit.iter().enumerate() {
             let want = Vec3::from(lim.positions()[k]);
             assert!((*p - want).length() < 1e-5, "{p} vs {want}");
@@ -150,17 +140,22 @@ mod tests {
             "{:?}",
             v.depth
         );
-        let narrow = VertexData::compute_scheme(&mesh, Scheme::Loop, 2.0, 6);
+        let narrow = VertexData::compute(&mesh, Scheme::Loop, 2.0, 6);
         assert!(narrow.depth[0] > v.depth[0]);
         // Catmull-Clark rules on the same cage give other limit points.
-        let cc = VertexData::compute(&mesh, 10.0, 6);
+        let cc = VertexData::compute(&mesh, Scheme::CatmullClark, 10.0, 6);
         assert!((cc.limit[0] - v.limit[0]).length() > 1e-3);
     }
 
     #[test]
     fn curved_needs_more_depth_than_flat() {
-        let flat = VertexData::compute(&grid(6, |_, _| 0.0), 5.0, 6);
-        let bump = VertexData::compute(&grid(6, |x, y| 0.4 * (x * x + y * y)), 5.0, 6);
+        let flat = VertexData::compute(&grid(6, |_, _| 0.0), Scheme::CatmullClark, 5.0, 6);
+        let bump = VertexData::compute(
+            &grid(6, |x, y| 0.4 * (x * x + y * y)),
+            Scheme::CatmullClark,
+            5.0,
+            6,
+        );
         let centre = 3 * 7 + 3;
         assert_eq!(flat.depth[centre], 0);
         assert!(bump.depth[centre] == 0 || bump.depth.iter().max() > flat.depth.iter().max());
@@ -172,7 +167,12 @@ mod tests {
             bump.depth
         );
         // A wider cone never needs more depth.
-        let wide = VertexData::compute(&grid(6, |x, y| 0.4 * (x * x + y * y)), 30.0, 6);
+        let wide = VertexData::compute(
+            &grid(6, |x, y| 0.4 * (x * x + y * y)),
+            Scheme::CatmullClark,
+            30.0,
+            6,
+        );
         assert!(wide.depth.iter().zip(&bump.depth).all(|(w, n)| w <= n));
     }
 }

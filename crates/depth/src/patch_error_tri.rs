@@ -21,7 +21,7 @@ use crate::{AreaElement, NormalCone, PatchError, PatchErrors, ShadingError};
 /// `shading_tolerance` (radians), sampled on the patch's lattice at depth
 /// `max_depth + SAMPLE_LEVELS` (at most [`MAX_DEPTH`]); and a cone containing the patch's limit
 /// normals, widened by the largest angle between neighbouring samples.
-pub fn patch_errors_loop(
+pub fn patch_errors_tri(
     mesh: &Mesh,
     layout: &TriLayout,
     max_depth: Depth,
@@ -320,7 +320,7 @@ mod tests {
     fn deviations_fall_with_depth_and_bound_a_dense_check() {
         let mesh = fixture("loop_icosahedron");
         let layout = TriLayout::new(&mesh, 1).unwrap();
-        let e = patch_errors_loop(&mesh, &layout, 3, 2f32.to_radians());
+        let e = patch_errors_tri(&mesh, &layout, 3, 2f32.to_radians());
         assert!(e.closed);
         assert_eq!(e.faces.len(), mesh.num_faces());
         // Depth-l lattice points against the depth-(l + 2) limit points of the same patch:
@@ -372,7 +372,7 @@ mod tests {
         )
         .unwrap();
         let layout = TriLayout::new(&mesh, 1).unwrap();
-        let e = patch_errors_loop(&mesh, &layout, 2, 2f32.to_radians());
+        let e = patch_errors_tri(&mesh, &layout, 2, 2f32.to_radians());
         assert!(!e.closed);
         for f in &e.faces {
             assert!(f.shading.outlier_area.iter().all(|&a| a == 0.0), "{f:?}");

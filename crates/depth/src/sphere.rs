@@ -22,7 +22,7 @@
 //! crease, boundary and corner rules are Catmull-Clark's, and a triangle's children with their
 //! 1-neighbourhoods come from the triangle's own 1-neighbourhood (the triangles sharing a vertex
 //! with it, the premise of the triangular slates); its limit masks are positive too.
-//! [`face_spheres_scheme`] applies the argument to either scheme.
+//! [`face_spheres`] applies the argument to either scheme.
 //!
 //! Applied `k` levels down, the same argument bounds the patch by the union of the
 //! 1-neighbourhoods of its level-`k` descendants, which reaches only about `2^-k` of a face
@@ -51,17 +51,11 @@ pub const SPHERE_LEVELS: Depth = 2;
 /// mesh); larger cages use fewer levels, down to the cage's own 1-neighbourhoods.
 pub const SPHERE_FACE_BUDGET: u64 = 1 << 24;
 
-/// A sphere per cage face that provably contains the face's Catmull-Clark limit patch (see
-/// the module documentation): the smallest sphere around the centre of the bounding box of the
+/// A sphere per cage face that provably contains the face's limit patch of `scheme` (a Loop
+/// cage's triangles for [`Scheme::Loop`]; see the module documentation): the smallest sphere around the centre of the bounding box of the
 /// control points of the 1-neighbourhoods of the face's level-`k` descendants that contains
 /// them all, `k =` [`SPHERE_LEVELS`] (fewer for very large cages).
-pub fn face_spheres(mesh: &Mesh) -> Vec<Sphere> {
-    face_spheres_scheme(mesh, Scheme::CatmullClark)
-}
-
-/// [`face_spheres`] for the limit patches of `scheme` (a Loop cage's triangles for
-/// [`Scheme::Loop`]).
-pub fn face_spheres_scheme(mesh: &Mesh, scheme: Scheme) -> Vec<Sphere> {
+pub fn face_spheres(mesh: &Mesh, scheme: Scheme) -> Vec<Sphere> {
     for k in (1..=SPHERE_LEVELS).rev() {
         let faces = subdiv_rules::refined_face_count(mesh, scheme, k);
         if faces > SPHERE_FACE_BUDGET {
@@ -177,7 +171,7 @@ mod tests {
     fn spheres_contain_the_limit_surface() {
         let cube =
             Mesh::from_soup(&parse_obj(&subdiv_test_support::cube().obj()).unwrap()).unwrap();
-        let s = face_spheres(&cube);
+        let s = face_spheres(&cube, Scheme::CatmullClark);
         assert_contains(&cube, &s, 4);
         // Tight: well inside the unit cube's face circle grown by its 1-ring (radius 1.5).
         assert!(s.iter().all(|s| s.radius < 0.75), "{s:?}");
@@ -187,7 +181,7 @@ mod tests {
                     f 1 2 3\nf 1 3 4\nf 1 4 5\nf 1 5 6\nf 1 6 2\nf 2 8 7 3\nf 2 6 8\n\
                     t crease 2/1/0 0 1 1.5\nt crease 2/1/0 0 4 5\n";
         let m = Mesh::from_soup(&parse_obj(pent).unwrap()).unwrap();
-        let s = face_spheres(&m);
+        let s = face_spheres(&m, Scheme::CatmullClark);
         assert_contains(&m, &s, 4);
     }
 
@@ -204,7 +198,7 @@ mod tests {
             }
             let text = std::fs::read_to_string(&path).unwrap();
             let m = Mesh::from_soup(&parse_obj(&text).unwrap()).unwrap();
-            let s = face_spheres_scheme(&m, Scheme::Loop);
+            let s = face_spheres(&m, Scheme::Loop);
             assert_contains_scheme(&m, &s, 4, Scheme::Loop);
             seen += 1;
         }
@@ -218,7 +212,7 @@ mod tests {
         let identity: Vec<u32> = (0..6).collect();
         let coarse = hull_spheres(&cube, &identity, 6);
         assert_contains(&cube, &coarse, 4);
-        let fine = face_spheres(&cube);
+        let fine = face_spheres(&cube, Scheme::CatmullClark);
         assert!(coarse.iter().zip(&fine).all(|(c, f)| f.radius < c.radius));
     }
 }

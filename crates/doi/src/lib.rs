@@ -15,7 +15,7 @@
 //! - [`DoiKind`]: the DoIs a program chooses by name, the one home of those names.
 //!
 //! This crate computes interest values only. What is refined with them lives elsewhere:
-//! `subdiv-loop` refines a face selection adaptively, `subdiv-depth` maps face values to
+//! `subdiv-redgreen` refines a face selection adaptively, `subdiv-depth` maps face values to
 //! per-patch Catmull-Clark depths, and the `subdiv` front door wires a DoI to either
 //! (`subdiv::refine_adaptive`, `subdiv::Refiner`).
 //!

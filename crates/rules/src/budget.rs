@@ -37,7 +37,7 @@ pub enum Request {
         /// The deepest face depth.
         max_depth: Depth,
     },
-    /// DoI-driven adaptive Loop refinement by `steps` steps (`subdiv-loop`).
+    /// DoI-driven adaptive Loop refinement by `steps` steps (`subdiv-redgreen`).
     Refine {
         /// The number of steps.
         steps: u32,

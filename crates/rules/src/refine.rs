@@ -97,7 +97,7 @@ pub fn refine_uniform(mesh: &Mesh, scheme: Scheme) -> Result<Mesh, RulesError> {
 /// The one refinement kernel: the vertex and edge rules of one subdivision step applied to a
 /// mesh, with crease sharpness carried to the child mesh. Uniform refinement
 /// ([`refine_uniform`]) applies it to every vertex and edge; adaptive Loop refinement
-/// (`subdiv-loop`) to the vertices and edges its closure selects. Both therefore produce
+/// (`subdiv-redgreen`) to the vertices and edges its closure selects. Both therefore produce
 /// bit-identical points wherever they refine the same neighbourhood.
 ///
 /// Call [`RefineKernel::vertex_point`] for both ends of an edge before its

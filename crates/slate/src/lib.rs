@@ -50,7 +50,7 @@
 //!
 //! # Modules
 //!
-//! Loop runs on triangular slates by the same design (module `tri`, see [`tessellate_loop`]).
+//! Loop runs on triangular slates by the same design (module `tri`, see [`tessellate_tri`]).
 //!
 //! `table` (a slate's storage), `gather` (a patch's 1-neighbourhood into slate 0), `step` (one
 //! subdivision step), `limit` (limit points and normals; `wide` its interior loop eight points at a time), `worker` (a thread's slates and the
@@ -92,7 +92,7 @@ pub use tessellate::{
     tessellate_layout, tessellate_layout_into,
 };
 pub use tri::{
-    TriLayout, TriPatch, TriSide, tessellate_loop, tessellate_loop_layout_into, tri_lattice_index,
+    TriLayout, TriPatch, TriSide, tessellate_tri, tessellate_tri_layout_into, tri_lattice_index,
     tri_lattice_len, tri_patch_lattice, tri_slate_bytes_per_thread,
 };
 pub use uv::LevelUvs;

@@ -221,11 +221,11 @@ fn loop_lines() -> String {
             let mut hashes = Vec::new();
             for pool in &pools {
                 pool.install(|| {
-                    let t = subdiv_slate::tessellate_loop(&mesh, depth).expect("tessellation");
+                    let t = subdiv_slate::tessellate_tri(&mesh, depth).expect("tessellation");
                     hashes.push((hash(&t), t.positions().len()));
                     let layout = subdiv_slate::TriLayout::new(&mesh, depth).expect("layout");
                     let mut again = t.clone();
-                    subdiv_slate::tessellate_loop_layout_into(&mesh, &layout, &mut again)
+                    subdiv_slate::tessellate_tri_layout_into(&mesh, &layout, &mut again)
                         .expect("tessellation");
                     hashes.push((hash(&again), again.positions().len()));
                 });

@@ -1,12 +1,12 @@
 //! The faces of a slate tessellation are written once per layout and output
-//! (`tessellate_layout_into`, `tessellate_loop_layout_into`) and kept by the calls that follow
+//! (`tessellate_layout_into`, `tessellate_tri_layout_into`) and kept by the calls that follow
 //! with the same layout; every other case writes them. Each output is compared with a fresh
 //! tessellation of the same layout, so stale faces fail.
 
 use subdiv_mesh::{Mesh, read_obj};
 use subdiv_rules::LimitMesh;
 use subdiv_slate::{
-    PatchLayout, TriLayout, tessellate_layout, tessellate_layout_into, tessellate_loop_layout_into,
+    PatchLayout, TriLayout, tessellate_layout, tessellate_layout_into, tessellate_tri_layout_into,
 };
 
 fn shape(name: &str) -> Mesh {
@@ -24,9 +24,9 @@ fn quads_into(mesh: &Mesh, layout: &PatchLayout, out: &mut LimitMesh) -> bool {
 }
 
 fn tris_into(mesh: &Mesh, layout: &TriLayout, out: &mut LimitMesh) -> bool {
-    tessellate_loop_layout_into(mesh, layout, out).expect("tessellate");
+    tessellate_tri_layout_into(mesh, layout, out).expect("tessellate");
     let mut fresh = LimitMesh::default();
-    tessellate_loop_layout_into(mesh, layout, &mut fresh).expect("tessellate");
+    tessellate_tri_layout_into(mesh, layout, &mut fresh).expect("tessellate");
     assert!(fresh.topology_written());
     assert_eq!(*out, fresh, "the output differs from a fresh one");
     out.topology_written()

@@ -19,7 +19,7 @@
 //! through its one owner, so both sides of a border reference the same vertex; after welding
 //! equal coordinates every interior edge has exactly two triangles and the open edges are the
 //! cage's boundary. A freshly computed patch at depth `d` holds exactly the points of
-//! `tessellate_loop` at depth `d` that the uniform layout lets it own.
+//! `tessellate_tri` at depth `d` that the uniform layout lets it own.
 
 mod emit;
 

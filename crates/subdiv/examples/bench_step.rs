@@ -12,8 +12,8 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use subdiv_doi::{Aggregate, DoiContext, Silhouette, face_values, select};
-use subdiv_loop::{AdaptiveMesh, loop_step};
 use subdiv_mesh::{Camera, ReadOptions, glam::Vec3, read_obj_with};
+use subdiv_redgreen::{AdaptiveMesh, loop_step};
 use subdiv_rules::{Scheme, refine_uniform};
 
 /// The fastest run: on a shared machine the minimum is the least disturbed estimate.

@@ -8,7 +8,7 @@
 
 use subdiv_depth::{
     Assignment, DepthParams, FrameRateController, PatchErrors, Seams, Sphere, VertexData, assign,
-    face_spheres_scheme, patch_errors, patch_errors_loop,
+    face_spheres, patch_errors, patch_errors_tri,
 };
 use subdiv_mesh::{Camera, Mesh};
 use subdiv_rules::Scheme;
@@ -80,9 +80,8 @@ impl DynamicSubdivision {
         params: DepthParams,
     ) -> Result<DynamicSubdivision, AssemblyError> {
         let assembler = Stitcher::new(&mesh, scheme, params.max_depth)?;
-        let vertex =
-            VertexData::compute_scheme(&mesh, scheme, params.cone_aperture_deg, params.max_depth);
-        let spheres = face_spheres_scheme(&mesh, scheme);
+        let vertex = VertexData::compute(&mesh, scheme, params.cone_aperture_deg, params.max_depth);
+        let spheres = face_spheres(&mesh, scheme);
         let seams = Seams::new(&mesh);
         Ok(DynamicSubdivision {
             mesh,
@@ -123,13 +122,9 @@ impl DynamicSubdivision {
         }
         self.params = p;
         if recompute {
-            self.vertex = VertexData::compute_scheme(
-                &self.mesh,
-                self.scheme,
-                p.cone_aperture_deg,
-                p.max_depth,
-            );
-            self.spheres = face_spheres_scheme(&self.mesh, self.scheme);
+            self.vertex =
+                VertexData::compute(&self.mesh, self.scheme, p.cone_aperture_deg, p.max_depth);
+            self.spheres = face_spheres(&self.mesh, self.scheme);
         }
         if let Some(c) = &mut self.controller {
             let fps = c.target_fps();
@@ -151,13 +146,13 @@ impl DynamicSubdivision {
             return Err(AssemblyError::NonFinite { vertex: v as u32 });
         }
         self.mesh.positions_mut().copy_from_slice(positions);
-        self.vertex = VertexData::compute_scheme(
+        self.vertex = VertexData::compute(
             &self.mesh,
             self.scheme,
             self.params.cone_aperture_deg,
             self.params.max_depth,
         );
-        self.spheres = face_spheres_scheme(&self.mesh, self.scheme);
+        self.spheres = face_spheres(&self.mesh, self.scheme);
         self.seams = Seams::new(&self.mesh);
         self.errors = None;
         self.assembler = Stitcher::new(&self.mesh, self.scheme, self.params.max_depth)?;
@@ -331,7 +326,7 @@ impl DynamicSubdivision {
         let (mesh, max_depth) = (&self.mesh, self.params.max_depth);
         self.errors.get_or_insert_with(|| match &self.assembler {
             Stitcher::Quads(a) => patch_errors(mesh, a.patch_set(), max_depth, tolerance),
-            Stitcher::Tris(a) => patch_errors_loop(mesh, a.layout(), max_depth, tolerance),
+            Stitcher::Tris(a) => patch_errors_tri(mesh, a.layout(), max_depth, tolerance),
         })
     }
 }

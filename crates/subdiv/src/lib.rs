@@ -13,7 +13,7 @@
 //! | [`slate`] | per-patch two-slate tessellation |
 //! | [`depth`] | per-patch depths: curvature, classification, projected size, pixel error, frame-rate control |
 //! | [`stitch`] | gap-free fans between patch depths |
-//! | [`adaptive_loop`] | adaptive Loop refinement of a face selection, red-green closure |
+//! | [`redgreen`] | adaptive Loop refinement of a face selection, red-green closure |
 //! | [`doi`] | Degree-of-Interest functions |
 //! | [`vk`] | the Vulkan renderer (plain buffers) |
 //!
@@ -149,8 +149,8 @@ pub use subdiv_rules::{LimitMesh, VertexScalar};
 
 pub use subdiv_depth as depth;
 pub use subdiv_doi as doi;
-pub use subdiv_loop as adaptive_loop;
 pub use subdiv_mesh as mesh;
+pub use subdiv_redgreen as redgreen;
 pub use subdiv_rules as rules;
 pub use subdiv_slate as slate;
 pub use subdiv_stitch as stitch;

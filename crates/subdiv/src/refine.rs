@@ -1,12 +1,12 @@
 //! DoI-driven adaptive Loop subdivision (Isenberg, Hartmann & König 2003): a Degree of Interest
-//! from `subdiv-doi` chooses the faces, `subdiv-loop` refines them with red-green closure.
+//! from `subdiv-doi` chooses the faces, `subdiv-redgreen` refines them with red-green closure.
 
 use std::time::Instant;
 
 use subdiv_doi::{Aggregate, Doi, DoiContext, DoiError, face_values, select};
-pub use subdiv_loop::Balance;
-use subdiv_loop::{AdaptiveMesh, LoopError, StepStats, loop_step_with};
 use subdiv_mesh::Mesh;
+pub use subdiv_redgreen::Balance;
+use subdiv_redgreen::{AdaptiveMesh, RedGreenError, StepStats, loop_step_with};
 use thiserror::Error;
 
 /// What can go wrong in DoI-driven refinement.
@@ -17,7 +17,7 @@ pub enum RefineError {
     Doi(#[from] DoiError),
     /// The adaptive Loop step refused its input.
     #[error(transparent)]
-    Loop(#[from] LoopError),
+    RedGreen(#[from] RedGreenError),
     /// Every face refined at every step would not fit in this machine's memory: refused before
     /// the first step, with the size asked for ([`subdiv_rules::budget`]: an upper bound).
     #[error(transparent)]
@@ -59,7 +59,7 @@ pub struct Refined {
 
 /// Refines `mesh` adaptively (Isenberg, Hartmann & König 2003, §3): before every step the DoI is
 /// evaluated on the current mesh (with `ctx.step` and `ctx.steps` set), the faces above the
-/// threshold are selected, and one [`subdiv_loop::loop_step`] is taken. A refinement whose
+/// threshold are selected, and one [`subdiv_redgreen::loop_step`] is taken. A refinement whose
 /// bound (every face refined at every step: `4^steps` times the triangles) is beyond this
 /// machine's memory is refused first with [`RefineError::OutputTooLarge`].
 ///
@@ -110,12 +110,12 @@ pub fn refine_adaptive(
         select(&values, opts.threshold, &mut sel);
         let t1 = Instant::now();
         let (next, mut st) = loop_step_with(&cur, &sel, opts.balance).map_err(|e| match e {
-            LoopError::TooLarge { faces, limit } => RefineError::TooLarge {
+            RedGreenError::TooLarge { faces, limit } => RefineError::TooLarge {
                 step: s + 1,
                 faces,
                 limit,
             },
-            e => RefineError::Loop(e),
+            e => RefineError::RedGreen(e),
         })?;
         st.select_seconds = (t1 - t0).as_secs_f64();
         st.refine_seconds = t1.elapsed().as_secs_f64();
@@ -151,7 +151,7 @@ pub struct Refiner {
 impl Refiner {
     /// A refiner for `base` (a triangle mesh) with `doi`.
     pub fn new(base: Mesh, doi: Box<dyn Doi>, opts: RefineOptions) -> Result<Refiner, RefineError> {
-        base.check_triangles().map_err(LoopError::from)?;
+        base.check_triangles().map_err(RedGreenError::from)?;
         Ok(Refiner {
             base,
             doi,

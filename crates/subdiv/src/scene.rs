@@ -4,7 +4,9 @@
 
 use glam::Vec3;
 use subdiv_mesh::Mesh;
-use subdiv_rules::{Depth, LimitMesh, LimitMeshError, RulesError, Scheme, Silhouettes, VertexScalar};
+use subdiv_rules::{
+    Depth, LimitMesh, LimitMeshError, RulesError, Scheme, Silhouettes, VertexScalar,
+};
 use subdiv_slate::SlateError;
 use subdiv_vk::RenderMesh;
 
@@ -35,7 +37,7 @@ pub fn uniform_limit(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<LimitM
     let limit = match scheme {
         Scheme::CatmullClark => subdiv_slate::tessellate(mesh, depth)?,
         // A cage Loop refuses (not triangles, a doubled triangle) is a rules error, as before.
-        Scheme::Loop => subdiv_slate::tessellate_loop(mesh, depth).map_err(|e| match e {
+        Scheme::Loop => subdiv_slate::tessellate_tri(mesh, depth).map_err(|e| match e {
             SlateError::Rules(r) => SceneError::Rules(r),
             e => SceneError::Slate(e),
         })?,

@@ -9,8 +9,8 @@ use subdiv::doi::DoiKind;
 use subdiv::mesh::{Camera, glam::Vec3, read_obj};
 use subdiv::rules::Scheme;
 use subdiv::{
-    DoiOptions, DoiSetup, DynamicSubdivision, LimitMesh, OutputFormat, VertexScalar,
-    uniform_limit, write_surface,
+    DoiOptions, DoiSetup, DynamicSubdivision, LimitMesh, OutputFormat, VertexScalar, uniform_limit,
+    write_surface,
 };
 use subdiv_test_support::{fixture, shape};
 

@@ -1,6 +1,6 @@
 //! One face-varying refinement step over a region of a mesh: the whole mesh
 //! ([`refine_uniform`](crate::refine_uniform)) or the closure of one adaptive Loop pass
-//! (`subdiv-loop`), with the rules of the parent module.
+//! (`subdiv-redgreen`), with the rules of the parent module.
 
 use glam::{Vec2, Vec3};
 use subdiv_mesh::{EdgeId, FaceVarying, HalfedgeId, Mesh, VertexId};
@@ -11,7 +11,7 @@ use crate::refine::RefineKernel;
 
 /// Which part of a mesh one face-varying step refines and how it reads the rings
 /// ([`refine_face_varying_part`]): the whole mesh for uniform refinement, the closure of one
-/// adaptive Loop pass for `subdiv-loop` (its moved vertices and split edges, rings without the
+/// adaptive Loop pass for `subdiv-redgreen` (its moved vertices and split edges, rings without the
 /// edges inside green families, the parent's opposite corner for a merged family's edges).
 pub trait FVarRegion {
     /// Whether the values at `v` are refined (else its corners keep their values).

@@ -61,7 +61,7 @@ pub struct TriPatch {
 
 /// The numbering of the level-`depth` Loop tessellation of a cage of triangles. Read-only
 /// once built: the triangles of its tessellation are a function of it alone, written once
-/// per output ([`crate::tessellate_loop_layout_into`]).
+/// per output ([`crate::tessellate_tri_layout_into`]).
 #[derive(Clone, Debug)]
 pub struct TriLayout {
     /// The subdivision depth.

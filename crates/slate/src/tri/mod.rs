@@ -28,4 +28,4 @@ mod worker;
 
 pub use layout::{TriLayout, TriPatch, TriSide};
 pub use patch::{tri_lattice_index, tri_lattice_len, tri_patch_lattice};
-pub use tessellate::{tessellate_loop, tessellate_loop_layout_into, tri_slate_bytes_per_thread};
+pub use tessellate::{tessellate_tri, tessellate_tri_layout_into, tri_slate_bytes_per_thread};

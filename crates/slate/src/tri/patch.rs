@@ -1,6 +1,6 @@
 //! One triangular patch's whole lattice, for callers that place the points themselves (the
 //! adaptive Loop assembly of `subdiv-stitch`): the same gather, steps and limit evaluation as
-//! [`super::tessellate_loop`], so every point equals the uniform tessellation's at that depth
+//! [`super::tessellate_tri`], so every point equals the uniform tessellation's at that depth
 //! when this patch is the point's owner in the [`TriLayout`].
 
 use glam::Vec3A;
@@ -113,7 +113,7 @@ pub fn tri_patch_lattice(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tessellate_loop;
+    use crate::tessellate_tri;
 
     #[test]
     fn owned_points_equal_the_uniform_tessellation_bitwise() {
@@ -125,7 +125,7 @@ mod tests {
         let layout = TriLayout::new(&mesh, 1).unwrap();
         let (mut pos, mut nrm, mut sided) = (Vec::new(), Vec::new(), Vec::new());
         for depth in 1..=4 {
-            let uni = tessellate_loop(&mesh, depth).unwrap();
+            let uni = tessellate_tri(&mesh, depth).unwrap();
             let at = TriLayout::new(&mesh, depth).unwrap();
             let n = 1u32 << depth;
             for (p, q) in layout.patches.iter().zip(&at.patches) {
@@ -148,7 +148,7 @@ mod tests {
             assert!(sided.windows(2).all(|w| w[0].0 < w[1].0));
         }
         // Depth 0: the corners' limit points, close to the whole-mesh path's.
-        let uni = tessellate_loop(&mesh, 0).unwrap();
+        let uni = tessellate_tri(&mesh, 0).unwrap();
         for p in &layout.patches {
             tri_patch_lattice(&mesh, &layout, p, 0, &mut pos, &mut nrm, &mut sided);
             assert_eq!(pos.len(), 3);

@@ -25,12 +25,12 @@ use crate::tessellate::{MAX_POINTS, SharedOut, SlateError};
 /// use subdiv_mesh::{parse_obj, Mesh};
 /// let tet = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n";
 /// let mesh = Mesh::from_soup(&parse_obj(tet)?)?;
-/// let t = subdiv_slate::tessellate_loop(&mesh, 3).unwrap();
+/// let t = subdiv_slate::tessellate_tri(&mesh, 3).unwrap();
 /// assert_eq!(t.num_faces(), 4 * 64);
 /// assert_eq!(t.positions().len(), 4 * 64 / 2 + 2);
 /// # Ok::<(), subdiv_mesh::MeshError>(())
 /// ```
-pub fn tessellate_loop(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateError> {
+pub fn tessellate_tri(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateError> {
     check_loop_cage(mesh)?;
     if depth == 0 {
         // The cage's own limit points.
@@ -62,7 +62,7 @@ pub fn tessellate_loop(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateErro
     }
     let layout = TriLayout::new(mesh, depth)?;
     let mut out = LimitMesh::default();
-    tessellate_loop_layout_into(mesh, &layout, &mut out)?;
+    tessellate_tri_layout_into(mesh, &layout, &mut out)?;
     Ok(out)
 }
 
@@ -73,7 +73,7 @@ pub(crate) fn check_loop_cage(mesh: &Mesh) -> Result<(), RulesError> {
     check_doubled_triangles(mesh)
 }
 
-/// [`tessellate_loop`] with a precomputed layout into a reused output (buffers are resized, not
+/// [`tessellate_tri`] with a precomputed layout into a reused output (buffers are resized, not
 /// reallocated, when the sizes match).
 ///
 /// The triangles (`face_indices`, `face_offsets`) are a function of the layout alone: written
@@ -81,7 +81,7 @@ pub(crate) fn check_loop_cage(mesh: &Mesh) -> Result<(), RulesError> {
 /// normals, one-sided corner normals and UVs are written every call), as in
 /// [`crate::tessellate_layout_into`]: [`LimitMesh::topology_written`] says whether this call
 /// wrote them.
-pub fn tessellate_loop_layout_into(
+pub fn tessellate_tri_layout_into(
     mesh: &Mesh,
     layout: &TriLayout,
     result: &mut LimitMesh,

@@ -115,8 +115,8 @@ impl UvCache {
 #[cfg(test)]
 mod tests {
     use crate::{
-        PatchLayout, TriLayout, tessellate, tessellate_layout_into, tessellate_loop,
-        tessellate_loop_layout_into,
+        PatchLayout, TriLayout, tessellate, tessellate_layout_into, tessellate_tri,
+        tessellate_tri_layout_into,
     };
     use subdiv_mesh::{Mesh, parse_obj};
     use subdiv_rules::LimitMesh;
@@ -166,8 +166,8 @@ mod tests {
             edited(&tri, true),
             tri.clone(),
         ] {
-            tessellate_loop_layout_into(&m, &layout, &mut out).unwrap();
-            let fresh = tessellate_loop(&m, 3).unwrap();
+            tessellate_tri_layout_into(&m, &layout, &mut out).unwrap();
+            let fresh = tessellate_tri(&m, 3).unwrap();
             assert!(!fresh.uv_indices().is_empty());
             assert_eq!(uvs(&out), uvs(&fresh));
         }

@@ -6,7 +6,7 @@
 use rayon::prelude::*;
 use subdiv_mesh::{HalfedgeId, Mesh};
 use subdiv_rules::{Budget, Request, Scheme, TriangleBuffers, VertexScalar};
-use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, PatchSet, PatchGrids};
+use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, PatchGrids, PatchSet};
 
 use super::edges::Frame;
 use super::geometry::{AdaptiveFrame, concatenate};

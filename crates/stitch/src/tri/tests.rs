@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 use subdiv_mesh::{Mesh, parse_obj};
-use subdiv_slate::{TriLayout, tessellate_loop};
+use subdiv_slate::{TriLayout, tessellate_tri};
 
 use super::*;
 use crate::fans::test_util::{Rng, open_edges};
@@ -122,9 +122,7 @@ fn drawn_points_are_the_uniform_tessellation_at_the_patch_depth() {
     ] {
         let mesh = fixture(name);
         let nf = mesh.num_faces();
-        let uniform: Vec<_> = (0..=4)
-            .map(|d| tessellate_loop(&mesh, d).unwrap())
-            .collect();
+        let uniform: Vec<_> = (0..=4).map(|d| tessellate_tri(&mesh, d).unwrap()).collect();
         let layouts: Vec<_> = (1..=4).map(|d| TriLayout::new(&mesh, d).unwrap()).collect();
         let (mut exact, mut shared) = (0, 0);
         for _ in 0..4 {

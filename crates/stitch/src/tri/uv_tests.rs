@@ -4,7 +4,7 @@
 //! sides, no jump elsewhere).
 
 use subdiv_mesh::{Mesh, parse_obj};
-use subdiv_slate::tessellate_loop;
+use subdiv_slate::tessellate_tri;
 
 use super::*;
 use crate::fans::test_util::{Rng, open_edges};
@@ -44,7 +44,7 @@ fn uniform_depth_frames_have_the_loop_slates_uvs() {
         for d in 1..=3 {
             asm.frame(&mesh, &vec![d; nf], &vec![true; nf], &mut g)
                 .unwrap();
-            let s = tessellate_loop(&mesh, d).unwrap();
+            let s = tessellate_tri(&mesh, d).unwrap();
             assert_eq!(
                 g.surface().face_indices().len(),
                 s.face_indices().len(),
@@ -73,7 +73,7 @@ fn uniform_depth_frames_have_the_loop_slates_uvs() {
 
 /// Corners of the uniform depth-`d` Loop tessellation: (cage face, position, UV).
 fn reference(mesh: &Mesh, d: Depth) -> Vec<(usize, [f32; 3], [f32; 2])> {
-    let s = tessellate_loop(mesh, d).unwrap();
+    let s = tessellate_tri(mesh, d).unwrap();
     let per_face = 3usize << (2 * d);
     (0..s.face_indices().len())
         .map(|c| {

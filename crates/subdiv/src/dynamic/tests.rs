@@ -36,7 +36,11 @@ fn camera_on_z(dist: f32) -> Camera {
 /// After welding bitwise equal positions, every edge of a closed surface has exactly two
 /// triangles, in opposite directions.
 fn assert_closed(g: &AdaptiveFrame) {
-    let open = subdiv_test_support::welded_open_edges("frame", g.surface().positions(), g.surface().face_indices());
+    let open = subdiv_test_support::welded_open_edges(
+        "frame",
+        g.surface().positions(),
+        g.surface().face_indices(),
+    );
     assert_eq!(open, 0, "open edges");
 }
 

@@ -50,7 +50,7 @@ const GUARD: f32 = 1.0;
 /// teapot's lip, where one smoothing moves a vertex by about a strip's width).
 const FAT: f32 = 20.0 * std::f32::consts::PI / 180.0;
 use super::green::GreenState;
-use crate::LoopError;
+use crate::RedGreenError;
 use crate::error::check_len;
 
 /// Grows `selected` (one flag per face of `mesh`, with levels `level`) until the red-green
@@ -66,7 +66,7 @@ use crate::error::check_len;
 ///
 /// ```
 /// use subdiv_mesh::{Mesh, PolygonSoup, glam::Vec3};
-/// use subdiv_loop::red_green::{balance, GreenState};
+/// use subdiv_redgreen::red_green::{balance, GreenState};
 /// // A fan of three triangles around vertex 0; face 1 is one level finer than its neighbours.
 /// let p = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(-1.0, 0.0, 0.0), Vec3::new(0.0, -1.0, 0.0)];
 /// let mesh = Mesh::from_soup(&PolygonSoup::from_faces(p, &[[0u32, 1, 2], [0, 2, 3], [0, 3, 4]]))?;
@@ -81,7 +81,7 @@ pub fn balance(
     level: &[u8],
     selected: &[bool],
     cage_angle: f32,
-) -> Result<(Vec<bool>, Closure), LoopError> {
+) -> Result<(Vec<bool>, Closure), RedGreenError> {
     check_len("face levels", level.len(), mesh.num_faces())?;
     let mut sel = selected.to_vec();
     let mut top = vec![0u8; mesh.num_vertices()];

@@ -18,7 +18,7 @@ use glam::Vec3;
 use subdiv_mesh::{HalfedgeId, Mesh, PolygonSoup, VertexId};
 use subdiv_rules::{RefineKernel, Scheme};
 
-use crate::LoopError;
+use crate::RedGreenError;
 use crate::red_green::{self, Closure, GreenState, NO_FAMILY};
 use crate::step::{AdaptiveMesh, MAX_TRIANGLES};
 
@@ -92,7 +92,7 @@ pub(crate) fn pass(
     cur: &AdaptiveMesh,
     closure: &Closure,
     level: Option<u8>,
-) -> Result<(AdaptiveMesh, Vec<u32>), LoopError> {
+) -> Result<(AdaptiveMesh, Vec<u32>), RedGreenError> {
     let mesh = &cur.mesh;
     // Balanced passes read the level's ring (green-internal edges left out); the plain closure
     // reads the current mesh, as the paper does.
@@ -155,7 +155,7 @@ pub(crate) fn pass(
     let asm = red_green::assemble(mesh, &cur.green, closure, &edge_mid, &positions)?;
     let faces = asm.triangles.len() as u64;
     if faces > MAX_TRIANGLES {
-        return Err(LoopError::TooLarge {
+        return Err(RedGreenError::TooLarge {
             faces,
             limit: MAX_TRIANGLES,
         });
@@ -177,7 +177,7 @@ pub(crate) fn pass(
         soup.face_indices.extend(t.iter().map(|&i| i as i64));
         soup.face_offsets.push(soup.face_indices.len() as u32);
     }
-    let mut child = Mesh::from_soup(&soup).map_err(LoopError::Internal)?;
+    let mut child = Mesh::from_soup(&soup).map_err(RedGreenError::Internal)?;
     child.set_holes(
         asm.source_face
             .iter()

@@ -17,7 +17,7 @@ use glam::Vec2;
 use subdiv_mesh::{EdgeId, FaceId, FaceVarying, HalfedgeId, Mesh, VertexId};
 use subdiv_rules::{FVarChildren, FVarRegion, RefineKernel, refine_face_varying_part};
 
-use crate::LoopError;
+use crate::RedGreenError;
 use crate::pass::{inside_family, opposite, vertex_levels};
 use crate::red_green::{Assembly, Closure, FamilyFaces, NO_FAMILY};
 use crate::step::AdaptiveMesh;
@@ -107,7 +107,7 @@ pub(crate) fn pass_uvs(
     level: Option<u8>,
     edge_mid: &[VertexId],
     asm: &Assembly,
-) -> Result<Option<PassUvs>, LoopError> {
+) -> Result<Option<PassUvs>, RedGreenError> {
     let mesh = &cur.mesh;
     let Some(fv) = mesh.uv() else {
         return Ok(None);
@@ -152,7 +152,7 @@ pub(crate) fn pass_uvs(
         };
         for &x in t {
             let i = corner_value(mesh, faces, VertexId(x), &children, edge_mid).ok_or(
-                LoopError::UvCorner {
+                RedGreenError::UvCorner {
                     face: src,
                     vertex: x,
                 },

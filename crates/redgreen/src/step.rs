@@ -53,7 +53,7 @@
 use glam::{Vec2, Vec3};
 use subdiv_mesh::Mesh;
 
-use crate::LoopError;
+use crate::RedGreenError;
 use crate::error::check_len;
 use crate::pass::{once_per_level, pass};
 use crate::red_green::{self, GreenState};
@@ -89,7 +89,7 @@ pub struct AdaptiveMesh {
 
 impl AdaptiveMesh {
     /// Starts adaptive refinement from a triangle mesh (no green faces).
-    pub fn new(mesh: Mesh) -> Result<AdaptiveMesh, LoopError> {
+    pub fn new(mesh: Mesh) -> Result<AdaptiveMesh, RedGreenError> {
         mesh.check_triangles()?;
         let green = GreenState::new(mesh.num_faces());
         let level = vec![0; mesh.num_faces()];
@@ -152,7 +152,7 @@ pub enum Balance {
 /// mesh and the step's counts (without timings).
 ///
 /// ```
-/// use subdiv_loop::{loop_step, loop_step_with, AdaptiveMesh, Balance};
+/// use subdiv_redgreen::{loop_step, loop_step_with, AdaptiveMesh, Balance};
 /// use subdiv_mesh::{parse_obj, Mesh};
 /// let tet = Mesh::from_soup(&parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n")?)?;
 /// let a = AdaptiveMesh::new(tet)?;
@@ -171,7 +171,7 @@ pub enum Balance {
 pub fn loop_step(
     cur: &AdaptiveMesh,
     selected: &[bool],
-) -> Result<(AdaptiveMesh, StepStats), LoopError> {
+) -> Result<(AdaptiveMesh, StepStats), RedGreenError> {
     loop_step_with(cur, selected, Balance::Vertex)
 }
 
@@ -180,7 +180,7 @@ pub fn loop_step_with(
     cur: &AdaptiveMesh,
     selected: &[bool],
     balance: Balance,
-) -> Result<(AdaptiveMesh, StepStats), LoopError> {
+) -> Result<(AdaptiveMesh, StepStats), RedGreenError> {
     let mesh = &cur.mesh;
     mesh.check_triangles()?;
     // Refuse before allocating: a step at most quadruples every triangle.
@@ -228,7 +228,7 @@ fn by_level(
     cur: &AdaptiveMesh,
     plan: &[bool],
     stats: &mut StepStats,
-) -> Result<AdaptiveMesh, LoopError> {
+) -> Result<AdaptiveMesh, RedGreenError> {
     let planned = || cur.mesh.faces().filter(|f| plan[f.idx()]);
     let (Some(lo), Some(hi)) = (
         planned().map(|f| cur.level[f.idx()]).min(),
@@ -503,7 +503,7 @@ mod tests {
         let e = AdaptiveMesh::new(quad).unwrap_err();
         assert!(matches!(
             e,
-            LoopError::Mesh(subdiv_mesh::MeshError::NotTriangles { face: 0, size: 4 })
+            RedGreenError::Mesh(subdiv_mesh::MeshError::NotTriangles { face: 0, size: 4 })
         ));
         assert!(e.to_string().contains("face 0 has 4 vertices"));
         let a =

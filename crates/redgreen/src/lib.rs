@@ -1,4 +1,4 @@
-//! `subdiv-loop`: adaptive Loop refinement of a face selection, closed red-green.
+//! `subdiv-redgreen`: adaptive Loop refinement of a face selection, closed red-green.
 //!
 //! After T. Isenberg, K. Hartmann and H. König, "Interest Value Driven Adaptive Subdivision"
 //! (SimVis 2003), §3 and Fig. 1, with the red-green closure of Amresh & Farin (2002). One step,
@@ -23,7 +23,7 @@
 //!   across every edge off a seam, and seams stay seams.
 //!
 //! ```
-//! use subdiv_loop::{loop_step, AdaptiveMesh};
+//! use subdiv_redgreen::{loop_step, AdaptiveMesh};
 //! use subdiv_mesh::{parse_obj, Mesh};
 //! let oct = Mesh::from_soup(&parse_obj("v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n\
 //!     f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\nf 3 1 6\nf 2 3 6\nf 4 2 6\nf 1 4 6\n")?)?;
@@ -44,6 +44,6 @@ mod pass;
 pub mod red_green;
 mod step;
 
-pub use error::LoopError;
+pub use error::RedGreenError;
 pub use red_green::{GreenFamily, GreenState};
 pub use step::{AdaptiveMesh, Balance, MAX_TRIANGLES, StepStats, loop_step, loop_step_with};

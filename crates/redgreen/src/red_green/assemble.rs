@@ -5,7 +5,7 @@ use subdiv_mesh::{HalfedgeId, Mesh, VertexId};
 
 use super::close::Closure;
 use super::green::{GreenFamily, GreenState, NO_FAMILY};
-use crate::LoopError;
+use crate::RedGreenError;
 use crate::error::check_len;
 
 /// The refined mesh's triangles, as produced by [`assemble`].
@@ -28,7 +28,7 @@ pub struct Assembly {
 ///
 /// ```
 /// use subdiv_mesh::{VertexId, glam::Vec3};
-/// use subdiv_loop::red_green::split_triangle;
+/// use subdiv_redgreen::red_green::split_triangle;
 /// let p = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(0.5, 0.0, 0.0)];
 /// let mut out = Vec::new();
 /// let fam = split_triangle([VertexId(0), VertexId(1), VertexId(2)], [VertexId(3), VertexId::NONE, VertexId::NONE], &p, &mut out);
@@ -103,7 +103,7 @@ pub fn assemble(
     closure: &Closure,
     edge_mid: &[VertexId],
     positions: &[Vec3],
-) -> Result<Assembly, LoopError> {
+) -> Result<Assembly, RedGreenError> {
     let nf = mesh.num_faces();
     check_len("green family_of_face", state.family_of_face.len(), nf)?;
     check_len("closure red_face", closure.red_face.len(), nf)?;
@@ -116,7 +116,7 @@ pub fn assemble(
     check_len("closure merged", closure.merged.len(), state.families.len())?;
     for (e, (&s, &m)) in closure.split_edge.iter().zip(edge_mid).enumerate() {
         if s && (m == VertexId::NONE || m.idx() >= positions.len()) {
-            return Err(LoopError::BadMidpoint {
+            return Err(RedGreenError::BadMidpoint {
                 edge: e as u32,
                 mid: m.0,
                 count: positions.len() as u32,
@@ -152,7 +152,7 @@ pub fn assemble(
                         g.mids[j]
                     } else {
                         let h = mesh.find_halfedge(p[j], p[(j + 1) % 3]).ok_or(
-                            LoopError::BrokenFamily {
+                            RedGreenError::BrokenFamily {
                                 family: fam,
                                 a: p[j].0,
                                 b: p[(j + 1) % 3].0,
@@ -187,7 +187,7 @@ pub fn assemble(
             } else {
                 for h in hs {
                     if closure.split_edge[h.edge().idx()] {
-                        return Err(LoopError::Inconsistent {
+                        return Err(RedGreenError::Inconsistent {
                             face: f.0,
                             edge: h.edge().0,
                         });

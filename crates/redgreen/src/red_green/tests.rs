@@ -4,7 +4,7 @@ use glam::Vec3;
 use subdiv_mesh::{FaceId, Mesh, PolygonSoup, VertexId};
 
 use super::*;
-use crate::LoopError;
+use crate::RedGreenError;
 
 /// A regular triangle strip grid of `n x n` quads cut into triangles, in the plane z = 0.
 fn grid(n: u32) -> Mesh {
@@ -156,7 +156,7 @@ fn bad_input() {
     let mesh = grid(1);
     assert!(matches!(
         close(&mesh, &GreenState::new(2), &[true]),
-        Err(LoopError::LengthMismatch { want: 2, .. })
+        Err(RedGreenError::LengthMismatch { want: 2, .. })
     ));
     let quad = Mesh::from_soup(&PolygonSoup::from_faces(
         vec![Vec3::ZERO, Vec3::X, Vec3::ONE, Vec3::Y],
@@ -166,14 +166,14 @@ fn bad_input() {
     let e = close(&quad, &GreenState::new(1), &[true]).unwrap_err();
     assert_eq!(
         e,
-        LoopError::Mesh(subdiv_mesh::MeshError::NotTriangles { face: 0, size: 4 })
+        RedGreenError::Mesh(subdiv_mesh::MeshError::NotTriangles { face: 0, size: 4 })
     );
     assert!(e.to_string().contains("face 0 has 4 vertices"));
     let c = close(&mesh, &GreenState::new(2), &[true, false]).unwrap();
     let mid = vec![VertexId::NONE; mesh.num_edges()];
     assert!(matches!(
         assemble(&mesh, &GreenState::new(2), &c, &mid, mesh.positions()),
-        Err(LoopError::BadMidpoint { .. })
+        Err(RedGreenError::BadMidpoint { .. })
     ));
     let bad = GreenState {
         family_of_face: vec![0, NO_FAMILY],
@@ -181,7 +181,7 @@ fn bad_input() {
     };
     assert!(matches!(
         close(&mesh, &bad, &[false, false]),
-        Err(LoopError::FamilyOutOfRange {
+        Err(RedGreenError::FamilyOutOfRange {
             face: 0,
             family: 0,
             ..

@@ -2,7 +2,7 @@
 
 use subdiv_mesh::{FaceId, VertexId};
 
-use crate::LoopError;
+use crate::RedGreenError;
 
 /// `family_of_face` value of a face that is not green.
 pub const NO_FAMILY: u32 = u32::MAX;
@@ -78,13 +78,13 @@ impl FamilyFaces {
 
 impl GreenState {
     /// The faces of every family; a face naming a family that does not exist is an error.
-    pub(crate) fn family_faces(&self) -> Result<FamilyFaces, LoopError> {
+    pub(crate) fn family_faces(&self) -> Result<FamilyFaces, RedGreenError> {
         let nfam = self.families.len();
         let mut start = vec![0u32; nfam + 1];
         for (f, &fam) in self.family_of_face.iter().enumerate() {
             if fam != NO_FAMILY {
                 if fam as usize >= nfam {
-                    return Err(LoopError::FamilyOutOfRange {
+                    return Err(RedGreenError::FamilyOutOfRange {
                         face: f as u32,
                         family: fam,
                         count: nfam as u32,

@@ -3,7 +3,7 @@
 use subdiv_mesh::{EdgeId, FaceId, Mesh, VertexId};
 
 use super::green::{FamilyFaces, GreenState, NO_FAMILY};
-use crate::LoopError;
+use crate::RedGreenError;
 use crate::error::check_len;
 
 /// The result of [`close`]: what one adaptive step refines.
@@ -57,7 +57,7 @@ impl Marker<'_> {
         }
     }
 
-    fn mark_family(&mut self, fam: u32) -> Result<(), LoopError> {
+    fn mark_family(&mut self, fam: u32) -> Result<(), RedGreenError> {
         let k = fam as usize;
         if self.c.merged[k] {
             return Ok(());
@@ -75,7 +75,7 @@ impl Marker<'_> {
                 let h = self
                     .mesh
                     .find_halfedge(a, b)
-                    .ok_or(LoopError::BrokenFamily {
+                    .ok_or(RedGreenError::BrokenFamily {
                         family: fam,
                         a: a.0,
                         b: b.0,
@@ -86,7 +86,7 @@ impl Marker<'_> {
         Ok(())
     }
 
-    fn mark_unit(&mut self, f: FaceId) -> Result<(), LoopError> {
+    fn mark_unit(&mut self, f: FaceId) -> Result<(), RedGreenError> {
         match self.state.family_of_face[f.idx()] {
             NO_FAMILY => {
                 self.mark_face(f);
@@ -106,7 +106,7 @@ impl Marker<'_> {
 ///
 /// ```
 /// use subdiv_mesh::{Mesh, PolygonSoup, glam::Vec3};
-/// use subdiv_loop::red_green::{close, GreenState};
+/// use subdiv_redgreen::red_green::{close, GreenState};
 /// // A fan of three triangles around vertex 0; refining the middle one splits the edges it
 /// // shares with the other two.
 /// let p = vec![Vec3::ZERO, Vec3::X, Vec3::new(0.0, 1.0, 0.0), Vec3::new(-1.0, 0.0, 0.0), Vec3::new(0.0, -1.0, 0.0)];
@@ -116,7 +116,7 @@ impl Marker<'_> {
 /// assert!(c.moves[0] && c.moves[2] && c.moves[3] && !c.moves[1]);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn close(mesh: &Mesh, state: &GreenState, selected: &[bool]) -> Result<Closure, LoopError> {
+pub fn close(mesh: &Mesh, state: &GreenState, selected: &[bool]) -> Result<Closure, RedGreenError> {
     let nf = mesh.num_faces();
     check_len("selection", selected.len(), nf)?;
     check_len("green family_of_face", state.family_of_face.len(), nf)?;

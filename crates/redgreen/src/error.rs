@@ -5,7 +5,7 @@ use thiserror::Error;
 /// What can go wrong in adaptive Loop refinement: input that is not a triangle mesh, a
 /// selection or closure inconsistent with the mesh, or a result too large.
 #[derive(Debug, Error, Clone, PartialEq)]
-pub enum LoopError {
+pub enum RedGreenError {
     /// Adaptive Loop refinement works on triangles ([`subdiv_mesh::MeshError::NotTriangles`]).
     #[error(transparent)]
     Mesh(#[from] subdiv_mesh::MeshError),
@@ -84,9 +84,9 @@ pub enum LoopError {
 }
 
 /// Refuses an array whose length differs from the mesh's element count.
-pub(crate) fn check_len(what: &'static str, got: usize, want: usize) -> Result<(), LoopError> {
+pub(crate) fn check_len(what: &'static str, got: usize, want: usize) -> Result<(), RedGreenError> {
     if got != want {
-        return Err(LoopError::LengthMismatch { what, got, want });
+        return Err(RedGreenError::LengthMismatch { what, got, want });
     }
     Ok(())
 }
