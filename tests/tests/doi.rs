@@ -1,4 +1,4 @@
-//! End-to-end checks of DoI-driven adaptive Loop subdivision (issue 5) over the fixture meshes:
+//! End-to-end checks of DoI-driven adaptive Loop subdivision over the fixture meshes:
 //! conforming output, fewer triangles than uniform Loop, exactly uniform Loop when the
 //! threshold is below every value, and the bad-input errors.
 

@@ -1,4 +1,4 @@
-//! Adaptive Loop tessellation (issue 14 items 3 and 4): watertight to the bit over every
+//! Adaptive Loop tessellation: watertight to the bit over every
 //! triangle fixture × random cameras × random depths, in every depth mode.
 
 use glam::Vec3;

@@ -1,4 +1,4 @@
-//! `interpolateboundary none` as OpenSubdiv 3.5 applies it (issue 13): every face at a vertex
+//! `interpolateboundary none` as OpenSubdiv 3.5 applies it: every face at a vertex
 //! with a boundary edge not tagged infinitely sharp is hidden, the faces at a vertex whose
 //! boundary edges are all tagged infinitely sharp are drawn (`BoundaryNoneRule` in
 //! `subdiv-mesh`, applied by `Mesh::from_soup` as holes).

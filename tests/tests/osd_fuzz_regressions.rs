@@ -6,7 +6,7 @@
 //! within 0.05 degrees, through the whole-mesh path and the slate tessellator of the cage's
 //! scheme.
 //! `fuzz13_16024_full` is the whole cage 16024 at levels 1-4, whose level-2 normal at valence-2
-//! vertex 10 is undefined (parallel tangents; `ref_osd` writes 0 0 0 there since issue 13).
+//! vertex 10 is undefined (parallel tangents; `ref_osd` writes 0 0 0 there).
 
 use subdiv_tests::osd_compare::{Tessellator, assert_fixture_dir_agrees};
 

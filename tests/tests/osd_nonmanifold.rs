@@ -1,4 +1,4 @@
-//! Non-manifold cages as OpenSubdiv refines them (issue 13 item 5): the hand-made cages of
+//! Non-manifold cages as OpenSubdiv refines them: the hand-made cages of
 //! `fixtures/nonmanifold/` (a fin of three quads, two cubes sharing an edge, two pyramids
 //! touching at their apex, a cube with a bare vertex; for Loop a fin with a tetrahedron on an
 //! edge and two tetrahedra touching at a vertex; both schemes, `chain_semi_corner*`: a vertex

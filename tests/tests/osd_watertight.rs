@@ -1,6 +1,6 @@
-//! Adaptive watertightness on random cages (issue 13 item 6): the random cages of
+//! Adaptive watertightness on random cages: the random cages of
 //! `cargo xtask fuzz-osd` (`subdiv_tests::osd_gen`, read as Catmull-Clark cages, and the Loop
-//! ones as adaptive Loop too, issue 14 item 4) under random
+//! ones as adaptive Loop too) under random
 //! cameras, through `subdiv::DynamicSubdivision` in curvature mode (with and without the
 //! projected-size rule, sometimes culling back faces) and in pixel-error mode. After welding
 //! identical coordinates, every edge of the frame's triangles is used by exactly two triangles,

@@ -1,5 +1,5 @@
-//! Face-varying limit values (UVs) of adaptive Loop frames (`subdiv_stitch::TriAssembler`,
-//! issue 16 item 3): on the Loop UV cages (`fixtures/meshes/fvar/tri_seam.obj`, and
+//! Face-varying limit values (UVs) of adaptive Loop frames (`subdiv_stitch::TriAssembler`):
+//! on the Loop UV cages (`fixtures/meshes/fvar/tri_seam.obj`, and
 //! `cube_uv.obj` with each quad split on a diagonal) under every face-varying option,
 //! - a frame of one depth carries, corner by corner, the UVs of the uniform Loop slates;
 //! - frames of random mixed depths give every triangle corner one of the values the uniform

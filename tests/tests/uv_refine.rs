@@ -1,5 +1,5 @@
-//! UVs through DoI-driven adaptive Loop refinement (`subdiv-redgreen`, what `subdiv refine` runs;
-//! issue 16 item 3), on the UV cages (`fixtures/meshes/fvar/tri_seam.obj`, and `cube_uv`,
+//! UVs through DoI-driven adaptive Loop refinement (`subdiv-redgreen`, what `subdiv refine` runs),
+//! on the UV cages (`fixtures/meshes/fvar/tri_seam.obj`, and `cube_uv`,
 //! `grid_seam`, `grid_seam_crease` triangulated) under every face-varying option:
 //! - with every face selected at every step the channel is exactly uniform Loop face-varying
 //!   refinement's (`refine_uniform`), and OpenSubdiv's (`fixtures/reference/fvar`, levels 1-3);

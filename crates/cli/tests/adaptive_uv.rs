@@ -100,7 +100,7 @@ fn usd_texture_coordinates_reach_the_output() {
     }
 }
 
-/// Adaptive Loop keeps the cage's UVs (issue 16 item 3): the octahedron with a seam loop,
+/// Adaptive Loop keeps the cage's UVs: the octahedron with a seam loop,
 /// tessellated from a camera, writes a `vt` on every triangle corner, inside the cage's UV
 /// range, with both sides of the seam (more values than points), and the values of the
 /// uniform Loop tessellation at the deepest depth drawn among them.

@@ -1,4 +1,4 @@
-//! Smooth shading without speckles (issue 13): every fixture cage rendered in smooth shading at
+//! Smooth shading without speckles: every fixture cage rendered in smooth shading at
 //! depths 0 to 6 has no isolated outlier pixel, one whose grey level differs by more than 40
 //! from all 8 neighbours. Such pixels came from face normals of tiny faces swapped in for limit
 //! normals; the renderer now gets the tessellator's one-sided normals at creases.

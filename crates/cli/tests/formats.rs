@@ -78,7 +78,7 @@ fn refine_usd_writes_doi_attribute() {
     assert!(String::from_utf8_lossy(&std::fs::read(&out).unwrap()).contains("\"_DOI\""));
 }
 
-/// `refine` carries the cage's UVs (issue 16 item 3): the octahedron with a seam loop, refined
+/// `refine` carries the cage's UVs: the octahedron with a seam loop, refined
 /// where the dihedral DoI says, writes `f v/vt` with both sides of the seam (more values than
 /// points), glTF `TEXCOORD_0` and PLY `s t`, and warns about nothing.
 #[test]

@@ -503,7 +503,7 @@ fn view_doi_screenshot_equals_render() {
     );
 }
 
-/// `subdiv view` on an adaptive Loop cage (issue 14 item 3): a scripted screenshot without the
+/// `subdiv view` on an adaptive Loop cage: a scripted screenshot without the
 /// HUD equals `subdiv render` with the same flags.
 #[test]
 fn view_adaptive_loop_screenshot_equals_render() {

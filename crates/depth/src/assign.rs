@@ -22,7 +22,7 @@ use crate::{DEFAULT_MAX_DEPTH, Depth};
 /// without lowering the percentile: 2° and 4° draw 1.78 M and 1.69 M triangles there for 8.1°
 /// and 8.5°, 8° 1.25 M for 8.1°, 10° 1.04 M for 9.1° (raw outputs:
 /// docs/bench/quality/quality_helmet_line{_s2,_s4,_s8,}.txt).
-/// 10° is the smallest swept tolerance with which the mode meets issue 12's targets on both the
+/// 10° is the smallest swept tolerance with which the mode meets its targets on both the
 /// pawn and helmet40 (8° misses helmet40 by 1.4 points); a normal off by `θ` moves diffuse
 /// intensity `n · l` by at most `sin θ` of full scale (17 % at 10°), so lower it for still
 /// images of smooth objects (the pawn's top view: 2° draws 131 k triangles for 1.0°).

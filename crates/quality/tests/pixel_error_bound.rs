@@ -1,8 +1,8 @@
-//! The pixel-error bound against the true surface (issue 12): with `--pixel-error P` the
+//! The pixel-error bound against the true surface: with `--pixel-error P` the
 //! silhouette of the adaptive tessellation lies within `P + 0.5` pixels of the silhouette of a
 //! uniform tessellation one level deeper than the deepest adaptive depth, for every fixture cage
 //! seen from seven cameras (four around it, one from below, two random), at P = 0.5, 1, 2 and 4;
-//! OpenSubdiv's `loop_*` shapes as Loop surfaces (adaptive Loop, issue 14 item 4), the others as
+//! OpenSubdiv's `loop_*` shapes as Loop surfaces (adaptive Loop), the others as
 //! Catmull-Clark.
 //! Rendered with the real renderer (lavapipe in CI); without a Vulkan driver the test prints a
 //! note and passes unless `SUBDIV_VK_REQUIRE_DRIVER=1`. The `+ 0.5` is the metric's own

@@ -1,4 +1,4 @@
-//! Face-varying values (UVs) of a uniform slate tessellation (issue 16).
+//! Face-varying values (UVs) of a uniform slate tessellation.
 //!
 //! Design (the simple one the issue allows, kept apart from the slates so the position path is
 //! untouched): the cage's channel is refined uniformly by `subdiv-rules`

@@ -2,7 +2,7 @@
 //! one-sided corner normals of every fixture cage at depths 0..=6, on 1 and 2 threads, against
 //! the hashes recorded in `output_hashes.txt`.
 //!
-//! Speed work on the slates must not change a single bit of the output (issue 14, item 5). The
+//! Speed work on the slates must not change a single bit of the output. The
 //! recorded hashes were computed by the code before that work (commit c0aba42, x86_64 Linux,
 //! glibc). Bits depend on IEEE `f32`/`f64` arithmetic (Rust never contracts to FMA; glam's SIMD
 //! and scalar paths sum in the same order, which this test cannot check elsewhere) and on the
@@ -242,7 +242,7 @@ fn loop_lines() -> String {
 }
 
 /// The Loop slates' output against `loop_output_hashes.txt`, recorded at commit d11c6ec (before
-/// the speed work of issue 14 items 2 and 5); same platform rule and `SLATE_HASHES_BLESS` as
+/// the Loop slates were sped up); same platform rule and `SLATE_HASHES_BLESS` as
 /// above.
 #[test]
 fn loop_output_is_bit_identical_to_the_recorded_hashes() {

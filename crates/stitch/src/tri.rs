@@ -51,7 +51,7 @@ pub struct TriAssembler {
     block_start: Vec<u32>,
     version: u64,
     max_depth: Depth,
-    /// The cage's face-varying limit values (issue 16), kept while frames need no finer level.
+    /// The cage's face-varying limit values, kept while frames need no finer level.
     uvs: Option<LevelUvs>,
 }
 

@@ -321,7 +321,7 @@ fn uvs_of_a_tessellated_cage_reach_the_export() {
 
 /// A cage with UVs refined where a DoI says (`subdiv refine`): the export carries the refined
 /// mesh's UVs, every triangle corner the value of its face corner, vertices split at the seam;
-/// the `.glb` re-read by the `gltf` crate holds `TEXCOORD_0`, one per vertex (issue 16 item 3).
+/// the `.glb` re-read by the `gltf` crate holds `TEXCOORD_0`, one per vertex.
 #[test]
 fn uvs_of_a_refined_cage_reach_the_export() {
     let path = fixture("meshes/fvar/tri_seam.obj");

@@ -1,4 +1,4 @@
-//! Every normal handed to the renderer is the exact limit normal (issue 13): within 0.05° of
+//! Every normal handed to the renderer is the exact limit normal: within 0.05° of
 //! the limit normal of the refined mesh's vertex at that point, computed in `f64` by
 //! `Ring::limit_sided` (one-sided where the surface has a crease or a corner: the side whose
 //! tangent plane is nearest the triangle's own plane).

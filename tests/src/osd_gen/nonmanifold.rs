@@ -1,4 +1,4 @@
-//! The non-manifold cages of the generator (issue 13 item 5): fins, tetrahedra on an edge,
+//! The non-manifold cages of the generator: fins, tetrahedra on an edge,
 //! bow-ties and fin strips, with the tags at a fin strip's middle vertex.
 
 use super::Builder;
@@ -7,7 +7,7 @@ use crate::fuzz::Rng;
 /// The share of cages (percent) made non-manifold by [`add_nonmanifold`].
 pub const NONMANIFOLD_PERCENT: u64 = 15;
 
-/// Makes a manifold cage non-manifold (as OpenSubdiv takes such cages, issue 13 item 5): one or
+/// Makes a manifold cage non-manifold (as OpenSubdiv takes such cages): one or
 /// two of a fin (one more face on an edge: three faces on an interior edge, two the same way
 /// round on a boundary edge), a closed tetrahedron sharing an edge (four faces there), a
 /// bow-tie (a pyramid, closed or open, touching the cage at one vertex), a fin strip (two fins

@@ -111,7 +111,7 @@ pub const SCENES: &[Scene] = &[
     // Colour legends (`--legend`): the adaptive depths of Fig. 11 and the dihedral DoI heat map.
     scene("pawn_adaptive_depth_legend", "fixtures/reference/shapes/catmark_pawn.obj", &["--eye-relative", "1.5,-1.7,0.9", "--up", "0,0,1", "--max-depth", "4", "--shading", "depth", "--legend"]),
     scene("doi_dihedral_teapot_legend", "fixtures/meshes/tri_teapot.obj", &["--split-nonmanifold", "--scheme", "loop", "--doi", "dihedral", "--eye-relative", "0,0.3,2.2", "--shading", "doi", "--legend"]),
-    // Adaptive Loop (issue 14 item 3): the icosahedron's triangle patches at view-dependent
+    // Adaptive Loop: the icosahedron's triangle patches at view-dependent
     // depths (front 3, silhouette 4, back 0), joined by triangle fans, depth-coloured.
     scene("loop_icosahedron_adaptive_depth", "fixtures/reference/shapes/loop_icosahedron.obj", &["--scheme", "loop", "--eye-relative", "0.8,0.6,1.8", "--max-depth", "4", "--projected-size", "2,8", "--shading", "depth", "--wire-overlay"]),
     // Fig. 12: the 40-instance scene, adaptive.

@@ -1,4 +1,4 @@
-//! Face-varying limit UVs of adaptive Loop frames (issue 16 item 3) against the uniform Loop
+//! Face-varying limit UVs of adaptive Loop frames against the uniform Loop
 //! slates: equal at uniform depth; at mixed depths every triangle takes, at each corner, the
 //! deepest uniform tessellation's value at that point on one cage face's side (seams keep both
 //! sides, no jump elsewhere).
