@@ -34,7 +34,7 @@
 //! - `frame_sources.rs`: the viewer's [`FrameSource`](vk::viewer::FrameSource)s
 //!   ([`UniformSource`], [`AdaptiveSource`], [`DoiSource`]);
 //! - `builtin.rs`: built-in scenes ([`BuiltinScene`], [`helmet40`], the paper's Fig. 12);
-//! - `export.rs`, `export/`: surface output by extension ([`write_surface`], [`write_export`]).
+//! - `export.rs`, `export/`: surface output by extension ([`write_surface`]).
 //!
 //! **Invariants.** Nothing here changes a cage the caller passed in; every frame's geometry is
 //! watertight to the bit (shared points are referenced through one owner patch); errors are
