@@ -483,7 +483,7 @@ mod tests {
 
     #[test]
     fn scenes_are_unique_and_exist() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap();
+        let root = xtask::root();
         let mut names: Vec<_> = SCENES.iter().map(|s| s.name).collect();
         names.sort_unstable();
         names.dedup();
