@@ -309,10 +309,7 @@ mod tests {
     use subdiv_mesh::parse_obj;
 
     fn fixture(name: &str) -> Mesh {
-        let path = format!(
-            "{}/../../fixtures/reference/shapes/{name}.obj",
-            env!("CARGO_MANIFEST_DIR")
-        );
+        let path = subdiv_test_support::shape(&format!("{name}.obj"));
         Mesh::from_soup(&parse_obj(&std::fs::read_to_string(path).unwrap()).unwrap()).unwrap()
     }
 

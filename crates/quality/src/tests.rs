@@ -8,9 +8,7 @@ use subdiv::vk::{ContextOptions, Renderer, Validation, VkError};
 use super::*;
 
 fn cube() -> Mesh {
-    let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
-               f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
-    Mesh::from_soup(&parse_obj(obj).unwrap()).unwrap()
+    Mesh::from_soup(&parse_obj(&subdiv_test_support::cube().obj()).unwrap()).unwrap()
 }
 
 /// A renderer (validation when installed); `None` without a driver unless one is required.

@@ -98,30 +98,15 @@ mod tests {
 
     /// A unit cube as six quads (CCW seen from outside) with outward face normals at the corners.
     fn cube() -> LimitMesh {
-        let positions: Vec<[f32; 3]> = (0..8)
-            .map(|i| {
-                [
-                    (i & 1) as f32 * 2.0 - 1.0,
-                    ((i >> 1) & 1) as f32 * 2.0 - 1.0,
-                    ((i >> 2) & 1) as f32 * 2.0 - 1.0,
-                ]
-            })
-            .collect();
-        let normals = positions
+        let soup = subdiv_test_support::cube().map_positions(|p| p.map(|x| x * 2.0 - 1.0));
+        let normals = soup
+            .positions
             .iter()
             .map(|p| (Vec3::from(*p).normalize()).to_array())
             .collect();
-        let faces: [[u32; 4]; 6] = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
         let offsets = (0..=6).map(|i| i * 4).collect();
-        let indices = faces.iter().flatten().copied().collect();
-        LimitMesh::new(positions, normals, offsets, indices).unwrap()
+        let indices = soup.faces.iter().flatten().copied().collect();
+        LimitMesh::new(soup.positions, normals, offsets, indices).unwrap()
     }
 
     #[test]

@@ -330,6 +330,3 @@ impl DynamicSubdivision {
         })
     }
 }
-
-#[cfg(test)]
-mod tests;

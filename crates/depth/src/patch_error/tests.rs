@@ -3,12 +3,13 @@
 use super::*;
 use subdiv_mesh::parse_obj;
 
-const CUBE: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
-                    f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+fn cube() -> Mesh {
+    Mesh::from_soup(&parse_obj(&subdiv_test_support::cube().obj()).unwrap()).unwrap()
+}
 
 #[test]
 fn deviations_fall_with_depth_and_match_a_dense_check() {
-    let mesh = Mesh::from_soup(&parse_obj(CUBE).unwrap()).unwrap();
+    let mesh = cube();
     let set = PatchSet::new(&mesh).unwrap();
     let tolerance = 2f32.to_radians();
     let e = patch_errors(&mesh, &set, 3, tolerance);

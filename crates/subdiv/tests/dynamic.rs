@@ -1,4 +1,5 @@
-//! Tests of [`super::DynamicSubdivision`].
+//! Tests of [`subdiv::DynamicSubdivision`], the per-frame adaptive node: depths, fans,
+//! frame-rate control, given depths, moving positions and non-manifold seams.
 
 use std::collections::HashMap;
 
@@ -7,7 +8,12 @@ use glam::Vec3;
 use subdiv_depth::Class;
 use subdiv_mesh::parse_obj;
 
-use super::*;
+use subdiv::DynamicSubdivision;
+use subdiv_depth::DepthParams;
+use subdiv_mesh::{Camera, Mesh};
+use subdiv_rules::Scheme;
+use subdiv_slate::Depth;
+use subdiv_stitch::{AdaptiveFrame, AssemblyError};
 
 /// The unit cube: face 0 is `z = 0`, face 1 is `z = 1`, faces 2..=5 the sides.
 fn cube() -> Mesh {
