@@ -20,7 +20,7 @@
 pub mod fans;
 pub mod tri;
 
-pub use fans::{AdaptiveFrame, Assembler, FanMethod, MAX_ADAPTIVE_DEPTH};
+pub use fans::{AdaptiveFrame, Assembler, FanMethod, MAX_ADAPTIVE_DEPTH, UpdateParts};
 pub use tri::TriAssembler;
 
 /// Errors of the assembly ([`Assembler`], [`TriAssembler`]).

@@ -28,7 +28,8 @@ use subdiv_mesh::Mesh;
 use subdiv_rules::{Budget, Request, Scheme, TriangleBuffers, VertexScalar};
 use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, TriLayout, tri_lattice_len, tri_patch_lattice};
 
-use crate::{AdaptiveFrame, AssemblyError};
+use crate::fans::lap;
+use crate::{AdaptiveFrame, AssemblyError, UpdateParts};
 use emit::TriFrame;
 
 /// A patch's cached lattice.
@@ -143,6 +144,7 @@ impl TriAssembler {
                 want: nf,
             });
         }
+        let mut t = std::time::Instant::now();
         let depth: Vec<Depth> = depth.iter().map(|&d| d.min(self.max_depth)).collect();
         let active: Vec<bool> = (0..nf)
             .map(|f| active[f] && self.layout.patches()[f].visible)
@@ -150,17 +152,28 @@ impl TriAssembler {
         let owners = emit::Owners::new(mesh, &self.layout, &depth, &active);
         let required = owners.required_depths(mesh, &self.layout, &depth, &active);
         self.check_size(&required)?;
+        let mut stitch = lap(&mut t);
         let recomputed = self.recompute_blocks(mesh, &required);
-        let relink = recomputed > 0 || out.surface.num_vertices() == 0;
+        let tessellate = lap(&mut t);
+        let relink = recomputed.0 > 0 || out.surface.num_vertices() == 0;
         out.surface.write_triangles(VertexScalar::Depth, |b| {
-            self.write_frame(mesh, &depth, &active, &owners, relink, b)
+            self.write_frame(mesh, &depth, &active, &owners, relink, b, &mut stitch)
         })??;
+        let buffers = lap(&mut t) - stitch;
         out.set_bookkeeping(self.version, recomputed, &depth, &active);
+        out.parts = UpdateParts {
+            depths: 0.0,
+            tessellate,
+            stitch,
+            buffers,
+        };
         Ok(())
     }
 
     /// Writes the frame's surface into `b`: the vertex buffer (the lattices, concatenated) when
-    /// `relink`, the vertex depths, the face-varying values and the triangles.
+    /// `relink`, the vertex depths, the face-varying values and the triangles; adds the time
+    /// the index buffer took to `stitch`.
+    #[allow(clippy::too_many_arguments)]
     fn write_frame(
         &mut self,
         mesh: &Mesh,
@@ -169,6 +182,7 @@ impl TriAssembler {
         owners: &emit::Owners,
         relink: bool,
         b: &mut TriangleBuffers<'_>,
+        stitch: &mut f64,
     ) -> Result<(), AssemblyError> {
         if relink {
             self.concatenate_blocks(b)?;
@@ -188,7 +202,9 @@ impl TriAssembler {
             blocks: &self.blocks,
             block_start: &self.block_start,
         };
+        let t = std::time::Instant::now();
         fr.emit_frame(active, uvs, b.triangles, b.corner_normals, b.uv_indices);
+        *stitch += t.elapsed().as_secs_f64();
         Ok(())
     }
 
@@ -241,7 +257,7 @@ impl TriAssembler {
     }
 
     /// Recomputes the lattices that are too coarse for `required`; returns how many.
-    fn recompute_blocks(&mut self, mesh: &Mesh, required: &[Option<Depth>]) -> usize {
+    fn recompute_blocks(&mut self, mesh: &Mesh, required: &[Option<Depth>]) -> (usize, usize) {
         let todo: Vec<usize> = (0..required.len())
             .filter(|&i| required[i] > self.blocks[i].depth)
             .collect();
@@ -259,7 +275,7 @@ impl TriAssembler {
                 (i, b)
             })
             .collect();
-        let recomputed = fresh.len();
+        let recomputed = (fresh.len(), fresh.iter().map(|(_, b)| b.pos.len()).sum());
         for (i, b) in fresh {
             self.blocks[i] = b;
         }

@@ -8,9 +8,9 @@ use subdiv_mesh::{HalfedgeId, Mesh};
 use subdiv_rules::{Budget, Request, Scheme, TriangleBuffers, VertexScalar};
 use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, PatchGrids, PatchSet};
 
-use super::edges::Frame;
-use super::geometry::{AdaptiveFrame, concatenate};
-use super::index::FanMethod;
+use super::edges::{Frame, halfedge_sides};
+use super::geometry::{AdaptiveFrame, UpdateParts, concatenate, lap};
+use super::index::{Chunk, FanMethod};
 use crate::AssemblyError;
 
 /// The deepest face depth the assembler accepts: one below [`MAX_DEPTH`], since a patch next to a
@@ -64,6 +64,10 @@ fn pinched(mesh: &Mesh, hs: &[HalfedgeId], k: usize) -> bool {
 pub struct Assembler {
     set: PatchSet,
     units: Vec<UnitTopo>,
+    /// Per half-edge: its side in its unit ([`halfedge_sides`]).
+    side: Vec<u8>,
+    /// The index emission's per-run buffers, kept between frames.
+    chunks: Vec<Chunk>,
     blocks: Vec<Block>,
     block_start: Vec<u32>,
     version: u64,
@@ -106,7 +110,7 @@ impl Assembler {
             },
         )?;
         let set = PatchSet::new(mesh)?;
-        let units = set
+        let units: Vec<UnitTopo> = set
             .units()
             .iter()
             .map(|u| {
@@ -122,9 +126,12 @@ impl Assembler {
             })
             .collect();
         let n = set.patches().len();
+        let side = halfedge_sides(mesh, &units);
         Ok(Assembler {
             set,
             units,
+            side,
+            chunks: Vec::new(),
             blocks: vec![
                 Block {
                     depth: None,
@@ -198,22 +205,33 @@ impl Assembler {
                 want: nu,
             });
         }
+        let mut t = std::time::Instant::now();
         let depth: Vec<Depth> = (0..nu)
             .map(|u| depth[u].clamp(self.min_depth(u), self.max_depth))
             .collect();
         let required = self.required_depths(mesh, &depth, active);
         self.check_size(&required)?;
+        let mut stitch = lap(&mut t);
         let recomputed = self.recompute_blocks(mesh, &required);
-        let relink = recomputed > 0 || out.surface.num_vertices() == 0;
+        let tessellate = lap(&mut t);
+        let relink = recomputed.0 > 0 || out.surface.num_vertices() == 0;
         out.surface.write_triangles(VertexScalar::Depth, |b| {
-            self.write_frame(mesh, &depth, active, relink, b)
+            self.write_frame(mesh, &depth, active, relink, b, &mut stitch)
         })??;
+        let buffers = lap(&mut t) - stitch;
         out.set_bookkeeping(self.version, recomputed, &depth, active);
+        out.parts = UpdateParts {
+            depths: 0.0,
+            tessellate,
+            stitch,
+            buffers,
+        };
         Ok(())
     }
 
     /// Writes the frame's surface into `b`: the vertex buffer (the blocks, concatenated) when
-    /// `relink`, the vertex depths, the face-varying values and the triangles.
+    /// `relink`, the vertex depths, the face-varying values and the triangles; adds the time
+    /// the index buffer took to `stitch`.
     fn write_frame(
         &mut self,
         mesh: &Mesh,
@@ -221,6 +239,7 @@ impl Assembler {
         active: &[bool],
         relink: bool,
         b: &mut TriangleBuffers<'_>,
+        stitch: &mut f64,
     ) -> Result<(), AssemblyError> {
         if relink {
             self.concatenate_blocks(b)?;
@@ -254,20 +273,24 @@ impl Assembler {
             mesh,
             &self.set,
             &self.units,
+            &self.side,
             depth,
             active,
             &self.blocks,
             &self.block_start,
         );
         // Index buffer: each patch's triangles, in parallel, then concatenated in patch order.
+        let t = std::time::Instant::now();
         fr.emit_frame(
             active,
             self.method,
             uvs,
+            &mut self.chunks,
             b.triangles,
             b.corner_normals,
             b.uv_indices,
         );
+        *stitch += t.elapsed().as_secs_f64();
         Ok(())
     }
 
@@ -280,6 +303,7 @@ impl Assembler {
             mesh,
             &self.set,
             &self.units,
+            &self.side,
             depth,
             active,
             &self.blocks,
@@ -319,8 +343,9 @@ impl Assembler {
         Ok(())
     }
 
-    /// Recomputes the blocks that are too coarse for `required`; returns how many.
-    fn recompute_blocks(&mut self, mesh: &Mesh, required: &[Option<Depth>]) -> usize {
+    /// Recomputes the blocks that are too coarse for `required`; returns how many, and their
+    /// points.
+    fn recompute_blocks(&mut self, mesh: &Mesh, required: &[Option<Depth>]) -> (usize, usize) {
         let todo: Vec<usize> = (0..required.len())
             .filter(|&i| required[i] > self.blocks[i].depth)
             .collect();
@@ -349,7 +374,7 @@ impl Assembler {
                 },
             )
             .collect();
-        let recomputed = fresh.len();
+        let recomputed = (fresh.len(), fresh.iter().map(|(_, b)| b.pos.len()).sum());
         for (i, b) in fresh.drain(..) {
             self.blocks[i] = b;
         }
@@ -391,6 +416,7 @@ impl Assembler {
             mesh,
             &self.set,
             &self.units,
+            &self.side,
             depth,
             active,
             &self.blocks,

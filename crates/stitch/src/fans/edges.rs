@@ -19,8 +19,21 @@ pub(super) struct Frame<'a> {
     pub(super) edge_res: Vec<u8>,
     edge_owner: Vec<u32>,
     vertex_owner: Vec<(u32, u32)>,
-    blocks: &'a [Block],
-    block_start: &'a [u32],
+    /// Per half-edge: its index in its unit's `hs` (its side of the unit).
+    side: &'a [u8],
+    pub(super) blocks: &'a [Block],
+    pub(super) block_start: &'a [u32],
+}
+
+/// Per half-edge of `mesh` with a face: its index in that face's `hs` (boundary half-edges: 0).
+pub(super) fn halfedge_sides(mesh: &Mesh, units: &[UnitTopo]) -> Vec<u8> {
+    let mut side = vec![0u8; 2 * mesh.num_edges()];
+    for u in units {
+        for (k, h) in u.hs.iter().enumerate() {
+            side[h.idx()] = k as u8;
+        }
+    }
+    side
 }
 
 impl<'a> Frame<'a> {
@@ -28,6 +41,7 @@ impl<'a> Frame<'a> {
         mesh: &'a Mesh,
         set: &'a PatchSet,
         units: &'a [UnitTopo],
+        side: &'a [u8],
         depth: &'a [u8],
         active: &'a [bool],
         blocks: &'a [Block],
@@ -55,8 +69,7 @@ impl<'a> Frame<'a> {
             for h in mesh.outgoing(v) {
                 let f = mesh.face(h);
                 if f.is_some() && active[f.idx()] {
-                    let k = units[f.idx()].hs.iter().position(|&x| x == h).unwrap_or(0) as u32;
-                    vertex_owner[v.idx()] = (f.0, k);
+                    vertex_owner[v.idx()] = (f.0, u32::from(side[h.idx()]));
                     break;
                 }
             }
@@ -69,6 +82,7 @@ impl<'a> Frame<'a> {
             edge_res,
             edge_owner,
             vertex_owner,
+            side,
             blocks,
             block_start,
         }
@@ -185,12 +199,10 @@ impl<'a> Frame<'a> {
         let owner = self.edge_owner[e.idx()] as usize;
         let hs = &self.units[owner].hs;
         // The owner's half-edge of this edge, and the parameter along it.
-        let (k, th) = match hs.iter().position(|&x| x == h) {
-            Some(k) => (k, t),
-            None => (
-                hs.iter().position(|&x| x == h.twin()).unwrap_or(0),
-                (1 << r) - t,
-            ),
+        let (k, th) = if mesh.face(h).0 as usize == owner {
+            (self.side[h.idx()] as usize, t)
+        } else {
+            (self.side[h.twin().idx()] as usize, (1 << r) - t)
         };
         let unit = &self.set.units()[owner];
         if !unit.irregular {

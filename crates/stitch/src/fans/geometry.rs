@@ -18,6 +18,39 @@ pub struct AdaptiveFrame {
     pub(crate) unit_depth: Vec<u8>,
     pub(crate) vertex_version: u64,
     pub(crate) patches_recomputed: usize,
+    pub(crate) points_recomputed: usize,
+    pub(crate) parts: UpdateParts,
+}
+
+/// Where one frame's update spent its time, in seconds of wall clock.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UpdateParts {
+    /// Choosing the depths (classification, projected size or pixel error, frame-rate control):
+    /// set by whoever assigns them (`subdiv::DynamicSubdivision`), 0 from an assembler alone.
+    pub depths: f64,
+    /// Tessellating the patches whose cached block was too coarse.
+    pub tessellate: f64,
+    /// Edge resolutions and owners, fans and the index buffer.
+    pub stitch: f64,
+    /// The vertex buffer and per-vertex data (blocks concatenated when any changed, vertex
+    /// depths, face-varying values) and the surface's checks: what an upload reads.
+    pub buffers: f64,
+}
+
+impl UpdateParts {
+    /// The whole update.
+    pub fn total(&self) -> f64 {
+        self.depths + self.tessellate + self.stitch + self.buffers
+    }
+}
+
+/// Seconds since `t`, and `t` moved to now.
+#[inline]
+pub(crate) fn lap(t: &mut std::time::Instant) -> f64 {
+    let now = std::time::Instant::now();
+    let s = (now - *t).as_secs_f64();
+    *t = now;
+    s
 }
 
 impl AdaptiveFrame {
@@ -51,6 +84,24 @@ impl AdaptiveFrame {
         self.patches_recomputed
     }
 
+    /// Limit points computed this frame (the grids of the recomputed patches).
+    #[inline]
+    pub fn points_recomputed(&self) -> usize {
+        self.points_recomputed
+    }
+
+    /// Where this frame's update spent its time.
+    #[inline]
+    pub fn parts(&self) -> UpdateParts {
+        self.parts
+    }
+
+    /// Sets the time spent choosing this frame's depths (the caller that assigned them).
+    #[inline]
+    pub fn set_depths_time(&mut self, seconds: f64) {
+        self.parts.depths = seconds;
+    }
+
     /// Number of triangles.
     #[inline]
     pub fn num_triangles(&self) -> usize {
@@ -62,12 +113,12 @@ impl AdaptiveFrame {
     pub(crate) fn set_bookkeeping(
         &mut self,
         version: u64,
-        recomputed: usize,
+        recomputed: (usize, usize),
         depth: &[u8],
         active: &[bool],
     ) {
         self.vertex_version = version;
-        self.patches_recomputed = recomputed;
+        (self.patches_recomputed, self.points_recomputed) = recomputed;
         self.unit_depth.clear();
         let drawn = depth.iter().zip(active);
         self.unit_depth

@@ -14,30 +14,69 @@ use subdiv_slate::{LevelUvs, PatchRef};
 use super::edges::Frame;
 use super::grid::{side_of_on, side_point};
 
-/// No block point of the patch's own (interior corners, or a block too coarse).
+/// No block point of the patch's own (interior points, or a block too coarse).
 const NO_OWN: u32 = u32::MAX;
 
-/// Where a triangle corner lies in its own patch's parameters: grid point `(i, j)` of the
-/// patch's `2^e` grid, `(i, j, e)` (for its face-varying value, [`LevelUvs::value_at`]).
-type Loc = (u32, u32, u8);
-
-/// Where [`Frame::emit_patch`] puts the corners' [`Loc`]s: a `Vec`, or nowhere (`()`: the
-/// no-UV path, where the places are never computed once inlined).
-trait LocSink {
-    fn put(&mut self, l: Loc);
+/// A triangle corner: its shared vertex id, the one-sided normal of its own patch's side there
+/// (only at border points where the limit surface has a crease or a corner), and where it lies
+/// in its own patch's parameters: grid point `(i, j)` of the patch's `2^e` grid (for its
+/// face-varying value, [`LevelUvs::value_at`]).
+#[derive(Clone, Copy, Debug)]
+struct Corner {
+    id: u32,
+    sided: Option<[f32; 3]>,
+    i: u32,
+    j: u32,
+    e: u8,
 }
 
-impl LocSink for () {
-    #[inline(always)]
-    fn put(&mut self, _: Loc) {}
+/// Where [`Frame::emit_patch`] puts each corner's face-varying value: nowhere (`()`, the no-UV
+/// path, where the places are never looked up once inlined), or the value of the patch's own
+/// side ([`PatchUvs`]).
+trait UvSink {
+    fn put(&mut self, c: &Corner);
 }
 
-impl LocSink for Vec<Loc> {
+impl UvSink for () {
     #[inline(always)]
-    fn put(&mut self, l: Loc) {
-        self.push(l);
+    fn put(&mut self, _: &Corner) {}
+}
+
+/// The face-varying values of one patch's corners, into `out`.
+struct PatchUvs<'a> {
+    uvs: &'a LevelUvs,
+    p: &'a PatchRef,
+    face: subdiv_mesh::FaceId,
+    out: &'a mut Vec<u32>,
+}
+
+impl UvSink for PatchUvs<'_> {
+    #[inline(always)]
+    fn put(&mut self, c: &Corner) {
+        let v = self.uvs.value_at(self.p.level, self.p.sub, self.face, c.i, c.j, c.e);
+        self.out.push(v);
     }
 }
+
+/// One contiguous run of patches' output, and the emission scratch of the thread writing it;
+/// kept between frames so that a frame allocates nothing once the buffers have grown.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Chunk {
+    tris: Vec<u32>,
+    /// (corner index within `tris`, one-sided normal).
+    sided: Vec<(u32, [f32; 3])>,
+    uv: Vec<u32>,
+    /// Per grid point of the patch being emitted: shared id and own block point.
+    grid: Vec<(u32, u32)>,
+    /// Per grid point: the patch's one-sided normal there, if any.
+    grid_sided: Vec<Option<[f32; 3]>>,
+    /// The corners of the fan being emitted.
+    poly: Vec<Corner>,
+}
+
+/// Patches per [`Chunk`]: enough work per task to amortise the task, small enough that two
+/// threads share a frame of a few hundred patches evenly.
+const CHUNK_PATCHES: usize = 32;
 
 /// How the quads next to a deeper neighbour are closed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -50,83 +89,125 @@ pub enum FanMethod {
 }
 
 impl Frame<'_> {
-    /// The frame's index buffer: each active, non-hole patch's triangles, emitted in parallel,
-    /// then concatenated in patch order into `out` (cleared first); and in `corner_normals`
-    /// (cleared first; corner index in `out`, ascending) each patch's own one-sided normal at
-    /// the triangle corners on creases and corners of the limit surface. With `uvs`, the
-    /// face-varying value of every triangle corner on its own patch's side goes to
-    /// `uv_indices` (cleared first; parallel to `out`).
+    /// The frame's index buffer: each active, non-hole patch's triangles, emitted in parallel
+    /// by runs of [`CHUNK_PATCHES`] patches into `chunks` (grown as needed, kept by the caller
+    /// between frames), then concatenated in patch order into `out` (cleared first); and in
+    /// `corner_normals` (cleared first; corner index in `out`, ascending) each patch's own
+    /// one-sided normal at the triangle corners on creases and corners of the limit surface.
+    /// With `uvs`, the face-varying value of every triangle corner on its own patch's side goes
+    /// to `uv_indices` (cleared first; parallel to `out`).
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn emit_frame(
         &self,
         active: &[bool],
         method: FanMethod,
         uvs: Option<&LevelUvs>,
+        chunks: &mut Vec<Chunk>,
         out: &mut Vec<u32>,
         corner_normals: &mut Vec<(u32, [f32; 3])>,
         uv_indices: &mut Vec<u32>,
     ) {
-        type PatchOut = (Vec<u32>, Vec<(u32, [f32; 3])>, Vec<u32>);
-        let tris: Vec<PatchOut> = self
-            .set
-            .patches()
-            .par_iter()
-            .map(|p| {
-                let (mut v, mut own) = (Vec::new(), Vec::new());
-                let mut sided = Vec::new();
-                let mut locs = Vec::new();
-                let mut uv = Vec::new();
-                let face = self.set.units()[p.unit as usize].face;
-                if active[p.unit as usize] && !self.mesh.is_hole(face) {
-                    if uvs.is_some() {
-                        self.emit_patch(p, method, &mut v, &mut own, &mut locs);
-                    } else {
-                        self.emit_patch(p, method, &mut v, &mut own, &mut ());
+        let patches = self.set.patches();
+        let runs = patches.len().div_ceil(CHUNK_PATCHES);
+        if chunks.len() < runs {
+            chunks.resize_with(runs, Chunk::default);
+        }
+        chunks[..runs]
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(c, ch)| {
+                ch.tris.clear();
+                ch.sided.clear();
+                ch.uv.clear();
+                let lo = c * CHUNK_PATCHES;
+                for p in &patches[lo..(lo + CHUNK_PATCHES).min(patches.len())] {
+                    let face = self.set.units()[p.unit as usize].face;
+                    if !active[p.unit as usize] || self.mesh.is_hole(face) {
+                        continue;
                     }
-                    let pi = self.patch_index(p.unit as usize, p.sub as usize);
-                    for (c, &o) in own.iter().enumerate() {
-                        if o != NO_OWN
-                            && let Some(nrm) = self.own_sided(pi, o)
-                        {
-                            sided.push((c as u32, nrm));
+                    match uvs {
+                        Some(uvs) => {
+                            let mut out = std::mem::take(&mut ch.uv);
+                            let mut sink = PatchUvs {
+                                uvs,
+                                p,
+                                face,
+                                out: &mut out,
+                            };
+                            self.emit_patch(p, method, ch, &mut sink);
+                            ch.uv = out;
                         }
-                    }
-                    if let Some(u) = uvs {
-                        uv.extend(
-                            locs.iter()
-                                .map(|&(i, j, e)| u.value_at(p.level, p.sub, face, i, j, e)),
-                        );
+                        None => self.emit_patch(p, method, ch, &mut ()),
                     }
                 }
-                (v, sided, uv)
-            })
-            .collect();
+            });
         out.clear();
         corner_normals.clear();
         uv_indices.clear();
-        for (t, sided, uv) in tris {
+        let done = &chunks[..runs];
+        out.reserve(done.iter().map(|c| c.tris.len()).sum());
+        corner_normals.reserve(done.iter().map(|c| c.sided.len()).sum());
+        uv_indices.reserve(done.iter().map(|c| c.uv.len()).sum());
+        for ch in done {
             let start = out.len() as u32;
-            corner_normals.extend(sided.into_iter().map(|(c, n)| (start + c, n)));
-            out.extend_from_slice(&t);
-            uv_indices.extend_from_slice(&uv);
+            corner_normals.extend(ch.sided.iter().map(|&(c, n)| (start + c, n)));
+            out.extend_from_slice(&ch.tris);
+            uv_indices.extend_from_slice(&ch.uv);
         }
     }
 
-    /// The triangles of one patch, and parallel to `out` in `own` the patch's own block point
-    /// of each corner on the patch's border ([`NO_OWN`] for interior points, whose normal is
-    /// never one-sided, and for deeper points its block does not hold); with `locs`, where each
-    /// corner lies in the patch's parameters.
-    fn emit_patch(
-        &self,
-        p: &PatchRef,
-        method: FanMethod,
-        out: &mut Vec<u32>,
-        own: &mut Vec<u32>,
-        locs: &mut impl LocSink,
-    ) {
+    /// Fills `ch.grid` with the shared id and own block point of every point of patch `p`'s
+    /// depth-`d` grid (interior points straight from the patch's block, border points through
+    /// their owners), and `ch.grid_sided` with the patch's one-sided normals at its border points
+    /// (left empty when the patch has none).
+    fn fill_grid(&self, pi: usize, p: &PatchRef, d: u32, ch: &mut Chunk) {
+        let n = 1u32 << d;
+        let w = (n + 1) as usize;
+        ch.grid.clear();
+        ch.grid.resize(w * w, (0, NO_OWN));
+        // Interior: the patch's own block, sampled with the block's stride.
+        let b = &self.blocks[pi];
+        let bd = u32::from(b.depth.unwrap_or_default());
+        debug_assert!(bd >= d, "block too coarse");
+        let (stride, bw) = (1u32 << (bd - d), (1u32 << bd) + 1);
+        let start = self.block_start[pi];
+        for j in 1..n {
+            let row = start + j * stride * bw;
+            for i in 1..n {
+                ch.grid[j as usize * w + i as usize] = (row + i * stride, NO_OWN);
+            }
+        }
+        let mut border = |i: u32, j: u32| {
+            ch.grid[j as usize * w + i as usize] =
+                (self.point_id(pi, p, i, j), self.own(pi, i, j, d));
+        };
+        for i in 0..=n {
+            border(i, 0);
+            border(i, n);
+        }
+        for j in 1..n {
+            border(0, j);
+            border(n, j);
+        }
+        ch.grid_sided.clear();
+        if !b.sided.is_empty() {
+            ch.grid_sided.resize(w * w, None);
+            for (k, &(_, o)) in ch.grid.iter().enumerate() {
+                if o != NO_OWN {
+                    ch.grid_sided[k] = self.own_sided(pi, o);
+                }
+            }
+        }
+    }
+
+    /// The triangles of one patch, appended to `ch.tris` with the patch's one-sided normals at
+    /// its border corners in `ch.sided`, and each corner's face-varying value in `uv`.
+    fn emit_patch(&self, p: &PatchRef, method: FanMethod, ch: &mut Chunk, uv: &mut impl UvSink) {
         let pi = self.patch_index(p.unit as usize, p.sub as usize);
         let d = self.patch_depth(p);
         let n = 1u32 << d;
         let fans = self.fans(p);
+        self.fill_grid(pi, p, d, ch);
         let replaced = |i: u32, j: u32| -> bool {
             (fans[0] && j == 0)
                 || (fans[1] && i == n - 1)
@@ -145,46 +226,66 @@ impl Frame<'_> {
             };
             (at(1) || at(3)) && !(at(0) || at(2))
         };
-        // (shared id, own block point or NO_OWN, place in the patch).
-        let id = |i: u32, j: u32| {
-            let border = i == 0 || j == 0 || i == n || j == n;
-            let o = if border {
-                self.own(pi, i, j, d)
-            } else {
-                NO_OWN
-            };
-            (self.point_id(pi, p, i, j), o, (i, j, d as u8))
-        };
-        let mut push = |tri: [(u32, u32, Loc); 3]| {
-            for (x, o, l) in tri {
-                out.push(x);
-                own.push(o);
-                locs.put(l);
+        let w = (n + 1) as usize;
+        let Chunk {
+            tris,
+            sided,
+            grid,
+            grid_sided,
+            poly,
+            ..
+        } = ch;
+        let corner = |i: u32, j: u32| -> Corner {
+            let k = j as usize * w + i as usize;
+            Corner {
+                id: grid[k].0,
+                sided: grid_sided.get(k).copied().flatten(),
+                i,
+                j,
+                e: d as u8,
             }
         };
-        let mut poly: Vec<(u32, u32, Loc)> = Vec::with_capacity(16);
+        let mut push = |c: Corner| {
+            if let Some(nrm) = c.sided {
+                sided.push((tris.len() as u32, nrm));
+            }
+            tris.push(c.id);
+            uv.put(&c);
+        };
         for j in 0..n {
             for i in 0..n {
                 if !(any && replaced(i, j)) {
-                    let (a, b, c, e) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
-                    if flip(i, j) {
-                        push([a, b, e]);
-                        push([b, c, e]);
+                    let (a, b, c, e) = (
+                        corner(i, j),
+                        corner(i + 1, j),
+                        corner(i + 1, j + 1),
+                        corner(i, j + 1),
+                    );
+                    let tri = if flip(i, j) {
+                        [a, b, e, b, c, e]
                     } else {
-                        push([a, b, c]);
-                        push([a, c, e]);
+                        [a, b, c, a, c, e]
+                    };
+                    for x in tri {
+                        push(x);
                     }
                     continue;
                 }
                 // Fan around the limit point of the quad's next-level face point.
                 let (ci, cj) = (2 * i + 1, 2 * j + 1);
-                let centre = (self.own(pi, ci, cj, d + 1), NO_OWN, (ci, cj, d as u8 + 1));
+                let centre = Corner {
+                    id: self.own(pi, ci, cj, d + 1),
+                    sided: None,
+                    i: ci,
+                    j: cj,
+                    e: d as u8 + 1,
+                };
                 poly.clear();
                 // The quad's four edges, counter-clockwise: bottom, right, top, left; each from
                 // its start corner (inclusive) to its end corner (exclusive).
                 let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
                 for (ek, &(ci, cj)) in corners.iter().enumerate() {
-                    poly.push(id(ci, cj));
+                    poly.push(corner(ci, cj));
                     let (ni, nj) = corners[(ek + 1) % 4];
                     // Is this edge on a fanned side of the patch?
                     let on_side = match ek {
@@ -195,7 +296,7 @@ impl Frame<'_> {
                         _ => None,
                     };
                     if let Some(k) = on_side.filter(|&k| fans[k]) {
-                        self.push_fine_points(p, pi, k, (ci, cj), (ni, nj), n, &mut poly);
+                        self.push_fine_points(p, pi, k, (ci, cj), (ni, nj), n, poly);
                     } else if on_side.is_none() && method == FanMethod::Subdivided {
                         // Inner edge: subdivide it if the quad across is replaced too.
                         let (oi, oj) = match ek {
@@ -207,19 +308,27 @@ impl Frame<'_> {
                         if oi < n && oj < n && replaced(oi, oj) {
                             // An inner edge's midpoint: inside the patch.
                             let (mi, mj) = (ci + ni, cj + nj);
-                            poly.push((self.own(pi, mi, mj, d + 1), NO_OWN, (mi, mj, d as u8 + 1)));
+                            poly.push(Corner {
+                                id: self.own(pi, mi, mj, d + 1),
+                                sided: None,
+                                i: mi,
+                                j: mj,
+                                e: d as u8 + 1,
+                            });
                         }
                     }
                 }
                 for k in 0..poly.len() {
-                    push([centre, poly[k], poly[(k + 1) % poly.len()]]);
+                    push(centre);
+                    push(poly[k]);
+                    push(poly[(k + 1) % poly.len()]);
                 }
             }
         }
     }
 
     /// The deeper neighbour's points strictly between two corners of a border quad on side `k`,
-    /// each with this patch's own block point there where its block is that deep.
+    /// each with this patch's own one-sided normal there where its block is that deep.
     #[allow(clippy::too_many_arguments)]
     fn push_fine_points(
         &self,
@@ -229,7 +338,7 @@ impl Frame<'_> {
         a: (u32, u32),
         b: (u32, u32),
         n: u32,
-        poly: &mut Vec<(u32, u32, Loc)>,
+        poly: &mut Vec<Corner>,
     ) {
         let u = p.unit as usize;
         let hs = &self.units[u].hs;
@@ -256,8 +365,18 @@ impl Frame<'_> {
         let deep = self.has_depth(pi, dp);
         let point = |t: u32| {
             let (i, j) = side_point(k, t - (offset << delta), 1 << dp);
-            let o = if deep { self.own(pi, i, j, dp) } else { NO_OWN };
-            (self.edge_point_id(h, t, r), o, (i, j, dp as u8))
+            let sided = if deep {
+                self.own_sided(pi, self.own(pi, i, j, dp))
+            } else {
+                None
+            };
+            Corner {
+                id: self.edge_point_id(h, t, r),
+                sided,
+                i,
+                j,
+                e: dp as u8,
+            }
         };
         if t1 > t0 {
             for t in t0 + 1..t1 {
