@@ -32,5 +32,5 @@ pub(crate) mod test_util;
 
 pub use assembler::{Assembler, MAX_ADAPTIVE_DEPTH};
 pub use geometry::{AdaptiveFrame, UpdateParts};
-pub(crate) use geometry::{concatenate, lap};
+pub(crate) use geometry::lap;
 pub use index::FanMethod;

@@ -18,6 +18,7 @@
 //! cage is never modified.
 
 pub mod fans;
+mod slots;
 pub mod tri;
 
 pub use fans::{AdaptiveFrame, Assembler, FanMethod, MAX_ADAPTIVE_DEPTH, UpdateParts};

@@ -155,7 +155,7 @@ mod tests {
             assert_eq!(chunk, want);
         }
         assert_eq!(a.num_edges(), 3 * 12);
-        assert!(a.edge_sharpnesses().iter().any(|&s| s == 2.5));
+        assert!(a.edge_sharpnesses().contains(&2.5));
     }
 
     #[test]

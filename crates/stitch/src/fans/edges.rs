@@ -8,6 +8,7 @@ use subdiv_slate::{PatchRef, PatchSet};
 
 use super::assembler::{Block, UnitTopo};
 use super::grid::{side_of, side_point};
+use crate::slots::Slots;
 
 /// Per-frame data derived from the depths.
 pub(super) struct Frame<'a> {
@@ -22,7 +23,7 @@ pub(super) struct Frame<'a> {
     /// Per half-edge: its index in its unit's `hs` (its side of the unit).
     side: &'a [u8],
     pub(super) blocks: &'a [Block],
-    pub(super) block_start: &'a [u32],
+    pub(super) slots: &'a Slots,
 }
 
 /// Per half-edge of `mesh` with a face: its index in that face's `hs` (boundary half-edges: 0).
@@ -37,6 +38,7 @@ pub(super) fn halfedge_sides(mesh: &Mesh, units: &[UnitTopo]) -> Vec<u8> {
 }
 
 impl<'a> Frame<'a> {
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn new(
         mesh: &'a Mesh,
         set: &'a PatchSet,
@@ -45,7 +47,7 @@ impl<'a> Frame<'a> {
         depth: &'a [u8],
         active: &'a [bool],
         blocks: &'a [Block],
-        block_start: &'a [u32],
+        slots: &'a Slots,
     ) -> Frame<'a> {
         let ne = mesh.num_edges();
         let mut edge_res = vec![0u8; ne];
@@ -84,7 +86,7 @@ impl<'a> Frame<'a> {
             vertex_owner,
             side,
             blocks,
-            block_start,
+            slots,
         }
     }
 
@@ -136,7 +138,7 @@ impl<'a> Frame<'a> {
         if b.sided.is_empty() {
             return None;
         }
-        b.sided_at(own - self.block_start[pi])
+        b.sided_at(own - self.slots.start(pi))
     }
 
     /// Whether patch `pi`'s block holds its depth-`d` grid.
@@ -158,7 +160,7 @@ impl<'a> Frame<'a> {
         let depth = u32::from(b.depth.unwrap_or_default());
         let stride = 1u32 << (depth - d_coords);
         let w = (1u32 << depth) + 1;
-        self.block_start[pi] + j * stride * w + i * stride
+        self.slots.start(pi) + j * stride * w + i * stride
     }
 
     #[inline]

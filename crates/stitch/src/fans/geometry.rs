@@ -1,12 +1,16 @@
 //! What one frame produced: the surface (a [`LimitMesh`] triangle list) and the frame's
 //! bookkeeping.
 
-use subdiv_rules::{LimitMesh, TriangleBuffers};
+use std::ops::Range;
+
+use subdiv_rules::LimitMesh;
 
 /// What one adaptive frame produced: the surface, and per unit (cage face) its depth.
 ///
 /// The surface is a triangle list (counter-clockwise) over the vertices of all patch blocks,
-/// concatenated (shared points referenced once; points of blocks no triangle uses stay). Where
+/// each in its slot of the vertex buffer (shared points referenced once; points of blocks no
+/// triangle uses, and slots left behind by blocks that grew, stay until the buffer is laid out
+/// afresh). Where
 /// the limit surface has a crease or a corner, each patch gives its own side's one-sided normal
 /// at the points of its border; the vertex normals keep the averaged one. Its face-varying
 /// values (UVs, `subdiv_slate::LevelUvs`) are those on each corner's own patch's side of a seam,
@@ -20,6 +24,7 @@ pub struct AdaptiveFrame {
     pub(crate) patches_recomputed: usize,
     pub(crate) points_recomputed: usize,
     pub(crate) parts: UpdateParts,
+    pub(crate) dirty: Vec<Range<u32>>,
 }
 
 /// Where one frame's update spent its time, in seconds of wall clock.
@@ -76,6 +81,15 @@ impl AdaptiveFrame {
     #[inline]
     pub fn vertex_version(&self) -> u64 {
         self.vertex_version
+    }
+
+    /// The vertex ranges this frame rewrote (empty when the vertex buffer is the previous
+    /// frame's): every other vertex kept its index and its bits, so a renderer that keeps the
+    /// previous buffer uploads only these. The blocks of the recomputed patches, or the whole
+    /// buffer when it was laid out afresh.
+    #[inline]
+    pub fn dirty_vertices(&self) -> &[Range<u32>] {
+        &self.dirty
     }
 
     /// Patches recomputed this frame.
@@ -149,34 +163,6 @@ impl AdaptiveFrame {
             s.face_indices().to_vec(),
         )
     }
-}
-
-/// Replaces the vertex buffer of `b` by the blocks' points in order (`blocks` yields each
-/// block's positions and normals) and records where each block starts in `block_start` (one
-/// entry per block plus the total). Shared by the quad and the triangle assemblers.
-pub(crate) fn concatenate<'a>(
-    b: &mut TriangleBuffers<'_>,
-    blocks: impl Iterator<Item = (&'a [[f32; 3]], &'a [[f32; 3]])> + Clone,
-    block_start: &mut [u32],
-) -> Result<(), subdiv_rules::OutOfMemory> {
-    let mut acc = 0u32;
-    let mut n = 0;
-    for (i, (pos, _)) in blocks.clone().enumerate() {
-        block_start[i] = acc;
-        acc += pos.len() as u32;
-        n = i + 1;
-    }
-    block_start[n] = acc;
-    b.positions.clear();
-    b.normals.clear();
-    let total = acc as usize;
-    subdiv_rules::budget::try_reserve(b.positions, total, "frame positions")?;
-    subdiv_rules::budget::try_reserve(b.normals, total, "frame normals")?;
-    for (pos, nrm) in blocks {
-        b.positions.extend_from_slice(pos);
-        b.normals.extend_from_slice(nrm);
-    }
-    Ok(())
 }
 
 #[cfg(test)]

@@ -34,10 +34,13 @@ struct Corner {
 /// path, where the places are never looked up once inlined), or the value of the patch's own
 /// side ([`PatchUvs`]).
 trait UvSink {
+    /// Whether [`UvSink::put`] does anything.
+    const WANTED: bool;
     fn put(&mut self, c: &Corner);
 }
 
 impl UvSink for () {
+    const WANTED: bool = false;
     #[inline(always)]
     fn put(&mut self, _: &Corner) {}
 }
@@ -51,6 +54,7 @@ struct PatchUvs<'a> {
 }
 
 impl UvSink for PatchUvs<'_> {
+    const WANTED: bool = true;
     #[inline(always)]
     fn put(&mut self, c: &Corner) {
         let v = self.uvs.value_at(self.p.level, self.p.sub, self.face, c.i, c.j, c.e);
@@ -77,6 +81,39 @@ pub(super) struct Chunk {
 /// Patches per [`Chunk`]: enough work per task to amortise the task, small enough that two
 /// threads share a frame of a few hundred patches evenly.
 const CHUNK_PATCHES: usize = 32;
+
+impl Chunk {
+    /// The corner at grid point `(i, j)` (storage index `k`) of the patch being emitted, at its
+    /// depth `d`.
+    #[inline(always)]
+    fn corner(&self, k: usize, (i, j): (u32, u32), d: u32) -> Corner {
+        Corner {
+            id: self.grid[k].0,
+            sided: self.grid_sided.get(k).copied().flatten(),
+            i,
+            j,
+            e: d as u8,
+        }
+    }
+}
+
+/// Appends corner `c` to the chunk: its id, its one-sided normal if it has one, its
+/// face-varying value.
+#[inline(always)]
+fn push(ch: &mut Chunk, uv: &mut impl UvSink, c: Corner) {
+    if let Some(nrm) = c.sided {
+        ch.sided.push((ch.tris.len() as u32, nrm));
+    }
+    ch.tris.push(c.id);
+    uv.put(&c);
+}
+
+/// Whether quad `(i, j)` of an `n x n` patch lies along a side that fans (`fans[k]`, side `k`:
+/// bottom, right, top, left).
+#[inline(always)]
+fn replaced(fans: [bool; 4], n: u32, i: u32, j: u32) -> bool {
+    (fans[0] && j == 0) || (fans[1] && i == n - 1) || (fans[2] && j == n - 1) || (fans[3] && i == 0)
+}
 
 /// How the quads next to a deeper neighbour are closed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -170,7 +207,7 @@ impl Frame<'_> {
         let bd = u32::from(b.depth.unwrap_or_default());
         debug_assert!(bd >= d, "block too coarse");
         let (stride, bw) = (1u32 << (bd - d), (1u32 << bd) + 1);
-        let start = self.block_start[pi];
+        let start = self.slots.start(pi);
         for j in 1..n {
             let row = start + j * stride * bw;
             for i in 1..n {
@@ -201,130 +238,129 @@ impl Frame<'_> {
     }
 
     /// The triangles of one patch, appended to `ch.tris` with the patch's one-sided normals at
-    /// its border corners in `ch.sided`, and each corner's face-varying value in `uv`.
-    fn emit_patch(&self, p: &PatchRef, method: FanMethod, ch: &mut Chunk, uv: &mut impl UvSink) {
+    /// its border corners in `ch.sided`, and each corner's face-varying value in `uv`; quad by
+    /// quad, row by row.
+    fn emit_patch<U: UvSink>(&self, p: &PatchRef, method: FanMethod, ch: &mut Chunk, uv: &mut U) {
         let pi = self.patch_index(p.unit as usize, p.sub as usize);
         let d = self.patch_depth(p);
         let n = 1u32 << d;
         let fans = self.fans(p);
         self.fill_grid(pi, p, d, ch);
-        let replaced = |i: u32, j: u32| -> bool {
-            (fans[0] && j == 0)
-                || (fans[1] && i == n - 1)
-                || (fans[2] && j == n - 1)
-                || (fans[3] && i == 0)
-        };
         let any = fans.iter().any(|&x| x);
         // Pinched patch corners (level-1 patches: only corner 0 is a cage vertex, and the
         // default diagonal already runs through it).
         let pinched = |k: usize| p.level == 0 && self.units[p.unit as usize].pinched[k];
-        // Split quad (i, j) through its corners 1 and 3 instead of 0 and 2?
+        let any_flip = (0..4).any(pinched);
+        // Split quad (i, j) through its corners 1 and 3 instead of 0 and 2? Only a patch's
+        // corner quads can be.
         let flip = |i: u32, j: u32| -> bool {
             let at = |k: usize| {
                 let (ci, cj) = [(0, 0), (n - 1, 0), (n - 1, n - 1), (0, n - 1)][k];
                 i == ci && j == cj && pinched(k)
             };
-            (at(1) || at(3)) && !(at(0) || at(2))
+            any_flip && (at(1) || at(3)) && !(at(0) || at(2))
         };
+        // No one-sided normals and no face-varying values: plain quads straight from the grid.
+        let plain = !U::WANTED && ch.grid_sided.is_empty();
         let w = (n + 1) as usize;
-        let Chunk {
-            tris,
-            sided,
-            grid,
-            grid_sided,
-            poly,
-            ..
-        } = ch;
-        let corner = |i: u32, j: u32| -> Corner {
-            let k = j as usize * w + i as usize;
-            Corner {
-                id: grid[k].0,
-                sided: grid_sided.get(k).copied().flatten(),
-                i,
-                j,
-                e: d as u8,
-            }
-        };
-        let mut push = |c: Corner| {
-            if let Some(nrm) = c.sided {
-                sided.push((tris.len() as u32, nrm));
-            }
-            tris.push(c.id);
-            uv.put(&c);
-        };
         for j in 0..n {
             for i in 0..n {
-                if !(any && replaced(i, j)) {
-                    let (a, b, c, e) = (
-                        corner(i, j),
-                        corner(i + 1, j),
-                        corner(i + 1, j + 1),
-                        corner(i, j + 1),
-                    );
-                    let tri = if flip(i, j) {
-                        [a, b, e, b, c, e]
-                    } else {
-                        [a, b, c, a, c, e]
-                    };
-                    for x in tri {
-                        push(x);
-                    }
+                if any && replaced(fans, n, i, j) {
+                    self.emit_fan(p, pi, (i, j), fans, method, ch, uv);
                     continue;
                 }
-                // Fan around the limit point of the quad's next-level face point.
-                let (ci, cj) = (2 * i + 1, 2 * j + 1);
-                let centre = Corner {
-                    id: self.own(pi, ci, cj, d + 1),
-                    sided: None,
-                    i: ci,
-                    j: cj,
-                    e: d as u8 + 1,
+                let (r0, r1, iu) = (j as usize * w, (j as usize + 1) * w, i as usize);
+                let quad = [r0 + iu, r0 + iu + 1, r1 + iu + 1, r1 + iu];
+                let order = if flip(i, j) {
+                    [0, 1, 3, 1, 2, 3]
+                } else {
+                    [0, 1, 2, 0, 2, 3]
                 };
-                poly.clear();
-                // The quad's four edges, counter-clockwise: bottom, right, top, left; each from
-                // its start corner (inclusive) to its end corner (exclusive).
-                let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
-                for (ek, &(ci, cj)) in corners.iter().enumerate() {
-                    poly.push(corner(ci, cj));
-                    let (ni, nj) = corners[(ek + 1) % 4];
-                    // Is this edge on a fanned side of the patch?
-                    let on_side = match ek {
-                        0 if j == 0 => Some(0),
-                        1 if i + 1 == n => Some(1),
-                        2 if j + 1 == n => Some(2),
-                        3 if i == 0 => Some(3),
-                        _ => None,
-                    };
-                    if let Some(k) = on_side.filter(|&k| fans[k]) {
-                        self.push_fine_points(p, pi, k, (ci, cj), (ni, nj), n, poly);
-                    } else if on_side.is_none() && method == FanMethod::Subdivided {
-                        // Inner edge: subdivide it if the quad across is replaced too.
-                        let (oi, oj) = match ek {
-                            0 => (i, j.wrapping_sub(1)),
-                            1 => (i + 1, j),
-                            2 => (i, j + 1),
-                            _ => (i.wrapping_sub(1), j),
-                        };
-                        if oi < n && oj < n && replaced(oi, oj) {
-                            // An inner edge's midpoint: inside the patch.
-                            let (mi, mj) = (ci + ni, cj + nj);
-                            poly.push(Corner {
-                                id: self.own(pi, mi, mj, d + 1),
-                                sided: None,
-                                i: mi,
-                                j: mj,
-                                e: d as u8 + 1,
-                            });
-                        }
-                    }
+                if plain {
+                    let g = &ch.grid;
+                    ch.tris.extend(order.map(|k| g[quad[k]].0));
+                    continue;
                 }
-                for k in 0..poly.len() {
-                    push(centre);
-                    push(poly[k]);
-                    push(poly[(k + 1) % poly.len()]);
+                let at = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+                for k in order {
+                    let c = ch.corner(quad[k], at[k], d);
+                    push(ch, uv, c);
                 }
             }
         }
+    }
+
+    /// The fan that replaces quad `(i, j)` of patch `p` (index `pi`) next to a deeper
+    /// neighbour: triangles around the limit point of the quad's next-level face point through
+    /// its corners, the deeper side's points on its fanned sides, and (subdivided method) the
+    /// midpoints of its inner edges to other replaced quads.
+    #[allow(clippy::too_many_arguments)]
+    fn emit_fan<U: UvSink>(
+        &self,
+        p: &PatchRef,
+        pi: usize,
+        (i, j): (u32, u32),
+        fans: [bool; 4],
+        method: FanMethod,
+        ch: &mut Chunk,
+        uv: &mut U,
+    ) {
+        let d = self.patch_depth(p);
+        let n = 1u32 << d;
+        let w = (n + 1) as usize;
+        let (ci, cj) = (2 * i + 1, 2 * j + 1);
+        let centre = Corner {
+            id: self.own(pi, ci, cj, d + 1),
+            sided: None,
+            i: ci,
+            j: cj,
+            e: d as u8 + 1,
+        };
+        let mut poly = std::mem::take(&mut ch.poly);
+        poly.clear();
+        // The quad's four edges, counter-clockwise: bottom, right, top, left; each from its
+        // start corner (inclusive) to its end corner (exclusive).
+        let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+        for (ek, &(ci, cj)) in corners.iter().enumerate() {
+            poly.push(ch.corner(cj as usize * w + ci as usize, (ci, cj), d));
+            let (ni, nj) = corners[(ek + 1) % 4];
+            // Is this edge on a fanned side of the patch?
+            let on_side = match ek {
+                0 if j == 0 => Some(0),
+                1 if i + 1 == n => Some(1),
+                2 if j + 1 == n => Some(2),
+                3 if i == 0 => Some(3),
+                _ => None,
+            };
+            if let Some(k) = on_side.filter(|&k| fans[k]) {
+                self.push_fine_points(p, pi, k, (ci, cj), (ni, nj), n, &mut poly);
+            } else if on_side.is_none() && method == FanMethod::Subdivided {
+                // Inner edge: subdivide it if the quad across is replaced too.
+                let (oi, oj) = match ek {
+                    0 => (i, j.wrapping_sub(1)),
+                    1 => (i + 1, j),
+                    2 => (i, j + 1),
+                    _ => (i.wrapping_sub(1), j),
+                };
+                if oi < n && oj < n && replaced(fans, n, oi, oj) {
+                    // An inner edge's midpoint: inside the patch.
+                    let (mi, mj) = (ci + ni, cj + nj);
+                    poly.push(Corner {
+                        id: self.own(pi, mi, mj, d + 1),
+                        sided: None,
+                        i: mi,
+                        j: mj,
+                        e: d as u8 + 1,
+                    });
+                }
+            }
+        }
+        for k in 0..poly.len() {
+            push(ch, uv, centre);
+            push(ch, uv, poly[k]);
+            push(ch, uv, poly[(k + 1) % poly.len()]);
+        }
+        ch.poly = poly;
     }
 
     /// The deeper neighbour's points strictly between two corners of a border quad on side `k`,
