@@ -278,7 +278,12 @@ impl Frame<'_> {
                 };
                 if plain {
                     let g = &ch.grid;
-                    ch.tris.extend(order.map(|k| g[quad[k]].0));
+                    let [a, b, c, e] = quad.map(|k| g[k].0);
+                    let ids = [a, b, c, e];
+                    let [o0, o1, o2, o3, o4, o5] = order;
+                    ch.tris.extend_from_slice(&[
+                        ids[o0], ids[o1], ids[o2], ids[o3], ids[o4], ids[o5],
+                    ]);
                     continue;
                 }
                 let at = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
