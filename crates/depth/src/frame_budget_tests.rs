@@ -161,9 +161,9 @@ fn back_faces_are_never_raised() {
     let s = scene(300, &mut rng);
     // A generous budget: every front face goes to the deepest depth, back faces stay.
     for (_, depth) in run(&s, 60, |_| 5.0, &mut rng) {
-        for f in 0..depth.len() {
+        for (f, &d) in depth.iter().enumerate() {
             if s.a.class[f] == Class::Back {
-                assert!(depth[f] <= s.a.depth[f].max(s.min_depth[f]), "face {f}");
+                assert!(d <= s.a.depth[f].max(s.min_depth[f]), "face {f}");
             }
         }
     }
