@@ -188,27 +188,39 @@ impl ScreenArea {
         elements: impl Iterator<Item = &'a AreaElement> + Clone,
         out: &mut Vec<f32>,
     ) {
+        let mut both = Vec::new();
+        self.densities(elements, &mut both);
+        out.clear();
+        out.extend(both.iter().map(|&(visible, _)| visible));
+    }
+
+    /// [`Self::visible_density`] and [`Self::density`] of every element, as pairs (each splat
+    /// computed once).
+    pub fn densities<'a>(
+        &self,
+        elements: impl Iterator<Item = &'a AreaElement>,
+        out: &mut Vec<(f32, f32)>,
+    ) {
         let cols = (self.size.x / OCCLUSION_CELL).ceil().max(1.0) as usize;
         let rows = (self.size.y / OCCLUSION_CELL).ceil().max(1.0) as usize;
         let mut nearest = vec![f32::INFINITY; cols * rows];
-        for e in elements.clone() {
-            if let Some(s) = self.splat(e) {
-                let (xs, ys, cols) = self.cells(&s);
-                for y in ys {
-                    for z in &mut nearest[y * cols + xs.start..y * cols + xs.end] {
-                        *z = z.min(s.z);
-                    }
+        let splats: Vec<Option<(Splat, f32)>> = elements
+            .map(|e| self.splat(e).map(|s| (s, 2.0 * e.area.sqrt())))
+            .collect();
+        for (s, _) in splats.iter().flatten() {
+            let (xs, ys, cols) = self.cells(s);
+            for y in ys {
+                for z in &mut nearest[y * cols + xs.start..y * cols + xs.end] {
+                    *z = z.min(s.z);
                 }
             }
         }
         out.clear();
-        for e in elements {
-            let Some(s) = self.splat(e) else {
-                out.push(0.0);
-                continue;
+        out.extend(splats.iter().map(|splat| {
+            let Some((s, slack)) = splat else {
+                return (0.0, 0.0);
             };
-            let (xs, ys, cols) = self.cells(&s);
-            let slack = 2.0 * e.area.sqrt();
+            let (xs, ys, cols) = self.cells(s);
             let (mut seen, mut all) = (0usize, 0usize);
             for y in ys {
                 for &z in &nearest[y * cols + xs.start..y * cols + xs.end] {
@@ -216,8 +228,8 @@ impl ScreenArea {
                     seen += usize::from(s.z <= z + slack);
                 }
             }
-            out.push(s.density * seen as f32 / all.max(1) as f32);
-        }
+            (s.density * seen as f32 / all.max(1) as f32, s.density)
+        }));
     }
 }
 
@@ -319,7 +331,7 @@ impl OutlierTable {
         let screen = ScreenArea::new(camera, errors.closed);
         let is_active = |f: usize| active.get(f).copied().unwrap_or(true);
         let mut densities = Vec::new();
-        screen.visible_density(
+        screen.densities(
             faces
                 .iter()
                 .enumerate()
@@ -346,12 +358,12 @@ impl OutlierTable {
             // Projected and visible pixels of the face, for the visible share of its contour.
             let (mut projected, mut seen) = (0.0f32, 0.0f32);
             for (k, el) in e.elements.iter().enumerate() {
-                let density = next.next().copied().unwrap_or(0.0);
+                let (density, raw) = next.next().copied().unwrap_or((0.0, 0.0));
                 if density == 0.0 {
                     continue;
                 }
                 seen += el.area * density;
-                projected += el.area * screen.density(el);
+                projected += el.area * raw;
                 out.visible += (el.area * density) as f64;
                 let s = e.scale(el, density);
                 let areas = &e.outlier_area[k * depths * e.scales..(k + 1) * depths * e.scales];

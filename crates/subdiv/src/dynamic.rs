@@ -312,7 +312,7 @@ impl DynamicSubdivision {
         last_frame_time: Option<f32>,
     ) -> Result<&AdaptiveFrame, AssemblyError> {
         let start = std::time::Instant::now();
-        if let (Some(t), Some(w)) = (last_frame_time, self.last.work) {
+        if let (Some(t), Some(w), false) = (last_frame_time, self.last.work, self.last.setup) {
             let t = f64::from(t);
             self.model.observe(&w, t);
             match &mut self.controller {
@@ -326,7 +326,10 @@ impl DynamicSubdivision {
             }
         }
         let budget = matches!(self.controller, Controller::Budget(_)) && self.fixed_depths.is_none();
+        self.last.setup = false;
         if self.params.pixel_error.is_some() || budget {
+            let tolerance = self.params.shading_error_deg.to_radians();
+            self.last.setup = !matches!(&self.errors, Some(e) if e.shading_tolerance == tolerance);
             self.patch_errors();
         }
         let errors = if budget { None } else { self.errors.as_ref() };

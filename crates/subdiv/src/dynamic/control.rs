@@ -81,6 +81,9 @@ pub(super) struct LastFrame {
     pub(super) predicted: Option<f64>,
     /// The budget controller's planned prediction for it (seconds).
     pub(super) planned: Option<f64>,
+    /// It set up once-per-cage data (the pixel-error measurement), so its time says nothing
+    /// of its work.
+    pub(super) setup: bool,
 }
 
 /// Pixels covered, estimated from the projected discs of the faces that face the camera (their
