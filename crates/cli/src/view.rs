@@ -8,7 +8,7 @@ use std::process::ExitCode;
 use glam::Vec3;
 use subdiv::mesh::Camera;
 use subdiv::vk::OrbitCamera;
-use subdiv::vk::viewer::{self, FrameSource, ViewerOptions};
+use subdiv::vk::viewer::{self, FrameControl, FrameSource, ViewerOptions};
 use subdiv::{AdaptiveSource, DoiSource, UniformSource, orbit_camera};
 
 use crate::camera_args::CameraArgs;
@@ -120,7 +120,7 @@ fn run_doi(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         camera: Some(orbit),
         render,
         // No frame-rate controller here: draw only when something changes.
-        frame_rate_control: false,
+        control: FrameControl::Off,
         ..ViewerOptions::default()
     };
     show(a, &mut source, options, |s| s.note().to_string())
@@ -151,7 +151,7 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         camera: Some(orbit),
         render,
         // A uniform tessellation has no frame-rate controller: draw only when something changes.
-        frame_rate_control: false,
+        control: FrameControl::Off,
         ..ViewerOptions::default()
     };
     show(a, &mut source, options, |_| String::new())
@@ -180,7 +180,11 @@ fn run_adaptive(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         camera: Some(orbit),
         render,
         // A scripted screenshot shows the view-dependent depths without frame-time feedback.
-        frame_rate_control: a.screenshot_after.is_none(),
+        control: if a.screenshot_after.is_none() {
+            FrameControl::Budget
+        } else {
+            FrameControl::Off
+        },
         ..ViewerOptions::default()
     };
     show(a, &mut source, options, |_| String::new())
