@@ -333,7 +333,7 @@ impl App<'_> {
             control: self.control,
             target_fps: self.target_fps,
             measured_ms: (self.continuous() && !self.last_frame_time.is_zero())
-                .then(|| self.last_frame_time.as_secs_f32() * 1e3),
+                .then_some(self.last_frame_time.as_secs_f32() * 1e3),
             predicted_ms: None,
             shading: self.render.shading,
             wire: self.render.wire_overlay,
