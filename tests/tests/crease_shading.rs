@@ -34,7 +34,7 @@ use subdiv::mesh::{Camera, Mesh, glam::Vec3, read_obj};
 use subdiv::rules::Scheme;
 use subdiv::vk::image::{Rgba, RgbaImage};
 use subdiv::vk::{ContextOptions, RenderOptions, Renderer, Validation, VkError};
-use subdiv::{Scene, view_for};
+use subdiv::{Scene, framing_box, view_for};
 use subdiv_test_support::fixture_files;
 use subdiv_tests::osd_gen::random_cage;
 
@@ -212,7 +212,7 @@ fn smooth_shading_shows_no_dots_at_any_depth() {
     let (mut surface, mut renders) = (0usize, 0usize);
     let (mut failures, mut at_one) = (Vec::new(), Vec::new());
     for (name, cage, scheme) in &cages {
-        let (lo, hi) = cage.bounds();
+        let (lo, hi) = framing_box(cage);
         let camera = Camera::eye_relative(lo, hi, EYE_RELATIVE, 45.0, SIZE[0], SIZE[1]);
         let view = view_for(&camera, lo, hi);
         for depth in DEPTHS {

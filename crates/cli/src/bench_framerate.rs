@@ -13,7 +13,7 @@ use subdiv::depth::DepthParams;
 use subdiv::mesh::{Camera, Mesh};
 use subdiv::rules::{Depth, Request, Scheme};
 use subdiv::vk::{RenderMesh, RenderOptions, Renderer};
-use subdiv::{BuiltinScene, DynamicSubdivision, Scene, view_for};
+use subdiv::{BuiltinScene, DynamicSubdivision, Scene, framing_box, view_for};
 use subdiv_quality::{QualityParams, QualityRun, quantile};
 
 use crate::camera_args::parse_size;
@@ -64,6 +64,10 @@ pub struct BenchFramerateArgs {
     /// Depth of the reference surface for --error-every (default: --max-depth + 1).
     #[arg(long)]
     pub reference_depth: Option<Depth>,
+    /// Samples per pixel of the frames drawn (as `render --samples`) [default: 4 where the
+    /// device supports it].
+    #[arg(long, value_name = "N", value_parser = crate::surface_args::parse_samples)]
+    pub samples: Option<u32>,
     #[command(flatten)]
     pub limit: crate::limit_args::LimitArgs,
 }
@@ -92,7 +96,7 @@ fn error_run<'a>(
     let Some(k) = a.error_every else {
         return Ok(None);
     };
-    let (lo, hi) = cage.bounds();
+    let (lo, hi) = framing_box(cage);
     let cameras: Vec<Camera> = (0..a.frames)
         .step_by(k)
         .map(|i| frame_camera(a, i, lo, hi))
@@ -151,7 +155,7 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
             .check(&cage, Request::Uniform { scheme, depth }, &label)?;
     }
     let nf = cage.num_faces();
-    let (lo, hi) = cage.bounds();
+    let (lo, hi) = framing_box(&cage);
     let mut node = DynamicSubdivision::new(
         cage.clone(),
         DepthParams {
@@ -204,7 +208,11 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
         };
         if let (Some(r), false) = (renderer.as_mut(), a.no_render) {
             let view = view_for(&camera, lo, hi);
-            r.render_discard(&mesh, &view, [w, h], &RenderOptions::default())?;
+            let options = RenderOptions {
+                samples: a.samples,
+                ..RenderOptions::default()
+            };
+            r.render_discard(&mesh, &view, [w, h], &options)?;
         }
         let dt = t0.elapsed().as_secs_f32();
         last = Some(dt);
