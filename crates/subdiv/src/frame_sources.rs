@@ -129,7 +129,7 @@ impl FrameSource for AdaptiveSource {
         }
         let cap = self
             .node
-            .controller()
+            .paper_controller()
             .map_or(self.node.params().max_depth, |c| c.cap());
         self.status = format!(
             "patches per depth {} | maxsd {cap} | {} patches recomputed",

@@ -135,12 +135,12 @@ mod frame_sources;
 mod refine;
 mod scene;
 
-pub use builtin::{BuiltinError, BuiltinScene, helmet40};
+pub use builtin::{BuiltinError, BuiltinScene, GRID_COLUMNS, helmet, helmet40, instance_grid};
 pub use camera::{camera_from_view, framing_box, orbit_camera, radius_about, view_for};
 pub use doi_setup::{
     DoiOptions, DoiSetup, DoiSetupError, check_doi_options, doi_face_depths, make_doi,
 };
-pub use dynamic::DynamicSubdivision;
+pub use dynamic::{Control, DynamicSubdivision};
 pub use export::{ExportError, OutputFormat, write_surface};
 pub use frame::depth_histogram;
 pub use frame_sources::{AdaptiveSource, DoiSource, UniformSource};
