@@ -5,11 +5,10 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use glam::Vec3;
-use subdiv::mesh::Camera;
+use subdiv::mesh::{Camera, Mesh};
 use subdiv::vk::OrbitCamera;
 use subdiv::vk::viewer::{self, FrameControl, FrameSource, ViewerOptions};
-use subdiv::{AdaptiveSource, DoiSource, UniformSource, orbit_camera};
+use subdiv::{AdaptiveSource, DoiSource, UniformSource, framing_box, orbit_camera};
 
 use crate::camera_args::CameraArgs;
 use crate::choices::value_name;
@@ -53,10 +52,12 @@ fn parse_pan(s: &str) -> Result<[f32; 2], String> {
     }
 }
 
-/// The initial camera for cage bounds `lo`, `hi` and the orbit camera the viewer starts from
-/// (with a note when the orbit can only approximate it).
-fn start_camera(a: &ViewArgs, lo: Vec3, hi: Vec3) -> (Camera, OrbitCamera) {
-    let camera = a.camera.camera(lo, hi);
+/// The initial camera for `cage` (framed on it, as `subdiv render` frames it) and the orbit
+/// camera the viewer starts from and Home/F return to (with a note when the orbit can only
+/// approximate it).
+fn start_camera(a: &ViewArgs, cage: &Mesh) -> (Camera, OrbitCamera) {
+    let camera = a.camera.camera(cage);
+    let (lo, hi) = framing_box(cage);
     let (orbit, exact) = orbit_camera(&camera, lo, hi);
     if !exact {
         log::warn!("the viewer orbits about the up axis (--up); a view along it is approximated");
@@ -106,8 +107,7 @@ fn run_doi(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     let render = style.render_options()?;
     let label = a.surface.label();
     let setup = a.surface.doi_setup()?;
-    let (lo, hi) = setup.bounds();
-    let (camera, orbit) = start_camera(a, lo, hi);
+    let (camera, orbit) = start_camera(a, &setup.cage);
     let title = format!(
         "subdiv view {label} ({} DoI, {} steps)",
         setup.kind.name(),
@@ -135,9 +135,8 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         return run_adaptive(a);
     }
     let render = a.style.render_options()?;
-    let (scene, scheme) = a.surface.uniform_scene()?;
-    let (lo, hi) = scene.bounds();
-    let (camera, orbit) = start_camera(a, lo, hi);
+    let (scene, scheme, cage) = a.surface.uniform_scene()?;
+    let (camera, orbit) = start_camera(a, &cage);
     let title = format!(
         "subdiv view {} ({}, depth {})",
         a.surface.label(),
@@ -166,8 +165,7 @@ fn run_adaptive(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         );
     }
     let (cage, scheme) = a.surface.load_cage_scheme()?;
-    let (lo, hi) = cage.bounds();
-    let (camera, orbit) = start_camera(a, lo, hi);
+    let (camera, orbit) = start_camera(a, &cage);
     let title = format!(
         "subdiv view {} (adaptive, max depth {})",
         a.surface.label(),
