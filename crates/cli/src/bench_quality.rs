@@ -64,6 +64,11 @@ pub struct BenchQualityArgs {
     /// Which kinds of configuration to measure (comma-separated) [default: all three].
     #[arg(long, value_delimiter = ',')]
     pub configs: Vec<ConfigKind>,
+    /// Also measure the predictive frame-rate control's choice for a budget of N triangles
+    /// (comma-separated, one configuration `budget-<N>` each): the depths with the least
+    /// estimated image error drawing at most N triangles before fans.
+    #[arg(long, value_delimiter = ',', value_name = "N")]
+    pub budget_triangles: Vec<u32>,
     /// Curvature mode: normal-cone apertures in degrees to measure (comma-separated; one
     /// configuration per combination with --classifier and --projected-size) [default: the
     /// `DepthParams` default].
@@ -173,6 +178,12 @@ impl BenchQualityArgs {
         }
         if on(ConfigKind::PixelError) {
             out.extend(Config::pixel_errors());
+        }
+        for &n in &self.budget_triangles {
+            if n == 0 {
+                bail!("--budget-triangles {n}: need at least one triangle");
+            }
+            out.push(Config::Budget(n));
         }
         Ok(out)
     }

@@ -87,6 +87,7 @@ fn run(
             costs: &costs,
             assignment: &s.a,
             min_depth: &s.min_depth,
+            first: &[],
             max_depth: s.max_depth,
             fixed: FrameWork::default(),
         };

@@ -4,7 +4,7 @@
 
 use std::time::Instant;
 
-use subdiv::depth::DepthParams;
+use subdiv::depth::{DepthParams, FrameTimeModel};
 use subdiv::mesh::{Camera, Mesh};
 use subdiv::rules::{Scheme, VertexScalar};
 use subdiv::vk::{RenderMesh, RenderOptions, Renderer, View, VkError};
@@ -15,7 +15,7 @@ use super::metrics::{
     FrameErrors, SUPERSAMPLE, area_coverage, compare_with_distance, quantile,
     sample_silhouette_distance,
 };
-use subdiv::{DynamicSubdivision, Scene, framing_box, uniform_limit, view_for};
+use subdiv::{Control, DynamicSubdivision, Scene, framing_box, uniform_limit, view_for};
 
 /// The reference render of one camera.
 struct ReferenceFrame {
@@ -241,7 +241,7 @@ impl<'a> QualityRun<'a> {
                     self.compare(renderer, scene, i, &name, &mut tally)?;
                 }
             }
-            Config::Curvature(_) | Config::PixelError(_) => {
+            Config::Curvature(_) | Config::PixelError(_) | Config::Budget(_) => {
                 let adaptive_err = |source| QualityError::Adaptive {
                     config: name.clone(),
                     source,
@@ -254,12 +254,18 @@ impl<'a> QualityRun<'a> {
                 match config {
                     Config::PixelError(px) => params.pixel_error = Some(px),
                     Config::Curvature(c) => params = c.apply(params),
-                    Config::Uniform(_) => {}
+                    Config::Uniform(_) | Config::Budget(_) => {}
                 }
                 let mut node =
                     DynamicSubdivision::with_scheme(self.cage.clone(), self.scheme, params)
                         .map_err(adaptive_err)?;
-                if params.pixel_error.is_some() {
+                if let Config::Budget(n) = config {
+                    // One second per 10^5 triangles, nothing else: a budget of n triangles is
+                    // a frame time of n * 1e-5 seconds.
+                    node.set_frame_model(FrameTimeModel::new([0.0, 1.0, 0.0, 0.0, 0.0]));
+                    node.set_control(Control::Budget, (1e5 / f64::from(n.max(1))) as f32);
+                }
+                if params.pixel_error.is_some() || matches!(config, Config::Budget(_)) {
                     node.patch_errors();
                 }
                 for (i, f) in self.frames.iter().enumerate() {
