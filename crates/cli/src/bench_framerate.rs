@@ -247,7 +247,10 @@ fn draw(
             samples: a.samples,
             ..RenderOptions::default()
         };
-        r.render_discard(&mesh, &view, [a.size.0, a.size.1], &options)?;
+        // The vertex buffer is kept between frames: only what a frame rewrote is uploaded.
+        let size = [a.size.0, a.size.1];
+        let (version, dirty) = (g.vertex_version(), g.dirty_vertices());
+        r.render_discard_versioned(&mesh, &view, size, &options, version, dirty)?;
     }
     Ok(())
 }
