@@ -79,11 +79,13 @@ pub fn fig7(d: &CcData, s: &mut String) -> Result<()> {
     writeln!(s, "![Fig. 7](figures/fig7_framerate.png)\n")?;
     writeln!(
         s,
-        "**Fig. 7** Frames per second on lavapipe (CPU Vulkan; tessellation, upload and rendering, {n} frames \
-         each): medians over frames 1–{} of uniform depth 2: {:.1}, 3: {:.1}, 4: {:.1} fps (paper, GeForce 4: \
+        "**Fig. 7** Frames per second on lavapipe (CPU Vulkan; tessellation, upload and rendering at {:.0} \
+         sample per pixel, as the paper's renderer drew; {n} frames each): medians over frames 1–{} of uniform \
+         depth 2: {:.1}, 3: {:.1}, 4: {:.1} fps (paper, GeForce 4: \
          31, 17, 7) and adaptive without control: {fa:.1} fps. Uniform depth 2, a fixed workload, has {u2_within} \
          of its {} frames within ±10 % of their median: a share of {ceiling:.3}, the ceiling of any \
          controller's hold on this machine.\n",
+        d.setting("samples")?,
         n - 1,
         f[0],
         f[1],
