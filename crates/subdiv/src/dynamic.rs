@@ -20,6 +20,10 @@ use subdiv_rules::Scheme;
 use subdiv_slate::Depth;
 use subdiv_stitch::{AdaptiveFrame, Assembler, AssemblyError, FanMethod, TriAssembler};
 
+/// Frames the predictive control draws at the geometric depths while the frame-time model
+/// learns the machine (the first frames' times, measured, fit it).
+const WARMUP_FRAMES: u64 = 3;
+
 /// The patch assembly of the node's scheme.
 #[derive(Debug)]
 enum Stitcher {
@@ -370,6 +374,17 @@ impl DynamicSubdivision {
         if self.fixed_depths.is_none() {
             match (&mut self.controller, self.errors.as_ref()) {
                 (Controller::Paper(c), _) => c.apply(&mut a),
+                // Until the model has seen a few frames of this machine, the geometric depths
+                // (a sensible picture at a moderate cost) rather than a choice priced by the
+                // prior alone; one of those frames a level shallower, so that the fit sees two
+                // workloads and can tell the fixed cost from the per-triangle one.
+                (Controller::Budget(_), _) if self.model.frames() < WARMUP_FRAMES => {
+                    if self.model.frames() == 1 {
+                        for (u, d) in a.depth.iter_mut().enumerate() {
+                            *d = d.saturating_sub(1).max(self.assembler.min_depth(u));
+                        }
+                    }
+                }
                 (Controller::Budget(c), Some(errors)) => {
                     let n = a.depth.len();
                     let min_depth: Vec<Depth> =
