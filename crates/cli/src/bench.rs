@@ -60,6 +60,10 @@ pub struct BenchTessellateArgs {
     /// default every run writes the indices too, as each new tessellation does.
     #[arg(long)]
     pub points_only: bool,
+    /// USD: the time code to read the stage at (time samples interpolated as USD does)
+    /// [default: default values, else the earliest time samples].
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    pub time: Option<f64>,
     #[command(flatten)]
     pub limit: crate::limit_args::LimitArgs,
 }
@@ -89,7 +93,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
-    let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, None)?;
+    let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, None, a.time)?;
     let scheme = crate::load::cage_scheme(&a.input, &cage, a.scheme.map(Scheme::from))?;
     let mesh = cage.mesh;
     anyhow::ensure!(a.depth >= 1, "--depth must be at least 1");

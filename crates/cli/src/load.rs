@@ -21,15 +21,21 @@ pub fn strict() -> bool {
 }
 
 /// Reads and validates a cage (the USD mesh prim `prim` (`--prim`), else every mesh of a USD
-/// stage, merged), with what the file says about its subdivision; errors read `FILE:LINE: what`
+/// stage, merged, at time code `time` (`--time`)), with what the file says about its subdivision; errors read `FILE:LINE: what`
 /// (OBJ) or `FILE: PRIM: ATTRIBUTE: what` (USD). Tag lines that are not applied are reported
 /// by [`report_tag_warnings`].
-pub fn load_cage(path: &Path, split_nonmanifold: bool, prim: Option<&str>) -> anyhow::Result<Cage> {
+pub fn load_cage(
+    path: &Path,
+    split_nonmanifold: bool,
+    prim: Option<&str>,
+    time: Option<f64>,
+) -> anyhow::Result<Cage> {
     let cage = read_cage(
         path,
         &CageOptions {
             split_nonmanifold_vertices: split_nonmanifold,
             prim: prim.map(str::to_string),
+            time,
         },
     )?;
     log::debug!(

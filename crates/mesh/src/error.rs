@@ -326,6 +326,14 @@ pub enum UsdError {
         /// The panic's message and where in the reader it was raised.
         msg: String,
     },
+    /// A time code that is not a number (NaN or infinite).
+    #[error("{path}: time {time} is not a finite time code")]
+    Time {
+        /// The file.
+        path: String,
+        /// The time asked for.
+        time: f64,
+    },
     /// Merged prims disagree on an attribute that subdiv keeps per mesh.
     #[error("{path}: {attr} differs between {a} and {b}; read one mesh with --prim")]
     Mixed {

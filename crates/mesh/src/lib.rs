@@ -82,8 +82,8 @@ pub use stats::MeshStats;
 pub use tags::{IgnoredTagKind, TagWarning};
 pub use union_find::UnionFind;
 pub use usd::{
-    FaceVaryingLinear, UsdCage, UsdMesh, UsdReadOptions, UsdScheme, is_usd_path, read_usd,
-    read_usd_soup,
+    FaceVaryingLinear, StageTime, UsdCage, UsdMesh, UsdReadOptions, UsdScheme, UsdStageReader,
+    is_usd_path, read_usd, read_usd_soup,
 };
 
 pub use glam;
