@@ -32,6 +32,11 @@ pub enum BenchWhat {
     /// `config=<name> triangles=<n> silhouette_px_max=<f> silhouette_px_p99=<f>
     /// shading_deg_p99=<f> update_ms=<f> render_ms=<f> shading_deg_p99_off_lines=<f>`.
     Quality(crate::bench_quality::BenchQualityArgs),
+    /// Per-frame update of a moving cage (an animated stage's frames, or any cage swayed): the
+    /// layout is kept while the topology stays and points and normals are rewritten. One line a
+    /// frame, `frame=<i> time=<t> update_ms=<f> points=<n> faces=<n> topology_written=<0|1>`,
+    /// then `frames=<n> update_ms_median=<f> points_per_s=<f>`.
+    Animate(crate::bench_animate::BenchAnimateArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -84,6 +89,7 @@ pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
         BenchWhat::Tessellate(t) => bench_tessellate(t),
         BenchWhat::Framerate(f) => crate::bench_framerate::run(f),
         BenchWhat::Quality(q) => crate::bench_quality::run(q),
+        BenchWhat::Animate(m) => crate::bench_animate::run(m),
     }
 }
 

@@ -98,3 +98,60 @@ fn a_time_is_refused_for_obj_input_and_when_not_a_number() {
         "time NaN is not a finite time code",
     );
 }
+
+/// `bench animate`: one line a frame at the stage's time codes (played again from the start
+/// past its end), the index buffer kept on every frame of the uniform tessellation, and the
+/// summary line; a cage without animation is swayed.
+#[test]
+fn bench_animate_prints_a_line_a_frame_and_the_summary() {
+    let (code, out, err) = run(&[
+        "bench",
+        "animate",
+        &usd("pawn_bend.usdc"),
+        "--depth",
+        "1",
+        "--frames",
+        "50",
+        "--threads",
+        "1",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 52, "{out}");
+    assert!(
+        lines[0].contains("depth=1 threads=1 frames=50 source=stage"),
+        "{out}"
+    );
+    let counts = |l: &str| l.split_once(" points=").unwrap().1.to_string();
+    for (i, l) in lines[1..51].iter().enumerate() {
+        let t = 1 + i % 48;
+        let want = format!("frame={i} time={t} update_ms=");
+        assert!(l.starts_with(&want), "{l}");
+        // 588 quads at depth 1: 2352 quads in every frame, and the faces stay.
+        assert!(l.ends_with(" faces=2352 topology_written=0"), "{l}");
+        assert_eq!(counts(l), counts(lines[1]));
+    }
+    let last = lines[51];
+    assert!(last.starts_with("frames=50 update_ms_median="), "{last}");
+    assert!(last.contains(" points_per_s="), "{last}");
+
+    let (code, out, err) = run(&[
+        "bench",
+        "animate",
+        &usd("pawn_bend_t1.obj"),
+        "--frames",
+        "2",
+        "--eye-relative",
+        "1.5,-1.7,0.9",
+        "--up",
+        "0,0,1",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.lines().next().unwrap().contains("adaptive max_depth=5"),
+        "{out}"
+    );
+    assert!(out.contains("source=sway"), "{out}");
+    assert!(out.contains("\nframe=1 time=1 "), "{out}");
+    assert!(out.contains("\nframes=2 update_ms_median="), "{out}");
+}

@@ -65,7 +65,7 @@ pub use error::{MeshError, ObjError, UsdError};
 pub use fvar::{FVarLinearInterpolation, FaceVarying};
 pub use geometry::{
     Vector3, closest_point_on_triangle, face_normals, newell_area, newell_normal, point_bounds,
-    triangulate, vertex_normals,
+    sway, triangulate, vertex_normals,
 };
 pub use handle::{EdgeId, FaceId, HalfedgeId, VertexId};
 pub use mesh::{Mesh, Outgoing};

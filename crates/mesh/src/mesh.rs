@@ -14,6 +14,11 @@ use crate::soup::PolygonSoup;
 
 pub use traverse::Outgoing;
 
+/// Whether two sharpness arrays hold the same values, bit for bit.
+fn same_bits(a: &[f32], b: &[f32]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+}
+
 /// A manifold, consistently oriented polygon mesh with faces of any size.
 ///
 /// Topology is a half-edge structure with explicit boundary half-edges (whose face is
@@ -109,6 +114,50 @@ impl Mesh {
     #[inline]
     pub fn positions_mut(&mut self) -> &mut [Vec3] {
         &mut self.positions
+    }
+    /// Whether `other` is this mesh but for its positions: the same faces, sharpness, holes,
+    /// options, face-varying data and groups (a cage that moved, such as an animated cage's
+    /// next frame), so that what was set up for one (a tessellation layout) serves the other.
+    pub fn same_topology(&self, other: &Mesh) -> bool {
+        // Destructured so that a new field cannot be forgotten here.
+        let Mesh {
+            positions: _,
+            vertex_sharpness,
+            vertex_out,
+            he_to,
+            he_next,
+            he_prev,
+            he_face,
+            edge_sharpness,
+            face_offsets,
+            face_verts,
+            face_he,
+            face_hole,
+            face_group,
+            groups,
+            options,
+            uv,
+            whole_edges,
+            crease_ends,
+        } = self;
+        self.positions.len() == other.positions.len()
+            && *face_offsets == other.face_offsets
+            && *face_verts == other.face_verts
+            && *vertex_out == other.vertex_out
+            && *he_to == other.he_to
+            && *he_next == other.he_next
+            && *he_prev == other.he_prev
+            && *he_face == other.he_face
+            && *face_he == other.face_he
+            && same_bits(vertex_sharpness, &other.vertex_sharpness)
+            && same_bits(edge_sharpness, &other.edge_sharpness)
+            && *face_hole == other.face_hole
+            && *face_group == other.face_group
+            && *groups == other.groups
+            && *options == other.options
+            && *uv == other.uv
+            && *whole_edges == other.whole_edges
+            && *crease_ends == other.crease_ends
     }
     /// Position of `v`.
     #[inline]

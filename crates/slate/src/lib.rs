@@ -70,8 +70,10 @@ mod gather;
 mod grid;
 mod layout;
 mod limit;
+mod moving;
 mod patches;
 mod pool;
+mod size;
 mod step;
 mod table;
 mod tessellate;
@@ -84,6 +86,7 @@ mod worker;
 
 pub use grid::side_point;
 pub use layout::PatchLayout;
+pub use moving::UniformTessellator;
 pub use patches::{PatchRef, PatchSet, Unit};
 pub use pool::PatchGrids;
 pub use subdiv_rules::{Depth, MAX_DEPTH};

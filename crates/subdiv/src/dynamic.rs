@@ -133,7 +133,7 @@ impl DynamicSubdivision {
         Ok(())
     }
     /// Moves the cage's vertices (animation, editing): curvature depths, bounding spheres and the
-    /// patch cache are recomputed; the topology and tags stay.
+    /// patch cache are recomputed; the topology and tags stay, and so do the patches.
     pub fn set_positions(&mut self, positions: &[glam::Vec3]) -> Result<(), AssemblyError> {
         if positions.len() != self.mesh.num_vertices() {
             return Err(AssemblyError::Length {
@@ -155,7 +155,10 @@ impl DynamicSubdivision {
         self.spheres = face_spheres(&self.mesh, self.scheme);
         self.seams = Seams::new(&self.mesh);
         self.errors = None;
-        self.assembler = Stitcher::new(&self.mesh, self.scheme, self.params.max_depth)?;
+        match &mut self.assembler {
+            Stitcher::Quads(a) => a.move_to(&self.mesh),
+            Stitcher::Tris(a) => a.invalidate(),
+        }
         Ok(())
     }
 
