@@ -7,9 +7,12 @@ use std::process::ExitCode;
 
 use glam::Vec3;
 use subdiv::mesh::Camera;
+use subdiv::mesh::{UsdReadOptions, UsdStageReader, is_usd_path};
 use subdiv::vk::OrbitCamera;
-use subdiv::vk::viewer::{self, FrameSource, ViewerOptions};
-use subdiv::{AdaptiveSource, DoiSource, UniformSource, orbit_camera};
+use subdiv::vk::viewer::{self, FrameSource, Playback, ViewerOptions};
+use subdiv::{
+    AdaptiveSource, AnimatedSource, DoiSource, UniformSource, orbit_camera, stage_playback,
+};
 
 use crate::camera_args::CameraArgs;
 use crate::choices::value_name;
@@ -131,6 +134,9 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     if a.surface.doi.kind().is_some() {
         return run_doi(a);
     }
+    if let Some((stage, playback)) = animated_stage(a)? {
+        return run_animated(a, stage, playback);
+    }
     if a.surface.is_adaptive(&a.camera)? {
         return run_adaptive(a);
     }
@@ -184,4 +190,96 @@ fn run_adaptive(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         ..ViewerOptions::default()
     };
     show(a, &mut source, options, |_| String::new())
+}
+
+/// The input's stage and its playback when it is an animated USD stage: playing from the start
+/// of its range, or paused at `--time` (and, for a scripted screenshot, paused at the start).
+fn animated_stage(a: &ViewArgs) -> anyhow::Result<Option<(UsdStageReader, Playback)>> {
+    let Some(input) = a.surface.input.as_ref().filter(|p| is_usd_path(p)) else {
+        return Ok(None);
+    };
+    if a.surface.scene.is_some() {
+        return Ok(None);
+    }
+    let opts = UsdReadOptions {
+        prim: a.surface.prim.clone(),
+        split_nonmanifold_vertices: a.surface.split_nonmanifold,
+        time: None,
+    };
+    let stage = UsdStageReader::open(input, &opts)?;
+    let playing = a.surface.time.is_none() && a.screenshot_after.is_none();
+    let playback = stage_playback(&stage, a.surface.time, playing)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", input.display()))?;
+    Ok(playback.map(|p| (stage, p)))
+}
+
+/// `subdiv view` on an animated stage: the cage read at each frame's time code, uniform or
+/// adaptive, played at the stage's `timeCodesPerSecond`.
+fn run_animated(
+    a: &ViewArgs,
+    stage: UsdStageReader,
+    playback: Playback,
+) -> anyhow::Result<ExitCode> {
+    let render = a.style.render_options()?;
+    if a.surface.cull_camera_eye_relative.is_some() {
+        anyhow::bail!(
+            "subdiv view: freeze the culling camera with Z instead of --cull-camera-eye-relative"
+        );
+    }
+    let label = a.surface.label();
+    let adaptive = a.surface.is_adaptive(&a.camera)?;
+    // The cage at the first time code, as every command reads it (--time, else the start).
+    let first = crate::load::load_cage(
+        a.surface
+            .input
+            .as_deref()
+            .unwrap_or_else(|| std::path::Path::new("")),
+        a.surface.split_nonmanifold,
+        a.surface.prim.as_deref(),
+        Some(playback.time),
+    )?;
+    let path = a.surface.input.clone().unwrap_or_default();
+    let scheme = crate::load::cage_scheme(&path, &first, a.surface.scheme.map(Into::into))?;
+    let cage = first.mesh;
+    let cage_bounds = cage.bounds();
+    let range = format!("time {}-{}", playback.start, playback.end);
+    let (source, title, control) = if adaptive {
+        let node = a.surface.adaptive_node(cage, scheme)?;
+        let title = format!(
+            "subdiv view {label} (adaptive, max depth {}, {range})",
+            a.surface.adaptive.max_depth()
+        );
+        let source = AnimatedSource::adaptive(stage, node, playback.time);
+        (source, title, a.screenshot_after.is_none())
+    } else {
+        let depth = a.surface.uniform_depth();
+        let request = subdiv::rules::Request::Uniform { scheme, depth };
+        a.surface.limit.check(&cage, request, &label)?;
+        let source = AnimatedSource::uniform(stage, scheme, depth, playback.time)
+            .map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+        let title = format!(
+            "subdiv view {label} ({}, depth {depth}, {range})",
+            value_name(&crate::choices::SchemeName::from(scheme))
+        );
+        (source, title, false)
+    };
+    let mut source = source;
+    // The camera frames what `render` frames: the uniform tessellation, else the cage.
+    let (lo, hi) = match source.uniform_scene() {
+        Some(scene) => scene.bounds(),
+        None => cage_bounds,
+    };
+    let (camera, orbit) = start_camera(a, lo, hi);
+    let options = ViewerOptions {
+        title,
+        size: [camera.width, camera.height],
+        camera: Some(orbit),
+        render,
+        frame_rate_control: control,
+        playback: Some(playback),
+        ..ViewerOptions::default()
+    };
+    show(a, &mut source, options, |s| {
+        format!("last time {}", s.time())
+    })
 }

@@ -68,7 +68,12 @@ impl Scene {
     /// The uniform tessellation of `cage` at `depth` as a scene; every vertex's scalar is
     /// `depth`. A tessellation without faces is [`SceneError::Empty`].
     pub fn uniform(cage: &Mesh, scheme: Scheme, depth: Depth) -> Result<Scene, SceneError> {
-        let mut limit = uniform_limit(cage, scheme, depth)?;
+        Scene::from_uniform(uniform_limit(cage, scheme, depth)?, depth)
+    }
+
+    /// The scene of a uniform tessellation `limit` at `depth` (every vertex's scalar is
+    /// `depth`); a tessellation without faces is [`SceneError::Empty`].
+    pub fn from_uniform(mut limit: LimitMesh, depth: Depth) -> Result<Scene, SceneError> {
         if limit.num_faces() == 0 {
             return Err(SceneError::Empty);
         }
