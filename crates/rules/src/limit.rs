@@ -98,6 +98,7 @@ fn limit_surface_from(
         uv_indices,
         scalar: None,
         topology: TopologyStamp::default(),
+        uniform_faces: 0,
     }
 }
 

@@ -242,12 +242,14 @@ impl DynamicSubdivision {
 
     /// Computes the frame for `camera`; `last_frame_time` (seconds) feeds the frame-rate
     /// controller when it is on. Only classification, depths, the patches whose depth rose above
-    /// their cached depth, and the index buffer are recomputed.
+    /// their cached depth, and the index buffer are recomputed; the frame's
+    /// [`parts`](AdaptiveFrame::parts) say where the time went.
     pub fn update(
         &mut self,
         camera: &Camera,
         last_frame_time: Option<f32>,
     ) -> Result<&AdaptiveFrame, AssemblyError> {
+        let start = std::time::Instant::now();
         if self.params.pixel_error.is_some() {
             self.patch_errors();
         }
@@ -291,10 +293,12 @@ impl DynamicSubdivision {
             Stitcher::Tris(_) => 0,
         };
         self.seams.raise(&mut a.depth, &a.active, min_depth);
+        let depths = start.elapsed().as_secs_f64();
         match &mut self.assembler {
             Stitcher::Quads(asm) => asm.frame(&self.mesh, &a.depth, &a.active, &mut self.geometry),
             Stitcher::Tris(asm) => asm.frame(&self.mesh, &a.depth, &a.active, &mut self.geometry),
         }?;
+        self.geometry.set_depths_time(depths);
         self.assignment = a;
         Ok(&self.geometry)
     }

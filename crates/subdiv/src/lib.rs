@@ -138,7 +138,7 @@ mod refine;
 mod scene;
 
 pub use animated_source::{AnimatedSource, stage_playback};
-pub use builtin::{BuiltinError, BuiltinScene, helmet40};
+pub use builtin::{BuiltinError, BuiltinScene, GRID_COLUMNS, helmet40, instance_grid};
 pub use camera::{camera_from_view, orbit_camera, radius_about, view_for};
 pub use doi_setup::{
     DoiOptions, DoiSetup, DoiSetupError, check_doi_options, doi_face_depths, make_doi,
