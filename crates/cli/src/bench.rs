@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use subdiv::rules::{Request, Scheme};
 use subdiv::slate::{
-    PatchLayout, TriLayout, slate_bytes_per_thread, tessellate_layout, tessellate_layout_into,
+    BilinearLayout, PatchLayout, TriLayout, tessellate_bilinear_into, slate_bytes_per_thread, tessellate_layout, tessellate_layout_into,
     tessellate_tri, tessellate_tri_layout_into, tri_slate_bytes_per_thread,
 };
 
@@ -115,6 +115,9 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
     if scheme == Scheme::Loop {
         return bench_loop(a, &mesh, &pool);
     }
+    if scheme == Scheme::Bilinear {
+        return bench_bilinear(a, &mesh, &pool);
+    }
     let t0 = Instant::now();
     let layout = PatchLayout::new(&mesh, a.depth)
         .map_err(|e| anyhow::anyhow!("{}: {e}", a.input.display()))?;
@@ -163,6 +166,54 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
         points / med,
         patches / med,
         slate_bytes_per_thread(a.depth, layout.max_valence()),
+        a.timed()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `bench tessellate --scheme bilinear`: the bilinear patches, the same lines (no slates:
+/// `slate_bytes_per_thread=0`).
+fn bench_bilinear(
+    a: &BenchTessellateArgs,
+    mesh: &subdiv::mesh::Mesh,
+    pool: &rayon::ThreadPool,
+) -> anyhow::Result<ExitCode> {
+    let t0 = Instant::now();
+    let layout = BilinearLayout::new(mesh, a.depth)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", a.input.display()))?;
+    let setup = t0.elapsed().as_secs_f64();
+    let mut out = subdiv::LimitMesh::default();
+    let times = pool.install(|| -> anyhow::Result<_> {
+        tessellate_bilinear_into(mesh, &layout, &mut out)?;
+        let mut times = Vec::with_capacity(a.runs);
+        for _ in 0..a.runs {
+            if !a.points_only {
+                out.clear_faces();
+            }
+            let t = Instant::now();
+            tessellate_bilinear_into(mesh, &layout, &mut out)?;
+            times.push(t.elapsed().as_secs_f64());
+            std::hint::black_box(&out);
+        }
+        Ok(times)
+    })?;
+    let med = median(times.clone());
+    out!(
+        "input={} scheme=bilinear depth={} threads={} limit_points={} quads={} setup_ms={:.3} median_ms={:.3} min_ms={:.3} timed={}",
+        a.input.display(),
+        a.depth,
+        pool.current_num_threads(),
+        out.num_vertices(),
+        out.num_faces(),
+        setup * 1e3,
+        med * 1e3,
+        times.iter().copied().fold(f64::INFINITY, f64::min) * 1e3,
+        a.timed()
+    );
+    out!(
+        "limit_points_per_s={:.0} patches_per_s={:.0} slate_bytes_per_thread=0 timed={}",
+        out.num_vertices() as f64 / med,
+        layout.num_patches() as f64 / med,
         a.timed()
     );
     Ok(ExitCode::SUCCESS)

@@ -176,7 +176,7 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<ExitCode> {
     let loop_ok = s.face_sizes.keys().all(|&k| k == 3);
     writeln!(
         out,
-        "schemes: catmull-clark yes, loop {}",
+        "schemes: catmull-clark yes, bilinear yes, loop {}",
         if loop_ok {
             "yes"
         } else {

@@ -102,14 +102,14 @@ pub fn nonmanifold_lines(found: &NonManifold) -> String {
 }
 
 /// The scheme to subdivide `cage` with: `--scheme` when given, else the USD
-/// `subdivisionScheme`, else Catmull-Clark. USD's `bilinear` and `none` need `--scheme`.
+/// `subdivisionScheme`, else Catmull-Clark. USD's `none` needs `--scheme`.
 pub fn cage_scheme(path: &Path, cage: &Cage, requested: Option<Scheme>) -> anyhow::Result<Scheme> {
     match (requested, cage.scheme) {
         (Some(s), _) => Ok(s),
         (None, None) => Ok(Scheme::CatmullClark),
         (None, Some(u)) => Scheme::from_usd(u).ok_or_else(|| {
             anyhow!(
-                "{}: {}: subdivisionScheme is {}; subdiv subdivides catmullClark and loop surfaces \
+                "{}: {}: subdivisionScheme is {}, a polygon mesh rather than a subdivision surface \
                  (give --scheme to subdivide it anyway)",
                 path.display(),
                 cage.prims.join(" "),

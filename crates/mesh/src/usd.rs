@@ -56,7 +56,7 @@ pub enum UsdScheme {
     CatmullClark,
     /// `loop` (triangle meshes).
     Loop,
-    /// `bilinear`: subdiv has no bilinear scheme.
+    /// `bilinear`: OpenSubdiv's bilinear scheme.
     Bilinear,
     /// `none`: a polygon mesh, not a subdivision surface.
     None,

@@ -8,9 +8,11 @@ use crate::refine::refine_uniform_levels_f64;
 use crate::ring::Ring;
 use crate::{Depth, RulesError, Scheme};
 
+mod bilinear;
 mod mesh;
 mod split;
 mod topology;
+pub use bilinear::{bilinear_patches, inside_one_patch};
 pub use mesh::{KeyedWrite, LimitMesh, LimitMeshError, TriangleBuffers, VertexScalar};
 pub use topology::TopologyKey;
 use topology::TopologyStamp;
@@ -18,6 +20,10 @@ use topology::TopologyStamp;
 /// Push-to-limit: the exact limit point and normal of every vertex of `mesh`, and its visible
 /// faces (holes left out), in parallel.
 pub fn limit_surface(mesh: &Mesh, scheme: Scheme) -> LimitMesh {
+    if scheme == Scheme::Bilinear {
+        let pos: Vec<DVec3> = mesh.positions().iter().map(|p| p.as_dvec3()).collect();
+        return bilinear::bilinear_limit(mesh, &pos, &bilinear_patches(mesh, 0));
+    }
     limit_surface_from(mesh, scheme, |w| mesh.position(w).as_dvec3())
 }
 
@@ -128,6 +134,10 @@ pub fn tessellate_uniform(
         mesh.check_triangles()?;
     }
     let (refined, pos) = refine_uniform_levels_f64(mesh, scheme, depth)?;
+    if scheme == Scheme::Bilinear {
+        let patches = bilinear_patches(mesh, depth);
+        return Ok(bilinear::bilinear_limit(&refined, &pos, &patches));
+    }
     Ok(limit_surface_from(&refined, scheme, |w| pos[w.idx()]))
 }
 

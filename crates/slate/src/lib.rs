@@ -66,6 +66,7 @@
 //! assert_eq!(t.num_faces(), 588 * 16);
 //! ```
 
+mod bilinear;
 mod gather;
 mod grid;
 mod layout;
@@ -84,6 +85,7 @@ mod uv;
 mod wide;
 mod worker;
 
+pub use bilinear::{BilinearLayout, tessellate_bilinear, tessellate_bilinear_into};
 pub use grid::side_point;
 pub use layout::PatchLayout;
 pub use moving::UniformTessellator;

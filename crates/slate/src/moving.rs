@@ -11,6 +11,7 @@
 use subdiv_mesh::Mesh;
 use subdiv_rules::{Depth, LimitMesh, Scheme};
 
+use crate::bilinear::{BilinearLayout, tessellate_bilinear, tessellate_bilinear_into};
 use crate::layout::PatchLayout;
 use crate::size::check_uniform_size;
 use crate::tessellate::{SlateError, tessellate, tessellate_layout_into};
@@ -23,6 +24,8 @@ enum Layout {
     Quads(Box<PatchLayout>),
     /// Loop: the triangular slates.
     Tris(Box<TriLayout>),
+    /// Bilinear: its patches.
+    Bilinear(Box<BilinearLayout>),
     /// Depth 0: the cage's own limit points, made afresh each frame.
     Cage,
 }
@@ -127,6 +130,7 @@ impl UniformTessellator {
                 check_uniform_size(mesh, self.scheme, d)?;
                 Layout::Tris(Box::new(TriLayout::new(mesh, d)?))
             }
+            (Scheme::Bilinear, d) => Layout::Bilinear(Box::new(BilinearLayout::new(mesh, d)?)),
         };
         self.built += 1;
         Ok(())
@@ -140,10 +144,12 @@ impl UniformTessellator {
         match &self.layout {
             Layout::Quads(l) => tessellate_layout_into(mesh, l, &mut self.out),
             Layout::Tris(l) => tessellate_tri_layout_into(mesh, l, &mut self.out),
+            Layout::Bilinear(l) => tessellate_bilinear_into(mesh, l, &mut self.out),
             Layout::Cage => {
                 self.out = match self.scheme {
                     Scheme::CatmullClark => tessellate(mesh, 0)?,
                     Scheme::Loop => tessellate_tri(mesh, 0)?,
+                    Scheme::Bilinear => tessellate_bilinear(mesh, 0)?,
                 };
                 Ok(())
             }
@@ -175,6 +181,7 @@ mod tests {
             (Scheme::CatmullClark, false),
             (Scheme::CatmullClark, true),
             (Scheme::Loop, true),
+            (Scheme::Bilinear, true),
         ];
         for (scheme, tris) in cases {
             for depth in [0, 1, 3] {
@@ -182,6 +189,7 @@ mod tests {
                 let fresh = |m: &Mesh| match scheme {
                     Scheme::CatmullClark => tessellate(m, depth).unwrap(),
                     Scheme::Loop => tessellate_tri(m, depth).unwrap(),
+                    Scheme::Bilinear => tessellate_bilinear(m, depth).unwrap(),
                 };
                 let mut t = UniformTessellator::new(&mesh, scheme, depth).unwrap();
                 assert_eq!(*t.surface(), fresh(&mesh));

@@ -23,7 +23,7 @@ pub(crate) fn check_uniform_size(
     // Points: a quad per face corner at level 1 (Catmull-Clark), a triangle per face (Loop),
     // each 4^(depth-1) or 4^depth quads or triangles, about one point per quad or two triangles.
     let estimate = match scheme {
-        Scheme::CatmullClark => {
+        Scheme::CatmullClark | Scheme::Bilinear => {
             let corners: u64 = mesh.faces().map(|f| mesh.face_size(f) as u64).sum();
             corners.saturating_mul(1u64 << (2 * depth)) / 4
         }

@@ -29,6 +29,7 @@ impl Stitcher {
         Ok(match scheme {
             Scheme::CatmullClark => Stitcher::Quads(Box::new(Assembler::new(mesh, max_depth)?)),
             Scheme::Loop => Stitcher::Tris(Box::new(TriAssembler::new(mesh, max_depth)?)),
+            Scheme::Bilinear => return Err(AssemblyError::NotAdaptive { scheme: "bilinear" }),
         })
     }
 }

@@ -28,7 +28,7 @@ pub enum SceneError {
 }
 
 /// The uniform limit tessellation of `mesh` at `depth` on the slate tessellators: quad slates
-/// for Catmull-Clark, triangular slates for Loop. A cage with face-varying data (UVs) gets its
+/// for Catmull-Clark, triangular slates for Loop, bilinear patches for bilinear. A cage with face-varying data (UVs) gets its
 /// face-varying limit values at every corner (`LimitMesh::uvs`). A depth whose output is beyond
 /// this machine's memory is refused before anything is allocated
 /// ([`SlateError::OutputTooLarge`], with the size asked for).
@@ -41,6 +41,7 @@ pub fn uniform_limit(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<LimitM
             SlateError::Rules(r) => SceneError::Rules(r),
             e => SceneError::Slate(e),
         })?,
+        Scheme::Bilinear => subdiv_slate::tessellate_bilinear(mesh, depth)?,
     };
     log::debug!(
         "uniform {scheme:?} depth {depth}: {} faces -> {} limit points, {} faces in {:.1} ms",
