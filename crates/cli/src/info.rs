@@ -72,6 +72,32 @@ fn time_lines(time: &StageTime, at: Option<f64>) -> String {
     out
 }
 
+/// `st faceVarying width 2 (24 values), displayColor vertex width 3 (8 values), ...`, or
+/// `none`: the texture coordinates and every other primvar of `mesh`.
+fn primvar_list(mesh: &Mesh) -> String {
+    let mut items = Vec::new();
+    if let Some(uv) = mesh.uv() {
+        items.push(format!(
+            "st faceVarying width 2 ({} values)",
+            uv.values.len()
+        ));
+    }
+    for p in mesh.primvars() {
+        items.push(format!(
+            "{} {} width {} ({} values)",
+            p.name,
+            p.interpolation.token(),
+            p.width,
+            p.num_values()
+        ));
+    }
+    if items.is_empty() {
+        "none".into()
+    } else {
+        items.join(", ")
+    }
+}
+
 /// Prints the report; exits 1 (after the report) when the mesh would be refused.
 pub fn run(a: &InfoArgs) -> anyhow::Result<ExitCode> {
     let path = a.input.display().to_string();
@@ -173,6 +199,7 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<ExitCode> {
     if !mesh.groups().is_empty() {
         writeln!(out, "groups: {}", mesh.groups().join(", "))?;
     }
+    writeln!(out, "primvars: {}", primvar_list(&mesh))?;
     let loop_ok = s.face_sizes.keys().all(|&k| k == 3);
     writeln!(
         out,

@@ -191,6 +191,14 @@ pub enum MeshError {
         /// As given.
         v: f32,
     },
+    /// A primvar whose values do not fit the mesh (a count, an index, a value).
+    #[error("primvar {name}: {msg}")]
+    Primvar {
+        /// The primvar's name.
+        name: String,
+        /// What is wrong.
+        msg: String,
+    },
     /// Too many elements for 32-bit handles.
     #[error("the mesh is too large: {what}")]
     TooLarge {
@@ -208,6 +216,7 @@ impl MeshError {
             | MeshError::TooLarge { .. }
             | MeshError::NotTriangles { .. }
             | MeshError::UvCount { .. }
+            | MeshError::Primvar { .. }
             | MeshError::NonFiniteUv { .. } => None,
             MeshError::IndexOutOfRange { line, .. }
             | MeshError::FaceTooSmall { line, .. }

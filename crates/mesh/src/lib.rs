@@ -51,6 +51,7 @@ mod handle;
 mod mesh;
 mod obj;
 mod options;
+mod primvar;
 mod sector_normals;
 pub mod sharpness;
 mod soup;
@@ -76,6 +77,7 @@ pub use obj::{
 pub use options::{
     BoundaryInterpolation, CreaseMethod, SHARPNESS_INFINITE, SchemeOptions, TriangleSubdivision,
 };
+pub use primvar::{Primvar, PrimvarInterpolation};
 pub use sector_normals::sector_corner_normals;
 pub use soup::{CornerTag, CreaseTag, HoleTag, NonManifold, PolygonSoup};
 pub use stats::MeshStats;

@@ -55,6 +55,8 @@ pub struct Mesh {
     groups: Vec<String>,
     options: SchemeOptions,
     uv: Option<crate::FaceVarying>,
+    /// The primvars beside the positions and `uv` ([`Mesh::primvars`]).
+    primvars: Vec<crate::Primvar>,
     /// [`Mesh::whole_vertex_edges`]: sorted semi-sharp values, by vertex; empty for almost
     /// every mesh.
     whole_edges: std::collections::BTreeMap<u32, Vec<f32>>,
@@ -138,6 +140,7 @@ impl Mesh {
             groups,
             options,
             uv,
+            primvars: _,
             whole_edges,
             crease_ends,
         } = self;
@@ -277,6 +280,39 @@ impl Mesh {
     /// Drops the face-varying channel.
     pub fn clear_uv(&mut self) {
         self.uv = None;
+    }
+    /// Replaces the face-varying channel (texture coordinates), checked: one index per face
+    /// corner, each naming a value; `None` drops it. The positions, topology and options stay.
+    pub fn set_uv(&mut self, uv: Option<crate::FaceVarying>) -> Result<(), MeshError> {
+        if let Some(fv) = &uv {
+            let corners = self.face_verts.len();
+            if fv.indices.len() != corners {
+                return Err(MeshError::UvCount {
+                    indices: fv.indices.len() as u64,
+                    corners: corners as u64,
+                });
+            }
+            if let Some(&i) = fv.indices.iter().find(|&&i| i as usize >= fv.values.len()) {
+                return Err(MeshError::Primvar {
+                    name: "st".into(),
+                    msg: format!("index {i} is outside the {} values", fv.values.len()),
+                });
+            }
+        }
+        self.uv = uv;
+        Ok(())
+    }
+    /// The primvars other than the positions and the texture coordinates ([`Mesh::uv`]).
+    pub fn primvars(&self) -> &[crate::Primvar] {
+        &self.primvars
+    }
+    /// The primvar named `name`.
+    pub fn primvar(&self, name: &str) -> Option<&crate::Primvar> {
+        self.primvars.iter().find(|p| p.name == name)
+    }
+    /// Sets the face-varying option (how face-varying data is interpolated).
+    pub fn set_fvar_option(&mut self, fvar: crate::FVarLinearInterpolation) {
+        self.options.fvar = fvar;
     }
     /// `true` if face `f` is a hole.
     #[inline]

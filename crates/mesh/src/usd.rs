@@ -316,10 +316,12 @@ fn merge(cage: &mut UsdCage, one: prim::PrimMesh, file: &str) -> Result<(), UsdE
                 b.into(),
             ));
         }
+        merge_primvars(&mut cage.soup, &one.soup, file, first, &prim)?;
     } else {
         cage.scheme = one.scheme;
         cage.face_varying = one.face_varying;
         cage.soup.options = one.soup.options;
+        cage.soup.primvars = one.soup.primvars.clone();
     }
     let out = &mut cage.soup;
     let (bv, bf) = (out.positions.len() as i64, out.num_faces() as i64);
@@ -349,6 +351,63 @@ fn merge(cage: &mut UsdCage, one: prim::PrimMesh, file: &str) -> Result<(), UsdE
     out.holes
         .extend(s.holes.iter().map(|t| HoleTag { f: t.f + bf, ..*t }));
     cage.prims.push(prim);
+    Ok(())
+}
+
+/// Appends the primvars of `one` (prim `prim`) to those of `out` (first prim `first`): the
+/// same names, widths and interpolations, a constant of several prims as one value per face
+/// (uniform); values and element indices appended after `out`'s.
+fn merge_primvars(
+    out: &mut PolygonSoup,
+    one: &PolygonSoup,
+    file: &str,
+    first: &str,
+    prim: &str,
+) -> Result<(), UsdError> {
+    use crate::PrimvarInterpolation as I;
+    let names = |s: &PolygonSoup| {
+        let mut n: Vec<String> = s.primvars.iter().map(|p| p.name.clone()).collect();
+        n.sort();
+        n
+    };
+    let mixed = |a: String, b: String| UsdError::Mixed {
+        path: file.to_string(),
+        attr: "primvars",
+        a: format!("{first} ({a})"),
+        b: format!("{prim} ({b})"),
+    };
+    if names(out) != names(one) {
+        return Err(mixed(names(out).join(" "), names(one).join(" ")));
+    }
+    let uniform = |p: &mut crate::Primvar, faces: usize| {
+        if p.interpolation == I::Constant {
+            p.interpolation = I::Uniform;
+            p.indices = vec![p.indices[0]; faces];
+        }
+    };
+    let faces_out = out.num_faces();
+    for p in &mut out.primvars {
+        let Some(q) = one.primvars.iter().find(|q| q.name == p.name) else {
+            continue;
+        };
+        let mut q = q.clone();
+        uniform(p, faces_out);
+        uniform(&mut q, one.num_faces());
+        if p.interpolation != q.interpolation || p.width != q.width {
+            let show = |p: &crate::Primvar| {
+                format!(
+                    "{} {} of width {}",
+                    p.name,
+                    p.interpolation.token(),
+                    p.width
+                )
+            };
+            return Err(mixed(show(p), show(&q)));
+        }
+        let base = p.num_values() as u32;
+        p.values.extend_from_slice(&q.values);
+        p.indices.extend(q.indices.iter().map(|&i| i + base));
+    }
     Ok(())
 }
 

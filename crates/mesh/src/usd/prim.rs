@@ -49,6 +49,7 @@ pub(crate) fn read_mesh_prim(
     let left = at.token("orientation", &["rightHanded", "leftHanded"], 0)? == 1;
     at.faces(&mut soup, left != mirrored)?;
     at.texture_coordinates(&mut soup, left != mirrored)?;
+    soup.primvars = at.primvars(&soup, left != mirrored)?;
     at.creases(&mut soup)?;
     let corners = at.ints("cornerIndices")?;
     let sharp = at.floats("cornerSharpnesses")?;
