@@ -306,6 +306,10 @@ impl Mesh {
     pub fn primvars(&self) -> &[crate::Primvar] {
         &self.primvars
     }
+    /// Drops the primvars (the texture coordinates stay).
+    pub fn clear_primvars(&mut self) {
+        self.primvars.clear();
+    }
     /// The primvar named `name`.
     pub fn primvar(&self, name: &str) -> Option<&crate::Primvar> {
         self.primvars.iter().find(|p| p.name == name)

@@ -45,7 +45,7 @@ pub use fvar::{
     refine_face_varying_part, semi_sharp_levels,
 };
 pub use limit::{
-    KeyedWrite, LimitMesh, LimitMeshError, TopologyKey, TriangleBuffers, VertexScalar,
+    KeyedWrite, LimitChannel, LimitMesh, LimitMeshError, TopologyKey, TriangleBuffers, VertexScalar,
     bilinear_patches, inside_one_patch, limit_surface, tessellate_uniform,
 };
 pub use point::{Point, centroid};

@@ -9,10 +9,12 @@ use crate::ring::Ring;
 use crate::{Depth, RulesError, Scheme};
 
 mod bilinear;
+mod channel;
 mod mesh;
 mod split;
 mod topology;
 pub use bilinear::{bilinear_patches, inside_one_patch};
+pub use channel::LimitChannel;
 pub use mesh::{KeyedWrite, LimitMesh, LimitMeshError, TriangleBuffers, VertexScalar};
 pub use topology::TopologyKey;
 use topology::TopologyStamp;
@@ -103,6 +105,7 @@ fn limit_surface_from(
             .unwrap_or_default(),
         uv_indices,
         scalar: None,
+        channels: Vec::new(),
         topology: TopologyStamp::default(),
         uniform_faces: 0,
     }

@@ -74,6 +74,7 @@ mod limit;
 mod moving;
 mod patches;
 mod pool;
+mod primvars;
 mod size;
 mod step;
 mod table;
@@ -91,6 +92,7 @@ pub use layout::PatchLayout;
 pub use moving::UniformTessellator;
 pub use patches::{PatchRef, PatchSet, Unit};
 pub use pool::PatchGrids;
+pub use primvars::tessellate_primvars;
 pub use subdiv_rules::{Depth, MAX_DEPTH};
 pub use tessellate::{
     DEFAULT_MAX_DEPTH, MAX_POINTS, SlateError, slate_bytes_per_thread, tessellate,

@@ -13,6 +13,7 @@ use subdiv_rules::{Depth, LimitMesh, Scheme};
 
 use crate::bilinear::{BilinearLayout, tessellate_bilinear, tessellate_bilinear_into};
 use crate::layout::PatchLayout;
+use crate::primvars::tessellate_primvars;
 use crate::size::check_uniform_size;
 use crate::tessellate::{SlateError, tessellate, tessellate_layout_into};
 use crate::tri::{TriLayout, tessellate_tri, tessellate_tri_layout_into};
@@ -153,7 +154,9 @@ impl UniformTessellator {
                 };
                 Ok(())
             }
-        }
+        }?;
+        // The cage's primvars follow the surface (none: nothing to do).
+        tessellate_primvars(mesh, self.scheme, self.depth, &mut self.out)
     }
 }
 

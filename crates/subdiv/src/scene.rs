@@ -43,6 +43,9 @@ pub fn uniform_limit(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<LimitM
         })?,
         Scheme::Bilinear => subdiv_slate::tessellate_bilinear(mesh, depth)?,
     };
+    let mut limit = limit;
+    // The cage's primvars on the surface (the same scheme and depth).
+    subdiv_slate::tessellate_primvars(mesh, scheme, depth, &mut limit)?;
     log::debug!(
         "uniform {scheme:?} depth {depth}: {} faces -> {} limit points, {} faces in {:.1} ms",
         mesh.num_faces(),

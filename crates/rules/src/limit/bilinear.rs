@@ -80,7 +80,9 @@ pub(super) fn bilinear_limit(mesh: &Mesh, pos: &[DVec3], patch: &[u32]) -> Limit
                 .sum::<DVec3>()
                 .normalize_or_zero()
         };
-        let one = around.first().is_none_or(|a| around.iter().all(|b| b.0 == a.0));
+        let one = around
+            .first()
+            .is_none_or(|a| around.iter().all(|b| b.0 == a.0));
         if one {
             if let Some(a) = around.first() {
                 normals[v.idx()] = patch_normal(a.0).as_vec3().to_array();
@@ -129,6 +131,7 @@ pub(super) fn bilinear_limit(mesh: &Mesh, pos: &[DVec3], patch: &[u32]) -> Limit
             .unwrap_or_default(),
         uv_indices,
         scalar: None,
+        channels: Vec::new(),
         topology: TopologyStamp::default(),
         uniform_faces: 0,
     }
