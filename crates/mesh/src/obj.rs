@@ -318,13 +318,22 @@ pub struct ObjData<'a> {
     /// The texture coordinate of every face corner (aligned with `face_indices`), written as
     /// `f v/vt` or `f v/vt/vn`; empty: no texture coordinates.
     pub uv_indices: &'a [u32],
+    /// Vertex colours, three floats per vertex, written as `v x y z r g b`.
+    pub colours: Option<&'a [f32]>,
 }
 
 /// Formats surface data as OBJ text.
 pub fn format_obj(data: &ObjData<'_>) -> String {
     let mut s = String::with_capacity(data.positions.len() * 40 + data.face_indices.len() * 8);
-    for p in data.positions {
-        let _ = writeln!(s, "v {} {} {}", p[0], p[1], p[2]);
+    for (i, p) in data.positions.iter().enumerate() {
+        match data.colours.and_then(|c| c.get(3 * i..3 * i + 3)) {
+            Some(c) => {
+                let _ = writeln!(s, "v {} {} {} {} {} {}", p[0], p[1], p[2], c[0], c[1], c[2]);
+            }
+            None => {
+                let _ = writeln!(s, "v {} {} {}", p[0], p[1], p[2]);
+            }
+        }
     }
     let mut corner_normals: &[(u32, [f32; 3])] = &[];
     if let Some(ns) = data.normals {

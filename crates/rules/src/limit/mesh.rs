@@ -573,6 +573,11 @@ impl LimitMesh {
             corner_normals: &self.corner_normals,
             uvs: &self.uvs,
             uv_indices: &self.uv_indices,
+            // OBJ's vertex colours: a display colour of one value per vertex.
+            colours: self
+                .channel("displayColor")
+                .filter(|c| c.per_vertex() && c.width == 3)
+                .map(|c| c.values.as_slice()),
         }
     }
 }
