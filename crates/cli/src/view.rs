@@ -9,7 +9,7 @@ use glam::Vec3;
 use subdiv::mesh::Camera;
 use subdiv::mesh::{UsdReadOptions, UsdStageReader, is_usd_path};
 use subdiv::vk::OrbitCamera;
-use subdiv::vk::viewer::{self, FrameSource, Playback, ViewerOptions};
+use subdiv::vk::viewer::{self, FrameControl, FrameSource, Playback, ViewerOptions};
 use subdiv::{
     AdaptiveSource, AnimatedSource, DoiSource, UniformSource, orbit_camera, stage_playback,
 };
@@ -123,7 +123,7 @@ fn run_doi(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         camera: Some(orbit),
         render,
         // No frame-rate controller here: draw only when something changes.
-        frame_rate_control: false,
+        control: FrameControl::Off,
         ..ViewerOptions::default()
     };
     show(a, &mut source, options, |s| s.note().to_string())
@@ -157,7 +157,7 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         camera: Some(orbit),
         render,
         // A uniform tessellation has no frame-rate controller: draw only when something changes.
-        frame_rate_control: false,
+        control: FrameControl::Off,
         ..ViewerOptions::default()
     };
     show(a, &mut source, options, |_| String::new())
@@ -186,7 +186,11 @@ fn run_adaptive(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         camera: Some(orbit),
         render,
         // A scripted screenshot shows the view-dependent depths without frame-time feedback.
-        frame_rate_control: a.screenshot_after.is_none(),
+        control: if a.screenshot_after.is_none() {
+            FrameControl::Budget
+        } else {
+            FrameControl::Off
+        },
         ..ViewerOptions::default()
     };
     show(a, &mut source, options, |_| String::new())
@@ -250,7 +254,12 @@ fn run_animated(
             a.surface.adaptive.max_depth()
         );
         let source = AnimatedSource::adaptive(stage, node, playback.time);
-        (source, title, a.screenshot_after.is_none())
+        let control = if a.screenshot_after.is_none() {
+            FrameControl::Budget
+        } else {
+            FrameControl::Off
+        };
+        (source, title, control)
     } else {
         let depth = a.surface.uniform_depth();
         let request = subdiv::rules::Request::Uniform { scheme, depth };
@@ -261,7 +270,7 @@ fn run_animated(
             "subdiv view {label} ({}, depth {depth}, {range})",
             value_name(&crate::choices::SchemeName::from(scheme))
         );
-        (source, title, false)
+        (source, title, FrameControl::Off)
     };
     let mut source = source;
     // The camera frames what `render` frames: the uniform tessellation, else the cage.
@@ -275,7 +284,7 @@ fn run_animated(
         size: [camera.width, camera.height],
         camera: Some(orbit),
         render,
-        frame_rate_control: control,
+        control,
         playback: Some(playback),
         ..ViewerOptions::default()
     };

@@ -107,6 +107,12 @@ impl TriAssembler {
         &self.layout
     }
 
+    /// The depth of face `f`'s cached lattice (`None`: none): drawing the face at most that
+    /// deep tessellates nothing.
+    pub fn cached_depth(&self, f: usize) -> Option<Depth> {
+        self.blocks.get(f).and_then(|b| b.depth)
+    }
+
     /// Drops all cached lattices (e.g. after the mesh's positions changed).
     pub fn invalidate(&mut self) {
         for b in &mut self.blocks {

@@ -44,12 +44,16 @@ impl BuiltinScene {
     }
 }
 
+/// The model of [`helmet40`]: OpenSubdiv's `catmark_helmet` (58 quads, semi-sharp creases).
+pub fn helmet() -> Result<Mesh, BuiltinError> {
+    let soup = parse_obj(HELMET_OBJ).map_err(BuiltinError::EmbeddedCage)?;
+    Mesh::from_soup(&soup).map_err(BuiltinError::EmbeddedCage)
+}
+
 /// The test scene of the paper's Fig. 12: 40 instances of `catmark_helmet` (58 faces each) on an
 /// 8 x 5 grid in the XZ plane, 1.25 model widths apart ([`instance_grid`]).
 pub fn helmet40() -> Result<Mesh, BuiltinError> {
-    let soup = parse_obj(HELMET_OBJ).map_err(BuiltinError::EmbeddedCage)?;
-    let helmet = Mesh::from_soup(&soup).map_err(BuiltinError::EmbeddedCage)?;
-    instance_grid(&helmet, 40).map_err(BuiltinError::Scene)
+    instance_grid(&helmet()?, 40).map_err(BuiltinError::Scene)
 }
 
 /// Copies of the grid of [`instance_grid`] per row.
@@ -88,11 +92,17 @@ mod tests {
             assert_eq!(m.num_faces(), 58 * n);
             let (a, b) = m.bounds();
             // Centred on the model: the grid's middle is the model's middle.
-            assert!(((a + b) * 0.5 - centre).length() < 1e-4 * (b - a).length(), "{n}");
+            assert!(
+                ((a + b) * 0.5 - centre).length() < 1e-4 * (b - a).length(),
+                "{n}"
+            );
             let ext = hi - lo;
             let step = 1.25 * ext.x.max(ext.z);
             let cols = n.min(8) as f32;
-            assert!(((b.x - a.x) - ((cols - 1.0) * step + ext.x)).abs() < 1e-3, "{n}");
+            assert!(
+                ((b.x - a.x) - ((cols - 1.0) * step + ext.x)).abs() < 1e-3,
+                "{n}"
+            );
         }
         assert!(instance_grid(&helmet, 0).is_err());
     }

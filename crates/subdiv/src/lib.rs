@@ -138,12 +138,12 @@ mod refine;
 mod scene;
 
 pub use animated_source::{AnimatedSource, stage_playback};
-pub use builtin::{BuiltinError, BuiltinScene, GRID_COLUMNS, helmet40, instance_grid};
+pub use builtin::{BuiltinError, BuiltinScene, GRID_COLUMNS, helmet, helmet40, instance_grid};
 pub use camera::{camera_from_view, orbit_camera, radius_about, view_for};
 pub use doi_setup::{
     DoiOptions, DoiSetup, DoiSetupError, check_doi_options, doi_face_depths, make_doi,
 };
-pub use dynamic::DynamicSubdivision;
+pub use dynamic::{Control, DynamicSubdivision};
 pub use export::{ExportError, OutputFormat, write_surface};
 pub use frame::depth_histogram;
 pub use frame_sources::{AdaptiveSource, DoiSource, UniformSource};

@@ -36,6 +36,7 @@ impl FrameSource for Timed {
             status: "",
             vertex_version: None,
             depth_cap: None,
+            predicted_ms: None,
         })
     }
 }
@@ -55,7 +56,7 @@ fn keys_step_pause_and_play_the_time_codes() {
         ViewerOptions {
             size: [160, 120],
             camera: Some(OrbitCamera::framing(Vec3::splat(-1.0), Vec3::splat(1.0))),
-            frame_rate_control: false,
+            control: subdiv_vk::viewer::FrameControl::Off,
             screenshot_after: Some(10),
             screenshot_path: dir.join("shot.png"),
             hud: false,

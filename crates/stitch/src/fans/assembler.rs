@@ -167,6 +167,19 @@ impl Assembler {
         self.set.units()[unit].irregular as Depth
     }
 
+    /// The deepest unit depth every patch of `unit` has cached (`None`: some patch has
+    /// nothing): drawing the unit at most that deep tessellates nothing.
+    pub fn cached_depth(&self, unit: usize) -> Option<Depth> {
+        let u = &self.set.units()[unit];
+        let level = u.irregular as Depth;
+        let first = u.first_patch as usize;
+        self.blocks[first..first + u.patch_count as usize]
+            .iter()
+            .map(|b| b.depth.map(|d| d + level))
+            .min()
+            .flatten()
+    }
+
     /// Quads of the patch grids per depth in frame `g` (index = depth), before the fans that
     /// join different depths: what Settgast et al. Fig. 6 counts. A unit at depth `d` has
     /// `4^d` quads, a level-1 unit of `n` patches `n * 4^(d - 1)`; undrawn units count nothing.

@@ -17,7 +17,7 @@ use super::gpu::{Drawn, Gpu};
 use super::hud::{self, HudState};
 use super::input::{Drag, drag, draws_continuously};
 use super::playback::{PlaybackKey, Player};
-use super::{Fault, FrameRequest, FrameSource, ViewerOptions, ViewerReport};
+use super::{Fault, FrameControl, FrameRequest, FrameSource, ViewerOptions, ViewerReport};
 use crate::error::{Result, VkError};
 use crate::image_io::write_png;
 use crate::scene::{OrbitCamera, RenderOptions, Shading, View};
@@ -50,7 +50,7 @@ pub(super) fn run(source: &mut dyn FrameSource, options: ViewerOptions) -> Resul
         render: options.render,
         silhouettes: options.render.show_lines,
         target_fps: options.target_fps.max(1.0),
-        frame_rate_control: options.frame_rate_control,
+        control: options.control,
         hud: options.hud,
         frozen: None,
         player: options.playback.map(|p| Player::new(p, Instant::now())),
@@ -106,7 +106,7 @@ struct App<'s> {
     render: RenderOptions,
     silhouettes: bool,
     target_fps: f32,
-    frame_rate_control: bool,
+    control: FrameControl,
     hud: bool,
     frozen: Option<View>,
     /// Playback of an animated source ([`ViewerOptions::playback`]).
@@ -213,7 +213,7 @@ impl App<'_> {
             "l" => self.render.legend = !self.render.legend,
             "+" | "=" => self.target_fps = (self.target_fps * 1.25).min(1000.0),
             "-" | "_" => self.target_fps = (self.target_fps / 1.25).max(1.0),
-            "c" => self.frame_rate_control = !self.frame_rate_control,
+            "c" => self.control = self.control.next(),
             "p" => self.screenshot_requested = true,
             _ => {}
         }
@@ -248,7 +248,7 @@ impl App<'_> {
     /// scripted screenshot waits for its frame count. Otherwise only changes draw.
     fn continuous(&self) -> bool {
         draws_continuously(
-            self.frame_rate_control,
+            self.control.is_on(),
             self.options.screenshot_after,
             self.report.frames,
         ) || self.player.as_ref().is_some_and(Player::playing)
@@ -302,6 +302,7 @@ impl App<'_> {
         let size = [extent.width, extent.height];
         hud_state.triangles = triangles;
         hud_state.depth_cap = frame.depth_cap;
+        hud_state.predicted_ms = frame.predicted_ms;
         let overlay = hud::overlay(&hud_state, &mesh, &options, size);
         // `swapchain_extent` returned an extent, so the GPU state exists.
         let Some(gpu) = self.gpu.as_mut() else {
@@ -352,7 +353,11 @@ impl App<'_> {
             work_ms: self.work_time.as_secs_f32() * 1e3,
             triangles: 0,
             depth_cap: None,
-            target_fps: self.frame_rate_control.then_some(self.target_fps),
+            control: self.control,
+            target_fps: self.target_fps,
+            measured_ms: (self.continuous() && !self.last_frame_time.is_zero())
+                .then_some(self.last_frame_time.as_secs_f32() * 1e3),
+            predicted_ms: None,
             shading: self.render.shading,
             wire: self.render.wire_overlay,
             silhouettes: self.silhouettes,
@@ -398,7 +403,7 @@ impl App<'_> {
             shading: self.render.shading,
             silhouettes: self.silhouettes,
             target_fps: self.target_fps,
-            frame_rate_control: self.frame_rate_control,
+            control: self.control,
             last_frame_time: self.last_frame_time,
             frame_index: self.report.frames,
             time: self.player.as_ref().map(|p| p.time_at(Instant::now())),

@@ -24,8 +24,12 @@ impl App<'_> {
         if self.frozen.is_some() {
             title.push_str(" | culling camera frozen");
         }
-        if self.frame_rate_control {
-            title.push_str(&format!(" | target {:.0} fps", self.target_fps));
+        if self.control.is_on() {
+            title.push_str(&format!(
+                " | {} control, target {:.0} fps",
+                self.control.name(),
+                self.target_fps
+            ));
         } else {
             title.push_str(" | fps control off");
         }
