@@ -119,6 +119,19 @@ pub fn cage_scheme(path: &Path, cage: &Cage, requested: Option<Scheme>) -> anyho
     }
 }
 
+/// Warns that the cage's primvars (but `st`) do not reach `what` (a surface other than the
+/// uniform tessellation, which carries them); nothing for a cage without.
+pub fn warn_primvars_not_carried(mesh: &subdiv::mesh::Mesh, what: &str) {
+    if mesh.primvars().is_empty() {
+        return;
+    }
+    let names: Vec<&str> = mesh.primvars().iter().map(|p| p.name.as_str()).collect();
+    log::warn!(
+        "primvars {} are not carried by {what} (the uniform tessellation, --depth N, carries them)",
+        names.join(", ")
+    );
+}
+
 /// Logs `FILE:LINE: tag 't NAME' ignored (why)` as a warning (printed `warning: ...`, silenced
 /// by `-q`) for each tag line that was not applied; with `--strict`, any such line is an error.
 pub fn report_tag_warnings(path: &Path, warnings: &[TagWarning]) -> anyhow::Result<()> {

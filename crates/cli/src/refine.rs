@@ -48,6 +48,7 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
     let input = a.input.display().to_string();
     let format = OutputFormat::from_path(&a.output)?;
     let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, a.prim.as_deref(), a.time)?;
+    crate::load::warn_primvars_not_carried(&cage.mesh, "DoI-driven refinement");
     let setup = a.doi.setup(cage.mesh, &input)?;
     let steps = a.doi.steps;
     a.limit.check(
