@@ -148,8 +148,7 @@ fn animate(a: &BenchAnimateArgs, threads: usize) -> anyhow::Result<ExitCode> {
         let max_depth = a.adaptive.max_depth();
         let request = Request::Adaptive { scheme, max_depth };
         a.limit.check(&mesh, request, &label)?;
-        let (lo, hi) = mesh.bounds();
-        let camera = a.camera.camera(lo, hi);
+        let camera = a.camera.camera(&mesh);
         let node = a
             .adaptive
             .node(mesh.clone(), scheme)

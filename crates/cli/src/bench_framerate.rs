@@ -17,7 +17,9 @@ use subdiv::depth::DepthParams;
 use subdiv::mesh::{Camera, Mesh};
 use subdiv::rules::{Depth, Request, Scheme};
 use subdiv::vk::{RenderMesh, RenderOptions, Renderer};
-use subdiv::{BuiltinScene, Control, DynamicSubdivision, Scene, instance_grid, view_for};
+use subdiv::{
+    BuiltinScene, Control, DynamicSubdivision, Scene, framing_box, instance_grid, view_for,
+};
 use subdiv_quality::{QualityParams, QualityRun, quantile};
 
 use crate::camera_args::parse_size;
@@ -101,6 +103,10 @@ pub struct BenchFramerateArgs {
         conflicts_with = "scene"
     )]
     pub time: Option<f64>,
+    /// Samples per pixel of the frames drawn (as `render --samples`) [default: 4 where the
+    /// device supports it].
+    #[arg(long, value_name = "N", value_parser = crate::surface_args::parse_samples)]
+    pub samples: Option<u32>,
     #[command(flatten)]
     pub limit: crate::limit_args::LimitArgs,
 }
@@ -133,7 +139,7 @@ fn error_run<'a>(
     let Some(k) = a.error_every else {
         return Ok(None);
     };
-    let (lo, hi) = cage.bounds();
+    let (lo, hi) = framing_box(cage);
     let cameras: Vec<Camera> = (0..a.frames)
         .step_by(k)
         .map(|i| frame_camera(a, i, lo, hi))
@@ -249,12 +255,14 @@ fn draw(
             ..Default::default()
         };
         let view = view_for(camera, lo, hi);
-        r.render_discard(
-            &mesh,
-            &view,
-            [a.size.0, a.size.1],
-            &RenderOptions::default(),
-        )?;
+        let options = RenderOptions {
+            samples: a.samples,
+            ..RenderOptions::default()
+        };
+        // The vertex buffer is kept between frames: only what a frame rewrote is uploaded.
+        let size = [a.size.0, a.size.1];
+        let (version, dirty) = (g.vertex_version(), g.dirty_vertices());
+        r.render_discard_versioned(&mesh, &view, size, &options, version, dirty)?;
     }
     Ok(())
 }
@@ -300,7 +308,7 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
             .check(&cage, Request::Uniform { scheme, depth }, &name)?;
     }
     let nf = cage.num_faces();
-    let bounds = cage.bounds();
+    let bounds = framing_box(&cage);
     let params = DepthParams {
         max_depth: a.max_depth,
         ..Default::default()

@@ -140,8 +140,7 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh, scheme: Scheme) -> anyhow::Resul
     a.limit
         .check(&mesh, Request::Adaptive { scheme, max_depth }, &input)?;
     let t0 = Instant::now();
-    let (lo, hi) = mesh.bounds();
-    let camera = a.camera.camera(lo, hi);
+    let camera = a.camera.camera(&mesh);
     let doi_depths = match a.doi.doi {
         Some(name) => {
             let kind = DoiKind::from(name);

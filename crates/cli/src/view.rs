@@ -5,13 +5,13 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use glam::Vec3;
-use subdiv::mesh::Camera;
-use subdiv::mesh::{UsdReadOptions, UsdStageReader, is_usd_path};
+use anyhow::Context;
+use subdiv::mesh::{Camera, Mesh, UsdReadOptions, UsdStageReader, is_usd_path};
 use subdiv::vk::OrbitCamera;
 use subdiv::vk::viewer::{self, FrameControl, FrameSource, Playback, ViewerOptions};
 use subdiv::{
-    AdaptiveSource, AnimatedSource, DoiSource, UniformSource, orbit_camera, stage_playback,
+    AdaptiveSource, AnimatedSource, DoiSource, UniformSource, framing_box, orbit_camera,
+    stage_playback,
 };
 
 use crate::camera_args::CameraArgs;
@@ -56,10 +56,12 @@ fn parse_pan(s: &str) -> Result<[f32; 2], String> {
     }
 }
 
-/// The initial camera for cage bounds `lo`, `hi` and the orbit camera the viewer starts from
-/// (with a note when the orbit can only approximate it).
-fn start_camera(a: &ViewArgs, lo: Vec3, hi: Vec3) -> (Camera, OrbitCamera) {
-    let camera = a.camera.camera(lo, hi);
+/// The initial camera for `cage` (framed on it, as `subdiv render` frames it) and the orbit
+/// camera the viewer starts from and Home/F return to (with a note when the orbit can only
+/// approximate it).
+fn start_camera(a: &ViewArgs, cage: &Mesh) -> (Camera, OrbitCamera) {
+    let camera = a.camera.camera(cage);
+    let (lo, hi) = framing_box(cage);
     let (orbit, exact) = orbit_camera(&camera, lo, hi);
     if !exact {
         log::warn!("the viewer orbits about the up axis (--up); a view along it is approximated");
@@ -109,8 +111,7 @@ fn run_doi(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     let render = style.render_options()?;
     let label = a.surface.label();
     let setup = a.surface.doi_setup()?;
-    let (lo, hi) = setup.bounds();
-    let (camera, orbit) = start_camera(a, lo, hi);
+    let (camera, orbit) = start_camera(a, &setup.cage);
     let title = format!(
         "subdiv view {label} ({} DoI, {} steps)",
         setup.kind.name(),
@@ -141,9 +142,8 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         return run_adaptive(a);
     }
     let render = a.style.render_options()?;
-    let (scene, scheme) = a.surface.uniform_scene()?;
-    let (lo, hi) = scene.bounds();
-    let (camera, orbit) = start_camera(a, lo, hi);
+    let (scene, scheme, cage) = a.surface.uniform_scene()?;
+    let (camera, orbit) = start_camera(a, &cage);
     let title = format!(
         "subdiv view {} ({}, depth {})",
         a.surface.label(),
@@ -172,8 +172,7 @@ fn run_adaptive(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         );
     }
     let (cage, scheme) = a.surface.load_cage_scheme()?;
-    let (lo, hi) = cage.bounds();
-    let (camera, orbit) = start_camera(a, lo, hi);
+    let (camera, orbit) = start_camera(a, &cage);
     let title = format!(
         "subdiv view {} (adaptive, max depth {})",
         a.surface.label(),
@@ -233,19 +232,21 @@ fn run_animated(
     let label = a.surface.label();
     let adaptive = a.surface.is_adaptive(&a.camera)?;
     // The cage at the first time code, as every command reads it (--time, else the start).
+    let input = a
+        .surface
+        .input
+        .as_deref()
+        .context("an animated stage is an input")?;
     let first = crate::load::load_cage(
-        a.surface
-            .input
-            .as_deref()
-            .unwrap_or_else(|| std::path::Path::new("")),
+        input,
         a.surface.split_nonmanifold,
         a.surface.prim.as_deref(),
         Some(playback.time),
     )?;
-    let path = a.surface.input.clone().unwrap_or_default();
-    let scheme = crate::load::cage_scheme(&path, &first, a.surface.scheme.map(Into::into))?;
+    let scheme = crate::load::cage_scheme(input, &first, a.surface.scheme.map(Into::into))?;
     let cage = first.mesh;
-    let cage_bounds = cage.bounds();
+    // Every view of a cage is framed on the cage (as `render` frames it).
+    let (camera, orbit) = start_camera(a, &cage);
     let range = format!("time {}-{}", playback.start, playback.end);
     let (source, title, control) = if adaptive {
         let node = a.surface.adaptive_node(cage, scheme)?;
@@ -273,12 +274,6 @@ fn run_animated(
         (source, title, FrameControl::Off)
     };
     let mut source = source;
-    // The camera frames what `render` frames: the uniform tessellation, else the cage.
-    let (lo, hi) = match source.uniform_scene() {
-        Some(scene) => scene.bounds(),
-        None => cage_bounds,
-    };
-    let (camera, orbit) = start_camera(a, lo, hi);
     let options = ViewerOptions {
         title,
         size: [camera.width, camera.height],

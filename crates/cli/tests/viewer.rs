@@ -233,7 +233,7 @@ fn render_legend_is_optional() {
 
 /// An animated stage in the viewer, paused at `--time T` (as a scripted screenshot is): the
 /// screenshots at two time codes differ (the pawn bends), and each is `subdiv render --time T`
-/// of the same camera, pixel for pixel.
+/// of the same camera (up to the rounding of the multisample resolve).
 #[test]
 fn an_animated_stage_shows_the_frame_of_its_time_code() {
     let stage = root().join("fixtures/usd/pawn_bend.usdc");
@@ -266,7 +266,23 @@ fn an_animated_stage_shows_the_frame_of_its_time_code() {
             return;
         };
         let (view, render) = (read_png(&shot).unwrap(), read_png(&rendered).unwrap());
-        assert!(view == render, "time {t}: the screenshot differs from render");
+        // The same frame: at most a few pixels one or two levels apart (the multisample
+        // resolve of the window's path and of the headless one may round differently).
+        let (mut differing, mut worst) = (0, 0);
+        for (p, q) in view.pixels().zip(render.pixels()) {
+            let d =
+                p.0.iter()
+                    .zip(q.0)
+                    .map(|(a, b)| a.abs_diff(b))
+                    .max()
+                    .unwrap_or(0);
+            differing += usize::from(d > 0);
+            worst = worst.max(d);
+        }
+        assert!(
+            worst <= 2 && differing <= 20,
+            "time {t}: {differing} pixels differ from render, by up to {worst}"
+        );
         shots.push(view);
     }
     let moved = shots[0]

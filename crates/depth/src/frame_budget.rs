@@ -5,16 +5,19 @@
 //!
 //! - **Benefit** ([`face_errors`]): per face and depth, the pixels the frame would show wrong —
 //!   the visible pixels whose drawn normal turns beyond the shading tolerance
-//!   ([`OutlierTable`], the pixel-error mode's measurement) and, on silhouette faces, the
-//!   pixels between the drawn and the true contour (the contour's length on screen times the
-//!   chord error projected to pixels).
+//!   ([`OutlierTable`], the pixel-error mode's measurement) and, on the faces that may hold an
+//!   outline (silhouette faces, faces at a boundary or hole), the pixels between the drawn and
+//!   the true outline (its length on screen times the chord error projected to pixels).
 //! - **Cost** ([`FaceCost`]): per face and depth, its triangles, and the limit points its block
 //!   needs tessellated (and uploaded) when the cached block is coarser, priced by the
 //!   [`FrameTimeModel`] fitted to the machine.
-//! - **Choice** ([`BudgetController::choose`]): every face starts at its least depth; raises are
-//!   taken greedily by error removed per predicted second (looking ahead over every deeper
-//!   depth, so a step whose first level buys little but second a lot is seen), while the
-//!   predicted frame time fits the budget. Back faces are never raised above their geometric
+//! - **Choice** ([`BudgetController::choose`]): every face starts at its least depth; first the
+//!   outlines: each face that may hold one is raised, cheapest first, to the least depth whose chord
+//!   error stays within [`SILHOUETTE_PX`] on screen ([`silhouette_depths`]), as far as the
+//!   budget allows (a wrong silhouette is the error a viewer sees first, and it takes few
+//!   faces); then raises are taken greedily by error removed per predicted second (looking
+//!   ahead over every deeper depth, so a step whose first level buys little but second a lot
+//!   is seen), while the predicted frame time fits the budget. Back faces are never raised above their geometric
 //!   depth; a frame's tessellation is part of its own cost, so a large raise spreads over a
 //!   few frames instead of one slow one.
 //! - **Feedback** ([`BudgetController::observe`]): the budget is the target shrunk by the
@@ -33,7 +36,7 @@ use crate::Depth;
 use crate::assign::{Assignment, Class};
 use crate::contour::contour_pixels;
 use crate::frame_model::{FrameTimeModel, FrameWork};
-use crate::pixel_error::{PatchErrors, outside_view, screen_scale};
+use crate::pixel_error::{PatchErrors, outside_view, pixel_error_depth, screen_scale};
 use crate::shading::OutlierTable;
 use crate::sphere::Sphere;
 
@@ -52,6 +55,39 @@ pub const BIAS_BAND: f64 = 0.019_802_627;
 /// the ±10 % band.
 pub const HOLD: f64 = 0.03;
 
+/// The chord error, in pixels on screen, within which [`BudgetController::choose`] first draws
+/// every silhouette face: a quarter of a pixel, so that the drawn and the true silhouette cover
+/// the same pixels but where they cross a pixel's edge.
+pub const SILHOUETTE_PX: f32 = 0.25;
+
+/// Whether face `f` may hold an outline on screen: a silhouette face (its vertex normals turn
+/// from facing the eye to facing away), or one at the boundary or a hole of an open surface
+/// (whose own edge is an outline from any side).
+fn holds_contour(errors: &PatchErrors, a: &Assignment, f: usize) -> bool {
+    a.class[f] == Class::Silhouette || errors.faces[f].outline
+}
+
+/// Per face: the least depth whose chord error is within [`SILHOUETTE_PX`] on screen, for the
+/// active faces in view that may hold an outline (silhouette faces, faces at the boundary or a
+/// hole; [`pixel_error_depth`]); 0 for the others.
+pub fn silhouette_depths(
+    camera: &Camera,
+    errors: &PatchErrors,
+    spheres: &[Sphere],
+    a: &Assignment,
+    max_depth: Depth,
+) -> Vec<Depth> {
+    (0..a.class.len())
+        .map(|f| {
+            if a.active[f] && holds_contour(errors, a, f) && !outside_view(camera, &spheres[f]) {
+                pixel_error_depth(camera, &spheres[f], &errors.faces[f], SILHOUETTE_PX, max_depth)
+            } else {
+                0
+            }
+        })
+        .collect()
+}
+
 /// Per face and depth `0..=max_depth`: the estimated pixels shown wrong (see the module
 /// documentation), row-major (`f * (max_depth + 1) + d`). Inactive faces, faces outside the view
 /// and (on a closed surface) hidden faces have none.
@@ -65,7 +101,7 @@ pub fn face_errors(
     let levels = max_depth as usize + 1;
     let contour: Vec<f32> = (0..a.class.len())
         .map(|f| {
-            if a.class[f] == Class::Silhouette {
+            if holds_contour(errors, a, f) {
                 contour_pixels(a.radius[f])
             } else {
                 0.0
@@ -175,6 +211,9 @@ pub struct Choice<'a> {
     pub assignment: &'a Assignment,
     /// Per face: its least depth.
     pub min_depth: &'a [Depth],
+    /// Per face: the depth it is raised to first, as far as the budget allows
+    /// ([`silhouette_depths`]; empty: none).
+    pub first: &'a [Depth],
     /// The deepest depth.
     pub max_depth: Depth,
     /// The frame's work outside the faces (its pixels).
@@ -307,6 +346,22 @@ impl BudgetController {
             *d = c.range(f).0;
         }
         let (mut time, _) = c.evaluate(model, depth);
+        // The silhouettes first, cheapest first, as far as they fit.
+        let mut first: Vec<(f64, usize, Depth)> = (0..n.min(c.first.len()))
+            .filter(|&f| c.assignment.active[f])
+            .filter_map(|f| {
+                let (lo, hi) = c.range(f);
+                let to = c.first[f].clamp(lo, hi);
+                (to > depth[f]).then(|| (c.cost(model, f, to) - c.cost(model, f, depth[f]), f, to))
+            })
+            .collect();
+        first.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        for (step, f, to) in first {
+            if time + step <= budget {
+                time += step;
+                depth[f] = to;
+            }
+        }
         let mut heap: BinaryHeap<Raise> = (0..n)
             .filter(|&f| c.assignment.active[f])
             .filter_map(|f| c.best_raise(model, f, depth[f], budget - time))

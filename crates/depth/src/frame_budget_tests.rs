@@ -87,6 +87,7 @@ fn run(
             costs: &costs,
             assignment: &s.a,
             min_depth: &s.min_depth,
+            first: &[],
             max_depth: s.max_depth,
             fixed: FrameWork::default(),
         };
@@ -206,4 +207,45 @@ fn more_time_buys_less_error() {
     let slow = run(&s, 80, |_| 15.0, &mut rng);
     let (ef, es) = (error(&fast[79].1), error(&slow[79].1));
     assert!(es < 0.5 * ef, "15 fps error {es} vs 60 fps {ef}");
+}
+
+#[test]
+fn face_errors_fall_with_depth_and_vanish_where_nothing_is_seen() {
+    use crate::{VertexData, assign, face_spheres, patch_errors};
+    use subdiv_mesh::{Camera, Mesh, glam::Vec3, parse_obj};
+    use subdiv_rules::Scheme;
+    let mesh = Mesh::from_soup(&parse_obj(&subdiv_test_support::cube().obj()).unwrap()).unwrap();
+    let set = subdiv_slate::PatchSet::new(&mesh).unwrap();
+    let max_depth = 3;
+    let errors = patch_errors(&mesh, &set, max_depth, 10f32.to_radians());
+    let spheres = face_spheres(&mesh, Scheme::CatmullClark);
+    let p = crate::DepthParams {
+        max_depth,
+        ..crate::DepthParams::default()
+    };
+    let vd = VertexData::compute(&mesh, Scheme::CatmullClark, p.cone_aperture_deg, max_depth);
+    let camera = Camera::new(Vec3::new(1.6, 1.3, 2.5), Vec3::splat(0.5), Vec3::Y, 45.0, 320, 240);
+    let mut a = assign(&mesh, &vd, &spheres, None, &camera, &p);
+    let levels = max_depth as usize + 1;
+    let e = face_errors(&camera, &errors, &spheres, &a, max_depth);
+    assert_eq!(e.len(), 6 * levels);
+    let mut seen = 0;
+    for f in 0..6 {
+        let row = &e[f * levels..(f + 1) * levels];
+        if a.class[f] == Class::Back {
+            // A closed cube hides its back faces: nothing of them is shown wrong.
+            assert!(row.iter().all(|&x| x == 0.0), "face {f}: {row:?}");
+            continue;
+        }
+        seen += 1;
+        // A visible face shows errors at depth 0 that the deepest depth all but removes.
+        assert!(row[0] > 0.0, "face {f}: {row:?}");
+        assert!(row[levels - 1] < 0.25 * row[0], "face {f}: {row:?}");
+    }
+    assert!(seen >= 3, "a corner view sees three faces");
+    // An inactive face has no error at any depth.
+    let f = (0..6).find(|&f| a.class[f] != Class::Back).unwrap();
+    a.active[f] = false;
+    let e = face_errors(&camera, &errors, &spheres, &a, max_depth);
+    assert!(e[f * levels..(f + 1) * levels].iter().all(|&x| x == 0.0));
 }

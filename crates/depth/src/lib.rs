@@ -54,7 +54,10 @@ pub use assign::{
     projected_radius,
 };
 pub use controller::FrameRateController;
-pub use frame_budget::{BIAS_BAND, BudgetController, Choice, FaceCost, HOLD, face_errors};
+pub use frame_budget::{
+    BIAS_BAND, BudgetController, Choice, FaceCost, HOLD, SILHOUETTE_PX, face_errors,
+    silhouette_depths,
+};
 pub use frame_model::{FrameTimeModel, FrameWork};
 pub use curvature::VertexData;
 pub use doi::depths_from_face_values;

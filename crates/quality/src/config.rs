@@ -22,6 +22,12 @@ pub enum Config {
     Curvature(CurvatureParams),
     /// [`DynamicSubdivision`] with `pixel_error = Some(px)` (`pixel-error-<px>`).
     PixelError(f32),
+    /// [`DynamicSubdivision`] under the predictive frame-rate control with a frame time of one
+    /// unit per triangle and a budget of this many triangles (`budget-<n>`): the depths with
+    /// the least estimated image error that draw at most `n` triangles (before fans), as the
+    /// controller chooses them for a machine whose frames cost their triangles. Deterministic:
+    /// what the controller buys with a budget, apart from any machine's timing.
+    Budget(u32),
 }
 
 impl Config {
@@ -32,6 +38,7 @@ impl Config {
             Config::Uniform(d) => format!("uniform-{d}"),
             Config::Curvature(c) => c.name(),
             Config::PixelError(px) => format!("pixel-error-{px}"),
+            Config::Budget(n) => format!("budget-{n}"),
         }
     }
 

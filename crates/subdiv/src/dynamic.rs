@@ -237,6 +237,11 @@ impl DynamicSubdivision {
     pub fn frame_model(&self) -> &FrameTimeModel {
         &self.model
     }
+    /// Replaces the frame-time model (for example by one with known coefficients, to choose
+    /// depths for a budget of triangles rather than of time).
+    pub fn set_frame_model(&mut self, model: FrameTimeModel) {
+        self.model = model;
+    }
     /// The last frame's work and the model's prediction of its time (seconds), made when it
     /// was tessellated (before its time was measured).
     pub fn last_frame(&self) -> Option<(FrameWork, f64)> {

@@ -8,6 +8,7 @@ use crate::context::{Context, ContextOptions, ValidationLog};
 use crate::error::{Result, VkResultExt};
 use crate::frame::{self, FrameInputs, MeshBuffer, Readback, Target};
 use crate::pipeline::Pipelines;
+use crate::samples;
 use crate::scene::{self, RenderMesh, RenderOptions, View};
 
 /// Per-pixel data besides colour, read back from the auxiliary targets.
@@ -71,6 +72,9 @@ pub struct Renderer {
     fence: vk::Fence,
     target: Option<Target>,
     mesh: MeshBuffer,
+    /// The version and count of the vertices the mesh buffer holds, when a versioned render
+    /// wrote them ([`Renderer::render_discard_versioned`]).
+    held: Option<(u64, usize)>,
 }
 
 impl Renderer {
@@ -92,6 +96,7 @@ impl Renderer {
             fence: vk::Fence::null(),
             target: None,
             mesh: MeshBuffer::default(),
+            held: None,
         };
         let pool_info = vk::CommandPoolCreateInfo::default()
             .queue_family_index(renderer.ctx.queue_family)
@@ -133,6 +138,23 @@ impl Renderer {
         self.ctx.validation_enabled()
     }
 
+    /// The samples per pixel the device can draw with (of [`crate::SAMPLE_COUNTS`]; 1 always).
+    pub fn sample_counts(&self) -> Vec<u32> {
+        samples::counts(self.ctx.sample_counts)
+    }
+
+    /// The samples per pixel a render with `options` uses here: [`RenderOptions::samples`] if
+    /// the device supports it ([`VkError::Samples`](crate::VkError::Samples) otherwise), or
+    /// without one [`DEFAULT_SAMPLES`](crate::DEFAULT_SAMPLES) where supported, else the most
+    /// the device supports below it.
+    pub fn samples(&self, options: &RenderOptions) -> Result<u32> {
+        samples::choose(
+            options.samples,
+            self.ctx.sample_counts,
+            self.ctx.device_name(),
+        )
+    }
+
     /// Renders `mesh` seen through `view` at `size` = `[width, height]` and
     /// returns the colour image.
     pub fn render(
@@ -171,6 +193,61 @@ impl Renderer {
         self.draw(mesh, view, size, options, Readback::None)
     }
 
+    /// [`Renderer::render_discard`] for a mesh whose vertices change a little from frame to
+    /// frame (an adaptive frame): `version` identifies its vertex data, and `dirty` names the
+    /// vertices that differ from version `version - 1`'s. When the renderer holds the previous
+    /// (or this) version's vertices from the last call, it writes only the `dirty` ones and the
+    /// indices; otherwise everything. The caller guarantees that the vertices outside `dirty`
+    /// equal those of version `version - 1` (`subdiv_stitch::AdaptiveFrame::dirty_vertices`).
+    pub fn render_discard_versioned(
+        &mut self,
+        mesh: &RenderMesh<'_>,
+        view: &View,
+        size: [u32; 2],
+        options: &RenderOptions,
+        version: u64,
+        dirty: &[std::ops::Range<u32>],
+    ) -> Result<()> {
+        self.draw_versioned(mesh, view, size, options, (version, dirty), Readback::None)
+    }
+
+    /// [`Renderer::render_discard_versioned`], returning the colour image.
+    pub fn render_versioned(
+        &mut self,
+        mesh: &RenderMesh<'_>,
+        view: &View,
+        size: [u32; 2],
+        options: &RenderOptions,
+        version: u64,
+        dirty: &[std::ops::Range<u32>],
+    ) -> Result<RgbaImage> {
+        self.draw_versioned(mesh, view, size, options, (version, dirty), Readback::Color)?;
+        self.target()?.read_color()
+    }
+
+    fn draw_versioned(
+        &mut self,
+        mesh: &RenderMesh<'_>,
+        view: &View,
+        size: [u32; 2],
+        options: &RenderOptions,
+        (version, dirty): (u64, &[std::ops::Range<u32>]),
+        readback: Readback,
+    ) -> Result<()> {
+        let n = mesh.positions.len();
+        let keep = match self.held {
+            Some((v, count)) => count == n && (v == version || v + 1 == version),
+            None => false,
+        };
+        // Overlays and legends are not kept: they are drawn after the shared vertices.
+        let keep = keep && !options.legend;
+        self.held = None;
+        let upload = if keep { Upload::Keep(dirty) } else { Upload::All };
+        self.draw_with(mesh, view, size, options, readback, upload)?;
+        self.held = Some((version, n));
+        Ok(())
+    }
+
     fn target(&self) -> Result<&Target> {
         self.target.as_ref().ok_or(crate::VkError::Vulkan {
             call: "render target",
@@ -186,23 +263,72 @@ impl Renderer {
         options: &RenderOptions,
         readback: Readback,
     ) -> Result<()> {
+        // Any unversioned draw overwrites the vertices a versioned one may rely on.
+        self.held = None;
+        self.draw_with(mesh, view, size, options, readback, Upload::All)
+    }
+
+    fn draw_with(
+        &mut self,
+        mesh: &RenderMesh<'_>,
+        view: &View,
+        size: [u32; 2],
+        options: &RenderOptions,
+        readback: Readback,
+        upload: Upload<'_>,
+    ) -> Result<()> {
         let overlay = if options.legend {
             crate::overlay::legend(options.shading, scene::scalar_range(mesh, options), size)
         } else {
             crate::overlay::Overlay::default()
         };
-        let (bytes, layout) = scene::pack(mesh, options, &overlay)?;
+        let keep = matches!(upload, Upload::Keep(_));
+        let (bytes, layout, offset) = scene::pack_from(mesh, options, &overlay, !keep)?;
         let extent = vk::Extent2D {
             width: size[0],
             height: size[1],
         };
-        if self.target.as_ref().is_none_or(|t| t.extent != extent) {
+        let samples = self.samples(options)?;
+        self.pipelines.prepare(&self.ctx, samples)?;
+        if self
+            .target
+            .as_ref()
+            .is_none_or(|t| !t.fits(extent, samples))
+        {
             if let Some(mut old) = self.target.take() {
                 old.destroy(&mut self.ctx);
             }
-            self.target = Some(Target::new(&mut self.ctx, extent)?);
+            self.target = Some(Target::new(&mut self.ctx, extent, samples)?);
         }
-        let mesh_buffer = self.mesh.upload(&mut self.ctx, &bytes)?;
+        let kept = match upload {
+            Upload::Keep(dirty) => {
+                let mut vertices = Vec::new();
+                let mut ok = true;
+                for r in dirty {
+                    let range = r.start as usize..(r.end as usize).min(mesh.positions.len());
+                    scene::pack_vertices(mesh, range.clone(), &mut vertices);
+                    let at = range.start as u64 * scene::VERTEX_STRIDE;
+                    ok &= self
+                        .mesh
+                        .upload_at(&vertices, at, layout.total)?
+                        .is_some();
+                }
+                match self.mesh.upload_at(&bytes, offset, layout.total)? {
+                    Some(b) if ok => Some(b),
+                    _ => None,
+                }
+            }
+            Upload::All => None,
+        };
+        let mesh_buffer = match kept {
+            Some(b) => b,
+            None if keep => {
+                // The buffer could not take the frame in place: everything, packed afresh.
+                let (all, _) = scene::pack(mesh, options, &overlay)?;
+                self.mesh.upload(&mut self.ctx, &all)?
+            }
+            None => self.mesh.upload(&mut self.ctx, &bytes)?,
+        };
         let target = self.target()?;
         let device = &self.ctx.device;
         let cmd = self.cmd;
@@ -234,7 +360,7 @@ impl Renderer {
                 options,
                 readback,
             },
-        );
+        )?;
         let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
         let submit = [vk::SubmitInfo2::default().command_buffer_infos(&cmds)];
         // SAFETY: `cmd` was fully recorded by `frame::record` and ends here; the
@@ -253,6 +379,15 @@ impl Renderer {
         }
         Ok(())
     }
+}
+
+/// What a draw uploads of the mesh.
+enum Upload<'a> {
+    /// Everything.
+    All,
+    /// The indices and the rest, and of the shared vertices only these ranges: the buffer holds
+    /// the others already.
+    Keep(&'a [std::ops::Range<u32>]),
 }
 
 impl Drop for Renderer {

@@ -3,7 +3,7 @@
 
 use subdiv_depth::{
     Assignment, BudgetController, Choice, Class, FaceCost, FrameRateController, FrameTimeModel,
-    FrameWork, PatchErrors, Sphere, face_errors,
+    FrameWork, PatchErrors, Sphere, face_errors, silhouette_depths,
 };
 use subdiv_mesh::Camera;
 use subdiv_slate::Depth;
@@ -150,11 +150,19 @@ pub(super) fn choose_budget(
             cached: cached[f],
         })
         .collect();
+    let first = silhouette_depths(
+        inputs.camera,
+        inputs.errors,
+        inputs.spheres,
+        a,
+        inputs.max_depth,
+    );
     let choice = Choice {
         errors: &errors,
         costs: &costs,
         assignment: a,
         min_depth,
+        first: &first,
         max_depth: inputs.max_depth,
         fixed: FrameWork {
             pixels: inputs.pixels,

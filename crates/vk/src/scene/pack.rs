@@ -72,7 +72,12 @@ pub(crate) fn pack_from(
     with_vertices: bool,
 ) -> Result<(Vec<u8>, Layout, u64)> {
     mesh.validate()?;
-    let mut out = Vec::new();
+    // The common sections' size up front: no reallocation (and no page faults) while packing.
+    let mut out = Vec::with_capacity(
+        with_vertices as usize * (mesh.positions.len() * VERTEX_STRIDE as usize + 16)
+            + mesh.triangles.len() * 4
+            + 64,
+    );
     let mut layout = Layout {
         vertices: 0,
         ..Layout::default()
@@ -146,6 +151,16 @@ pub(crate) fn pack_from(
 /// The scalar of vertex `i`; zero without scalars.
 fn scalar(mesh: &RenderMesh<'_>, i: usize) -> f32 {
     mesh.scalars.map_or(0.0, |s| s[i])
+}
+
+/// The packed shared vertices `range` of `mesh` (the bytes of [`pack`]'s vertex section at
+/// offset `range.start * VERTEX_STRIDE`), into `out` (cleared first).
+pub(crate) fn pack_vertices(mesh: &RenderMesh<'_>, range: std::ops::Range<usize>, out: &mut Vec<u8>) {
+    out.clear();
+    out.reserve(range.len() * VERTEX_STRIDE as usize);
+    for i in range {
+        push_vertex(out, mesh.positions[i], mesh.normals[i], scalar(mesh, i));
+    }
 }
 
 /// Appends three split vertices per triangle, each carrying the face normal.
