@@ -207,6 +207,7 @@ pub fn check_usd(path: &std::path::Path) -> Result<UsdOutcome, Failure> {
         UsdError::Attribute { .. } => (Outcome::MeshRefused, "Attribute"),
         UsdError::Invalid { .. } => (Outcome::MeshRefused, "Invalid"),
         UsdError::Mixed { .. } => (Outcome::MeshRefused, "Mixed"),
+        UsdError::Time { .. } => (Outcome::MeshRefused, "Time"),
     };
     let panic = match &e {
         UsdError::ReaderPanic { msg, .. } if !msg.contains("(at openusd") => {

@@ -13,7 +13,10 @@ use std::collections::HashSet;
 
 use glam::DVec3;
 use subdiv_mesh::{Mesh, VertexId};
-use subdiv_rules::{Depth, LimitMesh, Scheme, refine_uniform_levels, tessellate_uniform};
+use subdiv_rules::{
+    Depth, LimitMesh, Scheme, bilinear_patches, inside_one_patch, refine_uniform_levels,
+    tessellate_uniform,
+};
 
 use crate::{PointGrid, Reference, canonical_face};
 
@@ -40,10 +43,10 @@ pub struct Outcome {
 
 /// The scheme a reference file was computed with.
 pub fn reference_scheme(reference: &Reference) -> Scheme {
-    if reference.header.get("scheme").is_some_and(|s| s == "loop") {
-        Scheme::Loop
-    } else {
-        Scheme::CatmullClark
+    match reference.header.get("scheme").map(String::as_str) {
+        Some("loop") => Scheme::Loop,
+        Some("bilinear") => Scheme::Bilinear,
+        _ => Scheme::CatmullClark,
     }
 }
 
@@ -61,6 +64,7 @@ pub fn compare(
         Tessellator::Slate => match scheme {
             Scheme::CatmullClark => subdiv_slate::tessellate(mesh, level),
             Scheme::Loop => subdiv_slate::tessellate_tri(mesh, level),
+            Scheme::Bilinear => subdiv_slate::tessellate_bilinear(mesh, level),
         }
         .map_err(|e| e.to_string())?,
         Tessellator::Uniform => {
@@ -254,11 +258,17 @@ fn check_normals(
     let (lo, hi) = mesh.bounds();
     let tol = 1e-5 * (hi - lo).length() as f64;
     let ref_grid = PointGrid::new(&dvec(limit_ref), (tol * 100.0).max(1e-9));
+    // Bilinear: smooth inside a patch, kinked along the patches' edges.
+    let patches = (scheme == Scheme::Bilinear).then(|| bilinear_patches(mesh, level));
     let mut max_deg = 0.0f64;
     let mut n_smooth = 0;
     for (i, rn) in reference.normals.iter().enumerate() {
         let rv = VertexId(ref_grid.nearest(reference.positions[i]).0 as u32);
-        if !is_smooth_point(&refined, rv) {
+        let smooth = match &patches {
+            Some(p) => inside_one_patch(&refined, p, rv),
+            None => is_smooth_point(&refined, rv),
+        };
+        if !smooth {
             continue;
         }
         n_smooth += 1;

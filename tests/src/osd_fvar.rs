@@ -91,7 +91,7 @@ fn compare_corner_values(
     let mut corners = 0;
     for f in mesh.faces() {
         let block = match scheme {
-            Scheme::CatmullClark => mesh.face_size(f) * per,
+            Scheme::CatmullClark | Scheme::Bilinear => mesh.face_size(f) * per,
             Scheme::Loop => 4 * per,
         };
         let mut used = vec![false; block];

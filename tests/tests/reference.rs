@@ -21,9 +21,14 @@ fn check_with(
     level: subdiv_rules::Depth,
     which: Tessellator,
 ) -> Result<Outcome, String> {
+    // Bilinear references are computed on the Catmull-Clark shapes.
+    let cage = match shape.strip_prefix("bilinear_") {
+        Some(rest) => format!("catmark_{rest}"),
+        None => shape.to_string(),
+    };
     let cage_path = fixtures()
         .join("reference/shapes")
-        .join(format!("{shape}.obj"));
+        .join(format!("{cage}.obj"));
     let reference =
         Reference::read(&fixtures().join(format!("reference/limit/{shape}.L{level}.txt")));
     let mesh = read_obj(&cage_path).map_err(|e| e.to_string())?;
@@ -108,4 +113,32 @@ fn loop_slate_tessellation_matches_opensubdiv() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     assert!(checked >= 27, "only {checked} checked");
+}
+
+/// Every bilinear reference (OpenSubdiv's `SCHEME_BILINEAR` on the Catmull-Clark shapes) at
+/// levels 1-3 through the bilinear patches of `subdiv_slate::tessellate_bilinear`.
+#[test]
+fn bilinear_patches_match_opensubdiv() {
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for file in fixture_files("reference/limit", "txt") {
+        let name = file.file_stem().unwrap().to_string_lossy().to_string();
+        if !name.starts_with("bilinear_") {
+            continue;
+        }
+        let (shape, lv) = name.rsplit_once(".L").unwrap();
+        match check_slate(shape, lv.parse().unwrap()) {
+            Ok(o) => {
+                checked += 1;
+                eprintln!(
+                    "bilinear {name}: max position error {:.2e} x diag, {} smooth normals within {:.4} deg",
+                    o.max_pos_err, o.smooth_normals, o.max_normal_deg
+                );
+                assert!(o.smooth_normals > 0, "{name}: no normal compared");
+            }
+            Err(e) => failures.push(format!("{name}: {e}")),
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    assert!(checked >= 18, "only {checked} checked");
 }

@@ -1,8 +1,8 @@
 //! Face-varying limit values (UVs) on the uniform slates against the whole-mesh reference path
 //! (`tessellate_uniform`, whose UVs are `limit_face_varying` of the refined mesh, checked
 //! against OpenSubdiv in `osd_fvar.rs`): every UV cage of `fixtures/meshes/fvar` under every
-//! face-varying option, Catmull-Clark slates (quads, and triangles through level-1 units) and
-//! triangular Loop slates, depths 0-4. Each slate face is matched to its reference face by
+//! face-varying option, Catmull-Clark slates (quads, and triangles through level-1 units),
+//! triangular Loop slates and bilinear patches (linear whatever the option), depths 0-4. Each slate face is matched to its reference face by
 //! position and every corner's UV compared (seams: a corner takes its own face's side). The
 //! UVs are the same for 1 and 2 threads.
 
@@ -17,10 +17,13 @@ use subdiv_tests::{PointGrid, canonical_face, fixtures};
 fn uv_cages() -> Vec<(String, Mesh, Vec<Scheme>)> {
     let mut out = Vec::new();
     for (shape, schemes) in [
-        ("cube_uv", vec![Scheme::CatmullClark]),
-        ("grid_seam", vec![Scheme::CatmullClark]),
+        ("cube_uv", vec![Scheme::CatmullClark, Scheme::Bilinear]),
+        ("grid_seam", vec![Scheme::CatmullClark, Scheme::Bilinear]),
         ("grid_seam_crease", vec![Scheme::CatmullClark]),
-        ("tri_seam", vec![Scheme::CatmullClark, Scheme::Loop]),
+        (
+            "tri_seam",
+            vec![Scheme::CatmullClark, Scheme::Loop, Scheme::Bilinear],
+        ),
     ] {
         let path = fixtures().join(format!("meshes/fvar/{shape}.obj"));
         let text = std::fs::read_to_string(path).unwrap();
@@ -38,6 +41,7 @@ fn slates(mesh: &Mesh, scheme: Scheme, depth: u8) -> LimitMesh {
     match scheme {
         Scheme::CatmullClark => subdiv_slate::tessellate(mesh, depth).unwrap(),
         Scheme::Loop => subdiv_slate::tessellate_tri(mesh, depth).unwrap(),
+        Scheme::Bilinear => subdiv_slate::tessellate_bilinear(mesh, depth).unwrap(),
     }
 }
 

@@ -251,6 +251,8 @@ static double median(std::vector<double> v) {
     return v[v.size() / 2];
 }
 
+// bench_animate.cpp includes this file for its cage reader and stencil locations.
+#ifndef BENCH_OSD_NO_MAIN
 int main(int argc, char **argv) {
     if (argc < 3) {
         std::fprintf(stderr, "usage: bench_osd INPUT.obj DEPTH [RUNS] [catmark|loop]\n");
@@ -339,3 +341,4 @@ int main(int argc, char **argv) {
                 points, points / cm, sm * 1e3, points / em, points / enm);
     return 0;
 }
+#endif

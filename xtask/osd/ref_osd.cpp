@@ -1,7 +1,7 @@
 // ref_osd: reference limit surfaces from OpenSubdiv 3.5 (Far, CPU, double precision) in the format
 // of fixtures/reference/OSD_REFERENCE_FORMAT.md.
 //
-//   ref_osd INPUT.obj LEVEL [catmark|loop [local]]  > shape.L<LEVEL>.txt
+//   ref_osd INPUT.obj LEVEL [catmark|loop|bilinear [local]]  > shape.L<LEVEL>.txt
 //
 // Reads an OBJ cage with OpenSubdiv's tag lines (crease, corner, hole, interpolateboundary,
 // creasemethod, and smoothtriangles as OpenSubdiv's regression/common/far_utils.h spells it:
@@ -217,17 +217,20 @@ static bool settled(Far::TopologyLevel const &l, int v) {
 }
 
 int main(int argc, char **argv) {
-    if (argc < 3) fail("usage: ref_osd INPUT.obj LEVEL [catmark|loop [local]]");
+    if (argc < 3) fail("usage: ref_osd INPUT.obj LEVEL [catmark|loop|bilinear [local]]");
     Cage c = readObj(argv[1]);
     int level = std::atoi(argv[2]);
-    bool loop = argc > 3 && std::string(argv[3]) == "loop";
+    std::string name = argc > 3 ? argv[3] : "catmark";
+    bool loop = name == "loop", bilinear = name == "bilinear";
+    if (!loop && !bilinear && name != "catmark") fail("scheme: catmark, loop or bilinear");
     bool local = argc > 4 && std::string(argv[4]) == "local";
     if (level < 1 || level > 8) fail("LEVEL must be 1..8");
     float maxSharp = 0.0f;
     int semiE = semiSharpCount(c.creaseWeights, &maxSharp);
     int semiV = semiSharpCount(c.cornerWeights, &maxSharp);
-    int deep = level + (int)std::ceil(maxSharp);
-    Sdc::SchemeType scheme = loop ? Sdc::SCHEME_LOOP : Sdc::SCHEME_CATMARK;
+    // Sharpness does not move bilinear points: its limit is the level's own points.
+    int deep = bilinear ? level : level + (int)std::ceil(maxSharp);
+    Sdc::SchemeType scheme = loop ? Sdc::SCHEME_LOOP : bilinear ? Sdc::SCHEME_BILINEAR : Sdc::SCHEME_CATMARK;
 
     Far::TopologyRefiner *r = createRefiner(c, scheme);
     Far::TopologyRefiner::UniformOptions uo(deep);
@@ -254,7 +257,7 @@ int main(int argc, char **argv) {
     std::printf("osdref %d %d scheme=%s level=%d mode=uniform-limit boundary=%s crease=%s tri=%s "
                 "real=double holes=%d(omitted) semisharp_edges=%d semisharp_verts=%d "
                 "limit_exact=yes limit_impl=osd base_verts=%d base_faces=%d osd=%s",
-                nv, nf, loop ? "loop" : "catmark", level, bnd[o.GetVtxBoundaryInterpolation()],
+                nv, nf, name.c_str(), level, bnd[o.GetVtxBoundaryInterpolation()],
                 o.GetCreasingMethod() == Sdc::Options::CREASE_CHAIKIN ? "chaikin" : "uniform",
                 o.GetTriangleSubdivision() == Sdc::Options::TRI_SUB_SMOOTH ? "smooth" : "catmark",
                 (int)c.holes.size(), semiE, semiV, (int)c.positions.size(),

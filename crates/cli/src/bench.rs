@@ -6,8 +6,9 @@ use std::time::Instant;
 
 use subdiv::rules::{Request, Scheme};
 use subdiv::slate::{
-    PatchLayout, TriLayout, slate_bytes_per_thread, tessellate_layout, tessellate_layout_into,
-    tessellate_tri, tessellate_tri_layout_into, tri_slate_bytes_per_thread,
+    BilinearLayout, PatchLayout, TriLayout, slate_bytes_per_thread, tessellate_bilinear_into,
+    tessellate_layout, tessellate_layout_into, tessellate_tri, tessellate_tri_layout_into,
+    tri_slate_bytes_per_thread,
 };
 
 use crate::choices::SchemeName;
@@ -32,6 +33,11 @@ pub enum BenchWhat {
     /// `config=<name> triangles=<n> silhouette_px_max=<f> silhouette_px_p99=<f>
     /// shading_deg_p99=<f> update_ms=<f> render_ms=<f> shading_deg_p99_off_lines=<f>`.
     Quality(crate::bench_quality::BenchQualityArgs),
+    /// Per-frame update of a moving cage (an animated stage's frames, or any cage swayed): the
+    /// layout is kept while the topology stays and points and normals are rewritten. One line a
+    /// frame, `frame=<i> time=<t> update_ms=<f> points=<n> faces=<n> topology_written=<0|1>`,
+    /// then `frames=<n> update_ms_median=<f> points_per_s=<f>`.
+    Animate(crate::bench_animate::BenchAnimateArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -60,6 +66,10 @@ pub struct BenchTessellateArgs {
     /// default every run writes the indices too, as each new tessellation does.
     #[arg(long)]
     pub points_only: bool,
+    /// USD: the time code to read the stage at (time samples interpolated as USD does)
+    /// [default: default values, else the earliest time samples].
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    pub time: Option<f64>,
     /// Also time a plain store loop over a buffer of the frame's output size (points, normals
     /// and indices), on one thread, the same number of runs: the machine's write bandwidth the
     /// tessellation's own is measured against, printed as `store_bytes_per_s=<f>
@@ -86,6 +96,7 @@ pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
         BenchWhat::Tessellate(t) => bench_tessellate(t),
         BenchWhat::Framerate(f) => crate::bench_framerate::run(f),
         BenchWhat::Quality(q) => crate::bench_quality::run(q),
+        BenchWhat::Animate(m) => crate::bench_animate::run(m),
     }
 }
 
@@ -122,7 +133,7 @@ fn print_store_bandwidth(a: &BenchTessellateArgs, out: &subdiv::LimitMesh) {
 }
 
 fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
-    let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, None)?;
+    let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, None, a.time)?;
     let scheme = crate::load::cage_scheme(&a.input, &cage, a.scheme.map(Scheme::from))?;
     let mesh = cage.mesh;
     anyhow::ensure!(a.depth >= 1, "--depth must be at least 1");
@@ -137,6 +148,9 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
         .build()?;
     if scheme == Scheme::Loop {
         return bench_loop(a, &mesh, &pool);
+    }
+    if scheme == Scheme::Bilinear {
+        return bench_bilinear(a, &mesh, &pool);
     }
     let t0 = Instant::now();
     let layout = PatchLayout::new(&mesh, a.depth)
@@ -189,6 +203,54 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
         a.timed()
     );
     print_store_bandwidth(a, &out);
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `bench tessellate --scheme bilinear`: the bilinear patches, the same lines (no slates:
+/// `slate_bytes_per_thread=0`).
+fn bench_bilinear(
+    a: &BenchTessellateArgs,
+    mesh: &subdiv::mesh::Mesh,
+    pool: &rayon::ThreadPool,
+) -> anyhow::Result<ExitCode> {
+    let t0 = Instant::now();
+    let layout = BilinearLayout::new(mesh, a.depth)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", a.input.display()))?;
+    let setup = t0.elapsed().as_secs_f64();
+    let mut out = subdiv::LimitMesh::default();
+    let times = pool.install(|| -> anyhow::Result<_> {
+        tessellate_bilinear_into(mesh, &layout, &mut out)?;
+        let mut times = Vec::with_capacity(a.runs);
+        for _ in 0..a.runs {
+            if !a.points_only {
+                out.clear_faces();
+            }
+            let t = Instant::now();
+            tessellate_bilinear_into(mesh, &layout, &mut out)?;
+            times.push(t.elapsed().as_secs_f64());
+            std::hint::black_box(&out);
+        }
+        Ok(times)
+    })?;
+    let med = median(times.clone());
+    out!(
+        "input={} scheme=bilinear depth={} threads={} limit_points={} quads={} setup_ms={:.3} median_ms={:.3} min_ms={:.3} timed={}",
+        a.input.display(),
+        a.depth,
+        pool.current_num_threads(),
+        out.num_vertices(),
+        out.num_faces(),
+        setup * 1e3,
+        med * 1e3,
+        times.iter().copied().fold(f64::INFINITY, f64::min) * 1e3,
+        a.timed()
+    );
+    out!(
+        "limit_points_per_s={:.0} patches_per_s={:.0} slate_bytes_per_thread=0 timed={}",
+        out.num_vertices() as f64 / med,
+        layout.num_patches() as f64 / med,
+        a.timed()
+    );
     Ok(ExitCode::SUCCESS)
 }
 

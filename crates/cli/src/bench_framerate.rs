@@ -94,6 +94,15 @@ pub struct BenchFramerateArgs {
     /// there) instead of refining non-manifold cages as OpenSubdiv does.
     #[arg(long)]
     pub split_nonmanifold: bool,
+    /// USD: the time code to read the stage at (time samples interpolated as USD does)
+    /// [default: default values, else the earliest time samples].
+    #[arg(
+        long,
+        value_name = "T",
+        allow_hyphen_values = true,
+        conflicts_with = "scene"
+    )]
+    pub time: Option<f64>,
     /// Samples per pixel of the frames drawn (as `render --samples`) [default: 4 where the
     /// device supports it].
     #[arg(long, value_name = "N", value_parser = crate::surface_args::parse_samples)]
@@ -190,7 +199,7 @@ fn check(a: &BenchFramerateArgs) -> anyhow::Result<()> {
 fn cage(a: &BenchFramerateArgs) -> anyhow::Result<(Mesh, String, Scheme)> {
     let (mesh, name, scheme) = match &a.input {
         Some(path) => {
-            let c = crate::load::load_cage(path, a.split_nonmanifold, None)?;
+            let c = crate::load::load_cage(path, a.split_nonmanifold, None, a.time)?;
             let scheme = crate::load::cage_scheme(path, &c, a.scheme.map(Into::into))?;
             (c.mesh, path.display().to_string(), scheme)
         }
@@ -216,7 +225,10 @@ fn cage(a: &BenchFramerateArgs) -> anyhow::Result<(Mesh, String, Scheme)> {
 
 /// Share of `fps` within ±10 % of `around`.
 fn within10(fps: &[f64], around: f64) -> f64 {
-    let ok = fps.iter().filter(|&&f| (f / around - 1.0).abs() <= 0.1).count();
+    let ok = fps
+        .iter()
+        .filter(|&&f| (f / around - 1.0).abs() <= 0.1)
+        .count();
     ok as f64 / fps.len().max(1) as f64
 }
 
@@ -292,7 +304,8 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
         .check(&cage, Request::Adaptive { scheme, max_depth }, &name)?;
     if a.error_every.is_some() {
         let depth = a.reference_depth.unwrap_or(max_depth.saturating_add(1));
-        a.limit.check(&cage, Request::Uniform { scheme, depth }, &name)?;
+        a.limit
+            .check(&cage, Request::Uniform { scheme, depth }, &name)?;
     }
     let nf = cage.num_faces();
     let bounds = framing_box(&cage);
@@ -382,7 +395,12 @@ fn frame_line(
     let g = node.geometry();
     let join = |v: Vec<String>| v.join(",");
     let per = join(g.units_per_depth().iter().map(|n| n.to_string()).collect());
-    let quads = join(node.quads_per_depth().iter().map(|n| n.to_string()).collect());
+    let quads = join(
+        node.quads_per_depth()
+            .iter()
+            .map(|n| n.to_string())
+            .collect(),
+    );
     let cap = node
         .paper_controller()
         .map_or(a.depth.unwrap_or(a.max_depth), |c| c.cap());
@@ -438,7 +456,9 @@ fn summary(a: &BenchFramerateArgs, fps: &[f64], switch_at: Option<usize>) -> Str
                 " switch_frame={k} settle_frames={n} within10_after={:.3}",
                 within10(&after[n..], t2)
             )),
-            None => s.push_str(&format!(" switch_frame={k} settle_frames=none within10_after=0")),
+            None => s.push_str(&format!(
+                " switch_frame={k} settle_frames=none within10_after=0"
+            )),
         }
     }
     s

@@ -61,6 +61,15 @@ pub struct BenchQualityArgs {
     /// there) instead of refining non-manifold cages as OpenSubdiv does.
     #[arg(long)]
     pub split_nonmanifold: bool,
+    /// USD: the time code to read the stage at (time samples interpolated as USD does)
+    /// [default: default values, else the earliest time samples].
+    #[arg(
+        long,
+        value_name = "T",
+        allow_hyphen_values = true,
+        conflicts_with = "scene"
+    )]
+    pub time: Option<f64>,
     /// Which kinds of configuration to measure (comma-separated) [default: all three].
     #[arg(long, value_delimiter = ',')]
     pub configs: Vec<ConfigKind>,
@@ -221,7 +230,7 @@ pub fn run(a: &BenchQualityArgs) -> anyhow::Result<ExitCode> {
             requested.unwrap_or(Scheme::CatmullClark),
         ),
         (None, Some(p)) => {
-            let cage = crate::load::load_cage(p, a.split_nonmanifold, None)?;
+            let cage = crate::load::load_cage(p, a.split_nonmanifold, None, a.time)?;
             // `--scheme`, else the stage's: the reference and every configuration use it.
             let scheme = crate::load::cage_scheme(p, &cage, requested)?;
             (cage.mesh, scheme)

@@ -19,6 +19,7 @@ pub fn value_name<E: ValueEnum>(e: &E) -> String {
 pub enum SchemeName {
     CatmullClark,
     Loop,
+    Bilinear,
 }
 
 impl From<Scheme> for SchemeName {
@@ -26,6 +27,7 @@ impl From<Scheme> for SchemeName {
         match s {
             Scheme::CatmullClark => SchemeName::CatmullClark,
             Scheme::Loop => SchemeName::Loop,
+            Scheme::Bilinear => SchemeName::Bilinear,
         }
     }
 }
@@ -35,6 +37,7 @@ impl From<SchemeName> for Scheme {
         match s {
             SchemeName::CatmullClark => Scheme::CatmullClark,
             SchemeName::Loop => Scheme::Loop,
+            SchemeName::Bilinear => Scheme::Bilinear,
         }
     }
 }

@@ -5,8 +5,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use subdiv::mesh::{
-    BoundaryInterpolation, CreaseMethod, Mesh, MeshStats, ObjError, TriangleSubdivision,
-    is_usd_path, read_obj_soup, read_usd_soup,
+    BoundaryInterpolation, CreaseMethod, Mesh, MeshStats, ObjError, StageTime, TriangleSubdivision,
+    UsdReadOptions, UsdStageReader, is_usd_path, read_obj_soup,
 };
 
 #[derive(clap::Args, Debug)]
@@ -16,6 +16,10 @@ pub struct InfoArgs {
     /// The USD mesh prim to read (e.g. /World/Body); every Mesh prim merged without it.
     #[arg(long, value_name = "PATH")]
     pub prim: Option<String>,
+    /// USD: the time code to read the stage at (time samples interpolated as USD does)
+    /// [default: default values, else the earliest time samples].
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    pub time: Option<f64>,
     /// Give each extra fan of faces at a non-manifold vertex its own vertex (the surface opens
     /// there) instead of refining non-manifold cages as OpenSubdiv does.
     #[arg(long)]
@@ -29,18 +33,90 @@ fn histogram(h: &std::collections::BTreeMap<usize, usize>) -> String {
         .join(" ")
 }
 
+/// The lines on a stage's time: `time range: start=S end=E time_codes_per_second=R (authored)`
+/// (or `(from the time samples)`, or `time range: none (nothing is time-sampled)`), the
+/// time-sampled attributes `time-sampled: /Prim.attr (N samples), ...`, and `time: T` when a
+/// time was asked for.
+fn time_lines(time: &StageTime, at: Option<f64>) -> String {
+    const SHOWN: usize = 12;
+    let mut out = String::new();
+    match time.range() {
+        Some((s, e)) => {
+            let from = if time.authored.is_some() {
+                "authored"
+            } else {
+                "from the time samples"
+            };
+            out += &format!(
+                "time range: start={s} end={e} time_codes_per_second={} ({from})\n",
+                time.time_codes_per_second
+            );
+        }
+        None => out += "time range: none (nothing is time-sampled)\n",
+    }
+    if !time.sampled.is_empty() {
+        let mut items: Vec<String> = time
+            .sampled
+            .iter()
+            .take(SHOWN)
+            .map(|(name, t)| format!("{name} ({} samples)", t.len()))
+            .collect();
+        if time.sampled.len() > SHOWN {
+            items.push(format!("... {} more", time.sampled.len() - SHOWN));
+        }
+        out += &format!("time-sampled: {}\n", items.join(", "));
+    }
+    if let Some(t) = at {
+        out += &format!("time: {t}\n");
+    }
+    out
+}
+
+/// `st faceVarying width 2 (24 values), displayColor vertex width 3 (8 values), ...`, or
+/// `none`: the texture coordinates and every other primvar of `mesh`.
+fn primvar_list(mesh: &Mesh) -> String {
+    let mut items = Vec::new();
+    if let Some(uv) = mesh.uv() {
+        items.push(format!(
+            "st faceVarying width 2 ({} values)",
+            uv.values.len()
+        ));
+    }
+    for p in mesh.primvars() {
+        items.push(format!(
+            "{} {} width {} ({} values)",
+            p.name,
+            p.interpolation.token(),
+            p.width,
+            p.num_values()
+        ));
+    }
+    if items.is_empty() {
+        "none".into()
+    } else {
+        items.join(", ")
+    }
+}
+
 /// Prints the report; exits 1 (after the report) when the mesh would be refused.
 pub fn run(a: &InfoArgs) -> anyhow::Result<ExitCode> {
     let path = a.input.display().to_string();
     let mut out = String::new();
     writeln!(out, "file: {path}")?;
     let mut soup = if is_usd_path(&a.input) {
-        let usd = read_usd_soup(&a.input, a.prim.as_deref())?;
+        let opts = UsdReadOptions {
+            prim: a.prim.clone(),
+            ..UsdReadOptions::default()
+        };
+        let stage = UsdStageReader::open(&a.input, &opts)?;
+        let usd = stage.read_soup_at(a.time)?;
         writeln!(out, "prims: {}", usd.prims.join(" "))?;
         writeln!(out, "subdivisionScheme: {}", usd.scheme.token())?;
+        out.push_str(&time_lines(&stage.time()?, a.time));
         usd.soup
     } else {
         anyhow::ensure!(a.prim.is_none(), "{path}: --prim is for USD input");
+        anyhow::ensure!(a.time.is_none(), "{path}: --time is for USD input");
         read_obj_soup(&a.input)?
     };
     // Tag lines read but not applied: on stderr, in the report, and refused with --strict.
@@ -123,10 +199,11 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<ExitCode> {
     if !mesh.groups().is_empty() {
         writeln!(out, "groups: {}", mesh.groups().join(", "))?;
     }
+    writeln!(out, "primvars: {}", primvar_list(&mesh))?;
     let loop_ok = s.face_sizes.keys().all(|&k| k == 3);
     writeln!(
         out,
-        "schemes: catmull-clark yes, loop {}",
+        "schemes: catmull-clark yes, bilinear yes, loop {}",
         if loop_ok {
             "yes"
         } else {

@@ -21,15 +21,21 @@ pub fn strict() -> bool {
 }
 
 /// Reads and validates a cage (the USD mesh prim `prim` (`--prim`), else every mesh of a USD
-/// stage, merged), with what the file says about its subdivision; errors read `FILE:LINE: what`
+/// stage, merged, at time code `time` (`--time`)), with what the file says about its subdivision; errors read `FILE:LINE: what`
 /// (OBJ) or `FILE: PRIM: ATTRIBUTE: what` (USD). Tag lines that are not applied are reported
 /// by [`report_tag_warnings`].
-pub fn load_cage(path: &Path, split_nonmanifold: bool, prim: Option<&str>) -> anyhow::Result<Cage> {
+pub fn load_cage(
+    path: &Path,
+    split_nonmanifold: bool,
+    prim: Option<&str>,
+    time: Option<f64>,
+) -> anyhow::Result<Cage> {
     let cage = read_cage(
         path,
         &CageOptions {
             split_nonmanifold_vertices: split_nonmanifold,
             prim: prim.map(str::to_string),
+            time,
         },
     )?;
     log::debug!(
@@ -96,14 +102,14 @@ pub fn nonmanifold_lines(found: &NonManifold) -> String {
 }
 
 /// The scheme to subdivide `cage` with: `--scheme` when given, else the USD
-/// `subdivisionScheme`, else Catmull-Clark. USD's `bilinear` and `none` need `--scheme`.
+/// `subdivisionScheme`, else Catmull-Clark. USD's `none` needs `--scheme`.
 pub fn cage_scheme(path: &Path, cage: &Cage, requested: Option<Scheme>) -> anyhow::Result<Scheme> {
     match (requested, cage.scheme) {
         (Some(s), _) => Ok(s),
         (None, None) => Ok(Scheme::CatmullClark),
         (None, Some(u)) => Scheme::from_usd(u).ok_or_else(|| {
             anyhow!(
-                "{}: {}: subdivisionScheme is {}; subdiv subdivides catmullClark and loop surfaces \
+                "{}: {}: subdivisionScheme is {}, a polygon mesh rather than a subdivision surface \
                  (give --scheme to subdivide it anyway)",
                 path.display(),
                 cage.prims.join(" "),
@@ -111,6 +117,19 @@ pub fn cage_scheme(path: &Path, cage: &Cage, requested: Option<Scheme>) -> anyho
             )
         }),
     }
+}
+
+/// Warns that the cage's primvars (but `st`) do not reach `what` (a surface other than the
+/// uniform tessellation, which carries them); nothing for a cage without.
+pub fn warn_primvars_not_carried(mesh: &subdiv::mesh::Mesh, what: &str) {
+    if mesh.primvars().is_empty() {
+        return;
+    }
+    let names: Vec<&str> = mesh.primvars().iter().map(|p| p.name.as_str()).collect();
+    log::warn!(
+        "primvars {} are not carried by {what} (the uniform tessellation, --depth N, carries them)",
+        names.join(", ")
+    );
 }
 
 /// Logs `FILE:LINE: tag 't NAME' ignored (why)` as a warning (printed `warning: ...`, silenced

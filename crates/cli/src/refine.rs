@@ -22,6 +22,10 @@ pub struct RefineArgs {
     /// The USD mesh prim to read (e.g. /World/Body); every Mesh prim merged without it.
     #[arg(long, value_name = "PATH")]
     pub prim: Option<String>,
+    /// USD: the time code to read the stage at (time samples interpolated as USD does)
+    /// [default: default values, else the earliest time samples].
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    pub time: Option<f64>,
     #[command(flatten)]
     pub doi: DoiArgs,
     #[command(flatten)]
@@ -43,7 +47,8 @@ pub struct RefineArgs {
 pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
     let input = a.input.display().to_string();
     let format = OutputFormat::from_path(&a.output)?;
-    let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, a.prim.as_deref())?;
+    let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, a.prim.as_deref(), a.time)?;
+    crate::load::warn_primvars_not_carried(&cage.mesh, "DoI-driven refinement");
     let setup = a.doi.setup(cage.mesh, &input)?;
     let steps = a.doi.steps;
     a.limit.check(

@@ -30,6 +30,16 @@ pub struct SurfaceArgs {
     /// The USD mesh prim to read (e.g. /World/Body).
     #[arg(long, value_name = "PATH", conflicts_with = "scene")]
     pub prim: Option<String>,
+    /// USD: the time code to read the stage at (time samples interpolated as USD does)
+    /// [default: default values, else the earliest time samples]; `view` opens an animated
+    /// stage paused at this time (space plays).
+    #[arg(
+        long,
+        value_name = "T",
+        allow_hyphen_values = true,
+        conflicts_with = "scene"
+    )]
+    pub time: Option<f64>,
     /// A built-in scene instead of an input file: helmet40 (paper Fig. 12: 40 instances of
     /// catmark_helmet on an 8x5 grid).
     #[arg(long, conflicts_with = "input")]
@@ -105,7 +115,12 @@ impl SurfaceArgs {
                 self.scheme.map_or(Scheme::CatmullClark, Into::into),
             )),
             (None, Some(p)) => {
-                let cage = crate::load::load_cage(p, self.split_nonmanifold, self.prim.as_deref())?;
+                let cage = crate::load::load_cage(
+                    p,
+                    self.split_nonmanifold,
+                    self.prim.as_deref(),
+                    self.time,
+                )?;
                 let scheme = crate::load::cage_scheme(p, &cage, self.scheme.map(Into::into))?;
                 Ok((cage.mesh, scheme))
             }

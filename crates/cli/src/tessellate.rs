@@ -35,6 +35,10 @@ pub struct TessellateArgs {
     /// The USD mesh prim to read (e.g. /World/Body).
     #[arg(long, value_name = "PATH")]
     pub prim: Option<String>,
+    /// USD: the time code to read the stage at (time samples interpolated as USD does)
+    /// [default: default values, else the earliest time samples].
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    pub time: Option<f64>,
     /// Subdivision scheme [default: the USD subdivisionScheme, else catmull-clark].
     #[arg(long, value_enum)]
     pub scheme: Option<SchemeName>,
@@ -78,7 +82,7 @@ fn cage_doi_parser() -> impl TypedValueParser<Value = DoiName> {
 
 pub fn run(a: &TessellateArgs) -> anyhow::Result<ExitCode> {
     OutputFormat::from_path(&a.output)?;
-    let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, a.prim.as_deref())?;
+    let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, a.prim.as_deref(), a.time)?;
     let scheme = crate::load::cage_scheme(&a.input, &cage, a.scheme.map(Scheme::from))?;
     let mesh = cage.mesh;
     let adaptive = a

@@ -5,10 +5,14 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use subdiv::mesh::{Camera, Mesh};
+use anyhow::Context;
+use subdiv::mesh::{Camera, Mesh, UsdReadOptions, UsdStageReader, is_usd_path};
 use subdiv::vk::OrbitCamera;
-use subdiv::vk::viewer::{self, FrameControl, FrameSource, ViewerOptions};
-use subdiv::{AdaptiveSource, DoiSource, UniformSource, framing_box, orbit_camera};
+use subdiv::vk::viewer::{self, FrameControl, FrameSource, Playback, ViewerOptions};
+use subdiv::{
+    AdaptiveSource, AnimatedSource, DoiSource, UniformSource, framing_box, orbit_camera,
+    stage_playback,
+};
 
 use crate::camera_args::CameraArgs;
 use crate::choices::value_name;
@@ -131,6 +135,9 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     if a.surface.doi.kind().is_some() {
         return run_doi(a);
     }
+    if let Some((stage, playback)) = animated_stage(a)? {
+        return run_animated(a, stage, playback);
+    }
     if a.surface.is_adaptive(&a.camera)? {
         return run_adaptive(a);
     }
@@ -186,4 +193,97 @@ fn run_adaptive(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         ..ViewerOptions::default()
     };
     show(a, &mut source, options, |_| String::new())
+}
+
+/// The input's stage and its playback when it is an animated USD stage: playing from the start
+/// of its range, or paused at `--time` (and, for a scripted screenshot, paused at the start).
+fn animated_stage(a: &ViewArgs) -> anyhow::Result<Option<(UsdStageReader, Playback)>> {
+    let Some(input) = a.surface.input.as_ref().filter(|p| is_usd_path(p)) else {
+        return Ok(None);
+    };
+    if a.surface.scene.is_some() {
+        return Ok(None);
+    }
+    let opts = UsdReadOptions {
+        prim: a.surface.prim.clone(),
+        split_nonmanifold_vertices: a.surface.split_nonmanifold,
+        time: None,
+    };
+    let stage = UsdStageReader::open(input, &opts)?;
+    let playing = a.surface.time.is_none() && a.screenshot_after.is_none();
+    let playback = stage_playback(&stage, a.surface.time, playing)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", input.display()))?;
+    Ok(playback.map(|p| (stage, p)))
+}
+
+/// `subdiv view` on an animated stage: the cage read at each frame's time code, uniform or
+/// adaptive, played at the stage's `timeCodesPerSecond`.
+fn run_animated(
+    a: &ViewArgs,
+    stage: UsdStageReader,
+    playback: Playback,
+) -> anyhow::Result<ExitCode> {
+    let render = a.style.render_options()?;
+    if a.surface.cull_camera_eye_relative.is_some() {
+        anyhow::bail!(
+            "subdiv view: freeze the culling camera with Z instead of --cull-camera-eye-relative"
+        );
+    }
+    let label = a.surface.label();
+    let adaptive = a.surface.is_adaptive(&a.camera)?;
+    // The cage at the first time code, as every command reads it (--time, else the start).
+    let input = a
+        .surface
+        .input
+        .as_deref()
+        .context("an animated stage is an input")?;
+    let first = crate::load::load_cage(
+        input,
+        a.surface.split_nonmanifold,
+        a.surface.prim.as_deref(),
+        Some(playback.time),
+    )?;
+    let scheme = crate::load::cage_scheme(input, &first, a.surface.scheme.map(Into::into))?;
+    let cage = first.mesh;
+    // Every view of a cage is framed on the cage (as `render` frames it).
+    let (camera, orbit) = start_camera(a, &cage);
+    let range = format!("time {}-{}", playback.start, playback.end);
+    let (source, title, control) = if adaptive {
+        let node = a.surface.adaptive_node(cage, scheme)?;
+        let title = format!(
+            "subdiv view {label} (adaptive, max depth {}, {range})",
+            a.surface.adaptive.max_depth()
+        );
+        let source = AnimatedSource::adaptive(stage, node, playback.time);
+        let control = if a.screenshot_after.is_none() {
+            FrameControl::Budget
+        } else {
+            FrameControl::Off
+        };
+        (source, title, control)
+    } else {
+        let depth = a.surface.uniform_depth();
+        let request = subdiv::rules::Request::Uniform { scheme, depth };
+        a.surface.limit.check(&cage, request, &label)?;
+        let source = AnimatedSource::uniform(stage, scheme, depth, playback.time)
+            .map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+        let title = format!(
+            "subdiv view {label} ({}, depth {depth}, {range})",
+            value_name(&crate::choices::SchemeName::from(scheme))
+        );
+        (source, title, FrameControl::Off)
+    };
+    let mut source = source;
+    let options = ViewerOptions {
+        title,
+        size: [camera.width, camera.height],
+        camera: Some(orbit),
+        render,
+        control,
+        playback: Some(playback),
+        ..ViewerOptions::default()
+    };
+    show(a, &mut source, options, |s| {
+        format!("last time {}", s.time())
+    })
 }

@@ -168,19 +168,19 @@ fn usd_and_output_errors_are_typed() {
         ],
         "unknown output format",
     );
-    // bilinear and none need an explicit scheme.
-    let bilinear = tmp("bilinear.usda");
+    // none (a polygon mesh) needs an explicit scheme.
+    let polygons = tmp("none.usda");
     std::fs::write(
-        &bilinear,
-        "#usda 1.0\ndef Mesh \"Q\"\n{\n    uniform token subdivisionScheme = \"bilinear\"\n    \
+        &polygons,
+        "#usda 1.0\ndef Mesh \"Q\"\n{\n    uniform token subdivisionScheme = \"none\"\n    \
          int[] faceVertexCounts = [4]\n    int[] faceVertexIndices = [0, 1, 2, 3]\n    \
          point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]\n}\n",
     )
     .unwrap();
-    let b = bilinear.to_str().unwrap();
+    let b = polygons.to_str().unwrap();
     assert_fails(
         &["tessellate", b, "--depth", "1", "-o", o],
-        "/Q: subdivisionScheme is bilinear; subdiv subdivides catmullClark and loop surfaces",
+        "/Q: subdivisionScheme is none, a polygon mesh rather than a subdivision surface",
     );
     let (code, _, err) = run(&[
         "tessellate",
@@ -195,7 +195,7 @@ fn usd_and_output_errors_are_typed() {
     assert_eq!(code, 0, "{err}");
     let (code, stdout, _) = run(&["info", b]);
     assert_eq!(code, 0);
-    assert!(stdout.contains("subdivisionScheme: bilinear"), "{stdout}");
+    assert!(stdout.contains("subdivisionScheme: none"), "{stdout}");
 }
 
 /// `render` follows a stage naming Loop (uniform and adaptive), never drawing it as a
@@ -270,4 +270,62 @@ fn bench_follows_or_refuses_the_stage_scheme() {
             assert!(out.contains(config), "{out}");
         }
     }
+}
+
+/// A stage naming `subdivisionScheme = "bilinear"` is tessellated with the bilinear scheme (as
+/// `--scheme bilinear` does for the same cage as OBJ); bilinear has no adaptive tessellation,
+/// and says so.
+#[test]
+fn a_bilinear_stage_is_tessellated_bilinear() {
+    let stage = tmp("bilinear_tri_quad.usda");
+    std::fs::write(
+        &stage,
+        "#usda 1.0\ndef Mesh \"Tri\" {\n    int[] faceVertexCounts = [3, 4]\n    \
+         int[] faceVertexIndices = [0, 1, 2, 1, 3, 4, 2]\n    \
+         point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0.5), (2, 0, 1), (1.5, 1, 0)]\n    \
+         uniform token subdivisionScheme = \"bilinear\"\n    \
+         uniform token interpolateBoundary = \"edgeOnly\"\n}\n",
+    )
+    .unwrap();
+    let obj = tmp("bilinear.obj");
+    std::fs::write(
+        &obj,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0.5\nv 2 0 1\nv 1.5 1 0\nf 1 2 3\nf 2 4 5 3\n",
+    )
+    .unwrap();
+    let (a, b) = (tmp("bilinear-usd.ply"), tmp("bilinear-obj.ply"));
+    let (code, stdout, err) = run(&[
+        "tessellate",
+        stage.to_str().unwrap(),
+        "--depth",
+        "3",
+        "-o",
+        a.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("(bilinear, depth 3)"), "{stdout}");
+    let (code, _, err) = run(&[
+        "tessellate",
+        obj.to_str().unwrap(),
+        "--scheme",
+        "bilinear",
+        "--depth",
+        "3",
+        "-o",
+        b.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(std::fs::read(&a).unwrap() == std::fs::read(&b).unwrap());
+    let o = tmp("never.ply");
+    assert_fails(
+        &[
+            "tessellate",
+            stage.to_str().unwrap(),
+            "--eye-relative",
+            "0.8,0.5,2.2",
+            "-o",
+            o.to_str().unwrap(),
+        ],
+        "the bilinear scheme has no adaptive tessellation",
+    );
 }

@@ -230,3 +230,65 @@ fn render_legend_is_optional() {
         .unwrap();
     assert!(reddest < bluest, "red at {reddest}, blue at {bluest}");
 }
+
+/// An animated stage in the viewer, paused at `--time T` (as a scripted screenshot is): the
+/// screenshots at two time codes differ (the pawn bends), and each is `subdiv render --time T`
+/// of the same camera (up to the rounding of the multisample resolve).
+#[test]
+fn an_animated_stage_shows_the_frame_of_its_time_code() {
+    let stage = root().join("fixtures/usd/pawn_bend.usdc");
+    let stage = stage.to_str().unwrap();
+    let mut shots = Vec::new();
+    for t in ["13", "30"] {
+        let Some(mut c) = view_command() else {
+            return;
+        };
+        let shot = tmp(&format!("anim-view-{t}.png"));
+        let o = c
+            .args(["view", stage, "--time", t, "--no-hud"])
+            .args(PAWN_VIEW)
+            .args(["--screenshot-after", "3", "-o", shot.to_str().unwrap()])
+            .output()
+            .unwrap();
+        let err = stderr(&o);
+        if err.contains("no Vulkan driver found")
+            && std::env::var("SUBDIV_VK_REQUIRE_DRIVER").as_deref() != Ok("1")
+        {
+            eprintln!("skipping: {err}");
+            return;
+        }
+        assert!(o.status.success(), "subdiv view --time {t}:\n{err}");
+        let stdout = String::from_utf8_lossy(&o.stdout);
+        assert!(stdout.contains(&format!("(last time {t})")), "{stdout}");
+        let rendered = tmp(&format!("anim-render-{t}.png"));
+        let args = [&["render", stage, "--time", t][..], &PAWN_VIEW[..]].concat();
+        let Some(_) = run_ok(&[&args[..], &["-o", rendered.to_str().unwrap()]].concat()) else {
+            return;
+        };
+        let (view, render) = (read_png(&shot).unwrap(), read_png(&rendered).unwrap());
+        // The same frame: at most a few pixels one or two levels apart (the multisample
+        // resolve of the window's path and of the headless one may round differently).
+        let (mut differing, mut worst) = (0, 0);
+        for (p, q) in view.pixels().zip(render.pixels()) {
+            let d =
+                p.0.iter()
+                    .zip(q.0)
+                    .map(|(a, b)| a.abs_diff(b))
+                    .max()
+                    .unwrap_or(0);
+            differing += usize::from(d > 0);
+            worst = worst.max(d);
+        }
+        assert!(
+            worst <= 2 && differing <= 20,
+            "time {t}: {differing} pixels differ from render, by up to {worst}"
+        );
+        shots.push(view);
+    }
+    let moved = shots[0]
+        .pixels()
+        .zip(shots[1].pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(moved > 1000, "time 13 and 30 differ in {moved} pixels only");
+}

@@ -74,7 +74,7 @@ pub fn face_spheres(mesh: &Mesh, scheme: Scheme) -> Vec<Sphere> {
 /// quad; Loop 4 per triangle).
 fn ancestors(mesh: &Mesh, k: Depth, scheme: Scheme) -> Vec<u32> {
     let children = |f| match scheme {
-        Scheme::CatmullClark => mesh.face_size(f),
+        Scheme::CatmullClark | Scheme::Bilinear => mesh.face_size(f),
         Scheme::Loop => 4,
     };
     let mut anc: Vec<u32> = mesh

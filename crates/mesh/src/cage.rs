@@ -19,6 +19,9 @@ pub struct CageOptions {
     pub split_nonmanifold_vertices: bool,
     /// USD only: the mesh prim to read (every mesh, merged, without it).
     pub prim: Option<String>,
+    /// USD only: the time code to read the stage at (see [`crate::UsdStageReader`]); without
+    /// it, default values, else the earliest time samples.
+    pub time: Option<f64>,
 }
 
 /// A cage and what its file says beyond the mesh.
@@ -56,6 +59,14 @@ pub enum CageError {
         /// The prim asked for.
         prim: String,
     },
+    /// A time was asked for, but the file is not USD (an OBJ cage does not move).
+    #[error("{path}: a time ({time}) can only be chosen in a USD file")]
+    TimeNotUsd {
+        /// The file.
+        path: String,
+        /// The time asked for.
+        time: f64,
+    },
 }
 
 /// Reads a cage from an OBJ or USD file, chosen by the extension.
@@ -73,6 +84,7 @@ pub fn read_cage(path: impl AsRef<Path>, opts: &CageOptions) -> Result<Cage, Cag
             &UsdReadOptions {
                 prim: opts.prim.clone(),
                 split_nonmanifold_vertices: opts.split_nonmanifold_vertices,
+                time: opts.time,
             },
         )?;
         return Ok(Cage {
@@ -88,6 +100,12 @@ pub fn read_cage(path: impl AsRef<Path>, opts: &CageOptions) -> Result<Cage, Cag
         return Err(CageError::PrimNotUsd {
             path: path.display().to_string(),
             prim: prim.clone(),
+        });
+    }
+    if let Some(time) = opts.time {
+        return Err(CageError::TimeNotUsd {
+            path: path.display().to_string(),
+            time,
         });
     }
     let (mesh, warnings, nonmanifold) = read_obj_with_report(

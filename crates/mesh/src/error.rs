@@ -191,6 +191,14 @@ pub enum MeshError {
         /// As given.
         v: f32,
     },
+    /// A primvar whose values do not fit the mesh (a count, an index, a value).
+    #[error("primvar {name}: {msg}")]
+    Primvar {
+        /// The primvar's name.
+        name: String,
+        /// What is wrong.
+        msg: String,
+    },
     /// Too many elements for 32-bit handles.
     #[error("the mesh is too large: {what}")]
     TooLarge {
@@ -208,6 +216,7 @@ impl MeshError {
             | MeshError::TooLarge { .. }
             | MeshError::NotTriangles { .. }
             | MeshError::UvCount { .. }
+            | MeshError::Primvar { .. }
             | MeshError::NonFiniteUv { .. } => None,
             MeshError::IndexOutOfRange { line, .. }
             | MeshError::FaceTooSmall { line, .. }
@@ -325,6 +334,14 @@ pub enum UsdError {
         doing: String,
         /// The panic's message and where in the reader it was raised.
         msg: String,
+    },
+    /// A time code that is not a number (NaN or infinite).
+    #[error("{path}: time {time} is not a finite time code")]
+    Time {
+        /// The file.
+        path: String,
+        /// The time asked for.
+        time: f64,
     },
     /// Merged prims disagree on an attribute that subdiv keeps per mesh.
     #[error("{path}: {attr} differs between {a} and {b}; read one mesh with --prim")]

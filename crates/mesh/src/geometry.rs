@@ -113,6 +113,29 @@ pub fn vertex_normals(mesh: &Mesh) -> Vec<Vec3> {
     n
 }
 
+/// Frame `frame` of `frames` of a swaying cage, for benchmarks of moving cages where no
+/// animation is authored: every point moves along the bounding box's next axis after its
+/// longest by a twentieth of the box's diagonal times `sin(2 pi (frame / frames + h))`, `h` its
+/// height along the longest axis (0 to 1 over the box): a wave travelling up the cage. Frame 0
+/// is not the rest pose; the same frame gives the same points (`xtask/osd/bench_animate.cpp`
+/// sways OpenSubdiv's cage the same way).
+pub fn sway(rest: &[Vec3], frame: usize, frames: usize, out: &mut Vec<Vec3>) {
+    let (lo, hi) = point_bounds(rest.iter().copied());
+    let ext = (hi - lo).to_array();
+    let a = (0..3).fold(0, |m, i| if ext[i] > ext[m] { i } else { m });
+    let b = (a + 1) % 3;
+    let amplitude = 0.05 * (hi - lo).length();
+    let phase = frame as f32 / frames.max(1) as f32;
+    let height = ext[a].max(f32::MIN_POSITIVE);
+    out.clear();
+    out.extend(rest.iter().map(|&p| {
+        let h = (p[a] - lo[a]) / height;
+        let mut q = p;
+        q[b] += amplitude * (std::f32::consts::TAU * (phase + h)).sin();
+        q
+    }));
+}
+
 /// The point of triangle `a b c` closest to `p` (Ericson, Real-Time Collision Detection, 5.1.5).
 #[inline]
 pub fn closest_point_on_triangle(p: Vec3, a: Vec3, b: Vec3, c: Vec3) -> Vec3 {

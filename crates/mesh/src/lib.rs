@@ -51,6 +51,7 @@ mod handle;
 mod mesh;
 mod obj;
 mod options;
+mod primvar;
 mod sector_normals;
 pub mod sharpness;
 mod soup;
@@ -65,7 +66,7 @@ pub use error::{MeshError, ObjError, UsdError};
 pub use fvar::{FVarLinearInterpolation, FaceVarying};
 pub use geometry::{
     Vector3, closest_point_on_triangle, face_normals, newell_area, newell_normal, point_bounds,
-    triangulate, vertex_normals,
+    sway, triangulate, vertex_normals,
 };
 pub use handle::{EdgeId, FaceId, HalfedgeId, VertexId};
 pub use mesh::{Mesh, Outgoing};
@@ -76,14 +77,15 @@ pub use obj::{
 pub use options::{
     BoundaryInterpolation, CreaseMethod, SHARPNESS_INFINITE, SchemeOptions, TriangleSubdivision,
 };
+pub use primvar::{Primvar, PrimvarInterpolation};
 pub use sector_normals::sector_corner_normals;
 pub use soup::{CornerTag, CreaseTag, HoleTag, NonManifold, PolygonSoup};
 pub use stats::MeshStats;
 pub use tags::{IgnoredTagKind, TagWarning};
 pub use union_find::UnionFind;
 pub use usd::{
-    FaceVaryingLinear, UsdCage, UsdMesh, UsdReadOptions, UsdScheme, is_usd_path, read_usd,
-    read_usd_soup,
+    FaceVaryingLinear, StageTime, UsdCage, UsdMesh, UsdReadOptions, UsdScheme, UsdStageReader,
+    is_usd_path, read_usd, read_usd_soup,
 };
 
 pub use glam;

@@ -15,6 +15,11 @@ use crate::soup::PolygonSoup;
 
 pub use traverse::Outgoing;
 
+/// Whether two sharpness arrays hold the same values, bit for bit.
+fn same_bits(a: &[f32], b: &[f32]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+}
+
 /// A manifold, consistently oriented polygon mesh with faces of any size.
 ///
 /// Topology is a half-edge structure with explicit boundary half-edges (whose face is
@@ -50,6 +55,8 @@ pub struct Mesh {
     groups: Vec<String>,
     options: SchemeOptions,
     uv: Option<crate::FaceVarying>,
+    /// The primvars beside the positions and `uv` ([`Mesh::primvars`]).
+    primvars: Vec<crate::Primvar>,
     /// [`Mesh::whole_vertex_edges`]: sorted semi-sharp values, by vertex; empty for almost
     /// every mesh.
     whole_edges: std::collections::BTreeMap<u32, Vec<f32>>,
@@ -110,6 +117,51 @@ impl Mesh {
     #[inline]
     pub fn positions_mut(&mut self) -> &mut [Vec3] {
         &mut self.positions
+    }
+    /// Whether `other` is this mesh but for its positions: the same faces, sharpness, holes,
+    /// options, face-varying data and groups (a cage that moved, such as an animated cage's
+    /// next frame), so that what was set up for one (a tessellation layout) serves the other.
+    pub fn same_topology(&self, other: &Mesh) -> bool {
+        // Destructured so that a new field cannot be forgotten here.
+        let Mesh {
+            positions: _,
+            vertex_sharpness,
+            vertex_out,
+            he_to,
+            he_next,
+            he_prev,
+            he_face,
+            edge_sharpness,
+            face_offsets,
+            face_verts,
+            face_he,
+            face_hole,
+            face_group,
+            groups,
+            options,
+            uv,
+            primvars: _,
+            whole_edges,
+            crease_ends,
+        } = self;
+        self.positions.len() == other.positions.len()
+            && *face_offsets == other.face_offsets
+            && *face_verts == other.face_verts
+            && *vertex_out == other.vertex_out
+            && *he_to == other.he_to
+            && *he_next == other.he_next
+            && *he_prev == other.he_prev
+            && *he_face == other.he_face
+            && *face_he == other.face_he
+            && same_bits(vertex_sharpness, &other.vertex_sharpness)
+            && same_bits(edge_sharpness, &other.edge_sharpness)
+            && *face_hole == other.face_hole
+            && *face_group == other.face_group
+            && *groups == other.groups
+            && *options == other.options
+            && *uv == other.uv
+            && *whole_edges == other.whole_edges
+            && *crease_ends == other.crease_ends
     }
     /// Position of `v`.
     #[inline]
@@ -228,6 +280,43 @@ impl Mesh {
     /// Drops the face-varying channel.
     pub fn clear_uv(&mut self) {
         self.uv = None;
+    }
+    /// Replaces the face-varying channel (texture coordinates), checked: one index per face
+    /// corner, each naming a value; `None` drops it. The positions, topology and options stay.
+    pub fn set_uv(&mut self, uv: Option<crate::FaceVarying>) -> Result<(), MeshError> {
+        if let Some(fv) = &uv {
+            let corners = self.face_verts.len();
+            if fv.indices.len() != corners {
+                return Err(MeshError::UvCount {
+                    indices: fv.indices.len() as u64,
+                    corners: corners as u64,
+                });
+            }
+            if let Some(&i) = fv.indices.iter().find(|&&i| i as usize >= fv.values.len()) {
+                return Err(MeshError::Primvar {
+                    name: "st".into(),
+                    msg: format!("index {i} is outside the {} values", fv.values.len()),
+                });
+            }
+        }
+        self.uv = uv;
+        Ok(())
+    }
+    /// The primvars other than the positions and the texture coordinates ([`Mesh::uv`]).
+    pub fn primvars(&self) -> &[crate::Primvar] {
+        &self.primvars
+    }
+    /// Drops the primvars (the texture coordinates stay).
+    pub fn clear_primvars(&mut self) {
+        self.primvars.clear();
+    }
+    /// The primvar named `name`.
+    pub fn primvar(&self, name: &str) -> Option<&crate::Primvar> {
+        self.primvars.iter().find(|p| p.name == name)
+    }
+    /// Sets the face-varying option (how face-varying data is interpolated).
+    pub fn set_fvar_option(&mut self, fvar: crate::FVarLinearInterpolation) {
+        self.options.fvar = fvar;
     }
     /// `true` if face `f` is a hole.
     #[inline]

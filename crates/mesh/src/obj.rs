@@ -44,6 +44,7 @@ use crate::tags::{TagWarning, parse_tag};
 pub fn parse_obj(text: &str) -> Result<PolygonSoup, MeshError> {
     let mut soup = PolygonSoup::default();
     let mut current_group = u32::MAX;
+    let mut colours: Vec<(usize, [f32; 3])> = Vec::new();
     for (ln, raw) in text.lines().enumerate() {
         let line = (ln + 1) as u32;
         let content = raw.split('#').next().unwrap_or("").trim();
@@ -66,6 +67,19 @@ pub fn parse_obj(text: &str) -> Result<PolygonSoup, MeshError> {
                 }
                 soup.positions.push(Vec3::from(c));
                 soup.vertex_lines.push(line);
+                // `v x y z r g b`: a vertex colour (a fourth number alone is OBJ's weight).
+                let rest: Vec<&str> = toks.collect();
+                if rest.len() == 3 {
+                    let mut rgb = [0.0f32; 3];
+                    for (slot, t) in rgb.iter_mut().zip(&rest) {
+                        *slot = t
+                            .parse::<f32>()
+                            .ok()
+                            .filter(|x| x.is_finite())
+                            .ok_or_else(|| perr(format!("invalid vertex colour '{t}'")))?;
+                    }
+                    colours.push((soup.positions.len() - 1, rgb));
+                }
             }
             "vt" => {
                 let mut c = [0.0f32; 2];
@@ -130,7 +144,42 @@ pub fn parse_obj(text: &str) -> Result<PolygonSoup, MeshError> {
     if soup.groups.is_empty() {
         soup.face_groups.clear();
     }
+    vertex_colours(&mut soup, colours)?;
     Ok(soup)
+}
+
+/// The vertex colours of `v x y z r g b` lines as the primvar `displayColor` (vertex, width
+/// 3): every vertex has one, or none has (a vertex without one is an error naming its line).
+fn vertex_colours(
+    soup: &mut PolygonSoup,
+    colours: Vec<(usize, [f32; 3])>,
+) -> Result<(), MeshError> {
+    if colours.is_empty() {
+        return Ok(());
+    }
+    if colours.len() != soup.positions.len() {
+        let mut has = vec![false; soup.positions.len()];
+        for &(v, _) in &colours {
+            has[v] = true;
+        }
+        let v = has.iter().position(|&h| !h).unwrap_or(0);
+        return Err(MeshError::Parse {
+            line: soup.vertex_lines.get(v).copied().unwrap_or(0),
+            msg: format!(
+                "vertex {} has no colour, but {} vertices have one (v x y z r g b on every vertex line, or on none)",
+                v + 1,
+                colours.len()
+            ),
+        });
+    }
+    soup.primvars.push(crate::Primvar {
+        name: "displayColor".into(),
+        interpolation: crate::PrimvarInterpolation::Vertex,
+        width: 3,
+        values: colours.iter().flat_map(|(_, c)| *c).collect(),
+        indices: (0..colours.len() as u32).collect(),
+    });
+    Ok(())
 }
 
 /// Resolves a 1-based or negative (relative) OBJ index against `count` elements; 0 is refused.
@@ -269,13 +318,22 @@ pub struct ObjData<'a> {
     /// The texture coordinate of every face corner (aligned with `face_indices`), written as
     /// `f v/vt` or `f v/vt/vn`; empty: no texture coordinates.
     pub uv_indices: &'a [u32],
+    /// Vertex colours, three floats per vertex, written as `v x y z r g b`.
+    pub colours: Option<&'a [f32]>,
 }
 
 /// Formats surface data as OBJ text.
 pub fn format_obj(data: &ObjData<'_>) -> String {
     let mut s = String::with_capacity(data.positions.len() * 40 + data.face_indices.len() * 8);
-    for p in data.positions {
-        let _ = writeln!(s, "v {} {} {}", p[0], p[1], p[2]);
+    for (i, p) in data.positions.iter().enumerate() {
+        match data.colours.and_then(|c| c.get(3 * i..3 * i + 3)) {
+            Some(c) => {
+                let _ = writeln!(s, "v {} {} {} {} {} {}", p[0], p[1], p[2], c[0], c[1], c[2]);
+            }
+            None => {
+                let _ = writeln!(s, "v {} {} {}", p[0], p[1], p[2]);
+            }
+        }
     }
     let mut corner_normals: &[(u32, [f32; 3])] = &[];
     if let Some(ns) = data.normals {

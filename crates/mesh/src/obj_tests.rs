@@ -136,6 +136,7 @@ fn written_floats_reread_bit_identical() {
         corner_normals: &[(1, [0.1, -1.0 / 3.0, 0.9]), (3, pos[1])],
         uvs: &[],
         uv_indices: &[],
+        colours: None,
     });
     let soup = parse_obj(&text).unwrap();
     for (a, b) in pos.iter().zip(&soup.positions) {
@@ -168,6 +169,7 @@ fn written_floats_reread_bit_identical() {
         corner_normals: &[(1, [0.1, -1.0 / 3.0, 0.9])],
         uvs: &uvs,
         uv_indices: &[1, 0, 0, 1],
+        colours: None,
     });
     assert!(text.contains("f 1/2/1 2/1/3\nf 2/1/2 1/2/1\n"), "{text}");
     let soup = parse_obj(&text).unwrap();
@@ -184,6 +186,7 @@ fn written_floats_reread_bit_identical() {
         corner_normals: &[],
         uvs: &uvs,
         uv_indices: &[1, 0, 0, 1],
+        colours: None,
     });
     assert!(text.contains("f 1/2 2/1\n"), "{text}");
 }

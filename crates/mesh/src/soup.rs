@@ -88,6 +88,9 @@ pub struct PolygonSoup {
     /// The value of every face corner (aligned with `face_indices`, 0-based, signed so that bad
     /// input survives until validation), or empty when the faces carry no face-varying data.
     pub uv_indices: Vec<i64>,
+    /// The primvars beside the positions and the texture coordinates (USD `primvars:*`, OBJ
+    /// vertex colours), checked by [`Mesh::from_soup`](crate::Mesh::from_soup).
+    pub primvars: Vec<crate::Primvar>,
 }
 
 impl PolygonSoup {
@@ -219,6 +222,16 @@ impl PolygonSoup {
                 self.positions.push(self.positions[v as usize]);
                 if let Some(&l) = self.vertex_lines.get(v as usize) {
                     self.vertex_lines.push(l);
+                }
+                // A copy carries its vertex's primvar values.
+                for p in &mut self.primvars {
+                    let per_vertex = matches!(
+                        p.interpolation,
+                        crate::PrimvarInterpolation::Vertex | crate::PrimvarInterpolation::Varying
+                    );
+                    if let Some(&i) = p.indices.get(v as usize).filter(|_| per_vertex) {
+                        p.indices.push(i);
+                    }
                 }
                 created.push((v as u32, id as u32));
                 id

@@ -18,10 +18,11 @@
 //! | the prim's `xformOp`s and its ancestors' | applied to the points (local-to-world, in `f64`) |
 //!
 //! A transform that mirrors (negative determinant) also reverses the winding, so faces stay
-//! counter-clockwise seen from outside in world space. Points are read at the default time, or
-//! at the earliest time sample when only samples are authored. USD's creasing is uniform
-//! (OpenSubdiv's `creasemethod` is not a USD attribute): meshes from USD use
-//! [`CreaseMethod::Uniform`](crate::CreaseMethod::Uniform).
+//! counter-clockwise seen from outside in world space. Every attribute is read at
+//! [`UsdReadOptions::time`] (time samples interpolated as USD does), or without one at its
+//! default value, else its earliest time sample; [`UsdStageReader`] reads a stage at many
+//! times. USD's creasing is uniform (OpenSubdiv's `creasemethod` is not a USD attribute):
+//! meshes from USD use [`CreaseMethod::Uniform`](crate::CreaseMethod::Uniform).
 //!
 //! A stage with several meshes: [`UsdReadOptions::prim`] picks one by path; without it every
 //! active mesh prim is read and merged into one cage, each prim a face group named by its path
@@ -35,18 +36,17 @@
 
 mod catch;
 mod prim;
+mod time;
 
 use std::path::Path;
 
 use openusd::sdf;
 use openusd::usd::{PrimPredicate, Stage};
+pub use time::{StageTime, UsdStageReader};
 
 use crate::error::{MeshError, UsdError};
 use crate::mesh::Mesh;
 use crate::soup::{CornerTag, CreaseTag, HoleTag, PolygonSoup};
-
-use catch::{Doing, catch_reader};
-use prim::read_mesh_prim;
 
 /// The `subdivisionScheme` of a USD mesh.
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Default)]
@@ -56,7 +56,7 @@ pub enum UsdScheme {
     CatmullClark,
     /// `loop` (triangle meshes).
     Loop,
-    /// `bilinear`: subdiv has no bilinear scheme.
+    /// `bilinear`: OpenSubdiv's bilinear scheme.
     Bilinear,
     /// `none`: a polygon mesh, not a subdivision surface.
     None,
@@ -114,6 +114,9 @@ pub struct UsdReadOptions {
     pub prim: Option<String>,
     /// Repair non-manifold vertices (see [`PolygonSoup::split_nonmanifold_vertices`]).
     pub split_nonmanifold_vertices: bool,
+    /// The time code to read at (see [`UsdStageReader`]); `None` reads default values, else
+    /// the earliest time samples.
+    pub time: Option<f64>,
 }
 
 /// The mesh prims of a stage as one cage soup, in world space.
@@ -156,7 +159,8 @@ pub fn is_usd_path(path: impl AsRef<Path>) -> bool {
         })
 }
 
-/// Reads the mesh prims of a USD stage and builds a validated cage (see the module docs).
+/// Reads the mesh prims of a USD stage and builds a validated cage (see the module docs), at
+/// [`UsdReadOptions::time`].
 ///
 /// ```no_run
 /// use subdiv_mesh::{UsdReadOptions, read_usd};
@@ -164,19 +168,25 @@ pub fn is_usd_path(path: impl AsRef<Path>) -> bool {
 /// println!("{} faces from {:?}", cage.mesh.num_faces(), cage.prims);
 /// ```
 pub fn read_usd(path: impl AsRef<Path>, opts: &UsdReadOptions) -> Result<UsdMesh, UsdError> {
-    let path = path.as_ref();
-    let mut cage = read_usd_soup(path, opts.prim.as_deref())?;
-    let invalid = |err| UsdError::Invalid {
-        path: path.display().to_string(),
-        prim: cage.prims.join(" "),
+    UsdStageReader::open(path, opts)?.read_at(opts.time)
+}
+
+/// Builds the validated cage of a soup read from `file`: non-manifold parts cut (or split with
+/// `split_nonmanifold_vertices`), then [`Mesh::from_soup`].
+fn build_cage(
+    file: &str,
+    mut cage: UsdCage,
+    split_nonmanifold_vertices: bool,
+) -> Result<UsdMesh, UsdError> {
+    let invalid = |err, prims: &[String]| UsdError::Invalid {
+        path: file.to_string(),
+        prim: prims.join(" "),
         attr: attribute_of(&err),
         err,
     };
-    let found = cage
-        .soup
-        .prepare_nonmanifold(opts.split_nonmanifold_vertices);
-    let nonmanifold = found.map_err(invalid)?;
-    let mesh = Mesh::from_soup(&cage.soup).map_err(invalid)?;
+    let found = cage.soup.prepare_nonmanifold(split_nonmanifold_vertices);
+    let nonmanifold = found.map_err(|e| invalid(e, &cage.prims))?;
+    let mesh = Mesh::from_soup(&cage.soup).map_err(|e| invalid(e, &cage.prims))?;
     Ok(UsdMesh {
         mesh,
         scheme: cage.scheme,
@@ -186,79 +196,37 @@ pub fn read_usd(path: impl AsRef<Path>, opts: &UsdReadOptions) -> Result<UsdMesh
     })
 }
 
-/// Reads the mesh prims of a USD stage into one soup, without validating the merged topology
-/// (each prim is validated on its own, so errors name the prim's own faces and vertices).
+/// Reads the mesh prims of a USD stage into one soup at time code `time` (`None`: default
+/// values, else the earliest time samples), without validating the merged topology (each
+/// prim is validated on its own, so errors name the prim's own faces and vertices).
 ///
 /// A panic inside the `openusd` reader is caught here and returned as
 /// [`UsdError::ReaderPanic`].
-pub fn read_usd_soup(path: impl AsRef<Path>, prim: Option<&str>) -> Result<UsdCage, UsdError> {
-    let path = path.as_ref();
-    let file = path.display().to_string();
-    if let Err(source) = std::fs::metadata(path) {
-        return Err(UsdError::Io { path: file, source });
-    }
-    let prims = catch_reader(&file, |doing| read_stage(&file, prim, doing))?;
-    let mut cage = UsdCage::default();
-    for (p, one) in prims {
-        let one = one?;
-        // Validated as the reader builds it: non-manifold prims cut as OpenSubdiv refines them.
-        let mut alone = one.soup.clone();
-        let built = alone
-            .split_nonmanifold()
-            .and_then(|_| Mesh::from_soup(&alone));
-        if let Err(err) = built {
-            return Err(UsdError::Invalid {
-                path: file,
-                prim: p,
-                attr: attribute_of(&err),
-                err,
-            });
-        }
-        merge(&mut cage, one, &file)?;
-    }
-    Ok(cage)
+pub fn read_usd_soup(
+    path: impl AsRef<Path>,
+    prim: Option<&str>,
+    time: Option<f64>,
+) -> Result<UsdCage, UsdError> {
+    let opts = UsdReadOptions {
+        prim: prim.map(str::to_string),
+        ..UsdReadOptions::default()
+    };
+    UsdStageReader::open(path, &opts)?.read_soup_at(time)
 }
 
-/// The part of [`read_usd_soup`] that calls the `openusd` reader, inside the panic boundary
-/// (`doing` follows the steps): the chosen prims, each read or the error reading it (the list
-/// ends at the first error, so errors come in the order the prims are read and checked).
-#[allow(clippy::type_complexity)]
-fn read_stage(
-    file: &str,
-    prim: Option<&str>,
-    doing: &Doing,
-) -> Result<Vec<(String, Result<prim::PrimMesh, UsdError>)>, UsdError> {
-    let file = file.to_string();
-    let stage = Stage::open(&file).map_err(|e| UsdError::Open {
-        path: file.clone(),
-        msg: format!("{e:#}"),
-    })?;
-    doing.set("listing the mesh prims");
-    let meshes = mesh_prims(&stage, &file)?;
-    let chosen: Vec<String> = match prim {
-        Some(p) => {
-            if !meshes.iter().any(|m| m == p) {
-                doing.set(format!("looking up prim {p}"));
-                return Err(prim_not_found(&stage, &file, p, &meshes));
-            }
-            vec![p.to_string()]
-        }
-        None if meshes.is_empty() => return Err(UsdError::NoMesh { path: file }),
-        None => meshes,
-    };
-    let mut read = Vec::new();
-    for p in chosen {
-        doing.set(format!("reading prim {p}"));
-        let one = read_mesh_prim(&stage, &file, &p);
-        let failed = one.is_err();
-        read.push((p, one));
-        if failed {
-            break;
-        }
-    }
-    doing.set("closing the stage");
-    drop(stage);
-    Ok(read)
+/// Validates one prim's soup on its own, as the reader built it (non-manifold prims cut as
+/// OpenSubdiv refines them), so that errors name the prim's own faces and vertices.
+fn check_prim(file: &str, prim: &str, soup: &PolygonSoup) -> Result<(), UsdError> {
+    let mut alone = soup.clone();
+    let built = alone
+        .split_nonmanifold()
+        .and_then(|_| Mesh::from_soup(&alone));
+    built.map(|_| ()).map_err(|err| UsdError::Invalid {
+        path: file.to_string(),
+        prim: prim.to_string(),
+        attr: attribute_of(&err),
+        err,
+    })
 }
 
 /// The paths of the active, defined mesh prims, in traversal order.
@@ -348,10 +316,12 @@ fn merge(cage: &mut UsdCage, one: prim::PrimMesh, file: &str) -> Result<(), UsdE
                 b.into(),
             ));
         }
+        merge_primvars(&mut cage.soup, &one.soup, file, first, &prim)?;
     } else {
         cage.scheme = one.scheme;
         cage.face_varying = one.face_varying;
         cage.soup.options = one.soup.options;
+        cage.soup.primvars = one.soup.primvars.clone();
     }
     let out = &mut cage.soup;
     let (bv, bf) = (out.positions.len() as i64, out.num_faces() as i64);
@@ -381,6 +351,63 @@ fn merge(cage: &mut UsdCage, one: prim::PrimMesh, file: &str) -> Result<(), UsdE
     out.holes
         .extend(s.holes.iter().map(|t| HoleTag { f: t.f + bf, ..*t }));
     cage.prims.push(prim);
+    Ok(())
+}
+
+/// Appends the primvars of `one` (prim `prim`) to those of `out` (first prim `first`): the
+/// same names, widths and interpolations, a constant of several prims as one value per face
+/// (uniform); values and element indices appended after `out`'s.
+fn merge_primvars(
+    out: &mut PolygonSoup,
+    one: &PolygonSoup,
+    file: &str,
+    first: &str,
+    prim: &str,
+) -> Result<(), UsdError> {
+    use crate::PrimvarInterpolation as I;
+    let names = |s: &PolygonSoup| {
+        let mut n: Vec<String> = s.primvars.iter().map(|p| p.name.clone()).collect();
+        n.sort();
+        n
+    };
+    let mixed = |a: String, b: String| UsdError::Mixed {
+        path: file.to_string(),
+        attr: "primvars",
+        a: format!("{first} ({a})"),
+        b: format!("{prim} ({b})"),
+    };
+    if names(out) != names(one) {
+        return Err(mixed(names(out).join(" "), names(one).join(" ")));
+    }
+    let uniform = |p: &mut crate::Primvar, faces: usize| {
+        if p.interpolation == I::Constant {
+            p.interpolation = I::Uniform;
+            p.indices = vec![p.indices[0]; faces];
+        }
+    };
+    let faces_out = out.num_faces();
+    for p in &mut out.primvars {
+        let Some(q) = one.primvars.iter().find(|q| q.name == p.name) else {
+            continue;
+        };
+        let mut q = q.clone();
+        uniform(p, faces_out);
+        uniform(&mut q, one.num_faces());
+        if p.interpolation != q.interpolation || p.width != q.width {
+            let show = |p: &crate::Primvar| {
+                format!(
+                    "{} {} of width {}",
+                    p.name,
+                    p.interpolation.token(),
+                    p.width
+                )
+            };
+            return Err(mixed(show(p), show(&q)));
+        }
+        let base = p.num_values() as u32;
+        p.values.extend_from_slice(&q.values);
+        p.indices.extend(q.indices.iter().map(|&i| i + base));
+    }
     Ok(())
 }
 

@@ -387,7 +387,7 @@ fn refined_vertices(c: &CageCounts, scheme: Scheme, depth: Depth) -> u64 {
     let (mut v, mut e, mut f, mut corners) = (c.vertices, c.edges, c.faces, c.corners);
     for _ in 0..depth {
         match scheme {
-            Scheme::CatmullClark => {
+            Scheme::CatmullClark | Scheme::Bilinear => {
                 v = v.saturating_add(e).saturating_add(f);
                 e = e.saturating_mul(2).saturating_add(corners);
                 f = corners;
@@ -409,13 +409,13 @@ fn uniform(mesh: &Mesh, scheme: Scheme, depth: Depth) -> OutputSize {
     let vertices = refined_vertices(&c, scheme, depth);
     let d = u32::from(depth);
     let (faces, corners_per_face, triangles) = match (scheme, depth) {
-        (Scheme::CatmullClark, 0) => {
+        (Scheme::CatmullClark | Scheme::Bilinear, 0) => {
             let tris = c
                 .drawn_corners
                 .saturating_sub(c.drawn_faces.saturating_mul(2));
             (c.drawn_faces, 0, tris)
         }
-        (Scheme::CatmullClark, _) => {
+        (Scheme::CatmullClark | Scheme::Bilinear, _) => {
             let quads = c.drawn_corners.saturating_mul(pow4(d - 1));
             (quads, 4, quads.saturating_mul(2))
         }
@@ -469,7 +469,8 @@ fn adaptive(mesh: &Mesh, scheme: Scheme, max_depth: Depth) -> OutputSize {
     let c = CageCounts::of(mesh);
     let d = u32::from(max_depth);
     let (vertices, triangles) = match scheme {
-        Scheme::CatmullClark => {
+        // (Bilinear has no adaptive tessellation; bounded as Catmull-Clark.)
+        Scheme::CatmullClark | Scheme::Bilinear => {
             // Level-1 patches at one level less; a depth-0 face is still its level-1 quads.
             let p = d.saturating_sub(1);
             let per_patch = pow4(p)

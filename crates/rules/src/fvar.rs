@@ -24,6 +24,7 @@ use glam::{Vec2, Vec3};
 use subdiv_mesh::{FVarLinearInterpolation, FaceId, FaceVarying, HalfedgeId, Mesh, VertexId};
 
 use crate::crease::{decrement, fractional_weight, is_infinite, is_semi_sharp};
+use crate::Scheme;
 use crate::refine::RefineKernel;
 
 mod limit;
@@ -45,9 +46,15 @@ struct Flags {
 }
 
 impl Flags {
-    fn new(mesh: &Mesh) -> Flags {
+    /// The flags of `mesh`'s option; the bilinear scheme interpolates every channel linearly
+    /// whatever the option (its masks are linear), as `All` does.
+    fn new(mesh: &Mesh, scheme: Scheme) -> Flags {
         use FVarLinearInterpolation as F;
-        let o = mesh.options().fvar;
+        let o = if scheme == Scheme::Bilinear {
+            F::All
+        } else {
+            mesh.options().fvar
+        };
         let linear_boundaries = matches!(o, F::All | F::Boundaries);
         let corners_sharp = o != F::None;
         let geom_corners_smooth =
@@ -90,7 +97,7 @@ struct Channel<'a> {
 
 impl<'a> Channel<'a> {
     /// The channel `fv` of `mesh` with its corners and seams.
-    fn new(mesh: &'a Mesh, fv: &'a FaceVarying) -> Channel<'a> {
+    fn new(mesh: &'a Mesh, fv: &'a FaceVarying, scheme: Scheme) -> Channel<'a> {
         let mut corner = vec![u32::MAX; mesh.num_halfedges()];
         let (offsets, _) = mesh.face_lists();
         for f in mesh.faces() {
@@ -107,7 +114,7 @@ impl<'a> Channel<'a> {
             fv,
             corner,
             seam: vec![false; mesh.num_edges()],
-            flags: Flags::new(mesh),
+            flags: Flags::new(mesh, scheme),
             skip: Vec::new(),
         };
         for e in mesh.edges() {

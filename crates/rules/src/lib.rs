@@ -45,8 +45,8 @@ pub use fvar::{
     refine_face_varying_part, semi_sharp_levels,
 };
 pub use limit::{
-    KeyedWrite, LimitMesh, LimitMeshError, TopologyKey, TriangleBuffers, VertexScalar,
-    limit_surface, tessellate_uniform,
+    KeyedWrite, LimitChannel, LimitMesh, LimitMeshError, TopologyKey, TriangleBuffers, VertexScalar,
+    bilinear_patches, inside_one_patch, limit_surface, tessellate_uniform,
 };
 pub use point::{Point, centroid};
 pub use refine::{
@@ -76,17 +76,30 @@ pub enum Scheme {
     CatmullClark,
     /// Loop (triangles only).
     Loop,
+    /// Bilinear (OpenSubdiv's `SCHEME_BILINEAR`): faces split into quads as Catmull-Clark
+    /// does, every point placed linearly (vertex points stay, edge points are midpoints, face
+    /// points centroids), so the limit surface is the bilinear patch of every quad of the cage
+    /// and of every level-1 quad of its other faces (`bilinear.rs`). Sharpness has no effect.
+    Bilinear,
 }
 
 impl Scheme {
-    /// The scheme of a USD mesh's `subdivisionScheme`; `None` for `bilinear` and `none`, which
-    /// subdiv has no scheme for.
+    /// The scheme of a USD mesh's `subdivisionScheme`; `None` for `none` (a polygon mesh, not
+    /// a subdivision surface).
     pub fn from_usd(s: subdiv_mesh::UsdScheme) -> Option<Scheme> {
         match s {
             subdiv_mesh::UsdScheme::CatmullClark => Some(Scheme::CatmullClark),
             subdiv_mesh::UsdScheme::Loop => Some(Scheme::Loop),
-            subdiv_mesh::UsdScheme::Bilinear | subdiv_mesh::UsdScheme::None => None,
+            subdiv_mesh::UsdScheme::Bilinear => Some(Scheme::Bilinear),
+            subdiv_mesh::UsdScheme::None => None,
         }
+    }
+
+    /// Whether a step splits every face into quads (Catmull-Clark, bilinear: an n-gon into `n`
+    /// quads about a face point) rather than triangles into four (Loop).
+    #[inline]
+    pub fn splits_to_quads(self) -> bool {
+        self != Scheme::Loop
     }
 }
 
@@ -96,8 +109,9 @@ impl std::str::FromStr for Scheme {
         match s {
             "catmull-clark" | "catmark" | "cc" => Ok(Scheme::CatmullClark),
             "loop" => Ok(Scheme::Loop),
+            "bilinear" => Ok(Scheme::Bilinear),
             _ => Err(format!(
-                "unknown scheme '{s}' (expected catmull-clark or loop)"
+                "unknown scheme '{s}' (expected catmull-clark, loop or bilinear)"
             )),
         }
     }

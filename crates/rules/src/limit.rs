@@ -8,9 +8,13 @@ use crate::refine::refine_uniform_levels_f64;
 use crate::ring::Ring;
 use crate::{Depth, RulesError, Scheme};
 
+mod bilinear;
+mod channel;
 mod mesh;
 mod split;
 mod topology;
+pub use bilinear::{bilinear_patches, inside_one_patch};
+pub use channel::LimitChannel;
 pub use mesh::{KeyedWrite, LimitMesh, LimitMeshError, TriangleBuffers, VertexScalar};
 pub use topology::TopologyKey;
 use topology::TopologyStamp;
@@ -18,6 +22,10 @@ use topology::TopologyStamp;
 /// Push-to-limit: the exact limit point and normal of every vertex of `mesh`, and its visible
 /// faces (holes left out), in parallel.
 pub fn limit_surface(mesh: &Mesh, scheme: Scheme) -> LimitMesh {
+    if scheme == Scheme::Bilinear {
+        let pos: Vec<DVec3> = mesh.positions().iter().map(|p| p.as_dvec3()).collect();
+        return bilinear::bilinear_limit(mesh, &pos, &bilinear_patches(mesh, 0));
+    }
     limit_surface_from(mesh, scheme, |w| mesh.position(w).as_dvec3())
 }
 
@@ -97,6 +105,7 @@ fn limit_surface_from(
             .unwrap_or_default(),
         uv_indices,
         scalar: None,
+        channels: Vec::new(),
         topology: TopologyStamp::default(),
         uniform_faces: 0,
     }
@@ -128,6 +137,10 @@ pub fn tessellate_uniform(
         mesh.check_triangles()?;
     }
     let (refined, pos) = refine_uniform_levels_f64(mesh, scheme, depth)?;
+    if scheme == Scheme::Bilinear {
+        let patches = bilinear_patches(mesh, depth);
+        return Ok(bilinear::bilinear_limit(&refined, &pos, &patches));
+    }
     Ok(limit_surface_from(&refined, scheme, |w| pos[w.idx()]))
 }
 

@@ -32,7 +32,7 @@ pub fn refine_uniform(mesh: &Mesh, scheme: Scheme) -> Result<Mesh, RulesError> {
         check_doubled_triangles(mesh)?;
     }
     let nv = mesh.num_vertices();
-    let fp: Vec<Vec3> = if scheme == Scheme::CatmullClark {
+    let fp: Vec<Vec3> = if scheme.splits_to_quads() {
         mesh.faces().map(|f| mesh.face_centroid(f)).collect()
     } else {
         Vec::new()
@@ -54,7 +54,7 @@ pub fn refine_uniform(mesh: &Mesh, scheme: Scheme) -> Result<Mesh, RulesError> {
         let h0 = mesh.face_halfedge(f);
         let n = mesh.face_size(f);
         match scheme {
-            Scheme::CatmullClark => {
+            Scheme::CatmullClark | Scheme::Bilinear => {
                 let center = (nv + f.idx()) as i64;
                 let mut h = h0;
                 let mut hp = mesh.prev(h0);
@@ -221,7 +221,7 @@ impl<'m, P: Point> RefineKernel<'m, P> {
             self.edge_ends.push(end(h));
             self.edge_sharpness.push(mesh.edge_sharpness(h.edge()));
             let f = mesh.face(h);
-            if f.is_some() && self.scheme == Scheme::CatmullClark {
+            if f.is_some() && self.scheme.splits_to_quads() {
                 self.face_points.push(face_point(f));
             }
         }
@@ -248,6 +248,8 @@ impl<'m, P: Point> RefineKernel<'m, P> {
                 catmark::vertex_point(centre, &self.edge_ends, &self.face_points, &rules)
             }
             Scheme::Loop => loop_scheme::vertex_point(centre, &self.edge_ends, &rules),
+            // OpenSubdiv's bilinear vertex mask: the vertex itself.
+            Scheme::Bilinear => centre,
         }
     }
 
@@ -272,6 +274,7 @@ impl<'m, P: Point> RefineKernel<'m, P> {
         match self.scheme {
             Scheme::CatmullClark => catmark::vertex_point(centre, &e, &[], &rules),
             Scheme::Loop => loop_scheme::vertex_point(centre, &e, &rules),
+            Scheme::Bilinear => centre,
         }
     }
 
@@ -318,6 +321,8 @@ impl<'m, P: Point> RefineKernel<'m, P> {
             }
             Scheme::CatmullClark => catmark::edge_point(a, b, &adj[..k], w),
             Scheme::Loop => loop_scheme::edge_point(a, b, &adj[..k], w),
+            // OpenSubdiv's bilinear edge mask (its crease mask): the midpoint.
+            Scheme::Bilinear => a.scale(0.5).add(b.scale(0.5)),
         }
     }
 
@@ -339,7 +344,7 @@ impl<'m, P: Point> RefineKernel<'m, P> {
         points.extend_from_slice(fp);
         for e in mesh.edges() {
             points.push(self.edge_point(e, |h| match scheme {
-                Scheme::CatmullClark => fp[mesh.face(h).idx()],
+                Scheme::CatmullClark | Scheme::Bilinear => fp[mesh.face(h).idx()],
                 // The vertex of the triangle opposite the edge.
                 Scheme::Loop => pos[mesh.to(mesh.next(h)).idx()],
             }));
@@ -455,7 +460,7 @@ pub fn refine_uniform_levels_f64(
     let mut corners: Vec<DVec3> = Vec::new();
     for _ in 0..depth {
         let child = refine_uniform(&m, scheme)?;
-        let fp: Vec<DVec3> = if scheme == Scheme::CatmullClark {
+        let fp: Vec<DVec3> = if scheme.splits_to_quads() {
             m.faces()
                 .map(|f| {
                     corners.clear();
@@ -482,7 +487,7 @@ pub fn refined_face_count(mesh: &Mesh, scheme: Scheme, depth: Depth) -> u64 {
     }
     let per = 4u64.saturating_pow(u32::from(depth) - 1);
     match scheme {
-        Scheme::CatmullClark => {
+        Scheme::CatmullClark | Scheme::Bilinear => {
             let corners: u64 = mesh.faces().map(|f| mesh.face_size(f) as u64).sum();
             corners.saturating_mul(per)
         }

@@ -193,7 +193,8 @@ impl Ring {
         self.tmp_edges.clear();
         self.tmp_far.clear();
         match self.scheme {
-            Scheme::CatmullClark => {
+            // A ring is never bilinear (`Ring::load_at` refuses the scheme).
+            Scheme::CatmullClark | Scheme::Bilinear => {
                 self.fp.clear();
                 for i in 0..nf {
                     let inner = self.face_inner(i);
@@ -379,7 +380,9 @@ impl Ring {
 
     fn eval_masks(&self, edges: &[DVec3], diag: &[DVec3], rule: Rule) -> (DVec3, DVec3, DVec3) {
         match self.scheme {
-            Scheme::CatmullClark => catmark::limit(self.center, edges, diag, rule),
+            Scheme::CatmullClark | Scheme::Bilinear => {
+                catmark::limit(self.center, edges, diag, rule)
+            }
             Scheme::Loop => loop_scheme::limit(self.center, edges, rule, self.boundary),
         }
     }

@@ -15,7 +15,7 @@ use subdiv_mesh::{FaceId, HalfedgeId, Mesh, VertexId};
 use subdiv_rules::{Depth, RulesError, SeamCurves, TopologyKey};
 
 use crate::gather::{GatherPlan, PlanEdge};
-use crate::patches::{irregular_faces, local_level1};
+use crate::patches::{Level1Source, irregular_faces, local_level1};
 
 /// Where the points along one side of a patch go: the point at parameter index `s`
 /// (`1..n`) along the side has id `first + (s - 1) * step`.
@@ -60,6 +60,7 @@ pub struct PatchLayout {
     pub(crate) plan_edges: Vec<PlanEdge>,
     pub(crate) num_points: u32,
     pub(crate) level1: Option<Mesh>,
+    level1_source: Option<Level1Source>,
     pub(crate) isolated: Vec<VertexId>,
     pub(crate) max_valence: usize,
     /// The UVs of the first tessellation with UVs, for the calls that follow (`uv.rs`).
@@ -108,11 +109,11 @@ impl PatchLayout {
         subdiv_rules::check_coordinates(mesh)?;
         let irregular = irregular_faces(mesh);
         let any_irregular = irregular.iter().any(|&x| x);
-        let (level1, first_child) = if any_irregular {
-            let (m, fc) = local_level1(mesh, &irregular, 4)?;
-            (Some(m), fc)
+        let (level1, first_child, level1_source) = if any_irregular {
+            let (m, fc, source) = local_level1(mesh, &irregular, 4)?;
+            (Some(m), fc, Some(source))
         } else {
-            (None, Vec::new())
+            (None, Vec::new(), None)
         };
         let m = 1u32 << depth; // samples per cage edge
         let m1 = m / 2; // samples per level-1 edge
@@ -182,6 +183,7 @@ impl PatchLayout {
             plan_edges,
             num_points: next,
             level1,
+            level1_source,
             isolated,
             max_valence: mesh
                 .max_valence()
@@ -195,6 +197,15 @@ impl PatchLayout {
 }
 
 impl PatchLayout {
+    /// After the cage's positions moved (its topology the same as when the layout was made):
+    /// refines the local level-1 points of its n-gons and their neighbours again, which the
+    /// patches there are gathered from (everything else of a layout is topology).
+    pub fn move_to(&mut self, mesh: &Mesh) {
+        if let (Some(source), Some(level1)) = (&mut self.level1_source, &mut self.level1) {
+            source.move_to(mesh, level1);
+        }
+    }
+
     /// Overwrites the points on the cage's seams (the copies of a non-manifold edge and their
     /// end vertices) with [`SeamCurves`]' values, which are the same bits in every copy, so the
     /// pieces of a non-manifold cage meet exactly; every other point is left as the patches

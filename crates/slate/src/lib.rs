@@ -66,12 +66,16 @@
 //! assert_eq!(t.num_faces(), 588 * 16);
 //! ```
 
+mod bilinear;
 mod gather;
 mod grid;
 mod layout;
 mod limit;
+mod moving;
 mod patches;
 mod pool;
+mod primvars;
+mod size;
 mod step;
 mod table;
 mod tessellate;
@@ -82,10 +86,13 @@ mod uv;
 mod wide;
 mod worker;
 
+pub use bilinear::{BilinearLayout, tessellate_bilinear, tessellate_bilinear_into};
 pub use grid::side_point;
 pub use layout::PatchLayout;
+pub use moving::UniformTessellator;
 pub use patches::{PatchRef, PatchSet, Unit};
 pub use pool::PatchGrids;
+pub use primvars::tessellate_primvars;
 pub use subdiv_rules::{Depth, MAX_DEPTH};
 pub use tessellate::{
     DEFAULT_MAX_DEPTH, MAX_POINTS, SlateError, slate_bytes_per_thread, tessellate,

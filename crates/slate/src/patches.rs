@@ -3,7 +3,7 @@
 //! (gathered from a local level-1 refinement around such faces only).
 
 use subdiv_mesh::{FaceId, HalfedgeId, Mesh, VertexId};
-use subdiv_rules::{Depth, RulesError, Scheme, SeamCurves, refine_uniform};
+use subdiv_rules::{Depth, RefineKernel, RulesError, Scheme, SeamCurves, refine_uniform};
 
 /// `true` for faces that are tessellated through their level-1 quads.
 pub(crate) fn irregular_faces(mesh: &Mesh) -> Vec<bool> {
@@ -20,13 +20,38 @@ pub(crate) fn irregular_faces(mesh: &Mesh) -> Vec<bool> {
         .collect()
 }
 
-/// The level-1 refinement of the faces within `rings` vertex-rings of the irregular faces, and for
-/// each cage face the index of its first child face in it (`u32::MAX` if not refined).
+/// What a local level-1 refinement is refined from: the sub-mesh of the cage's faces it covers
+/// and the cage vertex of each of its vertices, to refine it again when the cage's positions
+/// move (the level-1 points are positions; everything else of a layout is topology).
+#[derive(Clone, Debug)]
+pub(crate) struct Level1Source {
+    sub: Mesh,
+    cage_vertex: Vec<VertexId>,
+}
+
+impl Level1Source {
+    /// Moves the points of `level1` (this source's refinement) to the refinement of `cage`'s
+    /// positions: bit for bit what [`local_level1`] gives for `cage`, whose topology is the one
+    /// this source was made from.
+    pub(crate) fn move_to(&mut self, cage: &Mesh, level1: &mut Mesh) {
+        for (p, &v) in self.sub.positions_mut().iter_mut().zip(&self.cage_vertex) {
+            *p = cage.position(v);
+        }
+        let sub = &self.sub;
+        let fp: Vec<glam::Vec3> = sub.faces().map(|f| sub.face_centroid(f)).collect();
+        let points = RefineKernel::new(sub, Scheme::CatmullClark).refine_points(&fp);
+        level1.positions_mut().copy_from_slice(&points);
+    }
+}
+
+/// The level-1 refinement of the faces within `rings` vertex-rings of the irregular faces, for
+/// each cage face the index of its first child face in it (`u32::MAX` if not refined), and what
+/// it was refined from.
 pub(crate) fn local_level1(
     mesh: &Mesh,
     irregular: &[bool],
     rings: usize,
-) -> Result<(Mesh, Vec<u32>), RulesError> {
+) -> Result<(Mesh, Vec<u32>, Level1Source), RulesError> {
     let mut keep = irregular.to_vec();
     for _ in 0..rings {
         let mut vmark = vec![false; mesh.num_vertices()];
@@ -140,7 +165,13 @@ pub(crate) fn local_level1(
         }
     }
     let level1 = refine_uniform(&sub, Scheme::CatmullClark)?;
-    Ok((level1, first_child))
+    let mut cage_vertex = vec![VertexId(0); sub.num_vertices()];
+    for v in mesh.vertices() {
+        if vmap[v.idx()] != u32::MAX {
+            cage_vertex[vmap[v.idx()] as usize] = v;
+        }
+    }
+    Ok((level1, first_child, Level1Source { sub, cage_vertex }))
 }
 
 /// A cage face and the patches it is tessellated with.
@@ -173,6 +204,7 @@ pub struct PatchRef {
 #[derive(Debug, Clone)]
 pub struct PatchSet {
     pub(crate) level1: Option<Mesh>,
+    level1_source: Option<Level1Source>,
     units: Vec<Unit>,
     patches: Vec<PatchRef>,
     max_valence: usize,
@@ -195,11 +227,11 @@ impl PatchSet {
     /// ```
     pub fn new(mesh: &Mesh) -> Result<PatchSet, RulesError> {
         let irregular = irregular_faces(mesh);
-        let (level1, first_child) = if irregular.iter().any(|&x| x) {
-            let (m, fc) = local_level1(mesh, &irregular, 4)?;
-            (Some(m), fc)
+        let (level1, first_child, level1_source) = if irregular.iter().any(|&x| x) {
+            let (m, fc, source) = local_level1(mesh, &irregular, 4)?;
+            (Some(m), fc, Some(source))
         } else {
-            (None, Vec::new())
+            (None, Vec::new(), None)
         };
         let mut units = Vec::with_capacity(mesh.num_faces());
         let mut patches = Vec::with_capacity(mesh.num_faces());
@@ -239,11 +271,20 @@ impl PatchSet {
         let face_max = mesh.faces().map(|f| mesh.face_size(f)).max().unwrap_or(4);
         Ok(PatchSet {
             level1,
+            level1_source,
             units,
             patches,
             max_valence: mesh.max_valence().max(face_max),
             seams: SeamCurves::new(mesh),
         })
+    }
+
+    /// After the cage's positions moved (its topology the same as when the set was made):
+    /// refines the local level-1 points again, so that the patches gathered from them follow.
+    pub fn move_to(&mut self, mesh: &Mesh) {
+        if let (Some(source), Some(level1)) = (&mut self.level1_source, &mut self.level1) {
+            source.move_to(mesh, level1);
+        }
     }
 
     /// One unit per cage face, in face order.

@@ -4,8 +4,7 @@ use glam::Vec3A;
 use rayon::prelude::*;
 use subdiv_mesh::Mesh;
 use subdiv_rules::{
-    Budget, Depth, LimitMesh, MAX_DEPTH, OutOfMemory, OutputTooLarge, Request, RulesError, Scheme,
-    limit_surface,
+    Depth, LimitMesh, MAX_DEPTH, OutOfMemory, OutputTooLarge, RulesError, Scheme, limit_surface,
 };
 
 use crate::layout::{Patch, PatchLayout};
@@ -144,28 +143,8 @@ pub fn tessellate(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateError> {
         subdiv_rules::SeamCurves::new(mesh).write_uniform(mesh, 0, 0, out.positions_mut());
         return Ok(out);
     }
-    if depth > MAX_DEPTH {
-        return Err(SlateError::TooDeep {
-            depth,
-            max: MAX_DEPTH,
-        });
-    }
-    // Refuse before allocating: beyond this machine's memory, then beyond `MAX_POINTS`.
-    Budget::machine().check(
-        mesh,
-        Request::Uniform {
-            scheme: Scheme::CatmullClark,
-            depth,
-        },
-    )?;
-    let corners: u64 = mesh.faces().map(|f| mesh.face_size(f) as u64).sum();
-    let estimate = corners.saturating_mul(1u64 << (2 * depth)) / 4;
-    if estimate > MAX_POINTS {
-        return Err(SlateError::TooLarge {
-            depth,
-            points: estimate,
-        });
-    }
+    // Refuse before allocating: beyond the slates, this machine's memory or `MAX_POINTS`.
+    crate::size::check_uniform_size(mesh, Scheme::CatmullClark, depth)?;
     let layout = PatchLayout::new(mesh, depth)?;
     tessellate_layout(mesh, &layout)
 }
@@ -186,14 +165,16 @@ pub fn tessellate_layout(mesh: &Mesh, layout: &PatchLayout) -> Result<LimitMesh,
 /// [`LimitMesh::topology_written`] tells the caller whether this call wrote them (a renderer
 /// uploads its index buffer again only then). Another layout (another depth, another cage, a
 /// hole changed: each a new layout, whose key no other layout has), or an output whose faces
-/// another tessellator wrote or that changed since, gets its quads written.
+/// another tessellator wrote or that changed since, gets its quads written. `mesh` is the cage
+/// the layout was made for; after its positions moved, call [`PatchLayout::move_to`] first
+/// (or use [`crate::UniformTessellator`], which does).
 pub fn tessellate_layout_into(
     mesh: &Mesh,
     layout: &PatchLayout,
     result: &mut LimitMesh,
 ) -> Result<(), SlateError> {
     let depth = layout.depth;
-    // The positions may have moved since the layout was made.
+    // The positions may have moved since the layout was made (with `PatchLayout::move_to`).
     subdiv_rules::check_coordinates(mesh)?;
     if depth > MAX_DEPTH {
         return Err(SlateError::TooDeep {

@@ -63,6 +63,16 @@ pub enum AssemblyError {
         /// The vertex.
         vertex: u32,
     },
+    /// The scheme has no adaptive tessellation (bilinear: its patches are tessellated
+    /// uniformly).
+    #[error(
+        "the {scheme} scheme has no adaptive tessellation (catmull-clark and loop have); \
+         tessellate it uniformly (--depth N)"
+    )]
+    NotAdaptive {
+        /// The scheme's name.
+        scheme: &'static str,
+    },
     /// A per-unit array has the wrong length.
     #[error("{what} has {got} entries, the mesh has {want} faces")]
     Length {

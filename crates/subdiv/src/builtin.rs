@@ -92,11 +92,17 @@ mod tests {
             assert_eq!(m.num_faces(), 58 * n);
             let (a, b) = m.bounds();
             // Centred on the model: the grid's middle is the model's middle.
-            assert!(((a + b) * 0.5 - centre).length() < 1e-4 * (b - a).length(), "{n}");
+            assert!(
+                ((a + b) * 0.5 - centre).length() < 1e-4 * (b - a).length(),
+                "{n}"
+            );
             let ext = hi - lo;
             let step = 1.25 * ext.x.max(ext.z);
             let cols = n.min(8) as f32;
-            assert!(((b.x - a.x) - ((cols - 1.0) * step + ext.x)).abs() < 1e-3, "{n}");
+            assert!(
+                ((b.x - a.x) - ((cols - 1.0) * step + ext.x)).abs() < 1e-3,
+                "{n}"
+            );
         }
         assert!(instance_grid(&helmet, 0).is_err());
     }

@@ -38,6 +38,7 @@ impl Stitcher {
         Ok(match scheme {
             Scheme::CatmullClark => Stitcher::Quads(Box::new(Assembler::new(mesh, max_depth)?)),
             Scheme::Loop => Stitcher::Tris(Box::new(TriAssembler::new(mesh, max_depth)?)),
+            Scheme::Bilinear => return Err(AssemblyError::NotAdaptive { scheme: "bilinear" }),
         })
     }
 
@@ -162,7 +163,7 @@ impl DynamicSubdivision {
         Ok(())
     }
     /// Moves the cage's vertices (animation, editing): curvature depths, bounding spheres and the
-    /// patch cache are recomputed; the topology and tags stay.
+    /// patch cache are recomputed; the topology and tags stay, and so do the patches.
     pub fn set_positions(&mut self, positions: &[glam::Vec3]) -> Result<(), AssemblyError> {
         if positions.len() != self.mesh.num_vertices() {
             return Err(AssemblyError::Length {
@@ -184,7 +185,10 @@ impl DynamicSubdivision {
         self.spheres = face_spheres(&self.mesh, self.scheme);
         self.seams = Seams::new(&self.mesh);
         self.errors = None;
-        self.assembler = Stitcher::new(&self.mesh, self.scheme, self.params.max_depth)?;
+        match &mut self.assembler {
+            Stitcher::Quads(a) => a.move_to(&self.mesh),
+            Stitcher::Tris(a) => a.invalidate(),
+        }
         Ok(())
     }
 
@@ -334,7 +338,8 @@ impl DynamicSubdivision {
                 Controller::Off => {}
             }
         }
-        let budget = matches!(self.controller, Controller::Budget(_)) && self.fixed_depths.is_none();
+        let budget =
+            matches!(self.controller, Controller::Budget(_)) && self.fixed_depths.is_none();
         self.last.setup = false;
         if self.params.pixel_error.is_some() || budget {
             let tolerance = self.params.shading_error_deg.to_radians();

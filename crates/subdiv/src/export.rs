@@ -75,6 +75,71 @@ fn vertex_uvs(s: &LimitMesh) -> Option<&[[f32; 2]]> {
     (!s.uv_indices().is_empty()).then(|| s.uvs())
 }
 
+/// Where a channel of a split surface goes in glTF: `COLOR_0` for a display colour of 3 or 4
+/// floats, `TEXCOORD_n` for 2 floats (`n` from 1 when the surface has texture coordinates,
+/// `TEXCOORD_0`), else `_NAME` (the name upper-cased, other characters than letters and digits
+/// as `_`), and for more than 4 floats `_NAME_0`, `_NAME_1`, ... of 4 floats each.
+/// Returns `(semantic, channel, first float, floats)` in channel order.
+fn gltf_attributes(s: &LimitMesh) -> Vec<(ChannelAttribute, usize, usize, usize)> {
+    let mut texcoord = usize::from(vertex_uvs(s).is_some());
+    let mut out = Vec::new();
+    for (i, c) in s.channels().iter().enumerate() {
+        if c.name == "displayColor" && (c.width == 3 || c.width == 4) {
+            out.push((ChannelAttribute::Color, i, 0, c.width));
+        } else if c.width == 2 {
+            out.push((ChannelAttribute::TexCoord(texcoord), i, 0, 2));
+            texcoord += 1;
+        } else {
+            let name: String = c
+                .name
+                .chars()
+                .map(|ch| {
+                    if ch.is_ascii_alphanumeric() {
+                        ch.to_ascii_uppercase()
+                    } else {
+                        '_'
+                    }
+                })
+                .collect();
+            if c.width <= 4 {
+                out.push((ChannelAttribute::Custom(name), i, 0, c.width));
+            } else {
+                for (k, first) in (0..c.width).step_by(4).enumerate() {
+                    let n = 4.min(c.width - first);
+                    out.push((ChannelAttribute::Custom(format!("{name}_{k}")), i, first, n));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// A glTF vertex attribute of a channel.
+#[derive(Clone, Debug, PartialEq, Eq)]
+enum ChannelAttribute {
+    /// `COLOR_0`.
+    Color,
+    /// `TEXCOORD_n`.
+    TexCoord(usize),
+    /// `_NAME` (the name without its `_`).
+    Custom(String),
+}
+
+/// The PLY property names of a channel: `red green blue [alpha]` for a display colour of 3 or
+/// 4 floats, the name for 1 float, else `name_0`, `name_1`, ...
+fn ply_properties(name: &str, width: usize) -> Vec<String> {
+    if name == "displayColor" && (width == 3 || width == 4) {
+        return ["red", "green", "blue", "alpha"][..width]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+    }
+    if width == 1 {
+        return vec![name.to_string()];
+    }
+    (0..width).map(|k| format!("{name}_{k}")).collect()
+}
+
 /// An error writing a surface file.
 #[derive(Debug, Error)]
 pub enum ExportError {

@@ -7,6 +7,9 @@ use subdiv_rules::Silhouettes;
 use subdiv_vk::viewer::{FrameControl, FrameRequest, FrameSource, SourceFrame};
 use subdiv_vk::{RenderMesh, Shading};
 
+use subdiv_mesh::Mesh;
+use subdiv_stitch::AssemblyError;
+
 use crate::scene::render_mesh;
 use crate::{Control, DoiSetup, DynamicSubdivision, Scene, camera_from_view, depth_histogram};
 
@@ -29,6 +32,8 @@ fn chain(e: &dyn std::error::Error) -> String {
 /// view camera unless it is frozen).
 pub struct UniformSource {
     scene: Scene,
+    /// Counts the scenes shown ([`UniformSource::set_scene`]): the vertex version.
+    version: u64,
     lines: Vec<[f32; 3]>,
     faces: String,
     status: String,
@@ -39,20 +44,41 @@ pub struct UniformSource {
 impl UniformSource {
     /// The source showing `scene`.
     pub fn new(scene: Scene) -> UniformSource {
-        let depth = scene.surface().scalar().and_then(|(_, s)| {
+        let mut source = UniformSource {
+            depth: None,
+            faces: String::new(),
+            status: String::new(),
+            scene,
+            version: 0,
+            lines: Vec::new(),
+        };
+        source.describe();
+        source
+    }
+
+    /// The scene shown.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// Shows `scene` from the next frame on (a moving cage's next frame): its vertices are
+    /// uploaded again.
+    pub fn set_scene(&mut self, scene: Scene) {
+        self.scene = scene;
+        self.version += 1;
+        self.describe();
+    }
+
+    /// The face count and depth of the scene shown.
+    fn describe(&mut self) {
+        self.depth = self.scene.surface().scalar().and_then(|(_, s)| {
             s.iter()
                 .copied()
                 .filter(|d| d.is_finite())
                 .reduce(f32::max)
                 .map(|d| d.round().max(0.0) as u32)
         });
-        UniformSource {
-            depth,
-            faces: format!("{} faces", scene.faces()),
-            status: String::new(),
-            scene,
-            lines: Vec::new(),
-        }
+        self.faces = format!("{} faces", self.scene.faces());
     }
 }
 
@@ -77,8 +103,8 @@ impl FrameSource for UniformSource {
                 ..self.scene.render_mesh()
             },
             status: &self.status,
-            // Positions, normals and depth scalars never change.
-            vertex_version: Some(0),
+            // Positions, normals and depth scalars change with the scene only.
+            vertex_version: Some(self.version),
             depth_cap: self.depth,
             predicted_ms: None,
         })
@@ -106,6 +132,22 @@ impl AdaptiveSource {
             lines: Vec::new(),
             status: String::new(),
         }
+    }
+}
+
+impl AdaptiveSource {
+    /// Moves the node's cage to `cage` (a moving cage's next frame): its positions when the
+    /// topology is the same ([`DynamicSubdivision::set_positions`], the patches kept), else a
+    /// node for the new cage with the same scheme and parameters.
+    pub fn set_cage(&mut self, cage: Mesh) -> Result<(), AssemblyError> {
+        if self.node.mesh().same_topology(&cage) {
+            return self.node.set_positions(cage.positions());
+        }
+        let (scheme, params) = (self.node.scheme(), *self.node.params());
+        self.node = DynamicSubdivision::with_scheme(cage, scheme, params)?;
+        // The new node has no control yet: the next frame sets the viewer's.
+        self.control = (FrameControl::Off, 0.0);
+        Ok(())
     }
 }
 

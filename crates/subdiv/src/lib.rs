@@ -33,7 +33,9 @@
 //!   [`Camera`](mesh::Camera) to and from the renderer's [`View`](vk::View) and
 //!   [`OrbitCamera`](vk::OrbitCamera) ([`view_for`], [`orbit_camera`], [`camera_from_view`]);
 //! - `frame_sources.rs`: the viewer's [`FrameSource`](vk::viewer::FrameSource)s
-//!   ([`UniformSource`], [`AdaptiveSource`], [`DoiSource`]);
+//!   ([`UniformSource`], [`AdaptiveSource`], [`DoiSource`]); `animated_source.rs`:
+//!   [`AnimatedSource`], an animated stage read at each frame's time code, and its playback
+//!   ([`stage_playback`]);
 //! - `builtin.rs`: built-in scenes ([`BuiltinScene`], [`helmet40`], the paper's Fig. 12);
 //! - `export.rs`, `export/`: surface output by extension ([`write_surface`]).
 //!
@@ -125,6 +127,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod animated_source;
 mod builtin;
 mod camera;
 mod doi_setup;
@@ -135,6 +138,7 @@ mod frame_sources;
 mod refine;
 mod scene;
 
+pub use animated_source::{AnimatedSource, stage_playback};
 pub use builtin::{BuiltinError, BuiltinScene, GRID_COLUMNS, helmet, helmet40, instance_grid};
 pub use camera::{camera_from_view, framing_box, orbit_camera, radius_about, view_for};
 pub use doi_setup::{

@@ -28,7 +28,7 @@ pub enum SceneError {
 }
 
 /// The uniform limit tessellation of `mesh` at `depth` on the slate tessellators: quad slates
-/// for Catmull-Clark, triangular slates for Loop. A cage with face-varying data (UVs) gets its
+/// for Catmull-Clark, triangular slates for Loop, bilinear patches for bilinear. A cage with face-varying data (UVs) gets its
 /// face-varying limit values at every corner (`LimitMesh::uvs`). A depth whose output is beyond
 /// this machine's memory is refused before anything is allocated
 /// ([`SlateError::OutputTooLarge`], with the size asked for).
@@ -41,7 +41,11 @@ pub fn uniform_limit(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<LimitM
             SlateError::Rules(r) => SceneError::Rules(r),
             e => SceneError::Slate(e),
         })?,
+        Scheme::Bilinear => subdiv_slate::tessellate_bilinear(mesh, depth)?,
     };
+    let mut limit = limit;
+    // The cage's primvars on the surface (the same scheme and depth).
+    subdiv_slate::tessellate_primvars(mesh, scheme, depth, &mut limit)?;
     log::debug!(
         "uniform {scheme:?} depth {depth}: {} faces -> {} limit points, {} faces in {:.1} ms",
         mesh.num_faces(),
@@ -69,7 +73,12 @@ impl Scene {
     /// The uniform tessellation of `cage` at `depth` as a scene; every vertex's scalar is
     /// `depth`. A tessellation without faces is [`SceneError::Empty`].
     pub fn uniform(cage: &Mesh, scheme: Scheme, depth: Depth) -> Result<Scene, SceneError> {
-        let mut limit = uniform_limit(cage, scheme, depth)?;
+        Scene::from_uniform(uniform_limit(cage, scheme, depth)?, depth)
+    }
+
+    /// The scene of a uniform tessellation `limit` at `depth` (every vertex's scalar is
+    /// `depth`); a tessellation without faces is [`SceneError::Empty`].
+    pub fn from_uniform(mut limit: LimitMesh, depth: Depth) -> Result<Scene, SceneError> {
         if limit.num_faces() == 0 {
             return Err(SceneError::Empty);
         }

@@ -335,3 +335,36 @@ fn a_level1_face_on_a_nonmanifold_edge_lifts_its_copies() {
         "segments on the fin edge with three triangles"
     );
 }
+
+/// A node whose cage moved draws what a node made for the moved cage draws, bit for bit: the
+/// level-1 points of the prism's triangles and their neighbours follow the cage, and no cached
+/// patch of the old positions survives (Catmull-Clark and Loop).
+#[test]
+fn moved_positions_give_a_fresh_nodes_frame() {
+    let tri_prism =
+        Mesh::from_soup(&parse_obj(&subdiv_test_support::prism().triangulated().obj()).unwrap())
+            .unwrap();
+    for (mesh, scheme) in [(prism(), Scheme::CatmullClark), (tri_prism, Scheme::Loop)] {
+        let camera = camera_on_z(4.0);
+        let mut node = DynamicSubdivision::with_scheme(mesh.clone(), scheme, params(3)).unwrap();
+        node.update(&camera, None).unwrap();
+        for frame in 1..4 {
+            let moved: Vec<Vec3> = mesh
+                .positions()
+                .iter()
+                .enumerate()
+                .map(|(i, p)| {
+                    let a = frame as f32 * 0.7 + i as f32;
+                    *p + Vec3::new(a.sin(), a.cos(), (2.0 * a).sin()) * 0.15
+                })
+                .collect();
+            node.set_positions(&moved).unwrap();
+            let mut fresh_mesh = mesh.clone();
+            fresh_mesh.positions_mut().copy_from_slice(&moved);
+            let mut fresh = DynamicSubdivision::with_scheme(fresh_mesh, scheme, params(3)).unwrap();
+            let want = fresh.update(&camera, None).unwrap().surface().clone();
+            let got = node.update(&camera, None).unwrap().surface();
+            assert!(*got == want, "{scheme:?} frame {frame}");
+        }
+    }
+}

@@ -360,3 +360,104 @@ fn uvs_of_a_refined_cage_reach_the_export() {
     write_surface(&glb, &limit).unwrap();
     check_gltf(&glb, &limit, "tri_seam_refined.glb");
 }
+
+/// A stage's colours, second UV set and other primvars reach the files: glTF `COLOR_0`,
+/// `TEXCOORD_1` (after `st`'s `TEXCOORD_0`) and `_NAME`; PLY `red green blue`, `NAME` or
+/// `NAME_k`; OBJ vertex colours. Every value is the split surface's.
+#[test]
+fn primvars_reach_gltf_ply_and_obj() {
+    let stage = out_dir().join("primvars.usda");
+    std::fs::write(
+        &stage,
+        r#"#usda 1.0
+def Mesh "Q" {
+    int[] faceVertexCounts = [4, 4]
+    int[] faceVertexIndices = [0, 1, 4, 3, 1, 2, 5, 4]
+    point3f[] points = [(0, 0, 0), (1, 0, 0.5), (2, 0, 0), (0, 1, 0), (1, 1, 0.5), (2, 1, 0)]
+    color3f[] primvars:displayColor = [(1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 0), (0, 1, 1), (1, 0, 1)] (
+        interpolation = "vertex"
+    )
+    texCoord2f[] primvars:st = [(0, 0), (1, 0), (1, 1), (0, 1)] (
+        interpolation = "faceVarying"
+    )
+    int[] primvars:st:indices = [0, 1, 2, 3, 0, 1, 2, 3]
+    texCoord2f[] primvars:st1 = [(0, 0), (0.5, 0), (1, 0), (0, 1), (0.5, 1), (1, 1)] (
+        interpolation = "vertex"
+    )
+    float[] primvars:opacity = [0.25, 0.75] (
+        interpolation = "uniform"
+    )
+}
+"#,
+    )
+    .unwrap();
+    let cage = subdiv::mesh::read_usd(&stage, &Default::default())
+        .unwrap()
+        .mesh;
+    let limit = uniform_limit(&cage, Scheme::CatmullClark, 2).unwrap();
+    let names: Vec<&str> = limit.channels().iter().map(|c| c.name.as_str()).collect();
+    assert_eq!(names, ["displayColor", "st1", "opacity"]);
+    let s = limit.split_sided(true);
+    let channel = |name: &str| s.channel(name).unwrap();
+    let dir = out_dir();
+
+    let glb = dir.join("primvars.glb");
+    write_surface(&glb, &limit).unwrap();
+    let doc = gltf::Gltf::open(&glb).unwrap();
+    let blob = doc.blob.clone().unwrap();
+    let prim = doc.meshes().next().unwrap().primitives().next().unwrap();
+    let reader = prim.reader(|_| Some(&blob[..]));
+    let colours: Vec<[f32; 3]> = reader.read_colors(0).unwrap().into_rgb_f32().collect();
+    let want: Vec<[f32; 3]> = channel("displayColor")
+        .values
+        .chunks(3)
+        .map(|c| [c[0], c[1], c[2]])
+        .collect();
+    assert_eq!(colours, want);
+    let st1: Vec<[f32; 2]> = reader.read_tex_coords(1).unwrap().into_f32().collect();
+    let want: Vec<[f32; 2]> = channel("st1")
+        .values
+        .chunks(2)
+        .map(|c| [c[0], c[1]])
+        .collect();
+    assert_eq!(st1, want);
+    assert!(reader.read_tex_coords(0).is_some(), "st is TEXCOORD_0");
+    let opacity = prim
+        .attributes()
+        .find(|(sem, _)| *sem == gltf::Semantic::Extras("OPACITY".into()))
+        .map(|(_, a)| {
+            gltf::accessor::Iter::<f32>::new(a, |_| Some(&blob[..]))
+                .unwrap()
+                .collect::<Vec<f32>>()
+        })
+        .expect("_OPACITY");
+    assert_eq!(opacity, channel("opacity").values);
+    assert!(opacity.contains(&0.25) && opacity.contains(&0.75));
+
+    let ply = dir.join("primvars.ply");
+    write_surface(&ply, &limit).unwrap();
+    use ply_rs_bw::ply::{DefaultElement, Property};
+    let mut f = std::fs::File::open(&ply).unwrap();
+    let p = ply_rs_bw::parser::Parser::<DefaultElement>::new()
+        .read_ply(&mut f)
+        .unwrap();
+    let float = |e: &DefaultElement, k: &str| match e.get(k) {
+        Some(Property::Float(x)) => *x,
+        other => panic!("property {k}: {other:?}"),
+    };
+    for (i, v) in p.payload["vertex"].iter().enumerate() {
+        let rgb = [float(v, "red"), float(v, "green"), float(v, "blue")];
+        assert_eq!(rgb, channel("displayColor").value(i));
+        assert_eq!(
+            [float(v, "st1_0"), float(v, "st1_1")],
+            channel("st1").value(i)
+        );
+        assert_eq!([float(v, "opacity")], channel("opacity").value(i));
+    }
+
+    let obj = dir.join("primvars.obj");
+    write_surface(&obj, &limit).unwrap();
+    let back = subdiv::mesh::read_obj(&obj).unwrap();
+    let c = back.primvar("displayColor").expect("OBJ vertex colours");
+    assert_eq!(c.values, limit.channel("displayColor").unwrap().values);
+}

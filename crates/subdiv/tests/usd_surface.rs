@@ -42,7 +42,10 @@ fn usd_cages_tessellate_to_the_surface_of_their_obj() {
             );
         }
     }
-    // bilinear and none name no scheme of subdiv.
-    assert_eq!(Scheme::from_usd(UsdScheme::Bilinear), None);
+    // bilinear is the bilinear scheme; none names no scheme of subdiv.
+    assert_eq!(
+        Scheme::from_usd(UsdScheme::Bilinear),
+        Some(Scheme::Bilinear)
+    );
     assert_eq!(Scheme::from_usd(UsdScheme::None), None);
 }

@@ -63,7 +63,7 @@ pub fn output(cmd: &mut Command) -> Result<String> {
 }
 
 /// The `key=value` fields of the last line of `text` that starts with `prefix`.
-fn fields(text: &str, prefix: &str) -> Result<Vec<(String, f64)>> {
+pub(crate) fn fields(text: &str, prefix: &str) -> Result<Vec<(String, f64)>> {
     let line = text
         .lines()
         .rev()
@@ -76,7 +76,7 @@ fn fields(text: &str, prefix: &str) -> Result<Vec<(String, f64)>> {
         .collect())
 }
 
-fn field(f: &[(String, f64)], key: &str) -> Result<f64> {
+pub(crate) fn field(f: &[(String, f64)], key: &str) -> Result<f64> {
     f.iter()
         .find(|(k, _)| k == key)
         .map(|(_, v)| *v)
@@ -131,7 +131,7 @@ struct Row {
     osd_evaln: f64,
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
+pub(crate) fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
 }
@@ -233,8 +233,10 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
             rows.push(row);
         }
     }
+    // The moving-cage rows (bench_animate.rs).
+    let moving = crate::bench_animate::rows(root, &target, &subdiv, &mut raw)?;
     raw.push_str(&format!("# load average at end: {}\n", load_average()));
-    let table = table(&rows);
+    let table = table(&rows) + &moving;
     println!("{table}");
     raw.push_str(&table);
     let commit = raw

@@ -79,8 +79,17 @@ pub(super) fn build(soup: &PolygonSoup) -> Result<Mesh, MeshError> {
         ..
     } = edges;
     let uv = validate::face_varying(soup)?;
+    let corners = faces.verts.len();
+    for p in &soup.primvars {
+        p.check(nv as usize, faces.num_faces(), corners)
+            .map_err(|msg| MeshError::Primvar {
+                name: p.name.clone(),
+                msg,
+            })?;
+    }
     let mut mesh = assemble(soup, faces, he_to, he_face, cycles, vertex_out);
     mesh.uv = uv;
+    mesh.primvars = soup.primvars.clone();
 
     manifold::check_vertex_fans(&mesh, &corner_count, soup)?;
     tags::apply_tags(&mut mesh, soup, &edge_map)?;
@@ -123,6 +132,7 @@ fn assemble(
         groups: soup.groups.clone(),
         options: soup.options,
         uv: None,
+        primvars: Vec::new(),
         whole_edges: Default::default(),
         crease_ends: Default::default(),
     }

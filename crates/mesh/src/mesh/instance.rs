@@ -71,13 +71,15 @@ impl Mesh {
             groups: self.groups.clone(),
             options: self.options,
             uv: None,
+            primvars: Vec::new(),
             whole_edges: Default::default(),
             crease_ends: Default::default(),
         };
         m.face_offsets.push(0);
         for (k, off) in offsets.iter().enumerate() {
             m.positions.extend(self.positions.iter().map(|p| *p + *off));
-            m.vertex_out.extend(self.vertex_out.iter().map(|&x| h(k, x)));
+            m.vertex_out
+                .extend(self.vertex_out.iter().map(|&x| h(k, x)));
             m.he_to.extend(self.he_to.iter().map(|&x| v(k, x)));
             m.he_next.extend(self.he_next.iter().map(|&x| h(k, x)));
             m.he_prev.extend(self.he_prev.iter().map(|&x| h(k, x)));
@@ -85,7 +87,8 @@ impl Mesh {
             let base = (k * corners) as u32;
             m.face_offsets
                 .extend(self.face_offsets[1..].iter().map(|&o| o + base));
-            m.face_verts.extend(self.face_verts.iter().map(|&x| v(k, x)));
+            m.face_verts
+                .extend(self.face_verts.iter().map(|&x| v(k, x)));
             m.face_he.extend(self.face_he.iter().map(|&x| h(k, x)));
             for (&vx, e) in &self.whole_edges {
                 m.whole_edges.insert(vx + repeat(k) as u32, e.clone());
@@ -106,6 +109,24 @@ impl Mesh {
             }
             m.uv = Some(out);
         }
+        for p in &self.primvars {
+            // A constant primvar is one value for every copy; the others repeat per copy.
+            if p.interpolation == crate::PrimvarInterpolation::Constant {
+                m.primvars.push(p.clone());
+                continue;
+            }
+            let values = p.num_values() as u32;
+            let mut out = crate::Primvar {
+                values: p.values.repeat(n),
+                indices: Vec::with_capacity(n * p.indices.len()),
+                ..p.clone()
+            };
+            for k in 0..n as u32 {
+                out.indices
+                    .extend(p.indices.iter().map(|&i| i + k * values));
+            }
+            m.primvars.push(out);
+        }
         Ok(m)
     }
 }
@@ -125,13 +146,20 @@ mod tests {
             obj += &format!("v {} {} {}\n", p[0], p[1], p[2]);
         }
         for f in &cube.faces {
-            let corners: Vec<String> =
-                f.iter().enumerate().map(|(c, v)| format!("{}/{}", v + 1, c % 4 + 1)).collect();
+            let corners: Vec<String> = f
+                .iter()
+                .enumerate()
+                .map(|(c, v)| format!("{}/{}", v + 1, c % 4 + 1))
+                .collect();
             obj += &format!("f {}\n", corners.join(" "));
         }
         obj += "t crease 2/1/0 0 1 2.5\nt corner 1/1/0 5 3\nt hole 1/0/0 2\n";
         let soup = parse_obj(&obj).unwrap();
-        let offsets = [Vec3::ZERO, Vec3::new(3.0, 0.0, 0.0), Vec3::new(0.0, 0.0, -3.0)];
+        let offsets = [
+            Vec3::ZERO,
+            Vec3::new(3.0, 0.0, 0.0),
+            Vec3::new(0.0, 0.0, -3.0),
+        ];
         let a = Mesh::from_soup(&soup).unwrap().instanced(&offsets).unwrap();
         let b = Mesh::from_soup(&soup.instanced(&offsets)).unwrap();
         assert_eq!(a.positions, b.positions);

@@ -381,3 +381,27 @@ fn high_valence_fan() {
     assert_eq!(m.valence(VertexId(0)), 360);
     assert_eq!(m.max_valence(), 360);
 }
+
+#[test]
+fn same_topology_ignores_positions_only() {
+    let a = Mesh::from_soup(&cube()).unwrap();
+    let mut moved = a.clone();
+    moved.positions_mut()[3] += Vec3::new(0.5, -0.25, 1.0);
+    assert!(a.same_topology(&moved));
+    // Sharper, holed or another mesh: not the same.
+    let mut sharp = a.clone();
+    sharp.set_edge_sharpness(EdgeId(2), 1.5);
+    assert!(!a.same_topology(&sharp));
+    let mut holed = a.clone();
+    holed.set_holes(vec![false, true, false, false, false, false]);
+    assert!(!a.same_topology(&holed));
+    let mut flipped = cube();
+    flipped.face_indices[..4].reverse();
+    flipped.face_indices[4..8].reverse();
+    flipped.face_indices[8..]
+        .chunks_mut(4)
+        .for_each(<[i64]>::reverse);
+    let other = Mesh::from_soup(&flipped).unwrap();
+    assert!(!a.same_topology(&other));
+    assert!(!a.same_topology(&Mesh::from_soup(&grid(2)).unwrap()));
+}

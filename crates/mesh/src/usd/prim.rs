@@ -26,10 +26,20 @@ pub(crate) struct PrimMesh {
     pub face_varying: FaceVaryingLinear,
 }
 
-/// Reads the mesh prim at `path` of `stage` (`file` names the stage in errors). The soup is not
-/// validated.
-pub(crate) fn read_mesh_prim(stage: &Stage, file: &str, path: &str) -> Result<PrimMesh, UsdError> {
-    let at = Reader { stage, file, path };
+/// Reads the mesh prim at `path` of `stage` (`file` names the stage in errors) at `time` (see
+/// [`Reader::value`]). The soup is not validated.
+pub(crate) fn read_mesh_prim(
+    stage: &Stage,
+    file: &str,
+    path: &str,
+    time: Option<f64>,
+) -> Result<PrimMesh, UsdError> {
+    let at = Reader {
+        stage,
+        file,
+        path,
+        time,
+    };
     let sp = sdf::path(path).map_err(|e| at.err("", format!("invalid prim path: {e:#}")))?;
     let prim = stage.prim(sp);
     let mut soup = PolygonSoup::default();
@@ -39,6 +49,7 @@ pub(crate) fn read_mesh_prim(stage: &Stage, file: &str, path: &str) -> Result<Pr
     let left = at.token("orientation", &["rightHanded", "leftHanded"], 0)? == 1;
     at.faces(&mut soup, left != mirrored)?;
     at.texture_coordinates(&mut soup, left != mirrored)?;
+    soup.primvars = at.primvars(&soup, left != mirrored)?;
     at.creases(&mut soup)?;
     let corners = at.ints("cornerIndices")?;
     let sharp = at.floats("cornerSharpnesses")?;
@@ -126,6 +137,8 @@ struct Reader<'a> {
     stage: &'a Stage,
     file: &'a str,
     path: &'a str,
+    /// The time code to read at; `None`: the default value, else the earliest time sample.
+    time: Option<f64>,
 }
 
 impl Reader<'_> {
@@ -138,7 +151,9 @@ impl Reader<'_> {
         }
     }
 
-    /// The attribute's value at the default time, else at its earliest time sample.
+    /// The attribute's value at the reader's time code (its time samples interpolated as USD
+    /// does, linearly for numeric values, else its default value); without a time code, its
+    /// default value, else its earliest time sample.
     fn value(&self, name: &str) -> Result<Option<Value>, UsdError> {
         let sp = sdf::path(self.path).map_err(|e| self.err(name, format!("{e:#}")))?;
         let attr = self.stage.prim(sp).attribute(name);
@@ -146,10 +161,18 @@ impl Reader<'_> {
             attr.get_at::<Value>(t)
                 .map_err(|e| self.err(name, format!("{e:#}")))
         };
+        if let Some(t) = self.time {
+            return read(Some(TimeCode::new(t)));
+        }
         match read(None)? {
             Some(v) => Ok(Some(v)),
             None => read(Some(TimeCode::EARLIEST)),
         }
+    }
+
+    /// The time code transforms are read at: the reader's, else the earliest time sample.
+    fn transform_time(&self) -> TimeCode {
+        self.time.map_or(TimeCode::EARLIEST, TimeCode::new)
     }
 
     fn ints(&self, name: &str) -> Result<Vec<i64>, UsdError> {
@@ -342,7 +365,7 @@ impl Reader<'_> {
             let x = AnyXformable(self.stage.prim(p.clone()));
             let name = format!("xformOpOrder (of {})", p.as_str());
             let local = x
-                .local_to_parent_transform(TimeCode::EARLIEST)
+                .local_to_parent_transform(self.transform_time())
                 .map_err(|e| self.err(&name, format!("{e:#}")))?;
             // Row vectors: the prim's own ops apply first, its parent's after.
             m = m * local;

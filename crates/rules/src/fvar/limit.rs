@@ -24,7 +24,7 @@ use crate::{Depth, MAX_DEPTH, RulesError, Scheme, catmark, loop_scheme};
 /// points of the depth-`d` tessellation ([`crate::tessellate_uniform`]).
 pub fn limit_face_varying(mesh: &Mesh, scheme: Scheme) -> Option<FaceVarying> {
     let fv = mesh.uv()?;
-    let ch = Channel::new(mesh, fv);
+    let ch = Channel::new(mesh, fv, scheme);
     let mut out = FaceVarying {
         values: Vec::with_capacity(mesh.num_vertices()),
         indices: vec![0; fv.indices.len()],
@@ -115,7 +115,7 @@ pub fn limit_face_varying_exact(
     };
     let (offsets, _) = mesh.face_lists();
     let (per, loop_scheme) = match scheme {
-        Scheme::CatmullClark => (4usize, false),
+        Scheme::CatmullClark | Scheme::Bilinear => (4usize, false),
         Scheme::Loop => (3usize, true),
     };
     let mut remap = vec![u32::MAX; lim.values.len()];
@@ -185,6 +185,8 @@ impl RingValues {
         let rule = rule_with_whole(mesh.vertex_sharpness(v), &self.sharpness, whole);
         match scheme {
             Scheme::CatmullClark => catmark::limit(centre, &self.edges, &self.diag, rule).0,
+            // Linear: a value is its own limit (also reached through `linear_all`).
+            Scheme::Bilinear => centre,
             Scheme::Loop => {
                 loop_scheme::limit(centre, &self.edges, rule, mesh.is_boundary_vertex(v)).0
             }

@@ -101,7 +101,7 @@ fn refine_values(
     let mesh = kernel.mesh();
     let scheme = kernel.scheme();
     let (offsets, _) = mesh.face_lists();
-    let mut ch = Channel::new(mesh, fv);
+    let mut ch = Channel::new(mesh, fv, scheme);
     let skip: Vec<bool> = (0..mesh.num_halfedges() as u32)
         .map(|h| region.skips(HalfedgeId(h)))
         .collect();
@@ -111,7 +111,7 @@ fn refine_values(
 
     // Face values (Catmull-Clark): the centroid of the corners.
     let mut face_value = Vec::new();
-    if scheme == Scheme::CatmullClark {
+    if scheme.splits_to_quads() {
         face_value = mesh
             .faces()
             .map(|f| {
@@ -273,7 +273,7 @@ fn edge_values(
             (ch.value(mesh.next(h1)), ch.value(h1))
         };
         let p = kernel.edge_point_with(e, a, b, |h| match scheme {
-            Scheme::CatmullClark => face_value[mesh.face(h).idx()],
+            Scheme::CatmullClark | Scheme::Bilinear => face_value[mesh.face(h).idx()],
             Scheme::Loop => ch.value(region.opposite(h)),
         });
         let i = push_value(values, p);
@@ -295,7 +295,7 @@ fn child_corners(
     out: &mut FaceVarying,
 ) {
     let face_base = out.values.len() as u32;
-    if scheme == Scheme::CatmullClark {
+    if scheme.splits_to_quads() {
         for p in face_value {
             push_value(&mut out.values, p);
         }
@@ -305,7 +305,7 @@ fn child_corners(
     for f in mesh.faces() {
         let h0 = mesh.face_halfedge(f);
         match scheme {
-            Scheme::CatmullClark => {
+            Scheme::CatmullClark | Scheme::Bilinear => {
                 let mut h = h0;
                 let mut hp = mesh.prev(h0);
                 for _ in 0..mesh.face_size(f) {

@@ -42,6 +42,8 @@ pub struct LimitMesh {
     /// The value in `uvs` of every face corner (aligned with `face_indices`), or empty.
     pub(super) uv_indices: Vec<u32>,
     pub(super) scalar: Option<(VertexScalar, Vec<f32>)>,
+    /// The cage's primvars on the surface ([`LimitMesh::channels`]).
+    pub(super) channels: Vec<super::LimitChannel>,
     /// Which layout the faces were written for (bookkeeping, not content: ignored by `==`).
     pub(super) topology: TopologyStamp,
     /// `k > 0`: the face offsets are `0, k, 2k, ..`, written so by [`LimitMesh::write_keyed`] or
@@ -93,6 +95,7 @@ impl PartialEq for LimitMesh {
             uvs,
             uv_indices,
             scalar,
+            channels,
             topology: _,
             uniform_faces: _,
         } = self;
@@ -104,6 +107,7 @@ impl PartialEq for LimitMesh {
             && *uvs == o.uvs
             && *uv_indices == o.uv_indices
             && *scalar == o.scalar
+            && *channels == o.channels
     }
 }
 
@@ -349,6 +353,7 @@ impl LimitMesh {
         self.face_indices.clear();
         self.corner_normals.clear();
         self.uv_indices.clear();
+        self.channels.clear();
         self.topology = TopologyStamp::default();
     }
 
@@ -369,6 +374,8 @@ impl LimitMesh {
             && self.face_offsets.len() == faces + 1
             && self.face_indices.len() == total;
         self.scalar = None;
+        // Channels are evaluated on a surface once it is written (`push_channel`).
+        self.channels.clear();
         // Until the faces are written, the mesh holds no layout's faces.
         self.topology = TopologyStamp::default();
         try_resize(&mut self.positions, vertices, [0.0; 3], "limit positions")?;
@@ -404,6 +411,7 @@ impl LimitMesh {
             Some((k, v)) if k == scalar => v,
             _ => Vec::new(),
         };
+        self.channels.clear();
         let r = write(&mut TriangleBuffers {
             positions: &mut self.positions,
             normals: &mut self.normals,
@@ -461,7 +469,19 @@ impl LimitMesh {
         }
         check_range(&self.face_indices, n, "vertex")?;
         check_sided(&self.corner_normals, corners)?;
-        check_uvs(&self.uv_indices, self.uvs.len(), corners)
+        check_uvs(&self.uv_indices, self.uvs.len(), corners)?;
+        for c in &self.channels {
+            let ok = if c.per_vertex() {
+                c.num_values() == n
+            } else {
+                c.indices.len() == corners
+                    && c.indices.iter().all(|&i| (i as usize) < c.num_values())
+            };
+            if c.width == 0 || !ok {
+                return bad(format!("channel {} does not fit the surface", c.name));
+            }
+        }
+        Ok(())
     }
 
     /// Whether the last tessellation into this mesh wrote its faces (`true` for a mesh not
@@ -553,6 +573,11 @@ impl LimitMesh {
             corner_normals: &self.corner_normals,
             uvs: &self.uvs,
             uv_indices: &self.uv_indices,
+            // OBJ's vertex colours: a display colour of one value per vertex.
+            colours: self
+                .channel("displayColor")
+                .filter(|c| c.per_vertex() && c.width == 3)
+                .map(|c| c.values.as_slice()),
         }
     }
 }

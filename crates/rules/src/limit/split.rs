@@ -4,7 +4,11 @@
 
 use std::collections::HashMap;
 
-use super::LimitMesh;
+use super::{LimitChannel, LimitMesh};
+
+/// What makes a vertex of the split form: the vertex, its one-sided normal (bits), its UV
+/// index and its corner channels' values (an interned tuple).
+type SplitKey = (u32, Option<[u32; 3]>, u32, u32);
 
 impl LimitMesh {
     /// Triangulates the polygons (a fan per polygon) and gives every face corner with a
@@ -20,7 +24,11 @@ impl LimitMesh {
     /// distinct (vertex, one-sided normal, UV) of the corners in order of first use, with one
     /// UV each (`uv_indices` equal to `face_indices`).
     pub fn split_sided(&self, uvs: bool) -> LimitMesh {
-        let by_uv = uvs && !self.uv_indices.is_empty();
+        // Channels with a value per corner split like UVs (and are dropped without `uvs`).
+        let corner_channels: Vec<&LimitChannel> =
+            self.channels.iter().filter(|c| !c.per_vertex()).collect();
+        let by_uv = uvs && (!self.uv_indices.is_empty() || !corner_channels.is_empty());
+        let with_uv = by_uv && !self.uv_indices.is_empty();
         let keep = |v: &[[f32; 3]]| if by_uv { Vec::new() } else { v.to_vec() };
         let mut out = LimitMesh {
             positions: keep(&self.positions),
@@ -31,7 +39,33 @@ impl LimitMesh {
                 .map(|(k, v)| (*k, if by_uv { Vec::new() } else { v.clone() })),
             ..LimitMesh::default()
         };
-        let mut copies: HashMap<(u32, Option<[u32; 3]>, u32), u32> = HashMap::new();
+        // The output's channels, one value per vertex: the input's per-vertex channels (copied
+        // when not split by corner), and its per-corner ones when split.
+        let mut channels: Vec<(&LimitChannel, LimitChannel)> = self
+            .channels
+            .iter()
+            .filter(|c| c.per_vertex() || by_uv)
+            .map(|c| {
+                let values = if by_uv || !c.per_vertex() {
+                    Vec::new()
+                } else {
+                    c.values.clone()
+                };
+                (
+                    c,
+                    LimitChannel {
+                        name: c.name.clone(),
+                        width: c.width,
+                        values,
+                        indices: Vec::new(),
+                    },
+                )
+            })
+            .collect();
+        // Corner-channel value tuples, interned (the part of the split key they make).
+        let mut tuples: HashMap<Vec<u32>, u32> = HashMap::new();
+        let mut tuple = Vec::new();
+        let mut copies: HashMap<SplitKey, u32> = HashMap::new();
         let mut sided = self.corner_normals.iter().peekable();
         let mut corner = Vec::new();
         let mut triangles = Vec::new();
@@ -44,20 +78,36 @@ impl LimitMesh {
                     corner.push(v);
                     continue;
                 }
-                let uv = if by_uv {
+                let uv = if with_uv {
                     self.uv_indices[c as usize]
                 } else {
                     0
                 };
-                let key = (v, n.map(|n| n.map(f32::to_bits)), uv);
+                let t = if corner_channels.is_empty() || !by_uv {
+                    0
+                } else {
+                    tuple.clear();
+                    tuple.extend(corner_channels.iter().map(|ch| ch.indices[c as usize]));
+                    let next = tuples.len() as u32;
+                    *tuples.entry(tuple.clone()).or_insert(next)
+                };
+                let key = (v, n.map(|n| n.map(f32::to_bits)), uv, t);
                 let id = *copies.entry(key).or_insert_with(|| {
                     out.positions.push(self.positions[v as usize]);
                     out.normals.push(n.unwrap_or(self.normals[v as usize]));
-                    if by_uv {
+                    if with_uv {
                         out.uvs.push(self.uvs[uv as usize]);
                     }
                     if let (Some((_, dst)), Some((_, src))) = (out.scalar.as_mut(), &self.scalar) {
                         dst.push(src[v as usize]);
+                    }
+                    for (src, dst) in &mut channels {
+                        let value = if src.per_vertex() {
+                            src.value(v as usize)
+                        } else {
+                            src.value(src.indices[c as usize] as usize)
+                        };
+                        dst.values.extend_from_slice(value);
                     }
                     out.positions.len() as u32 - 1
                 });
@@ -68,10 +118,11 @@ impl LimitMesh {
             }
         }
         out.face_offsets = (0..=triangles.len() as u32 / 3).map(|i| i * 3).collect();
-        if by_uv {
+        if with_uv {
             out.uv_indices.clone_from(&triangles);
         }
         out.face_indices = triangles;
+        out.channels = channels.into_iter().map(|(_, c)| c).collect();
         out
     }
 }
@@ -148,6 +199,19 @@ impl LimitMesh {
             uvs: self.uvs.clone(),
             uv_indices: self.uv_indices.clone(),
             scalar: self.scalar.as_ref().map(|(k, _)| (*k, Vec::new())),
+            // Per-corner channels follow the corners, which keep their order.
+            channels: self
+                .channels
+                .iter()
+                .map(|c| LimitChannel {
+                    values: if c.per_vertex() {
+                        Vec::new()
+                    } else {
+                        c.values.clone()
+                    },
+                    ..c.clone()
+                })
+                .collect(),
             ..LimitMesh::default()
         };
         for &i in &self.face_indices {
@@ -158,6 +222,11 @@ impl LimitMesh {
                 out.normals.push(self.normals[i as usize]);
                 if let (Some((_, dst)), Some((_, src))) = (out.scalar.as_mut(), &self.scalar) {
                     dst.push(src[i as usize]);
+                }
+                for (dst, src) in out.channels.iter_mut().zip(&self.channels) {
+                    if src.per_vertex() {
+                        dst.values.extend_from_slice(src.value(i as usize));
+                    }
                 }
             }
             out.face_indices.push(*m);

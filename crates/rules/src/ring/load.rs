@@ -10,7 +10,8 @@ use crate::crease::far_semi_sharp;
 
 impl Ring {
     /// Loads the ring of vertex `v` of `mesh`. Returns `false` (and leaves the ring empty) for an
-    /// isolated vertex.
+    /// isolated vertex, and for the bilinear scheme, whose limit needs no ring (a point is its
+    /// own limit: `limit::bilinear`).
     pub fn load(&mut self, mesh: &Mesh, v: VertexId, scheme: Scheme) -> bool {
         self.load_at(mesh, |w| mesh.position(w).as_dvec3(), v, scheme)
     }
@@ -24,6 +25,9 @@ impl Ring {
         v: VertexId,
         scheme: Scheme,
     ) -> bool {
+        if scheme == Scheme::Bilinear {
+            return false;
+        }
         self.scheme = scheme;
         self.method = mesh.options().crease;
         self.triangles = mesh.options().triangles;
@@ -104,7 +108,8 @@ impl Ring {
         let sharp = [subdiv_mesh::SHARPNESS_INFINITE; 2];
         let far = [(0.0, 0); 2];
         match scheme {
-            Scheme::CatmullClark => {
+            // (Never bilinear: `load_at` refuses it.)
+            Scheme::CatmullClark | Scheme::Bilinear => {
                 let diag = [ends[0] + ends[1] - center];
                 self.load_quads(method, center, vs, true, &ends, &sharp, &far, &diag);
             }

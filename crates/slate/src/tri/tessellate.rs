@@ -7,14 +7,13 @@ use glam::Vec3A;
 use rayon::prelude::*;
 use subdiv_mesh::Mesh;
 use subdiv_rules::{
-    Budget, Depth, LimitMesh, MAX_DEPTH, Request, RulesError, Scheme, check_doubled_triangles,
-    tessellate_uniform,
+    Depth, LimitMesh, MAX_DEPTH, RulesError, Scheme, check_doubled_triangles, tessellate_uniform,
 };
 
 use super::layout::{TriLayout, TriPatch, interior_offset};
 use super::limit::LimitScratch;
 use super::worker::TriWorker;
-use crate::tessellate::{MAX_POINTS, SharedOut, SlateError};
+use crate::tessellate::{SharedOut, SlateError};
 
 /// Tessellates the Loop limit surface of `mesh` (triangles only) uniformly at `depth` with the
 /// triangular slates: every triangle of the level-`depth` refinement, with the exact limit points
@@ -39,27 +38,8 @@ pub fn tessellate_tri(mesh: &Mesh, depth: Depth) -> Result<LimitMesh, SlateError
         subdiv_rules::SeamCurves::new(mesh).write_uniform(mesh, 0, 0, out.positions_mut());
         return Ok(out);
     }
-    if depth > MAX_DEPTH {
-        return Err(SlateError::TooDeep {
-            depth,
-            max: MAX_DEPTH,
-        });
-    }
-    // Refuse before allocating: beyond this machine's memory, then beyond `MAX_POINTS`.
-    Budget::machine().check(
-        mesh,
-        Request::Uniform {
-            scheme: Scheme::Loop,
-            depth,
-        },
-    )?;
-    let estimate = (mesh.num_faces() as u64).saturating_mul(1u64 << (2 * depth)) / 2;
-    if estimate > MAX_POINTS {
-        return Err(SlateError::TooLarge {
-            depth,
-            points: estimate,
-        });
-    }
+    // Refuse before allocating: beyond the slates, this machine's memory or `MAX_POINTS`.
+    crate::size::check_uniform_size(mesh, Scheme::Loop, depth)?;
     let layout = TriLayout::new(mesh, depth)?;
     let mut out = LimitMesh::default();
     tessellate_tri_layout_into(mesh, &layout, &mut out)?;

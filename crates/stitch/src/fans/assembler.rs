@@ -198,6 +198,13 @@ impl Assembler {
         v
     }
 
+    /// After the cage's positions moved (its topology the same): the local level-1 points follow
+    /// ([`PatchSet::move_to`]) and every cached block is dropped; the patches stay.
+    pub fn move_to(&mut self, mesh: &Mesh) {
+        self.set.move_to(mesh);
+        self.invalidate();
+    }
+
     /// Drops all cached blocks (e.g. after the mesh's positions changed).
     pub fn invalidate(&mut self) {
         for b in &mut self.blocks {

@@ -29,6 +29,42 @@ pub(super) fn write(path: &Path, s: &LimitMesh, binary: bool) -> Result<(), Expo
         let a = push_floats(&mut root, &mut bin, uv, Type::Vec2);
         attributes.insert(Valid(Semantic::TexCoords(0)), a);
     }
+    for (attr, i, first, n) in super::gltf_attributes(s) {
+        let c = &s.channels()[i];
+        let rows = (0..c.num_values()).map(|v| &c.value(v)[first..first + n]);
+        let a = match n {
+            1 => push_floats(
+                &mut root,
+                &mut bin,
+                &rows.map(|r| [r[0]]).collect::<Vec<_>>(),
+                Type::Scalar,
+            ),
+            2 => push_floats(
+                &mut root,
+                &mut bin,
+                &rows.map(|r| [r[0], r[1]]).collect::<Vec<_>>(),
+                Type::Vec2,
+            ),
+            3 => push_floats(
+                &mut root,
+                &mut bin,
+                &rows.map(|r| [r[0], r[1], r[2]]).collect::<Vec<_>>(),
+                Type::Vec3,
+            ),
+            _ => push_floats(
+                &mut root,
+                &mut bin,
+                &rows.map(|r| [r[0], r[1], r[2], r[3]]).collect::<Vec<_>>(),
+                Type::Vec4,
+            ),
+        };
+        let semantic = match attr {
+            super::ChannelAttribute::Color => Semantic::Colors(0),
+            super::ChannelAttribute::TexCoord(k) => Semantic::TexCoords(k as u32),
+            super::ChannelAttribute::Custom(name) => Semantic::Extras(name),
+        };
+        attributes.insert(Valid(semantic), a);
+    }
     if let Some((kind, values)) = s.scalar() {
         let one: Vec<[f32; 1]> = values.iter().map(|&v| [v]).collect();
         let a = push_floats(&mut root, &mut bin, &one, Type::Scalar);

@@ -19,13 +19,22 @@ pub(super) fn write(path: &Path, s: &LimitMesh) -> Result<(), ExportError> {
     if vertex_uvs(s).is_some() {
         head.push_str("property float s\nproperty float t\n");
     }
+    let mut channel_floats = 0;
+    for c in s.channels() {
+        for p in super::ply_properties(&c.name, c.width) {
+            let _ = writeln!(head, "property float {p}");
+        }
+        channel_floats += c.width;
+    }
     if let Some((kind, _)) = s.scalar() {
         let _ = writeln!(head, "property float {}", kind.ply_property());
     }
     let _ = writeln!(head, "element face {}", s.face_indices().len() / 3);
     head.push_str("property list uchar uint vertex_indices\nend_header\n");
-    let floats =
-        6 + if vertex_uvs(s).is_some() { 2 } else { 0 } + usize::from(s.scalar().is_some());
+    let floats = 6
+        + if vertex_uvs(s).is_some() { 2 } else { 0 }
+        + channel_floats
+        + usize::from(s.scalar().is_some());
     let mut out = Vec::with_capacity(head.len() + n * floats * 4 + s.face_indices().len() / 3 * 13);
     out.extend_from_slice(head.as_bytes());
     for i in 0..n {
@@ -34,6 +43,9 @@ pub(super) fn write(path: &Path, s: &LimitMesh) -> Result<(), ExportError> {
         s.normals()[i].into_iter().for_each(&mut put);
         if let Some(uv) = vertex_uvs(s) {
             uv[i].into_iter().for_each(&mut put);
+        }
+        for c in s.channels() {
+            c.value(i).iter().copied().for_each(&mut put);
         }
         if let Some((_, v)) = s.scalar() {
             put(v[i]);

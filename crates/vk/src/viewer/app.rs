@@ -2,7 +2,6 @@
 //! title and screenshots. The GPU side lives in [`super::gpu`].
 
 use std::collections::VecDeque;
-use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -17,12 +16,16 @@ use winit::window::{Window, WindowId};
 use super::gpu::{Drawn, Gpu};
 use super::hud::{self, HudState};
 use super::input::{Drag, drag, draws_continuously};
-use super::{FrameControl, Fault, FrameRequest, FrameSource, ViewerOptions, ViewerReport};
+use super::playback::{PlaybackKey, Player};
+use super::{Fault, FrameControl, FrameRequest, FrameSource, ViewerOptions, ViewerReport};
 use crate::error::{Result, VkError};
 use crate::image_io::write_png;
 use crate::scene::{OrbitCamera, RenderOptions, Shading, View};
 
 mod faults;
+mod text;
+
+use text::numbered;
 
 /// See [`super::run`].
 pub(super) fn run(source: &mut dyn FrameSource, options: ViewerOptions) -> Result<ViewerReport> {
@@ -50,6 +53,7 @@ pub(super) fn run(source: &mut dyn FrameSource, options: ViewerOptions) -> Resul
         control: options.control,
         hud: options.hud,
         frozen: None,
+        player: options.playback.map(|p| Player::new(p, Instant::now())),
         left: false,
         middle: false,
         modifiers: ModifiersState::empty(),
@@ -105,6 +109,8 @@ struct App<'s> {
     control: FrameControl,
     hud: bool,
     frozen: Option<View>,
+    /// Playback of an animated source ([`ViewerOptions::playback`]).
+    player: Option<Player>,
     /// Mouse buttons held: left rotates (pans with shift), middle pans.
     left: bool,
     middle: bool,
@@ -171,6 +177,16 @@ impl App<'_> {
             self.reset_view();
             return;
         }
+        let playback = match key.as_ref() {
+            Key::Named(NamedKey::Space) => Some(PlaybackKey::PlayPause),
+            Key::Named(NamedKey::ArrowLeft) => Some(PlaybackKey::StepBack),
+            Key::Named(NamedKey::ArrowRight) => Some(PlaybackKey::StepForward),
+            _ => None,
+        };
+        if let Some(k) = playback {
+            self.press(k);
+            return;
+        }
         let Key::Character(c) = key.as_ref() else {
             return;
         };
@@ -203,6 +219,13 @@ impl App<'_> {
         }
     }
 
+    /// A playback key (none without playback).
+    fn press(&mut self, key: PlaybackKey) {
+        if let Some(player) = self.player.as_mut() {
+            player.press(key, Instant::now());
+        }
+    }
+
     /// Back to the initial camera (`Home`, `F`).
     fn reset_view(&mut self) {
         if self.home.is_some() {
@@ -228,7 +251,7 @@ impl App<'_> {
             self.control.is_on(),
             self.options.screenshot_after,
             self.report.frames,
-        )
+        ) || self.player.as_ref().is_some_and(Player::playing)
     }
 
     fn current_view(&self) -> Option<View> {
@@ -383,6 +406,7 @@ impl App<'_> {
             control: self.control,
             last_frame_time: self.last_frame_time,
             frame_index: self.report.frames,
+            time: self.player.as_ref().map(|p| p.time_at(Instant::now())),
         };
         if provisional {
             let fitted = {
@@ -417,51 +441,6 @@ impl App<'_> {
         self.screenshot_requested = false;
         Ok(at_limit)
     }
-
-    /// The window title: fps, triangles, modes and the source's status.
-    fn title(&self, triangles: usize, status: &str) -> String {
-        let mut title = format!(
-            "{} | {:.1} fps | {} triangles | {}",
-            self.options.title,
-            self.fps,
-            triangles,
-            self.render.shading.name()
-        );
-        if self.render.wire_overlay {
-            title.push_str(" +wire");
-        }
-        if self.silhouettes {
-            title.push_str(" +silhouettes");
-        }
-        if self.frozen.is_some() {
-            title.push_str(" | culling camera frozen");
-        }
-        if self.control.is_on() {
-            title.push_str(&format!(
-                " | {} control, target {:.0} fps",
-                self.control.name(),
-                self.target_fps
-            ));
-        } else {
-            title.push_str(" | fps control off");
-        }
-        if !status.is_empty() {
-            title.push_str(" | ");
-            title.push_str(status);
-        }
-        title
-    }
-}
-
-/// `dir/name.png` → `dir/name-0003.png`.
-fn numbered(path: &std::path::Path, n: usize) -> PathBuf {
-    let stem = path
-        .file_stem()
-        .map_or_else(|| "screenshot".into(), |s| s.to_string_lossy().into_owned());
-    let ext = path
-        .extension()
-        .map_or_else(|| "png".into(), |s| s.to_string_lossy().into_owned());
-    path.with_file_name(format!("{stem}-{n:04}.{ext}"))
 }
 
 impl ApplicationHandler for App<'_> {
@@ -576,18 +555,5 @@ impl ApplicationHandler for App<'_> {
             self.dirty = false;
             window.request_redraw();
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn screenshots_are_numbered() {
-        assert_eq!(
-            numbered(std::path::Path::new("d/shot.png"), 3),
-            PathBuf::from("d/shot-0003.png")
-        );
     }
 }

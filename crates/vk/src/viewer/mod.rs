@@ -17,6 +17,7 @@ mod app;
 mod gpu;
 mod hud;
 mod input;
+mod playback;
 mod swapchain;
 
 use std::path::PathBuf;
@@ -25,6 +26,8 @@ use std::time::Duration;
 use crate::context::ContextOptions;
 use crate::error::Result;
 use crate::scene::{OrbitCamera, RenderMesh, RenderOptions, Shading, View};
+
+pub use playback::{Playback, PlaybackKey};
 
 /// The viewer's keys and mouse, as printed by `subdiv view` at start and in its `--help`.
 pub const KEY_HELP: &str = "\
@@ -37,7 +40,8 @@ Viewer controls:
   S  silhouette lines            Z  freeze the culling camera (its frustum is drawn)
   C  frame-rate control: off, budget (predictive), paper     +, -  target frame rate
   I  HUD on/off                  L  colour legend on/off
-  P  screenshot                  Esc, Q  quit";
+  P  screenshot                  Esc, Q  quit
+  Space  play/pause an animated cage   Left, Right  one time code back, on";
 
 /// The frame-rate control the viewer asks its source for; `C` cycles them in this order.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -99,6 +103,8 @@ pub struct FrameRequest {
     pub last_frame_time: Duration,
     /// Frame counter, from 0.
     pub frame_index: u64,
+    /// The time code to show, with [`ViewerOptions::playback`] (`None` without).
+    pub time: Option<f64>,
 }
 
 /// Geometry for one frame, borrowed from the source.
@@ -171,6 +177,10 @@ pub struct ViewerOptions {
     pub control: FrameControl,
     /// Render this many frames, save a screenshot to `screenshot_path`, exit.
     pub screenshot_after: Option<u32>,
+    /// An animated source's time range: frames ask for a time code
+    /// ([`FrameRequest::time`]), played at its rate while playing (frames back to back),
+    /// space pauses and plays, the arrow keys step one time code.
+    pub playback: Option<Playback>,
     /// Where screenshots go: this path for `screenshot_after`; for `P`, the
     /// same name with a counter (`shot.png` → `shot-0001.png`).
     pub screenshot_path: PathBuf,
@@ -203,6 +213,8 @@ pub enum Fault {
     Acquire(SwapchainFault),
     /// The next `vkQueuePresentKHR` presents, then reports this.
     Present(SwapchainFault),
+    /// A playback key pressed (space, an arrow key), as the keyboard would.
+    Press(PlaybackKey),
 }
 
 /// A result [`Fault::Acquire`] and [`Fault::Present`] inject. Test hook.
@@ -229,6 +241,7 @@ impl Default for ViewerOptions {
             target_fps: 30.0,
             control: FrameControl::Budget,
             screenshot_after: None,
+            playback: None,
             screenshot_path: PathBuf::from("screenshot.png"),
             context: ContextOptions::default(),
             faults: Vec::new(),

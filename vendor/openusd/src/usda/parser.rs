@@ -1322,7 +1322,13 @@ impl<'a> Parser<'a> {
         match self.peek_next() {
             Some(Ok(Token::Punctuation('('))) => is_tuple_type,
             Some(Ok(Token::Punctuation('['))) => is_tuple_type || info.is_array,
-            Some(Ok(Token::Number(_))) => info.ty == Type::TimeCode && !info.is_array,
+            // subdiv: a bare number for a scalar float type too (`float xformOp:rotateZ`
+            // samples `1: 0, 24: 90`, as Pixar's USD writes them), so that it is read as the
+            // declared type and interpolates linearly, not as the type-blind `Int64`, which
+            // USD's linear interpolation holds instead.
+            Some(Ok(Token::Number(_))) => {
+                !info.is_array && matches!(info.ty, Type::TimeCode | Type::Half | Type::Float | Type::Double)
+            }
             _ => false,
         }
     }

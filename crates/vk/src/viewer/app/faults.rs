@@ -23,6 +23,7 @@ impl App<'_> {
             }
             self.awaiting_size = None;
         }
+        let mut pressed = Vec::new();
         while let Some(&(frame, fault)) = self.faults.front()
             && frame <= self.report.frames
         {
@@ -33,7 +34,7 @@ impl App<'_> {
                     let size = PhysicalSize::new(w, h);
                     let _ = window.request_inner_size(size);
                     self.awaiting_size = Some((size, now));
-                    return;
+                    break;
                 }
                 Fault::Minimize => window.set_minimized(true),
                 Fault::ZeroWindow(d) => self.zero_window_until = now.checked_add(d),
@@ -43,7 +44,11 @@ impl App<'_> {
                 }
                 Fault::Acquire(f) => gpu.injected.acquire.push_back(f),
                 Fault::Present(f) => gpu.injected.present.push_back(f),
+                Fault::Press(k) => pressed.push(k),
             }
+        }
+        for k in pressed {
+            self.press(k);
         }
     }
 

@@ -1,0 +1,171 @@
+//! [`LimitChannel`]: a primvar evaluated on a tessellated surface, and the [`LimitMesh`]
+//! methods that hold them.
+
+use super::{LimitMesh, LimitMeshError};
+
+/// A primvar (`subdiv_mesh::Primvar`) on a tessellated surface: `width` floats per value,
+/// one value per vertex (vertex and constant primvars: their limit at each limit point) or
+/// per face corner through `indices` (face-varying, varying and uniform primvars, whose values
+/// differ between the faces at a point on a seam).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LimitChannel {
+    /// The primvar's name.
+    pub name: String,
+    /// Floats per value.
+    pub width: usize,
+    /// `width` floats per value.
+    pub values: Vec<f32>,
+    /// The value of every face corner (aligned with [`LimitMesh::face_indices`]), or empty:
+    /// one value per vertex, value `i` at vertex `i`.
+    pub indices: Vec<u32>,
+}
+
+impl LimitChannel {
+    /// Whether the channel has one value per vertex (else one per face corner).
+    #[inline]
+    pub fn per_vertex(&self) -> bool {
+        self.indices.is_empty()
+    }
+
+    /// Value `i` (`width` floats).
+    #[inline]
+    pub fn value(&self, i: usize) -> &[f32] {
+        &self.values[i * self.width..(i + 1) * self.width]
+    }
+
+    /// The value at face corner `c` of a surface with `face_indices`.
+    #[inline]
+    pub fn at_corner(&self, c: usize, face_indices: &[u32]) -> &[f32] {
+        if self.per_vertex() {
+            self.value(face_indices[c] as usize)
+        } else {
+            self.value(self.indices[c] as usize)
+        }
+    }
+
+    /// Number of values.
+    pub fn num_values(&self) -> usize {
+        self.values.len() / self.width.max(1)
+    }
+}
+
+impl LimitMesh {
+    /// The primvars evaluated on the surface, in the cage's order.
+    #[inline]
+    pub fn channels(&self) -> &[LimitChannel] {
+        &self.channels
+    }
+
+    /// The channel named `name`.
+    pub fn channel(&self, name: &str) -> Option<&LimitChannel> {
+        self.channels.iter().find(|c| c.name == name)
+    }
+
+    /// Adds a channel, checked: a positive width, whole values, one value per vertex or one
+    /// index per corner naming a value.
+    pub fn push_channel(&mut self, channel: LimitChannel) -> Result<(), LimitMeshError> {
+        let bad = |what: String| Err(LimitMeshError(format!("channel {}: {what}", channel.name)));
+        if channel.width == 0 || !channel.values.len().is_multiple_of(channel.width) {
+            return bad(format!(
+                "{} floats for width {}",
+                channel.values.len(),
+                channel.width
+            ));
+        }
+        let n = channel.num_values();
+        if channel.per_vertex() {
+            if n != self.positions.len() {
+                return bad(format!("{n} values for {} vertices", self.positions.len()));
+            }
+        } else if channel.indices.len() != self.face_indices.len() {
+            return bad(format!(
+                "{} indices for {} corners",
+                channel.indices.len(),
+                self.face_indices.len()
+            ));
+        } else if let Some(i) = channel.indices.iter().find(|&&i| i as usize >= n) {
+            return bad(format!("index {i} for {n} values"));
+        }
+        self.channels.push(channel);
+        Ok(())
+    }
+
+    /// Drops every channel.
+    pub fn clear_channels(&mut self) {
+        self.channels.clear();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn channels_are_checked_and_split_with_their_corners() {
+        let p = |x: f32, y: f32| [x, y, 0.0];
+        let mut m = LimitMesh::new(
+            vec![
+                p(0.0, 0.0),
+                p(1.0, 0.0),
+                p(1.0, 1.0),
+                p(0.0, 1.0),
+                p(2.0, 0.0),
+            ],
+            vec![[0.0, 0.0, 1.0]; 5],
+            vec![0, 4, 7],
+            vec![0, 1, 2, 3, 1, 4, 2],
+        )
+        .unwrap();
+        let per_vertex = LimitChannel {
+            name: "displayColor".into(),
+            width: 3,
+            values: (0..15).map(|x| x as f32).collect(),
+            indices: Vec::new(),
+        };
+        m.push_channel(per_vertex.clone()).unwrap();
+        // One value per face: the corners of vertices 1 and 2 differ between the faces.
+        let per_face = LimitChannel {
+            name: "opacity".into(),
+            width: 1,
+            values: vec![0.25, 0.75],
+            indices: vec![0, 0, 0, 0, 1, 1, 1],
+        };
+        m.push_channel(per_face.clone()).unwrap();
+        let wrong = LimitChannel {
+            indices: vec![0; 6],
+            ..per_face.clone()
+        };
+        assert!(m.push_channel(wrong).is_err());
+        let short = LimitChannel {
+            values: vec![0.0; 12],
+            ..per_vertex.clone()
+        };
+        assert!(m.push_channel(short).is_err());
+        // The split form: a vertex per distinct (vertex, value); every channel per vertex.
+        let s = m.split_sided(true);
+        assert_eq!(s.num_vertices(), 7);
+        let (c, o) = (
+            s.channel("displayColor").unwrap(),
+            s.channel("opacity").unwrap(),
+        );
+        assert!(c.per_vertex() && o.per_vertex());
+        for t in 0..s.num_faces() {
+            for (k, &v) in s.face(t).iter().enumerate() {
+                let orig = m.face_indices()[if t == 0 {
+                    [0, 1, 2][k]
+                } else if t == 1 {
+                    [0, 2, 3][k]
+                } else {
+                    [4, 5, 6][k]
+                }] as usize;
+                assert_eq!(c.value(v as usize), per_vertex.value(orig));
+            }
+            let want = if t < 2 { 0.25 } else { 0.75 };
+            assert!(s.face(t).iter().all(|&v| o.value(v as usize) == [want]));
+        }
+        // Without splitting by corners, per-corner channels are left out.
+        let r = m.split_sided(false);
+        assert_eq!(r.channels().len(), 1);
+        assert_eq!(r.channels()[0].values, per_vertex.values);
+    }
+}

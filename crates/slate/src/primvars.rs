@@ -1,0 +1,200 @@
+//! A cage's primvars on its uniform tessellations ([`tessellate_primvars`]): one
+//! [`LimitChannel`] per primvar, in the numbering of the surface the same scheme and depth give.
+//!
+//! Every primvar goes through the tessellator that makes the surface, so that it meets the
+//! surface's numbering, rules and exactness without a rule of its own:
+//! - **vertex**: three floats at a time stand in for the cage's positions, in the layout made
+//!   from the cage (its seams and numbering), so each output point gets their limit with the
+//!   position's masks (sharpness included): OpenSubdiv's `Interpolate` then `Limit`;
+//! - **face-varying**: two floats at a time stand in for the texture coordinates, under the
+//!   cage's face-varying option: `InterpolateFaceVarying` then `LimitFaceVarying`;
+//! - **varying**: as face-varying with one value per vertex and the option `All` (linear
+//!   everywhere: face values centroids, edge values midpoints, vertex values kept),
+//!   `InterpolateVarying`, whose values are their own limit;
+//! - **uniform**: as face-varying with one value per face and `All`: constant on each face;
+//! - **constant**: the one value at every point.
+
+use std::collections::HashMap;
+
+use glam::{Vec2, Vec3};
+use subdiv_mesh::{FVarLinearInterpolation, FaceVarying, Mesh, Primvar, PrimvarInterpolation};
+use subdiv_rules::{Depth, LimitChannel, LimitMesh, Scheme, SeamCurves, limit_surface};
+
+use crate::bilinear::tessellate_bilinear;
+use crate::moving::UniformTessellator;
+use crate::tessellate::{SlateError, tessellate};
+use crate::tri::tessellate_tri;
+
+/// Appends to `surface` (the uniform `scheme` tessellation of `mesh` at `depth`) one channel
+/// per primvar of `mesh` (see the module notes); nothing for a cage without primvars.
+pub fn tessellate_primvars(
+    mesh: &Mesh,
+    scheme: Scheme,
+    depth: Depth,
+    surface: &mut LimitMesh,
+) -> Result<(), SlateError> {
+    if mesh.primvars().is_empty() {
+        return Ok(());
+    }
+    let mut vertex_pass: Option<VertexPass> = None;
+    for p in mesh.primvars() {
+        let channel = match p.interpolation {
+            PrimvarInterpolation::Constant => LimitChannel {
+                name: p.name.clone(),
+                width: p.width,
+                values: p.element(0).repeat(surface.num_vertices()),
+                indices: Vec::new(),
+            },
+            PrimvarInterpolation::Vertex => {
+                let pass = match &mut vertex_pass {
+                    Some(pass) => pass,
+                    None => vertex_pass.insert(VertexPass::new(mesh, scheme, depth)?),
+                };
+                pass.channel(p)?
+            }
+            PrimvarInterpolation::Varying | PrimvarInterpolation::Uniform => {
+                face_varying_channel(mesh, scheme, depth, p, FVarLinearInterpolation::All)?
+            }
+            PrimvarInterpolation::FaceVarying => {
+                face_varying_channel(mesh, scheme, depth, p, mesh.options().fvar)?
+            }
+        };
+        surface.push_channel(channel)?;
+    }
+    Ok(())
+}
+
+/// Vertex primvars three floats at a time as the positions of the cage's layout.
+struct VertexPass {
+    /// The cage without face-varying data (its layout's seams and numbering).
+    base: Mesh,
+    moving: UniformTessellator,
+    depth: Depth,
+}
+
+impl VertexPass {
+    fn new(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<VertexPass, SlateError> {
+        let mut base = mesh.clone();
+        base.clear_uv();
+        base.clear_primvars();
+        let moving = UniformTessellator::new(&base, scheme, depth)?;
+        Ok(VertexPass {
+            base,
+            moving,
+            depth,
+        })
+    }
+
+    /// The limit of `p` (one value per vertex) at every output point.
+    fn channel(&mut self, p: &Primvar) -> Result<LimitChannel, SlateError> {
+        let w = p.width;
+        let mut values = Vec::new();
+        let mut stand_in = self.base.clone();
+        for chunk in 0..w.div_ceil(3) {
+            for (v, q) in stand_in.positions_mut().iter_mut().enumerate() {
+                let e = p.element(v);
+                let c = |k: usize| e.get(3 * chunk + k).copied().unwrap_or(0.0);
+                *q = Vec3::new(c(0), c(1), c(2));
+            }
+            let points = if self.depth == 0 {
+                // The cage's own limit points; seams keyed by the cage's real positions.
+                let mut out = limit_surface(&stand_in, self.moving.scheme());
+                SeamCurves::new(&self.base).write_uniform(&stand_in, 0, 0, out.positions_mut());
+                out.positions().to_vec()
+            } else {
+                self.moving.update(&stand_in)?.positions().to_vec()
+            };
+            if values.is_empty() {
+                values = vec![0.0; points.len() * w];
+            }
+            for (i, q) in points.iter().enumerate() {
+                for k in 0..3.min(w - 3 * chunk) {
+                    values[i * w + 3 * chunk + k] = q[k];
+                }
+            }
+        }
+        Ok(LimitChannel {
+            name: p.name.clone(),
+            width: w,
+            values,
+            indices: Vec::new(),
+        })
+    }
+}
+
+/// A varying, uniform or face-varying primvar two floats at a time as the texture coordinates
+/// of the cage under `option`: one value per face corner.
+fn face_varying_channel(
+    mesh: &Mesh,
+    scheme: Scheme,
+    depth: Depth,
+    p: &Primvar,
+    option: FVarLinearInterpolation,
+) -> Result<LimitChannel, SlateError> {
+    // The value of every corner: the corner's, the vertex's or the face's.
+    let (offsets, verts) = mesh.face_lists();
+    let corner_element: Vec<u32> = match p.interpolation {
+        PrimvarInterpolation::FaceVarying => (0..verts.len() as u32).collect(),
+        PrimvarInterpolation::Varying => verts.iter().map(|v| v.0).collect(),
+        _ => (0..mesh.num_faces())
+            .flat_map(|f| std::iter::repeat_n(f as u32, (offsets[f + 1] - offsets[f]) as usize))
+            .collect(),
+    };
+    let indices: Vec<u32> = corner_element
+        .iter()
+        .map(|&e| p.indices[e as usize])
+        .collect();
+    let w = p.width;
+    let mut stand_in = mesh.clone();
+    stand_in.set_fvar_option(option);
+    let mut passes: Vec<(Vec<[f32; 2]>, Vec<u32>)> = Vec::new();
+    for chunk in 0..w.div_ceil(2) {
+        let values = (0..p.num_values())
+            .map(|i| {
+                let c = |k: usize| p.values.get(i * w + 2 * chunk + k).copied();
+                let second = if 2 * chunk + 1 < w { c(1) } else { None };
+                Vec2::new(c(0).unwrap_or(0.0), second.unwrap_or(0.0))
+            })
+            .collect();
+        let fv = FaceVarying {
+            values,
+            indices: indices.clone(),
+        };
+        stand_in
+            .set_uv(Some(fv))
+            .map_err(subdiv_rules::RulesError::Internal)?;
+        let out = match scheme {
+            Scheme::CatmullClark => tessellate(&stand_in, depth)?,
+            Scheme::Loop => tessellate_tri(&stand_in, depth)?,
+            Scheme::Bilinear => tessellate_bilinear(&stand_in, depth)?,
+        };
+        passes.push((out.uvs().to_vec(), out.uv_indices().to_vec()));
+    }
+    // One value per distinct tuple of the passes' values at a corner.
+    let corners = passes.first().map_or(0, |p| p.1.len());
+    let mut ids: HashMap<Vec<u32>, u32> = HashMap::new();
+    let (mut values, mut out_indices) = (Vec::new(), Vec::with_capacity(corners));
+    let mut key = Vec::with_capacity(passes.len());
+    for c in 0..corners {
+        key.clear();
+        key.extend(passes.iter().map(|(_, idx)| idx[c]));
+        let next = ids.len() as u32;
+        let id = *ids.entry(key.clone()).or_insert_with(|| {
+            for (chunk, (uvs, idx)) in passes.iter().enumerate() {
+                let t = uvs[idx[c] as usize];
+                values.push(t[0]);
+                if 2 * chunk + 1 < w {
+                    values.push(t[1]);
+                }
+            }
+            next
+        });
+        out_indices.push(id);
+    }
+    Ok(LimitChannel {
+        name: p.name.clone(),
+        width: w,
+        values,
+        indices: out_indices,
+    })
+}
