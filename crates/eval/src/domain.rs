@@ -137,6 +137,21 @@ impl Domain {
         }
     }
 
+    /// The point of the domain at `r = (r0, r1, r2)` in `[0, 1)^3`: uniformly distributed in
+    /// the domain's area when `r` is (the sub-face from `r2`).
+    pub fn sample(&self, r: [f64; 3]) -> [f64; 2] {
+        match *self {
+            Domain::Quad => [r[0], r[1]],
+            Domain::Triangle if r[0] + r[1] > 1.0 => [1.0 - r[0], 1.0 - r[1]],
+            Domain::Triangle => [r[0], r[1]],
+            Domain::SubFaces { corners, .. } => {
+                let k = ((r[2] * f64::from(corners)) as usize).min(corners as usize - 1);
+                let [x, y] = self.corner(k);
+                [x + 0.5 * r[0], y + 0.5 * r[1]]
+            }
+        }
+    }
+
     /// A short name of the domain for messages.
     pub fn describe(&self) -> String {
         match self {

@@ -253,6 +253,36 @@ impl<'m> Evaluator<'m> {
     }
 }
 
+/// `n` random queries on `eval`'s cage, reproducible from `seed`: faces uniformly among
+/// those that are not holes, `(u, v)` uniformly in each face's domain ([`Domain::sample`]).
+/// Empty when every face is a hole.
+pub fn random_queries(eval: &Evaluator<'_>, n: usize, seed: u64) -> Vec<Query> {
+    let faces: Vec<u32> = (0..eval.mesh.num_faces() as u32)
+        .filter(|&f| !eval.mesh.is_hole(FaceId(f)))
+        .collect();
+    if faces.is_empty() {
+        return Vec::new();
+    }
+    // SplitMix64 (Steele, Lea and Flood 2014).
+    let mut state = seed;
+    let mut next = move || {
+        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    };
+    let mut unit = move || (next() >> 11) as f64 / (1u64 << 53) as f64;
+    (0..n)
+        .map(|_| {
+            let face = faces[((unit() * faces.len() as f64) as usize).min(faces.len() - 1)];
+            let domain = Domain::of(eval.scheme, eval.mesh.face_size(FaceId(face)));
+            let [u, v] = domain.sample([unit(), unit(), unit()]);
+            Query { face, u, v }
+        })
+        .collect()
+}
+
 impl From<Sample> for UvSample {
     fn from(s: Sample) -> UvSample {
         UvSample {

@@ -62,7 +62,7 @@ mod surface;
 mod uv;
 
 pub use domain::Domain;
-pub use evaluator::{Derivatives, Evaluator, Query, Sample, UvSample};
+pub use evaluator::{Derivatives, Evaluator, Query, Sample, UvSample, random_queries};
 pub use surface::FaceSurface;
 
 use thiserror::Error;
