@@ -2,8 +2,11 @@
 //! crease or corner vertex whose sector is not a regular half-plane, a copy of a non-manifold
 //! vertex. The patches around such a vertex shrink towards it level by level; the point
 //! itself is the vertex's limit from its ring (`subdiv-rules`' [`Ring`] limit masks, taken
-//! once no semi-sharp feature is left), refined on until the masks' position and normal no
-//! longer change from one level to the next: where OpenSubdiv's masks are not the limit of the
+//! once no semi-sharp feature is left). At a corner (the vertex stays put) the normal of the
+//! face's side is that of its sector, spanned by the two sharp edges bounding it (their crease
+//! curves start along them): OpenSubdiv's corner masks take the first two edges of the ring
+//! instead, which are not the sector's where it has more than one face. Elsewhere the ring is
+//! refined on until the masks' position and normal no longer change from one level to the next: where OpenSubdiv's masks are not the limit of the
 //! rules it applies (a dart, a smooth vertex of valence 2, a crease or corner vertex whose
 //! sector is not a regular half-plane: Biermann et al.'s tangent masks are those of their
 //! modified rules), that is the limit of the level-by-level values, to rounding (the ring is
@@ -53,7 +56,16 @@ pub(crate) fn corner_limit(ring: &Ring, f: usize, scheme: Scheme) -> CornerLimit
         .fold(0.0, f64::max);
     let mut faces = Vec::new();
     let (mut position, mut normal) = sided(&mut r, f, &mut faces);
-    while levels < MAX_LEVELS {
+    let corner = Rule::determine(r.vertex_sharpness(), r.edge_sharpnesses()) == Rule::Corner;
+    let sector = if corner && !r.has_master() {
+        sector_normal(&r, f, position)
+    } else {
+        None
+    };
+    if let Some(n) = sector {
+        normal = n;
+    }
+    while levels < MAX_LEVELS && sector.is_none() {
         let mut next = r.clone();
         next.refine();
         let (p, n) = sided(&mut next, f, &mut faces);
@@ -66,11 +78,56 @@ pub(crate) fn corner_limit(ring: &Ring, f: usize, scheme: Scheme) -> CornerLimit
     }
     let level_scale = 2f64.powi(levels as i32);
     let (next, prev) = side_tangents(&r, f, scheme, position, normal);
+    let (next, prev) = facing(next, prev, normal);
     CornerLimit {
         position: position + origin,
         next: next * level_scale,
         prev: prev * level_scale,
     }
+}
+
+/// At a corner (the vertex stays, its sharp edges' crease curves start along those edges):
+/// the normal of the sector holding face `f`, spanned by the two sharp edges that bound it and
+/// oriented like its faces; `None` where one sharp edge or none bounds it (a cone point).
+fn sector_normal(r: &Ring, f: usize, p: DVec3) -> Option<DVec3> {
+    let n = r.valence();
+    let sharp = |i: usize| subdiv_rules::crease::is_infinite(r.edge_sharpnesses()[i % n]);
+    let back = (0..n).map(|k| (f + n - k) % n).find(|&i| sharp(i))?;
+    let ahead = (1..=n).map(|k| (f + k) % n).find(|&i| sharp(i))?;
+    if back == ahead {
+        return None;
+    }
+    let e = |i: usize| r.edge(i % n) - p;
+    let mut area = DVec3::ZERO;
+    let mut i = back;
+    while i % n != ahead {
+        area += e(i).cross(e(i + 1));
+        i += 1;
+    }
+    let v = e(back).cross(e(ahead));
+    let len = v.length();
+    if len <= 1e-12 * e(back).length() * e(ahead).length() || !len.is_finite() {
+        return None;
+    }
+    Some(if v.dot(area) < 0.0 { -v / len } else { v / len })
+}
+
+/// The tangents `next`, `prev` made to span the plane of `n` with `next x prev` along `n`:
+/// kept where they do (to rounding), else `prev` replaced by `next` turned a quarter about `n`
+/// (a folded or degenerate ring, or a copy of a non-manifold vertex whose limit is another
+/// copy's), so that the derivatives' normal is the exact limit normal everywhere.
+fn facing(next: DVec3, prev: DVec3, n: DVec3) -> (DVec3, DVec3) {
+    let c = next.cross(prev);
+    if n == DVec3::ZERO || c.dot(n) >= (1.0 - 1e-12) * c.length() && c.length() > 0.0 {
+        return (next, prev);
+    }
+    let next = if next.cross(n).length_squared() > 0.0 {
+        next - n * next.dot(n)
+    } else {
+        n.any_orthogonal_vector()
+    };
+    let len = prev.length().max(next.length());
+    (next, n.cross(next).normalize_or_zero() * len)
 }
 
 /// The tangents along ring edges `f` and `f + 1` (see the module docs), for sides as long as

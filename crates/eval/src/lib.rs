@@ -57,12 +57,14 @@ mod basis;
 mod corner;
 mod domain;
 mod evaluator;
+mod lattice;
 mod patch;
 mod surface;
 mod uv;
 
 pub use domain::Domain;
 pub use evaluator::{Derivatives, Evaluator, Query, Sample, UvSample, random_queries};
+pub use lattice::refined_faces;
 pub use surface::FaceSurface;
 
 use thiserror::Error;

@@ -178,12 +178,15 @@ pub fn short_round(root: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Compiles `xtask/osd/<name>.cpp` unless the binary is newer than its source.
-fn build_harness(root: &Path, name: &str) -> Result<PathBuf> {
+/// Compiles `xtask/osd/<name>.cpp` unless the binary is newer than its source and the
+/// shared header `xtask/osd/obj_cage.h`.
+pub(crate) fn build_harness(root: &Path, name: &str) -> Result<PathBuf> {
     let src = root.join(format!("xtask/osd/{name}.cpp"));
+    let header = root.join("xtask/osd/obj_cage.h");
     let exe = xtask::target_dir().join(format!("osd/{name}"));
     let modified = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
-    if modified(&exe).is_some_and(|e| modified(&src).is_some_and(|s| e >= s)) {
+    let newest = modified(&src).max(modified(&header));
+    if modified(&exe).is_some_and(|e| newest.is_some_and(|s| e >= s)) {
         return Ok(exe);
     }
     std::fs::create_dir_all(exe.parent().expect("has a parent"))?;

@@ -14,6 +14,7 @@
 //!   that the test in `figures_check.rs` runs in `cargo test --workspace`.
 
 mod bench_osd;
+mod eval_refs;
 #[cfg(feature = "figures")]
 mod figures_cc;
 #[cfg_attr(not(feature = "figures"), allow(dead_code))]
@@ -163,10 +164,11 @@ fn main() -> Result<()> {
             fuzz_osd::Options::parse(&args[1..]).and_then(|o| fuzz_osd::command(&root(), &o))
         }
         Some("fuzz-osd-round") => fuzz_osd::short_round(&root()),
+        Some("eval-refs") => eval_refs::run(&root(), &args[1..]),
         Some("golden") => golden::Options::parse(&args[1..]).and_then(|o| golden::run(&root(), &o)),
         _ => {
             eprintln!(
-                "usage: xtask-tools <figures [doi|cc|text]|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I] [--fvar]|fuzz-osd-round|plot-quality [--shading] STEM LABEL=FILE...>; run it through `cargo xtask`"
+                "usage: xtask-tools <figures [doi|cc|text]|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I] [--fvar]|fuzz-osd-round|eval-refs [LEVEL]|plot-quality [--shading] STEM LABEL=FILE...>; run it through `cargo xtask`"
             );
             std::process::exit(2);
         }
