@@ -138,6 +138,67 @@ impl DeepLimits {
     }
 }
 
+/// Bfr's distance to deep refinement (x diagonal) at a dyadic point that shows Bfr is not the
+/// limit surface of a cage: a thousand times subdiv's there.
+pub const EXPLAINED: f64 = 1e-6;
+
+/// Bfr's largest distance to deep refinement (x diagonal) at the dyadic points of `queries`
+/// where subdiv is the deep refinement (within 1e-9 x diagonal), with its point.
+pub fn bfr_off_limit(
+    mesh: &Mesh,
+    scheme: Scheme,
+    queries: &[Query],
+    values: &[Option<BfrValue>],
+) -> (f64, String) {
+    let (Some(deep), Ok(eval)) = (DeepLimits::new(mesh, scheme), Evaluator::new(mesh, scheme))
+    else {
+        return (0.0, String::new());
+    };
+    let (lo, hi) = mesh.bounds();
+    let diag = f64::from((hi - lo).length()).max(f64::MIN_POSITIVE);
+    let mut worst = (0.0, String::new());
+    for (q, b) in queries.iter().zip(values) {
+        let (Some(b), Some(truth)) = (b, deep.at(*q)) else {
+            continue;
+        };
+        let Ok(s) = eval.evaluate(*q, Derivatives::First) else {
+            continue;
+        };
+        let mine = (s.position - truth).length() / diag;
+        let theirs = (b.d[0] - truth).length() / diag;
+        if mine <= 1e-9 && theirs > worst.0 {
+            worst = (theirs, format!("face {} ({}, {})", q.face, q.u, q.v));
+        }
+    }
+    worst
+}
+
+/// Compares subdiv with Bfr's `values` at `queries` ([`Agreement::measure`]): `Ok(None)`
+/// within the tolerances, `Ok(Some(why))` where Bfr is shown off the limit surface at a dyadic
+/// point ([`bfr_off_limit`] beyond [`EXPLAINED`]), `Err` for a disagreement.
+pub fn agree_or_explain(
+    mesh: &Mesh,
+    scheme: Scheme,
+    queries: &[Query],
+    values: &[Option<BfrValue>],
+) -> Result<Option<String>, String> {
+    let a = Agreement::measure(mesh, scheme, queries, values)?;
+    let uvs = values.iter().flatten().any(|v| v.uv.is_some());
+    match a.check(uvs) {
+        Ok(()) => Ok(None),
+        Err(e) => {
+            let (off, at) = bfr_off_limit(mesh, scheme, queries, values);
+            if off > EXPLAINED {
+                Ok(Some(format!(
+                    "{e}; Bfr {off:.2e} x diagonal from deep refinement at {at}"
+                )))
+            } else {
+                Err(format!("{e} (Bfr {off:.2e} from deep refinement at {at})"))
+            }
+        }
+    }
+}
+
 /// How subdiv and Bfr agree over a set of points.
 #[derive(Clone, Debug, Default)]
 pub struct Agreement {

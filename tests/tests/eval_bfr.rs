@@ -11,7 +11,8 @@ use subdiv::eval::{Derivatives, Evaluator};
 use subdiv_mesh::{CageOptions, read_cage};
 use subdiv_rules::Scheme;
 use subdiv_tests::eval_compare::{
-    Agreement, BfrValue, DeepLimits, POSITION_TOL, eval_fixtures, eval_reference_name, parse_bfr,
+    Agreement, BfrValue, DeepLimits, EXPLAINED, POSITION_TOL, bfr_off_limit, eval_fixtures,
+    eval_reference_name, parse_bfr,
 };
 use subdiv_tests::{fixture_files, fixtures};
 
@@ -91,34 +92,6 @@ fn references() -> Vec<EvalReference> {
     files.iter().map(|p| read(p)).collect()
 }
 
-/// Bfr's distance to deep refinement at the dyadic points of a reference where subdiv is the
-/// deep refinement (within 1e-9 x diagonal): the largest, with its point.
-fn bfr_from_deep(r: &EvalReference) -> (f64, String) {
-    let Some(deep) = DeepLimits::new(&r.mesh, r.scheme) else {
-        return (0.0, String::new());
-    };
-    let eval = Evaluator::new(&r.mesh, r.scheme).unwrap();
-    let (lo, hi) = r.mesh.bounds();
-    let diag = f64::from((hi - lo).length());
-    let mut worst = (0.0, String::new());
-    for (q, b) in r.queries.iter().zip(&r.values) {
-        let (Some(b), Some(truth)) = (b, deep.at(*q)) else {
-            continue;
-        };
-        let mine =
-            (eval.evaluate(*q, Derivatives::First).unwrap().position - truth).length() / diag;
-        let theirs = (b.d[0] - truth).length() / diag;
-        if mine <= 1e-9 && theirs > worst.0 {
-            worst = (theirs, format!("face {} ({}, {})", q.face, q.u, q.v));
-        }
-    }
-    worst
-}
-
-/// Bfr's distance to deep refinement (x diagonal) at a dyadic point that shows Bfr is not the
-/// limit surface of a cage: a thousand times subdiv's there.
-const EXPLAINED: f64 = 1e-6;
-
 /// Every fixture agrees with Bfr within the tolerances, or Bfr is shown not to be the limit
 /// surface there: at a dyadic point of the cage it is off deep refinement by more than the
 /// [`EXPLAINED`] while subdiv is on it (Bfr 3.5.0 reads Chaikin creases and non-manifold
@@ -135,7 +108,7 @@ fn every_fixture_agrees_with_bfr() {
         points += a.points;
         uvs += usize::from(with_uvs);
         if let Err(e) = a.check(with_uvs) {
-            let (off, at) = bfr_from_deep(&r);
+            let (off, at) = bfr_off_limit(&r.mesh, r.scheme, &r.queries, &r.values);
             // Bfr measurably off the limit (subdiv is within 1e-9 of it at the same points).
             if off > EXPLAINED {
                 explained.push(format!(

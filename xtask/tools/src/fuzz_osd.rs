@@ -7,7 +7,8 @@
 //! the limit where they have run out) and compares subdiv's uniform tessellation
 //! (`subdiv_rules::tessellate_uniform`) and the slate tessellator of its scheme with it
 //! (`subdiv_tests::osd_compare`: counts, faces, positions within 1e-5 x diagonal, smooth normals
-//! within 0.05 degrees). A disagreeing cage is printed with its seed and index, shrunk (faces
+//! within 0.05 degrees), and subdiv's exact evaluation at random points with OpenSubdiv's
+//! `Bfr::Surface` (`fuzz_eval`). A disagreeing cage is printed with its seed and index, shrunk (faces
 //! and tags dropped while it still disagrees) and written to
 //! `<target>/fuzz-osd/failing-<seed>-<index>.obj`; the smallest also to `failing-<seed>.obj`.
 //! Every cage the generator draws is meant to be valid: a finished cage that subdiv refused
@@ -204,6 +205,11 @@ pub(crate) fn build_harness(root: &Path, name: &str) -> Result<PathBuf> {
 
 struct Harness {
     exe: PathBuf,
+    /// `ref_eval`, the evaluation reference (`fuzz_eval`).
+    eval_exe: PathBuf,
+    /// Cages where Bfr is off the limit surface, and where its harness failed.
+    bfr_off: AtomicU64,
+    bfr_failed: AtomicU64,
     /// `ref_fvar`, the face-varying reference (with `--fvar`).
     fvar_exe: Option<PathBuf>,
     dir: PathBuf,
@@ -303,6 +309,18 @@ impl Harness {
             self.check_level(cage, &path, level)
                 .map_err(|e| (level, e))?;
         }
+        match crate::fuzz_eval::check(&self.eval_exe, &self.dir, cage, name) {
+            Ok(crate::fuzz_eval::Outcome::Agrees) => {}
+            Ok(crate::fuzz_eval::Outcome::BfrOff(why)) => {
+                println!("fuzz-osd: note: {name}: Bfr is off the limit surface: {why}");
+                self.bfr_off.fetch_add(1, Ordering::Relaxed);
+            }
+            Ok(crate::fuzz_eval::Outcome::BfrFailed(why)) => {
+                println!("fuzz-osd: note: {name}: ref_eval failed: {why}");
+                self.bfr_failed.fetch_add(1, Ordering::Relaxed);
+            }
+            Err(e) => return Err((levels.0, format!("evaluation: {e}"))),
+        }
         let _ = std::fs::remove_file(&path);
         Ok(())
     }
@@ -329,6 +347,9 @@ impl Harness {
 fn run(root: &Path, o: &Options) -> Result<Tally> {
     let harness = Harness {
         exe: build_harness(root, "ref_osd")?,
+        eval_exe: build_harness(root, "ref_eval")?,
+        bfr_off: AtomicU64::new(0),
+        bfr_failed: AtomicU64::new(0),
         fvar_exe: if o.fvar {
             Some(build_harness(root, "ref_fvar")?)
         } else {
@@ -396,6 +417,11 @@ fn run(root: &Path, o: &Options) -> Result<Tally> {
     failures.sort_by_key(|f| f.index);
     report(&harness, o, &failures)?;
     let total = indices.len() as u64;
+    println!(
+        "fuzz-osd: evaluation: Bfr off the limit surface on {} cages (shown by deep refinement), its harness failed on {}",
+        harness.bfr_off.load(Ordering::Relaxed),
+        harness.bfr_failed.load(Ordering::Relaxed)
+    );
     println!(
         "fuzz-osd: seed {} levels {}..{}: {} cages in {:.1} s ({workers} threads)",
         o.seed,

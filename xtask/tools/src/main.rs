@@ -29,6 +29,7 @@ mod figures_doi_text;
 mod figures_focus;
 #[cfg_attr(not(feature = "figures"), allow(dead_code))]
 mod figures_table;
+mod fuzz_eval;
 mod fuzz_osd;
 mod golden;
 #[cfg(feature = "figures")]
