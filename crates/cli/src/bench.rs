@@ -32,6 +32,8 @@ pub enum BenchWhat {
     /// `config=<name> triangles=<n> silhouette_px_max=<f> silhouette_px_p99=<f>
     /// shading_deg_p99=<f> update_ms=<f> render_ms=<f> shading_deg_p99_off_lines=<f>`.
     Quality(crate::bench_quality::BenchQualityArgs),
+    /// Exact evaluation throughput at (face, u, v) points (`subdiv evaluate`'s, batched).
+    Evaluate(crate::bench_evaluate::BenchEvaluateArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -78,6 +80,7 @@ impl BenchTessellateArgs {
 pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
     match &a.what {
         BenchWhat::Tessellate(t) => bench_tessellate(t),
+        BenchWhat::Evaluate(e) => crate::bench_evaluate::run(e),
         BenchWhat::Framerate(f) => crate::bench_framerate::run(f),
         BenchWhat::Quality(q) => crate::bench_quality::run(q),
     }

@@ -46,10 +46,7 @@ pub fn run(a: &EvaluateArgs) -> anyhow::Result<ExitCode> {
     let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, a.prim.as_deref())?;
     let scheme = crate::load::cage_scheme(&a.input, &cage, a.scheme.map(Scheme::from))?;
     let eval = Evaluator::new(&cage.mesh, scheme).map_err(|e| anyhow!("{input}: {e}"))?;
-    let queries = match a.uv.strip_prefix("random:") {
-        Some(spec) => random(&eval, spec)?,
-        None => read_points(&eval, &PathBuf::from(&a.uv))?,
-    };
+    let queries = points(&eval, &a.uv)?;
     let d = if a.second {
         Derivatives::Second
     } else {
@@ -105,6 +102,14 @@ fn line(out: &mut String, q: &Query, s: &Sample, second: bool) {
         );
     }
     out.push('\n');
+}
+
+/// The points of `--uv FILE|random:N[:SEED]`.
+pub fn points(eval: &Evaluator<'_>, uv: &str) -> anyhow::Result<Vec<Query>> {
+    match uv.strip_prefix("random:") {
+        Some(spec) => random(eval, spec),
+        None => read_points(eval, &PathBuf::from(uv)),
+    }
 }
 
 /// `random:N[:SEED]`.

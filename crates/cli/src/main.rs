@@ -6,6 +6,7 @@ mod out;
 
 mod adaptive_args;
 mod bench;
+mod bench_evaluate;
 mod bench_framerate;
 mod bench_quality;
 mod camera_args;

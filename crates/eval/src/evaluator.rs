@@ -9,6 +9,7 @@ use subdiv_rules::{RulesError, Scheme, check_coordinates, check_doubled_triangle
 
 use crate::EvalError;
 use crate::domain::Domain;
+use crate::plan::regular_plans;
 use crate::surface::FaceSurface;
 use crate::uv::{Uvs, linear_uv, uvs};
 
@@ -82,6 +83,10 @@ pub struct Evaluator<'m> {
     mesh: &'m Mesh,
     scheme: Scheme,
     uv: Option<Uvs>,
+    /// The control points of each fully regular face ([`crate::plan`]), of the cage and of the
+    /// UV cage.
+    plans: Vec<Option<[u32; 16]>>,
+    uv_plans: Vec<Option<[u32; 16]>>,
 }
 
 impl<'m> Evaluator<'m> {
@@ -96,7 +101,18 @@ impl<'m> Evaluator<'m> {
             check_doubled_triangles(mesh)?;
         }
         let uv = uvs(mesh)?;
-        Ok(Evaluator { mesh, scheme, uv })
+        let plans = regular_plans(mesh, scheme);
+        let uv_plans = match &uv {
+            Some(Uvs::Cage(m)) => regular_plans(m, scheme),
+            _ => Vec::new(),
+        };
+        Ok(Evaluator {
+            mesh,
+            scheme,
+            uv,
+            plans,
+            uv_plans,
+        })
     }
 
     /// The cage.
@@ -150,7 +166,8 @@ impl<'m> Evaluator<'m> {
     /// [`Evaluator::surface`] into an existing surface, reusing its buffers.
     pub fn load_surface(&self, face: u32, surface: &mut FaceSurface) -> Result<(), EvalError> {
         self.domain(face)?;
-        surface.load(self.mesh, self.scheme, FaceId(face));
+        let plan = self.plans[face as usize].as_ref();
+        surface.load(self.mesh, self.scheme, FaceId(face), plan);
         Ok(())
     }
 
@@ -158,7 +175,8 @@ impl<'m> Evaluator<'m> {
     pub fn evaluate(&self, q: Query, d: Derivatives) -> Result<Sample, EvalError> {
         let (sub, s, t) = self.locate(q)?;
         let mut surface = FaceSurface::new();
-        surface.load(self.mesh, self.scheme, FaceId(q.face));
+        let plan = self.plans[q.face as usize].as_ref();
+        surface.load(self.mesh, self.scheme, FaceId(q.face), plan);
         Ok(surface.eval_located(sub, s, t, d))
     }
 
@@ -170,7 +188,8 @@ impl<'m> Evaluator<'m> {
             Some(Uvs::Linear) => Some(self.linear(q.face, sub, s, t)),
             Some(Uvs::Cage(uv)) => {
                 let mut surface = FaceSurface::new();
-                surface.load(uv, self.scheme, FaceId(q.face));
+                let plan = self.uv_plans[q.face as usize].as_ref();
+                surface.load(uv, self.scheme, FaceId(q.face), plan);
                 Some(UvSample::from(surface.eval_located(
                     sub,
                     s,
@@ -197,7 +216,14 @@ impl<'m> Evaluator<'m> {
             "evaluate_many: one output per query"
         );
         let located = self.locate_all(queries)?;
-        batch(self.mesh, self.scheme, queries, &located, d, out);
+        batch(
+            (self.mesh, &self.plans),
+            self.scheme,
+            queries,
+            &located,
+            d,
+            out,
+        );
         Ok(())
     }
 
@@ -225,7 +251,7 @@ impl<'m> Evaluator<'m> {
         };
         let mut samples = vec![Sample::default(); queries.len()];
         batch(
-            uv,
+            (uv, &self.uv_plans),
             self.scheme,
             queries,
             &located,
@@ -311,7 +337,7 @@ impl FaceSurface {
 
 /// Evaluates located queries of `mesh` in parallel, one task per face's run of queries.
 fn batch(
-    mesh: &Mesh,
+    (mesh, plans): (&Mesh, &[Option<[u32; 16]>]),
     scheme: Scheme,
     queries: &[Query],
     located: &[(usize, f64, f64)],
@@ -353,7 +379,7 @@ fn batch(
         .into_par_iter()
         .for_each_init(FaceSurface::new, |surface, (range, slice)| {
             let face = queries[at(range.start)].face;
-            surface.load(mesh, scheme, FaceId(face));
+            surface.load(mesh, scheme, FaceId(face), plans[face as usize].as_ref());
             for (o, i) in slice.iter_mut().zip(range) {
                 let (sub, s, t) = located[at(i)];
                 *o = surface.eval_located(sub, s, t, d);

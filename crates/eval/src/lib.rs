@@ -59,6 +59,7 @@ mod domain;
 mod evaluator;
 mod lattice;
 mod patch;
+mod plan;
 mod surface;
 mod uv;
 

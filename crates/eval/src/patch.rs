@@ -41,11 +41,9 @@ impl Corners {
         self.faces.push(face);
     }
 
-    /// The corners rotated so that corner `start` comes first.
-    fn rotated(mut self, start: usize) -> Corners {
-        self.rings.rotate_left(start);
-        self.faces.rotate_left(start);
-        self
+    /// Its rings, borrowed.
+    pub(crate) fn refs(&self) -> Vec<&Ring> {
+        self.rings.iter().collect()
     }
 }
 
@@ -124,73 +122,102 @@ pub(crate) enum Layout {
     SubFaces,
 }
 
-/// One local refinement step: the corners of every child of `parent`, in child order
-/// (Catmull-Clark: [`Layout`]; Loop: the corner children `0, 1, 2` in the parent's
+/// A child of a refined patch: a regular patch, or the corners to refine it further.
+pub(crate) enum Kid {
+    Leaf(Box<RegularPatch>),
+    Pending(Corners),
+}
+
+/// One local refinement step: every child of `parent` (whose rings it refines in place), in
+/// child order (Catmull-Clark: [`Layout`]; Loop: the corner children `0, 1, 2` in the parent's
 /// orientation, then the middle triangle, turned half a turn: `(s, t) = (1 - 2 s, 1 - 2 t)`).
+/// Children are classified on the shared rings; only those refined further get their own.
 pub(crate) fn refine(
-    parent: &Corners,
+    mut parent: Corners,
     scheme: Scheme,
     method: CreaseMethod,
     layout: Layout,
-) -> Vec<Corners> {
+) -> Vec<Kid> {
     let n = parent.rings.len();
-    let rings: Vec<Ring> = parent
-        .rings
-        .iter()
-        .map(|r| {
-            let mut r = r.clone();
-            r.refine();
-            r
-        })
-        .collect();
-    let f = &parent.faces;
-    let side = |j: usize| {
+    for r in &mut parent.rings {
+        r.refine();
+    }
+    let (rings, f) = (&mut parent.rings, &parent.faces);
+    let side = |rings: &[Ring], j: usize| {
         let k = (j + 1) % n;
         match scheme {
             Scheme::CatmullClark => quad_side_ring(&rings[j], f[j], &rings[k], f[k], method),
             Scheme::Loop => tri_side_ring(&rings[j], f[j], &rings[k], f[k], method),
         }
     };
-    let sides: Vec<Ring> = (0..n).map(side).collect();
-    let mut kids = Vec::with_capacity(n + 1);
+    let sides: Vec<Ring> = (0..n).map(|j| side(rings, j)).collect();
+    // Each child's corners: (which ring: 0..n the refined corners, n..2n the sides, 2n the
+    // centre; the face in it), rotated to the child's orientation.
+    let mut plans: Vec<Vec<(usize, usize)>> = Vec::with_capacity(n + 1);
+    let mut centre = Ring::new();
     match scheme {
         Scheme::CatmullClark => {
             let edges: Vec<DVec3> = (0..n).map(|j| rings[j].edge(f[j])).collect();
             let diag: Vec<DVec3> = (0..n).map(|j| rings[(j + 1) % n].center()).collect();
             let (zero, none) = (vec![0.0; n], vec![(0.0, 0); n]);
-            let mut centre = Ring::new();
             let c = rings[0].diag(f[0]);
             centre.load_quads(method, c, 0.0, false, &edges, &zero, &none, &diag);
-            for k in 0..n {
+            for (k, &fk) in f.iter().enumerate() {
                 let prev = (k + n - 1) % n;
-                let mut c = Corners::default();
-                c.push(rings[k].clone(), f[k]);
-                c.push(sides[k].clone(), 1);
-                c.push(centre.clone(), prev);
-                c.push(sides[prev].clone(), 0);
-                kids.push(match layout {
-                    Layout::Quadrants => c.rotated((4 - k) % 4),
-                    Layout::SubFaces => c,
-                });
+                let mut plan = vec![(k, fk), (n + k, 1), (2 * n, prev), (n + prev, 0)];
+                if layout == Layout::Quadrants {
+                    plan.rotate_left((4 - k) % 4);
+                }
+                plans.push(plan);
             }
         }
         Scheme::Loop => {
-            for k in 0..3 {
+            for (k, &fk) in f.iter().enumerate() {
                 let prev = (k + 2) % 3;
-                let mut c = Corners::default();
-                c.push(rings[k].clone(), f[k]);
-                c.push(sides[k].clone(), 2);
-                c.push(sides[prev].clone(), 0);
-                kids.push(c.rotated((3 - k) % 3));
+                let mut plan = vec![(k, fk), (n + k, 2), (n + prev, 0)];
+                plan.rotate_left((3 - k) % 3);
+                plans.push(plan);
             }
-            let mut middle = Corners::default();
-            for j in [1, 2, 0] {
-                middle.push(sides[j].clone(), 1);
-            }
-            kids.push(middle);
+            plans.push(vec![(n + 1, 1), (n + 2, 1), (n, 1)]);
         }
     }
-    kids
+    let classes: Vec<Option<RegularPatch>> = plans
+        .iter()
+        .map(|plan| {
+            let refs: Vec<&Ring> = plan
+                .iter()
+                .map(|&(i, _)| {
+                    let r: &Ring = match i {
+                        i if i < n => &rings[i],
+                        i if i < 2 * n => &sides[i - n],
+                        _ => &centre,
+                    };
+                    r
+                })
+                .collect();
+            let faces: Vec<usize> = plan.iter().map(|&(_, f)| f).collect();
+            RegularPatch::of(&refs, &faces, scheme)
+        })
+        .collect();
+    plans
+        .iter()
+        .zip(classes)
+        .map(|(plan, class)| match class {
+            Some(p) => Kid::Leaf(Box::new(p)),
+            None => {
+                let mut c = Corners::default();
+                for &(i, face) in plan {
+                    let r = match i {
+                        i if i < n => std::mem::take(&mut rings[i]),
+                        i if i < 2 * n => sides[i - n].clone(),
+                        _ => centre.clone(),
+                    };
+                    c.push(r, face);
+                }
+                Kid::Pending(c)
+            }
+        })
+        .collect()
 }
 
 /// How a corner takes part in a regular patch.
@@ -308,14 +335,16 @@ pub(crate) struct Local {
 impl RegularPatch {
     /// The patch of `c` if every corner is regular-compatible and their sharp sides and lines
     /// fit a boundary mask.
-    pub(crate) fn of(c: &Corners, scheme: Scheme) -> Option<RegularPatch> {
-        let kinds: Vec<CornerKind> = c
-            .rings
-            .iter()
-            .zip(&c.faces)
-            .map(|(r, &f)| corner_kind(r, f, scheme))
-            .collect::<Option<_>>()?;
-        let n = kinds.len();
+    pub(crate) fn of(rings: &[&Ring], faces: &[usize], scheme: Scheme) -> Option<RegularPatch> {
+        let n = rings.len();
+        let mut kinds = [CornerKind {
+            next: false,
+            prev: false,
+            line: false,
+        }; 4];
+        for k in 0..n {
+            kinds[k] = corner_kind(rings[k], faces[k], scheme)?;
+        }
         let mut sides = 0u8;
         let mut lines = 0u8;
         for k in 0..n {
@@ -326,7 +355,7 @@ impl RegularPatch {
             lines |= u8::from(kinds[k].line) << k;
         }
         match scheme {
-            Scheme::CatmullClark => Some(Self::quad(c, sides)),
+            Scheme::CatmullClark => Some(Self::quad(rings, faces, sides)),
             Scheme::Loop => {
                 let mask = match (sides, lines) {
                     (e, 0) => e,
@@ -336,12 +365,12 @@ impl RegularPatch {
                     }
                     _ => return None,
                 };
-                Some(Self::triangle(c, mask))
+                Some(Self::triangle(rings, faces, mask))
             }
         }
     }
 
-    fn quad(c: &Corners, mask: u8) -> RegularPatch {
+    fn quad(rings: &[&Ring], faces: &[usize], mask: u8) -> RegularPatch {
         // Per corner: its position, and where its ring's points beyond the patch go (edge
         // neighbours in lattice directions 2 and 3, the quad after direction 2).
         const AT: [[(usize, usize); 4]; 4] = [
@@ -352,7 +381,7 @@ impl RegularPatch {
         ];
         let mut points = [DVec3::ZERO; 16];
         for k in 0..4 {
-            let (r, f) = (&c.rings[k], c.faces[k]);
+            let (r, f) = (rings[k], faces[k]);
             let at = |(i, j): (usize, usize)| 4 * j + i;
             points[at(AT[k][0])] = r.center();
             for (slot, p) in [
@@ -372,13 +401,13 @@ impl RegularPatch {
         }
     }
 
-    fn triangle(c: &Corners, mask: u8) -> RegularPatch {
+    fn triangle(rings: &[&Ring], faces: &[usize], mask: u8) -> RegularPatch {
         // Per corner: its index, and the indices of its edge neighbours in lattice directions
         // 3, 4 and 5.
         const AT: [[usize; 4]; 3] = [[4, 3, 0, 1], [5, 2, 6, 9], [8, 11, 10, 7]];
         let mut points = [DVec3::ZERO; 16];
         for k in 0..3 {
-            let (r, f) = (&c.rings[k], c.faces[k]);
+            let (r, f) = (rings[k], faces[k]);
             points[AT[k][0]] = r.center();
             for d in 3..6 {
                 if let Some(p) = lattice_edge(r, f, d, 6) {

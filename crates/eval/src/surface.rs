@@ -16,7 +16,7 @@ use subdiv_rules::{Ring, Scheme};
 
 use crate::corner::corner_limit;
 use crate::domain::Domain;
-use crate::patch::{self, Corners, Layout, Local, RegularPatch, corner_kind};
+use crate::patch::{self, Corners, Kid, Layout, Local, RegularPatch, corner_kind};
 use crate::{Derivatives, Sample};
 
 /// Deepest refinement below the root patch before a point takes its nearest corner's limit.
@@ -66,8 +66,15 @@ impl FaceSurface {
         self.domain.unwrap_or(Domain::Quad)
     }
 
-    /// Loads face `f` of `mesh` (valid, not a hole), keeping the buffers.
-    pub(crate) fn load(&mut self, mesh: &Mesh, scheme: Scheme, f: FaceId) {
+    /// Loads face `f` of `mesh` (valid, not a hole), keeping the buffers; `plan`: its control
+    /// points where it is one regular patch ([`crate::plan`]).
+    pub(crate) fn load(
+        &mut self,
+        mesh: &Mesh,
+        scheme: Scheme,
+        f: FaceId,
+        plan: Option<&[u32; 16]>,
+    ) {
         self.scheme = scheme;
         self.method = mesh.options().crease;
         self.face = f.0;
@@ -78,6 +85,23 @@ impl FaceSurface {
         self.nodes.clear();
         self.patches.clear();
         self.pending.clear();
+        if let Some(plan) = plan {
+            let mut points = [DVec3::ZERO; 16];
+            for (p, &v) in points.iter_mut().zip(plan) {
+                if v != crate::plan::NONE {
+                    *p = mesh.position(subdiv_mesh::VertexId(v)).as_dvec3();
+                }
+            }
+            let triangle = scheme == Scheme::Loop;
+            let leaf = self.leaf(RegularPatch {
+                points,
+                mask: 0,
+                triangle,
+            });
+            self.nodes.push(leaf);
+            self.roots.push(0);
+            return;
+        }
         self.root.rings.resize_with(n, Ring::new);
         self.root.faces.resize(n, 0);
         let mut h = mesh.face_halfedge(f);
@@ -89,16 +113,16 @@ impl FaceSurface {
             h = mesh.next(h);
         }
         if let Domain::SubFaces { .. } = domain {
-            let kids = patch::refine(&self.root, scheme, self.method, Layout::SubFaces);
-            for c in kids {
-                let node = self.node_for(c);
+            let root = std::mem::take(&mut self.root);
+            for kid in patch::refine(root, scheme, self.method, Layout::SubFaces) {
+                let node = self.node_for(kid);
                 self.roots.push(node);
             }
         } else {
-            let root = match RegularPatch::of(&self.root, scheme) {
+            let root = match RegularPatch::of(&self.root.refs(), &self.root.faces, scheme) {
                 Some(p) => self.leaf(p),
                 None => {
-                    self.pending.push(self.root.clone());
+                    self.pending.push(std::mem::take(&mut self.root));
                     Node::Pending(self.pending.len() as u32 - 1)
                 }
             };
@@ -112,11 +136,11 @@ impl FaceSurface {
         Node::Leaf(self.patches.len() as u32 - 1)
     }
 
-    /// A new node for the patch of `c`.
-    fn node_for(&mut self, c: Corners) -> u32 {
-        let node = match RegularPatch::of(&c, self.scheme) {
-            Some(p) => self.leaf(p),
-            None => {
+    /// A new node for a child.
+    fn node_for(&mut self, kid: Kid) -> u32 {
+        let node = match kid {
+            Kid::Leaf(p) => self.leaf(*p),
+            Kid::Pending(c) => {
                 self.pending.push(c);
                 Node::Pending(self.pending.len() as u32 - 1)
             }
@@ -131,7 +155,7 @@ impl FaceSurface {
             return;
         };
         let corners = std::mem::take(&mut self.pending[c as usize]);
-        let kids = patch::refine(&corners, self.scheme, self.method, Layout::Quadrants);
+        let kids = patch::refine(corners, self.scheme, self.method, Layout::Quadrants);
         let first = self.nodes.len() as u32;
         for kid in kids {
             self.node_for(kid);

@@ -385,3 +385,27 @@ fn errors_name_the_face() {
     let e = Evaluator::new(&mesh, Scheme::Loop).unwrap_err();
     assert!(e.to_string().contains("face 0 has 4 vertices"), "{e}");
 }
+
+/// The fast path of fully regular faces is the ring path, to the bit.
+#[test]
+fn regular_faces_fast_path_is_the_ring_path() {
+    let mut regular = 0;
+    for (name, mesh, scheme) in shapes() {
+        let plans = crate::plan::regular_plans(&mesh, scheme);
+        let mut rng = Rng::splitmix(5);
+        for f in mesh.faces() {
+            let Some(plan) = plans[f.idx()].as_ref() else {
+                continue;
+            };
+            regular += 1;
+            let (mut a, mut b) = (FaceSurface::new(), FaceSurface::new());
+            a.load(&mesh, scheme, f, Some(plan));
+            b.load(&mesh, scheme, f, None);
+            let [u, v] = random_point(&a.domain(), &mut rng, 0.0);
+            let sa = a.evaluate(u, v, Derivatives::Second).unwrap();
+            let sb = b.evaluate(u, v, Derivatives::Second).unwrap();
+            assert_eq!(sa, sb, "{name} face {f:?}");
+        }
+    }
+    assert!(regular > 300, "{regular}");
+}
