@@ -61,12 +61,14 @@ mod lattice;
 mod patch;
 mod plan;
 mod surface;
+mod tess;
 mod uv;
 
 pub use domain::Domain;
 pub use evaluator::{Derivatives, Evaluator, Query, Sample, UvSample, random_queries};
 pub use lattice::refined_faces;
 pub use surface::FaceSurface;
+pub use tess::{EdgeRates, MAX_RATE, Tessellation, tessellate_rates};
 
 use thiserror::Error;
 
@@ -103,6 +105,9 @@ pub enum EvalError {
     /// triangles; coordinates within `subdiv_rules::MAX_COORDINATE`).
     #[error(transparent)]
     Rules(#[from] subdiv_rules::RulesError),
+    /// A tessellation's output failed its own checks (a bug).
+    #[error("internal error: {0}")]
+    Internal(String),
     /// The UV cage (the cage cut along its seams) is not a valid mesh.
     #[error("the UVs' cage (cut along its seams) is invalid: {0}")]
     UvCage(subdiv_mesh::MeshError),
