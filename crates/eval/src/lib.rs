@@ -55,6 +55,7 @@
 
 mod basis;
 mod corner;
+mod dice;
 mod domain;
 mod evaluator;
 mod lattice;
@@ -64,6 +65,7 @@ mod surface;
 mod tess;
 mod uv;
 
+pub use dice::{CURVE_SEGMENTS, DEFAULT_OFFSCREEN_DICING_SCALE, Dicing, dice, dicing_rates};
 pub use domain::Domain;
 pub use evaluator::{Derivatives, Evaluator, Query, Sample, UvSample, random_queries};
 pub use lattice::refined_faces;
