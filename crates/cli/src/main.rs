@@ -11,6 +11,7 @@ mod bench_framerate;
 mod bench_quality;
 mod camera_args;
 mod choices;
+mod dicing_args;
 mod doi_args;
 mod evaluate;
 mod info;

@@ -131,19 +131,27 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     if a.surface.doi.kind().is_some() {
         return run_doi(a);
     }
-    if a.surface.is_adaptive(&a.camera)? {
+    let diced = a.surface.dicing_scene(&a.camera)?;
+    if diced.is_none() && a.surface.is_adaptive(&a.camera)? {
         return run_adaptive(a);
     }
     let render = a.style.render_options()?;
-    let (scene, scheme) = a.surface.uniform_scene()?;
+    // With --dicing-rate: diced once, for the starting camera.
+    let (scene, what) = match diced {
+        Some(d) => (d.scene, d.note),
+        None => {
+            let (scene, scheme) = a.surface.uniform_scene()?;
+            let what = format!(
+                "{}, depth {}",
+                value_name(&scheme),
+                a.surface.uniform_depth()
+            );
+            (scene, what)
+        }
+    };
     let (lo, hi) = scene.bounds();
     let (camera, orbit) = start_camera(a, lo, hi);
-    let title = format!(
-        "subdiv view {} ({}, depth {})",
-        a.surface.label(),
-        value_name(&scheme),
-        a.surface.uniform_depth()
-    );
+    let title = format!("subdiv view {} ({what})", a.surface.label());
     let mut source = UniformSource::new(scene);
     let options = ViewerOptions {
         title,

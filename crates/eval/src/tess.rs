@@ -22,7 +22,7 @@
 
 use glam::{DVec3, Vec3};
 use subdiv_mesh::{EdgeId, FaceId, HalfedgeId, Mesh, VertexId};
-use subdiv_rules::{LimitMesh, Scheme};
+use subdiv_rules::{LimitMesh, Scheme, VertexParams};
 
 use crate::{Derivatives, Domain, EvalError, Evaluator, Query, Sample};
 
@@ -504,11 +504,21 @@ pub fn tessellate_rates(
     }
     corner_normals.sort_by_key(|c| c.0);
     corner_normals.dedup_by_key(|c| c.0);
-    let params = b.points.iter().map(|q| (q.face, [q.u, q.v])).collect();
+    let params: Vec<(u32, [f64; 2])> = b.points.iter().map(|q| (q.face, [q.u, q.v])).collect();
+    let vertex_params = VertexParams {
+        face: params.iter().map(|p| p.0).collect(),
+        uv: params
+            .iter()
+            .map(|p| [p.1[0] as f32, p.1[1] as f32])
+            .collect(),
+    };
     let mut surface = LimitMesh::from_triangles(positions, normals, std::mem::take(&mut b.tris))
         .map_err(|e| EvalError::Internal(e.to_string()))?;
     surface
         .set_corner_normals(corner_normals)
+        .map_err(|e| EvalError::Internal(e.to_string()))?;
+    surface
+        .set_params(vertex_params)
         .map_err(|e| EvalError::Internal(e.to_string()))?;
     Ok(Tessellation {
         surface,

@@ -45,8 +45,8 @@ pub use fvar::{
     refine_face_varying_part, semi_sharp_levels,
 };
 pub use limit::{
-    KeyedWrite, LimitMesh, LimitMeshError, TopologyKey, TriangleBuffers, VertexScalar,
-    limit_surface, tessellate_uniform,
+    KeyedWrite, LimitMesh, LimitMeshError, TopologyKey, TriangleBuffers, VertexParams,
+    VertexScalar, limit_surface, tessellate_uniform,
 };
 pub use point::{Point, centroid};
 pub use refine::{

@@ -11,7 +11,9 @@ use crate::{Depth, RulesError, Scheme};
 mod mesh;
 mod split;
 mod topology;
-pub use mesh::{KeyedWrite, LimitMesh, LimitMeshError, TriangleBuffers, VertexScalar};
+pub use mesh::{
+    KeyedWrite, LimitMesh, LimitMeshError, TriangleBuffers, VertexParams, VertexScalar,
+};
 pub use topology::TopologyKey;
 use topology::TopologyStamp;
 
@@ -97,6 +99,7 @@ fn limit_surface_from(
             .unwrap_or_default(),
         uv_indices,
         scalar: None,
+        params: None,
         topology: TopologyStamp::default(),
     }
 }

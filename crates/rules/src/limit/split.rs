@@ -4,6 +4,7 @@
 use std::collections::HashMap;
 
 use super::LimitMesh;
+use super::mesh::VertexParams;
 
 impl LimitMesh {
     /// Triangulates the polygons (a fan per polygon) and gives every face corner with a
@@ -28,6 +29,13 @@ impl LimitMesh {
                 .scalar
                 .as_ref()
                 .map(|(k, v)| (*k, if by_uv { Vec::new() } else { v.clone() })),
+            params: self.params.as_ref().map(|p| {
+                if by_uv {
+                    VertexParams::default()
+                } else {
+                    p.clone()
+                }
+            }),
             ..LimitMesh::default()
         };
         let mut copies: HashMap<(u32, Option<[u32; 3]>, u32), u32> = HashMap::new();
@@ -57,6 +65,9 @@ impl LimitMesh {
                     }
                     if let (Some((_, dst)), Some((_, src))) = (out.scalar.as_mut(), &self.scalar) {
                         dst.push(src[v as usize]);
+                    }
+                    if let (Some(dst), Some(src)) = (out.params.as_mut(), &self.params) {
+                        dst.push_from(src, v as usize);
                     }
                     out.positions.len() as u32 - 1
                 });
@@ -89,6 +100,7 @@ impl LimitMesh {
             uvs: self.uvs.clone(),
             uv_indices: self.uv_indices.clone(),
             scalar: self.scalar.as_ref().map(|(k, _)| (*k, Vec::new())),
+            params: self.params.as_ref().map(|_| VertexParams::default()),
             ..LimitMesh::default()
         };
         for &i in &self.face_indices {
@@ -99,6 +111,9 @@ impl LimitMesh {
                 out.normals.push(self.normals[i as usize]);
                 if let (Some((_, dst)), Some((_, src))) = (out.scalar.as_mut(), &self.scalar) {
                     dst.push(src[i as usize]);
+                }
+                if let (Some(dst), Some(src)) = (out.params.as_mut(), &self.params) {
+                    dst.push_from(src, i as usize);
                 }
             }
             out.face_indices.push(*m);
