@@ -128,3 +128,81 @@ fn a_bad_line_is_an_error_naming_it() {
         .unwrap();
     assert_clean_failure(&o, "N must be a count");
 }
+
+/// `tessellate --dicing-rate` writes each vertex's (face, u, v) to PLY (`face u v`) and glTF
+/// (`_FACE`, `_PATCH_UV`), and evaluating that point gives the vertex.
+#[test]
+fn dicing_writes_each_vertex_parameter_point() {
+    let pawn = shape("catmark_pawn.obj");
+    let ply = tmp("pawn_diced.ply");
+    let (code, out, err) = run(&[
+        "tessellate",
+        &pawn,
+        "--dicing-rate",
+        "24",
+        "--stats",
+        "-o",
+        ply.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("edge rates: min="), "{out}");
+    let bytes = std::fs::read(&ply).unwrap();
+    let end = bytes
+        .windows(11)
+        .position(|w| w == b"end_header\n")
+        .unwrap()
+        + 11;
+    let head = String::from_utf8_lossy(&bytes[..end]);
+    assert!(
+        head.contains("property uint face\nproperty float u\nproperty float v\n"),
+        "{head}"
+    );
+    let n: usize = head
+        .lines()
+        .find_map(|l| l.strip_prefix("element vertex "))
+        .unwrap()
+        .parse()
+        .unwrap();
+    // 6 floats, then face, u, v: 36 bytes a vertex.
+    let vertex = |i: usize| {
+        let b = &bytes[end + i * 36..end + (i + 1) * 36];
+        let f = |k: usize| f32::from_le_bytes(b[4 * k..4 * k + 4].try_into().unwrap());
+        let face = u32::from_le_bytes(b[24..28].try_into().unwrap());
+        ([f(0), f(1), f(2)], face, f(7), f(8))
+    };
+    let points = tmp("pawn_diced_points.txt");
+    let picks: Vec<usize> = (0..n).step_by(n / 40 + 1).collect();
+    let text: String = picks
+        .iter()
+        .map(|&i| {
+            let (_, face, u, v) = vertex(i);
+            format!("{face} {u} {v}\n")
+        })
+        .collect();
+    std::fs::write(&points, text).unwrap();
+    let (code, out, err) = run(&["evaluate", &pawn, "--uv", points.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    for (line, &i) in out.lines().zip(&picks) {
+        let p = vec3(fields(line)[3].1);
+        let (q, ..) = vertex(i);
+        let d = (0..3)
+            .map(|k| (p[k] - f64::from(q[k])).abs())
+            .fold(0.0, f64::max);
+        assert!(d < 1e-4, "vertex {i}: {line} vs {q:?}");
+    }
+    let glb = tmp("pawn_diced.glb");
+    let (code, _, err) = run(&[
+        "tessellate",
+        &pawn,
+        "--dicing-rate",
+        "24",
+        "-o",
+        glb.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let text = String::from_utf8_lossy(&std::fs::read(&glb).unwrap()).to_string();
+    assert!(
+        text.contains("\"_FACE\"") && text.contains("\"_PATCH_UV\""),
+        "no _FACE / _PATCH_UV in the glTF JSON"
+    );
+}
