@@ -14,6 +14,12 @@ use naga::valid::{Capabilities, ValidationFlags, Validator};
 const SHADERS: &[(&str, &str, naga::ShaderStage, &[&str])] = &[
     ("mesh.vert", "mesh.vert", naga::ShaderStage::Vertex, &[]),
     ("mesh.frag", "mesh.frag", naga::ShaderStage::Fragment, &[]),
+    (
+        "mesh_color.frag",
+        "mesh.frag",
+        naga::ShaderStage::Fragment,
+        &["COLOR_ONLY"],
+    ),
     ("line.vert", "line.vert", naga::ShaderStage::Vertex, &[]),
     ("line.frag", "line.frag", naga::ShaderStage::Fragment, &[]),
     (

@@ -14,9 +14,11 @@
 //!   last line is `xtask: N passed, F failed, K skipped (<names>)`.
 //! - `cargo xtask check-architecture`: fails unless the workspace crates' dependencies on each
 //!   other equal the `crate-graph` block of `docs/architecture.md`.
-//! - `cargo xtask figures [doi|cc|text]` (xtask-tools, `figures`): reproduces the papers' figures
-//!   and tables: data into `docs/figures/*.csv`, text generated from them into `docs/figures.md`
-//!   (`doi`, `cc`: only that part; `text`: only regenerate text and plots from the CSV files).
+//! - `cargo xtask figures [doi|cc|text] [--force]` (xtask-tools, `figures`): reproduces the
+//!   papers' figures and tables: data into `docs/figures/*.csv`, text generated from them into
+//!   `docs/figures.md` (`doi`, `cc`: only that part; `text`: only regenerate text and plots from
+//!   the CSV files); the frame-rate figures are refused above a 1-minute load of 1.5 unless
+//!   `--force`.
 //! - `cargo xtask golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]`
 //!   (xtask-tools; `flip` when the comparison is perceptual): golden-image regression (see
 //!   `docs/golden.md`).
@@ -237,7 +239,7 @@ fn main() -> Result<()> {
         Some("bench-osd" | "fuzz-osd" | "eval-refs") => forward(&args, &[]),
         _ => {
             eprintln!(
-                "usage: cargo xtask <demo|test|check-architecture|figures [doi|cc|text]|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I] [--fvar]|eval-refs [LEVEL]|plot-quality [--shading] STEM LABEL=FILE...>"
+                "usage: cargo xtask <demo|test|check-architecture|figures [doi|cc|text] [--force]|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I] [--fvar]|eval-refs [LEVEL]|plot-quality [--shading] STEM LABEL=FILE...>"
             );
             std::process::exit(2);
         }

@@ -62,6 +62,12 @@ pub struct BenchTessellateArgs {
     /// default every run writes the indices too, as each new tessellation does.
     #[arg(long)]
     pub points_only: bool,
+    /// Also time a plain store loop over a buffer of the frame's output size (points, normals
+    /// and indices), on one thread, the same number of runs: the machine's write bandwidth the
+    /// tessellation's own is measured against, printed as `store_bytes_per_s=<f>
+    /// output_bytes=<n>` on a line of its own.
+    #[arg(long)]
+    pub store_bandwidth: bool,
     #[command(flatten)]
     pub limit: crate::limit_args::LimitArgs,
 }
@@ -89,6 +95,33 @@ pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(|a, b| a.total_cmp(b));
     v[v.len() / 2]
+}
+
+/// Median bytes per second of `runs` plain stores of a `bytes`-sized buffer (one thread): the
+/// write bandwidth of the memory the output lands in, which bounds any tessellator.
+fn store_bandwidth(bytes: usize, runs: usize) -> f64 {
+    let mut buf = vec![0u64; bytes.div_ceil(8).max(1)];
+    let mut times = Vec::with_capacity(runs);
+    for k in 0..=runs {
+        let t = Instant::now();
+        buf.fill(k as u64);
+        std::hint::black_box(&mut buf);
+        if k > 0 {
+            times.push(t.elapsed().as_secs_f64());
+        }
+    }
+    (buf.len() * 8) as f64 / median(times)
+}
+
+/// `--store-bandwidth`: the line `store_bytes_per_s=<f> output_bytes=<n>` for `out`.
+fn print_store_bandwidth(a: &BenchTessellateArgs, out: &subdiv::LimitMesh) {
+    if a.store_bandwidth {
+        let bytes = out.num_vertices() * 24 + out.face_indices().len() * 4;
+        out!(
+            "store_bytes_per_s={:.0} output_bytes={bytes}",
+            store_bandwidth(bytes, a.runs)
+        );
+    }
 }
 
 fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
@@ -158,6 +191,7 @@ fn bench_tessellate(a: &BenchTessellateArgs) -> anyhow::Result<ExitCode> {
         slate_bytes_per_thread(a.depth, layout.max_valence()),
         a.timed()
     );
+    print_store_bandwidth(a, &out);
     Ok(ExitCode::SUCCESS)
 }
 
@@ -168,11 +202,12 @@ fn bench_loop(
     pool: &rayon::ThreadPool,
 ) -> anyhow::Result<ExitCode> {
     let threads = pool.current_num_threads();
-    let t0 = Instant::now();
     // Validates the cage (triangles, no doubled triangle) and warms the workers.
     let mut out = pool
         .install(|| tessellate_tri(mesh, a.depth))
         .map_err(|e| anyhow::anyhow!("{}: {e}", a.input.display()))?;
+    // The setup a new cage costs: the layout alone.
+    let t0 = Instant::now();
     let layout = TriLayout::new(mesh, a.depth)?;
     let setup = t0.elapsed().as_secs_f64();
     let times = pool.install(|| -> anyhow::Result<_> {
@@ -210,5 +245,6 @@ fn bench_loop(
         tri_slate_bytes_per_thread(a.depth, mesh.max_valence()),
         a.timed()
     );
+    print_store_bandwidth(a, &out);
     Ok(ExitCode::SUCCESS)
 }

@@ -8,7 +8,7 @@ use anyhow::{Context, bail};
 use glam::Vec3;
 use subdiv::BuiltinScene;
 use subdiv::depth::{DEFAULT_MAX_DEPTH, DEFAULT_SHADING_ERROR_DEG};
-use subdiv::mesh::Camera;
+use subdiv::mesh::{Camera, Mesh};
 use subdiv::rules::{Depth, Request, Scheme};
 use subdiv::vk::Renderer;
 use subdiv_quality::{Config, CurvatureParams, QualityParams, QualityRun, orbit_cameras};
@@ -204,15 +204,15 @@ impl BenchQualityArgs {
 
     /// The first camera: the camera flags, or for a built-in scene without them the
     /// frame-rate benchmark's camera.
-    fn base_camera(&self, lo: Vec3, hi: Vec3) -> Camera {
+    fn base_camera(&self, cage: &Mesh) -> Camera {
         if self.scene.is_some() && !self.camera.has_camera() {
             let args = CameraArgs {
                 eye_relative: Some(HELMET40_EYE_RELATIVE),
                 ..self.camera.clone()
             };
-            return args.camera(lo, hi);
+            return args.camera(cage);
         }
-        self.camera.camera(lo, hi)
+        self.camera.camera(cage)
     }
 }
 
@@ -243,8 +243,7 @@ pub fn run(a: &BenchQualityArgs) -> anyhow::Result<ExitCode> {
         a.limit
             .check(&cage, Request::Adaptive { scheme, max_depth }, &a.label())?;
     }
-    let (lo, hi) = cage.bounds();
-    let base = a.base_camera(lo, hi);
+    let base = a.base_camera(&cage);
     let cameras = orbit_cameras(&base, a.orbit);
     let mut renderer = Renderer::new()?;
     let [w, h] = params.size;

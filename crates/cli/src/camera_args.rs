@@ -1,7 +1,8 @@
 //! Camera flags shared by `tessellate`, `refine`, `render` and `view`.
 
 use glam::Vec3;
-use subdiv::mesh::Camera;
+use subdiv::framing_box;
+use subdiv::mesh::{Camera, Mesh};
 
 /// `--eye X,Y,Z --target X,Y,Z --up X,Y,Z | --eye-relative X,Y,Z`, `--fov DEG`, `--size WxH`.
 #[derive(clap::Args, Debug, Clone)]
@@ -15,7 +16,8 @@ pub struct CameraArgs {
     /// Up vector.
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, default_value = "0,1,0")]
     pub up: Vec3,
-    /// Eye at bbox centre + (X,Y,Z) * bbox radius, looking at the centre.
+    /// Eye at the cage's bounding-box centre + (X,Y,Z) * half its diagonal, looking at the
+    /// centre (the same box in every mode: uniform, adaptive, DoI, Loop).
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true, conflicts_with_all = ["eye", "target"])]
     pub eye_relative: Option<Vec3>,
     /// Vertical field of view in degrees.
@@ -32,9 +34,11 @@ impl CameraArgs {
         self.eye.is_some() || self.eye_relative.is_some()
     }
 
-    /// The camera the flags describe for a cage with bounds `lo..hi`; without `--eye` or
-    /// `--eye-relative`, the default view from `(0.8, 0.5, 2.2)` radii.
-    pub fn camera(&self, lo: Vec3, hi: Vec3) -> Camera {
+    /// The camera the flags describe for `cage`, framed on its [`framing_box`] (the cage's
+    /// bounding box, whatever is tessellated from it); without `--eye` or `--eye-relative`, the
+    /// default view from `(0.8, 0.5, 2.2)` radii.
+    pub fn camera(&self, cage: &Mesh) -> Camera {
+        let (lo, hi) = framing_box(cage);
         let (w, h) = self.size;
         if let Some(eye) = self.eye {
             let target = self.target.unwrap_or((lo + hi) * 0.5);

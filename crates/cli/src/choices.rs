@@ -39,6 +39,22 @@ impl From<SchemeName> for Scheme {
     }
 }
 
+/// `--control`: how an adaptive node meets a target frame rate.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ControlName {
+    Budget,
+    Paper,
+}
+
+impl From<ControlName> for subdiv::Control {
+    fn from(c: ControlName) -> subdiv::Control {
+        match c {
+            ControlName::Budget => subdiv::Control::Budget,
+            ControlName::Paper => subdiv::Control::Paper,
+        }
+    }
+}
+
 /// `--scene`: a built-in scene.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SceneName {

@@ -51,9 +51,8 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
         subdiv::rules::Request::Refine { steps },
         &input,
     )?;
-    let (lo, hi) = setup.cage.bounds();
     let (mesh, doi, threshold) = (&setup.cage, &setup.doi, setup.opts.threshold);
-    let camera = a.camera.camera(lo, hi);
+    let camera = a.camera.camera(mesh);
     let t0 = Instant::now();
     let spinner = crate::progress::spinner(format!("refining ({} steps)", a.doi.steps));
     let r = setup.run(camera);

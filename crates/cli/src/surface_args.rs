@@ -121,8 +121,9 @@ impl SurfaceArgs {
         self.depth.unwrap_or(DEFAULT_DEPTH)
     }
 
-    /// Loads the cage and tessellates it uniformly; returns the scene and its scheme.
-    pub fn uniform_scene(&self) -> anyhow::Result<(Scene, SchemeName)> {
+    /// Loads the cage and tessellates it uniformly; returns the scene, its scheme and the cage
+    /// (what its views are framed on: [`subdiv::framing_box`]).
+    pub fn uniform_scene(&self) -> anyhow::Result<(Scene, SchemeName, Mesh)> {
         let (cage, scheme) = self.load_cage_scheme()?;
         let depth = self.uniform_depth();
         self.limit
@@ -131,7 +132,7 @@ impl SurfaceArgs {
         let scene = Scene::uniform(&cage, scheme, depth);
         spinner.finish_and_clear();
         let scene = scene.map_err(|e| anyhow::anyhow!("{}: {e}", self.label()))?;
-        Ok((scene, scheme.into()))
+        Ok((scene, scheme.into(), cage))
     }
 
     /// With `--dicing-rate`: the cage diced for the camera of `camera_args` (tessellated once,
@@ -162,8 +163,7 @@ impl SurfaceArgs {
             );
         }
         let (cage, scheme) = self.load_cage_scheme()?;
-        let (lo, hi) = cage.bounds();
-        let camera = camera_args.camera(lo, hi);
+        let camera = camera_args.camera(&cage);
         let label = self.label();
         let eval = subdiv::eval::Evaluator::new(&cage, scheme)
             .map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
@@ -176,8 +176,7 @@ impl SurfaceArgs {
         );
         Ok(Some(Diced {
             scene: Scene::from_limit(&t.surface),
-            camera,
-            bounds: (lo, hi),
+            cage,
             note,
         }))
     }
@@ -224,14 +223,8 @@ impl SurfaceArgs {
         Ok(node)
     }
 
-    /// The culling camera of `--cull-camera-eye-relative` (else `camera`).
-    pub fn cull_camera(
-        &self,
-        camera_args: &CameraArgs,
-        camera: &Camera,
-        lo: Vec3,
-        hi: Vec3,
-    ) -> Camera {
+    /// The culling camera of `--cull-camera-eye-relative` (else `camera`) for `cage`.
+    pub fn cull_camera(&self, camera_args: &CameraArgs, camera: &Camera, cage: &Mesh) -> Camera {
         match self.cull_camera_eye_relative {
             Some(rel) => CameraArgs {
                 eye: None,
@@ -239,7 +232,7 @@ impl SurfaceArgs {
                 eye_relative: Some(rel),
                 ..camera_args.clone()
             }
-            .camera(lo, hi),
+            .camera(cage),
             None => *camera,
         }
     }
@@ -249,10 +242,8 @@ impl SurfaceArgs {
 pub struct Diced {
     /// The surface.
     pub scene: Scene,
-    /// The camera it was diced for.
-    pub camera: Camera,
-    /// The cage's bounds.
-    pub bounds: (Vec3, Vec3),
+    /// The cage it was diced from (the camera flags frame it).
+    pub cage: Mesh,
     /// Scheme and dicing rate, for the report.
     pub note: String,
 }
@@ -305,9 +296,23 @@ pub struct StyleArgs {
     /// heat map with its range) in the top-right corner. The viewer shows it unless --no-hud.
     #[arg(long)]
     pub legend: bool,
+    /// Samples per pixel (multisampling: anti-aliased silhouettes, creases and lines) [default:
+    /// 4 where the device supports it, else the most it supports below 4]. Depth, normals and
+    /// the scalar of `--exr` are point-sampled at pixel centres whatever this is.
+    #[arg(long, value_name = "N", value_parser = parse_samples)]
+    pub samples: Option<u32>,
     /// Set when DoI values are available (`--doi`); not a flag.
     #[arg(skip)]
     pub doi_values: bool,
+}
+
+/// `--samples 1|2|4|8`.
+pub fn parse_samples(s: &str) -> Result<u32, String> {
+    s.trim()
+        .parse::<u32>()
+        .ok()
+        .filter(|n| subdiv::vk::SAMPLE_COUNTS.contains(n))
+        .ok_or_else(|| format!("'{s}' is not a sample count: give 1, 2, 4 or 8"))
 }
 
 impl StyleArgs {
@@ -325,6 +330,7 @@ impl StyleArgs {
             // silhouettes behind the surface stay hidden.
             lines_on_top: false,
             legend: self.legend,
+            samples: self.samples,
             ..RenderOptions::default()
         })
     }
@@ -341,6 +347,7 @@ mod tests {
             wire_overlay: false,
             silhouettes: false,
             legend: false,
+            samples: None,
             doi_values: false,
         };
         let e = style.render_options().unwrap_err().to_string();
@@ -352,10 +359,19 @@ mod tests {
             wire_overlay: true,
             silhouettes: true,
             legend: true,
+            samples: Some(8),
             doi_values: false,
         };
         let o = style.render_options().unwrap();
         assert_eq!(o.shading, Shading::Depth);
         assert!(o.wire_overlay && o.show_lines && o.legend);
+        assert_eq!(o.samples, Some(8));
+        assert_eq!(parse_samples("4"), Ok(4));
+        for bad in ["0", "3", "16", "four"] {
+            assert!(
+                parse_samples(bad).unwrap_err().contains("1, 2, 4 or 8"),
+                "{bad}"
+            );
+        }
     }
 }

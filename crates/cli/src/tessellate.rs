@@ -158,8 +158,7 @@ fn run_dicing(
         );
     }
     let t0 = Instant::now();
-    let (lo, hi) = mesh.bounds();
-    let camera = a.camera.camera(lo, hi);
+    let camera = a.camera.camera(mesh);
     let eval =
         subdiv::eval::Evaluator::new(mesh, scheme).map_err(|e| anyhow::anyhow!("{input}: {e}"))?;
     let t = subdiv::eval::dice(&eval, &camera, &d).map_err(|e| anyhow::anyhow!("{input}: {e}"))?;
@@ -212,8 +211,7 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh, scheme: Scheme) -> anyhow::Resul
     a.limit
         .check(&mesh, Request::Adaptive { scheme, max_depth }, &input)?;
     let t0 = Instant::now();
-    let (lo, hi) = mesh.bounds();
-    let camera = a.camera.camera(lo, hi);
+    let camera = a.camera.camera(&mesh);
     let doi_depths = match a.doi.doi {
         Some(name) => {
             let kind = DoiKind::from(name);

@@ -5,11 +5,10 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use glam::Vec3;
-use subdiv::mesh::Camera;
+use subdiv::mesh::{Camera, Mesh};
 use subdiv::vk::OrbitCamera;
-use subdiv::vk::viewer::{self, FrameSource, ViewerOptions};
-use subdiv::{AdaptiveSource, DoiSource, UniformSource, orbit_camera};
+use subdiv::vk::viewer::{self, FrameControl, FrameSource, ViewerOptions};
+use subdiv::{AdaptiveSource, DoiSource, UniformSource, framing_box, orbit_camera};
 
 use crate::camera_args::CameraArgs;
 use crate::choices::value_name;
@@ -53,10 +52,12 @@ fn parse_pan(s: &str) -> Result<[f32; 2], String> {
     }
 }
 
-/// The initial camera for cage bounds `lo`, `hi` and the orbit camera the viewer starts from
-/// (with a note when the orbit can only approximate it).
-fn start_camera(a: &ViewArgs, lo: Vec3, hi: Vec3) -> (Camera, OrbitCamera) {
-    let camera = a.camera.camera(lo, hi);
+/// The initial camera for `cage` (framed on it, as `subdiv render` frames it) and the orbit
+/// camera the viewer starts from and Home/F return to (with a note when the orbit can only
+/// approximate it).
+fn start_camera(a: &ViewArgs, cage: &Mesh) -> (Camera, OrbitCamera) {
+    let camera = a.camera.camera(cage);
+    let (lo, hi) = framing_box(cage);
     let (orbit, exact) = orbit_camera(&camera, lo, hi);
     if !exact {
         log::warn!("the viewer orbits about the up axis (--up); a view along it is approximated");
@@ -106,8 +107,7 @@ fn run_doi(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     let render = style.render_options()?;
     let label = a.surface.label();
     let setup = a.surface.doi_setup()?;
-    let (lo, hi) = setup.bounds();
-    let (camera, orbit) = start_camera(a, lo, hi);
+    let (camera, orbit) = start_camera(a, &setup.cage);
     let title = format!(
         "subdiv view {label} ({} DoI, {} steps)",
         setup.kind.name(),
@@ -120,7 +120,7 @@ fn run_doi(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         camera: Some(orbit),
         render,
         // No frame-rate controller here: draw only when something changes.
-        frame_rate_control: false,
+        control: FrameControl::Off,
         ..ViewerOptions::default()
     };
     show(a, &mut source, options, |s| s.note().to_string())
@@ -137,20 +137,19 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     }
     let render = a.style.render_options()?;
     // With --dicing-rate: diced once, for the starting camera.
-    let (scene, what) = match diced {
-        Some(d) => (d.scene, d.note),
+    let (scene, what, cage) = match diced {
+        Some(d) => (d.scene, d.note, d.cage),
         None => {
-            let (scene, scheme) = a.surface.uniform_scene()?;
+            let (scene, scheme, cage) = a.surface.uniform_scene()?;
             let what = format!(
                 "{}, depth {}",
                 value_name(&scheme),
                 a.surface.uniform_depth()
             );
-            (scene, what)
+            (scene, what, cage)
         }
     };
-    let (lo, hi) = scene.bounds();
-    let (camera, orbit) = start_camera(a, lo, hi);
+    let (camera, orbit) = start_camera(a, &cage);
     let title = format!("subdiv view {} ({what})", a.surface.label());
     let mut source = UniformSource::new(scene);
     let options = ViewerOptions {
@@ -159,7 +158,7 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         camera: Some(orbit),
         render,
         // A uniform tessellation has no frame-rate controller: draw only when something changes.
-        frame_rate_control: false,
+        control: FrameControl::Off,
         ..ViewerOptions::default()
     };
     show(a, &mut source, options, |_| String::new())
@@ -174,8 +173,7 @@ fn run_adaptive(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         );
     }
     let (cage, scheme) = a.surface.load_cage_scheme()?;
-    let (lo, hi) = cage.bounds();
-    let (camera, orbit) = start_camera(a, lo, hi);
+    let (camera, orbit) = start_camera(a, &cage);
     let title = format!(
         "subdiv view {} (adaptive, max depth {})",
         a.surface.label(),
@@ -188,7 +186,11 @@ fn run_adaptive(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         camera: Some(orbit),
         render,
         // A scripted screenshot shows the view-dependent depths without frame-time feedback.
-        frame_rate_control: a.screenshot_after.is_none(),
+        control: if a.screenshot_after.is_none() {
+            FrameControl::Budget
+        } else {
+            FrameControl::Off
+        },
         ..ViewerOptions::default()
     };
     show(a, &mut source, options, |_| String::new())

@@ -375,3 +375,103 @@ fn adaptive_flags_mean_the_same_in_every_command() {
         "{err}"
     );
 }
+
+/// `key=value` of a line, parsed.
+fn field<T: std::str::FromStr>(line: &str, key: &str) -> T
+where
+    T::Err: std::fmt::Debug,
+{
+    line.split_whitespace()
+        .find_map(|kv| kv.strip_prefix(key)?.strip_prefix('='))
+        .unwrap_or_else(|| panic!("no {key}= in {line}"))
+        .parse()
+        .unwrap()
+}
+
+#[test]
+fn bench_framerate_runs_any_cage_under_either_control() {
+    // Three pawns, no rendering: every frame has its measured and predicted time and the
+    // update's parts, which add up to at most the update; the summary line closes the run.
+    let input = pawn();
+    for control in ["budget", "paper"] {
+        let (code, stdout, stderr) = run(&[
+            "bench",
+            "framerate",
+            input.to_str().unwrap(),
+            "--instances",
+            "3",
+            "--no-render",
+            "--frames",
+            "12",
+            "--size",
+            "160x120",
+            "--max-depth",
+            "3",
+            "--target-fps",
+            "400",
+            "--switch-fps",
+            "800",
+            "--control",
+            control,
+        ]);
+        assert_eq!(code, 0, "{stderr}");
+        let head = stdout.lines().next().unwrap();
+        assert!(head.contains("faces=1764"), "3 x 588 faces: {head}");
+        assert!(head.contains(&format!("{control} control")), "{head}");
+        let frames: Vec<&str> = stdout.lines().filter(|l| l.starts_with("frame=")).collect();
+        assert_eq!(frames.len(), 12, "{stdout}");
+        for l in &frames[1..] {
+            let (ms, predicted): (f64, f64) = (field(l, "ms"), field(l, "predicted_ms"));
+            assert!(ms > 0.0 && predicted > 0.0, "{l}");
+            let parts: f64 = ["depths_ms", "tessellate_ms", "fans_ms", "upload_prep_ms"]
+                .iter()
+                .map(|k| field::<f64>(l, k))
+                .sum();
+            assert!(parts <= field::<f64>(l, "update_ms") + 0.01, "{l}");
+        }
+        let summary = stdout.lines().last().unwrap();
+        assert!(summary.starts_with("summary frames=12"), "{summary}");
+        assert_eq!(field::<usize>(summary, "switch_frame"), 6, "{summary}");
+    }
+}
+
+#[test]
+fn bench_framerate_calibrates_before_the_run() {
+    let Some(o) = run_ok(&[
+        "bench",
+        "framerate",
+        "--scene",
+        "helmet40",
+        "--instances",
+        "2",
+        "--calibrate",
+        "--frames",
+        "2",
+        "--size",
+        "96x64",
+        "--max-depth",
+        "2",
+    ]) else {
+        return;
+    };
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let cal = stdout
+        .lines()
+        .find(|l| l.starts_with("calibrate "))
+        .unwrap_or_else(|| panic!("no calibrate line: {stdout}"));
+    assert_eq!(field::<usize>(cal, "frames"), 30, "{cal}");
+    let share: f64 = field(cal, "ceiling_within10");
+    assert!((0.0..=1.0).contains(&share), "{cal}");
+    assert!((share * 30.0 - (share * 30.0).round()).abs() < 0.02, "a share of 30 frames: {cal}");
+    assert!(field::<f64>(cal, "median_fps") > 0.0, "{cal}");
+    assert!(stdout.contains("faces=116"), "two helmets: {stdout}");
+    // Contradictory flags are refused.
+    assert_fails(
+        &["bench", "framerate", "--calibrate", "--no-render", "--frames", "1"],
+        "--calibrate",
+    );
+    assert_fails(
+        &["bench", "framerate", "--instances", "0", "--frames", "1"],
+        "--instances",
+    );
+}

@@ -95,8 +95,8 @@ fn hud_and_legend_are_drawn_in_their_corners() {
     };
     let (w, h) = hud.dimensions();
     assert_eq!((w, h), (320, 240));
-    // HUD: 5 lines at scale 1 in a panel from (4, 4); legend: "depth" and one level.
-    let in_hud = |x: u32, y: u32| x < 200 && y < 60;
+    // HUD: 6 lines at scale 1 in a panel from (4, 4); legend: "depth" and one level.
+    let in_hud = |x: u32, y: u32| x < 200 && y < 72;
     let in_legend = |x: u32, y: u32| x >= w - 60 && y < 40;
     let (mut dark, mut swatch) = (0, 0);
     let mut panel: Option<(u32, u32, u32, u32)> = None;

@@ -77,6 +77,7 @@ mod tests {
                 weight: 1.0,
             },
             normals: NormalCone::ANY,
+            outline: false,
         }
     }
 

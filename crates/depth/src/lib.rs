@@ -38,6 +38,8 @@ mod assign;
 pub mod contour;
 mod controller;
 mod curvature;
+mod frame_budget;
+mod frame_model;
 mod doi;
 mod patch_error;
 mod patch_error_tri;
@@ -52,6 +54,11 @@ pub use assign::{
     projected_radius,
 };
 pub use controller::FrameRateController;
+pub use frame_budget::{
+    BIAS_BAND, BudgetController, Choice, FaceCost, HOLD, SILHOUETTE_PX, face_errors,
+    silhouette_depths,
+};
+pub use frame_model::{FrameTimeModel, FrameWork};
 pub use curvature::VertexData;
 pub use doi::depths_from_face_values;
 pub use patch_error::{SAMPLE_LEVELS, patch_errors};
@@ -60,7 +67,7 @@ pub use pixel_error::{
     NormalCone, PatchError, PatchErrors, outside_view, pixel_error_depth, screen_scale,
 };
 pub use seams::Seams;
-pub use shading::{AreaElement, ScreenArea, ShadingError, raise_for_shading};
+pub use shading::{AreaElement, OutlierTable, ScreenArea, ShadingError, raise_for_shading};
 pub use sphere::{SPHERE_FACE_BUDGET, SPHERE_LEVELS, Sphere, face_spheres};
 pub use subdiv_rules::{Depth, MAX_DEPTH};
 pub use subdiv_slate::DEFAULT_MAX_DEPTH;

@@ -100,9 +100,13 @@ pub fn patch_errors(
             deviation: vec![0.0; depths],
             shading: ShadingError::default(),
             normals: NormalCone::ANY,
+            outline: false,
         };
         mesh.num_faces()
     ];
+    for (f, e) in faces.iter_mut().enumerate() {
+        e.outline = touches_outline(mesh, subdiv_mesh::FaceId(f as u32));
+    }
     let mut cones: Vec<Vec<NormalCone>> = vec![Vec::new(); mesh.num_faces()];
     for (p, m) in set.patches().iter().zip(per_patch) {
         let f = set.units()[p.unit as usize].face.idx();

@@ -81,6 +81,7 @@ pub fn patch_errors_tri(
                         weight: 0.5,
                     },
                     normals: lat.normal_cone(),
+                    outline,
                 }
             },
         )

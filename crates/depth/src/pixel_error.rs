@@ -83,6 +83,9 @@ pub struct PatchError {
     pub shading: ShadingError,
     /// A cone containing every limit normal of the face's patch(es).
     pub normals: NormalCone,
+    /// The face touches the cage's boundary or a hole: the surface's own edge runs along or
+    /// near it and is an outline on screen from any side.
+    pub outline: bool,
 }
 
 impl PatchError {
@@ -280,6 +283,7 @@ mod tests {
             deviation: dev.clone(),
             shading: ShadingError::default(),
             normals: NormalCone::ANY,
+            outline: false,
         };
         let scale = screen_scale(&c, &s);
         let d = pixel_error_depth(&c, &s, &e, 1.0, 5);
@@ -304,6 +308,7 @@ mod tests {
                 axis,
                 cos: half_deg.to_radians().cos(),
             },
+            outline: false,
         };
         // Normals pointing away from the eye (along -z) within 30°: hidden.
         assert!(patch(-Vec3::Z, 30.0).faces_away(&c, &s));
@@ -319,6 +324,7 @@ mod tests {
             deviation: vec![0.0],
             shading: ShadingError::default(),
             normals: NormalCone::ANY,
+            outline: false,
         };
         assert!(!any.faces_away(&c, &s));
     }

@@ -188,27 +188,39 @@ impl ScreenArea {
         elements: impl Iterator<Item = &'a AreaElement> + Clone,
         out: &mut Vec<f32>,
     ) {
+        let mut both = Vec::new();
+        self.densities(elements, &mut both);
+        out.clear();
+        out.extend(both.iter().map(|&(visible, _)| visible));
+    }
+
+    /// [`Self::visible_density`] and [`Self::density`] of every element, as pairs (each splat
+    /// computed once).
+    pub fn densities<'a>(
+        &self,
+        elements: impl Iterator<Item = &'a AreaElement>,
+        out: &mut Vec<(f32, f32)>,
+    ) {
         let cols = (self.size.x / OCCLUSION_CELL).ceil().max(1.0) as usize;
         let rows = (self.size.y / OCCLUSION_CELL).ceil().max(1.0) as usize;
         let mut nearest = vec![f32::INFINITY; cols * rows];
-        for e in elements.clone() {
-            if let Some(s) = self.splat(e) {
-                let (xs, ys, cols) = self.cells(&s);
-                for y in ys {
-                    for z in &mut nearest[y * cols + xs.start..y * cols + xs.end] {
-                        *z = z.min(s.z);
-                    }
+        let splats: Vec<Option<(Splat, f32)>> = elements
+            .map(|e| self.splat(e).map(|s| (s, 2.0 * e.area.sqrt())))
+            .collect();
+        for (s, _) in splats.iter().flatten() {
+            let (xs, ys, cols) = self.cells(s);
+            for y in ys {
+                for z in &mut nearest[y * cols + xs.start..y * cols + xs.end] {
+                    *z = z.min(s.z);
                 }
             }
         }
         out.clear();
-        for e in elements {
-            let Some(s) = self.splat(e) else {
-                out.push(0.0);
-                continue;
+        out.extend(splats.iter().map(|splat| {
+            let Some((s, slack)) = splat else {
+                return (0.0, 0.0);
             };
-            let (xs, ys, cols) = self.cells(&s);
-            let slack = 2.0 * e.area.sqrt();
+            let (xs, ys, cols) = self.cells(s);
             let (mut seen, mut all) = (0usize, 0usize);
             for y in ys {
                 for &z in &nearest[y * cols + xs.start..y * cols + xs.end] {
@@ -216,8 +228,8 @@ impl ScreenArea {
                     seen += usize::from(s.z <= z + slack);
                 }
             }
-            out.push(s.density * seen as f32 / all.max(1) as f32);
-        }
+            (s.density * seen as f32 / all.max(1) as f32, s.density)
+        }));
     }
 }
 
@@ -279,6 +291,102 @@ fn best_raise(f: usize, d: Depth, outliers: &[f32], e: &ShadingError, max: Depth
         .max()
 }
 
+/// Per face and depth, the outlier pixels a frame would show (see the module documentation):
+/// the visible pixels of each face whose drawn normal turns further than the tolerance from
+/// the limit normal at each depth, its contour term included; and the frame's visible pixels.
+#[derive(Clone, Debug, Default)]
+pub struct OutlierTable {
+    /// Depths per face (`max_depth + 1`).
+    pub levels: usize,
+    /// `rows[f * levels + d]`: outlier pixels of face `f` at depth `d` (0 for inactive faces).
+    pub rows: Vec<f32>,
+    /// Visible pixels of the active faces (each element's projected area times the share of its
+    /// splat no nearer element hides).
+    pub visible: f64,
+    /// Per face: its visible pixels.
+    pub face_visible: Vec<f32>,
+}
+
+impl OutlierTable {
+    /// The outlier pixels of face `f` at each depth.
+    #[inline]
+    pub fn row(&self, f: usize) -> &[f32] {
+        &self.rows[f * self.levels..(f + 1) * self.levels]
+    }
+
+    /// The table for `camera`: `active[f]` is whether face `f` is drawn (missing entries count
+    /// as drawn); `contour_px[f]` the length in pixels of the contour through face `f` (0 when
+    /// it holds none; missing entries count 0), whose visible share counts as outlier pixels at
+    /// the depths where the face's contour turn exceeds the tolerance ([`crate::contour`]);
+    /// depths `0..=max_depth`.
+    pub fn new(
+        camera: &Camera,
+        errors: &PatchErrors,
+        active: &[bool],
+        contour_px: &[f32],
+        max_depth: Depth,
+    ) -> OutlierTable {
+        let levels = max_depth as usize + 1;
+        let faces = &errors.faces;
+        let screen = ScreenArea::new(camera, errors.closed);
+        let is_active = |f: usize| active.get(f).copied().unwrap_or(true);
+        let mut densities = Vec::new();
+        screen.densities(
+            faces
+                .iter()
+                .enumerate()
+                .filter(|&(f, _)| is_active(f))
+                .flat_map(|(_, p)| &p.shading.elements),
+            &mut densities,
+        );
+        let mut next = densities.iter();
+        let mut out = OutlierTable {
+            levels,
+            rows: vec![0.0f32; faces.len() * levels],
+            visible: 0.0,
+            face_visible: vec![0.0; faces.len()],
+        };
+        let mut turns = vec![0.0f32; levels];
+        let tolerance = errors.shading_tolerance;
+        for (f, p) in faces.iter().enumerate() {
+            if !is_active(f) {
+                continue;
+            }
+            let e = &p.shading;
+            let depths = e.depths();
+            let row = &mut out.rows[f * levels..(f + 1) * levels];
+            // Projected and visible pixels of the face, for the visible share of its contour.
+            let (mut projected, mut seen) = (0.0f32, 0.0f32);
+            for (k, el) in e.elements.iter().enumerate() {
+                let (density, raw) = next.next().copied().unwrap_or((0.0, 0.0));
+                if density == 0.0 {
+                    continue;
+                }
+                seen += el.area * density;
+                projected += el.area * raw;
+                out.visible += (el.area * density) as f64;
+                let s = e.scale(el, density);
+                let areas = &e.outlier_area[k * depths * e.scales..(k + 1) * depths * e.scales];
+                for (o, a) in row.iter_mut().zip(areas.chunks(e.scales)) {
+                    *o += a[s] * density;
+                }
+            }
+            out.face_visible[f] = seen;
+            let contour = contour_px.get(f).copied().unwrap_or(0.0);
+            if contour > 0.0 && seen > 0.0 && tolerance < std::f32::consts::PI {
+                let pixels = contour * (seen / projected.max(seen));
+                contour_turns(p, &mut turns);
+                for (o, &t) in row.iter_mut().zip(&turns) {
+                    if t > tolerance {
+                        *o += pixels;
+                    }
+                }
+            }
+        }
+        out
+    }
+}
+
 /// Raises `depth` (one entry per face, the silhouette depths) until the outlier pixels of the
 /// frame are at most [`MODELLED_SHARE`] × [`OUTLIER_SHARE`] of its visible pixels, greedily by
 /// outlier pixels removed per added triangle (see the module documentation). `active[f]` is
@@ -295,68 +403,19 @@ pub fn raise_for_shading(
     depth: &mut [Depth],
     max_depth: Depth,
 ) -> f32 {
-    let mut visible = 0.0f64;
-    let mut outlier = 0.0f64;
-    // Per face and depth: outlier pixels.
-    let levels = max_depth as usize + 1;
     let faces = &errors.faces;
-    let screen = ScreenArea::new(camera, errors.closed);
+    let t = OutlierTable::new(camera, errors, active, contour_px, max_depth);
     let is_active = |f: usize| active.get(f).copied().unwrap_or(true);
-    let mut densities = Vec::new();
-    screen.visible_density(
-        faces
-            .iter()
-            .enumerate()
-            .filter(|&(f, _)| is_active(f))
-            .flat_map(|(_, p)| &p.shading.elements),
-        &mut densities,
-    );
-    let mut next = densities.iter();
-    let mut table = vec![0.0f32; faces.len() * levels];
-    let mut turns = vec![0.0f32; levels];
-    let tolerance = errors.shading_tolerance;
-    for (f, p) in faces.iter().enumerate() {
-        if !is_active(f) {
-            continue;
-        }
-        let e = &p.shading;
-        let depths = e.depths();
-        let row = &mut table[f * levels..(f + 1) * levels];
-        // Projected and visible pixels of the face, for the visible share of its contour.
-        let (mut projected, mut seen) = (0.0f32, 0.0f32);
-        for (k, el) in e.elements.iter().enumerate() {
-            let density = next.next().copied().unwrap_or(0.0);
-            if density == 0.0 {
-                continue;
-            }
-            seen += el.area * density;
-            projected += el.area * screen.density(el);
-            visible += (el.area * density) as f64;
-            let s = e.scale(el, density);
-            let areas = &e.outlier_area[k * depths * e.scales..(k + 1) * depths * e.scales];
-            for (o, a) in row.iter_mut().zip(areas.chunks(e.scales)) {
-                *o += a[s] * density;
-            }
-        }
-        let contour = contour_px.get(f).copied().unwrap_or(0.0);
-        if contour > 0.0 && seen > 0.0 && tolerance < std::f32::consts::PI {
-            let pixels = contour * (seen / projected.max(seen));
-            contour_turns(p, &mut turns);
-            for (o, &t) in row.iter_mut().zip(&turns) {
-                if t > tolerance {
-                    *o += pixels;
-                }
-            }
-        }
-        outlier += row[(depth[f] as usize).min(levels - 1)] as f64;
-    }
+    let levels = t.levels;
+    let mut outlier: f64 = (0..faces.len())
+        .filter(|&f| is_active(f))
+        .map(|f| t.row(f)[(depth[f] as usize).min(levels - 1)] as f64)
+        .sum();
+    let visible = t.visible;
     let budget = (MODELLED_SHARE * OUTLIER_SHARE) as f64 * visible;
     if outlier > budget {
         let mut heap: BinaryHeap<Raise> = (0..faces.len())
-            .filter_map(|f| {
-                let row = &table[f * levels..(f + 1) * levels];
-                best_raise(f, depth[f], row, &faces[f].shading, max_depth)
-            })
+            .filter_map(|f| best_raise(f, depth[f], t.row(f), &faces[f].shading, max_depth))
             .collect();
         while outlier > budget
             && let Some(r) = heap.pop()
@@ -364,7 +423,7 @@ pub fn raise_for_shading(
             if depth[r.face] != r.from {
                 continue;
             }
-            let row = &table[r.face * levels..(r.face + 1) * levels];
+            let row = t.row(r.face);
             outlier -= (row[r.from as usize] - row[r.to as usize]) as f64;
             depth[r.face] = r.to;
             if let Some(next) = best_raise(r.face, r.to, row, &faces[r.face].shading, max_depth) {
@@ -473,6 +532,7 @@ mod tests {
                 weight: 1.0,
             },
             normals: NormalCone::ANY,
+            outline: false,
         }
     }
 

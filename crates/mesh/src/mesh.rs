@@ -3,6 +3,7 @@
 //! per submodule) lives in `build`, and the counter-clockwise vertex-ring traversal in `traverse`.
 
 mod build;
+mod instance;
 mod traverse;
 
 use glam::Vec3;

@@ -15,7 +15,7 @@ use super::metrics::{
     FrameErrors, SUPERSAMPLE, area_coverage, compare_with_distance, quantile,
     sample_silhouette_distance,
 };
-use subdiv::{DynamicSubdivision, Scene, uniform_limit, view_for};
+use subdiv::{DynamicSubdivision, Scene, framing_box, uniform_limit, view_for};
 
 /// The reference render of one camera.
 struct ReferenceFrame {
@@ -68,10 +68,14 @@ fn elapsed_ms(t: Instant) -> f64 {
     t.elapsed().as_secs_f64() * 1e3
 }
 
-/// What every render of a quality run uses: smooth shading, no lines.
+/// What every render of a quality run uses: smooth shading, no lines, one sample per pixel.
+/// The run measures coverage with its own supersampling ([`SUPERSAMPLE`]² point samples per
+/// pixel, from the point-sampled auxiliary images), whatever sample count `subdiv render` uses;
+/// one sample also keeps the timed renders free of resolve work.
 fn render_options() -> RenderOptions {
     RenderOptions {
         show_lines: false,
+        samples: Some(1),
         ..RenderOptions::default()
     }
 }
@@ -84,7 +88,7 @@ fn render_options() -> RenderOptions {
 /// [`QualityParams::reference_depth`] with smooth limit normals, packed as a [`Scene`] exactly as
 /// `subdiv render` draws it (normals split at creases) and rendered once per camera; every
 /// configuration goes through the same [`Scene`] path and the same view ([`view_for`] with the
-/// cage's bounds). (`no_run`: rendering needs a Vulkan driver.)
+/// cage's [`framing_box`]). (`no_run`: rendering needs a Vulkan driver.)
 ///
 /// ```no_run
 /// use subdiv_quality::{Config, QualityParams, QualityRun, orbit_cameras};
@@ -139,7 +143,7 @@ impl<'a> QualityRun<'a> {
             source,
         })?;
         let mesh = scene.render_mesh();
-        let (lo, hi) = cage.bounds();
+        let (lo, hi) = framing_box(cage);
         let [w, h] = params.size;
         let mut frames = Vec::with_capacity(cameras.len());
         for (i, c) in cameras.iter().enumerate() {

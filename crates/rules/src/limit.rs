@@ -101,6 +101,7 @@ fn limit_surface_from(
         scalar: None,
         params: None,
         topology: TopologyStamp::default(),
+        uniform_faces: 0,
     }
 }
 

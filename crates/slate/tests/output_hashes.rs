@@ -20,33 +20,10 @@ use std::path::Path;
 
 use subdiv_rules::LimitMesh;
 use subdiv_slate::{PatchLayout, tessellate, tessellate_layout_into};
-use subdiv_test_support::fixtures;
+use subdiv_test_support::{Fnv, fixtures};
 
 /// Deepest depth checked.
 const MAX_DEPTH: subdiv_rules::Depth = 6;
-
-/// 64-bit FNV-1a over bytes.
-struct Fnv(u64);
-
-impl Fnv {
-    fn new() -> Fnv {
-        Fnv(0xcbf2_9ce4_8422_2325)
-    }
-    fn bytes(&mut self, b: &[u8]) {
-        for &x in b {
-            self.0 ^= x as u64;
-            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
-        }
-    }
-    fn u32(&mut self, x: u32) {
-        self.bytes(&x.to_le_bytes());
-    }
-    fn f32s(&mut self, v: &[f32]) {
-        for &x in v {
-            self.u32(x.to_bits());
-        }
-    }
-}
 
 fn hash(t: &LimitMesh) -> u64 {
     let mut h = Fnv::new();
@@ -61,22 +38,6 @@ fn hash(t: &LimitMesh) -> u64 {
     for (k, n) in t.corner_normals() {
         h.u32(*k);
         h.f32s(n);
-    }
-    h.0
-}
-
-/// The platform's `sin` and `cos` at the angles the limit masks use (`2 pi i / n`).
-fn trig_fingerprint() -> u64 {
-    let mut h = Fnv::new();
-    for n in 3..=64u32 {
-        let th = 2.0 * std::f64::consts::PI / n as f64;
-        for i in 0..=n {
-            let (s, c) = (th * i as f64).sin_cos();
-            h.bytes(&s.to_bits().to_le_bytes());
-            h.bytes(&c.to_bits().to_le_bytes());
-        }
-        let x = 1.0 + th.cos() + (th * 0.5).cos() * (2.0 * (9.0 + th.cos())).sqrt();
-        h.bytes(&x.to_bits().to_le_bytes());
     }
     h.0
 }
@@ -118,45 +79,11 @@ fn pools() -> Vec<rayon::ThreadPool> {
         .into()
 }
 
-/// Compares `now` (one line per case) with `tests/<file>`: its first line is the platform's
-/// sin/cos fingerprint (on another platform only the thread-count and reuse independence, already
-/// asserted by the caller, are checked); `SLATE_HASHES_BLESS` rewrites the file instead.
+/// Compares `now` with `tests/<file>` ([`subdiv_test_support::check_recorded`];
+/// `SLATE_HASHES_BLESS` rewrites it).
 fn check_recorded(file: &str, now: &str) {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests")
-        .join(file);
-    let fingerprint = format!("trig {:016x}\n", trig_fingerprint());
-    if std::env::var_os("SLATE_HASHES_BLESS").is_some() {
-        std::fs::write(&path, format!("{fingerprint}{now}")).expect("write the hashes");
-        return;
-    }
-    let recorded = std::fs::read_to_string(&path).expect("read the hashes");
-    let (head, cases) = recorded.split_at(recorded.find('\n').map_or(0, |i| i + 1));
-    if head != fingerprint {
-        eprintln!(
-            "{file}: this platform's sin/cos differ from the recording's ({} vs {}): only \
-             thread-count and reuse independence were checked",
-            fingerprint.trim(),
-            head.trim()
-        );
-        return;
-    }
-    let bad: Vec<String> = cases
-        .lines()
-        .zip(now.lines())
-        .filter(|(want, got)| want != got)
-        .map(|(want, got)| format!("recorded {want}\n     now {got}"))
-        .collect();
-    assert_eq!(
-        cases.lines().count(),
-        now.lines().count(),
-        "{file}: case count"
-    );
-    assert!(
-        bad.is_empty(),
-        "{file}: output changed:\n{}",
-        bad.join("\n")
-    );
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests").join(file);
+    subdiv_test_support::check_recorded(&path, now, "SLATE_HASHES_BLESS");
 }
 
 /// One line per case: `name depth points hash`, hashes of 1 and 2 threads and of a second run

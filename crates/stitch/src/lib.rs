@@ -18,9 +18,10 @@
 //! cage is never modified.
 
 pub mod fans;
+mod slots;
 pub mod tri;
 
-pub use fans::{AdaptiveFrame, Assembler, FanMethod, MAX_ADAPTIVE_DEPTH};
+pub use fans::{AdaptiveFrame, Assembler, FanMethod, MAX_ADAPTIVE_DEPTH, UpdateParts};
 pub use tri::TriAssembler;
 
 /// Errors of the assembly ([`Assembler`], [`TriAssembler`]).

@@ -28,7 +28,9 @@ use subdiv_mesh::Mesh;
 use subdiv_rules::{Budget, Request, Scheme, TriangleBuffers, VertexScalar};
 use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, TriLayout, tri_lattice_len, tri_patch_lattice};
 
-use crate::{AdaptiveFrame, AssemblyError};
+use crate::fans::lap;
+use crate::slots::Slots;
+use crate::{AdaptiveFrame, AssemblyError, UpdateParts};
 use emit::TriFrame;
 
 /// A patch's cached lattice.
@@ -48,7 +50,10 @@ pub(crate) struct TriBlock {
 pub struct TriAssembler {
     layout: TriLayout,
     blocks: Vec<TriBlock>,
-    block_start: Vec<u32>,
+    /// Where each lattice's points live in the frame's vertex buffer.
+    slots: Slots,
+    /// The vertex ranges the last frame rewrote.
+    dirty: Vec<std::ops::Range<u32>>,
     version: u64,
     max_depth: Depth,
     /// The cage's face-varying limit values, kept while frames need no finer level.
@@ -89,7 +94,8 @@ impl TriAssembler {
         Ok(TriAssembler {
             layout,
             blocks: vec![TriBlock::default(); n],
-            block_start: vec![0; n + 1],
+            slots: Slots::new(n),
+            dirty: Vec::new(),
             version: 0,
             max_depth,
             uvs: None,
@@ -99,6 +105,12 @@ impl TriAssembler {
     /// The patches' topology (a uniform layout; its point ids are not used).
     pub fn layout(&self) -> &TriLayout {
         &self.layout
+    }
+
+    /// The depth of face `f`'s cached lattice (`None`: none): drawing the face at most that
+    /// deep tessellates nothing.
+    pub fn cached_depth(&self, f: usize) -> Option<Depth> {
+        self.blocks.get(f).and_then(|b| b.depth)
     }
 
     /// Drops all cached lattices (e.g. after the mesh's positions changed).
@@ -143,6 +155,7 @@ impl TriAssembler {
                 want: nf,
             });
         }
+        let mut t = std::time::Instant::now();
         let depth: Vec<Depth> = depth.iter().map(|&d| d.min(self.max_depth)).collect();
         let active: Vec<bool> = (0..nf)
             .map(|f| active[f] && self.layout.patches()[f].visible)
@@ -150,34 +163,51 @@ impl TriAssembler {
         let owners = emit::Owners::new(mesh, &self.layout, &depth, &active);
         let required = owners.required_depths(mesh, &self.layout, &depth, &active);
         self.check_size(&required)?;
-        let recomputed = self.recompute_blocks(mesh, &required);
-        let relink = recomputed > 0 || out.surface.num_vertices() == 0;
+        let mut stitch = lap(&mut t);
+        let (changed, points) = self.recompute_blocks(mesh, &required);
+        let tessellate = lap(&mut t);
+        let relink = !changed.is_empty() || out.surface.num_vertices() == 0;
+        self.dirty.clear();
         out.surface.write_triangles(VertexScalar::Depth, |b| {
-            self.write_frame(mesh, &depth, &active, &owners, relink, b)
+            let changed = relink.then_some(&changed);
+            self.write_frame(mesh, &depth, &active, &owners, changed, b, &mut stitch)
         })??;
-        out.set_bookkeeping(self.version, recomputed, &depth, &active);
+        let buffers = lap(&mut t) - stitch;
+        out.set_bookkeeping(self.version, (changed.len(), points), &depth, &active);
+        out.dirty.clone_from(&self.dirty);
+        out.parts = UpdateParts {
+            depths: 0.0,
+            tessellate,
+            stitch,
+            buffers,
+        };
         Ok(())
     }
 
-    /// Writes the frame's surface into `b`: the vertex buffer (the lattices, concatenated) when
-    /// `relink`, the vertex depths, the face-varying values and the triangles.
+    /// Writes the frame's surface into `b`: with `changed`, the lattices recomputed this frame
+    /// into their slots of the vertex buffer; the vertex depths, the face-varying values and
+    /// the triangles; adds the time the index buffer took to `stitch`.
+    #[allow(clippy::too_many_arguments)]
     fn write_frame(
         &mut self,
         mesh: &Mesh,
         depth: &[Depth],
         active: &[bool],
         owners: &emit::Owners,
-        relink: bool,
+        changed: Option<&Vec<usize>>,
         b: &mut TriangleBuffers<'_>,
+        stitch: &mut f64,
     ) -> Result<(), AssemblyError> {
-        if relink {
-            self.concatenate_blocks(b)?;
+        if let Some(changed) = changed {
+            let blocks = &self.blocks;
+            let block = |i: usize| (&blocks[i].pos[..], &blocks[i].nrm[..]);
+            self.slots.write(b, block, changed, &mut self.dirty)?;
+            self.version += 1;
         }
         b.scalar.clear();
         b.scalar.resize(b.positions.len(), 0.0);
         for (f, &d) in depth.iter().enumerate() {
-            let range = self.block_start[f] as usize..self.block_start[f + 1] as usize;
-            b.scalar[range].fill(d as f32);
+            b.scalar[self.slots.range(f)].fill(d as f32);
         }
         let with_uvs = self.level_uvs(mesh, depth, active, b.uvs)?;
         let uvs = self.uvs.as_ref().filter(|_| with_uvs);
@@ -186,9 +216,11 @@ impl TriAssembler {
             depth,
             owners,
             blocks: &self.blocks,
-            block_start: &self.block_start,
+            slots: &self.slots,
         };
+        let t = std::time::Instant::now();
         fr.emit_frame(active, uvs, b.triangles, b.corner_normals, b.uv_indices);
+        *stitch += t.elapsed().as_secs_f64();
         Ok(())
     }
 
@@ -241,7 +273,11 @@ impl TriAssembler {
     }
 
     /// Recomputes the lattices that are too coarse for `required`; returns how many.
-    fn recompute_blocks(&mut self, mesh: &Mesh, required: &[Option<Depth>]) -> usize {
+    fn recompute_blocks(
+        &mut self,
+        mesh: &Mesh,
+        required: &[Option<Depth>],
+    ) -> (Vec<usize>, usize) {
         let todo: Vec<usize> = (0..required.len())
             .filter(|&i| required[i] > self.blocks[i].depth)
             .collect();
@@ -259,30 +295,19 @@ impl TriAssembler {
                 (i, b)
             })
             .collect();
-        let recomputed = fresh.len();
+        let points = fresh.iter().map(|(_, b)| b.pos.len()).sum();
         for (i, b) in fresh {
             self.blocks[i] = b;
         }
-        recomputed
-    }
-
-    /// Rebuilds the vertex buffer from the lattices and bumps the vertex version.
-    fn concatenate_blocks(&mut self, b: &mut TriangleBuffers<'_>) -> Result<(), AssemblyError> {
-        let blocks = self.blocks.iter().map(|b| (&b.pos[..], &b.nrm[..]));
-        crate::fans::concatenate(b, blocks, &mut self.block_start)?;
-        self.version += 1;
-        Ok(())
+        (todo, points)
     }
 
     /// Where frame vertex `index` comes from: (face, lattice depth, lattice index), for tests
     /// and tools that compare the frame with uniform tessellations.
     pub fn vertex_source(&self, index: u32) -> Option<(usize, Depth, u32)> {
-        let f = self
-            .block_start
-            .partition_point(|&s| s <= index)
-            .checked_sub(1)?;
+        let (f, k) = self.slots.block_of(index)?;
         let d = self.blocks.get(f)?.depth?;
-        Some((f, d, index - self.block_start[f]))
+        Some((f, d, k))
     }
 }
 

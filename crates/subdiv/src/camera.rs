@@ -1,10 +1,28 @@
-//! Camera conversions between [`subdiv_mesh::Camera`] (what the tessellators see) and the
-//! renderer's [`View`] / [`OrbitCamera`], so the viewer shows exactly what a headless render
-//! draws.
+//! The framing rule ([`framing_box`]) and the camera conversions between
+//! [`subdiv_mesh::Camera`] (what the tessellators see) and the renderer's [`View`] /
+//! [`OrbitCamera`], so the viewer shows exactly what a headless render draws.
 
 use glam::{Quat, Vec3};
-use subdiv_mesh::Camera;
+use subdiv_mesh::{Camera, Mesh};
 use subdiv_vk::{OrbitCamera, View};
+
+/// The box a view of `cage` is framed on: the cage's axis-aligned bounding box (every cage
+/// vertex). It is known before anything is tessellated, so the same camera flags give the same
+/// camera, and the same near and far planes ([`view_for`]), for every surface made from the
+/// cage: uniform at any depth, adaptive, DoI-refined, Catmull-Clark or Loop. (The limit
+/// surface lies in the cage's convex hull, its points being convex combinations of cage
+/// vertices under the standard rules; the near and far planes keep a box radius of margin
+/// besides.)
+///
+/// ```
+/// use subdiv::{framing_box, mesh::{Mesh, parse_obj, glam::Vec3}};
+/// let quad = Mesh::from_soup(&parse_obj("v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nf 1 2 3 4\n")?)?;
+/// assert_eq!(framing_box(&quad), (Vec3::ZERO, Vec3::new(2.0, 1.0, 0.0)));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn framing_box(cage: &Mesh) -> (Vec3, Vec3) {
+    cage.bounds()
+}
 
 /// Half the diagonal of the box `lo..hi` as seen from `target`: the largest distance from
 /// `target` to a corner.

@@ -6,9 +6,14 @@
 //! for frame-rate control) into the frame's geometry. The same node runs a Loop cage (its
 //! triangles as patches, [`subdiv_stitch::TriAssembler`]) through the same depth assignment.
 
+mod control;
+
+pub use control::Control;
+
+use control::{BudgetInputs, Controller, LastFrame, choose_budget, frame_work, pixels};
 use subdiv_depth::{
-    Assignment, DepthParams, FrameRateController, PatchErrors, Seams, Sphere, VertexData, assign,
-    face_spheres, patch_errors, patch_errors_tri,
+    Assignment, BudgetController, DepthParams, FrameRateController, FrameTimeModel, FrameWork,
+    PatchErrors, Seams, Sphere, VertexData, assign, face_spheres, patch_errors, patch_errors_tri,
 };
 use subdiv_mesh::{Camera, Mesh};
 use subdiv_rules::Scheme;
@@ -30,6 +35,22 @@ impl Stitcher {
             Scheme::CatmullClark => Stitcher::Quads(Box::new(Assembler::new(mesh, max_depth)?)),
             Scheme::Loop => Stitcher::Tris(Box::new(TriAssembler::new(mesh, max_depth)?)),
         })
+    }
+
+    /// Unit `u`'s least depth (level-1 units need 1).
+    fn min_depth(&self, u: usize) -> Depth {
+        match self {
+            Stitcher::Quads(a) => a.min_depth(u),
+            Stitcher::Tris(_) => 0,
+        }
+    }
+
+    /// Unit `u`'s cached block depth.
+    fn cached_depth(&self, u: usize) -> Option<Depth> {
+        match self {
+            Stitcher::Quads(a) => a.cached_depth(u),
+            Stitcher::Tris(a) => a.cached_depth(u),
+        }
     }
 }
 
@@ -58,7 +79,10 @@ pub struct DynamicSubdivision {
     spheres: Vec<Sphere>,
     errors: Option<PatchErrors>,
     assembler: Stitcher,
-    controller: Option<FrameRateController>,
+    controller: Controller,
+    /// A frame's time from its work, fitted from the times `update` is given (every mode).
+    model: FrameTimeModel,
+    last: LastFrame,
     fixed_depths: Option<Vec<Depth>>,
     assignment: Assignment,
     geometry: AdaptiveFrame,
@@ -91,7 +115,9 @@ impl DynamicSubdivision {
             spheres,
             errors: None,
             assembler,
-            controller: None,
+            controller: Controller::Off,
+            model: FrameTimeModel::with_default_prior(),
+            last: LastFrame::default(),
             fixed_depths: None,
             assignment: Assignment::default(),
             geometry: AdaptiveFrame::default(),
@@ -126,9 +152,8 @@ impl DynamicSubdivision {
                 VertexData::compute(&self.mesh, self.scheme, p.cone_aperture_deg, p.max_depth);
             self.spheres = face_spheres(&self.mesh, self.scheme);
         }
-        if let Some(c) = &mut self.controller {
-            let fps = c.target_fps();
-            *c = FrameRateController::new(fps, p.max_depth);
+        if let Some(fps) = self.controller.target_fps() {
+            self.controller = Controller::new(self.controller.mode(), fps, p.max_depth);
         }
         Ok(())
     }
@@ -159,17 +184,64 @@ impl DynamicSubdivision {
         Ok(())
     }
 
-    /// Turns frame-rate control on (with a target) or off.
+    /// Turns frame-rate control on with the default (predictive, [`Control::Budget`])
+    /// controller aiming at `target_fps`, or off with `None`.
     pub fn set_frame_rate_control(&mut self, target_fps: Option<f32>) {
-        self.controller = target_fps.map(|f| FrameRateController::new(f, self.params.max_depth));
+        match target_fps {
+            Some(fps) => self.set_control(Control::Budget, fps),
+            None => self.set_control(Control::Off, 0.0),
+        }
     }
-    /// Changes the target of the running frame-rate controller without resetting it (turns the
+    /// Chooses the frame-rate control and its target (ignored by [`Control::Off`]); a new
+    /// controller starts, the frame-time model keeps what it has learnt.
+    pub fn set_control(&mut self, control: Control, target_fps: f32) {
+        self.controller = Controller::new(control, target_fps, self.params.max_depth);
+    }
+    /// The frame-rate control running.
+    pub fn control(&self) -> Control {
+        self.controller.mode()
+    }
+    /// The target frame rate, when control is on.
+    pub fn target_fps(&self) -> Option<f32> {
+        self.controller.target_fps()
+    }
+    /// Changes the target of the running controller without resetting it (turns the default
     /// control on if it was off).
     pub fn set_target_fps(&mut self, fps: f32) {
         match &mut self.controller {
-            Some(c) => c.set_target_fps(fps),
-            None => self.set_frame_rate_control(Some(fps)),
+            Controller::Budget(c) => c.set_target_fps(fps),
+            Controller::Paper(c) => c.set_target_fps(fps),
+            Controller::Off => self.set_frame_rate_control(Some(fps)),
         }
+    }
+    /// The paper's feedback controller, when it runs ([`Control::Paper`]).
+    pub fn paper_controller(&self) -> Option<&FrameRateController> {
+        match &self.controller {
+            Controller::Paper(c) => Some(c),
+            _ => None,
+        }
+    }
+    /// The predictive controller, when it runs ([`Control::Budget`]).
+    pub fn budget_controller(&self) -> Option<&BudgetController> {
+        match &self.controller {
+            Controller::Budget(c) => Some(c),
+            _ => None,
+        }
+    }
+    /// The frame-time model, fitted from the frame times given to [`Self::update`] in every
+    /// mode.
+    pub fn frame_model(&self) -> &FrameTimeModel {
+        &self.model
+    }
+    /// Replaces the frame-time model (for example by one with known coefficients, to choose
+    /// depths for a budget of triangles rather than of time).
+    pub fn set_frame_model(&mut self, model: FrameTimeModel) {
+        self.model = model;
+    }
+    /// The last frame's work and the model's prediction of its time (seconds), made when it
+    /// was tessellated (before its time was measured).
+    pub fn last_frame(&self) -> Option<(FrameWork, f64)> {
+        self.last.work.zip(self.last.predicted)
     }
     /// Drops the cached patch tessellations (the next frame recomputes every patch; for
     /// measuring what the cache saves).
@@ -196,10 +268,6 @@ impl DynamicSubdivision {
                 }
             })
             .sum()
-    }
-    /// The frame-rate controller, when on.
-    pub fn controller(&self) -> Option<&FrameRateController> {
-        self.controller.as_ref()
     }
     /// Overrides the view-dependent depths with fixed per-face depths (uniform tessellation, or
     /// depths from a Degree-of-Interest function); `None` returns to view-dependent depths.
@@ -237,17 +305,39 @@ impl DynamicSubdivision {
         &self.geometry
     }
 
-    /// Computes the frame for `camera`; `last_frame_time` (seconds) feeds the frame-rate
+    /// Computes the frame for `camera`; `last_frame_time` (seconds: how long the previous
+    /// frame took, drawing included) fits the frame-time model and feeds the frame-rate
     /// controller when it is on. Only classification, depths, the patches whose depth rose above
-    /// their cached depth, and the index buffer are recomputed.
+    /// their cached depth, and the index buffer are recomputed; the frame's
+    /// [`parts`](AdaptiveFrame::parts) say where the time went, and [`Self::last_frame`] what
+    /// the model predicts for it.
     pub fn update(
         &mut self,
         camera: &Camera,
         last_frame_time: Option<f32>,
     ) -> Result<&AdaptiveFrame, AssemblyError> {
-        if self.params.pixel_error.is_some() {
+        let start = std::time::Instant::now();
+        if let (Some(t), Some(w), false) = (last_frame_time, self.last.work, self.last.setup) {
+            let t = f64::from(t);
+            self.model.observe(&w, t);
+            match &mut self.controller {
+                Controller::Budget(c) => {
+                    if let Some(p) = self.last.planned {
+                        c.observe(t, p);
+                    }
+                }
+                Controller::Paper(c) => c.update(t as f32),
+                Controller::Off => {}
+            }
+        }
+        let budget = matches!(self.controller, Controller::Budget(_)) && self.fixed_depths.is_none();
+        self.last.setup = false;
+        if self.params.pixel_error.is_some() || budget {
+            let tolerance = self.params.shading_error_deg.to_radians();
+            self.last.setup = !matches!(&self.errors, Some(e) if e.shading_tolerance == tolerance);
             self.patch_errors();
         }
+        let errors = if budget { None } else { self.errors.as_ref() };
         let mut a = match &self.fixed_depths {
             Some(d) => {
                 let mut a = assign(
@@ -265,33 +355,55 @@ impl DynamicSubdivision {
                 &self.mesh,
                 &self.vertex,
                 &self.spheres,
-                self.errors.as_ref(),
+                errors,
                 camera,
                 &self.params,
             ),
         };
-        if let Some(c) = &mut self.controller {
-            if let Some(t) = last_frame_time {
-                c.update(t);
-            }
-            c.apply(&mut a);
-        }
         for f in self.mesh.faces() {
             if self.mesh.is_hole(f) {
                 a.active[f.idx()] = false;
             }
         }
+        let px = pixels(&a, camera);
+        self.last.planned = None;
+        if self.fixed_depths.is_none() {
+            match (&mut self.controller, self.errors.as_ref()) {
+                (Controller::Paper(c), _) => c.apply(&mut a),
+                (Controller::Budget(c), Some(errors)) => {
+                    let n = a.depth.len();
+                    let min_depth: Vec<Depth> =
+                        (0..n).map(|u| self.assembler.min_depth(u)).collect();
+                    let cached: Vec<Option<Depth>> =
+                        (0..n).map(|u| self.assembler.cached_depth(u)).collect();
+                    let inputs = BudgetInputs {
+                        camera,
+                        errors,
+                        spheres: &self.spheres,
+                        max_depth: self.params.max_depth,
+                        pixels: px,
+                    };
+                    let planned =
+                        choose_budget(c, &self.model, &inputs, &mut a, &min_depth, &cached);
+                    self.last.planned = Some(planned);
+                }
+                _ => {}
+            }
+        }
         // The faces on the copies of one non-manifold edge (in different manifold pieces,
         // which stitching does not join) at one depth, so the copies get the same points.
-        let min_depth = |u: usize| match &self.assembler {
-            Stitcher::Quads(asm) => asm.min_depth(u),
-            Stitcher::Tris(_) => 0,
-        };
-        self.seams.raise(&mut a.depth, &a.active, min_depth);
+        let assembler = &self.assembler;
+        self.seams
+            .raise(&mut a.depth, &a.active, |u| assembler.min_depth(u));
+        let depths = start.elapsed().as_secs_f64();
         match &mut self.assembler {
             Stitcher::Quads(asm) => asm.frame(&self.mesh, &a.depth, &a.active, &mut self.geometry),
             Stitcher::Tris(asm) => asm.frame(&self.mesh, &a.depth, &a.active, &mut self.geometry),
         }?;
+        self.geometry.set_depths_time(depths);
+        let work = frame_work(&self.geometry, px);
+        self.last.work = Some(work);
+        self.last.predicted = Some(self.model.predict(&work));
         self.assignment = a;
         Ok(&self.geometry)
     }

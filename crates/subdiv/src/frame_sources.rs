@@ -4,11 +4,11 @@
 
 use glam::Vec3;
 use subdiv_rules::Silhouettes;
-use subdiv_vk::viewer::{FrameRequest, FrameSource, SourceFrame};
+use subdiv_vk::viewer::{FrameControl, FrameRequest, FrameSource, SourceFrame};
 use subdiv_vk::{RenderMesh, Shading};
 
 use crate::scene::render_mesh;
-use crate::{DoiSetup, DynamicSubdivision, Scene, camera_from_view, depth_histogram};
+use crate::{Control, DoiSetup, DynamicSubdivision, Scene, camera_from_view, depth_histogram};
 
 /// The error type of [`FrameSource::frame`].
 type FrameError = Box<dyn std::error::Error + Send + Sync>;
@@ -80,6 +80,7 @@ impl FrameSource for UniformSource {
             // Positions, normals and depth scalars never change.
             vertex_version: Some(0),
             depth_cap: self.depth,
+            predicted_ms: None,
         })
     }
 }
@@ -89,18 +90,19 @@ impl FrameSource for UniformSource {
 /// the GPU while the tessellation's `vertex_version` is unchanged.
 pub struct AdaptiveSource {
     node: DynamicSubdivision,
-    /// The target frame rate the node's controller was set up with (`None`: control off).
-    control: Option<f32>,
+    /// The control and target the node was set up with.
+    control: (FrameControl, f32),
     lines: Vec<[f32; 3]>,
     status: String,
 }
 
 impl AdaptiveSource {
-    /// The source tessellating with `node` (frame-rate control starts off).
+    /// The source tessellating with `node` (frame-rate control as the viewer asks: its `C`
+    /// cycles off, budget, paper).
     pub fn new(node: DynamicSubdivision) -> AdaptiveSource {
         AdaptiveSource {
             node,
-            control: None,
+            control: (FrameControl::Off, 0.0),
             lines: Vec::new(),
             status: String::new(),
         }
@@ -109,12 +111,19 @@ impl AdaptiveSource {
 
 impl FrameSource for AdaptiveSource {
     fn frame(&mut self, request: &FrameRequest) -> Result<SourceFrame<'_>, FrameError> {
-        let want = request.frame_rate_control.then_some(request.target_fps);
-        if want != self.control {
-            // The node has no access to its controller's target: a new target restarts it.
-            self.node.set_frame_rate_control(want);
-            self.control = want;
+        let want = (request.control, request.target_fps);
+        if want.0 != self.control.0 {
+            let mode = match want.0 {
+                FrameControl::Off => Control::Off,
+                FrameControl::Budget => Control::Budget,
+                FrameControl::Paper => Control::Paper,
+            };
+            self.node.set_control(mode, want.1);
+        } else if want.1 != self.control.1 && want.0.is_on() {
+            // A new target keeps the controller (and what it has learnt).
+            self.node.set_target_fps(want.1);
         }
+        self.control = want;
         let camera = camera_from_view(&request.cull_view, request.size);
         let t = request.last_frame_time.as_secs_f32();
         self.node.update(&camera, (t > 0.0).then_some(t))?;
@@ -129,7 +138,7 @@ impl FrameSource for AdaptiveSource {
         }
         let cap = self
             .node
-            .controller()
+            .paper_controller()
             .map_or(self.node.params().max_depth, |c| c.cap());
         self.status = format!(
             "patches per depth {} | maxsd {cap} | {} patches recomputed",
@@ -144,6 +153,7 @@ impl FrameSource for AdaptiveSource {
             status: &self.status,
             vertex_version: Some(g.vertex_version()),
             depth_cap: Some(u32::from(cap)),
+            predicted_ms: self.node.last_frame().map(|(_, p)| (p * 1e3) as f32),
         })
     }
 }
@@ -220,6 +230,7 @@ impl FrameSource for DoiSource {
             vertex_version: Some(self.version),
             // DoI refinement is driven by the DoI and its steps, not by a depth cap.
             depth_cap: None,
+            predicted_ms: None,
         })
     }
 }

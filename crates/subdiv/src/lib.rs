@@ -30,7 +30,8 @@
 //!   that holds a [`LimitMesh`] in the form the renderer draws (split at one-sided normals) with
 //!   its edges, silhouettes and lines;
 //! - `frame.rs`: summaries of adaptive frames ([`depth_histogram`]);
-//! - `camera.rs`: [`Camera`](mesh::Camera) to and from the renderer's [`View`](vk::View) and
+//! - `camera.rs`: the framing rule ([`framing_box`]: the cage's bounding box, in every mode),
+//!   [`Camera`](mesh::Camera) to and from the renderer's [`View`](vk::View) and
 //!   [`OrbitCamera`](vk::OrbitCamera) ([`view_for`], [`orbit_camera`], [`camera_from_view`]);
 //! - `frame_sources.rs`: the viewer's [`FrameSource`](vk::viewer::FrameSource)s
 //!   ([`UniformSource`], [`AdaptiveSource`], [`DoiSource`]);
@@ -105,16 +106,16 @@
 //! # Rendering a result
 //! A [`Scene`] holds a tessellation in the form the renderer draws (per-vertex scalars, crease
 //! normals);
-//! [`view_for`] turns the tessellator's camera into the renderer's view. (`no_run`: rendering
-//! needs a Vulkan driver.)
+//! [`view_for`] turns the tessellator's camera, framed on the cage ([`framing_box`]), into the
+//! renderer's view. (`no_run`: rendering needs a Vulkan driver.)
 //! ```no_run
-//! use subdiv::{Scene, view_for, mesh::{Camera, parse_obj, Mesh, glam::Vec3}, rules::Scheme};
+//! use subdiv::{Scene, framing_box, view_for, mesh::{Camera, parse_obj, Mesh, glam::Vec3}, rules::Scheme};
 //! use subdiv::vk::{RenderOptions, Renderer, Shading, write_png};
 //! let cube = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
 //!             f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
 //! let cage = Mesh::from_soup(&parse_obj(cube)?)?;
 //! let mut scene = Scene::uniform(&cage, Scheme::CatmullClark, 3)?;
-//! let (lo, hi) = scene.bounds();
+//! let (lo, hi) = framing_box(&cage);
 //! let camera = Camera::eye_relative(lo, hi, Vec3::new(0.8, 0.5, 2.2), 45.0, 320, 240);
 //! let view = view_for(&camera, lo, hi);
 //! scene.set_lines(Some(scene.silhouette_lines(view.eye)));
@@ -135,12 +136,12 @@ mod frame_sources;
 mod refine;
 mod scene;
 
-pub use builtin::{BuiltinError, BuiltinScene, helmet40};
-pub use camera::{camera_from_view, orbit_camera, radius_about, view_for};
+pub use builtin::{BuiltinError, BuiltinScene, GRID_COLUMNS, helmet, helmet40, instance_grid};
+pub use camera::{camera_from_view, framing_box, orbit_camera, radius_about, view_for};
 pub use doi_setup::{
     DoiOptions, DoiSetup, DoiSetupError, check_doi_options, doi_face_depths, make_doi,
 };
-pub use dynamic::DynamicSubdivision;
+pub use dynamic::{Control, DynamicSubdivision};
 pub use export::{ExportError, OutputFormat, write_surface};
 pub use frame::depth_histogram;
 pub use frame_sources::{AdaptiveSource, DoiSource, UniformSource};

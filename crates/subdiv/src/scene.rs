@@ -53,7 +53,8 @@ pub fn uniform_limit(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<LimitM
 }
 
 /// What the renderer draws of a tessellated surface: its split form
-/// ([`LimitMesh::split_sided`]: triangles, one normal per vertex, the surface's scalar), the
+/// ([`LimitMesh::split_sided`]: triangles, one normal per vertex, the surface's scalar) with
+/// every corner's normal on its triangle's side ([`LimitMesh::normals_facing_faces`]), the
 /// polygon edges for wireframes, what silhouette extraction needs, and the lines drawn on top.
 pub struct Scene {
     /// The split surface; vertex `i` of the tessellation keeps index `i`.
@@ -83,7 +84,7 @@ impl Scene {
     /// [`Shading::Depth`](subdiv_vk::Shading::Depth) colours, or a DoI value) when it has one.
     pub fn from_limit(limit: &LimitMesh) -> Scene {
         Scene {
-            surface: limit.split_sided(false),
+            surface: limit.split_sided(false).normals_facing_faces(),
             edges: limit.edges(),
             silhouettes: Silhouettes::new(limit),
             faces: limit.num_faces(),
@@ -91,7 +92,8 @@ impl Scene {
         }
     }
 
-    /// The split surface drawn ([`LimitMesh::split_sided`] without UVs).
+    /// The split surface drawn ([`LimitMesh::split_sided`] without UVs, normals facing their
+    /// faces).
     pub fn surface(&self) -> &LimitMesh {
         &self.surface
     }

@@ -8,7 +8,7 @@ use glam::Vec3;
 use subdiv_depth::Class;
 use subdiv_mesh::parse_obj;
 
-use subdiv::DynamicSubdivision;
+use subdiv::{Control, DynamicSubdivision};
 use subdiv_depth::DepthParams;
 use subdiv_mesh::{Camera, Mesh};
 use subdiv_rules::Scheme;
@@ -162,17 +162,30 @@ fn uniform_triangle_count_matches_a_uniform_frame() {
 #[test]
 fn frame_rate_control_toggles() {
     let mut node = DynamicSubdivision::new(cube(), params(3)).unwrap();
-    assert!(node.controller().is_none());
+    assert_eq!((node.control(), node.target_fps()), (Control::Off, None));
+    // A target turns the default, predictive control on.
     node.set_frame_rate_control(Some(30.0));
-    let fps = node.controller().map(|c| c.target_fps()).unwrap();
+    assert_eq!(node.control(), Control::Budget);
+    let fps = node.budget_controller().map(|c| c.target_fps()).unwrap();
     assert!((fps - 30.0).abs() < 1e-3, "{fps}");
     node.update(&camera_on_z(20.0), Some(0.1)).unwrap();
-    assert!(node.controller().is_some());
+    assert!(node.budget_controller().is_some());
     node.set_frame_rate_control(None);
-    assert!(node.controller().is_none());
+    assert!(node.budget_controller().is_none() && node.paper_controller().is_none());
     node.set_target_fps(60.0);
-    let fps = node.controller().map(|c| c.target_fps()).unwrap();
-    assert!((fps - 60.0).abs() < 1e-3, "{fps}");
+    assert_eq!(node.target_fps(), Some(60.0));
+    // The paper's controller on request; changing the target keeps the controller.
+    node.set_control(Control::Paper, 20.0);
+    node.update(&camera_on_z(20.0), Some(0.1)).unwrap();
+    node.set_target_fps(25.0);
+    let fps = node.paper_controller().map(|c| c.target_fps()).unwrap();
+    assert!((fps - 25.0).abs() < 1e-3, "{fps}");
+    // Every mode fits the frame-time model and predicts each frame; the frames that measured
+    // the pixel-error data (the first budget frame) are not fitted.
+    node.update(&camera_on_z(20.0), Some(0.1)).unwrap();
+    let (work, predicted) = node.last_frame().unwrap();
+    assert!(work.triangles > 0.0 && predicted > 0.0);
+    assert_eq!(node.frame_model().frames(), 1);
 }
 
 /// The Loop icosahedron.

@@ -1,7 +1,9 @@
 //! Every normal handed to the renderer is the exact limit normal: within 0.05° of
 //! the limit normal of the refined mesh's vertex at that point, computed in `f64` by
 //! `Ring::limit_sided` (one-sided where the surface has a crease or a corner: the side whose
-//! tangent plane is nearest the triangle's own plane).
+//! tangent plane is nearest the triangle's own plane), reversed where it points against the
+//! triangle (`LimitMesh::normals_facing_faces`: OpenSubdiv's normal at a vertex of valence 2,
+//! a coarse triangle folded against the surface).
 //!
 //! Uniform scenes: every fixture cage at depths 1 to 3. Adaptive frames: a few cages at mixed
 //! per-face depths, checked against the limit points of the deepest level.
@@ -110,12 +112,20 @@ fn check(m: &LimitMesh, truth: &Truth) -> Checked {
                     .unwrap()
             };
             let got = Vec3::from(m.normals()[i as usize]).as_dvec3();
-            let angle = got
-                .normalize()
-                .dot(want)
-                .clamp(-1.0, 1.0)
-                .acos()
-                .to_degrees();
+            let angle_to = |want: DVec3| {
+                got.normalize()
+                    .dot(want)
+                    .clamp(-1.0, 1.0)
+                    .acos()
+                    .to_degrees()
+            };
+            // Drawn facing the triangle; a normal in the triangle's plane may go either way.
+            let facing = want.dot(flat);
+            let angle = if facing.abs() < 1e-6 {
+                angle_to(want).min(angle_to(-want))
+            } else {
+                angle_to(want * facing.signum())
+            };
             checked += 1;
             sided += usize::from(!sides.is_empty());
             if angle > worst || angle.is_nan() {

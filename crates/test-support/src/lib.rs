@@ -1,7 +1,7 @@
 //! Helpers shared by the tests of every workspace crate: the random generator ([`Rng`]), the
 //! watertightness check over plain triangle buffers ([`open_edges`] and its parts), small cages
-//! as polygon soups or OBJ text ([`cube`], [`prism`], [`grid`]) and the fixture paths
-//! ([`fixture`]).
+//! as polygon soups or OBJ text ([`cube`], [`prism`], [`grid`]), the fixture paths
+//! ([`fixture`]) and recorded output hashes ([`Fnv`], [`check_recorded`]).
 //!
 //! The crate depends on no workspace crate, so a crate's own unit tests can use it without
 //! linking a second copy of that crate: its helpers take and return plain buffers
@@ -10,11 +10,13 @@
 
 mod cages;
 mod fixtures;
+mod hashes;
 mod rng;
 mod watertight;
 
 pub use cages::{Soup, cube, grid, grouped_cube_obj, height_grid, prism};
 pub use fixtures::{fixture, fixture_files, fixtures, root, shape};
+pub use hashes::{Fnv, check_recorded, trig_fingerprint};
 pub use rng::Rng;
 pub use watertight::{
     indexed_open_edges, open_edges, open_edges_by, weld, weld_values, welded_open_edges,

@@ -22,7 +22,7 @@ impl FrameSource for Adaptive {
         request: &FrameRequest,
     ) -> Result<SourceFrame<'_>, Box<dyn std::error::Error + Send + Sync>> {
         let previous = self.level;
-        if request.frame_rate_control && request.frame_index > 0 {
+        if request.control.is_on() && request.frame_index > 0 {
             let fps = 1.0 / request.last_frame_time.as_secs_f32().max(1e-6);
             if fps > request.target_fps * 1.2 && self.level < 6 {
                 self.level += 1;
@@ -53,6 +53,7 @@ impl FrameSource for Adaptive {
             status: &self.status,
             vertex_version: None,
             depth_cap: Some(self.level),
+            predicted_ms: None,
         })
     }
 }

@@ -123,6 +123,8 @@ pub(crate) struct Context {
     pub(crate) limits: vk::PhysicalDeviceLimits,
     pub(crate) wide_lines: bool,
     pub(crate) depth_format: vk::Format,
+    /// Sample counts the colour and the depth targets both support.
+    pub(crate) sample_counts: vk::SampleCountFlags,
 }
 
 fn layer_available(entry: &ash::Entry, name: &CStr) -> Result<bool> {
@@ -214,6 +216,8 @@ impl Context {
             limits: chosen.limits,
             wide_lines: chosen.wide_lines,
             depth_format,
+            sample_counts: chosen.limits.framebuffer_color_sample_counts
+                & chosen.limits.framebuffer_depth_sample_counts,
         })
     }
 

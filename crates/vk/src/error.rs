@@ -69,6 +69,19 @@ pub enum VkError {
         /// The device limit.
         max: u32,
     },
+    /// The device cannot draw with the sample count asked for.
+    #[error(
+        "{device} does not support {requested} samples per pixel (it supports {})",
+        supported.iter().map(u32::to_string).collect::<Vec<_>>().join(", ")
+    )]
+    Samples {
+        /// The samples per pixel asked for.
+        requested: u32,
+        /// The device.
+        device: String,
+        /// The counts it supports.
+        supported: Vec<u32>,
+    },
     /// Reading or writing a file failed.
     #[error("{path}")]
     Io {

@@ -1,180 +1,21 @@
-//! Render targets and the command recording of one frame, shared by the
-//! headless renderer and the viewer (so both produce identical pixels).
+//! The command recording of one frame, shared by the headless renderer and the viewer (so
+//! both produce identical pixels), and the mesh upload buffer.
 
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 
 use crate::context::Context;
 use crate::error::{Result, VkError};
-use crate::memory::{Buffer, Image, subresource_range};
-use crate::pipeline::{COLOR_FORMAT, LINEAR_DEPTH_FORMAT, NORMAL_FORMAT, Pipelines};
+use crate::memory::{Buffer, subresource_range};
+use crate::pipeline::{PipelineSet, Pipelines};
 use crate::scene::{self, Layout, RenderOptions, View};
-
-/// Colour, auxiliary and depth attachments of one size, plus a host-visible
-/// buffer that receives their contents.
-pub(crate) struct Target {
-    pub extent: vk::Extent2D,
-    pub color: Image,
-    normal: Image,
-    linear_depth: Image,
-    depth: Image,
-    pub readback: Buffer,
-}
-
-/// Byte sizes per pixel of the readback sections: colour, normal+scalar, linear depth.
-const COLOR_BYTES: u64 = 4;
-const NORMAL_BYTES: u64 = 16;
-const LINEAR_DEPTH_BYTES: u64 = 4;
-
-/// What to copy into the readback buffer at the end of a frame.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Readback {
-    None,
-    Color,
-    All,
-}
-
-impl Target {
-    pub fn new(ctx: &mut Context, extent: vk::Extent2D) -> Result<Self> {
-        let max = ctx.limits.max_image_dimension2_d;
-        if extent.width == 0 || extent.height == 0 || extent.width > max || extent.height > max {
-            return Err(VkError::InvalidSize {
-                width: extent.width,
-                height: extent.height,
-                max,
-            });
-        }
-        let color_usage = vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC;
-        let color_aspect = vk::ImageAspectFlags::COLOR;
-        let mut made: Vec<Image> = Vec::new();
-        let specs = [
-            (COLOR_FORMAT, color_usage, color_aspect, "colour target"),
-            (NORMAL_FORMAT, color_usage, color_aspect, "normal target"),
-            (
-                LINEAR_DEPTH_FORMAT,
-                color_usage,
-                color_aspect,
-                "linear depth target",
-            ),
-            (
-                ctx.depth_format,
-                vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT,
-                vk::ImageAspectFlags::DEPTH,
-                "depth target",
-            ),
-        ];
-        for (format, usage, aspect, name) in specs {
-            match Image::new(ctx, extent, format, usage, aspect, name) {
-                Ok(image) => made.push(image),
-                Err(e) => {
-                    for mut image in made {
-                        image.destroy(ctx);
-                    }
-                    return Err(e);
-                }
-            }
-        }
-        let pixels = u64::from(extent.width) * u64::from(extent.height);
-        let readback = match Buffer::new(
-            ctx,
-            pixels * (COLOR_BYTES + NORMAL_BYTES + LINEAR_DEPTH_BYTES),
-            vk::BufferUsageFlags::TRANSFER_DST,
-            MemoryLocation::GpuToCpu,
-            "readback",
-        ) {
-            Ok(b) => b,
-            Err(e) => {
-                for mut image in made {
-                    image.destroy(ctx);
-                }
-                return Err(e);
-            }
-        };
-        let mut it = made.into_iter();
-        match (it.next(), it.next(), it.next(), it.next()) {
-            (Some(color), Some(normal), Some(linear_depth), Some(depth)) => Ok(Target {
-                extent,
-                color,
-                normal,
-                linear_depth,
-                depth,
-                readback,
-            }),
-            _ => Err(VkError::Vulkan {
-                call: "create targets",
-                result: vk::Result::ERROR_UNKNOWN,
-            }),
-        }
-    }
-
-    pub fn destroy(&mut self, ctx: &mut Context) {
-        self.color.destroy(ctx);
-        self.normal.destroy(ctx);
-        self.linear_depth.destroy(ctx);
-        self.depth.destroy(ctx);
-        self.readback.destroy(ctx);
-    }
-
-    fn pixels(&self) -> u64 {
-        u64::from(self.extent.width) * u64::from(self.extent.height)
-    }
-
-    /// The colour image read back (valid after a frame with [`Readback::Color`] or `All` completed).
-    pub fn read_color(&self) -> Result<image::RgbaImage> {
-        let n = (self.pixels() * COLOR_BYTES) as usize;
-        let bytes = self
-            .readback
-            .mapped()?
-            .get(..n)
-            .map(<[u8]>::to_vec)
-            .unwrap_or_default();
-        image::RgbaImage::from_raw(self.extent.width, self.extent.height, bytes).ok_or(
-            VkError::Vulkan {
-                call: "read back colour",
-                result: vk::Result::ERROR_UNKNOWN,
-            },
-        )
-    }
-
-    /// The auxiliary images read back (valid after a frame with [`Readback::All`] completed).
-    pub fn read_aux(&self) -> Result<crate::AuxImage> {
-        let pixels = self.pixels() as usize;
-        let mapped = self.readback.mapped()?;
-        let normal_start = pixels * COLOR_BYTES as usize;
-        let depth_start = normal_start + pixels * NORMAL_BYTES as usize;
-        let f = |bytes: &[u8]| f32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]);
-        let normal_bytes = mapped.get(normal_start..depth_start).unwrap_or_default();
-        let depth_bytes = mapped
-            .get(depth_start..depth_start + pixels * LINEAR_DEPTH_BYTES as usize)
-            .unwrap_or_default();
-        let mut aux = crate::AuxImage {
-            width: self.extent.width,
-            height: self.extent.height,
-            depth: Vec::with_capacity(pixels),
-            normals: Vec::with_capacity(pixels),
-            scalars: Vec::with_capacity(pixels),
-            coverage: Vec::with_capacity(pixels),
-        };
-        for (n, d) in normal_bytes
-            .chunks_exact(16)
-            .zip(depth_bytes.chunks_exact(4))
-        {
-            let depth = f(d);
-            let covered = depth > 0.0;
-            aux.coverage.push(if covered { 1.0 } else { 0.0 });
-            aux.depth.push(if covered { depth } else { f32::INFINITY });
-            aux.normals.push([f(&n[0..4]), f(&n[4..8]), f(&n[8..12])]);
-            aux.scalars.push(f(&n[12..16]));
-        }
-        Ok(aux)
-    }
-}
+pub(crate) use crate::target::{COLOR_BYTES, NORMAL_BYTES, Readback, Target};
 
 fn image_barrier(
     image: vk::Image,
     aspect: vk::ImageAspectFlags,
-    (src_stage, src_access, old): (vk::PipelineStageFlags2, vk::AccessFlags2, vk::ImageLayout),
-    (dst_stage, dst_access, new): (vk::PipelineStageFlags2, vk::AccessFlags2, vk::ImageLayout),
+    (src_stage, src_access, old): Use,
+    (dst_stage, dst_access, new): Use,
 ) -> vk::ImageMemoryBarrier2<'static> {
     vk::ImageMemoryBarrier2::default()
         .src_stage_mask(src_stage)
@@ -201,76 +42,233 @@ pub(crate) struct FrameInputs<'a> {
     pub readback: Readback,
 }
 
+/// Stage, access and layout of an image on one side of a barrier.
+type Use = (vk::PipelineStageFlags2, vk::AccessFlags2, vk::ImageLayout);
+
+const UNUSED: Use = (
+    vk::PipelineStageFlags2::ALL_COMMANDS,
+    vk::AccessFlags2::NONE,
+    vk::ImageLayout::UNDEFINED,
+);
+const COLOR_WRITE: Use = (
+    vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT,
+    vk::AccessFlags2::COLOR_ATTACHMENT_WRITE,
+    vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+);
+const DEPTH_TESTS: vk::PipelineStageFlags2 = vk::PipelineStageFlags2::from_raw(
+    vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS.as_raw()
+        | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS.as_raw(),
+);
+const DEPTH_WRITE: Use = (
+    DEPTH_TESTS,
+    vk::AccessFlags2::from_raw(
+        vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_READ.as_raw()
+            | vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE.as_raw(),
+    ),
+    vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
+);
+
 /// Records one frame. Afterwards the colour image is in `TRANSFER_SRC_OPTIMAL`
 /// layout and the requested readback copies are recorded and made host-visible.
 ///
+/// With one sample per pixel, one pass draws colour and the auxiliary targets. With several,
+/// a multisampled pass draws colour (resolved into the target's colour image), and only when
+/// the auxiliary images are read back a second, single-sample pass draws them: depth, normals
+/// and scalars stay point-sampled at pixel centres whatever the sample count.
+///
 /// `cmd` must be in the recording state; every handle in `f` must belong to
 /// `device` and stay alive until the submission completes (the callers wait
-/// on a fence before reusing or destroying any of them).
-pub(crate) fn record(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_>) {
-    begin_rendering(device, cmd, f);
-    draw_triangles(device, cmd, f);
-    draw_lines(device, cmd, f);
-    draw_overlay(device, cmd, f);
-    // SAFETY: `cmd` is recording inside the render pass begun by `begin_rendering`.
-    unsafe { device.cmd_end_rendering(cmd) };
+/// on a fence before reusing or destroying any of them). Fails only when the
+/// multisampled pipelines were not prepared.
+pub(crate) fn record(
+    device: &ash::Device,
+    cmd: vk::CommandBuffer,
+    f: &FrameInputs<'_>,
+) -> Result<()> {
+    let t = f.target;
+    let single = &f.pipelines.single;
+    match &t.multisampled {
+        None => {
+            let aux = [
+                (t.normal.view, Load::Clear),
+                (t.linear_depth.view, Load::Clear),
+            ];
+            barriers(device, cmd, &single_pass_barriers(t, UNUSED));
+            begin_rendering(
+                device,
+                cmd,
+                f,
+                (t.color.view, None, Load::Clear),
+                &aux,
+                t.depth.view,
+            );
+            draw_triangles(device, cmd, f, triangle_pipeline(single, f.options));
+            draw_lines(device, cmd, f, single);
+            draw_overlay(device, cmd, f, single);
+            // SAFETY: `cmd` is recording inside the rendering begun above.
+            unsafe { device.cmd_end_rendering(cmd) };
+        }
+        Some((ms_color, ms_depth)) => {
+            let set = f.pipelines.multisampled(t.samples)?;
+            let color = vk::ImageAspectFlags::COLOR;
+            barriers(
+                device,
+                cmd,
+                &[
+                    image_barrier(ms_color.raw, color, UNUSED, COLOR_WRITE),
+                    image_barrier(t.color.raw, color, UNUSED, COLOR_WRITE),
+                    image_barrier(
+                        ms_depth.raw,
+                        vk::ImageAspectFlags::DEPTH,
+                        UNUSED,
+                        DEPTH_WRITE,
+                    ),
+                ],
+            );
+            let resolve = Some(t.color.view);
+            begin_rendering(
+                device,
+                cmd,
+                f,
+                (ms_color.view, resolve, Load::Clear),
+                &[],
+                ms_depth.view,
+            );
+            draw_triangles(device, cmd, f, triangle_pipeline(set, f.options));
+            draw_lines(device, cmd, f, set);
+            draw_overlay(device, cmd, f, set);
+            // SAFETY: `cmd` is recording inside the rendering begun above.
+            unsafe { device.cmd_end_rendering(cmd) };
+            if f.readback == Readback::All {
+                // The resolved colour is kept (loaded, never written: the pipeline's colour
+                // mask is empty); the auxiliary targets get the triangles at one sample.
+                let resolved = (
+                    vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT,
+                    vk::AccessFlags2::COLOR_ATTACHMENT_READ
+                        | vk::AccessFlags2::COLOR_ATTACHMENT_WRITE,
+                    vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+                );
+                barriers(
+                    device,
+                    cmd,
+                    &single_pass_barriers(t, COLOR_WRITE).map(|b| {
+                        if b.image == t.color.raw {
+                            b.dst_access_mask(resolved.1)
+                        } else {
+                            b
+                        }
+                    }),
+                );
+                let aux = [
+                    (t.normal.view, Load::Clear),
+                    (t.linear_depth.view, Load::Clear),
+                ];
+                begin_rendering(
+                    device,
+                    cmd,
+                    f,
+                    (t.color.view, None, Load::Keep),
+                    &aux,
+                    t.depth.view,
+                );
+                draw_triangles(device, cmd, f, single.fill_depth_only);
+                // SAFETY: `cmd` is recording inside the rendering begun above.
+                unsafe { device.cmd_end_rendering(cmd) };
+            }
+        }
+    }
     to_transfer_source(device, cmd, f);
     if f.readback != Readback::None {
         copy_to_readback(device, cmd, f);
     }
+    Ok(())
 }
 
-/// Moves the attachments into their attachment layouts and begins rendering
-/// to them (cleared), with viewport and scissor covering the target.
-fn begin_rendering(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_>) {
-    let t = f.target;
-    let color_aspect = vk::ImageAspectFlags::COLOR;
-    let attach_stage = vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT;
-    let tests = vk::PipelineStageFlags2::EARLY_FRAGMENT_TESTS
-        | vk::PipelineStageFlags2::LATE_FRAGMENT_TESTS;
-    let before = (
-        vk::PipelineStageFlags2::ALL_TRANSFER | attach_stage,
-        vk::AccessFlags2::NONE,
-        vk::ImageLayout::UNDEFINED,
-    );
-    let to_attachment = (
-        attach_stage,
-        vk::AccessFlags2::COLOR_ATTACHMENT_WRITE,
-        vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-    );
-    let barriers = [
-        image_barrier(t.color.raw, color_aspect, before, to_attachment),
-        image_barrier(t.normal.raw, color_aspect, before, to_attachment),
-        image_barrier(t.linear_depth.raw, color_aspect, before, to_attachment),
+/// The barriers into the single-sample pass: colour from `color_before`, the auxiliary and
+/// depth targets from unused.
+fn single_pass_barriers(t: &Target, color_before: Use) -> [vk::ImageMemoryBarrier2<'static>; 4] {
+    let color = vk::ImageAspectFlags::COLOR;
+    [
+        image_barrier(t.color.raw, color, color_before, COLOR_WRITE),
+        image_barrier(t.normal.raw, color, UNUSED, COLOR_WRITE),
+        image_barrier(t.linear_depth.raw, color, UNUSED, COLOR_WRITE),
         image_barrier(
             t.depth.raw,
             vk::ImageAspectFlags::DEPTH,
-            (tests, vk::AccessFlags2::NONE, vk::ImageLayout::UNDEFINED),
-            (
-                tests,
-                vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_READ
-                    | vk::AccessFlags2::DEPTH_STENCIL_ATTACHMENT_WRITE,
-                vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
-            ),
+            UNUSED,
+            DEPTH_WRITE,
         ),
-    ];
-    let color_attachment = |view, clear: [f32; 4]| {
-        vk::RenderingAttachmentInfo::default()
+    ]
+}
+
+fn barriers(
+    device: &ash::Device,
+    cmd: vk::CommandBuffer,
+    barriers: &[vk::ImageMemoryBarrier2<'_>],
+) {
+    // SAFETY: `cmd` is recording outside a rendering (see `record`); the images belong to
+    // `device` and outlive the submission, and each barrier's old layout is the one the
+    // image is in at this point of the frame (or UNDEFINED, discarding its contents).
+    unsafe {
+        device.cmd_pipeline_barrier2(
+            cmd,
+            &vk::DependencyInfo::default().image_memory_barriers(barriers),
+        );
+    }
+}
+
+/// What a colour attachment starts a pass with.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Load {
+    /// Cleared (to the background, or zero for the auxiliary targets).
+    Clear,
+    /// What an earlier pass left.
+    Keep,
+}
+
+/// Begins rendering to the colour attachment `(view, resolve target, load)`, the auxiliary
+/// attachments `aux` and the depth attachment `depth` (cleared), with viewport and scissor
+/// covering the target. The attachments are in their attachment layouts.
+fn begin_rendering(
+    device: &ash::Device,
+    cmd: vk::CommandBuffer,
+    f: &FrameInputs<'_>,
+    (color, resolve, load): (vk::ImageView, Option<vk::ImageView>, Load),
+    aux: &[(vk::ImageView, Load)],
+    depth: vk::ImageView,
+) {
+    let t = f.target;
+    let attachment = |view, load: Load, clear: [f32; 4]| {
+        let info = vk::RenderingAttachmentInfo::default()
             .image_view(view)
             .image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
-            .load_op(vk::AttachmentLoadOp::CLEAR)
-            .store_op(vk::AttachmentStoreOp::STORE)
-            .clear_value(vk::ClearValue {
-                color: vk::ClearColorValue { float32: clear },
-            })
+            .store_op(vk::AttachmentStoreOp::STORE);
+        match load {
+            Load::Clear => info
+                .load_op(vk::AttachmentLoadOp::CLEAR)
+                .clear_value(vk::ClearValue {
+                    color: vk::ClearColorValue { float32: clear },
+                }),
+            Load::Keep => info.load_op(vk::AttachmentLoadOp::LOAD),
+        }
     };
-    let colors = [
-        color_attachment(t.color.view, f.options.background),
-        color_attachment(t.normal.view, [0.0; 4]),
-        color_attachment(t.linear_depth.view, [0.0; 4]),
-    ];
+    let mut first = attachment(color, load, f.options.background);
+    if let Some(resolve) = resolve {
+        // The multisampled image itself is not needed after the resolve.
+        first = first
+            .store_op(vk::AttachmentStoreOp::DONT_CARE)
+            .resolve_mode(vk::ResolveModeFlags::AVERAGE)
+            .resolve_image_view(resolve)
+            .resolve_image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL);
+    }
+    let colors: Vec<_> = std::iter::once(first)
+        .chain(
+            aux.iter()
+                .map(|&(view, load)| attachment(view, load, [0.0; 4])),
+        )
+        .collect();
     let depth = vk::RenderingAttachmentInfo::default()
-        .image_view(t.depth.view)
+        .image_view(depth)
         .image_layout(vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL)
         .load_op(vk::AttachmentLoadOp::CLEAR)
         .store_op(vk::AttachmentStoreOp::DONT_CARE)
@@ -297,34 +295,38 @@ fn begin_rendering(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs
         min_depth: 0.0,
         max_depth: 1.0,
     };
-    // SAFETY: `cmd` is recording (see `record`); the target's images and views
-    // belong to `device` and outlive the submission; the barriers move them
-    // into the layouts the attachment infos name.
+    // SAFETY: `cmd` is recording outside a rendering (see `record`); the views belong to
+    // `device`, outlive the submission and are in the layouts the attachment infos name.
     unsafe {
-        device.cmd_pipeline_barrier2(
-            cmd,
-            &vk::DependencyInfo::default().image_memory_barriers(&barriers),
-        );
         device.cmd_begin_rendering(cmd, &rendering);
         device.cmd_set_viewport(cmd, 0, &[viewport]);
         device.cmd_set_scissor(cmd, 0, &[area]);
     }
 }
 
-/// Draws the triangles (shaded, or depth and auxiliary targets only for
-/// [`scene::Shading::Wire`]).
-fn draw_triangles(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_>) {
+/// The triangle pipeline of `set` for `options`: shaded, or without colour for
+/// [`scene::Shading::Wire`] (depth and auxiliary targets only).
+fn triangle_pipeline(set: &PipelineSet, options: &RenderOptions) -> vk::Pipeline {
+    if options.shading == scene::Shading::Wire {
+        set.fill_depth_only
+    } else {
+        set.fill
+    }
+}
+
+/// Draws the triangles with `pipeline`.
+fn draw_triangles(
+    device: &ash::Device,
+    cmd: vk::CommandBuffer,
+    f: &FrameInputs<'_>,
+    pipeline: vk::Pipeline,
+) {
     let l = f.layout;
     let p = f.pipelines;
     let stages = vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT;
     if l.tri_count == 0 {
         return;
     }
-    let pipeline = if f.options.shading == scene::Shading::Wire {
-        p.fill_depth_only
-    } else {
-        p.fill
-    };
     let push = scene::mesh_push_constants(f.view, f.options, l);
     // SAFETY: `cmd` is recording inside the render pass; pipeline, layout and
     // mesh buffer belong to `device` and outlive the submission; the offsets
@@ -342,8 +344,13 @@ fn draw_triangles(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<
     }
 }
 
-/// Draws the wireframe edges and the extra lines with the line pipeline.
-fn draw_lines(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_>) {
+/// Draws the wireframe edges and the extra lines with the line pipeline of `set`.
+fn draw_lines(
+    device: &ash::Device,
+    cmd: vk::CommandBuffer,
+    f: &FrameInputs<'_>,
+    set: &PipelineSet,
+) {
     let l = f.layout;
     let p = f.pipelines;
     let stages = vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT;
@@ -351,7 +358,7 @@ fn draw_lines(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_>)
     // state of the line pipeline (line width only when `dynamic_line_width`).
     unsafe {
         if l.edge_count > 0 || l.line_count > 0 {
-            device.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::GRAPHICS, p.line);
+            device.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::GRAPHICS, set.line);
         }
         if l.edge_count > 0 {
             let push = scene::line_push_constants(f.view, f.options.wire_color);
@@ -377,8 +384,13 @@ fn draw_lines(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_>)
     }
 }
 
-/// Draws the overlay rectangles (HUD, legend) over everything, blended.
-fn draw_overlay(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_>) {
+/// Draws the overlay rectangles (HUD, legend) over everything, blended, with `set`.
+fn draw_overlay(
+    device: &ash::Device,
+    cmd: vk::CommandBuffer,
+    f: &FrameInputs<'_>,
+    set: &PipelineSet,
+) {
     let l = f.layout;
     if l.overlay_vertex_count == 0 {
         return;
@@ -390,7 +402,7 @@ fn draw_overlay(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_
     // SAFETY: as in `draw_triangles`; the overlay section of the mesh buffer holds
     // `overlay_vertex_count` packed vertices at `overlay_vertices`.
     unsafe {
-        device.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::GRAPHICS, p.overlay);
+        device.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::GRAPHICS, set.overlay);
         device.cmd_push_constants(cmd, p.layout, stages, 0, &push);
         device.cmd_bind_vertex_buffers(cmd, 0, &[f.mesh_buffer], &[l.overlay_vertices]);
         device.cmd_draw(cmd, l.overlay_vertex_count, 1, 0, 0);
@@ -402,44 +414,32 @@ fn draw_overlay(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_
 fn to_transfer_source(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInputs<'_>) {
     let t = f.target;
     let color_aspect = vk::ImageAspectFlags::COLOR;
-    let from_attachment = (
-        vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT,
-        vk::AccessFlags2::COLOR_ATTACHMENT_WRITE,
-        vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
-    );
     let to_transfer = (
         vk::PipelineStageFlags2::ALL_TRANSFER,
         vk::AccessFlags2::TRANSFER_READ,
         vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
     );
-    let mut barriers = vec![image_barrier(
+    let mut list = vec![image_barrier(
         t.color.raw,
         color_aspect,
-        from_attachment,
+        COLOR_WRITE,
         to_transfer,
     )];
     if f.readback == Readback::All {
-        barriers.push(image_barrier(
+        list.push(image_barrier(
             t.normal.raw,
             color_aspect,
-            from_attachment,
+            COLOR_WRITE,
             to_transfer,
         ));
-        barriers.push(image_barrier(
+        list.push(image_barrier(
             t.linear_depth.raw,
             color_aspect,
-            from_attachment,
+            COLOR_WRITE,
             to_transfer,
         ));
     }
-    // SAFETY: `cmd` is recording outside a render pass; the images belong to
-    // `device` and were left in COLOR_ATTACHMENT_OPTIMAL by the rendering.
-    unsafe {
-        device.cmd_pipeline_barrier2(
-            cmd,
-            &vk::DependencyInfo::default().image_memory_barriers(&barriers),
-        );
-    }
+    barriers(device, cmd, &list);
 }
 
 /// Copies the requested images into the readback buffer and makes the

@@ -51,8 +51,10 @@ mod memory;
 mod offscreen;
 pub mod overlay;
 mod pipeline;
+mod samples;
 mod scene;
 mod shaders;
+mod target;
 
 pub mod golden;
 pub mod viewer;
@@ -63,6 +65,7 @@ pub use context::{
 pub use error::{Result, VkError};
 pub use image_io::{EXR_CHANNELS, ExrChannel, read_exr, read_png, write_exr, write_png};
 pub use offscreen::{AuxImage, Renderer};
+pub use samples::{DEFAULT_SAMPLES, SAMPLE_COUNTS};
 pub use scene::{OrbitCamera, RenderMesh, RenderOptions, Shading, View};
 
 pub use glam;

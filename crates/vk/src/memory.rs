@@ -107,7 +107,7 @@ impl Buffer {
     }
 }
 
-/// A 2D image with one view.
+/// A 2D image with one view, single- or multisampled.
 pub(crate) struct Image {
     pub raw: vk::Image,
     pub view: vk::ImageView,
@@ -115,10 +115,12 @@ pub(crate) struct Image {
 }
 
 impl Image {
+    /// An image of `extent` and `format` with `samples` samples per pixel (a count the
+    /// device supports for `usage`, see [`Context::sample_counts`]).
     pub fn new(
         ctx: &mut Context,
         extent: vk::Extent2D,
-        format: vk::Format,
+        (format, samples): (vk::Format, vk::SampleCountFlags),
         usage: vk::ImageUsageFlags,
         aspect: vk::ImageAspectFlags,
         name: &str,
@@ -133,7 +135,7 @@ impl Image {
             })
             .mip_levels(1)
             .array_layers(1)
-            .samples(vk::SampleCountFlags::TYPE_1)
+            .samples(samples)
             .tiling(vk::ImageTiling::OPTIMAL)
             .usage(usage)
             .sharing_mode(vk::SharingMode::EXCLUSIVE)

@@ -8,6 +8,7 @@ use crate::context::{Context, ContextOptions, ValidationLog};
 use crate::error::{Result, VkResultExt};
 use crate::frame::{self, FrameInputs, MeshBuffer, Readback, Target};
 use crate::pipeline::Pipelines;
+use crate::samples;
 use crate::scene::{self, RenderMesh, RenderOptions, View};
 
 /// Per-pixel data besides colour, read back from the auxiliary targets.
@@ -133,6 +134,23 @@ impl Renderer {
         self.ctx.validation_enabled()
     }
 
+    /// The samples per pixel the device can draw with (of [`crate::SAMPLE_COUNTS`]; 1 always).
+    pub fn sample_counts(&self) -> Vec<u32> {
+        samples::counts(self.ctx.sample_counts)
+    }
+
+    /// The samples per pixel a render with `options` uses here: [`RenderOptions::samples`] if
+    /// the device supports it ([`VkError::Samples`](crate::VkError::Samples) otherwise), or
+    /// without one [`DEFAULT_SAMPLES`](crate::DEFAULT_SAMPLES) where supported, else the most
+    /// the device supports below it.
+    pub fn samples(&self, options: &RenderOptions) -> Result<u32> {
+        samples::choose(
+            options.samples,
+            self.ctx.sample_counts,
+            self.ctx.device_name(),
+        )
+    }
+
     /// Renders `mesh` seen through `view` at `size` = `[width, height]` and
     /// returns the colour image.
     pub fn render(
@@ -196,11 +214,17 @@ impl Renderer {
             width: size[0],
             height: size[1],
         };
-        if self.target.as_ref().is_none_or(|t| t.extent != extent) {
+        let samples = self.samples(options)?;
+        self.pipelines.prepare(&self.ctx, samples)?;
+        if self
+            .target
+            .as_ref()
+            .is_none_or(|t| !t.fits(extent, samples))
+        {
             if let Some(mut old) = self.target.take() {
                 old.destroy(&mut self.ctx);
             }
-            self.target = Some(Target::new(&mut self.ctx, extent)?);
+            self.target = Some(Target::new(&mut self.ctx, extent, samples)?);
         }
         let mesh_buffer = self.mesh.upload(&mut self.ctx, &bytes)?;
         let target = self.target()?;
@@ -234,7 +258,7 @@ impl Renderer {
                 options,
                 readback,
             },
-        );
+        )?;
         let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
         let submit = [vk::SubmitInfo2::default().command_buffer_infos(&cmds)];
         // SAFETY: `cmd` was fully recorded by `frame::record` and ends here; the

@@ -1,9 +1,11 @@
-//! Graphics pipelines (dynamic rendering) for triangles, lines and screen-space overlays.
+//! Graphics pipelines (dynamic rendering) for triangles, lines and screen-space overlays: one
+//! sample per pixel into the colour and auxiliary targets, or multisampled into colour only.
 
 use ash::vk;
 
 use crate::context::Context;
-use crate::error::{Result, VkResultExt};
+use crate::error::{Result, VkError, VkResultExt};
+use crate::samples;
 use crate::scene::VERTEX_STRIDE;
 use crate::shaders;
 
@@ -14,30 +16,89 @@ pub(crate) const NORMAL_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
 /// Auxiliary target 2: linear view depth.
 pub(crate) const LINEAR_DEPTH_FORMAT: vk::Format = vk::Format::R32_SFLOAT;
 
-/// The pipelines every frame is drawn with, all sharing one layout.
-pub(crate) struct Pipelines {
-    pub layout: vk::PipelineLayout,
-    /// Shaded triangles into colour and auxiliary targets.
+/// The pipelines of one pass: triangles, lines and overlays.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct PipelineSet {
+    /// Shaded triangles.
     pub fill: vk::Pipeline,
-    /// Triangles into depth and auxiliary targets only (hidden-line wireframe).
+    /// Triangles without colour (hidden-line wireframe, and the auxiliary pass).
     pub fill_depth_only: vk::Pipeline,
     /// Lines into colour only; depth test is dynamic state.
     pub line: vk::Pipeline,
     /// Screen-space overlay rectangles (HUD, legends): colour only, blended, no depth test.
     pub overlay: vk::Pipeline,
+}
+
+impl PipelineSet {
+    fn all(&self) -> [vk::Pipeline; 4] {
+        [self.fill, self.fill_depth_only, self.line, self.overlay]
+    }
+}
+
+/// Which attachments a pass draws into.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Pass {
+    /// One sample per pixel: colour and the auxiliary targets (normal + scalar, linear depth).
+    Single,
+    /// The colour target only, with this many samples per pixel (resolved afterwards).
+    Color(u32),
+}
+
+impl Pass {
+    fn formats(self) -> &'static [vk::Format] {
+        match self {
+            Pass::Single => &[COLOR_FORMAT, NORMAL_FORMAT, LINEAR_DEPTH_FORMAT],
+            Pass::Color(_) => &[COLOR_FORMAT],
+        }
+    }
+
+    fn samples(self) -> vk::SampleCountFlags {
+        match self {
+            Pass::Single => vk::SampleCountFlags::TYPE_1,
+            Pass::Color(n) => samples::flag(n),
+        }
+    }
+}
+
+/// The pipelines frames are drawn with, all sharing one layout: the single-sample set (colour
+/// and auxiliary targets), and a colour-only set per sample count in use (made by
+/// [`Pipelines::prepare`] when first asked for).
+pub(crate) struct Pipelines {
+    pub layout: vk::PipelineLayout,
+    /// One sample per pixel, colour and auxiliary targets.
+    pub single: PipelineSet,
+    /// Colour only, per sample count above 1.
+    multisampled: Vec<(u32, PipelineSet)>,
     /// Line widths are dynamic state (the device has `wideLines`).
     pub dynamic_line_width: bool,
     /// Supported line width range.
     pub line_width_range: [f32; 2],
+    modules: Modules,
 }
 
+#[derive(Clone, Copy, Default)]
 struct Modules {
     mesh_vert: vk::ShaderModule,
     mesh_frag: vk::ShaderModule,
+    mesh_color_frag: vk::ShaderModule,
     line_vert: vk::ShaderModule,
     line_frag: vk::ShaderModule,
     overlay_vert: vk::ShaderModule,
     overlay_frag: vk::ShaderModule,
+}
+
+impl Modules {
+    fn all(&self) -> [vk::ShaderModule; 7] {
+        [
+            self.mesh_vert,
+            self.mesh_frag,
+            self.mesh_color_frag,
+            self.line_vert,
+            self.line_frag,
+            self.overlay_vert,
+            self.overlay_frag,
+        ]
+    }
 }
 
 fn module(ctx: &Context, bytes: &[u8]) -> Result<vk::ShaderModule> {
@@ -62,97 +123,122 @@ impl Pipelines {
             .call("vkCreatePipelineLayout")?;
         let mut pipelines = Pipelines {
             layout,
-            fill: vk::Pipeline::null(),
-            fill_depth_only: vk::Pipeline::null(),
-            line: vk::Pipeline::null(),
-            overlay: vk::Pipeline::null(),
+            single: PipelineSet::default(),
+            multisampled: Vec::new(),
             dynamic_line_width: ctx.wide_lines,
             line_width_range: if ctx.wide_lines {
                 ctx.limits.line_width_range
             } else {
                 [1.0, 1.0]
             },
+            modules: Modules::default(),
         };
-        let mut modules = Modules {
-            mesh_vert: vk::ShaderModule::null(),
-            mesh_frag: vk::ShaderModule::null(),
-            line_vert: vk::ShaderModule::null(),
-            line_frag: vk::ShaderModule::null(),
-            overlay_vert: vk::ShaderModule::null(),
-            overlay_frag: vk::ShaderModule::null(),
+        let result = pipelines
+            .load_modules(ctx)
+            .and_then(|()| pipelines.build(ctx, Pass::Single));
+        match result {
+            Ok(set) => {
+                pipelines.single = set;
+                Ok(pipelines)
+            }
+            Err(e) => {
+                pipelines.destroy(ctx);
+                Err(e)
+            }
+        }
+    }
+
+    fn load_modules(&mut self, ctx: &Context) -> Result<()> {
+        let m = &mut self.modules;
+        m.mesh_vert = module(ctx, shaders::MESH_VERT)?;
+        m.mesh_frag = module(ctx, shaders::MESH_FRAG)?;
+        m.mesh_color_frag = module(ctx, shaders::MESH_COLOR_FRAG)?;
+        m.line_vert = module(ctx, shaders::LINE_VERT)?;
+        m.line_frag = module(ctx, shaders::LINE_FRAG)?;
+        m.overlay_vert = module(ctx, shaders::OVERLAY_VERT)?;
+        m.overlay_frag = module(ctx, shaders::OVERLAY_FRAG)?;
+        Ok(())
+    }
+
+    /// Makes the colour-only pipelines for `samples` per pixel if they are not there yet
+    /// (nothing for 1, whose pipelines [`Pipelines::new`] made).
+    pub fn prepare(&mut self, ctx: &Context, samples: u32) -> Result<()> {
+        if samples <= 1 || self.multisampled.iter().any(|(n, _)| *n == samples) {
+            return Ok(());
+        }
+        let set = self.build(ctx, Pass::Color(samples))?;
+        self.multisampled.push((samples, set));
+        Ok(())
+    }
+
+    /// The colour-only pipelines for `samples` per pixel ([`Pipelines::prepare`]d before).
+    pub fn multisampled(&self, samples: u32) -> Result<&PipelineSet> {
+        self.multisampled
+            .iter()
+            .find(|(n, _)| *n == samples)
+            .map(|(_, set)| set)
+            .ok_or(VkError::Vulkan {
+                call: "multisampled pipelines",
+                result: vk::Result::ERROR_UNKNOWN,
+            })
+    }
+
+    /// The pipelines of `pass`; on failure, those made so far are destroyed.
+    fn build(&self, ctx: &Context, pass: Pass) -> Result<PipelineSet> {
+        let m = self.modules;
+        let all = vk::ColorComponentFlags::RGBA;
+        let none = vk::ColorComponentFlags::empty();
+        let (mesh_frag, masks): (_, &[_]) = match pass {
+            Pass::Single => (m.mesh_frag, &[all, all, all]),
+            Pass::Color(_) => (m.mesh_color_frag, &[all]),
         };
-        let result = pipelines.build(ctx, &mut modules);
-        // SAFETY: the modules were created by this device and are referenced only
-        // while creating pipelines, which has returned (successfully or not);
-        // null handles (modules never made) are skipped.
-        unsafe {
-            for m in [
-                modules.mesh_vert,
-                modules.mesh_frag,
-                modules.line_vert,
-                modules.line_frag,
-                modules.overlay_vert,
-                modules.overlay_frag,
-            ] {
-                if m != vk::ShaderModule::null() {
-                    ctx.device.destroy_shader_module(m, None);
+        let depth_only_masks: Vec<_> = masks
+            .iter()
+            .enumerate()
+            .map(|(i, &mask)| if i == 0 { none } else { mask })
+            .collect();
+        let colour_only: Vec<_> = masks
+            .iter()
+            .enumerate()
+            .map(|(i, _)| if i == 0 { all } else { none })
+            .collect();
+        let specs = [
+            (m.mesh_vert, mesh_frag, Kind::Fill, masks.to_vec()),
+            (m.mesh_vert, mesh_frag, Kind::Fill, depth_only_masks),
+            (m.line_vert, m.line_frag, Kind::Line, colour_only.clone()),
+            (m.overlay_vert, m.overlay_frag, Kind::Overlay, colour_only),
+        ];
+        let mut made = Vec::with_capacity(specs.len());
+        for (vert, frag, kind, masks) in specs {
+            match self.create(ctx, (vert, frag), kind, pass, &masks) {
+                Ok(p) => made.push(p),
+                Err(e) => {
+                    // SAFETY: these pipelines were just created by this device and
+                    // never used.
+                    unsafe {
+                        for p in made {
+                            ctx.device.destroy_pipeline(p, None);
+                        }
+                    }
+                    return Err(e);
                 }
             }
         }
-        if let Err(e) = result {
-            pipelines.destroy(ctx);
-            return Err(e);
-        }
-        Ok(pipelines)
-    }
-
-    fn build(&mut self, ctx: &Context, modules: &mut Modules) -> Result<()> {
-        modules.mesh_vert = module(ctx, shaders::MESH_VERT)?;
-        modules.mesh_frag = module(ctx, shaders::MESH_FRAG)?;
-        modules.line_vert = module(ctx, shaders::LINE_VERT)?;
-        modules.line_frag = module(ctx, shaders::LINE_FRAG)?;
-        modules.overlay_vert = module(ctx, shaders::OVERLAY_VERT)?;
-        modules.overlay_frag = module(ctx, shaders::OVERLAY_FRAG)?;
-        let all = vk::ColorComponentFlags::RGBA;
-        let none = vk::ColorComponentFlags::empty();
-        self.fill = self.create(
-            ctx,
-            modules.mesh_vert,
-            modules.mesh_frag,
-            Kind::Fill,
-            [all, all, all],
-        )?;
-        self.fill_depth_only = self.create(
-            ctx,
-            modules.mesh_vert,
-            modules.mesh_frag,
-            Kind::Fill,
-            [none, all, all],
-        )?;
-        self.line = self.create(
-            ctx,
-            modules.line_vert,
-            modules.line_frag,
-            Kind::Line,
-            [all, none, none],
-        )?;
-        self.overlay = self.create(
-            ctx,
-            modules.overlay_vert,
-            modules.overlay_frag,
-            Kind::Overlay,
-            [all, none, none],
-        )?;
-        Ok(())
+        Ok(PipelineSet {
+            fill: made[0],
+            fill_depth_only: made[1],
+            line: made[2],
+            overlay: made[3],
+        })
     }
 
     fn create(
         &self,
         ctx: &Context,
-        vert: vk::ShaderModule,
-        frag: vk::ShaderModule,
+        (vert, frag): (vk::ShaderModule, vk::ShaderModule),
         kind: Kind,
-        write_masks: [vk::ColorComponentFlags; 3],
+        pass: Pass,
+        write_masks: &[vk::ColorComponentFlags],
     ) -> Result<vk::Pipeline> {
         let stages = [
             vk::PipelineShaderStageCreateInfo::default()
@@ -196,17 +282,16 @@ impl Pipelines {
             .viewport_count(1)
             .scissor_count(1);
         let raster = rasterization(kind);
-        let multisample = vk::PipelineMultisampleStateCreateInfo::default()
-            .rasterization_samples(vk::SampleCountFlags::TYPE_1);
+        let multisample =
+            vk::PipelineMultisampleStateCreateInfo::default().rasterization_samples(pass.samples());
         let depth = depth_stencil(kind);
-        let blend_attachments = write_masks.map(|mask| blend(kind, mask));
+        let blend_attachments: Vec<_> = write_masks.iter().map(|&m| blend(kind, m)).collect();
         let blend =
             vk::PipelineColorBlendStateCreateInfo::default().attachments(&blend_attachments);
         let dynamic = dynamic_states(kind, self.dynamic_line_width);
         let dynamic_state = vk::PipelineDynamicStateCreateInfo::default().dynamic_states(&dynamic);
-        let formats = [COLOR_FORMAT, NORMAL_FORMAT, LINEAR_DEPTH_FORMAT];
         let mut rendering = vk::PipelineRenderingCreateInfo::default()
-            .color_attachment_formats(&formats)
+            .color_attachment_formats(pass.formats())
             .depth_attachment_format(ctx.depth_format);
         let info = vk::GraphicsPipelineCreateInfo::default()
             .stages(&stages)
@@ -242,21 +327,25 @@ impl Pipelines {
     }
 
     pub fn destroy(&mut self, ctx: &Context) {
-        // SAFETY: the pipelines and layout were created by this device; the owner
-        // calls this after waiting for the device to be idle (or before any use);
+        let sets = std::iter::once(self.single).chain(self.multisampled.drain(..).map(|(_, s)| s));
+        // SAFETY: the pipelines, modules and layout were created by this device; the
+        // owner calls this after waiting for the device to be idle (or before any use);
         // null handles are skipped or ignored, and all are nulled below.
         unsafe {
-            for p in [self.fill, self.fill_depth_only, self.line, self.overlay] {
+            for p in sets.flat_map(|s| s.all()) {
                 if p != vk::Pipeline::null() {
                     ctx.device.destroy_pipeline(p, None);
                 }
             }
+            for m in self.modules.all() {
+                if m != vk::ShaderModule::null() {
+                    ctx.device.destroy_shader_module(m, None);
+                }
+            }
             ctx.device.destroy_pipeline_layout(self.layout, None);
         }
-        self.fill = vk::Pipeline::null();
-        self.fill_depth_only = vk::Pipeline::null();
-        self.line = vk::Pipeline::null();
-        self.overlay = vk::Pipeline::null();
+        self.single = PipelineSet::default();
+        self.modules = Modules::default();
         self.layout = vk::PipelineLayout::null();
     }
 }

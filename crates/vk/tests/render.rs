@@ -135,6 +135,97 @@ fn smooth_square_centre_is_shaded_corners_are_background() {
     finish(r);
 }
 
+/// The square turned by 30 degrees about the view axis: edges that cross the pixel grid.
+fn tilted_square() -> Square {
+    let mut sq = square(0.0);
+    let (s, c) = 30f32.to_radians().sin_cos();
+    for p in &mut sq.positions {
+        *p = [c * p[0] - s * p[1], s * p[0] + c * p[1], p[2]];
+    }
+    sq
+}
+
+#[test]
+fn multisampling_smooths_edges_and_leaves_aux_images_point_sampled() {
+    let Some(mut r) = renderer() else { return };
+    let sq = tilted_square();
+    let view = front_view(64.0 / 48.0);
+    let one = RenderOptions {
+        samples: Some(1),
+        ..Default::default()
+    };
+    let default = RenderOptions::default();
+    let n = r.samples(&default).unwrap();
+    assert!(r.sample_counts().contains(&n) && n <= subdiv_vk::DEFAULT_SAMPLES);
+    if r.sample_counts().contains(&subdiv_vk::DEFAULT_SAMPLES) {
+        assert_eq!(n, subdiv_vk::DEFAULT_SAMPLES);
+    }
+    let (img1, aux1) = r.render_with_aux(&sq.mesh(), &view, SIZE, &one).unwrap();
+    let (img, aux) = r
+        .render_with_aux(&sq.mesh(), &view, SIZE, &default)
+        .unwrap();
+    // Depth, normals, scalars and coverage do not depend on the sample count.
+    assert_eq!(aux, aux1);
+    // Pixels away from the silhouette keep their shade; pixels on it blend the surface with
+    // the background.
+    let covered = |x: i64, y: i64| {
+        let (w, h) = (i64::from(SIZE[0]), i64::from(SIZE[1]));
+        x >= 0 && y >= 0 && x < w && y < h && aux.coverage[(y * w + x) as usize] > 0.0
+    };
+    let mut blended = 0;
+    for (x, y, p) in img.enumerate_pixels() {
+        let (xi, yi) = (i64::from(x), i64::from(y));
+        let near_edge =
+            (-1..=1).any(|dy| (-1..=1).any(|dx| covered(xi + dx, yi + dy) != covered(xi, yi)));
+        if !near_edge {
+            assert_eq!(p.0, px(&img1, x, y), "pixel ({x}, {y}) off the silhouette");
+        } else if p.0 != px(&img1, x, y) {
+            blended += 1;
+        }
+    }
+    assert_eq!(
+        n > 1,
+        blended > 0,
+        "{blended} blended silhouette pixels at {n} samples"
+    );
+    // The same image again (the multisampled target is kept), and a render without
+    // readback draws as well.
+    assert_eq!(r.render(&sq.mesh(), &view, SIZE, &default).unwrap(), img);
+    r.render_discard(&sq.mesh(), &view, SIZE, &default).unwrap();
+    finish(r);
+}
+
+#[test]
+fn a_sample_count_the_device_lacks_is_an_error() {
+    let Some(mut r) = renderer() else { return };
+    let have = r.sample_counts();
+    assert!(have.contains(&1));
+    let sq = square(0.0);
+    for n in subdiv_vk::SAMPLE_COUNTS {
+        let options = RenderOptions {
+            samples: Some(n),
+            ..Default::default()
+        };
+        let drawn = r.render(&sq.mesh(), &front_view(1.0), [16, 16], &options);
+        if have.contains(&n) {
+            drawn.unwrap();
+        } else {
+            let e = drawn.unwrap_err();
+            assert!(
+                matches!(e, VkError::Samples { requested, .. } if requested == n),
+                "{e}"
+            );
+            let message = e.to_string();
+            assert!(
+                message.contains(&format!("{n} samples per pixel"))
+                    && message.contains(r.device_name()),
+                "{message}"
+            );
+        }
+    }
+    finish(r);
+}
+
 #[test]
 fn image_is_not_upside_down() {
     let Some(mut r) = renderer() else { return };
@@ -290,14 +381,23 @@ fn wire_overlay_and_lines_are_drawn() {
         r.render(&with_lines, &view, [64, 64], &hidden).unwrap(),
         plain
     );
-    // The overlay darkens the square's outline.
+    // The overlay darkens the square's outline: one pixel wide at one sample per pixel,
+    // anti-aliased (lighter, over more pixels) at the default.
     let overlay = RenderOptions {
         wire_overlay: true,
+        samples: Some(1),
         ..Default::default()
     };
     let img = r.render(&sq.mesh(), &view, [64, 64], &overlay).unwrap();
     let dark = img.pixels().filter(|p| p.0[0] < 40).count();
     assert!(dark > 40, "outline pixels drawn: {dark}");
+    let overlay = RenderOptions {
+        samples: None,
+        ..overlay
+    };
+    let img = r.render(&sq.mesh(), &view, [64, 64], &overlay).unwrap();
+    let darker = img.pixels().filter(|p| p.0[0] < 128).count();
+    assert!(darker > 40, "outline pixels drawn: {darker}");
     finish(r);
 }
 

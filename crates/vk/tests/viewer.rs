@@ -50,6 +50,7 @@ impl FrameSource for Counting {
             status: "test",
             vertex_version: Some(7),
             depth_cap: Some(5),
+            predicted_ms: None,
         })
     }
 }

@@ -98,6 +98,7 @@ impl FrameSource for Recording {
             status: "",
             vertex_version: Some(1),
             depth_cap: None,
+            predicted_ms: None,
         })
     }
 }

@@ -5,9 +5,12 @@
 //! the CSV files by `figures_cc_text.rs`:
 //! Fig. 5 (triangles per frame, adaptive vs uniform depths 2, 3, 4, and their image error against
 //! the true surface every [`ERROR_EVERY`]th frame), Fig. 6 (quads per depth per frame), Fig. 7
-//! (frames per second: uniform depths 2, 3, 4, adaptive without control, and adaptive with
-//! frame-rate control aiming above uniform depth 2's rate, its target doubled half-way; rendered
-//! headless on the Vulkan driver).
+//! (frames per second: uniform depths 2, 3, 4, adaptive without control, and the paper's
+//! scenario — [`PAPER_TARGETS`], 14–15 then 39–40 fps — under the predictive controller and the
+//! paper's side by side; then the predictive controller held at uniform depth 2's and 3's rates,
+//! whose pictures are measured against uniform depths 3 and 4; rendered headless on the Vulkan
+//! driver). Figures are measured on an idle machine: above a 1-minute load of [`MAX_LOAD`] the
+//! run is refused unless forced, and then the text says so.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -34,12 +37,10 @@ const FRAMES_RENDERED: usize = 200;
 const ERROR_EVERY: usize = 10;
 /// Image size of the error renders (each at 3x3 samples per pixel).
 const ERROR_SIZE: (u32, u32) = (640, 480);
-/// The first target over uniform depth 2's median rate: the paper's 39.5 against 31 fps.
-const HIGH_OVER_DEPTH2: f64 = 39.5 / 31.0;
-/// The switch: the second target over the first. Twice the rate needs about half the
-/// triangles, more than the share of patches one level can take away, so the controller has
-/// to move `maxsd` first (the paper's order), then the share.
-const SWITCH_FACTOR: f64 = 2.0;
+/// The paper's scenario (Section 5): "from a given frame rate of 14 – 15 fps to 39 – 40 fps".
+pub const PAPER_TARGETS: (f64, f64) = (15.0, 40.0);
+/// The highest 1-minute load average the figures are measured under without `--force`.
+pub const MAX_LOAD: f64 = 1.5;
 
 /// The 1-minute load average (`/proc/loadavg`), 0 where it cannot be read: the machine is
 /// shared, and the figures state the load they were measured under.
@@ -58,6 +59,7 @@ struct Frame {
     triangles: u64,
     maxsd: u32,
     share: f64,
+    predicted_ms: f64,
     quads: Vec<u64>,
     /// `silhouette_px_max`, `silhouette_px_p99`, `shading_deg_p99` of measured frames.
     error: Option<[f64; 3]>,
@@ -78,6 +80,7 @@ fn parse_line(line: &str) -> Result<Frame> {
             "triangles" => f.triangles = num()? as u64,
             "maxsd" => f.maxsd = num()? as u32,
             "share" => f.share = num()?,
+            "predicted_ms" => f.predicted_ms = num()?,
             "quads" => {
                 f.quads = v
                     .split(',')
@@ -278,18 +281,27 @@ fn push_errors(t: &mut Table, config: &str, frames: &[Frame]) {
     }
 }
 
-/// Runs the experiment with the release `subdiv` binary `exe` and writes the figures.
-pub fn run(root: &Path, exe: &Path) -> Result<()> {
+/// Runs the experiment with the release `subdiv` binary `exe` and writes the figures; refuses
+/// above a 1-minute load of [`MAX_LOAD`] unless `force`.
+pub fn run(root: &Path, exe: &Path, force: bool) -> Result<()> {
     let t0 = Instant::now();
     let load_start = load_average();
+    if load_start > MAX_LOAD && !force {
+        bail!(
+            "the 1-minute load average is {load_start:.2}, above {MAX_LOAD}: frame rates measured \
+             now would show the other work, not subdiv. Run again on an idle machine, or pass \
+             --force (the figures then say they were forced)"
+        );
+    }
     let dir: PathBuf = root.join("docs/figures");
     std::fs::create_dir_all(&dir)?;
     let (n5, n7) = (FRAMES_TESSELLATION.to_string(), FRAMES_RENDERED.to_string());
     let every = ERROR_EVERY.to_string();
     let esize = format!("{}x{}", ERROR_SIZE.0, ERROR_SIZE.1);
+    let errors = ["--error-every", &every, "--error-size", &esize, "--reference-depth", REFERENCE_DEPTH];
     let measured = |extra: &[&str]| -> Result<Vec<Frame>> {
-        let mut a = vec!["--no-render", "--frames", &n5, "--error-every", &every];
-        a.extend(["--error-size", &esize, "--reference-depth", REFERENCE_DEPTH]);
+        let mut a = vec!["--no-render", "--frames", &n5];
+        a.extend(errors);
         a.extend(extra);
         bench(exe, &a)
     };
@@ -306,43 +318,38 @@ pub fn run(root: &Path, exe: &Path) -> Result<()> {
         .collect::<Result<_>>()?;
     let free = bench(exe, &["--frames", &n7])?;
     let fps_of = |v: &[Frame]| median(&v.iter().skip(1).map(|f| f.fps).collect::<Vec<_>>());
-    let f2 = fps_of(&fixed[0]);
-    // A target above uniform depth 2's rate (the paper's 39-40 against 31 fps), then a switch
-    // to twice that rate. (The paper's other target, 14-15 fps between its depths 3 and 4, is
-    // not reachable here: the most detail the controller can give, every movable patch one
-    // level above its geometric depth, renders faster than uniform depth 3.)
-    let t_first = f2 * HIGH_OVER_DEPTH2;
-    let t_first_s = format!("{t_first:.2}");
-    let t_second_s = format!("{:.2}", t_first * SWITCH_FACTOR);
-    let ctl = bench(
-        exe,
-        &[
-            "--frames",
-            &n7,
-            "--target-fps",
-            &t_first_s,
-            "--switch-fps",
-            &t_second_s,
-            "--error-every",
-            &every,
-            "--error-size",
-            &esize,
-            "--reference-depth",
-            REFERENCE_DEPTH,
-        ],
-    )?;
-    let loads = (load_start, load_average());
-    let data = tables(
-        &adaptive,
-        &uniform,
-        &fixed,
-        &free,
-        &ctl,
-        &t_first_s,
-        &t_second_s,
-        t0,
-        loads,
-    )?;
+    // The paper's scenario under both controllers, image error measured (untimed).
+    let (t1, t2) = (format!("{:.2}", PAPER_TARGETS.0), format!("{:.2}", PAPER_TARGETS.1));
+    let scenario = |control: &str| -> Result<Vec<Frame>> {
+        let mut a = vec!["--frames", &n7, "--target-fps", &t1, "--switch-fps", &t2];
+        a.extend(["--control", control]);
+        a.extend(errors);
+        bench(exe, &a)
+    };
+    let budget = scenario("budget")?;
+    let paper = scenario("paper")?;
+    // A level of quality for free: held at uniform depth 2's and 3's rates.
+    let at = [fps_of(&fixed[0]), fps_of(&fixed[1])];
+    let held: Vec<Vec<Frame>> = at
+        .iter()
+        .map(|f| {
+            let t = format!("{f:.2}");
+            let mut a = vec!["--frames", &n7, "--target-fps", &t, "--control", "budget"];
+            a.extend(errors);
+            bench(exe, &a)
+        })
+        .collect::<Result<_>>()?;
+    let runs = Runs {
+        adaptive,
+        uniform,
+        fixed,
+        free,
+        budget,
+        paper,
+        held,
+        held_targets: at,
+    };
+    let data = tables(&runs, t0, (load_start, load_average()), force)?;
     data.write(&dir)?;
     plots(&dir, &data)?;
     let md = crate::figures_cc_text::markdown(&data)?;
@@ -360,19 +367,24 @@ pub fn run(root: &Path, exe: &Path) -> Result<()> {
     Ok(())
 }
 
+/// Every run of the Catmull-Clark figures.
+struct Runs {
+    /// Figs. 5 and 6, not rendered: adaptive without control, uniform depths 2, 3, 4.
+    adaptive: Vec<Frame>,
+    uniform: Vec<Vec<Frame>>,
+    /// Fig. 7, rendered: uniform depths 2, 3, 4, adaptive without control.
+    fixed: Vec<Vec<Frame>>,
+    free: Vec<Frame>,
+    /// The paper's scenario under the predictive and the paper's controller.
+    budget: Vec<Frame>,
+    paper: Vec<Frame>,
+    /// The predictive controller held at uniform depth 2's and 3's rates.
+    held: Vec<Vec<Frame>>,
+    held_targets: [f64; 2],
+}
+
 /// The runs as the tables of [`CcData`].
-#[allow(clippy::too_many_arguments)]
-fn tables(
-    adaptive: &[Frame],
-    uniform: &[Vec<Frame>],
-    fixed: &[Vec<Frame>],
-    free: &[Frame],
-    ctl: &[Frame],
-    t_first: &str,
-    t_second: &str,
-    t0: Instant,
-    (load_start, load_end): (f64, f64),
-) -> Result<CcData> {
+fn tables(r: &Runs, t0: Instant, (load_start, load_end): (f64, f64), force: bool) -> Result<CcData> {
     let faces = subdiv::helmet40()?.num_faces();
     let (w, h) = SIZE.split_once('x').context("SIZE is WxH")?;
     let mut run = Table::new(&["key", "value"]);
@@ -386,52 +398,52 @@ fn tables(
         ("error_width", ERROR_SIZE.0.to_string()),
         ("error_height", ERROR_SIZE.1.to_string()),
         ("reference_depth", REFERENCE_DEPTH.into()),
-        ("switch_frame", (ctl.len() / 2).to_string()),
+        ("switch_frame", (r.budget.len() / 2).to_string()),
+        ("held2_target", format!("{:.2}", r.held_targets[0])),
+        ("held3_target", format!("{:.2}", r.held_targets[1])),
         ("seconds", format!("{:.0}", t0.elapsed().as_secs_f64())),
-        ("load_start", format!("{load_start:.1}")),
-        ("load_end", format!("{load_end:.1}")),
+        ("load_start", format!("{load_start:.2}")),
+        ("load_end", format!("{load_end:.2}")),
+        ("max_load", format!("{MAX_LOAD}")),
+        ("forced", u8::from(force && load_start > MAX_LOAD).to_string()),
     ] {
         run.push(vec![k.to_string(), v]);
     }
     let mut triangles = Table::new(&["frame", "adaptive", "uniform2", "uniform3", "uniform4"]);
-    for (i, f) in adaptive.iter().enumerate() {
-        let mut r = vec![i.to_string(), f.triangles.to_string()];
-        r.extend(uniform.iter().map(|u| u[i].triangles.to_string()));
-        triangles.push(r);
+    for (i, f) in r.adaptive.iter().enumerate() {
+        let mut row = vec![i.to_string(), f.triangles.to_string()];
+        row.extend(r.uniform.iter().map(|u| u[i].triangles.to_string()));
+        triangles.push(row);
     }
-    let depths = adaptive.iter().map(|f| f.quads.len()).max().unwrap_or(0);
+    let depths = r.adaptive.iter().map(|f| f.quads.len()).max().unwrap_or(0);
     let hdr: Vec<String> = (0..depths).map(|d| format!("depth{d}")).collect();
     let mut h: Vec<&str> = vec!["frame"];
     h.extend(hdr.iter().map(String::as_str));
     let mut quads = Table::new(&h);
-    for (i, f) in adaptive.iter().enumerate() {
-        let mut r = vec![i.to_string()];
-        r.extend((0..depths).map(|d| f.quads.get(d).copied().unwrap_or(0).to_string()));
-        quads.push(r);
+    for (i, f) in r.adaptive.iter().enumerate() {
+        let mut row = vec![i.to_string()];
+        row.extend((0..depths).map(|d| f.quads.get(d).copied().unwrap_or(0).to_string()));
+        quads.push(row);
     }
-    let mut framerate = Table::new(&[
-        "frame",
-        "uniform2",
-        "uniform3",
-        "uniform4",
-        "adaptive",
-        "controlled",
-        "target",
-        "maxsd",
-        "share",
-        "controlled_triangles",
-    ]);
-    let switch = ctl.len() / 2;
-    for (i, c) in ctl.iter().enumerate() {
-        let mut r = vec![i.to_string()];
-        r.extend(fixed.iter().map(|u| number(u[i].fps)));
-        r.push(number(free[i].fps));
-        r.push(number(c.fps));
-        r.push(if i < switch { t_first } else { t_second }.to_string());
-        r.push(c.maxsd.to_string());
-        r.push(number(c.share));
-        r.push(c.triangles.to_string());
-        framerate.push(r);
+    let mut framerate = Table::new(&crate::figures_cc_text::FRAMERATE_COLUMNS);
+    let switch = r.budget.len() / 2;
+    for i in 0..r.budget.len() {
+        let (b, p) = (&r.budget[i], &r.paper[i]);
+        let mut row = vec![i.to_string()];
+        row.extend(r.fixed.iter().map(|u| number(u[i].fps)));
+        row.push(number(r.free[i].fps));
+        row.push(number(b.fps));
+        row.push(number(p.fps));
+        let t = if i < switch { PAPER_TARGETS.0 } else { PAPER_TARGETS.1 };
+        row.push(number(t));
+        row.push(number(b.predicted_ms));
+        row.push(b.triangles.to_string());
+        row.push(p.triangles.to_string());
+        row.push(p.maxsd.to_string());
+        row.push(number(p.share));
+        row.extend(r.held.iter().map(|v| number(v[i].fps)));
+        row.extend(r.held.iter().map(|v| v[i].triangles.to_string()));
+        framerate.push(row);
     }
     let mut error = Table::new(&[
         "frame",
@@ -440,11 +452,14 @@ fn tables(
         "silhouette_px_p99",
         "shading_deg_p99",
     ]);
-    push_errors(&mut error, "adaptive", adaptive);
-    for (d, u) in UNIFORM.iter().zip(uniform) {
+    push_errors(&mut error, "adaptive", &r.adaptive);
+    for (d, u) in UNIFORM.iter().zip(&r.uniform) {
         push_errors(&mut error, &format!("uniform{d}"), u);
     }
-    push_errors(&mut error, "controlled", ctl);
+    push_errors(&mut error, "budget", &r.budget);
+    push_errors(&mut error, "paper", &r.paper);
+    push_errors(&mut error, "held2", &r.held[0]);
+    push_errors(&mut error, "held3", &r.held[1]);
     Ok(CcData {
         run,
         triangles,
@@ -514,7 +529,8 @@ pub fn plots(dir: &Path, d: &CcData) -> Result<()> {
         ("uniform3", "uniform depth 3"),
         ("uniform4", "uniform depth 4"),
         ("adaptive", "adaptive, no control"),
-        ("controlled", "adaptive, frame-rate control"),
+        ("budget", "adaptive, predictive control"),
+        ("paper", "adaptive, the paper's control"),
         ("target", "target"),
     ] {
         s7.push(per_frame(label, &col(&d.framerate, c)?));

@@ -26,13 +26,37 @@ pub struct CcData {
     pub triangles: Table,
     /// `fig6_quads.csv`: `frame,depth0,..`: adaptive quads per depth.
     pub quads: Table,
-    /// `fig7_framerate.csv`: `frame,uniform2,uniform3,uniform4,adaptive,controlled,target,
-    /// maxsd,share,controlled_triangles` (maxsd, share: the controller's state in each frame).
+    /// `fig7_framerate.csv`: [`FRAMERATE_COLUMNS`]: the rendered runs' rates per frame; the
+    /// paper's scenario under the predictive (`budget`) and the paper's controller (`paper`;
+    /// maxsd, share: its state in each frame), the predictive one's predicted frame time; the
+    /// predictive controller held at uniform depth 2's and 3's rates (`held2`, `held3`).
     pub framerate: Table,
     /// `fig57_error.csv`: `frame,config,silhouette_px_max,silhouette_px_p99,shading_deg_p99`,
-    /// config one of `adaptive`, `uniform2..4`, `controlled`.
+    /// config one of `adaptive`, `uniform2..4` (Figs. 5 and 6 runs), `budget`, `paper`, `held2`,
+    /// `held3` (Fig. 7 runs).
     pub error: Table,
 }
+
+/// The columns of `fig7_framerate.csv`.
+pub const FRAMERATE_COLUMNS: [&str; 17] = [
+    "frame",
+    "uniform2",
+    "uniform3",
+    "uniform4",
+    "adaptive",
+    "budget",
+    "paper",
+    "target",
+    "budget_predicted_ms",
+    "budget_triangles",
+    "paper_triangles",
+    "paper_maxsd",
+    "paper_share",
+    "held2",
+    "held3",
+    "held2_triangles",
+    "held3_triangles",
+];
 
 /// The CSV files of [`CcData`], in field order.
 pub const FILES: [&str; 5] = [
@@ -100,61 +124,6 @@ fn min(v: &[f64]) -> f64 {
     v.iter().copied().fold(f64::INFINITY, f64::min)
 }
 
-/// Frames of the running median the controller decides on (`subdiv_depth`'s `WINDOW`).
-pub const RUNNING: usize = 5;
-
-/// The running median of `fps` at frame `i`: the median of frames `i-4..=i` (fewer at the
-/// run's start; for an even count the mean of the middle two).
-pub fn running_median(fps: &[f64], i: usize) -> f64 {
-    median(&fps[(i + 1).saturating_sub(RUNNING)..=i])
-}
-
-/// How a phase of the controlled run meets its target.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Hold {
-    /// Frames of the phase within [`BAND`] of the target.
-    pub within: usize,
-    /// Frames of the phase whose [`running_median`] is within [`BAND`] of the target.
-    pub running_within: usize,
-    /// The first frame (absolute) from which every frame's running median to the phase's end
-    /// is within the band; `None` when the last one is outside it.
-    pub running_settled_from: Option<usize>,
-    /// Frames of the phase.
-    pub frames: usize,
-    /// The first frame (absolute) from which every frame to the phase's end is within the band;
-    /// `None` when the phase's last frame is outside it.
-    pub settled_from: Option<usize>,
-    /// Median rate over the second half of the phase.
-    pub late_median: f64,
-}
-
-/// [`Hold`] of frames `range` of `fps` against `target`.
-pub fn hold(fps: &[f64], range: std::ops::Range<usize>, target: f64) -> Hold {
-    let near = |f: f64| (f / target - 1.0).abs() <= BAND;
-    let ok = |i: usize| near(fps[i]);
-    let running_ok = |i: usize| near(running_median(fps, i));
-    let settled = |ok: &dyn Fn(usize) -> bool| {
-        let mut from = None;
-        for i in range.clone().rev() {
-            if !ok(i) {
-                break;
-            }
-            from = Some(i);
-        }
-        from
-    };
-    let settled_from = settled(&ok);
-    let mid = range.start + range.len() / 2;
-    Hold {
-        within: range.clone().filter(|&i| ok(i)).count(),
-        running_within: range.clone().filter(|&i| running_ok(i)).count(),
-        running_settled_from: settled(&running_ok),
-        frames: range.len(),
-        settled_from,
-        late_median: median(&fps[mid..range.end]),
-    }
-}
-
 /// Image error of one configuration over its measured frames.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ErrorSummary {
@@ -196,6 +165,23 @@ pub fn error_summary(
     })
 }
 
+/// What the text says of the load the figures were measured under.
+pub fn load_note(d: &CcData) -> Result<String> {
+    let (start, end, max) = (d.setting("load_start")?, d.setting("load_end")?, d.setting("max_load")?);
+    Ok(if d.setting("forced")? > 0.0 {
+        format!(
+            "**Measured on a loaded machine, forced** (`--force`): the 1-minute load average was \
+             {start:.2} at the start, above the {max} the figures are refused at, and {end:.2} at \
+             the end; the frame rates show the other work too."
+        )
+    } else {
+        format!(
+            "Measured on an idle machine: 1-minute load average {start:.2} at the start (the figures \
+             are refused above {max}) and {end:.2} at the end."
+        )
+    })
+}
+
 /// The uniform depths of the figures.
 pub const UNIFORM: [u32; 3] = [2, 3, 4];
 
@@ -215,13 +201,14 @@ pub fn markdown(d: &CcData) -> Result<String> {
          `fig7_framerate.csv`, and this text is computed from them (`xtask/tools/src/figures_cc_text.rs`; the test in \
          `xtask/tools/src/figures_check.rs` regenerates it and fails on any difference). Scene: 40 instances of \
          `catmark_helmet`, {:.0} cage faces, camera orbiting the scene centre {}° per frame, {:.0}×{:.0} pixels, \
-         adaptive depths 0–{:.0} (`DepthParams` defaults: curvature, classification, projected size).\n",
+         adaptive depths 0–{:.0} (`DepthParams` defaults: curvature, classification, projected size). {}\n",
         set("seconds")?,
         set("faces")?,
         set("orbit_step_deg")?,
         set("width")?,
         set("height")?,
         set("max_depth")?,
+        load_note(d)?,
     )?;
     writeln!(
         s,
@@ -238,7 +225,7 @@ pub fn markdown(d: &CcData) -> Result<String> {
     )?;
     fig5(d, &mut s)?;
     fig6(d, &mut s)?;
-    fig7(d, &mut s)?;
+    crate::figures_cc_fig7::fig7(d, &mut s)?;
     writeln!(s, "{END}")?;
     Ok(s)
 }
@@ -351,20 +338,14 @@ fn fig6(d: &CcData, s: &mut String) -> Result<()> {
     Ok(())
 }
 
-/// How many of `fps`, and how many of their [`running_median`]s, lie within [`BAND`] of the
-/// median of all: the noise of a fixed workload, the ceiling of any controller's hold.
-pub fn own_band(fps: &[f64]) -> (usize, usize) {
+/// How many of `fps` lie within [`BAND`] of the median of all: the noise of a fixed workload,
+/// the ceiling of any controller's hold.
+pub fn own_band(fps: &[f64]) -> usize {
     let m = median(fps);
-    let near = |f: f64| (f / m - 1.0).abs() <= BAND;
-    (
-        fps.iter().filter(|&&f| near(f)).count(),
-        (0..fps.len())
-            .filter(|&i| near(running_median(fps, i)))
-            .count(),
-    )
+    fps.iter().filter(|&&f| (f / m - 1.0).abs() <= BAND).count()
 }
 
-/// The frame ranges of the controlled run's two phases.
+/// The frame ranges of the controlled runs' two phases (before and after the switch).
 pub fn phases(d: &CcData) -> Result<[std::ops::Range<usize>; 2]> {
     let n = d.framerate.rows.len();
     let switch = d.setting("switch_frame")? as usize;
@@ -374,165 +355,3 @@ pub fn phases(d: &CcData) -> Result<[std::ops::Range<usize>; 2]> {
     Ok([0..switch, switch..n])
 }
 
-fn fig7(d: &CcData, s: &mut String) -> Result<()> {
-    let fr = &d.framerate;
-    let n = fr.rows.len();
-    let med = |col: &str| -> Result<f64> { Ok(median(&fr.f64s(col)?[1..])) };
-    let f: Vec<f64> = UNIFORM
-        .iter()
-        .map(|k| med(&format!("uniform{k}")))
-        .collect::<Result<_>>()?;
-    let fa = med("adaptive")?;
-    let targets = fr.f64s("target")?;
-    let fps = fr.f64s("controlled")?;
-    let ph = phases(d)?;
-    let (t1, t2) = (targets[ph[0].start], targets[ph[1].start]);
-    let u2_band = own_band(&fr.f64s("uniform2")?[1..]);
-    writeln!(s, "![Fig. 7](figures/fig7_framerate.png)\n")?;
-    writeln!(
-        s,
-        "**Fig. 7** Frames per second on lavapipe (CPU Vulkan; tessellation + rendering, {n} frames each; the machine \
-         has 2 cores shared with other work, 1-minute load average {:.1} when this part started and {:.1} when it \
-         ended, so single frames are noisy: of uniform depth 2's {} frames, a fixed workload, only {} lie within \
-         ±10 % of their median, and the median of the last {RUNNING} frames in {}: the ceiling of any controller's \
-         hold): medians over frames 1–{} of uniform depth 2: {:.1}, 3: {:.1}, 4: {:.1} fps (paper, GeForce 4: 31, \
-         17, 7) and adaptive without control: {fa:.1} fps. Adaptive with frame-rate control (`--target-fps {t1:.2} \
-         --switch-fps {t2:.2}`: `maxsd` first, then a share of the patches one level by priority, back faces never \
-         raised; deciding on the median of the last {RUNNING} frame times since its last change, steps weighted by \
-         the error's signal-to-noise ratio, holding while that median stays within ±10 %): target {t1:.1} fps \
-         ({:.2} times uniform depth 2's rate; the paper: 39–40 against 31) for frames 0–{}, then {t2:.1} fps. The \
-         controller can only meet the rate of the median of {RUNNING} frames, not of each frame: both are counted.\n",
-        d.setting("load_start")?,
-        d.setting("load_end")?,
-        n - 1,
-        u2_band.0,
-        u2_band.1,
-        n - 1,
-        f[0],
-        f[1],
-        f[2],
-        t1 / f[0],
-        ph[1].start - 1,
-    )?;
-    let (cap, share) = (fr.f64s("maxsd")?, fr.f64s("share")?);
-    let max_depth = d.setting("max_depth")?;
-    for (k, (range, t)) in ph.iter().zip([t1, t2]).enumerate() {
-        let h = hold(&fps, range.clone(), t);
-        let most = range
-            .clone()
-            .filter(|&i| cap[i] == max_depth && share[i] > 0.0)
-            .count();
-        let least = range.clone().filter(|&i| cap[i] == 0.0).count();
-        let settled = match h.settled_from {
-            Some(i) => format!(
-                "every frame from frame {i} on ({} frames after the phase began) is within ±10 %{}",
-                i - range.start,
-                if i + 1 == range.end {
-                    " (that is, only the phase's last frame)"
-                } else {
-                    ""
-                }
-            ),
-            None => format!(
-                "the phase's last frame (frame {}) is outside ±10 %, so no frame from which every frame \
-                 stays within it",
-                range.end - 1
-            ),
-        };
-        let running = match h.running_settled_from {
-            Some(i) => format!(
-                "in every frame since frame {i} ({} frames after the phase began)",
-                i - range.start
-            ),
-            None => "not in the phase's last frame".to_string(),
-        };
-        writeln!(
-            s,
-            "- {} target, {t:.1} fps (frames {}–{}): {} of {} frames within ±10 %; {settled}. The median of the \
-             last {RUNNING} frames is within ±10 % in {} of {} frames, {running}. Median of the phase's second \
-             half {:.1} fps; the controller was at maxsd {max_depth} raising patches above their geometric depths in \
-             {most} frames and at maxsd 0 (every patch at depth 0) in {least}.",
-            ["First", "Second"][k],
-            range.start,
-            range.end - 1,
-            h.within,
-            h.frames,
-            h.running_within,
-            h.frames,
-            h.late_median
-        )?;
-    }
-    writeln!(s)?;
-    fig7_errors(d, &f, fa, &ph, s)
-}
-
-fn fig7_errors(
-    d: &CcData,
-    f: &[f64],
-    fa: f64,
-    ph: &[std::ops::Range<usize>; 2],
-    s: &mut String,
-) -> Result<()> {
-    let n5 = d.triangles.rows.len();
-    writeln!(
-        s,
-        "Image error of each curve (measured frames; the uniform depths and adaptive without control from the Fig. 5 runs, whose \
-         cameras are the same):\n"
-    )?;
-    writeln!(
-        s,
-        "| curve | fps (median) | triangles (mean) | silhouette px, worst frame | shading ° p99, median frame |"
-    )?;
-    writeln!(s, "|---|---:|---:|---:|---:|")?;
-    for (k, depth) in UNIFORM.iter().enumerate() {
-        let e = error_summary(&d.error, &format!("uniform{depth}"), 0..n5)?;
-        let t = mean(&d.triangles.f64s(&format!("uniform{depth}"))?);
-        writeln!(
-            s,
-            "| uniform depth {depth} | {:.1} | {t:.0} | {:.2} | {:.2} |",
-            f[k], e.silhouette_worst, e.shading_median
-        )?;
-    }
-    let e = error_summary(&d.error, "adaptive", 0..n5)?;
-    writeln!(
-        s,
-        "| adaptive, no control | {fa:.1} | {:.0} | {:.2} | {:.2} |",
-        mean(&d.triangles.f64s("adaptive")?),
-        e.silhouette_worst,
-        e.shading_median
-    )?;
-    let fps = d.framerate.f64s("controlled")?;
-    let tris = d.framerate.f64s("controlled_triangles")?;
-    let targets = d.framerate.f64s("target")?;
-    let mut phase_err = Vec::new();
-    for (k, r) in ph.iter().enumerate() {
-        let e = error_summary(&d.error, "controlled", r.clone())?;
-        writeln!(
-            s,
-            "| adaptive, target {:.1} fps ({} phase) | {:.1} | {:.0} | {:.2} | {:.2} |",
-            targets[r.start],
-            ["first", "second"][k],
-            median(&fps[r.start.max(1)..r.end]),
-            mean(&tris[r.clone()]),
-            e.silhouette_worst,
-            e.shading_median
-        )?;
-        phase_err.push(e);
-    }
-    let late = hold(&fps, ph[0].clone(), targets[ph[0].start]).late_median;
-    let u2 = error_summary(&d.error, "uniform2", 0..n5)?;
-    writeln!(
-        s,
-        "\nAt the first target the controlled rate (median of the phase's second half) is {:.1} fps, {} uniform \
-         depth 2's {:.1} fps; its worst-frame silhouette error is {:.2} px against uniform depth 2's {:.2} px, its \
-         median shading error {:.2}° against {:.2}°.\n",
-        late,
-        if late > f[0] { "above" } else { "not above" },
-        f[0],
-        phase_err[0].silhouette_worst,
-        u2.silhouette_worst,
-        phase_err[0].shading_median,
-        u2.shading_median
-    )?;
-    Ok(())
-}

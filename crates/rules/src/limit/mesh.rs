@@ -46,6 +46,9 @@ pub struct LimitMesh {
     pub(super) params: Option<VertexParams>,
     /// Which layout the faces were written for (bookkeeping, not content: ignored by `==`).
     pub(super) topology: TopologyStamp,
+    /// `k > 0`: the face offsets are `0, k, 2k, ..`, written so by [`LimitMesh::write_keyed`] or
+    /// [`LimitMesh::write_triangles`] (bookkeeping: ignored by `==`); 0: not known.
+    pub(super) uniform_faces: u32,
 }
 
 /// What the per-vertex scalar of a [`LimitMesh`] is.
@@ -94,6 +97,7 @@ impl PartialEq for LimitMesh {
             scalar,
             params,
             topology: _,
+            uniform_faces: _,
         } = self;
         *positions == o.positions
             && *normals == o.normals
@@ -135,8 +139,16 @@ impl VertexParams {
     }
 }
 
-/// `Err` naming the first index of `indices` not below `n`.
+/// `Err` naming the first index of `indices` not below `n`. The common case, every index in
+/// range, is one vectorised pass (the largest index); only a failure searches.
 fn check_range(indices: &[u32], n: usize, what: &str) -> Result<(), LimitMeshError> {
+    let largest = indices
+        .chunks(4096)
+        .map(|c| c.iter().copied().fold(0u32, u32::max))
+        .max();
+    if largest.is_none_or(|m| (m as usize) < n) {
+        return Ok(());
+    }
     match indices.iter().find(|&&i| i as usize >= n) {
         Some(i) => Err(LimitMeshError(format!("{what} index {i} for {n} values"))),
         None => Ok(()),
@@ -384,6 +396,7 @@ impl LimitMesh {
     /// Removes every face (and with them the corner normals and UV indices); capacity kept.
     /// The next keyed tessellation into the mesh writes its faces again.
     pub fn clear_faces(&mut self) {
+        self.uniform_faces = 0;
         self.face_offsets.clear();
         self.face_indices.clear();
         self.corner_normals.clear();
@@ -421,6 +434,7 @@ impl LimitMesh {
             try_reserve(&mut self.face_offsets, faces + 1, "face offsets")?;
             self.face_offsets
                 .extend((0..=faces as u32).map(|i| i * corners));
+            self.uniform_faces = corners;
         }
         self.topology = TopologyStamp::new(key, !keep);
         Ok(KeyedWrite {
@@ -453,10 +467,14 @@ impl LimitMesh {
             scalar: &mut values,
         });
         self.topology = TopologyStamp::default();
-        // Rewritten in full (capacity kept): the old faces need not have been triangles.
+        // Rewritten (capacity kept) unless they are the offsets of as many triangles already:
+        // the old faces need not have been triangles.
         let tris = self.face_indices.len() as u32 / 3;
-        self.face_offsets.clear();
-        self.face_offsets.extend((0..=tris).map(|i| i * 3));
+        if !(self.uniform_faces == 3 && self.face_offsets.len() == tris as usize + 1) {
+            self.face_offsets.clear();
+            self.face_offsets.extend((0..=tris).map(|i| i * 3));
+            self.uniform_faces = 3;
+        }
         if !values.is_empty() {
             self.scalar = Some((scalar, values));
         }
@@ -492,8 +510,11 @@ impl LimitMesh {
         }
         let ends_right = self.face_offsets.first() == Some(&0)
             && self.face_offsets.last() == Some(&(corners as u32));
+        // Offsets written as `0, k, 2k, ..` ascend by construction.
+        let generated = self.uniform_faces > 0
+            && self.face_offsets.len() == corners / self.uniform_faces as usize + 1;
         if !(ends_right || self.face_offsets.is_empty() && corners == 0)
-            || self.face_offsets.windows(2).any(|w| w[0] > w[1])
+            || !generated && self.face_offsets.windows(2).any(|w| w[0] > w[1])
         {
             return bad(format!(
                 "face offsets do not cover the {corners} corners in order"

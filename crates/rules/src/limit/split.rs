@@ -1,5 +1,6 @@
-//! Derived forms of a [`LimitMesh`]: one normal (and one UV) per vertex, the form the renderer
-//! draws and glTF and PLY store; and the referenced vertices only.
+//! Derived forms of a [`LimitMesh`]: one normal (and one UV) per vertex, the form glTF and PLY
+//! store; that form with every corner's normal on its face's side, the form the renderer draws;
+//! and the referenced vertices only.
 
 use std::collections::HashMap;
 
@@ -87,6 +88,64 @@ impl LimitMesh {
 }
 
 impl LimitMesh {
+    /// This surface (one normal per vertex, no one-sided corner normals: the
+    /// [`LimitMesh::split_sided`] form) with every face corner whose normal points away from its
+    /// face given a vertex of its own with the normal reversed; the form the renderer draws.
+    /// Positions and scalars of the copies are those of the vertex, bit for bit; every other
+    /// vertex keeps its index, the copies follow them.
+    ///
+    /// A limit normal can point against the faces around it: OpenSubdiv's normal is the cross
+    /// product of the limit tangents as the masks give them, whose sign at a vertex of valence 2
+    /// (where the tangents are its two edges) or at a non-manifold vertex follows the order of
+    /// the edges, not the faces; and a coarse tessellation of a folded cage has faces turned
+    /// against the normals at their corners. Interpolated across such a face, the normal passes
+    /// through zero and turns over within the face, and a renderer's two-sided lighting shows a
+    /// dot or a sliver of the wrong side there. Whether a corner points away is judged against
+    /// its face's area vector (a corner exactly in the face's plane is kept).
+    pub fn normals_facing_faces(&self) -> LimitMesh {
+        let mut out = LimitMesh {
+            positions: self.positions.clone(),
+            normals: self.normals.clone(),
+            scalar: self.scalar.clone(),
+            face_offsets: self.face_offsets.clone(),
+            face_indices: self.face_indices.clone(),
+            corner_normals: self.corner_normals.clone(),
+            uvs: self.uvs.clone(),
+            uv_indices: self.uv_indices.clone(),
+            ..LimitMesh::default()
+        };
+        let mut reversed: HashMap<u32, u32> = HashMap::new();
+        let position = |v: u32| glam::Vec3::from(self.positions[v as usize]);
+        for f in 0..self.num_faces() {
+            let corners = self.face_offsets[f] as usize..self.face_offsets[f + 1] as usize;
+            let face = &self.face_indices[corners.clone()];
+            // The face's area vector (Newell's, as a fan from its first corner).
+            let first = position(face[0]);
+            let area = face
+                .windows(2)
+                .skip(1)
+                .map(|w| (position(w[0]) - first).cross(position(w[1]) - first))
+                .sum::<glam::Vec3>();
+            for c in corners {
+                let v = self.face_indices[c];
+                if glam::Vec3::from(self.normals[v as usize]).dot(area) >= 0.0 {
+                    continue;
+                }
+                let copy = *reversed.entry(v).or_insert_with(|| {
+                    let n = self.normals[v as usize];
+                    out.positions.push(self.positions[v as usize]);
+                    out.normals.push([-n[0], -n[1], -n[2]]);
+                    if let Some((_, s)) = out.scalar.as_mut() {
+                        s.push(s[v as usize]);
+                    }
+                    out.positions.len() as u32 - 1
+                });
+                out.face_indices[c] = copy;
+            }
+        }
+        out
+    }
+
     /// The same surface with the vertices no face references left out, the others renumbered
     /// in order of first use (their scalar carried), and the face-varying values no corner
     /// references dropped ([`LimitMesh::compact_uvs`]).
@@ -191,6 +250,49 @@ mod tests {
         assert_eq!(m.uvs()[m.face_indices()[6] as usize], [1.0, 0.0]);
         // Without `uvs` the face-varying data is left out.
         assert!(limit.split_sided(false).uvs().is_empty());
+    }
+
+    #[test]
+    fn corners_pointing_away_from_their_face_get_the_reversed_normal() {
+        // Two triangles of the z = 0 plane, counter-clockwise seen from +z (area along +z),
+        // sharing the edge 1-2; vertex 1's normal points down.
+        let up = [0.0, 0.0, 1.0];
+        let mut m = LimitMesh::from_triangles(
+            vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [1.0, 1.0, 0.0],
+            ],
+            vec![up, [0.0, 0.6, -0.8], up, up],
+            vec![0, 1, 2, 2, 1, 3],
+        )
+        .unwrap();
+        m.set_scalar(VertexScalar::Depth, vec![0.0, 1.0, 2.0, 3.0])
+            .unwrap();
+        let d = m.normals_facing_faces();
+        // One copy of vertex 1, used by both triangles, its normal reversed; the rest kept.
+        assert_eq!(d.positions().len(), 5);
+        assert_eq!(d.positions()[4], m.positions()[1]);
+        assert_eq!(d.normals()[4], [-0.0, -0.6, 0.8]);
+        assert_eq!(d.face_indices(), [0, 4, 2, 2, 4, 3]);
+        assert_eq!(d.scalar().unwrap().1[4], 1.0);
+        assert_eq!(&d.normals()[..4], m.normals());
+        d.check().unwrap();
+        // Wound the other way (area along -z) with the normals along -z, vertex 1's normal is
+        // on its faces' side: nothing changes.
+        let flipped = LimitMesh::from_triangles(
+            m.positions().to_vec(),
+            vec![
+                [0.0, 0.0, -1.0],
+                [0.0, 0.6, -0.8],
+                [0.0, 0.0, -1.0],
+                [0.0, 0.0, -1.0],
+            ],
+            vec![0, 2, 1, 2, 3, 1],
+        )
+        .unwrap();
+        assert_eq!(flipped.normals_facing_faces(), flipped);
     }
 
     #[test]

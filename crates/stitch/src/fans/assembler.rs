@@ -8,9 +8,10 @@ use subdiv_mesh::{HalfedgeId, Mesh};
 use subdiv_rules::{Budget, Request, Scheme, TriangleBuffers, VertexScalar};
 use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, PatchGrids, PatchSet};
 
-use super::edges::Frame;
-use super::geometry::{AdaptiveFrame, concatenate};
-use super::index::FanMethod;
+use super::edges::{Frame, halfedge_sides};
+use super::geometry::{AdaptiveFrame, UpdateParts, lap};
+use crate::slots::Slots;
+use super::index::{Chunk, FanMethod};
 use crate::AssemblyError;
 
 /// The deepest face depth the assembler accepts: one below [`MAX_DEPTH`], since a patch next to a
@@ -64,8 +65,15 @@ fn pinched(mesh: &Mesh, hs: &[HalfedgeId], k: usize) -> bool {
 pub struct Assembler {
     set: PatchSet,
     units: Vec<UnitTopo>,
+    /// Per half-edge: its side in its unit ([`halfedge_sides`]).
+    side: Vec<u8>,
+    /// The index emission's per-run buffers, kept between frames.
+    chunks: Vec<Chunk>,
     blocks: Vec<Block>,
-    block_start: Vec<u32>,
+    /// Where each block's points live in the frame's vertex buffer.
+    slots: Slots,
+    /// The vertex ranges the last frame rewrote.
+    dirty: Vec<std::ops::Range<u32>>,
     version: u64,
     max_depth: Depth,
     method: FanMethod,
@@ -106,7 +114,7 @@ impl Assembler {
             },
         )?;
         let set = PatchSet::new(mesh)?;
-        let units = set
+        let units: Vec<UnitTopo> = set
             .units()
             .iter()
             .map(|u| {
@@ -122,9 +130,12 @@ impl Assembler {
             })
             .collect();
         let n = set.patches().len();
+        let side = halfedge_sides(mesh, &units);
         Ok(Assembler {
             set,
             units,
+            side,
+            chunks: Vec::new(),
             blocks: vec![
                 Block {
                     depth: None,
@@ -132,7 +143,8 @@ impl Assembler {
                 };
                 n
             ],
-            block_start: vec![0; n + 1],
+            slots: Slots::new(n),
+            dirty: Vec::new(),
             version: 0,
             max_depth,
             method: FanMethod::Subdivided,
@@ -153,6 +165,19 @@ impl Assembler {
     /// Smallest depth a unit can have (level-1 units need at least 1).
     pub fn min_depth(&self, unit: usize) -> Depth {
         self.set.units()[unit].irregular as Depth
+    }
+
+    /// The deepest unit depth every patch of `unit` has cached (`None`: some patch has
+    /// nothing): drawing the unit at most that deep tessellates nothing.
+    pub fn cached_depth(&self, unit: usize) -> Option<Depth> {
+        let u = &self.set.units()[unit];
+        let level = u.irregular as Depth;
+        let first = u.first_patch as usize;
+        self.blocks[first..first + u.patch_count as usize]
+            .iter()
+            .map(|b| b.depth.map(|d| d + level))
+            .min()
+            .flatten()
     }
 
     /// Quads of the patch grids per depth in frame `g` (index = depth), before the fans that
@@ -198,32 +223,49 @@ impl Assembler {
                 want: nu,
             });
         }
+        let mut t = std::time::Instant::now();
         let depth: Vec<Depth> = (0..nu)
             .map(|u| depth[u].clamp(self.min_depth(u), self.max_depth))
             .collect();
         let required = self.required_depths(mesh, &depth, active);
         self.check_size(&required)?;
-        let recomputed = self.recompute_blocks(mesh, &required);
-        let relink = recomputed > 0 || out.surface.num_vertices() == 0;
+        let mut stitch = lap(&mut t);
+        let (changed, points) = self.recompute_blocks(mesh, &required);
+        let tessellate = lap(&mut t);
+        let relink = !changed.is_empty() || out.surface.num_vertices() == 0;
+        self.dirty.clear();
         out.surface.write_triangles(VertexScalar::Depth, |b| {
-            self.write_frame(mesh, &depth, active, relink, b)
+            self.write_frame(mesh, &depth, active, relink.then_some(&changed), b, &mut stitch)
         })??;
-        out.set_bookkeeping(self.version, recomputed, &depth, active);
+        let buffers = lap(&mut t) - stitch;
+        out.set_bookkeeping(self.version, (changed.len(), points), &depth, active);
+        out.dirty.clone_from(&self.dirty);
+        out.parts = UpdateParts {
+            depths: 0.0,
+            tessellate,
+            stitch,
+            buffers,
+        };
         Ok(())
     }
 
-    /// Writes the frame's surface into `b`: the vertex buffer (the blocks, concatenated) when
-    /// `relink`, the vertex depths, the face-varying values and the triangles.
+    /// Writes the frame's surface into `b`: with `changed`, the blocks recomputed this frame
+    /// into their slots of the vertex buffer; the vertex depths, the face-varying values and
+    /// the triangles; adds the time the index buffer took to `stitch`.
     fn write_frame(
         &mut self,
         mesh: &Mesh,
         depth: &[Depth],
         active: &[bool],
-        relink: bool,
+        changed: Option<&Vec<usize>>,
         b: &mut TriangleBuffers<'_>,
+        stitch: &mut f64,
     ) -> Result<(), AssemblyError> {
-        if relink {
-            self.concatenate_blocks(b)?;
+        if let Some(changed) = changed {
+            let blocks = &self.blocks;
+            let block = |i: usize| (&blocks[i].pos[..], &blocks[i].nrm[..]);
+            self.slots.write(b, block, changed, &mut self.dirty)?;
+            self.version += 1;
         }
         self.fill_vertex_depth(depth, b);
         // Face-varying values: every corner's point lies on a grid at most one level below the
@@ -254,20 +296,24 @@ impl Assembler {
             mesh,
             &self.set,
             &self.units,
+            &self.side,
             depth,
             active,
             &self.blocks,
-            &self.block_start,
+            &self.slots,
         );
         // Index buffer: each patch's triangles, in parallel, then concatenated in patch order.
+        let t = std::time::Instant::now();
         fr.emit_frame(
             active,
             self.method,
             uvs,
+            &mut self.chunks,
             b.triangles,
             b.corner_normals,
             b.uv_indices,
         );
+        *stitch += t.elapsed().as_secs_f64();
         Ok(())
     }
 
@@ -280,10 +326,11 @@ impl Assembler {
             mesh,
             &self.set,
             &self.units,
+            &self.side,
             depth,
             active,
             &self.blocks,
-            &self.block_start,
+            &self.slots,
         );
         self.set
             .patches()
@@ -319,8 +366,13 @@ impl Assembler {
         Ok(())
     }
 
-    /// Recomputes the blocks that are too coarse for `required`; returns how many.
-    fn recompute_blocks(&mut self, mesh: &Mesh, required: &[Option<Depth>]) -> usize {
+    /// Recomputes the blocks that are too coarse for `required`; returns which (ascending),
+    /// and their points.
+    fn recompute_blocks(
+        &mut self,
+        mesh: &Mesh,
+        required: &[Option<Depth>],
+    ) -> (Vec<usize>, usize) {
         let todo: Vec<usize> = (0..required.len())
             .filter(|&i| required[i] > self.blocks[i].depth)
             .collect();
@@ -349,20 +401,11 @@ impl Assembler {
                 },
             )
             .collect();
-        let recomputed = fresh.len();
+        let points = fresh.iter().map(|(_, b)| b.pos.len()).sum();
         for (i, b) in fresh.drain(..) {
             self.blocks[i] = b;
         }
-        recomputed
-    }
-
-    /// Rebuilds the vertex buffer from the blocks (and their start offsets) and bumps the
-    /// vertex version.
-    fn concatenate_blocks(&mut self, b: &mut TriangleBuffers<'_>) -> Result<(), AssemblyError> {
-        let blocks = self.blocks.iter().map(|b| (&b.pos[..], &b.nrm[..]));
-        concatenate(b, blocks, &mut self.block_start)?;
-        self.version += 1;
-        Ok(())
+        (todo, points)
     }
 
     /// Depth per vertex (of the patch whose block holds it, at this frame's depth).
@@ -371,7 +414,7 @@ impl Assembler {
         b.scalar.resize(b.positions.len(), 0.0);
         for (i, p) in self.set.patches().iter().enumerate() {
             let d = depth[p.unit as usize] as f32;
-            b.scalar[self.block_start[i] as usize..self.block_start[i + 1] as usize].fill(d);
+            b.scalar[self.slots.range(i)].fill(d);
         }
     }
 }
@@ -391,10 +434,11 @@ impl Assembler {
             mesh,
             &self.set,
             &self.units,
+            &self.side,
             depth,
             active,
             &self.blocks,
-            &self.block_start,
+            &self.slots,
         );
         f(&fr)
     }
@@ -458,6 +502,38 @@ mod tests {
         asm.frame(&mesh, &depth, &[true; 6], &mut g).unwrap();
         assert_eq!(g.patches_recomputed, 6);
         assert!(g.vertex_version > v1);
+    }
+
+    #[test]
+    fn vertices_outside_the_dirty_ranges_keep_their_bits() {
+        // Random depths frame after frame: whatever a frame recomputes, every vertex outside
+        // its dirty ranges is the previous frame's, and a frame that recomputes nothing
+        // rewrites nothing.
+        let mut rng = super::super::test_util::Rng::xorshift(0x51a7_5eed);
+        for mesh in [cube(), split_cube(), prism()] {
+            let nf = mesh.num_faces();
+            let mut asm = Assembler::new(&mesh, 4).unwrap();
+            let mut g = AdaptiveFrame::default();
+            asm.frame(&mesh, &vec![1; nf], &vec![true; nf], &mut g).unwrap();
+            let all = 0..g.surface().num_vertices() as u32;
+            assert_eq!(g.dirty_vertices().to_vec(), vec![all]);
+            for round in 0..40 {
+                let before = g.surface().positions().to_vec();
+                let depth: Vec<u8> = (0..nf).map(|_| rng.below(5) as u8).collect();
+                asm.frame(&mesh, &depth, &vec![true; nf], &mut g).unwrap();
+                let now = g.surface().positions();
+                let dirty = g.dirty_vertices();
+                if g.patches_recomputed == 0 {
+                    assert!(dirty.is_empty(), "round {round}");
+                }
+                for (v, p) in before.iter().enumerate().take(now.len()) {
+                    if !dirty.iter().any(|r| r.contains(&(v as u32))) {
+                        assert_eq!(now[v], *p, "round {round} vertex {v}");
+                    }
+                }
+                assert_eq!(open_edges(&g), 0, "round {round}");
+            }
+        }
     }
 
     #[test]

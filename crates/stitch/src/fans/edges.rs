@@ -8,6 +8,7 @@ use subdiv_slate::{PatchRef, PatchSet};
 
 use super::assembler::{Block, UnitTopo};
 use super::grid::{side_of, side_point};
+use crate::slots::Slots;
 
 /// Per-frame data derived from the depths.
 pub(super) struct Frame<'a> {
@@ -19,19 +20,34 @@ pub(super) struct Frame<'a> {
     pub(super) edge_res: Vec<u8>,
     edge_owner: Vec<u32>,
     vertex_owner: Vec<(u32, u32)>,
-    blocks: &'a [Block],
-    block_start: &'a [u32],
+    /// Per half-edge: its index in its unit's `hs` (its side of the unit).
+    side: &'a [u8],
+    pub(super) blocks: &'a [Block],
+    pub(super) slots: &'a Slots,
+}
+
+/// Per half-edge of `mesh` with a face: its index in that face's `hs` (boundary half-edges: 0).
+pub(super) fn halfedge_sides(mesh: &Mesh, units: &[UnitTopo]) -> Vec<u8> {
+    let mut side = vec![0u8; 2 * mesh.num_edges()];
+    for u in units {
+        for (k, h) in u.hs.iter().enumerate() {
+            side[h.idx()] = k as u8;
+        }
+    }
+    side
 }
 
 impl<'a> Frame<'a> {
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn new(
         mesh: &'a Mesh,
         set: &'a PatchSet,
         units: &'a [UnitTopo],
+        side: &'a [u8],
         depth: &'a [u8],
         active: &'a [bool],
         blocks: &'a [Block],
-        block_start: &'a [u32],
+        slots: &'a Slots,
     ) -> Frame<'a> {
         let ne = mesh.num_edges();
         let mut edge_res = vec![0u8; ne];
@@ -55,8 +71,7 @@ impl<'a> Frame<'a> {
             for h in mesh.outgoing(v) {
                 let f = mesh.face(h);
                 if f.is_some() && active[f.idx()] {
-                    let k = units[f.idx()].hs.iter().position(|&x| x == h).unwrap_or(0) as u32;
-                    vertex_owner[v.idx()] = (f.0, k);
+                    vertex_owner[v.idx()] = (f.0, u32::from(side[h.idx()]));
                     break;
                 }
             }
@@ -69,8 +84,9 @@ impl<'a> Frame<'a> {
             edge_res,
             edge_owner,
             vertex_owner,
+            side,
             blocks,
-            block_start,
+            slots,
         }
     }
 
@@ -122,7 +138,7 @@ impl<'a> Frame<'a> {
         if b.sided.is_empty() {
             return None;
         }
-        b.sided_at(own - self.block_start[pi])
+        b.sided_at(own - self.slots.start(pi))
     }
 
     /// Whether patch `pi`'s block holds its depth-`d` grid.
@@ -144,7 +160,7 @@ impl<'a> Frame<'a> {
         let depth = u32::from(b.depth.unwrap_or_default());
         let stride = 1u32 << (depth - d_coords);
         let w = (1u32 << depth) + 1;
-        self.block_start[pi] + j * stride * w + i * stride
+        self.slots.start(pi) + j * stride * w + i * stride
     }
 
     #[inline]
@@ -185,12 +201,10 @@ impl<'a> Frame<'a> {
         let owner = self.edge_owner[e.idx()] as usize;
         let hs = &self.units[owner].hs;
         // The owner's half-edge of this edge, and the parameter along it.
-        let (k, th) = match hs.iter().position(|&x| x == h) {
-            Some(k) => (k, t),
-            None => (
-                hs.iter().position(|&x| x == h.twin()).unwrap_or(0),
-                (1 << r) - t,
-            ),
+        let (k, th) = if mesh.face(h).0 as usize == owner {
+            (self.side[h.idx()] as usize, t)
+        } else {
+            (self.side[h.twin().idx()] as usize, (1 << r) - t)
         };
         let unit = &self.set.units()[owner];
         if !unit.irregular {

@@ -1,12 +1,16 @@
 //! What one frame produced: the surface (a [`LimitMesh`] triangle list) and the frame's
 //! bookkeeping.
 
-use subdiv_rules::{LimitMesh, TriangleBuffers};
+use std::ops::Range;
+
+use subdiv_rules::LimitMesh;
 
 /// What one adaptive frame produced: the surface, and per unit (cage face) its depth.
 ///
 /// The surface is a triangle list (counter-clockwise) over the vertices of all patch blocks,
-/// concatenated (shared points referenced once; points of blocks no triangle uses stay). Where
+/// each in its slot of the vertex buffer (shared points referenced once; points of blocks no
+/// triangle uses, and slots left behind by blocks that grew, stay until the buffer is laid out
+/// afresh). Where
 /// the limit surface has a crease or a corner, each patch gives its own side's one-sided normal
 /// at the points of its border; the vertex normals keep the averaged one. Its face-varying
 /// values (UVs, `subdiv_slate::LevelUvs`) are those on each corner's own patch's side of a seam,
@@ -18,6 +22,40 @@ pub struct AdaptiveFrame {
     pub(crate) unit_depth: Vec<u8>,
     pub(crate) vertex_version: u64,
     pub(crate) patches_recomputed: usize,
+    pub(crate) points_recomputed: usize,
+    pub(crate) parts: UpdateParts,
+    pub(crate) dirty: Vec<Range<u32>>,
+}
+
+/// Where one frame's update spent its time, in seconds of wall clock.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UpdateParts {
+    /// Choosing the depths (classification, projected size or pixel error, frame-rate control):
+    /// set by whoever assigns them (`subdiv::DynamicSubdivision`), 0 from an assembler alone.
+    pub depths: f64,
+    /// Tessellating the patches whose cached block was too coarse.
+    pub tessellate: f64,
+    /// Edge resolutions and owners, fans and the index buffer.
+    pub stitch: f64,
+    /// The vertex buffer and per-vertex data (blocks concatenated when any changed, vertex
+    /// depths, face-varying values) and the surface's checks: what an upload reads.
+    pub buffers: f64,
+}
+
+impl UpdateParts {
+    /// The whole update.
+    pub fn total(&self) -> f64 {
+        self.depths + self.tessellate + self.stitch + self.buffers
+    }
+}
+
+/// Seconds since `t`, and `t` moved to now.
+#[inline]
+pub(crate) fn lap(t: &mut std::time::Instant) -> f64 {
+    let now = std::time::Instant::now();
+    let s = (now - *t).as_secs_f64();
+    *t = now;
+    s
 }
 
 impl AdaptiveFrame {
@@ -45,10 +83,37 @@ impl AdaptiveFrame {
         self.vertex_version
     }
 
+    /// The vertex ranges this frame rewrote (empty when the vertex buffer is the previous
+    /// frame's): every other vertex kept its index and its bits, so a renderer that keeps the
+    /// previous buffer uploads only these. The blocks of the recomputed patches, or the whole
+    /// buffer when it was laid out afresh.
+    #[inline]
+    pub fn dirty_vertices(&self) -> &[Range<u32>] {
+        &self.dirty
+    }
+
     /// Patches recomputed this frame.
     #[inline]
     pub fn patches_recomputed(&self) -> usize {
         self.patches_recomputed
+    }
+
+    /// Limit points computed this frame (the grids of the recomputed patches).
+    #[inline]
+    pub fn points_recomputed(&self) -> usize {
+        self.points_recomputed
+    }
+
+    /// Where this frame's update spent its time.
+    #[inline]
+    pub fn parts(&self) -> UpdateParts {
+        self.parts
+    }
+
+    /// Sets the time spent choosing this frame's depths (the caller that assigned them).
+    #[inline]
+    pub fn set_depths_time(&mut self, seconds: f64) {
+        self.parts.depths = seconds;
     }
 
     /// Number of triangles.
@@ -62,12 +127,12 @@ impl AdaptiveFrame {
     pub(crate) fn set_bookkeeping(
         &mut self,
         version: u64,
-        recomputed: usize,
+        recomputed: (usize, usize),
         depth: &[u8],
         active: &[bool],
     ) {
         self.vertex_version = version;
-        self.patches_recomputed = recomputed;
+        (self.patches_recomputed, self.points_recomputed) = recomputed;
         self.unit_depth.clear();
         let drawn = depth.iter().zip(active);
         self.unit_depth
@@ -98,34 +163,6 @@ impl AdaptiveFrame {
             s.face_indices().to_vec(),
         )
     }
-}
-
-/// Replaces the vertex buffer of `b` by the blocks' points in order (`blocks` yields each
-/// block's positions and normals) and records where each block starts in `block_start` (one
-/// entry per block plus the total). Shared by the quad and the triangle assemblers.
-pub(crate) fn concatenate<'a>(
-    b: &mut TriangleBuffers<'_>,
-    blocks: impl Iterator<Item = (&'a [[f32; 3]], &'a [[f32; 3]])> + Clone,
-    block_start: &mut [u32],
-) -> Result<(), subdiv_rules::OutOfMemory> {
-    let mut acc = 0u32;
-    let mut n = 0;
-    for (i, (pos, _)) in blocks.clone().enumerate() {
-        block_start[i] = acc;
-        acc += pos.len() as u32;
-        n = i + 1;
-    }
-    block_start[n] = acc;
-    b.positions.clear();
-    b.normals.clear();
-    let total = acc as usize;
-    subdiv_rules::budget::try_reserve(b.positions, total, "frame positions")?;
-    subdiv_rules::budget::try_reserve(b.normals, total, "frame normals")?;
-    for (pos, nrm) in blocks {
-        b.positions.extend_from_slice(pos);
-        b.normals.extend_from_slice(nrm);
-    }
-    Ok(())
 }
 
 #[cfg(test)]

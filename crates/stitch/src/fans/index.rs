@@ -14,29 +14,105 @@ use subdiv_slate::{LevelUvs, PatchRef};
 use super::edges::Frame;
 use super::grid::{side_of_on, side_point};
 
-/// No block point of the patch's own (interior corners, or a block too coarse).
+/// No block point of the patch's own (interior points, or a block too coarse).
 const NO_OWN: u32 = u32::MAX;
 
-/// Where a triangle corner lies in its own patch's parameters: grid point `(i, j)` of the
-/// patch's `2^e` grid, `(i, j, e)` (for its face-varying value, [`LevelUvs::value_at`]).
-type Loc = (u32, u32, u8);
-
-/// Where [`Frame::emit_patch`] puts the corners' [`Loc`]s: a `Vec`, or nowhere (`()`: the
-/// no-UV path, where the places are never computed once inlined).
-trait LocSink {
-    fn put(&mut self, l: Loc);
+/// A triangle corner: its shared vertex id, the one-sided normal of its own patch's side there
+/// (only at border points where the limit surface has a crease or a corner), and where it lies
+/// in its own patch's parameters: grid point `(i, j)` of the patch's `2^e` grid (for its
+/// face-varying value, [`LevelUvs::value_at`]).
+#[derive(Clone, Copy, Debug)]
+struct Corner {
+    id: u32,
+    sided: Option<[f32; 3]>,
+    i: u32,
+    j: u32,
+    e: u8,
 }
 
-impl LocSink for () {
-    #[inline(always)]
-    fn put(&mut self, _: Loc) {}
+/// Where [`Frame::emit_patch`] puts each corner's face-varying value: nowhere (`()`, the no-UV
+/// path, where the places are never looked up once inlined), or the value of the patch's own
+/// side ([`PatchUvs`]).
+trait UvSink {
+    /// Whether [`UvSink::put`] does anything.
+    const WANTED: bool;
+    fn put(&mut self, c: &Corner);
 }
 
-impl LocSink for Vec<Loc> {
+impl UvSink for () {
+    const WANTED: bool = false;
     #[inline(always)]
-    fn put(&mut self, l: Loc) {
-        self.push(l);
+    fn put(&mut self, _: &Corner) {}
+}
+
+/// The face-varying values of one patch's corners, into `out`.
+struct PatchUvs<'a> {
+    uvs: &'a LevelUvs,
+    p: &'a PatchRef,
+    face: subdiv_mesh::FaceId,
+    out: &'a mut Vec<u32>,
+}
+
+impl UvSink for PatchUvs<'_> {
+    const WANTED: bool = true;
+    #[inline(always)]
+    fn put(&mut self, c: &Corner) {
+        let v = self.uvs.value_at(self.p.level, self.p.sub, self.face, c.i, c.j, c.e);
+        self.out.push(v);
     }
+}
+
+/// One contiguous run of patches' output, and the emission scratch of the thread writing it;
+/// kept between frames so that a frame allocates nothing once the buffers have grown.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Chunk {
+    tris: Vec<u32>,
+    /// (corner index within `tris`, one-sided normal).
+    sided: Vec<(u32, [f32; 3])>,
+    uv: Vec<u32>,
+    /// Per grid point of the patch being emitted: shared id and own block point.
+    grid: Vec<(u32, u32)>,
+    /// Per grid point: the patch's one-sided normal there, if any.
+    grid_sided: Vec<Option<[f32; 3]>>,
+    /// The corners of the fan being emitted.
+    poly: Vec<Corner>,
+}
+
+/// Patches per [`Chunk`]: enough work per task to amortise the task, small enough that two
+/// threads share a frame of a few hundred patches evenly.
+const CHUNK_PATCHES: usize = 32;
+
+impl Chunk {
+    /// The corner at grid point `(i, j)` (storage index `k`) of the patch being emitted, at its
+    /// depth `d`.
+    #[inline(always)]
+    fn corner(&self, k: usize, (i, j): (u32, u32), d: u32) -> Corner {
+        Corner {
+            id: self.grid[k].0,
+            sided: self.grid_sided.get(k).copied().flatten(),
+            i,
+            j,
+            e: d as u8,
+        }
+    }
+}
+
+/// Appends corner `c` to the chunk: its id, its one-sided normal if it has one, its
+/// face-varying value.
+#[inline(always)]
+fn push(ch: &mut Chunk, uv: &mut impl UvSink, c: Corner) {
+    if let Some(nrm) = c.sided {
+        ch.sided.push((ch.tris.len() as u32, nrm));
+    }
+    ch.tris.push(c.id);
+    uv.put(&c);
+}
+
+/// Whether quad `(i, j)` of an `n x n` patch lies along a side that fans (`fans[k]`, side `k`:
+/// bottom, right, top, left).
+#[inline(always)]
+fn replaced(fans: [bool; 4], n: u32, i: u32, j: u32) -> bool {
+    (fans[0] && j == 0) || (fans[1] && i == n - 1) || (fans[2] && j == n - 1) || (fans[3] && i == 0)
 }
 
 /// How the quads next to a deeper neighbour are closed.
@@ -50,176 +126,250 @@ pub enum FanMethod {
 }
 
 impl Frame<'_> {
-    /// The frame's index buffer: each active, non-hole patch's triangles, emitted in parallel,
-    /// then concatenated in patch order into `out` (cleared first); and in `corner_normals`
-    /// (cleared first; corner index in `out`, ascending) each patch's own one-sided normal at
-    /// the triangle corners on creases and corners of the limit surface. With `uvs`, the
-    /// face-varying value of every triangle corner on its own patch's side goes to
-    /// `uv_indices` (cleared first; parallel to `out`).
+    /// The frame's index buffer: each active, non-hole patch's triangles, emitted in parallel
+    /// by runs of [`CHUNK_PATCHES`] patches into `chunks` (grown as needed, kept by the caller
+    /// between frames), then concatenated in patch order into `out` (cleared first); and in
+    /// `corner_normals` (cleared first; corner index in `out`, ascending) each patch's own
+    /// one-sided normal at the triangle corners on creases and corners of the limit surface.
+    /// With `uvs`, the face-varying value of every triangle corner on its own patch's side goes
+    /// to `uv_indices` (cleared first; parallel to `out`).
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn emit_frame(
         &self,
         active: &[bool],
         method: FanMethod,
         uvs: Option<&LevelUvs>,
+        chunks: &mut Vec<Chunk>,
         out: &mut Vec<u32>,
         corner_normals: &mut Vec<(u32, [f32; 3])>,
         uv_indices: &mut Vec<u32>,
     ) {
-        type PatchOut = (Vec<u32>, Vec<(u32, [f32; 3])>, Vec<u32>);
-        let tris: Vec<PatchOut> = self
-            .set
-            .patches()
-            .par_iter()
-            .map(|p| {
-                let (mut v, mut own) = (Vec::new(), Vec::new());
-                let mut sided = Vec::new();
-                let mut locs = Vec::new();
-                let mut uv = Vec::new();
-                let face = self.set.units()[p.unit as usize].face;
-                if active[p.unit as usize] && !self.mesh.is_hole(face) {
-                    if uvs.is_some() {
-                        self.emit_patch(p, method, &mut v, &mut own, &mut locs);
-                    } else {
-                        self.emit_patch(p, method, &mut v, &mut own, &mut ());
+        let patches = self.set.patches();
+        let runs = patches.len().div_ceil(CHUNK_PATCHES);
+        if chunks.len() < runs {
+            chunks.resize_with(runs, Chunk::default);
+        }
+        chunks[..runs]
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(c, ch)| {
+                ch.tris.clear();
+                ch.sided.clear();
+                ch.uv.clear();
+                let lo = c * CHUNK_PATCHES;
+                for p in &patches[lo..(lo + CHUNK_PATCHES).min(patches.len())] {
+                    let face = self.set.units()[p.unit as usize].face;
+                    if !active[p.unit as usize] || self.mesh.is_hole(face) {
+                        continue;
                     }
-                    let pi = self.patch_index(p.unit as usize, p.sub as usize);
-                    for (c, &o) in own.iter().enumerate() {
-                        if o != NO_OWN
-                            && let Some(nrm) = self.own_sided(pi, o)
-                        {
-                            sided.push((c as u32, nrm));
+                    match uvs {
+                        Some(uvs) => {
+                            let mut out = std::mem::take(&mut ch.uv);
+                            let mut sink = PatchUvs {
+                                uvs,
+                                p,
+                                face,
+                                out: &mut out,
+                            };
+                            self.emit_patch(p, method, ch, &mut sink);
+                            ch.uv = out;
                         }
-                    }
-                    if let Some(u) = uvs {
-                        uv.extend(
-                            locs.iter()
-                                .map(|&(i, j, e)| u.value_at(p.level, p.sub, face, i, j, e)),
-                        );
+                        None => self.emit_patch(p, method, ch, &mut ()),
                     }
                 }
-                (v, sided, uv)
-            })
-            .collect();
+            });
         out.clear();
         corner_normals.clear();
         uv_indices.clear();
-        for (t, sided, uv) in tris {
+        let done = &chunks[..runs];
+        out.reserve(done.iter().map(|c| c.tris.len()).sum());
+        corner_normals.reserve(done.iter().map(|c| c.sided.len()).sum());
+        uv_indices.reserve(done.iter().map(|c| c.uv.len()).sum());
+        for ch in done {
             let start = out.len() as u32;
-            corner_normals.extend(sided.into_iter().map(|(c, n)| (start + c, n)));
-            out.extend_from_slice(&t);
-            uv_indices.extend_from_slice(&uv);
+            corner_normals.extend(ch.sided.iter().map(|&(c, n)| (start + c, n)));
+            out.extend_from_slice(&ch.tris);
+            uv_indices.extend_from_slice(&ch.uv);
         }
     }
 
-    /// The triangles of one patch, and parallel to `out` in `own` the patch's own block point
-    /// of each corner on the patch's border ([`NO_OWN`] for interior points, whose normal is
-    /// never one-sided, and for deeper points its block does not hold); with `locs`, where each
-    /// corner lies in the patch's parameters.
-    fn emit_patch(
-        &self,
-        p: &PatchRef,
-        method: FanMethod,
-        out: &mut Vec<u32>,
-        own: &mut Vec<u32>,
-        locs: &mut impl LocSink,
-    ) {
+    /// Fills `ch.grid` with the shared id and own block point of every point of patch `p`'s
+    /// depth-`d` grid (interior points straight from the patch's block, border points through
+    /// their owners), and `ch.grid_sided` with the patch's one-sided normals at its border points
+    /// (left empty when the patch has none).
+    fn fill_grid(&self, pi: usize, p: &PatchRef, d: u32, ch: &mut Chunk) {
+        let n = 1u32 << d;
+        let w = (n + 1) as usize;
+        ch.grid.clear();
+        ch.grid.resize(w * w, (0, NO_OWN));
+        // Interior: the patch's own block, sampled with the block's stride.
+        let b = &self.blocks[pi];
+        let bd = u32::from(b.depth.unwrap_or_default());
+        debug_assert!(bd >= d, "block too coarse");
+        let (stride, bw) = (1u32 << (bd - d), (1u32 << bd) + 1);
+        let start = self.slots.start(pi);
+        for j in 1..n {
+            let row = start + j * stride * bw;
+            for i in 1..n {
+                ch.grid[j as usize * w + i as usize] = (row + i * stride, NO_OWN);
+            }
+        }
+        let mut border = |i: u32, j: u32| {
+            ch.grid[j as usize * w + i as usize] =
+                (self.point_id(pi, p, i, j), self.own(pi, i, j, d));
+        };
+        for i in 0..=n {
+            border(i, 0);
+            border(i, n);
+        }
+        for j in 1..n {
+            border(0, j);
+            border(n, j);
+        }
+        ch.grid_sided.clear();
+        if !b.sided.is_empty() {
+            ch.grid_sided.resize(w * w, None);
+            for (k, &(_, o)) in ch.grid.iter().enumerate() {
+                if o != NO_OWN {
+                    ch.grid_sided[k] = self.own_sided(pi, o);
+                }
+            }
+        }
+    }
+
+    /// The triangles of one patch, appended to `ch.tris` with the patch's one-sided normals at
+    /// its border corners in `ch.sided`, and each corner's face-varying value in `uv`; quad by
+    /// quad, row by row.
+    fn emit_patch<U: UvSink>(&self, p: &PatchRef, method: FanMethod, ch: &mut Chunk, uv: &mut U) {
         let pi = self.patch_index(p.unit as usize, p.sub as usize);
         let d = self.patch_depth(p);
         let n = 1u32 << d;
         let fans = self.fans(p);
-        let replaced = |i: u32, j: u32| -> bool {
-            (fans[0] && j == 0)
-                || (fans[1] && i == n - 1)
-                || (fans[2] && j == n - 1)
-                || (fans[3] && i == 0)
-        };
+        self.fill_grid(pi, p, d, ch);
         let any = fans.iter().any(|&x| x);
         // Pinched patch corners (level-1 patches: only corner 0 is a cage vertex, and the
         // default diagonal already runs through it).
         let pinched = |k: usize| p.level == 0 && self.units[p.unit as usize].pinched[k];
-        // Split quad (i, j) through its corners 1 and 3 instead of 0 and 2?
+        let any_flip = (0..4).any(pinched);
+        // Split quad (i, j) through its corners 1 and 3 instead of 0 and 2? Only a patch's
+        // corner quads can be.
         let flip = |i: u32, j: u32| -> bool {
             let at = |k: usize| {
                 let (ci, cj) = [(0, 0), (n - 1, 0), (n - 1, n - 1), (0, n - 1)][k];
                 i == ci && j == cj && pinched(k)
             };
-            (at(1) || at(3)) && !(at(0) || at(2))
+            any_flip && (at(1) || at(3)) && !(at(0) || at(2))
         };
-        // (shared id, own block point or NO_OWN, place in the patch).
-        let id = |i: u32, j: u32| {
-            let border = i == 0 || j == 0 || i == n || j == n;
-            let o = if border {
-                self.own(pi, i, j, d)
-            } else {
-                NO_OWN
-            };
-            (self.point_id(pi, p, i, j), o, (i, j, d as u8))
-        };
-        let mut push = |tri: [(u32, u32, Loc); 3]| {
-            for (x, o, l) in tri {
-                out.push(x);
-                own.push(o);
-                locs.put(l);
-            }
-        };
-        let mut poly: Vec<(u32, u32, Loc)> = Vec::with_capacity(16);
+        // No one-sided normals and no face-varying values: plain quads straight from the grid.
+        let plain = !U::WANTED && ch.grid_sided.is_empty();
+        let w = (n + 1) as usize;
         for j in 0..n {
             for i in 0..n {
-                if !(any && replaced(i, j)) {
-                    let (a, b, c, e) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
-                    if flip(i, j) {
-                        push([a, b, e]);
-                        push([b, c, e]);
-                    } else {
-                        push([a, b, c]);
-                        push([a, c, e]);
-                    }
+                if any && replaced(fans, n, i, j) {
+                    self.emit_fan(p, pi, (i, j), fans, method, ch, uv);
                     continue;
                 }
-                // Fan around the limit point of the quad's next-level face point.
-                let (ci, cj) = (2 * i + 1, 2 * j + 1);
-                let centre = (self.own(pi, ci, cj, d + 1), NO_OWN, (ci, cj, d as u8 + 1));
-                poly.clear();
-                // The quad's four edges, counter-clockwise: bottom, right, top, left; each from
-                // its start corner (inclusive) to its end corner (exclusive).
-                let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
-                for (ek, &(ci, cj)) in corners.iter().enumerate() {
-                    poly.push(id(ci, cj));
-                    let (ni, nj) = corners[(ek + 1) % 4];
-                    // Is this edge on a fanned side of the patch?
-                    let on_side = match ek {
-                        0 if j == 0 => Some(0),
-                        1 if i + 1 == n => Some(1),
-                        2 if j + 1 == n => Some(2),
-                        3 if i == 0 => Some(3),
-                        _ => None,
-                    };
-                    if let Some(k) = on_side.filter(|&k| fans[k]) {
-                        self.push_fine_points(p, pi, k, (ci, cj), (ni, nj), n, &mut poly);
-                    } else if on_side.is_none() && method == FanMethod::Subdivided {
-                        // Inner edge: subdivide it if the quad across is replaced too.
-                        let (oi, oj) = match ek {
-                            0 => (i, j.wrapping_sub(1)),
-                            1 => (i + 1, j),
-                            2 => (i, j + 1),
-                            _ => (i.wrapping_sub(1), j),
-                        };
-                        if oi < n && oj < n && replaced(oi, oj) {
-                            // An inner edge's midpoint: inside the patch.
-                            let (mi, mj) = (ci + ni, cj + nj);
-                            poly.push((self.own(pi, mi, mj, d + 1), NO_OWN, (mi, mj, d as u8 + 1)));
-                        }
-                    }
+                let (r0, r1, iu) = (j as usize * w, (j as usize + 1) * w, i as usize);
+                let quad = [r0 + iu, r0 + iu + 1, r1 + iu + 1, r1 + iu];
+                let order = if flip(i, j) {
+                    [0, 1, 3, 1, 2, 3]
+                } else {
+                    [0, 1, 2, 0, 2, 3]
+                };
+                if plain {
+                    let g = &ch.grid;
+                    let [a, b, c, e] = quad.map(|k| g[k].0);
+                    let ids = [a, b, c, e];
+                    let [o0, o1, o2, o3, o4, o5] = order;
+                    ch.tris.extend_from_slice(&[
+                        ids[o0], ids[o1], ids[o2], ids[o3], ids[o4], ids[o5],
+                    ]);
+                    continue;
                 }
-                for k in 0..poly.len() {
-                    push([centre, poly[k], poly[(k + 1) % poly.len()]]);
+                let at = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+                for k in order {
+                    let c = ch.corner(quad[k], at[k], d);
+                    push(ch, uv, c);
                 }
             }
         }
     }
 
+    /// The fan that replaces quad `(i, j)` of patch `p` (index `pi`) next to a deeper
+    /// neighbour: triangles around the limit point of the quad's next-level face point through
+    /// its corners, the deeper side's points on its fanned sides, and (subdivided method) the
+    /// midpoints of its inner edges to other replaced quads.
+    #[allow(clippy::too_many_arguments)]
+    fn emit_fan<U: UvSink>(
+        &self,
+        p: &PatchRef,
+        pi: usize,
+        (i, j): (u32, u32),
+        fans: [bool; 4],
+        method: FanMethod,
+        ch: &mut Chunk,
+        uv: &mut U,
+    ) {
+        let d = self.patch_depth(p);
+        let n = 1u32 << d;
+        let w = (n + 1) as usize;
+        let (ci, cj) = (2 * i + 1, 2 * j + 1);
+        let centre = Corner {
+            id: self.own(pi, ci, cj, d + 1),
+            sided: None,
+            i: ci,
+            j: cj,
+            e: d as u8 + 1,
+        };
+        let mut poly = std::mem::take(&mut ch.poly);
+        poly.clear();
+        // The quad's four edges, counter-clockwise: bottom, right, top, left; each from its
+        // start corner (inclusive) to its end corner (exclusive).
+        let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+        for (ek, &(ci, cj)) in corners.iter().enumerate() {
+            poly.push(ch.corner(cj as usize * w + ci as usize, (ci, cj), d));
+            let (ni, nj) = corners[(ek + 1) % 4];
+            // Is this edge on a fanned side of the patch?
+            let on_side = match ek {
+                0 if j == 0 => Some(0),
+                1 if i + 1 == n => Some(1),
+                2 if j + 1 == n => Some(2),
+                3 if i == 0 => Some(3),
+                _ => None,
+            };
+            if let Some(k) = on_side.filter(|&k| fans[k]) {
+                self.push_fine_points(p, pi, k, (ci, cj), (ni, nj), n, &mut poly);
+            } else if on_side.is_none() && method == FanMethod::Subdivided {
+                // Inner edge: subdivide it if the quad across is replaced too.
+                let (oi, oj) = match ek {
+                    0 => (i, j.wrapping_sub(1)),
+                    1 => (i + 1, j),
+                    2 => (i, j + 1),
+                    _ => (i.wrapping_sub(1), j),
+                };
+                if oi < n && oj < n && replaced(fans, n, oi, oj) {
+                    // An inner edge's midpoint: inside the patch.
+                    let (mi, mj) = (ci + ni, cj + nj);
+                    poly.push(Corner {
+                        id: self.own(pi, mi, mj, d + 1),
+                        sided: None,
+                        i: mi,
+                        j: mj,
+                        e: d as u8 + 1,
+                    });
+                }
+            }
+        }
+        for k in 0..poly.len() {
+            push(ch, uv, centre);
+            push(ch, uv, poly[k]);
+            push(ch, uv, poly[(k + 1) % poly.len()]);
+        }
+        ch.poly = poly;
+    }
+
     /// The deeper neighbour's points strictly between two corners of a border quad on side `k`,
-    /// each with this patch's own block point there where its block is that deep.
+    /// each with this patch's own one-sided normal there where its block is that deep.
     #[allow(clippy::too_many_arguments)]
     fn push_fine_points(
         &self,
@@ -229,7 +379,7 @@ impl Frame<'_> {
         a: (u32, u32),
         b: (u32, u32),
         n: u32,
-        poly: &mut Vec<(u32, u32, Loc)>,
+        poly: &mut Vec<Corner>,
     ) {
         let u = p.unit as usize;
         let hs = &self.units[u].hs;
@@ -256,8 +406,18 @@ impl Frame<'_> {
         let deep = self.has_depth(pi, dp);
         let point = |t: u32| {
             let (i, j) = side_point(k, t - (offset << delta), 1 << dp);
-            let o = if deep { self.own(pi, i, j, dp) } else { NO_OWN };
-            (self.edge_point_id(h, t, r), o, (i, j, dp as u8))
+            let sided = if deep {
+                self.own_sided(pi, self.own(pi, i, j, dp))
+            } else {
+                None
+            };
+            Corner {
+                id: self.edge_point_id(h, t, r),
+                sided,
+                i,
+                j,
+                e: dp as u8,
+            }
         };
         if t1 > t0 {
             for t in t0 + 1..t1 {

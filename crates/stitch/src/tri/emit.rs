@@ -6,6 +6,7 @@ use subdiv_mesh::{FaceId, Mesh};
 use subdiv_slate::{Depth, LevelUvs, TriLayout, tri_lattice_index};
 
 use super::TriBlock;
+use crate::slots::Slots;
 
 /// One-sided normals of triangle corners: (corner index, normal), ascending.
 type SidedNormals = Vec<(u32, [f32; 3])>;
@@ -101,7 +102,7 @@ pub(crate) struct TriFrame<'a> {
     pub(crate) depth: &'a [Depth],
     pub(crate) owners: &'a Owners,
     pub(crate) blocks: &'a [TriBlock],
-    pub(crate) block_start: &'a [u32],
+    pub(crate) slots: &'a Slots,
 }
 
 /// Lattice coordinates at side `n` of side `k`'s point `t` (counted from corner `k`).
@@ -122,7 +123,7 @@ impl TriFrame<'_> {
             .depth
             .expect("owners' lattices are computed");
         let s = c - r;
-        self.block_start[g as usize] + tri_lattice_index(1 << c, i << s, j << s)
+        self.slots.start(g as usize) + tri_lattice_index(1 << c, i << s, j << s)
     }
 
     /// Patch `f`'s own lattice index of its point `(i, j)` at resolution `r`, if it holds it.

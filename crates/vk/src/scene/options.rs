@@ -76,6 +76,13 @@ pub struct RenderOptions {
     /// corner (levels and their colours, or the heat map with its range); nothing for the
     /// other shadings.
     pub legend: bool,
+    /// Samples per pixel of the colour image (1, 2, 4 or 8): multisampling anti-aliases
+    /// silhouettes, creases and lines; each triangle is still shaded once per pixel, at a
+    /// point inside it. `None`: [`DEFAULT_SAMPLES`](crate::DEFAULT_SAMPLES) where the device
+    /// supports it, else the most it supports below that. A count the device lacks is an
+    /// error ([`VkError::Samples`](crate::VkError::Samples)). Depth, normals and scalars
+    /// ([`AuxImage`](crate::AuxImage)) are point-sampled at pixel centres whatever the count.
+    pub samples: Option<u32>,
 }
 
 impl Default for RenderOptions {
@@ -92,6 +99,7 @@ impl Default for RenderOptions {
             line_width: 2.0,
             scalar_range: None,
             legend: false,
+            samples: None,
         }
     }
 }

@@ -1,6 +1,15 @@
 #version 450
 // Triangle pass: grey headlight/key-light shading, discrete depth palette or
-// heat map; also writes the auxiliary normal + scalar and linear depth targets.
+// heat map; also writes the auxiliary normal + scalar and linear depth targets
+// (not with COLOR_ONLY: the multisampled pass has the colour target only).
+//
+// Normal and scalar are interpolated at the centroid of the covered samples
+// (`smooth centroid`: naga drops a bare `centroid`): with several samples per
+// pixel a triangle that covers some of them but not the pixel's centre is shaded
+// at a point inside it, never with values extrapolated beyond its corners. A
+// sub-pixel strip beside a crease, whose corners carry one-sided normals, would
+// otherwise take a normal far outside its corners' and show as a dot. With one
+// sample the centroid is the pixel's centre.
 
 layout(push_constant) uniform Push {
     mat4 view_proj;
@@ -10,14 +19,16 @@ layout(push_constant) uniform Push {
     vec4 params;
 } pc;
 
-layout(location = 0) in vec3 v_normal;
+layout(location = 0) smooth centroid in vec3 v_normal;
 layout(location = 1) in vec3 v_world;
-layout(location = 2) in float v_scalar;
+layout(location = 2) smooth centroid in float v_scalar;
 layout(location = 3) flat in float v_scalar_flat;
 
 layout(location = 0) out vec4 o_color;
+#ifndef COLOR_ONLY
 layout(location = 1) out vec4 o_normal_scalar;
 layout(location = 2) out vec4 o_linear_depth;
+#endif
 
 // Per-level colours for subdivision depth 0, 1, 2, ... (cycled after 8).
 vec3 depth_colour(int level) {
@@ -67,6 +78,8 @@ void main() {
         base = heat_colour(t);
     }
     o_color = vec4(clamp(base * lit, vec3(0.0), vec3(1.0)), 1.0);
+#ifndef COLOR_ONLY
     o_normal_scalar = vec4(n, v_scalar);
     o_linear_depth = vec4(dot(v_world - pc.eye.xyz, pc.forward.xyz), 0.0, 0.0, 0.0);
+#endif
 }

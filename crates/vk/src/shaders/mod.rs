@@ -8,6 +8,9 @@ use crate::error::{Result, VkError};
 pub(crate) const MESH_VERT: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/mesh.vert.spv"));
 /// Triangle fragment shader (colour + auxiliary targets).
 pub(crate) const MESH_FRAG: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/mesh.frag.spv"));
+/// Triangle fragment shader, colour target only (the multisampled pass).
+pub(crate) const MESH_COLOR_FRAG: &[u8] =
+    include_bytes!(concat!(env!("OUT_DIR"), "/mesh_color.frag.spv"));
 /// Line vertex shader.
 pub(crate) const LINE_VERT: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/line.vert.spv"));
 /// Line fragment shader.

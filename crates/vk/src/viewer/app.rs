@@ -17,7 +17,7 @@ use winit::window::{Window, WindowId};
 use super::gpu::{Drawn, Gpu};
 use super::hud::{self, HudState};
 use super::input::{Drag, drag, draws_continuously};
-use super::{Fault, FrameRequest, FrameSource, ViewerOptions, ViewerReport};
+use super::{FrameControl, Fault, FrameRequest, FrameSource, ViewerOptions, ViewerReport};
 use crate::error::{Result, VkError};
 use crate::image_io::write_png;
 use crate::scene::{OrbitCamera, RenderOptions, Shading, View};
@@ -47,7 +47,7 @@ pub(super) fn run(source: &mut dyn FrameSource, options: ViewerOptions) -> Resul
         render: options.render,
         silhouettes: options.render.show_lines,
         target_fps: options.target_fps.max(1.0),
-        frame_rate_control: options.frame_rate_control,
+        control: options.control,
         hud: options.hud,
         frozen: None,
         left: false,
@@ -102,7 +102,7 @@ struct App<'s> {
     render: RenderOptions,
     silhouettes: bool,
     target_fps: f32,
-    frame_rate_control: bool,
+    control: FrameControl,
     hud: bool,
     frozen: Option<View>,
     /// Mouse buttons held: left rotates (pans with shift), middle pans.
@@ -197,7 +197,7 @@ impl App<'_> {
             "l" => self.render.legend = !self.render.legend,
             "+" | "=" => self.target_fps = (self.target_fps * 1.25).min(1000.0),
             "-" | "_" => self.target_fps = (self.target_fps / 1.25).max(1.0),
-            "c" => self.frame_rate_control = !self.frame_rate_control,
+            "c" => self.control = self.control.next(),
             "p" => self.screenshot_requested = true,
             _ => {}
         }
@@ -225,7 +225,7 @@ impl App<'_> {
     /// scripted screenshot waits for its frame count. Otherwise only changes draw.
     fn continuous(&self) -> bool {
         draws_continuously(
-            self.frame_rate_control,
+            self.control.is_on(),
             self.options.screenshot_after,
             self.report.frames,
         )
@@ -279,6 +279,7 @@ impl App<'_> {
         let size = [extent.width, extent.height];
         hud_state.triangles = triangles;
         hud_state.depth_cap = frame.depth_cap;
+        hud_state.predicted_ms = frame.predicted_ms;
         let overlay = hud::overlay(&hud_state, &mesh, &options, size);
         // `swapchain_extent` returned an extent, so the GPU state exists.
         let Some(gpu) = self.gpu.as_mut() else {
@@ -329,7 +330,11 @@ impl App<'_> {
             work_ms: self.work_time.as_secs_f32() * 1e3,
             triangles: 0,
             depth_cap: None,
-            target_fps: self.frame_rate_control.then_some(self.target_fps),
+            control: self.control,
+            target_fps: self.target_fps,
+            measured_ms: (self.continuous() && !self.last_frame_time.is_zero())
+                .then_some(self.last_frame_time.as_secs_f32() * 1e3),
+            predicted_ms: None,
             shading: self.render.shading,
             wire: self.render.wire_overlay,
             silhouettes: self.silhouettes,
@@ -375,7 +380,7 @@ impl App<'_> {
             shading: self.render.shading,
             silhouettes: self.silhouettes,
             target_fps: self.target_fps,
-            frame_rate_control: self.frame_rate_control,
+            control: self.control,
             last_frame_time: self.last_frame_time,
             frame_index: self.report.frames,
         };
@@ -431,8 +436,12 @@ impl App<'_> {
         if self.frozen.is_some() {
             title.push_str(" | culling camera frozen");
         }
-        if self.frame_rate_control {
-            title.push_str(&format!(" | target {:.0} fps", self.target_fps));
+        if self.control.is_on() {
+            title.push_str(&format!(
+                " | {} control, target {:.0} fps",
+                self.control.name(),
+                self.target_fps
+            ));
         } else {
             title.push_str(" | fps control off");
         }

@@ -15,6 +15,7 @@ use crate::error::{Result, VkError, VkResultExt};
 use crate::frame::{self, FrameInputs, MeshBuffer, Readback, Target};
 use crate::overlay::Overlay;
 use crate::pipeline::Pipelines;
+use crate::samples;
 use crate::scene::{self, Layout, RenderMesh, RenderOptions, View};
 
 /// Frames in flight: the CPU builds frame n+1 while the GPU draws frame n.
@@ -223,6 +224,12 @@ impl Gpu {
         let index = self.next;
         // CPU work first (overlaps the GPU's previous frame): pack the mesh,
         // without the vertices if this slot's buffer already holds them.
+        let samples = samples::choose(
+            options.samples,
+            self.ctx.sample_counts,
+            self.ctx.device_name(),
+        )?;
+        self.pipelines.prepare(&self.ctx, samples)?;
         let reuse = vertex_version.is_some() && self.slots[index].vertex_version == vertex_version;
         let (bytes, layout, offset) = scene::pack_from(mesh, options, overlay, !reuse)?;
         let packed = Packed {
@@ -249,7 +256,7 @@ impl Gpu {
         let Some(image_index) = self.acquire(acquired)? else {
             return Ok(Drawn::Skipped);
         };
-        let mesh_buffer = self.prepare_slot(index, extent, &packed)?;
+        let mesh_buffer = self.prepare_slot(index, (extent, samples), &packed)?;
         let slot = &self.slots[index];
         let (Some(target), Some(swapchain)) = (slot.target.as_ref(), self.swapchain.as_ref())
         else {
@@ -283,7 +290,7 @@ impl Gpu {
                     Readback::None
                 },
             },
-        );
+        )?;
         record_blit(device, cmd, target.color.raw, swap_image, extent);
         let presented =
             self.submit_and_present(cmd, fence, (acquired, rendered), swapchain.raw, image_index)?;
@@ -415,21 +422,25 @@ impl Gpu {
         }
     }
 
-    /// Gives slot `index` a target of `extent` and uploads the frame's mesh
+    /// Gives slot `index` a target of `extent` and `samples` per pixel and uploads the frame's mesh
     /// (only the part after the vertices when the slot still holds them);
     /// returns the mesh buffer. The slot's fence has been waited on.
     fn prepare_slot(
         &mut self,
         index: usize,
-        extent: vk::Extent2D,
+        (extent, samples): (vk::Extent2D, u32),
         packed: &Packed<'_>,
     ) -> Result<vk::Buffer> {
         let slot = &mut self.slots[index];
-        if slot.target.as_ref().is_none_or(|t| t.extent != extent) {
+        if slot
+            .target
+            .as_ref()
+            .is_none_or(|t| !t.fits(extent, samples))
+        {
             if let Some(mut old) = slot.target.take() {
                 old.destroy(&mut self.ctx);
             }
-            slot.target = Some(Target::new(&mut self.ctx, extent)?);
+            slot.target = Some(Target::new(&mut self.ctx, extent, samples)?);
         }
         slot.vertex_version = None;
         let kept = if packed.reuse {

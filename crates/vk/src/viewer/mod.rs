@@ -5,8 +5,9 @@
 //! into an offscreen image, and blits that image to the swapchain. Screenshots
 //! read the offscreen image back, so they equal a headless render of the same view.
 //!
-//! Controls: see [`KEY_HELP`]. A HUD (frame rate, triangles, depth cap, target
-//! frame rate, mode) and, for the depth and DoI shadings, a colour legend are
+//! Controls: see [`KEY_HELP`]. A HUD (frame rate, triangles, depth cap, frame-rate control
+//! and its target, measured and predicted frame time, mode) and, for the depth and DoI
+//! shadings, a colour legend are
 //! drawn over the frame with Vulkan ([`crate::overlay`]); the title shows the
 //! same plus the source's status text. Frames are drawn back to back only while
 //! frame-rate control is on (it needs frame times) or a scripted screenshot
@@ -34,9 +35,46 @@ Viewer controls:
   Home, F                        frame the model again (reset the view)
   W  wireframe overlay           D  depth colours       H  DoI heat map
   S  silhouette lines            Z  freeze the culling camera (its frustum is drawn)
-  C  frame-rate control on/off   +, -  target frame rate
+  C  frame-rate control: off, budget (predictive), paper     +, -  target frame rate
   I  HUD on/off                  L  colour legend on/off
   P  screenshot                  Esc, Q  quit";
+
+/// The frame-rate control the viewer asks its source for; `C` cycles them in this order.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum FrameControl {
+    /// No control: the source's own depths.
+    #[default]
+    Off,
+    /// Predictive control: the least image error within the predicted frame time.
+    Budget,
+    /// The paper's feedback controller.
+    Paper,
+}
+
+impl FrameControl {
+    /// The next mode in the cycle of `C`.
+    pub fn next(self) -> FrameControl {
+        match self {
+            FrameControl::Off => FrameControl::Budget,
+            FrameControl::Budget => FrameControl::Paper,
+            FrameControl::Paper => FrameControl::Off,
+        }
+    }
+
+    /// Whether a target frame rate is aimed at.
+    pub fn is_on(self) -> bool {
+        self != FrameControl::Off
+    }
+
+    /// The mode's name (`off`, `budget`, `paper`).
+    pub fn name(self) -> &'static str {
+        match self {
+            FrameControl::Off => "off",
+            FrameControl::Budget => "budget",
+            FrameControl::Paper => "paper",
+        }
+    }
+}
 
 /// What the viewer asks its [`FrameSource`] for, once per frame.
 #[derive(Clone, Debug, PartialEq)]
@@ -55,8 +93,8 @@ pub struct FrameRequest {
     pub silhouettes: bool,
     /// Target frame rate set with `+`/`-`.
     pub target_fps: f32,
-    /// Whether frame-rate control is on (`C`); while it is, frames are drawn back to back.
-    pub frame_rate_control: bool,
+    /// The frame-rate control (`C`); while it is on, frames are drawn back to back.
+    pub control: FrameControl,
     /// Wall time of the previous frame (zero for the first).
     pub last_frame_time: Duration,
     /// Frame counter, from 0.
@@ -78,6 +116,9 @@ pub struct SourceFrame<'a> {
     /// The subdivision depth cap of this frame (the HUD's "depth cap"): the frame-rate
     /// controller's cap or the maximum depth; `None` where no cap applies.
     pub depth_cap: Option<u32>,
+    /// The source's prediction of this frame's time in milliseconds (the HUD shows it beside
+    /// the measured time); `None` where it predicts nothing.
+    pub predicted_ms: Option<f32>,
 }
 
 /// Produces the geometry of each frame (e.g. the adaptive tessellator).
@@ -101,6 +142,7 @@ impl FrameSource for RenderMesh<'_> {
             status: "",
             vertex_version: Some(0),
             depth_cap: None,
+            predicted_ms: None,
         })
     }
 }
@@ -125,8 +167,8 @@ pub struct ViewerOptions {
     pub pan: Option<[f32; 2]>,
     /// Initial target frame rate.
     pub target_fps: f32,
-    /// Whether frame-rate control starts on.
-    pub frame_rate_control: bool,
+    /// The frame-rate control the viewer starts with.
+    pub control: FrameControl,
     /// Render this many frames, save a screenshot to `screenshot_path`, exit.
     pub screenshot_after: Option<u32>,
     /// Where screenshots go: this path for `screenshot_after`; for `P`, the
@@ -185,7 +227,7 @@ impl Default for ViewerOptions {
             hud: true,
             pan: None,
             target_fps: 30.0,
-            frame_rate_control: true,
+            control: FrameControl::Budget,
             screenshot_after: None,
             screenshot_path: PathBuf::from("screenshot.png"),
             context: ContextOptions::default(),
