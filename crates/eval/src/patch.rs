@@ -426,56 +426,35 @@ impl RegularPatch {
     #[inline]
     pub(crate) fn eval(&self, s: f64, t: f64, second: bool) -> Local {
         if self.triangle {
-            let w = basis::box_spline(s, t, self.mask, second);
             combine(
                 &self.points[..12],
-                &w.p,
-                &w.ds,
-                &w.dt,
-                &w.dss,
-                &w.dst,
-                &w.dtt,
+                &basis::box_spline(s, t, self.mask, second),
                 second,
             )
         } else {
-            let w = basis::bspline(s, t, self.mask, second);
             combine(
                 &self.points,
-                &w.p,
-                &w.ds,
-                &w.dt,
-                &w.dss,
-                &w.dst,
-                &w.dtt,
+                &basis::bspline(s, t, self.mask, second),
                 second,
             )
         }
     }
 }
 
-#[allow(clippy::too_many_arguments)]
+/// The points `pts` weighted by `w`.
 #[inline]
-fn combine(
-    pts: &[DVec3],
-    p: &[f64],
-    ds: &[f64],
-    dt: &[f64],
-    dss: &[f64],
-    dst: &[f64],
-    dtt: &[f64],
-    second: bool,
-) -> Local {
+fn combine<const N: usize>(pts: &[DVec3], w: &basis::Weights<N>, second: bool) -> Local {
     let mut out = Local::default();
     for (k, &x) in pts.iter().enumerate() {
-        out.p += x * p[k];
-        out.ds += x * ds[k];
-        out.dt += x * dt[k];
+        out.p += x * w.p[k];
+        out.ds += x * w.ds[k];
+        out.dt += x * w.dt[k];
     }
     if second {
         for (k, &x) in pts.iter().enumerate() {
-            out.dss += x * dss[k];
-            out.dst += x * dst[k];
-            out.dtt += x * dtt[k];
+            out.dss += x * w.dss[k];
+            out.dst += x * w.dst[k];
+            out.dtt += x * w.dtt[k];
         }
     }
     out

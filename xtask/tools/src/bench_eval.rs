@@ -9,7 +9,7 @@
 //! rounds of each program's own median.
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 use anyhow::{Context, Result};
@@ -35,29 +35,6 @@ const DENSITIES: [usize; 2] = [1, 64];
 const ROUNDS: usize = 3;
 const RUNS: &str = "9";
 
-/// Compiles the C++ harness (named by its flags) unless it is newer than its sources.
-fn build(root: &Path, target: &Path) -> Result<PathBuf> {
-    let src = root.join("xtask/osd/bench_eval.cpp");
-    let header = root.join("xtask/osd/obj_cage.h");
-    let exe = target.join("osd/bench_eval-O3-native");
-    let modified = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
-    let newest = modified(&src).max(modified(&header));
-    if modified(&exe).is_some_and(|e| newest.is_some_and(|s| e >= s)) {
-        return Ok(exe);
-    }
-    std::fs::create_dir_all(exe.parent().expect("has a parent"))?;
-    output(
-        Command::new("g++")
-            .args(HARNESS_FLAGS)
-            .arg("-o")
-            .arg(&exe)
-            .arg(&src)
-            .arg("-losdCPU"),
-    )
-    .context("compiling xtask/osd/bench_eval.cpp")?;
-    Ok(exe)
-}
-
 /// The value of `key=` in the last line of `text` that has it.
 fn field(text: &str, key: &str) -> Result<f64> {
     text.lines()
@@ -78,7 +55,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 /// Measures the rows, appends every program's output to `raw`, returns the markdown table.
 pub fn rows(root: &Path, target: &Path, subdiv: &Path, raw: &mut String) -> Result<String> {
-    let bfr = build(root, target)?;
+    let bfr = crate::fuzz_osd::build_harness_with(root, "bench_eval", HARNESS_FLAGS, "-O3-native")?;
     let dir = target.join("bench-eval");
     std::fs::create_dir_all(&dir)?;
     writeln!(

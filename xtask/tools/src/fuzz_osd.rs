@@ -182,9 +182,20 @@ pub fn short_round(root: &Path) -> Result<()> {
 /// Compiles `xtask/osd/<name>.cpp` unless the binary is newer than its source and the
 /// shared header `xtask/osd/obj_cage.h`.
 pub(crate) fn build_harness(root: &Path, name: &str) -> Result<PathBuf> {
+    build_harness_with(root, name, &["-O2", "-std=c++14"], "")
+}
+
+/// [`build_harness`] with the compiler flags `flags`, the binary named `<name><suffix>` (a
+/// binary built with other flags is never reused).
+pub(crate) fn build_harness_with(
+    root: &Path,
+    name: &str,
+    flags: &[&str],
+    suffix: &str,
+) -> Result<PathBuf> {
     let src = root.join(format!("xtask/osd/{name}.cpp"));
     let header = root.join("xtask/osd/obj_cage.h");
-    let exe = xtask::target_dir().join(format!("osd/{name}"));
+    let exe = xtask::target_dir().join(format!("osd/{name}{suffix}"));
     let modified = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
     let newest = modified(&src).max(modified(&header));
     if modified(&exe).is_some_and(|e| newest.is_some_and(|s| e >= s)) {
@@ -194,7 +205,8 @@ pub(crate) fn build_harness(root: &Path, name: &str) -> Result<PathBuf> {
     println!("fuzz-osd: compiling {}", src.display());
     crate::bench_osd::output(
         Command::new("g++")
-            .args(["-O2", "-std=c++14", "-o"])
+            .args(flags)
+            .arg("-o")
             .arg(&exe)
             .arg(&src)
             .arg("-losdCPU"),
