@@ -131,3 +131,41 @@ pub fn dicing_rates(
 pub fn dice(eval: &Evaluator<'_>, camera: &Camera, d: &Dicing) -> Result<Tessellation, EvalError> {
     tessellate_rates(eval, &dicing_rates(eval, camera, d)?)
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+    use subdiv_mesh::{Camera, Mesh, PolygonSoup};
+    use subdiv_rules::Scheme;
+
+    use super::*;
+
+    /// A flat 8 x 8 grid of unit cells seen from 10 above with a 90° field of view on 200 x 200
+    /// pixels: a unit at distance 10 covers 10 pixels, and an inner edge's limit curve is the
+    /// edge itself (a flat regular grid's limit is the plane, its parameter uniform).
+    #[test]
+    fn rates_are_screen_length_over_the_dicing_rate() {
+        let g = subdiv_test_support::grid(8, 8, false, |i, j| Vec3::new(i as f32 - 4.0, j as f32 - 4.0, 0.0));
+        let mesh = Mesh::from_soup(&PolygonSoup::from_faces(g.positions, &g.faces)).unwrap();
+        let eval = Evaluator::new(&mesh, Scheme::CatmullClark).unwrap();
+        let camera = |eye: Vec3| Camera::new(eye, eye - Vec3::Z * 10.0, Vec3::Y, 90.0, 200, 200);
+        // The inner edge from (0, 0) to (1, 0) (grid vertices 40 and 41).
+        let inner = mesh
+            .edges()
+            .find(|&e| {
+                let [a, b] = mesh.edge_vertices(e);
+                (a.0.min(b.0), a.0.max(b.0)) == (40, 41)
+            })
+            .unwrap();
+        let at = |eye: Vec3, d: &Dicing| dicing_rates(&eval, &camera(eye), d).unwrap().get(inner);
+        let d = Dicing::new(3.0);
+        assert_eq!(at(Vec3::new(0.0, 0.0, 10.0), &d), 4); // ceil(10 / 3)
+        assert_eq!(at(Vec3::new(0.0, 0.0, 10.0), &Dicing::new(0.5)), 20);
+        // Looking away to the side: the edge is off screen, at 4 x 3 px.
+        assert_eq!(at(Vec3::new(40.0, 0.0, 10.0), &d), 1); // ceil(10 / 12)
+        let fine = Dicing { offscreen_scale: 1.0, ..Dicing::new(1.0) };
+        assert_eq!(at(Vec3::new(40.0, 0.0, 10.0), &fine), 10);
+        let capped = Dicing { max_rate: 7, ..Dicing::new(0.5) };
+        assert_eq!(at(Vec3::new(0.0, 0.0, 10.0), &capped), 7);
+    }
+}
