@@ -220,6 +220,7 @@ pub fn loop_cages() -> Vec<(String, subdiv_mesh::Mesh)> {
         .collect()
 }
 
+pub mod eval_compare;
 pub mod fuzz;
 pub mod fuzz_check;
 pub mod fuzz_lines;

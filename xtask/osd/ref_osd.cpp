@@ -22,10 +22,11 @@
 // are not their true limit, so their "limit" moves with the level it is taken at. subdiv takes
 // it, as here, at the level where the vertex's own neighbourhood has run out.
 //
-// Build: g++ -O2 -std=c++14 ref_osd.cpp -I/usr/include -losdCPU -o ref_osd
+// Build: g++ -O2 -std=c++14 ref_osd.cpp -I/usr/include -losdCPU -o ref_osd (with obj_cage.h beside it)
 
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyDescriptor.h>
+#include "obj_cage.h"
 #include <opensubdiv/version.h>
 
 #include <algorithm>
@@ -49,121 +50,9 @@ struct Vec3 {
     }
 };
 
-struct Cage {
-    std::vector<Vec3> positions;
-    std::vector<int> vertsPerFace, faceVerts, creasePairs, corners, holes;
-    std::vector<float> creaseWeights, cornerWeights;
-    Sdc::Options options;
-};
+static char const *const TOOL = "ref_osd";
 
-static void fail(std::string const &what) {
-    std::fprintf(stderr, "ref_osd: %s\n", what.c_str());
-    std::exit(1);
-}
-
-static void applyOption(Cage &c, std::string const &name, std::vector<int> const &ints,
-                        std::vector<std::string> const &strs) {
-    if (name == "interpolateboundary" && ints.size() == 1) {
-        c.options.SetVtxBoundaryInterpolation(
-            ints[0] == 0   ? Sdc::Options::VTX_BOUNDARY_NONE
-            : ints[0] == 1 ? Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
-                           : Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-    } else if (name == "creasemethod" && strs.size() == 1) {
-        c.options.SetCreasingMethod(strs[0] == "chaikin" ? Sdc::Options::CREASE_CHAIKIN
-                                                         : Sdc::Options::CREASE_UNIFORM);
-    } else if (name == "smoothtriangles" && strs.size() == 1) {
-        if (strs[0] != "smooth" && strs[0] != "catmark") fail("smoothtriangles: smooth|catmark");
-        c.options.SetTriangleSubdivision(strs[0] == "smooth" ? Sdc::Options::TRI_SUB_SMOOTH
-                                                             : Sdc::Options::TRI_SUB_CATMARK);
-    } else {
-        fail("unsupported tag '" + name + "'");
-    }
-}
-
-static void readTag(Cage &c, std::istringstream &ss) {
-    std::string name, counts;
-    ss >> name >> counts;
-    int ni = 0, nf = 0, ns = 0;
-    if (std::sscanf(counts.c_str(), "%d/%d/%d", &ni, &nf, &ns) != 3) fail("bad tag counts");
-    std::vector<int> ints(ni);
-    std::vector<float> floats(nf);
-    std::vector<std::string> strs(ns);
-    for (int &i : ints) ss >> i;
-    for (float &f : floats) ss >> f;
-    for (std::string &s : strs) ss >> s;
-    if (!ss) fail("tag '" + name + "' is short of arguments");
-    if (name == "crease") {
-        for (int k = 0; k + 1 < ni; ++k) {
-            c.creasePairs.push_back(ints[k]);
-            c.creasePairs.push_back(ints[k + 1]);
-            c.creaseWeights.push_back(nf == 1 ? floats[0] : floats[k]);
-        }
-    } else if (name == "corner") {
-        for (int k = 0; k < ni; ++k) {
-            c.corners.push_back(ints[k]);
-            c.cornerWeights.push_back(nf == 1 ? floats[0] : floats[k]);
-        }
-    } else if (name == "hole") {
-        c.holes.insert(c.holes.end(), ints.begin(), ints.end());
-    } else {
-        applyOption(c, name, ints, strs);
-    }
-}
-
-static Cage readObj(char const *path) {
-    std::ifstream in(path);
-    if (!in) fail(std::string("cannot open ") + path);
-    Cage c;
-    c.options.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-    c.options.SetCreasingMethod(Sdc::Options::CREASE_UNIFORM);
-    std::string line;
-    while (std::getline(in, line)) {
-        line = line.substr(0, line.find('#'));
-        std::istringstream ss(line);
-        std::string kw;
-        if (!(ss >> kw)) continue;
-        if (kw == "v") {
-            Vec3 p;
-            ss >> p.x >> p.y >> p.z;
-            c.positions.push_back(p);
-        } else if (kw == "f") {
-            std::string tok;
-            int n = 0;
-            while (ss >> tok) {
-                int i = std::atoi(tok.c_str());
-                if (i < 0) i += (int)c.positions.size() + 1;
-                c.faceVerts.push_back(i - 1);
-                ++n;
-            }
-            c.vertsPerFace.push_back(n);
-        } else if (kw == "t") {
-            readTag(c, ss);
-        }
-    }
-    if (c.vertsPerFace.empty()) fail(std::string("no faces in ") + path);
-    return c;
-}
-
-static Far::TopologyRefiner *createRefiner(Cage const &c, Sdc::SchemeType scheme) {
-    typedef Far::TopologyDescriptor Descriptor;
-    Descriptor d;
-    d.numVertices = (int)c.positions.size();
-    d.numFaces = (int)c.vertsPerFace.size();
-    d.numVertsPerFace = c.vertsPerFace.data();
-    d.vertIndicesPerFace = c.faceVerts.data();
-    d.numCreases = (int)c.creaseWeights.size();
-    d.creaseVertexIndexPairs = c.creasePairs.data();
-    d.creaseWeights = c.creaseWeights.data();
-    d.numCorners = (int)c.cornerWeights.size();
-    d.cornerVertexIndices = c.corners.data();
-    d.cornerWeights = c.cornerWeights.data();
-    d.numHoles = (int)c.holes.size();
-    d.holeIndices = c.holes.data();
-    Far::TopologyRefiner *r = Far::TopologyRefinerFactory<Descriptor>::Create(
-        d, Far::TopologyRefinerFactory<Descriptor>::Options(scheme, c.options));
-    if (!r) fail("TopologyRefinerFactory::Create failed");
-    return r;
-}
+static void fail(std::string const &what) { objcage::fail(TOOL, what); }
 
 static int semiSharpCount(std::vector<float> const &w, float *maxSharp) {
     int n = 0;
@@ -218,7 +107,11 @@ static bool settled(Far::TopologyLevel const &l, int v) {
 
 int main(int argc, char **argv) {
     if (argc < 3) fail("usage: ref_osd INPUT.obj LEVEL [catmark|loop|bilinear [local]]");
-    Cage c = readObj(argv[1]);
+    objcage::Cage c = objcage::readObj(argv[1], TOOL);
+    std::vector<Vec3> cagePositions(c.numVertices());
+    for (int v = 0; v < c.numVertices(); ++v) {
+        cagePositions[v] = Vec3{c.positions[3 * v], c.positions[3 * v + 1], c.positions[3 * v + 2]};
+    }
     int level = std::atoi(argv[2]);
     std::string name = argc > 3 ? argv[3] : "catmark";
     bool loop = name == "loop", bilinear = name == "bilinear";
@@ -232,20 +125,20 @@ int main(int argc, char **argv) {
     int deep = bilinear ? level : level + (int)std::ceil(maxSharp);
     Sdc::SchemeType scheme = loop ? Sdc::SCHEME_LOOP : bilinear ? Sdc::SCHEME_BILINEAR : Sdc::SCHEME_CATMARK;
 
-    Far::TopologyRefiner *r = createRefiner(c, scheme);
+    Far::TopologyRefiner *r = objcage::createRefiner(c, scheme, TOOL);
     Far::TopologyRefiner::UniformOptions uo(deep);
     uo.fullTopologyInLastLevel = true;
     r->RefineUniform(uo);
     // limits[l - level]: the limits at level l (local mode: every level from LEVEL to deep;
     // otherwise only deep).
     std::vector<Limits> limits(deep - level + 1);
-    limits[deep - level] = limitsAtMaxLevel(*r, c.positions);
+    limits[deep - level] = limitsAtMaxLevel(*r, cagePositions);
     for (int l = level; local && l < deep; ++l) {
-        Far::TopologyRefiner *rl = createRefiner(c, scheme);
+        Far::TopologyRefiner *rl = objcage::createRefiner(c, scheme, TOOL);
         Far::TopologyRefiner::UniformOptions ul(l);
         ul.fullTopologyInLastLevel = true;
         rl->RefineUniform(ul);
-        limits[l - level] = limitsAtMaxLevel(*rl, c.positions);
+        limits[l - level] = limitsAtMaxLevel(*rl, cagePositions);
         delete rl;
     }
 
@@ -260,7 +153,7 @@ int main(int argc, char **argv) {
                 nv, nf, name.c_str(), level, bnd[o.GetVtxBoundaryInterpolation()],
                 o.GetCreasingMethod() == Sdc::Options::CREASE_CHAIKIN ? "chaikin" : "uniform",
                 o.GetTriangleSubdivision() == Sdc::Options::TRI_SUB_SMOOTH ? "smooth" : "catmark",
-                (int)c.holes.size(), semiE, semiV, (int)c.positions.size(),
+                (int)c.holes.size(), semiE, semiV, c.numVertices(),
                 (int)c.vertsPerFace.size(), "3.5.0");
     if (deep > level) std::printf(" exact_from_level=%d", deep);
     if (local) std::printf(" exact=per-vertex");

@@ -236,10 +236,10 @@ fn main() -> Result<()> {
         }
         Some("figures" | "plot-quality") => forward(&args, &["figures"]),
         Some("golden") => forward(&args, golden_features(&args[1..])),
-        Some("bench-osd" | "fuzz-osd") => forward(&args, &[]),
+        Some("bench-osd" | "fuzz-osd" | "eval-refs") => forward(&args, &[]),
         _ => {
             eprintln!(
-                "usage: cargo xtask <demo|test|check-architecture|figures [doi|cc|text] [--force]|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I] [--fvar]|plot-quality [--shading] STEM LABEL=FILE...>"
+                "usage: cargo xtask <demo|test|check-architecture|figures [doi|cc|text] [--force]|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I] [--fvar]|eval-refs [LEVEL]|plot-quality [--shading] STEM LABEL=FILE...>"
             );
             std::process::exit(2);
         }

@@ -38,6 +38,8 @@ pub enum BenchWhat {
     /// frame, `frame=<i> time=<t> update_ms=<f> points=<n> faces=<n> topology_written=<0|1>`,
     /// then `frames=<n> update_ms_median=<f> points_per_s=<f>`.
     Animate(crate::bench_animate::BenchAnimateArgs),
+    /// Exact evaluation throughput at (face, u, v) points (`subdiv evaluate`'s, batched).
+    Evaluate(crate::bench_evaluate::BenchEvaluateArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -94,6 +96,7 @@ impl BenchTessellateArgs {
 pub fn run(a: &BenchArgs) -> anyhow::Result<ExitCode> {
     match &a.what {
         BenchWhat::Tessellate(t) => bench_tessellate(t),
+        BenchWhat::Evaluate(e) => crate::bench_evaluate::run(e),
         BenchWhat::Framerate(f) => crate::bench_framerate::run(f),
         BenchWhat::Quality(q) => crate::bench_quality::run(q),
         BenchWhat::Animate(m) => crate::bench_animate::run(m),

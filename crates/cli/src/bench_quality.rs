@@ -70,7 +70,10 @@ pub struct BenchQualityArgs {
         conflicts_with = "scene"
     )]
     pub time: Option<f64>,
-    /// Which kinds of configuration to measure (comma-separated) [default: all three].
+    /// The dicing configurations' rates in pixels (comma-separated) [default: 2,1,0.5].
+    #[arg(long, value_delimiter = ',', value_name = "PX")]
+    pub dicing_rates: Vec<f32>,
+    /// Which kinds of configuration to measure (comma-separated) [default: all four].
     #[arg(long, value_delimiter = ',')]
     pub configs: Vec<ConfigKind>,
     /// Also measure the predictive frame-rate control's choice for a budget of N triangles
@@ -103,6 +106,8 @@ pub enum ConfigKind {
     Curvature,
     /// `pixel-error-2`, `pixel-error-1`, `pixel-error-0.5`.
     PixelError,
+    /// `dicing-2`, `dicing-1`, `dicing-0.5` (or the rates of --dicing-rates).
+    Dicing,
 }
 
 /// `--projected-size` of `bench quality`: a band, or none (`off`).
@@ -193,6 +198,17 @@ impl BenchQualityArgs {
                 bail!("--budget-triangles {n}: need at least one triangle");
             }
             out.push(Config::Budget(n));
+        }
+        if on(ConfigKind::Dicing) {
+            if self.dicing_rates.is_empty() {
+                out.extend(Config::dicings());
+            }
+            for &px in &self.dicing_rates {
+                if !(px.is_finite() && px > 0.0) {
+                    bail!("--dicing-rates {px}: need a positive number of pixels");
+                }
+                out.push(Config::Dicing(px));
+            }
         }
         Ok(out)
     }

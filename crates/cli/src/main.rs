@@ -7,11 +7,14 @@ mod out;
 mod adaptive_args;
 mod bench;
 mod bench_animate;
+mod bench_evaluate;
 mod bench_framerate;
 mod bench_quality;
 mod camera_args;
 mod choices;
+mod dicing_args;
 mod doi_args;
+mod evaluate;
 mod info;
 mod limit_args;
 mod load;
@@ -55,6 +58,9 @@ enum Command {
     Tessellate(tessellate::TessellateArgs),
     /// Adaptive Loop subdivision driven by a Degree-of-Interest function (Isenberg et al. 2003).
     Refine(refine::RefineArgs),
+    /// The exact limit surface at given (face, u, v) points: position and derivatives, one
+    /// line a point.
+    Evaluate(evaluate::EvaluateArgs),
     /// Benchmarks (median of repeated runs).
     Bench(bench::BenchArgs),
     /// Render the limit surface headless with Vulkan to PNG (and EXR).
@@ -73,6 +79,7 @@ fn main() -> ExitCode {
         Command::Info(a) => info::run(&a),
         Command::Tessellate(a) => tessellate::run(&a),
         Command::Refine(a) => refine::run(&a),
+        Command::Evaluate(a) => evaluate::run(&a),
         Command::Bench(a) => bench::run(&a),
         Command::Render(a) => render::run(&a),
         Command::View(a) => view::run(&a),

@@ -46,6 +46,12 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     if a.surface.doi.kind().is_some() {
         return run_doi(a);
     }
+    let t0 = Instant::now();
+    if let Some(mut d) = a.surface.dicing_scene(&a.camera)? {
+        let options = a.style.render_options()?;
+        let ms = t0.elapsed().as_secs_f64() * 1e3;
+        return draw_seen_from(a, &mut d.scene, &d.cage, &options, &d.note, ms);
+    }
     if a.surface.is_adaptive(&a.camera)? {
         return run_adaptive(a);
     }

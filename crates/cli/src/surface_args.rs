@@ -13,6 +13,7 @@ use subdiv::{BuiltinScene, DynamicSubdivision, Scene};
 use crate::adaptive_args::AdaptiveArgs;
 use crate::camera_args::{CameraArgs, parse_vec3};
 use crate::choices::{SceneName, SchemeName, ShadingName, value_name};
+use crate::dicing_args::DicingArgs;
 use crate::doi_args::DoiArgs;
 use crate::limit_args::LimitArgs;
 
@@ -57,6 +58,8 @@ pub struct SurfaceArgs {
     pub split_nonmanifold: bool,
     #[command(flatten)]
     pub adaptive: AdaptiveArgs,
+    #[command(flatten)]
+    pub dicing: DicingArgs,
     /// Choose the adaptive depths (and back-face culling) with a second camera at bbox centre +
     /// (X,Y,Z) * bbox radius, while the image is seen from the first (paper Fig. 8); its frustum
     /// is drawn as lines.
@@ -147,6 +150,52 @@ impl SurfaceArgs {
         Ok((scene, scheme.into(), cage))
     }
 
+    /// With `--dicing-rate`: the cage diced for the camera of `camera_args` (tessellated once,
+    /// for that camera); `None` without it. Flags that choose another tessellation are refused
+    /// next to it.
+    pub fn dicing_scene(&self, camera_args: &CameraArgs) -> anyhow::Result<Option<Diced>> {
+        let Some(d) = self.dicing.dicing()? else {
+            return Ok(None);
+        };
+        let mut given = self.adaptive.given();
+        for (on, flag) in [
+            (self.depth.is_some(), "--depth"),
+            (self.doi.kind().is_some(), "--doi"),
+            (self.face_depths.is_some(), "--face-depths"),
+            (
+                self.cull_camera_eye_relative.is_some(),
+                "--cull-camera-eye-relative",
+            ),
+        ] {
+            if on {
+                given.push(flag);
+            }
+        }
+        if !given.is_empty() {
+            bail!(
+                "--dicing-rate chooses the tessellation itself: {} cannot go with it",
+                given.join(", ")
+            );
+        }
+        let (cage, scheme) = self.load_cage_scheme()?;
+        let camera = camera_args.camera(&cage);
+        let label = self.label();
+        let eval = subdiv::eval::Evaluator::new(&cage, scheme)
+            .map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+        let t =
+            subdiv::eval::dice(&eval, &camera, &d).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+        let note = format!(
+            "{}, dicing rate {} px",
+            value_name(&SchemeName::from(scheme)),
+            d.rate_px
+        );
+        Ok(Some(Diced {
+            scene: Scene::from_limit(&t.surface),
+            cage,
+            note,
+        }))
+    }
+
     /// Whether these flags ask for the adaptive tessellation ([`AdaptiveArgs::wants_adaptive`]:
     /// no `--depth`, and a camera or an adaptive flag; the default camera when no camera flag is
     /// given). Adaptive flags that cannot apply are refused.
@@ -202,6 +251,16 @@ impl SurfaceArgs {
             None => *camera,
         }
     }
+}
+
+/// A diced surface ready to draw ([`SurfaceArgs::dicing_scene`]).
+pub struct Diced {
+    /// The surface.
+    pub scene: Scene,
+    /// The cage it was diced from (the camera flags frame it).
+    pub cage: Mesh,
+    /// Scheme and dicing rate, for the report.
+    pub note: String,
 }
 
 /// Parses `--face-depths`: a comma/whitespace list of depths, or a file holding one.

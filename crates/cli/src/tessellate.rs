@@ -18,6 +18,7 @@ use subdiv::{
 use crate::adaptive_args::AdaptiveArgs;
 use crate::camera_args::CameraArgs;
 use crate::choices::{DoiName, SchemeName, value_name};
+use crate::dicing_args::DicingArgs;
 use crate::doi_args::{DoiChoice, doi_error};
 use crate::limit_args::LimitArgs;
 
@@ -50,8 +51,11 @@ pub struct TessellateArgs {
     #[command(flatten)]
     pub adaptive: AdaptiveArgs,
     #[command(flatten)]
+    pub dicing: DicingArgs,
+    #[command(flatten)]
     pub limit: LimitArgs,
-    /// Print patches per depth, triangles and the uniform count at the maximum depth.
+    /// Print patches per depth, triangles and the uniform count at the maximum depth (with
+    /// --dicing-rate: triangles and the edge rates).
     #[arg(long)]
     pub stats: bool,
     #[command(flatten)]
@@ -85,6 +89,9 @@ pub fn run(a: &TessellateArgs) -> anyhow::Result<ExitCode> {
     let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, a.prim.as_deref(), a.time)?;
     let scheme = crate::load::cage_scheme(&a.input, &cage, a.scheme.map(Scheme::from))?;
     let mesh = cage.mesh;
+    if let Some(d) = a.dicing.dicing()? {
+        return run_dicing(a, &mesh, scheme, d);
+    }
     let adaptive = a
         .adaptive
         .wants_adaptive(a.depth.is_some(), a.camera.has_camera(), &[])?;
@@ -130,6 +137,74 @@ fn run_uniform(
         out!("triangles: {}", t.triangles().len() / 3);
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// `subdiv tessellate --dicing-rate PX`: every cage edge's rate from its limit curve's length
+/// on screen, the surface evaluated exactly at those rates.
+fn run_dicing(
+    a: &TessellateArgs,
+    mesh: &Mesh,
+    scheme: Scheme,
+    d: subdiv::eval::Dicing,
+) -> anyhow::Result<ExitCode> {
+    let input = a.input.display().to_string();
+    let mut given = a.adaptive.given();
+    if a.depth.is_some() {
+        given.push("--depth");
+    }
+    if a.doi.doi.is_some() {
+        given.push("--doi");
+    }
+    if !given.is_empty() {
+        bail!(
+            "--dicing-rate chooses the tessellation itself: {} cannot go with it",
+            given.join(", ")
+        );
+    }
+    let t0 = Instant::now();
+    let camera = a.camera.camera(mesh);
+    let eval =
+        subdiv::eval::Evaluator::new(mesh, scheme).map_err(|e| anyhow::anyhow!("{input}: {e}"))?;
+    let t = subdiv::eval::dice(&eval, &camera, &d).map_err(|e| anyhow::anyhow!("{input}: {e}"))?;
+    let ms = t0.elapsed().as_secs_f64() * 1e3;
+    write_surface(&a.output, &t.surface)?;
+    let tris = t.surface.num_faces();
+    out!(
+        "tessellated {input}: {} vertices, {tris} triangles (dicing rate {} px, off-screen x{}) in {ms:.1} ms -> {}",
+        t.surface.num_vertices(),
+        d.rate_px,
+        d.offscreen_scale,
+        a.output.display()
+    );
+    if a.stats {
+        out!("triangles: {tris}");
+        out!("edge rates: {}", rate_summary(mesh, &t.rates));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `min=<n> median=<n> max=<n> mean=<f>` of the rates of the edges that are tessellated.
+pub fn rate_summary(mesh: &Mesh, rates: &[u32]) -> String {
+    let mut r: Vec<u32> = mesh
+        .edges()
+        .filter(|&e| {
+            [e.halfedge(0), e.halfedge(1)]
+                .iter()
+                .any(|&h| mesh.face(h).is_some() && !mesh.is_hole(mesh.face(h)))
+        })
+        .map(|e| rates[e.idx()])
+        .collect();
+    r.sort_unstable();
+    if r.is_empty() {
+        return "none".into();
+    }
+    let mean = r.iter().map(|&x| f64::from(x)).sum::<f64>() / r.len() as f64;
+    format!(
+        "min={} median={} max={} mean={mean:.2}",
+        r[0],
+        r[r.len() / 2],
+        r[r.len() - 1]
+    )
 }
 
 /// `subdiv tessellate` with a camera or a DoI: the adaptive tessellation (Catmull-Clark or

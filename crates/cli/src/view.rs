@@ -136,20 +136,34 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         return run_doi(a);
     }
     if let Some((stage, playback)) = animated_stage(a)? {
+        if a.surface.dicing.dicing()?.is_some() {
+            anyhow::bail!(
+                "subdiv view: --dicing-rate dices once, for one camera and one time; \
+                 give --time T to view a frame of this animated stage diced"
+            );
+        }
         return run_animated(a, stage, playback);
     }
-    if a.surface.is_adaptive(&a.camera)? {
+    let diced = a.surface.dicing_scene(&a.camera)?;
+    if diced.is_none() && a.surface.is_adaptive(&a.camera)? {
         return run_adaptive(a);
     }
     let render = a.style.render_options()?;
-    let (scene, scheme, cage) = a.surface.uniform_scene()?;
+    // With --dicing-rate: diced once, for the starting camera.
+    let (scene, what, cage) = match diced {
+        Some(d) => (d.scene, d.note, d.cage),
+        None => {
+            let (scene, scheme, cage) = a.surface.uniform_scene()?;
+            let what = format!(
+                "{}, depth {}",
+                value_name(&scheme),
+                a.surface.uniform_depth()
+            );
+            (scene, what, cage)
+        }
+    };
     let (camera, orbit) = start_camera(a, &cage);
-    let title = format!(
-        "subdiv view {} ({}, depth {})",
-        a.surface.label(),
-        value_name(&scheme),
-        a.surface.uniform_depth()
-    );
+    let title = format!("subdiv view {} ({what})", a.surface.label());
     let mut source = UniformSource::new(scene);
     let options = ViewerOptions {
         title,

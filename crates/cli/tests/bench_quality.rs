@@ -70,6 +70,9 @@ fn tiny_run_prints_one_line_per_configuration_last() {
         "pixel-error-2",
         "pixel-error-1",
         "pixel-error-0.5",
+        "dicing-2",
+        "dicing-1",
+        "dicing-0.5",
     ];
     assert!(lines.len() >= names.len(), "{stdout}");
     let last = &lines[lines.len() - names.len()..];

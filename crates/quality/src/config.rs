@@ -28,6 +28,10 @@ pub enum Config {
     /// controller chooses them for a machine whose frames cost their triangles. Deterministic:
     /// what the controller buys with a budget, apart from any machine's timing.
     Budget(u32),
+    /// Dicing by pixels at this dicing rate (`dicing-<px>`): every cage edge's rate from its
+    /// limit curve's length on screen, the surface evaluated exactly
+    /// ([`subdiv::eval::dice`], Cycles' off-screen scale).
+    Dicing(f32),
 }
 
 impl Config {
@@ -39,17 +43,29 @@ impl Config {
             Config::Curvature(c) => c.name(),
             Config::PixelError(px) => format!("pixel-error-{px}"),
             Config::Budget(n) => format!("budget-{n}"),
+            Config::Dicing(px) => format!("dicing-{px}"),
         }
     }
 
     /// The configurations of `subdiv bench quality`: `uniform-0` .. `uniform-<max_depth>`,
-    /// `curvature`, `pixel-error-2`, `pixel-error-1`, `pixel-error-0.5`.
+    /// `curvature`, `pixel-error-2`, `pixel-error-1`, `pixel-error-0.5`, `dicing-2`,
+    /// `dicing-1`, `dicing-0.5`.
     pub fn all(max_depth: Depth) -> Vec<Config> {
         (0..=max_depth)
             .map(Config::Uniform)
             .chain([Config::Curvature(CurvatureParams::default())])
             .chain(Config::pixel_errors())
+            .chain(Config::dicings())
             .collect()
+    }
+
+    /// The dicing configurations of [`Config::all`]: 2, 1 and 0.5 px.
+    pub fn dicings() -> [Config; 3] {
+        [
+            Config::Dicing(2.0),
+            Config::Dicing(1.0),
+            Config::Dicing(0.5),
+        ]
     }
 
     /// The pixel-error configurations of [`Config::all`]: 2, 1 and 0.5 px.
@@ -222,6 +238,14 @@ pub enum QualityError {
         width: u32,
         /// Height asked for.
         height: u32,
+    },
+    /// A dicing configuration failed (the evaluation refused the cage).
+    #[error("{config}: {what}")]
+    Dicing {
+        /// The configuration.
+        config: String,
+        /// What failed.
+        what: String,
     },
     /// A normal tolerance outside `(0, 180]` degrees.
     #[error("shading error {degrees}° is not an angle in (0, 180] degrees")]

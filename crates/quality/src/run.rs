@@ -241,6 +241,27 @@ impl<'a> QualityRun<'a> {
                     self.compare(renderer, scene, i, &name, &mut tally)?;
                 }
             }
+            Config::Dicing(px) => {
+                let eval_err = |e: subdiv::eval::EvalError| QualityError::Dicing {
+                    config: name.clone(),
+                    what: e.to_string(),
+                };
+                let eval =
+                    subdiv::eval::Evaluator::new(self.cage, self.scheme).map_err(eval_err)?;
+                let dicing = subdiv::eval::Dicing::new(px);
+                for (i, f) in self.frames.iter().enumerate() {
+                    let t = Instant::now();
+                    let d = subdiv::eval::dice(&eval, &f.camera, &dicing).map_err(eval_err)?;
+                    tally.update_ms.push(elapsed_ms(t));
+                    self.compare(
+                        renderer,
+                        &Scene::from_limit(&d.surface),
+                        i,
+                        &name,
+                        &mut tally,
+                    )?;
+                }
+            }
             Config::Curvature(_) | Config::PixelError(_) | Config::Budget(_) => {
                 let adaptive_err = |source| QualityError::Adaptive {
                     config: name.clone(),
@@ -254,7 +275,7 @@ impl<'a> QualityRun<'a> {
                 match config {
                     Config::PixelError(px) => params.pixel_error = Some(px),
                     Config::Curvature(c) => params = c.apply(params),
-                    Config::Uniform(_) | Config::Budget(_) => {}
+                    Config::Uniform(_) | Config::Budget(_) | Config::Dicing(_) => {}
                 }
                 let mut node =
                     DynamicSubdivision::with_scheme(self.cage.clone(), self.scheme, params)

@@ -41,7 +41,10 @@ fn configurations_and_parameter_checks() {
             "curvature",
             "pixel-error-2",
             "pixel-error-1",
-            "pixel-error-0.5"
+            "pixel-error-0.5",
+            "dicing-2",
+            "dicing-1",
+            "dicing-0.5"
         ]
     );
     let p = QualityParams::default();
@@ -114,7 +117,7 @@ fn deeper_uniform_tessellations_come_closer_to_the_reference() {
         "{same}"
     );
     let all = run.measure_all(&mut renderer, |_| {}).unwrap();
-    assert_eq!(all.len(), 7);
+    assert_eq!(all.len(), 10);
     let (u0, u2) = (&all[0], &all[2]);
     assert_eq!((u0.triangles, u2.triangles), (12, 6 * 16 * 2));
     // The depth-0 cube (the cage's limit points) lies well inside the rounded limit surface.

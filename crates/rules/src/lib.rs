@@ -45,8 +45,9 @@ pub use fvar::{
     refine_face_varying_part, semi_sharp_levels,
 };
 pub use limit::{
-    KeyedWrite, LimitChannel, LimitMesh, LimitMeshError, TopologyKey, TriangleBuffers, VertexScalar,
-    bilinear_patches, inside_one_patch, limit_surface, tessellate_uniform,
+    KeyedWrite, LimitChannel, LimitMesh, LimitMeshError, TopologyKey, TriangleBuffers,
+    VertexParams, VertexScalar, bilinear_patches, inside_one_patch, limit_surface,
+    tessellate_uniform,
 };
 pub use point::{Point, centroid};
 pub use refine::{

@@ -15,7 +15,9 @@ mod split;
 mod topology;
 pub use bilinear::{bilinear_patches, inside_one_patch};
 pub use channel::LimitChannel;
-pub use mesh::{KeyedWrite, LimitMesh, LimitMeshError, TriangleBuffers, VertexScalar};
+pub use mesh::{
+    KeyedWrite, LimitMesh, LimitMeshError, TriangleBuffers, VertexParams, VertexScalar,
+};
 pub use topology::TopologyKey;
 use topology::TopologyStamp;
 
@@ -106,6 +108,7 @@ fn limit_surface_from(
         uv_indices,
         scalar: None,
         channels: Vec::new(),
+        params: None,
         topology: TopologyStamp::default(),
         uniform_faces: 0,
     }

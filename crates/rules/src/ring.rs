@@ -64,6 +64,19 @@ impl Ring {
         Ring::default()
     }
 
+    /// Moves every point of the ring (and of a crease copy's master ring) by `by`. The rules
+    /// are affine, so a ring moved to its own centre refines to the same points less `by`,
+    /// while keeping its relative precision however deep it is refined.
+    pub fn translate(&mut self, by: DVec3) {
+        self.center += by;
+        for p in self.edges.iter_mut().chain(self.inner.iter_mut()) {
+            *p += by;
+        }
+        if let Some(m) = self.master.as_mut() {
+            m.translate(by);
+        }
+    }
+
     /// The centre point.
     #[inline]
     pub fn center(&self) -> DVec3 {

@@ -11,6 +11,7 @@
 //! | [`mesh`] | half-edge mesh, OBJ, camera, geometric helpers |
 //! | [`rules`] | Catmull-Clark and Loop rules, the refinement kernel, exact limits |
 //! | [`slate`] | per-patch two-slate tessellation |
+//! | [`eval`] | exact evaluation at any `(face, u, v)`: position, derivatives, UVs |
 //! | [`depth`] | per-patch depths: curvature, classification, projected size, pixel error, frame-rate control |
 //! | [`stitch`] | gap-free fans between patch depths |
 //! | [`redgreen`] | adaptive Loop refinement of a face selection, red-green closure |
@@ -154,6 +155,7 @@ pub use subdiv_rules::{LimitMesh, VertexScalar};
 
 pub use subdiv_depth as depth;
 pub use subdiv_doi as doi;
+pub use subdiv_eval as eval;
 pub use subdiv_mesh as mesh;
 pub use subdiv_redgreen as redgreen;
 pub use subdiv_rules as rules;

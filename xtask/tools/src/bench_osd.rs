@@ -239,6 +239,9 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
     let table = table(&rows) + &moving;
     println!("{table}");
     raw.push_str(&table);
+    let eval_table = crate::bench_eval::rows(root, &target, &subdiv, &mut raw)?;
+    println!("{eval_table}");
+    raw.push_str(&eval_table);
     let commit = raw
         .lines()
         .find_map(|l| l.strip_prefix("# commit: "))

@@ -303,7 +303,14 @@ pub fn run(root: &Path, exe: &Path, force: bool) -> Result<()> {
     let (n5, n7) = (FRAMES_TESSELLATION.to_string(), FRAMES_RENDERED.to_string());
     let every = ERROR_EVERY.to_string();
     let esize = format!("{}x{}", ERROR_SIZE.0, ERROR_SIZE.1);
-    let errors = ["--error-every", &every, "--error-size", &esize, "--reference-depth", REFERENCE_DEPTH];
+    let errors = [
+        "--error-every",
+        &every,
+        "--error-size",
+        &esize,
+        "--reference-depth",
+        REFERENCE_DEPTH,
+    ];
     let measured = |extra: &[&str]| -> Result<Vec<Frame>> {
         let mut a = vec!["--no-render", "--frames", &n5];
         a.extend(errors);
@@ -324,7 +331,10 @@ pub fn run(root: &Path, exe: &Path, force: bool) -> Result<()> {
     let free = bench(exe, &["--frames", &n7])?;
     let fps_of = |v: &[Frame]| median(&v.iter().skip(1).map(|f| f.fps).collect::<Vec<_>>());
     // The paper's scenario under both controllers, image error measured (untimed).
-    let (t1, t2) = (format!("{:.2}", PAPER_TARGETS.0), format!("{:.2}", PAPER_TARGETS.1));
+    let (t1, t2) = (
+        format!("{:.2}", PAPER_TARGETS.0),
+        format!("{:.2}", PAPER_TARGETS.1),
+    );
     let scenario = |control: &str| -> Result<Vec<Frame>> {
         let mut a = vec!["--frames", &n7, "--target-fps", &t1, "--switch-fps", &t2];
         a.extend(["--control", control]);
@@ -389,7 +399,12 @@ struct Runs {
 }
 
 /// The runs as the tables of [`CcData`].
-fn tables(r: &Runs, t0: Instant, (load_start, load_end): (f64, f64), force: bool) -> Result<CcData> {
+fn tables(
+    r: &Runs,
+    t0: Instant,
+    (load_start, load_end): (f64, f64),
+    force: bool,
+) -> Result<CcData> {
     let faces = subdiv::helmet40()?.num_faces();
     let (w, h) = SIZE.split_once('x').context("SIZE is WxH")?;
     let mut run = Table::new(&["key", "value"]);
@@ -411,7 +426,10 @@ fn tables(r: &Runs, t0: Instant, (load_start, load_end): (f64, f64), force: bool
         ("load_start", format!("{load_start:.2}")),
         ("load_end", format!("{load_end:.2}")),
         ("max_load", format!("{MAX_LOAD}")),
-        ("forced", u8::from(force && load_start > MAX_LOAD).to_string()),
+        (
+            "forced",
+            u8::from(force && load_start > MAX_LOAD).to_string(),
+        ),
     ] {
         run.push(vec![k.to_string(), v]);
     }
@@ -440,7 +458,11 @@ fn tables(r: &Runs, t0: Instant, (load_start, load_end): (f64, f64), force: bool
         row.push(number(r.free[i].fps));
         row.push(number(b.fps));
         row.push(number(p.fps));
-        let t = if i < switch { PAPER_TARGETS.0 } else { PAPER_TARGETS.1 };
+        let t = if i < switch {
+            PAPER_TARGETS.0
+        } else {
+            PAPER_TARGETS.1
+        };
         row.push(number(t));
         row.push(number(b.predicted_ms));
         row.push(b.triangles.to_string());

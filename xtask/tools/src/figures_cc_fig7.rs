@@ -10,7 +10,9 @@ use std::ops::Range;
 
 use anyhow::Result;
 
-use crate::figures_cc_text::{BAND, CcData, ErrorSummary, UNIFORM, error_summary, mean, median, own_band, phases};
+use crate::figures_cc_text::{
+    BAND, CcData, ErrorSummary, UNIFORM, error_summary, mean, median, own_band, phases,
+};
 
 /// How one phase of a controlled run meets its target.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -115,7 +117,9 @@ pub fn fig7(d: &CcData, s: &mut String) -> Result<()> {
         let fps = fr.f64s(col)?;
         for (range, t) in ph.iter().zip([t1, t2]) {
             let p = phase(&fps, range.clone(), t);
-            let first = p.first.map_or_else(|| "never".to_string(), |k| k.to_string());
+            let first = p
+                .first
+                .map_or_else(|| "never".to_string(), |k| k.to_string());
             writeln!(
                 s,
                 "| {name} | {t:.1} | {} of {} | {first} | {:.3} | {:.1} |",
@@ -198,7 +202,13 @@ fn held(d: &CcData, f: &[f64], s: &mut String) -> Result<()> {
 }
 
 /// The image error of each curve of Fig. 7.
-fn curve_errors(d: &CcData, f: &[f64], fa: f64, ph: &[Range<usize>; 2], s: &mut String) -> Result<()> {
+fn curve_errors(
+    d: &CcData,
+    f: &[f64],
+    fa: f64,
+    ph: &[Range<usize>; 2],
+    s: &mut String,
+) -> Result<()> {
     let n5 = d.triangles.rows.len();
     writeln!(
         s,

@@ -167,7 +167,11 @@ pub fn error_summary(
 
 /// What the text says of the load the figures were measured under.
 pub fn load_note(d: &CcData) -> Result<String> {
-    let (start, end, max) = (d.setting("load_start")?, d.setting("load_end")?, d.setting("max_load")?);
+    let (start, end, max) = (
+        d.setting("load_start")?,
+        d.setting("load_end")?,
+        d.setting("max_load")?,
+    );
     Ok(if d.setting("forced")? > 0.0 {
         format!(
             "**Measured on a loaded machine, forced** (`--force`): the 1-minute load average was \
@@ -354,4 +358,3 @@ pub fn phases(d: &CcData) -> Result<[std::ops::Range<usize>; 2]> {
     }
     Ok([0..switch, switch..n])
 }
-

@@ -77,7 +77,11 @@ fn row<'a>(text: &'a str, prefix: &str) -> Result<Vec<&'a str>> {
         .lines()
         .find(|l| l.starts_with(prefix))
         .with_context(|| format!("no row {prefix:?}"))?;
-    Ok(line.split('|').map(str::trim).filter(|c| !c.is_empty()).collect())
+    Ok(line
+        .split('|')
+        .map(str::trim)
+        .filter(|c| !c.is_empty())
+        .collect())
 }
 
 /// The median of `v` (upper), recomputed here.
@@ -158,11 +162,18 @@ fn check_claims(text: &str, d: &CcData) -> Result<()> {
             };
             let sil = keep(t.f64s("silhouette_px_max")?);
             let shade = keep(t.f64s("shading_deg_p99")?);
-            Ok((sil.iter().copied().fold(f64::NEG_INFINITY, f64::max), med(shade)))
+            Ok((
+                sil.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                med(shade),
+            ))
         };
         let h = pick(&format!("held{k}"), 0..n)?;
         let u = pick(&format!("uniform{depth}"), 0..n5)?;
-        let verdict = if h.0 <= u.0 && h.1 <= u.1 { "no worse" } else { "worse" };
+        let verdict = if h.0 <= u.0 && h.1 <= u.1 {
+            "no worse"
+        } else {
+            "worse"
+        };
         let claim = format!(
             "At uniform depth {k}'s rate the predictive picture is {verdict} than uniform depth {depth}'s"
         );
@@ -227,7 +238,10 @@ fn data_that_do_not_hold_the_target_fail_the_claims() {
             let old = c.framerate.rows[last][col].clone();
             let was_in = (old.parse::<f64>().unwrap() / t - 1.0).abs() <= cc::BAND;
             c.framerate.rows[last][col] = format!("{}", if was_in { t * 1.5 } else { t });
-            assert!(check_claims(&sec, &c).is_err(), "{name} frame {last} changed");
+            assert!(
+                check_claims(&sec, &c).is_err(),
+                "{name} frame {last} changed"
+            );
             c.framerate.rows[last][col] = old;
         }
     }
@@ -244,7 +258,11 @@ fn a_first_frame_claimed_too_early_is_caught() {
     let t = c.framerate.f64s("target").unwrap();
     let switch = c.setting("switch_frame").unwrap() as usize;
     let at_switch = (fps[switch] / t[switch] - 1.0).abs() <= cc::BAND;
-    let wrong = if at_switch { "comes 1 frames after it" } else { "comes 0 frames after it" };
+    let wrong = if at_switch {
+        "comes 1 frames after it"
+    } else {
+        "comes 0 frames after it"
+    };
     let right = sec
         .lines()
         .find(|l| l.contains("first frame within ±10 % of the new target comes"))

@@ -7,7 +7,8 @@
 //! the limit where they have run out) and compares subdiv's uniform tessellation
 //! (`subdiv_rules::tessellate_uniform`) and the slate tessellator of its scheme with it
 //! (`subdiv_tests::osd_compare`: counts, faces, positions within 1e-5 x diagonal, smooth normals
-//! within 0.05 degrees). A disagreeing cage is printed with its seed and index, shrunk (faces
+//! within 0.05 degrees), and subdiv's exact evaluation at random points with OpenSubdiv's
+//! `Bfr::Surface` (`fuzz_eval`). A disagreeing cage is printed with its seed and index, shrunk (faces
 //! and tags dropped while it still disagrees) and written to
 //! `<target>/fuzz-osd/failing-<seed>-<index>.obj`; the smallest also to `failing-<seed>.obj`.
 //! Every cage the generator draws is meant to be valid: a finished cage that subdiv refused
@@ -178,19 +179,34 @@ pub fn short_round(root: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Compiles `xtask/osd/<name>.cpp` unless the binary is newer than its source.
-fn build_harness(root: &Path, name: &str) -> Result<PathBuf> {
+/// Compiles `xtask/osd/<name>.cpp` unless the binary is newer than its source and the
+/// shared header `xtask/osd/obj_cage.h`.
+pub(crate) fn build_harness(root: &Path, name: &str) -> Result<PathBuf> {
+    build_harness_with(root, name, &["-O2", "-std=c++14"], "")
+}
+
+/// [`build_harness`] with the compiler flags `flags`, the binary named `<name><suffix>` (a
+/// binary built with other flags is never reused).
+pub(crate) fn build_harness_with(
+    root: &Path,
+    name: &str,
+    flags: &[&str],
+    suffix: &str,
+) -> Result<PathBuf> {
     let src = root.join(format!("xtask/osd/{name}.cpp"));
-    let exe = xtask::target_dir().join(format!("osd/{name}"));
+    let header = root.join("xtask/osd/obj_cage.h");
+    let exe = xtask::target_dir().join(format!("osd/{name}{suffix}"));
     let modified = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
-    if modified(&exe).is_some_and(|e| modified(&src).is_some_and(|s| e >= s)) {
+    let newest = modified(&src).max(modified(&header));
+    if modified(&exe).is_some_and(|e| newest.is_some_and(|s| e >= s)) {
         return Ok(exe);
     }
     std::fs::create_dir_all(exe.parent().expect("has a parent"))?;
     println!("fuzz-osd: compiling {}", src.display());
     crate::bench_osd::output(
         Command::new("g++")
-            .args(["-O2", "-std=c++14", "-o"])
+            .args(flags)
+            .arg("-o")
             .arg(&exe)
             .arg(&src)
             .arg("-losdCPU"),
@@ -201,6 +217,11 @@ fn build_harness(root: &Path, name: &str) -> Result<PathBuf> {
 
 struct Harness {
     exe: PathBuf,
+    /// `ref_eval`, the evaluation reference (`fuzz_eval`).
+    eval_exe: PathBuf,
+    /// Cages where Bfr is off the limit surface, and where its harness failed.
+    bfr_off: AtomicU64,
+    bfr_failed: AtomicU64,
     /// `ref_fvar`, the face-varying reference (with `--fvar`).
     fvar_exe: Option<PathBuf>,
     dir: PathBuf,
@@ -300,6 +321,18 @@ impl Harness {
             self.check_level(cage, &path, level)
                 .map_err(|e| (level, e))?;
         }
+        match crate::fuzz_eval::check(&self.eval_exe, &self.dir, cage, name) {
+            Ok(crate::fuzz_eval::Outcome::Agrees) => {}
+            Ok(crate::fuzz_eval::Outcome::BfrOff(why)) => {
+                println!("fuzz-osd: note: {name}: Bfr is off the limit surface: {why}");
+                self.bfr_off.fetch_add(1, Ordering::Relaxed);
+            }
+            Ok(crate::fuzz_eval::Outcome::BfrFailed(why)) => {
+                println!("fuzz-osd: note: {name}: ref_eval failed: {why}");
+                self.bfr_failed.fetch_add(1, Ordering::Relaxed);
+            }
+            Err(e) => return Err((levels.0, format!("evaluation: {e}"))),
+        }
         let _ = std::fs::remove_file(&path);
         Ok(())
     }
@@ -326,6 +359,9 @@ impl Harness {
 fn run(root: &Path, o: &Options) -> Result<Tally> {
     let harness = Harness {
         exe: build_harness(root, "ref_osd")?,
+        eval_exe: build_harness(root, "ref_eval")?,
+        bfr_off: AtomicU64::new(0),
+        bfr_failed: AtomicU64::new(0),
         fvar_exe: if o.fvar {
             Some(build_harness(root, "ref_fvar")?)
         } else {
@@ -393,6 +429,11 @@ fn run(root: &Path, o: &Options) -> Result<Tally> {
     failures.sort_by_key(|f| f.index);
     report(&harness, o, &failures)?;
     let total = indices.len() as u64;
+    println!(
+        "fuzz-osd: evaluation: Bfr off the limit surface on {} cages (shown by deep refinement), its harness failed on {}",
+        harness.bfr_off.load(Ordering::Relaxed),
+        harness.bfr_failed.load(Ordering::Relaxed)
+    );
     println!(
         "fuzz-osd: seed {} levels {}..{}: {} cages in {:.1} s ({workers} threads)",
         o.seed,

@@ -14,13 +14,15 @@
 //!   that the test in `figures_check.rs` runs in `cargo test --workspace`.
 
 mod bench_animate;
+mod bench_eval;
 mod bench_osd;
+mod eval_refs;
 #[cfg(feature = "figures")]
 mod figures_cc;
 #[cfg_attr(not(feature = "figures"), allow(dead_code))]
-mod figures_cc_text;
-#[cfg_attr(not(feature = "figures"), allow(dead_code))]
 mod figures_cc_fig7;
+#[cfg_attr(not(feature = "figures"), allow(dead_code))]
+mod figures_cc_text;
 #[cfg(test)]
 mod figures_check;
 #[cfg(feature = "figures")]
@@ -31,6 +33,7 @@ mod figures_doi_text;
 mod figures_focus;
 #[cfg_attr(not(feature = "figures"), allow(dead_code))]
 mod figures_table;
+mod fuzz_eval;
 mod fuzz_osd;
 mod golden;
 #[cfg(feature = "figures")]
@@ -118,7 +121,10 @@ fn figures_text() -> Result<()> {
 #[cfg(feature = "figures")]
 fn figures(args: &[String]) -> Result<()> {
     let force = args.iter().any(|a| a == "--force");
-    let part = args.iter().find(|a| !a.starts_with("--")).map(String::as_str);
+    let part = args
+        .iter()
+        .find(|a| !a.starts_with("--"))
+        .map(String::as_str);
     match part {
         Some("doi") => {
             step("Degree-of-Interest figures");
@@ -171,10 +177,11 @@ fn main() -> Result<()> {
             fuzz_osd::Options::parse(&args[1..]).and_then(|o| fuzz_osd::command(&root(), &o))
         }
         Some("fuzz-osd-round") => fuzz_osd::short_round(&root()),
+        Some("eval-refs") => eval_refs::run(&root(), &args[1..]),
         Some("golden") => golden::Options::parse(&args[1..]).and_then(|o| golden::run(&root(), &o)),
         _ => {
             eprintln!(
-                "usage: xtask-tools <figures [doi|cc|text] [--force]|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I] [--fvar]|fuzz-osd-round|plot-quality [--shading] STEM LABEL=FILE...>; run it through `cargo xtask`"
+                "usage: xtask-tools <figures [doi|cc|text] [--force]|golden [--bless] [--exact|--perceptual|--tolerance MEAN,P99] [SCENE...]|bench-osd [--install]|fuzz-osd [--cages N] [--seed S] [--levels A..B] [--index I] [--fvar]|fuzz-osd-round|eval-refs [LEVEL]|plot-quality [--shading] STEM LABEL=FILE...>; run it through `cargo xtask`"
             );
             std::process::exit(2);
         }

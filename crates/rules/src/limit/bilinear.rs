@@ -132,6 +132,7 @@ pub(super) fn bilinear_limit(mesh: &Mesh, pos: &[DVec3], patch: &[u32]) -> Limit
         uv_indices,
         scalar: None,
         channels: Vec::new(),
+        params: None,
         topology: TopologyStamp::default(),
         uniform_faces: 0,
     }

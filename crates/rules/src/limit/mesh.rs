@@ -44,6 +44,8 @@ pub struct LimitMesh {
     pub(super) scalar: Option<(VertexScalar, Vec<f32>)>,
     /// The cage's primvars on the surface ([`LimitMesh::channels`]).
     pub(super) channels: Vec<super::LimitChannel>,
+    /// The parameter point of each vertex, when the tessellator knows it.
+    pub(super) params: Option<VertexParams>,
     /// Which layout the faces were written for (bookkeeping, not content: ignored by `==`).
     pub(super) topology: TopologyStamp,
     /// `k > 0`: the face offsets are `0, k, 2k, ..`, written so by [`LimitMesh::write_keyed`] or
@@ -96,6 +98,7 @@ impl PartialEq for LimitMesh {
             uv_indices,
             scalar,
             channels,
+            params,
             topology: _,
             uniform_faces: _,
         } = self;
@@ -108,6 +111,35 @@ impl PartialEq for LimitMesh {
             && *uv_indices == o.uv_indices
             && *scalar == o.scalar
             && *channels == o.channels
+            && *params == o.params
+    }
+}
+
+/// Where each vertex of a surface is on the limit surface: the cage face and the `(u, v)` in
+/// that face's parameter domain (OpenSubdiv's `Bfr` parameterisation, `subdiv_eval::Domain`),
+/// for ptex-style textures and displacement.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct VertexParams {
+    /// The cage face of each vertex.
+    pub face: Vec<u32>,
+    /// The `(u, v)` of each vertex in its face.
+    pub uv: Vec<[f32; 2]>,
+}
+
+impl VertexParams {
+    /// An empty set with room for `n` vertices.
+    pub fn with_capacity(n: usize) -> VertexParams {
+        VertexParams {
+            face: Vec::with_capacity(n),
+            uv: Vec::with_capacity(n),
+        }
+    }
+
+    /// Appends vertex `i` of `src`.
+    #[inline]
+    pub(super) fn push_from(&mut self, src: &VertexParams, i: usize) {
+        self.face.push(src.face[i]);
+        self.uv.push(src.uv[i]);
     }
 }
 
@@ -293,6 +325,26 @@ impl LimitMesh {
         self.scalar = None;
     }
 
+    /// Each vertex's parameter point, when set.
+    #[inline]
+    pub fn params(&self) -> Option<&VertexParams> {
+        self.params.as_ref()
+    }
+
+    /// Sets each vertex's parameter point (checked: one per position).
+    pub fn set_params(&mut self, params: VertexParams) -> Result<(), LimitMeshError> {
+        let n = self.positions.len();
+        if params.face.len() != n || params.uv.len() != n {
+            return Err(LimitMeshError(format!(
+                "{} parameter faces and {} (u, v) for {n} positions",
+                params.face.len(),
+                params.uv.len()
+            )));
+        }
+        self.params = Some(params);
+        Ok(())
+    }
+
     /// Sets the one-sided corner normals (checked: ascending, each naming a corner).
     pub fn set_corner_normals(
         &mut self,
@@ -376,6 +428,7 @@ impl LimitMesh {
         self.scalar = None;
         // Channels are evaluated on a surface once it is written (`push_channel`).
         self.channels.clear();
+        self.params = None;
         // Until the faces are written, the mesh holds no layout's faces.
         self.topology = TopologyStamp::default();
         try_resize(&mut self.positions, vertices, [0.0; 3], "limit positions")?;
@@ -454,6 +507,14 @@ impl LimitMesh {
             && v.len() != n
         {
             return bad(format!("{} scalars for {n} positions", v.len()));
+        }
+        if let Some(p) = &self.params
+            && (p.face.len() != n || p.uv.len() != n)
+        {
+            return bad(format!(
+                "{} parameter points for {n} positions",
+                p.face.len()
+            ));
         }
         let ends_right = self.face_offsets.first() == Some(&0)
             && self.face_offsets.last() == Some(&(corners as u32));

@@ -4,6 +4,7 @@
 
 use std::collections::HashMap;
 
+use super::mesh::VertexParams;
 use super::{LimitChannel, LimitMesh};
 
 /// What makes a vertex of the split form: the vertex, its one-sided normal (bits), its UV
@@ -37,6 +38,13 @@ impl LimitMesh {
                 .scalar
                 .as_ref()
                 .map(|(k, v)| (*k, if by_uv { Vec::new() } else { v.clone() })),
+            params: self.params.as_ref().map(|p| {
+                if by_uv {
+                    VertexParams::default()
+                } else {
+                    p.clone()
+                }
+            }),
             ..LimitMesh::default()
         };
         // The output's channels, one value per vertex: the input's per-vertex channels (copied
@@ -108,6 +116,9 @@ impl LimitMesh {
                             src.value(src.indices[c as usize] as usize)
                         };
                         dst.values.extend_from_slice(value);
+                    }
+                    if let (Some(dst), Some(src)) = (out.params.as_mut(), &self.params) {
+                        dst.push_from(src, v as usize);
                     }
                     out.positions.len() as u32 - 1
                 });
@@ -212,6 +223,7 @@ impl LimitMesh {
                     ..c.clone()
                 })
                 .collect(),
+            params: self.params.as_ref().map(|_| VertexParams::default()),
             ..LimitMesh::default()
         };
         for &i in &self.face_indices {
@@ -227,6 +239,9 @@ impl LimitMesh {
                     if src.per_vertex() {
                         dst.values.extend_from_slice(src.value(i as usize));
                     }
+                }
+                if let (Some(dst), Some(src)) = (out.params.as_mut(), &self.params) {
+                    dst.push_from(src, i as usize);
                 }
             }
             out.face_indices.push(*m);

@@ -72,6 +72,14 @@ pub(super) fn write(path: &Path, s: &LimitMesh, binary: bool) -> Result<(), Expo
         let name = kind.gltf_attribute().trim_start_matches('_').to_string();
         attributes.insert(Valid(Semantic::Extras(name)), a);
     }
+    if let Some(p) = s.params() {
+        // glTF vertex attributes are floats: faces exactly up to 2^24.
+        let face: Vec<[f32; 1]> = p.face.iter().map(|&f| [f as f32]).collect();
+        let a = push_floats(&mut root, &mut bin, &face, Type::Scalar);
+        attributes.insert(Valid(Semantic::Extras("FACE".into())), a);
+        let a = push_floats(&mut root, &mut bin, &p.uv, Type::Vec2);
+        attributes.insert(Valid(Semantic::Extras("PATCH_UV".into())), a);
+    }
     let indices = push_indices(&mut root, &mut bin, s.face_indices());
     let sidecar = path.with_extension("bin");
     if !binary {

@@ -1,4 +1,5 @@
-//! Binary little-endian PLY output: vertices (position, normal, optional `s t`, optional scalar)
+//! Binary little-endian PLY output: vertices (position, normal, optional `s t`, optional scalar,
+//! optional parameter point `face u v`)
 //! and triangles (`list uchar uint vertex_indices`).
 
 use std::fmt::Write as _;
@@ -29,6 +30,9 @@ pub(super) fn write(path: &Path, s: &LimitMesh) -> Result<(), ExportError> {
     if let Some((kind, _)) = s.scalar() {
         let _ = writeln!(head, "property float {}", kind.ply_property());
     }
+    if s.params().is_some() {
+        head.push_str("property uint face\nproperty float u\nproperty float v\n");
+    }
     let _ = writeln!(head, "element face {}", s.face_indices().len() / 3);
     head.push_str("property list uchar uint vertex_indices\nend_header\n");
     let floats = 6
@@ -49,6 +53,11 @@ pub(super) fn write(path: &Path, s: &LimitMesh) -> Result<(), ExportError> {
         }
         if let Some((_, v)) = s.scalar() {
             put(v[i]);
+        }
+        if let Some(p) = s.params() {
+            out.extend_from_slice(&p.face[i].to_le_bytes());
+            out.extend_from_slice(&p.uv[i][0].to_le_bytes());
+            out.extend_from_slice(&p.uv[i][1].to_le_bytes());
         }
     }
     for t in s.face_indices().chunks_exact(3) {

@@ -1,0 +1,148 @@
+//! Tessellation at any rate: watertight to the bit on every reference shape at random rates,
+//! triangles turning with the surface, parameters that evaluate to their points.
+
+use glam::Vec3;
+use subdiv_mesh::{EdgeId, Mesh, read_obj};
+use subdiv_rules::Scheme;
+use subdiv_test_support::{Rng, fixture_files, open_edges};
+
+use super::*;
+use crate::{Derivatives, Evaluator, Query};
+
+fn shapes() -> Vec<(String, Mesh, Scheme)> {
+    fixture_files("reference/shapes", "obj")
+        .into_iter()
+        .map(|p| {
+            let name = p.file_stem().unwrap().to_string_lossy().to_string();
+            let scheme = if name.starts_with("loop") {
+                Scheme::Loop
+            } else {
+                Scheme::CatmullClark
+            };
+            (name, read_obj(&p).unwrap(), scheme)
+        })
+        .collect()
+}
+
+/// Random rates, a few of them large.
+fn random_rates(mesh: &Mesh, rng: &mut Rng) -> EdgeRates {
+    EdgeRates::from_rates(
+        (0..mesh.num_edges())
+            .map(|_| {
+                if rng.chance(5) {
+                    20 + rng.below(60) as u32
+                } else {
+                    1 + rng.below(7) as u32
+                }
+            })
+            .collect(),
+    )
+}
+
+/// Every edge of the output has two triangles after welding equal coordinates (every
+/// point shared between faces is one point), but those along the cage's boundary and holes:
+/// exactly as many as the rates of those cage edges say.
+#[test]
+fn watertight_to_the_bit_at_random_rates() {
+    let mut rng = Rng::splitmix(21);
+    for (name, mesh, scheme) in shapes() {
+        let eval = Evaluator::new(&mesh, scheme).unwrap();
+        for round in 0..3 {
+            let rates = if round == 0 {
+                EdgeRates::uniform(&mesh, 1)
+            } else {
+                random_rates(&mesh, &mut rng)
+            };
+            let t = tessellate_rates(&eval, &rates).unwrap();
+            let tris = t.surface.triangles();
+            let open = open_edges(&name, t.surface.positions(), &tris);
+            let expected: u32 = mesh
+                .edges()
+                .filter(|&e| {
+                    let faces = [e.halfedge(0), e.halfedge(1)]
+                        .iter()
+                        .filter(|&&h| mesh.face(h).is_some() && !mesh.is_hole(mesh.face(h)))
+                        .count();
+                    faces == 1
+                })
+                .map(|e: EdgeId| t.rates[e.idx()])
+                .sum();
+            assert_eq!(open as u32, expected, "{name} round {round}");
+        }
+    }
+}
+
+/// Each vertex's parameter point evaluates to the vertex (to `f32`), and the triangles turn
+/// with the surface: their normals agree with the limit normals at their corners on smooth
+/// closed shapes.
+#[test]
+fn parameters_and_orientation() {
+    let mut rng = Rng::splitmix(4);
+    for name in [
+        "catmark_torus",
+        "catmark_pawn",
+        "catmark_nonquads",
+        "loop_icosahedron",
+        "loop_cube",
+    ] {
+        let scheme = if name.starts_with("loop") {
+            Scheme::Loop
+        } else {
+            Scheme::CatmullClark
+        };
+        let mesh = read_obj(subdiv_test_support::shape(&format!("{name}.obj"))).unwrap();
+        let eval = Evaluator::new(&mesh, scheme).unwrap();
+        let t = tessellate_rates(&eval, &random_rates(&mesh, &mut rng)).unwrap();
+        for (i, &(face, [u, v])) in t.params.iter().enumerate() {
+            let s = eval
+                .evaluate(Query::new(face, u, v), Derivatives::First)
+                .unwrap();
+            let p = Vec3::from(t.surface.positions()[i]).as_dvec3();
+            assert!((s.position - p).length() < 1e-5, "{name}: vertex {i}");
+        }
+        let pos = t.surface.positions();
+        let nrm = t.surface.normals();
+        let mut against = 0;
+        let tris = t.surface.triangles();
+        for c in tris.chunks(3) {
+            let [a, b, d] = [c[0], c[1], c[2]].map(|i| Vec3::from(pos[i as usize]));
+            let n = (b - a).cross(d - a);
+            let limit: Vec3 = c.iter().map(|&i| Vec3::from(nrm[i as usize])).sum();
+            against += usize::from(n.dot(limit) <= 0.0);
+        }
+        assert!(
+            against * 200 <= tris.len() / 3,
+            "{name}: {against} of {} triangles turn against the surface",
+            tris.len() / 3
+        );
+    }
+}
+
+/// The counts of a lone quad and triangle: rates (2, 3, 4, 5) on a quad give the inner grid
+/// of rates 4 x 5 (3 x 4 points) and every side's points once.
+#[test]
+fn counts_of_a_lone_quad_and_triangle() {
+    let quad = Mesh::from_soup(
+        &subdiv_mesh::parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").unwrap(),
+    )
+    .unwrap();
+    let eval = Evaluator::new(&quad, Scheme::CatmullClark).unwrap();
+    let mut rates = vec![0; 4];
+    let mut h = quad.face_halfedge(subdiv_mesh::FaceId(0));
+    for r in [2, 3, 4, 5] {
+        rates[h.edge().idx()] = r;
+        h = quad.next(h);
+    }
+    let t = tessellate_rates(&eval, &EdgeRates::from_rates(rates)).unwrap();
+    assert_eq!(t.surface.num_vertices(), 4 + (1 + 2 + 3 + 4) + 3 * 4);
+    let tri =
+        Mesh::from_soup(&subdiv_mesh::parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap())
+            .unwrap();
+    let eval = Evaluator::new(&tri, Scheme::Loop).unwrap();
+    let t = tessellate_rates(&eval, &EdgeRates::uniform(&tri, 6)).unwrap();
+    // 28 lattice points, 36 triangles: the uniform rate-6 triangle lattice.
+    assert_eq!(
+        (t.surface.num_vertices(), t.surface.triangles().len() / 3),
+        (28, 36)
+    );
+}
