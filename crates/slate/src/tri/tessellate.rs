@@ -13,7 +13,7 @@ use subdiv_rules::{
 
 use super::layout::{TriLayout, TriPatch, interior_offset};
 use super::limit::LimitScratch;
-use super::worker::TriWorker;
+use super::worker::{CornerNeed, TriWorker};
 use crate::tessellate::{MAX_POINTS, SharedOut, SlateError};
 
 /// Tessellates the Loop limit surface of `mesh` (triangles only) uniformly at `depth` with the
@@ -163,9 +163,18 @@ fn run_patch(
         w.step();
     }
     // The last step skips what no limit below reads: the ring row beyond a smooth side another
-    // patch owns, and a fast corner that neither this patch nor a side it evaluates needs.
+    // patch owns, and of a fast corner whose limit this patch does not evaluate (it does not
+    // own it) all but the table points of the sides it evaluates.
     let rows: [bool; 3] = std::array::from_fn(|c| p.sides[c].owned || !w.sides[c].smooth);
-    let corners = std::array::from_fn(|c| p.corner_owned[c] || rows[c] || rows[(c + 2) % 3]);
+    let corners = std::array::from_fn(|c| {
+        if p.corner_owned[c] {
+            CornerNeed::Ring
+        } else if rows[c] || rows[(c + 2) % 3] {
+            CornerNeed::Table
+        } else {
+            CornerNeed::Nothing
+        }
+    });
     w.step_with(rows, corners);
     let visible = p.visible;
     let mut sided: Vec<(u32, u32, Vec3A)> = Vec::new();

@@ -211,14 +211,14 @@ impl TriWorker {
 
     /// One subdivision step into the other table (grid size `n` to `2n`).
     pub fn step(&mut self) {
-        self.step_with([true; 3], [true; 3]);
+        self.step_with([true; 3], [CornerNeed::Ring; 3]);
     }
 
     /// [`TriWorker::step`] that may skip the child ring row beyond a smooth side `c` with
-    /// `rows[c] == false` and the refinement of a fast corner `c` with `corners[c] == false`:
-    /// the last step of a patch whose limits will not read them (the points left stale are read
-    /// by no later stage, so the output is that of `step`).
-    pub(crate) fn step_with(&mut self, rows: [bool; 3], corners: [bool; 3]) {
+    /// `rows[c] == false` and, at a fast corner `c`, all of its refinement but the table points
+    /// `corners[c]` asks for: the last step of a patch whose limits will not read the rest (the
+    /// points left stale are read by no later stage, so the output is that of `step`).
+    pub(crate) fn step_with(&mut self, rows: [bool; 3], corners: [CornerNeed; 3]) {
         let n = self.n;
         let n2 = 2 * n;
         let mut tables = std::mem::take(&mut self.tables);
@@ -261,7 +261,8 @@ impl TriWorker {
         }
         // Corners last: their points replace whatever the passes above wrote there.
         for c in 0..3 {
-            if self.corners[c].fast && !corners[c] {
+            let need = corners[c];
+            if self.corners[c].fast && need == CornerNeed::Nothing {
                 continue;
             }
             let b = if self.corners[c].fast {
@@ -275,6 +276,22 @@ impl TriWorker {
             let interior_prev = self.sides[(c + 2) % 3].interior;
             let corner = &mut self.corners[c];
             let v = corner.valence;
+            if corner.fast && need == CornerNeed::Table {
+                // Only the corner's three table points: the centre and the two ring points
+                // beyond the sides, as `refine_fast_corner` computes them (the ring itself is
+                // left at the old level; no later stage reads it).
+                let (cp, e) = (corner.center, &corner.edges[..v]);
+                dst[Self::lidx(n2, c, 0, 0)] = smooth_vertex_point(cp, e, b);
+                if interior_prev {
+                    let next = if v > 3 { e[3] } else { e[0] };
+                    dst[Self::lidx(n2, c, -1, 1)] = smooth_edge_point(cp, e[2], next, e[1]);
+                }
+                if interior_next {
+                    let last = smooth_edge_point(cp, e[v - 1], e[0], e[v - 2]);
+                    dst[Self::lidx(n2, c, 1, -1)] = last;
+                }
+                continue;
+            }
             let (center, first, last) = if corner.fast {
                 refine_fast_corner(corner, b);
                 (corner.center, corner.edges[2], corner.edges[v - 1])
@@ -315,16 +332,28 @@ impl TriWorker {
 fn refine_fast_corner(corner: &mut Corner, b: f64) {
     let v = corner.valence;
     let (c, e) = (corner.center, &corner.edges[..v]);
-    corner.tmp.clear();
-    // Neighbours around the ring without a division per edge.
-    let mut prev = e[v - 1];
-    for t in 0..v {
-        let next = if t + 1 == v { e[0] } else { e[t + 1] };
-        corner.tmp.push(smooth_edge_point(c, e[t], next, prev));
-        prev = e[t];
+    // Edge `t` with its neighbours `t + 1` and `t - 1` around the ring (valence 3 or more): the
+    // first and last apart, the others through windows, without a bounds check per edge.
+    corner.tmp.resize(v, Vec3A::ZERO);
+    let out = &mut corner.tmp[..v];
+    out[0] = smooth_edge_point(c, e[0], e[1], e[v - 1]);
+    for (o, w) in out[1..v - 1].iter_mut().zip(e.windows(3)) {
+        *o = smooth_edge_point(c, w[1], w[2], w[0]);
     }
+    out[v - 1] = smooth_edge_point(c, e[v - 1], e[0], e[v - 2]);
     corner.center = smooth_vertex_point(c, e, b);
     std::mem::swap(&mut corner.edges, &mut corner.tmp);
+}
+
+/// What the last step must compute of a corner (`TriWorker::step_with`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum CornerNeed {
+    /// The whole refined ring (the corner's limit reads it, or a later step).
+    Ring,
+    /// Only its three table points (a side's limit reads them).
+    Table,
+    /// Nothing (no limit reads the corner's table points).
+    Nothing,
 }
 
 /// The regular rules over the whole child triangle `i', j' >= 0, i' + j' <= 2n` (Loop's box
