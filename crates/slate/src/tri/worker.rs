@@ -357,37 +357,46 @@ pub(crate) enum CornerNeed {
 }
 
 /// The regular rules over the whole child triangle `i', j' >= 0, i' + j' <= 2n` (Loop's box
-/// spline: vertex points `5/8 v + 1/16 sum`, edge points `3/8 (a + b) + 1/8 (c + d)`). Corners
-/// and non-smooth sides are overwritten afterwards.
+/// spline: vertex points `5/8 v + 1/16 sum`, edge points `3/8 (a + b) + 1/8 (c + d)`), but for
+/// the three corners, whose points the corner pass writes (or, at a last step, no limit reads).
+/// Non-smooth sides are overwritten afterwards.
 fn regular_step(src: &[Vec3A], dst: &mut [Vec3A], n: u32) {
     let w = n as usize + 3;
     let w2 = 2 * n as usize + 3;
     let n = n as usize;
     // Parent (a, b) is `mid[a + 1]` with `mid` the table row of `b` (from column -1), `lo` and
-    // `hi` the rows of `b - 1` and `b + 1`: whole-row slices, so the loops index without a
-    // bounds check per point. The sums are those of the point-by-point form, in its order.
-    for b in 0..=n {
+    // `hi` the rows of `b - 1` and `b + 1` (`lo` from column 0): each point's neighbours come as
+    // windows of those rows, so the loops index without a bounds check per point. The sums are
+    // those of the point-by-point form, in its order. Row `b = n` is corner 2 alone.
+    for b in 0..n {
         let len = n - b;
-        let lo = &src[b * w..(b + 1) * w];
-        let mid = &src[(b + 1) * w..(b + 2) * w];
-        let hi = &src[(b + 2) * w..(b + 3) * w];
-        // Even child row 2b: vertex points at even i', edge points of (a, b)-(a + 1, b) at odd.
+        let lo = &src[b * w + 1..][..len + 2];
+        let mid = &src[(b + 1) * w..][..len + 3];
+        let hi = &src[(b + 2) * w..][..len + 2];
+        let vertex = |m: &[Vec3A], h: &[Vec3A], l: &[Vec3A]| {
+            regular_vertex_point(m[1], m[2] + h[1] + h[0] + m[0] + l[0] + l[1])
+        };
+        // Even child row 2b: vertex points at even i', edge points of (a, b)-(a + 1, b) at odd;
+        // on row 0 the vertex points at a = 0 and a = n are corners 0 and 1.
         let even = &mut dst[(2 * b + 1) * w2 + 1..][..2 * len + 1];
-        for a in 0..=len {
-            let sum = mid[a + 2] + hi[a + 1] + hi[a] + mid[a] + lo[a + 1] + lo[a + 2];
-            even[2 * a] = regular_vertex_point(mid[a + 1], sum);
-            if a < len {
-                even[2 * a + 1] = smooth_edge_point(mid[a + 1], mid[a + 2], hi[a + 1], lo[a + 2]);
+        let (pairs, last) = even.split_at_mut(2 * len);
+        let mut around = mid.windows(3).zip(hi.windows(2)).zip(lo.windows(2));
+        for (a, (o, ((m, h), l))) in pairs.chunks_exact_mut(2).zip(&mut around).enumerate() {
+            if a > 0 || b > 0 {
+                o[0] = vertex(m, h, l);
             }
+            o[1] = smooth_edge_point(m[1], m[2], h[1], l[1]);
         }
-        if b == n {
-            break;
+        if b > 0
+            && let Some(((m, h), l)) = around.next()
+        {
+            last[0] = vertex(m, h, l);
         }
         // Odd child row 2b + 1: edges (a, b)-(a, b + 1) at even i', (a + 1, b)-(a, b + 1) at odd.
         let odd = &mut dst[(2 * b + 2) * w2 + 1..][..2 * len];
-        for a in 0..len {
-            odd[2 * a] = smooth_edge_point(mid[a + 1], hi[a + 1], hi[a], mid[a + 2]);
-            odd[2 * a + 1] = smooth_edge_point(mid[a + 2], hi[a + 1], mid[a + 1], hi[a + 2]);
+        for ((o, m), h) in odd.chunks_exact_mut(2).zip(mid.windows(3)).zip(hi.windows(3)) {
+            o[0] = smooth_edge_point(m[1], h[1], h[0], m[2]);
+            o[1] = smooth_edge_point(m[2], h[1], m[1], h[2]);
         }
     }
 }
