@@ -187,6 +187,10 @@ impl Ring {
 
     /// One subdivision step: the ring becomes the ring of the vertex's child.
     pub fn refine(&mut self) {
+        if self.is_smooth_quads() {
+            self.refine_smooth_quads();
+            return;
+        }
         let n = self.edges.len();
         let nf = self.num_faces();
         self.cs.clear();
@@ -297,6 +301,57 @@ impl Ring {
             m.refine();
             self.center = m.center;
         }
+        self.vertex_sharpness = crate::crease::decrement(self.vertex_sharpness);
+    }
+
+    /// `true` for an interior Catmull-Clark ring of quads without any sharpness (no crease copy,
+    /// no whole-vertex values): [`Ring::refine`]'s rules there are the smooth ones everywhere.
+    #[inline]
+    fn is_smooth_quads(&self) -> bool {
+        let n = self.edges.len();
+        self.scheme == Scheme::CatmullClark
+            && !self.boundary
+            && self.vertex_sharpness == 0.0
+            && self.whole.is_empty()
+            && self.master.is_none()
+            && self.inner.len() == n
+            && self.inner_off.len() == n + 1
+            && self.inner_off.iter().enumerate().all(|(k, &o)| o as usize == k)
+            && self.sharp.iter().all(|&s| s == 0.0)
+    }
+
+    /// [`Ring::refine`] of a ring that [`Ring::is_smooth_quads`]: the same operations on the same
+    /// values as the general path takes there (face points `(c + e_i + e_i+1 + d_i) / 4`, the
+    /// smooth vertex rule, edge points `(c + e_i + f_i-1 + f_i) * 1/4`, all child sharpness 0),
+    /// without its per-edge rule and weight decisions.
+    fn refine_smooth_quads(&mut self) {
+        let n = self.edges.len();
+        let (c, e) = (self.center, &self.edges[..n]);
+        self.fp.clear();
+        self.fp.extend(
+            e.iter()
+                .zip(e.iter().cycle().skip(1))
+                .zip(&self.inner[..n])
+                .map(|((&a, &b), &d)| (c + a + b + d) / 4.0),
+        );
+        let smooth = VertexRules {
+            parent: Rule::Smooth,
+            child: Rule::Smooth,
+            parent_weight: 1.0,
+        };
+        let new_center = catmark::vertex_point(c, e, &self.fp, &smooth);
+        self.tmp_edges.clear();
+        let before = std::iter::once(self.fp[n - 1]).chain(self.fp[..n - 1].iter().copied());
+        self.tmp_edges.extend(
+            e.iter()
+                .zip(before.zip(&self.fp))
+                .map(|(&a, (f0, &f1))| (c + a + f0 + f1) * 0.25),
+        );
+        std::mem::swap(&mut self.edges, &mut self.tmp_edges);
+        std::mem::swap(&mut self.inner, &mut self.fp);
+        self.far.fill((0.0, 0));
+        self.sharp.fill(0.0);
+        self.center = new_center;
         self.vertex_sharpness = crate::crease::decrement(self.vertex_sharpness);
     }
 

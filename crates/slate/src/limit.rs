@@ -177,7 +177,7 @@ impl Worker {
     /// not, so the regular limit masks apply to every interior point; they are evaluated in their
     /// separable form (`catmark::limit_row_sums` once per table row, shared by the three output
     /// rows around it): eight points at a time where the CPU has AVX2 and a row has at least
-    /// eight points ([`wide`](crate::wide), the same bits), otherwise one at a time.
+    /// seven points ([`wide`](crate::wide), the same bits), otherwise one at a time.
     #[inline]
     pub(crate) fn limit_interior(&mut self, out: &mut InteriorOut<'_>) {
         let t = &self.t[self.cur];
@@ -192,7 +192,7 @@ impl Worker {
         );
         let mut bad = std::mem::take(&mut self.bad);
         bad.clear();
-        if n >= 9 && wide::available() {
+        if n >= 8 && wide::available() {
             let mut scratch = std::mem::take(&mut self.wide);
             if scratch.len() < wide::scratch_len(n) {
                 scratch.resize(wide::scratch_len(n), 0.0);

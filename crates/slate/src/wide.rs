@@ -10,10 +10,11 @@
 //!
 //! **Invariant: the same bits as the scalar path.** Every lane performs the scalar path's IEEE
 //! operations on the same operands in the same order (additions and products of two operands
-//! commute exactly; no fused multiply-add is used, and Rust never contracts). A row shorter than
-//! eight points is the caller's (scalar) business; a row of `m >= 8` points is covered by blocks
-//! at `0, 8, 16, ...` and a last block at `m - 8`, which recomputes (identically) the points it
-//! shares with the block before instead of masking.
+//! commute exactly; no fused multiply-add is used, and Rust never contracts). A row of `m >= 8`
+//! points is covered by blocks at `0, 8, 16, ...` and a last block at `m - 8`, which recomputes
+//! (identically) the points it shares with the block before instead of masking; a row of seven
+//! (grid size 8) takes one block whose eighth lane, the border point after the row, is computed
+//! from the table's outer column and dropped. Shorter rows are the caller's (scalar) business.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -55,7 +56,7 @@ pub(crate) fn available() -> bool {
 
 /// Floats of scratch [`interior_rows`] needs for grid size `n`.
 pub(crate) fn scratch_len(n: usize) -> usize {
-    6 * (n + 1) + 3 * 48 * n.saturating_sub(1).div_ceil(8)
+    6 * (n + 2) + 3 * 48 * n.saturating_sub(1).div_ceil(8)
 }
 
 /// Where the interior limits go: point `(i, j)`, `1 <= i, j <= n - 1`, at index
@@ -83,7 +84,7 @@ impl InteriorOut<'_> {
 /// The interior limits of the grid of size `n` whose table has row stride `stride` and holds
 /// point `(i, j)` at `positions[(j + 1) * stride + i + 1]`, plus `origin`, into `out`; pushes onto
 /// `bad` (in row order) the points whose tangents are degenerate (their output is left to the
-/// caller to overwrite). Needs [`available`] and `n >= 9`; `scratch` holds at least
+/// caller to overwrite). Needs [`available`] and `n >= 8`; `scratch` holds at least
 /// [`scratch_len`]`(n)` floats.
 pub(crate) fn interior_rows(
     positions: &[Vec3A],
@@ -95,7 +96,7 @@ pub(crate) fn interior_rows(
     bad: &mut Vec<(i32, i32)>,
 ) {
     assert!(cpu_avx2(), "interior_rows needs AVX2");
-    assert!(n >= 9 && stride >= n + 3, "grid too small for eight lanes");
+    assert!(n >= 8 && stride >= n + 3, "grid too small for eight lanes");
     assert!(positions.len() >= (n + 2) * stride, "table too small");
     assert!(scratch.len() >= scratch_len(n), "scratch too small");
     assert!(out.fits(n), "output too small");
@@ -155,16 +156,24 @@ mod avx2 {
     /// Floats of one block of row sums: `b` x, y, z then `a` x, y, z, eight lanes each.
     const BLOCK: usize = 48;
 
-    /// Table row `j` transposed into `px` (`x`, `y`, `z`, `n + 1` floats each).
+    /// Block starts of the row sums and limits of a row of `cnt >= 7` interior points:
+    /// [`blocks`], and for seven points the one block at 0 (its eighth lane is dropped).
+    #[inline(always)]
+    fn sum_blocks(cnt: usize) -> impl Iterator<Item = usize> {
+        (0..cnt.div_ceil(8)).map(move |b| (b * 8).min(cnt.max(8) - 8))
+    }
+
+    /// Table row `j` transposed into `px` (`x`, `y`, `z`, `n + 2` floats each: columns `0` to
+    /// `n + 1`).
     ///
     /// # Safety
-    /// AVX2; the bounds of [`interior_rows`]; `px` writable for `3 * (n + 1)` floats.
+    /// AVX2; the bounds of [`interior_rows`]; `px` writable for `3 * (n + 2)` floats.
     #[target_feature(enable = "avx2")]
     #[inline]
     unsafe fn transpose_row(positions: &[Vec3A], stride: usize, n: usize, j: usize, px: *mut f32) {
-        let len = n + 1;
-        // SAFETY: row `j <= n` of the table spans `(j + 1) * stride + 1 ..= + n`, inside
-        // `positions` (`(n + 2) * stride` points).
+        let len = n + 2;
+        // SAFETY: row `j <= n + 1` of the table spans `(j + 1) * stride + 1 ..= + n + 1`, inside
+        // `positions` (`(n + 2) * stride` points, `stride >= n + 3`).
         unsafe {
             let src = positions.as_ptr().add((j + 1) * stride + 1);
             transpose(src, len, px, px.add(len), px.add(2 * len));
@@ -172,7 +181,7 @@ mod avx2 {
     }
 
     /// `catmark::limit_row_sums` of the transposed row `px`, by blocks: block `k` (the points
-    /// of `blocks(n - 1)`'s `k`-th start) at `sums + k * BLOCK`, each coordinate's
+    /// of `sum_blocks(n - 1)`'s `k`-th start) at `sums + k * BLOCK`, each coordinate's
     /// `b = (w[i] + w[i + 2]) + w[i + 1] * 4` and `a = w[i + 2] - w[i]`.
     ///
     /// The loads are unaligned, so they must not read a row transposed just before: a load
@@ -180,17 +189,17 @@ mod avx2 {
     /// pawn at depth 5 that stall was a sixth of the kernel's cycles).
     ///
     /// # Safety
-    /// AVX2; `px` readable for `3 * (n + 1)` floats, `sums` writable for
+    /// AVX2; `n >= 8`; `px` readable for `3 * (n + 2)` floats, `sums` writable for
     /// `BLOCK * (n - 1).div_ceil(8)`.
     #[target_feature(enable = "avx2")]
     #[inline]
     unsafe fn row_sums(px: *const f32, n: usize, sums: *mut f32) {
-        let (len, cnt) = (n + 1, n - 1);
+        let (len, cnt) = (n + 2, n - 1);
         let four = _mm256_set1_ps(4.0);
-        // SAFETY: block starts `s <= cnt - 8` read `px` below `c * len + cnt + 2 =
-        // (c + 1) * len` and write block `k < cnt.div_ceil(8)`.
+        // SAFETY: block starts `s <= cnt.max(8) - 8 <= n - 8` read `px` below
+        // `c * len + s + 10 <= (c + 1) * len` and write block `k < cnt.div_ceil(8)`.
         unsafe {
-            for (k, s) in blocks(cnt).enumerate() {
+            for (k, s) in sum_blocks(cnt).enumerate() {
                 let out = sums.add(k * BLOCK);
                 for c in 0..3 {
                     let w = px.add(c * len + s);
@@ -292,7 +301,7 @@ mod avx2 {
     /// See [`super::interior_rows`].
     ///
     /// # Safety
-    /// AVX2; `n >= 9`, `stride >= n + 3`, `positions.len() >= (n + 2) * stride`,
+    /// AVX2; `n >= 8`, `stride >= n + 3`, `positions.len() >= (n + 2) * stride`,
     /// `scratch.len() >= scratch_len(n)`, `out.fits(n)`.
     #[target_feature(enable = "avx2")]
     pub(super) unsafe fn interior_rows(
@@ -306,15 +315,15 @@ mod avx2 {
     ) {
         let cnt = n - 1;
         let base = scratch.as_mut_ptr();
-        // Scratch: two transposed table rows (`3 * (n + 1)` floats each; row `r` goes to
+        // Scratch: two transposed table rows (`3 * (n + 2)` floats each; row `r` goes to
         // `px[r % 2]`, transposed one output row before its sums are formed), then three slots
         // of row sums (`BLOCK * cnt.div_ceil(8)` floats each), `scratch_len(n)` in all.
         let slot_len = BLOCK * cnt.div_ceil(8);
         // SAFETY: offsets inside the scratch (see above).
-        let px = [0, 1].map(|b| unsafe { base.add(3 * (n + 1) * b) });
+        let px = [0, 1].map(|b| unsafe { base.add(3 * (n + 2) * b) });
         // SAFETY: as above.
-        let mut slots = [0, 1, 2].map(|s| unsafe { base.add(6 * (n + 1) + slot_len * s) });
-        // SAFETY: the caller's bounds; rows 0, 1 and 2 exist (`n >= 9`).
+        let mut slots = [0, 1, 2].map(|s| unsafe { base.add(6 * (n + 2) + slot_len * s) });
+        // SAFETY: the caller's bounds; rows 0, 1 and 2 exist (`n >= 8`).
         unsafe {
             transpose_row(positions, stride, n, 0, px[0]);
             transpose_row(positions, stride, n, 1, px[1]);
@@ -338,14 +347,27 @@ mod avx2 {
             let row = out.first + (j - 1) * out.stride;
             // Lanes below `checked` were tested by an earlier block of this row.
             let mut checked = 0;
-            for (k, x) in blocks(cnt).enumerate() {
+            for (k, x) in sum_blocks(cnt).enumerate() {
                 let at = k * BLOCK;
                 let i = 3 * (row + x);
-                // SAFETY: block `k` lies in each slot; the output points `row + x .. + 8`
-                // lie in the row (`x + 8 <= cnt`), inside the buffers (`out.fits(n)`).
-                let mask = unsafe {
-                    let s = [slots[0].add(at), slots[1].add(at), slots[2].add(at)];
-                    limit_block(s.map(|p| p as *const f32), o, pos.add(i), nrm.add(i))
+                // SAFETY: block `k` lies in each slot.
+                let s = unsafe { [slots[0].add(at), slots[1].add(at), slots[2].add(at)] };
+                let s = s.map(|p| p as *const f32);
+                let mask = if cnt >= 8 {
+                    // SAFETY: the output points `row + x .. + 8` lie in the row
+                    // (`x + 8 <= cnt`), inside the buffers (`out.fits(n)`).
+                    unsafe { limit_block(s, o, pos.add(i), nrm.add(i)) }
+                } else {
+                    // Seven points: eight lanes into a buffer, the first seven copied out.
+                    let (mut p8, mut n8) = ([0.0f32; 24], [0.0f32; 24]);
+                    // SAFETY: 24 floats each in `p8` and `n8`; the output points `row ..
+                    // row + cnt` lie inside the buffers (`out.fits(n)`).
+                    unsafe {
+                        let mask = limit_block(s, o, p8.as_mut_ptr(), n8.as_mut_ptr());
+                        std::ptr::copy_nonoverlapping(p8.as_ptr(), pos.add(i), 3 * cnt);
+                        std::ptr::copy_nonoverlapping(n8.as_ptr(), nrm.add(i), 3 * cnt);
+                        (mask | (0xff << cnt)) & 0xff
+                    }
                 };
                 if mask != 0xff {
                     for l in 0..8 {
@@ -406,7 +428,7 @@ mod tests {
         let mut rng = Rng::xorshift_star(0x9e37_79b9_7f4a_7c15);
         let mut scratch = vec![0.0; scratch_len(32)];
         let mut cases = 0;
-        for n in 9..=32 {
+        for n in 8..=32 {
             for (kind, scale) in [
                 (0, 1.0),
                 (0, 1e-6),

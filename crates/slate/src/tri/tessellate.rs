@@ -12,7 +12,7 @@ use subdiv_rules::{
 
 use super::layout::{TriLayout, TriPatch, interior_offset};
 use super::limit::LimitScratch;
-use super::worker::TriWorker;
+use super::worker::{CornerNeed, TriWorker};
 use crate::tessellate::{SharedOut, SlateError};
 
 /// Tessellates the Loop limit surface of `mesh` (triangles only) uniformly at `depth` with the
@@ -143,9 +143,18 @@ fn run_patch(
         w.step();
     }
     // The last step skips what no limit below reads: the ring row beyond a smooth side another
-    // patch owns, and a fast corner that neither this patch nor a side it evaluates needs.
+    // patch owns, and of a fast corner whose limit this patch does not evaluate (it does not
+    // own it) all but the table points of the sides it evaluates.
     let rows: [bool; 3] = std::array::from_fn(|c| p.sides[c].owned || !w.sides[c].smooth);
-    let corners = std::array::from_fn(|c| p.corner_owned[c] || rows[c] || rows[(c + 2) % 3]);
+    let corners = std::array::from_fn(|c| {
+        if p.corner_owned[c] {
+            CornerNeed::Ring
+        } else if rows[c] || rows[(c + 2) % 3] {
+            CornerNeed::Table
+        } else {
+            CornerNeed::Nothing
+        }
+    });
     w.step_with(rows, corners);
     let visible = p.visible;
     let mut sided: Vec<(u32, u32, Vec3A)> = Vec::new();
@@ -214,31 +223,43 @@ fn up_index(n: u32, a: u32, b: u32) -> u32 {
 
 /// Writes the `n^2` triangles of patch `p` (`ids`: scratch for the lattice's output ids).
 fn write_triangles(p: &TriPatch, n: u32, tris: &mut [u32], ids: &mut Vec<u32>) {
-    // Row `b` of the lattice starts at `row(b)` and holds `n + 1 - b` points.
-    let row = |b: u32| (b * (2 * n + 3) - b * b) / 2;
+    let nu = n as usize;
     // `TriLayout::point_id` row by row, its cases laid out: row 0 is corner 0, side 0 and
-    // corner 1; row `j` side 2, the interior row and side 1; row `n` corner 2.
-    ids.clear();
-    ids.push(p.corners[0]);
-    ids.extend((1..n).map(|a| p.sides[0].id(n, a)));
-    ids.push(p.corners[1]);
-    for j in 1..n {
-        ids.push(p.sides[2].id(n, n - j));
-        let first = p.interior + interior_offset(n, j);
-        ids.extend(first..first + (n - j - 1));
-        ids.push(p.sides[1].id(n, j));
+    // corner 1; row `j` side 2, the interior row and side 1; row `n` corner 2. Row `b` holds
+    // `n + 1 - b` points; its inner points are runs of consecutive ids (the sides' ascending or
+    // descending, `TriSide::id`).
+    ids.resize((nu + 1) * (nu + 2) / 2, 0);
+    let run = |out: &mut [u32], first: u32, down: bool| {
+        for (k, x) in out.iter_mut().enumerate() {
+            *x = if down { first - k as u32 } else { first + k as u32 };
+        }
+    };
+    let (row0, rest) = ids.split_at_mut(nu + 1);
+    row0[0] = p.corners[0];
+    row0[nu] = p.corners[1];
+    if n > 1 {
+        run(&mut row0[1..nu], p.sides[0].id(n, 1), p.sides[0].reversed);
     }
-    ids.push(p.corners[2]);
-    debug_assert_eq!(ids.len() as u32, row(n + 1));
-    // Row `b` of triangles: `len - 1` (up, down) pairs, then the last up triangle.
-    let mut rest = &mut tris[..];
-    for b in 0..n {
-        let (lo, hi) = (row(b) as usize, row(b + 1) as usize);
-        let len = (n - b) as usize;
-        let (below, above) = (&ids[lo..lo + len + 1], &ids[hi..hi + len]);
-        let (out, tail) = std::mem::take(&mut rest).split_at_mut(3 * (2 * len - 1));
+    let mut rest = rest;
+    for j in 1..n {
+        let len = (n - j) as usize;
+        let (row, tail) = std::mem::take(&mut rest).split_at_mut(len + 1);
         rest = tail;
-        let (pairs, last) = out.split_at_mut(6 * (len - 1));
+        row[0] = p.sides[2].id(n, n - j);
+        row[len] = p.sides[1].id(n, j);
+        run(&mut row[1..len], p.interior + interior_offset(n, j), false);
+    }
+    rest[0] = p.corners[2];
+    // Row `b` of triangles: `len - 1` (up, down) pairs, then the last up triangle; `lo` and `hi`
+    // the first ids of lattice rows `b` and `b + 1`.
+    let (mut out, mut lo) = (&mut tris[..], 0);
+    for b in 0..nu {
+        let len = nu - b;
+        let hi = lo + len + 1;
+        let (below, above) = (&ids[lo..hi], &ids[hi..hi + len]);
+        let (row, tail) = std::mem::take(&mut out).split_at_mut(3 * (2 * len - 1));
+        out = tail;
+        let (pairs, last) = row.split_at_mut(6 * (len - 1));
         for ((t, d), u) in pairs
             .chunks_exact_mut(6)
             .zip(below.windows(2))
@@ -247,8 +268,9 @@ fn write_triangles(p: &TriPatch, n: u32, tris: &mut [u32], ids: &mut Vec<u32>) {
             t.copy_from_slice(&[d[0], d[1], u[0], d[1], u[1], u[0]]);
         }
         last.copy_from_slice(&[below[len - 1], below[len], above[len - 1]]);
+        lo = hi;
     }
-    debug_assert!(rest.is_empty());
+    debug_assert!(out.is_empty());
 }
 
 /// The triangle corners (index into the patch's `3 n^2` corners) at the lattice points of

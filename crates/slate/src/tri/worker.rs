@@ -211,14 +211,14 @@ impl TriWorker {
 
     /// One subdivision step into the other table (grid size `n` to `2n`).
     pub fn step(&mut self) {
-        self.step_with([true; 3], [true; 3]);
+        self.step_with([true; 3], [CornerNeed::Ring; 3]);
     }
 
     /// [`TriWorker::step`] that may skip the child ring row beyond a smooth side `c` with
-    /// `rows[c] == false` and the refinement of a fast corner `c` with `corners[c] == false`:
-    /// the last step of a patch whose limits will not read them (the points left stale are read
-    /// by no later stage, so the output is that of `step`).
-    pub(crate) fn step_with(&mut self, rows: [bool; 3], corners: [bool; 3]) {
+    /// `rows[c] == false` and, at a fast corner `c`, all of its refinement but the table points
+    /// `corners[c]` asks for: the last step of a patch whose limits will not read the rest (the
+    /// points left stale are read by no later stage, so the output is that of `step`).
+    pub(crate) fn step_with(&mut self, rows: [bool; 3], corners: [CornerNeed; 3]) {
         let n = self.n;
         let n2 = 2 * n;
         let mut tables = std::mem::take(&mut self.tables);
@@ -261,7 +261,8 @@ impl TriWorker {
         }
         // Corners last: their points replace whatever the passes above wrote there.
         for c in 0..3 {
-            if self.corners[c].fast && !corners[c] {
+            let need = corners[c];
+            if self.corners[c].fast && need == CornerNeed::Nothing {
                 continue;
             }
             let b = if self.corners[c].fast {
@@ -275,6 +276,22 @@ impl TriWorker {
             let interior_prev = self.sides[(c + 2) % 3].interior;
             let corner = &mut self.corners[c];
             let v = corner.valence;
+            if corner.fast && need == CornerNeed::Table {
+                // Only the corner's three table points: the centre and the two ring points
+                // beyond the sides, as `refine_fast_corner` computes them (the ring itself is
+                // left at the old level; no later stage reads it).
+                let (cp, e) = (corner.center, &corner.edges[..v]);
+                dst[Self::lidx(n2, c, 0, 0)] = smooth_vertex_point(cp, e, b);
+                if interior_prev {
+                    let next = if v > 3 { e[3] } else { e[0] };
+                    dst[Self::lidx(n2, c, -1, 1)] = smooth_edge_point(cp, e[2], next, e[1]);
+                }
+                if interior_next {
+                    let last = smooth_edge_point(cp, e[v - 1], e[0], e[v - 2]);
+                    dst[Self::lidx(n2, c, 1, -1)] = last;
+                }
+                continue;
+            }
             let (center, first, last) = if corner.fast {
                 refine_fast_corner(corner, b);
                 (corner.center, corner.edges[2], corner.edges[v - 1])
@@ -315,50 +332,71 @@ impl TriWorker {
 fn refine_fast_corner(corner: &mut Corner, b: f64) {
     let v = corner.valence;
     let (c, e) = (corner.center, &corner.edges[..v]);
-    corner.tmp.clear();
-    // Neighbours around the ring without a division per edge.
-    let mut prev = e[v - 1];
-    for t in 0..v {
-        let next = if t + 1 == v { e[0] } else { e[t + 1] };
-        corner.tmp.push(smooth_edge_point(c, e[t], next, prev));
-        prev = e[t];
+    // Edge `t` with its neighbours `t + 1` and `t - 1` around the ring (valence 3 or more): the
+    // first and last apart, the others through windows, without a bounds check per edge.
+    corner.tmp.resize(v, Vec3A::ZERO);
+    let out = &mut corner.tmp[..v];
+    out[0] = smooth_edge_point(c, e[0], e[1], e[v - 1]);
+    for (o, w) in out[1..v - 1].iter_mut().zip(e.windows(3)) {
+        *o = smooth_edge_point(c, w[1], w[2], w[0]);
     }
+    out[v - 1] = smooth_edge_point(c, e[v - 1], e[0], e[v - 2]);
     corner.center = smooth_vertex_point(c, e, b);
     std::mem::swap(&mut corner.edges, &mut corner.tmp);
 }
 
+/// What the last step must compute of a corner (`TriWorker::step_with`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum CornerNeed {
+    /// The whole refined ring (the corner's limit reads it, or a later step).
+    Ring,
+    /// Only its three table points (a side's limit reads them).
+    Table,
+    /// Nothing (no limit reads the corner's table points).
+    Nothing,
+}
+
 /// The regular rules over the whole child triangle `i', j' >= 0, i' + j' <= 2n` (Loop's box
-/// spline: vertex points `5/8 v + 1/16 sum`, edge points `3/8 (a + b) + 1/8 (c + d)`). Corners
-/// and non-smooth sides are overwritten afterwards.
+/// spline: vertex points `5/8 v + 1/16 sum`, edge points `3/8 (a + b) + 1/8 (c + d)`), but for
+/// the three corners, whose points the corner pass writes (or, at a last step, no limit reads).
+/// Non-smooth sides are overwritten afterwards.
 fn regular_step(src: &[Vec3A], dst: &mut [Vec3A], n: u32) {
     let w = n as usize + 3;
     let w2 = 2 * n as usize + 3;
     let n = n as usize;
     // Parent (a, b) is `mid[a + 1]` with `mid` the table row of `b` (from column -1), `lo` and
-    // `hi` the rows of `b - 1` and `b + 1`: whole-row slices, so the loops index without a
-    // bounds check per point. The sums are those of the point-by-point form, in its order.
-    for b in 0..=n {
+    // `hi` the rows of `b - 1` and `b + 1` (`lo` from column 0): each point's neighbours come as
+    // windows of those rows, so the loops index without a bounds check per point. The sums are
+    // those of the point-by-point form, in its order. Row `b = n` is corner 2 alone.
+    for b in 0..n {
         let len = n - b;
-        let lo = &src[b * w..(b + 1) * w];
-        let mid = &src[(b + 1) * w..(b + 2) * w];
-        let hi = &src[(b + 2) * w..(b + 3) * w];
-        // Even child row 2b: vertex points at even i', edge points of (a, b)-(a + 1, b) at odd.
+        let lo = &src[b * w + 1..][..len + 2];
+        let mid = &src[(b + 1) * w..][..len + 3];
+        let hi = &src[(b + 2) * w..][..len + 2];
+        let vertex = |m: &[Vec3A], h: &[Vec3A], l: &[Vec3A]| {
+            regular_vertex_point(m[1], m[2] + h[1] + h[0] + m[0] + l[0] + l[1])
+        };
+        // Even child row 2b: vertex points at even i', edge points of (a, b)-(a + 1, b) at odd;
+        // on row 0 the vertex points at a = 0 and a = n are corners 0 and 1.
         let even = &mut dst[(2 * b + 1) * w2 + 1..][..2 * len + 1];
-        for a in 0..=len {
-            let sum = mid[a + 2] + hi[a + 1] + hi[a] + mid[a] + lo[a + 1] + lo[a + 2];
-            even[2 * a] = regular_vertex_point(mid[a + 1], sum);
-            if a < len {
-                even[2 * a + 1] = smooth_edge_point(mid[a + 1], mid[a + 2], hi[a + 1], lo[a + 2]);
+        let (pairs, last) = even.split_at_mut(2 * len);
+        let mut around = mid.windows(3).zip(hi.windows(2)).zip(lo.windows(2));
+        for (a, (o, ((m, h), l))) in pairs.chunks_exact_mut(2).zip(&mut around).enumerate() {
+            if a > 0 || b > 0 {
+                o[0] = vertex(m, h, l);
             }
+            o[1] = smooth_edge_point(m[1], m[2], h[1], l[1]);
         }
-        if b == n {
-            break;
+        if b > 0
+            && let Some(((m, h), l)) = around.next()
+        {
+            last[0] = vertex(m, h, l);
         }
         // Odd child row 2b + 1: edges (a, b)-(a, b + 1) at even i', (a + 1, b)-(a, b + 1) at odd.
         let odd = &mut dst[(2 * b + 2) * w2 + 1..][..2 * len];
-        for a in 0..len {
-            odd[2 * a] = smooth_edge_point(mid[a + 1], hi[a + 1], hi[a], mid[a + 2]);
-            odd[2 * a + 1] = smooth_edge_point(mid[a + 2], hi[a + 1], mid[a + 1], hi[a + 2]);
+        for ((o, m), h) in odd.chunks_exact_mut(2).zip(mid.windows(3)).zip(hi.windows(3)) {
+            o[0] = smooth_edge_point(m[1], h[1], h[0], m[2]);
+            o[1] = smooth_edge_point(m[2], h[1], m[1], h[2]);
         }
     }
 }
