@@ -87,6 +87,8 @@ pub struct DynamicSubdivision {
     controller: Controller,
     /// A frame's time from its work, fitted from the times `update` is given (every mode).
     model: FrameTimeModel,
+    /// The model was given ([`Self::set_frame_model`]), not learnt here: no warm-up frames.
+    model_given: bool,
     last: LastFrame,
     fixed_depths: Option<Vec<Depth>>,
     assignment: Assignment,
@@ -122,6 +124,7 @@ impl DynamicSubdivision {
             assembler,
             controller: Controller::Off,
             model: FrameTimeModel::with_default_prior(),
+            model_given: false,
             last: LastFrame::default(),
             fixed_depths: None,
             assignment: Assignment::default(),
@@ -242,9 +245,12 @@ impl DynamicSubdivision {
         &self.model
     }
     /// Replaces the frame-time model (for example by one with known coefficients, to choose
-    /// depths for a budget of triangles rather than of time).
+    /// depths for a budget of triangles rather than of time). The predictive control trusts a
+    /// given model from the next frame on, without the warm-up frames at the geometric depths
+    /// that a model still learning the machine gets.
     pub fn set_frame_model(&mut self, model: FrameTimeModel) {
         self.model = model;
+        self.model_given = true;
     }
     /// The last frame's work and the model's prediction of its time (seconds), made when it
     /// was tessellated (before its time was measured).
@@ -383,7 +389,9 @@ impl DynamicSubdivision {
                 // (a sensible picture at a moderate cost) rather than a choice priced by the
                 // prior alone; one of those frames a level shallower, so that the fit sees two
                 // workloads and can tell the fixed cost from the per-triangle one.
-                (Controller::Budget(_), _) if self.model.frames() < WARMUP_FRAMES => {
+                (Controller::Budget(_), _)
+                    if !self.model_given && self.model.frames() < WARMUP_FRAMES =>
+                {
                     if self.model.frames() == 1 {
                         for (u, d) in a.depth.iter_mut().enumerate() {
                             *d = d.saturating_sub(1).max(self.assembler.min_depth(u));

@@ -9,7 +9,7 @@ use subdiv_depth::Class;
 use subdiv_mesh::parse_obj;
 
 use subdiv::{Control, DynamicSubdivision};
-use subdiv_depth::DepthParams;
+use subdiv_depth::{DepthParams, FrameTimeModel};
 use subdiv_mesh::{Camera, Mesh};
 use subdiv_rules::Scheme;
 use subdiv_slate::Depth;
@@ -186,6 +186,22 @@ fn frame_rate_control_toggles() {
     let (work, predicted) = node.last_frame().unwrap();
     assert!(work.triangles > 0.0 && predicted > 0.0);
     assert_eq!(node.frame_model().frames(), 1);
+}
+
+#[test]
+fn a_given_frame_model_prices_the_first_frame() {
+    // A model with known coefficients (one second per 10^5 triangles) needs no warm-up frames:
+    // the first frame already draws the budget's choice, here far fewer triangles than the
+    // geometric depths.
+    let camera = camera_on_z(20.0);
+    let mut free = DynamicSubdivision::new(cube(), params(3)).unwrap();
+    let geometric = free.update(&camera, None).unwrap().num_triangles();
+    let mut node = DynamicSubdivision::new(cube(), params(3)).unwrap();
+    node.set_frame_model(FrameTimeModel::new([0.0, 1.0, 0.0, 0.0, 0.0]));
+    node.set_control(Control::Budget, 1e5 / 24.0);
+    node.patch_errors();
+    let budgeted = node.update(&camera, None).unwrap().num_triangles();
+    assert!(budgeted < geometric / 2, "{budgeted} against {geometric}");
 }
 
 /// The Loop icosahedron.
