@@ -462,12 +462,22 @@ fn bench_framerate_calibrates_before_the_run() {
     assert_eq!(field::<usize>(cal, "frames"), 30, "{cal}");
     let share: f64 = field(cal, "ceiling_within10");
     assert!((0.0..=1.0).contains(&share), "{cal}");
-    assert!((share * 30.0 - (share * 30.0).round()).abs() < 0.02, "a share of 30 frames: {cal}");
+    assert!(
+        (share * 30.0 - (share * 30.0).round()).abs() < 0.02,
+        "a share of 30 frames: {cal}"
+    );
     assert!(field::<f64>(cal, "median_fps") > 0.0, "{cal}");
     assert!(stdout.contains("faces=116"), "two helmets: {stdout}");
     // Contradictory flags are refused.
     assert_fails(
-        &["bench", "framerate", "--calibrate", "--no-render", "--frames", "1"],
+        &[
+            "bench",
+            "framerate",
+            "--calibrate",
+            "--no-render",
+            "--frames",
+            "1",
+        ],
         "--calibrate",
     );
     assert_fails(

@@ -190,7 +190,11 @@ impl FrameTimeModel {
 
 /// Solves `a θ = b` over the free coefficients (the others 0) by Gaussian elimination with
 /// partial pivoting; `None` if singular.
-fn solve(a: &[[f64; TERMS]; TERMS], b: &[f64; TERMS], free: &[bool; TERMS]) -> Option<[f64; TERMS]> {
+fn solve(
+    a: &[[f64; TERMS]; TERMS],
+    b: &[f64; TERMS],
+    free: &[bool; TERMS],
+) -> Option<[f64; TERMS]> {
     let idx: Vec<usize> = (0..TERMS).filter(|&k| free[k]).collect();
     let n = idx.len();
     let mut m: Vec<Vec<f64>> = idx
@@ -304,7 +308,11 @@ mod tests {
             ..FrameWork::default()
         };
         let truth = 2.0 * (4e-3 + 30e-3 * 2.0);
-        assert!((m.predict(&w) / truth - 1.0).abs() < 0.08, "{}", m.predict(&w));
+        assert!(
+            (m.predict(&w) / truth - 1.0).abs() < 0.08,
+            "{}",
+            m.predict(&w)
+        );
     }
 
     #[test]
@@ -331,6 +339,10 @@ mod tests {
             ..FrameWork::default()
         };
         let truth = 4e-3 + 60e-3;
-        assert!((m.predict(&other) / truth - 1.0).abs() < 0.25, "{}", m.predict(&other));
+        assert!(
+            (m.predict(&other) / truth - 1.0).abs() < 0.25,
+            "{}",
+            m.predict(&other)
+        );
     }
 }

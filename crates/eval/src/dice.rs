@@ -145,7 +145,9 @@ mod tests {
     /// edge itself (a flat regular grid's limit is the plane, its parameter uniform).
     #[test]
     fn rates_are_screen_length_over_the_dicing_rate() {
-        let g = subdiv_test_support::grid(8, 8, false, |i, j| Vec3::new(i as f32 - 4.0, j as f32 - 4.0, 0.0));
+        let g = subdiv_test_support::grid(8, 8, false, |i, j| {
+            Vec3::new(i as f32 - 4.0, j as f32 - 4.0, 0.0)
+        });
         let mesh = Mesh::from_soup(&PolygonSoup::from_faces(g.positions, &g.faces)).unwrap();
         let eval = Evaluator::new(&mesh, Scheme::CatmullClark).unwrap();
         let camera = |eye: Vec3| Camera::new(eye, eye - Vec3::Z * 10.0, Vec3::Y, 90.0, 200, 200);
@@ -163,9 +165,15 @@ mod tests {
         assert_eq!(at(Vec3::new(0.0, 0.0, 10.0), &Dicing::new(0.5)), 20);
         // Looking away to the side: the edge is off screen, at 4 x 3 px.
         assert_eq!(at(Vec3::new(40.0, 0.0, 10.0), &d), 1); // ceil(10 / 12)
-        let fine = Dicing { offscreen_scale: 1.0, ..Dicing::new(1.0) };
+        let fine = Dicing {
+            offscreen_scale: 1.0,
+            ..Dicing::new(1.0)
+        };
         assert_eq!(at(Vec3::new(40.0, 0.0, 10.0), &fine), 10);
-        let capped = Dicing { max_rate: 7, ..Dicing::new(0.5) };
+        let capped = Dicing {
+            max_rate: 7,
+            ..Dicing::new(0.5)
+        };
         assert_eq!(at(Vec3::new(0.0, 0.0, 10.0), &capped), 7);
     }
 }

@@ -105,7 +105,9 @@ pub enum EvalError {
     },
     /// The bilinear scheme: its limit surface is the cage's bilinear patches, which uniform
     /// tessellation (`--depth`) draws exactly; this evaluator covers Catmull-Clark and Loop.
-    #[error("the bilinear scheme is not evaluated at (face, u, v) points: its limit surface is the cage's bilinear patches, which `--depth` tessellates exactly")]
+    #[error(
+        "the bilinear scheme is not evaluated at (face, u, v) points: its limit surface is the cage's bilinear patches, which `--depth` tessellates exactly"
+    )]
     Bilinear,
     /// The cage cannot be refined under the scheme (Loop needs triangles, no doubled
     /// triangles; coordinates within `subdiv_rules::MAX_COORDINATE`).

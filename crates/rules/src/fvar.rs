@@ -23,8 +23,8 @@
 use glam::{Vec2, Vec3};
 use subdiv_mesh::{FVarLinearInterpolation, FaceId, FaceVarying, HalfedgeId, Mesh, VertexId};
 
-use crate::crease::{decrement, fractional_weight, is_infinite, is_semi_sharp};
 use crate::Scheme;
+use crate::crease::{decrement, fractional_weight, is_infinite, is_semi_sharp};
 use crate::refine::RefineKernel;
 
 mod limit;

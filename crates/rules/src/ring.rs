@@ -316,7 +316,11 @@ impl Ring {
             && self.master.is_none()
             && self.inner.len() == n
             && self.inner_off.len() == n + 1
-            && self.inner_off.iter().enumerate().all(|(k, &o)| o as usize == k)
+            && self
+                .inner_off
+                .iter()
+                .enumerate()
+                .all(|(k, &o)| o as usize == k)
             && self.sharp.iter().all(|&s| s == 0.0)
     }
 

@@ -82,7 +82,9 @@ fn pools() -> Vec<rayon::ThreadPool> {
 /// Compares `now` with `tests/<file>` ([`subdiv_test_support::check_recorded`];
 /// `SLATE_HASHES_BLESS` rewrites it).
 fn check_recorded(file: &str, now: &str) {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests").join(file);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests")
+        .join(file);
     subdiv_test_support::check_recorded(&path, now, "SLATE_HASHES_BLESS");
 }
 

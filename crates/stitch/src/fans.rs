@@ -31,6 +31,6 @@ mod index;
 pub(crate) mod test_util;
 
 pub use assembler::{Assembler, MAX_ADAPTIVE_DEPTH};
-pub use geometry::{AdaptiveFrame, UpdateParts};
 pub(crate) use geometry::lap;
+pub use geometry::{AdaptiveFrame, UpdateParts};
 pub use index::FanMethod;

@@ -9,8 +9,8 @@
 
 use std::ops::Range;
 
-use subdiv_rules::{OutOfMemory, TriangleBuffers};
 use subdiv_rules::budget::try_reserve;
+use subdiv_rules::{OutOfMemory, TriangleBuffers};
 
 /// The blocks' slots in a vertex buffer.
 #[derive(Clone, Debug, Default)]

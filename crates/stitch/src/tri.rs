@@ -273,11 +273,7 @@ impl TriAssembler {
     }
 
     /// Recomputes the lattices that are too coarse for `required`; returns how many.
-    fn recompute_blocks(
-        &mut self,
-        mesh: &Mesh,
-        required: &[Option<Depth>],
-    ) -> (Vec<usize>, usize) {
+    fn recompute_blocks(&mut self, mesh: &Mesh, required: &[Option<Depth>]) -> (Vec<usize>, usize) {
         let todo: Vec<usize> = (0..required.len())
             .filter(|&i| required[i] > self.blocks[i].depth)
             .collect();

@@ -75,8 +75,13 @@ fn lines() -> String {
     let mut out = String::new();
     let mut rng = Rng::xorshift(0x5eed_adab);
     let mut line = |case: &str, mode: &str, i: usize, g: &AdaptiveFrame| {
-        writeln!(out, "{case} {mode} {i} {} {:016x}", g.num_triangles(), hash(g))
-            .expect("write to a string");
+        writeln!(
+            out,
+            "{case} {mode} {i} {} {:016x}",
+            g.num_triangles(),
+            hash(g)
+        )
+        .expect("write to a string");
     };
     for (case, mesh, scheme) in cases() {
         let max_depth: Depth = if mesh.num_faces() > 1000 { 2 } else { 3 };

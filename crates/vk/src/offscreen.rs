@@ -242,7 +242,11 @@ impl Renderer {
         // Overlays and legends are not kept: they are drawn after the shared vertices.
         let keep = keep && !options.legend;
         self.held = None;
-        let upload = if keep { Upload::Keep(dirty) } else { Upload::All };
+        let upload = if keep {
+            Upload::Keep(dirty)
+        } else {
+            Upload::All
+        };
         self.draw_with(mesh, view, size, options, readback, upload)?;
         self.held = Some((version, n));
         Ok(())
@@ -308,10 +312,7 @@ impl Renderer {
                     let range = r.start as usize..(r.end as usize).min(mesh.positions.len());
                     scene::pack_vertices(mesh, range.clone(), &mut vertices);
                     let at = range.start as u64 * scene::VERTEX_STRIDE;
-                    ok &= self
-                        .mesh
-                        .upload_at(&vertices, at, layout.total)?
-                        .is_some();
+                    ok &= self.mesh.upload_at(&vertices, at, layout.total)?.is_some();
                 }
                 match self.mesh.upload_at(&bytes, offset, layout.total)? {
                     Some(b) if ok => Some(b),

@@ -34,7 +34,11 @@ fn grid(k: u32, bump: impl Fn(u32, u32) -> f32) -> (Vec<[f32; 3]>, Vec<[f32; 3]>
     for j in 0..=k {
         for i in 0..=k {
             let z = bump(i, j);
-            pos.push([i as f32 / k as f32 * 2.0 - 1.0, j as f32 / k as f32 * 2.0 - 1.0, z]);
+            pos.push([
+                i as f32 / k as f32 * 2.0 - 1.0,
+                j as f32 / k as f32 * 2.0 - 1.0,
+                z,
+            ]);
             nrm.push(Vec3::new(z, 0.5 * z, 1.0).normalize().to_array());
         }
     }
@@ -54,7 +58,15 @@ fn versioned_renders_write_only_the_dirty_vertices_and_match_fresh_ones() {
     let Some(mut r) = renderer() else {
         return;
     };
-    let view = View::look_at(Vec3::new(0.3, -0.4, 4.0), Vec3::ZERO, Vec3::Y, 0.7, 4.0 / 3.0, 0.1, 100.0);
+    let view = View::look_at(
+        Vec3::new(0.3, -0.4, 4.0),
+        Vec3::ZERO,
+        Vec3::Y,
+        0.7,
+        4.0 / 3.0,
+        0.1,
+        100.0,
+    );
     let size = [96, 72];
     let options = RenderOptions {
         samples: Some(1),

@@ -231,7 +231,11 @@ fn write_triangles(p: &TriPatch, n: u32, tris: &mut [u32], ids: &mut Vec<u32>) {
     ids.resize((nu + 1) * (nu + 2) / 2, 0);
     let run = |out: &mut [u32], first: u32, down: bool| {
         for (k, x) in out.iter_mut().enumerate() {
-            *x = if down { first - k as u32 } else { first + k as u32 };
+            *x = if down {
+                first - k as u32
+            } else {
+                first + k as u32
+            };
         }
     };
     let (row0, rest) = ids.split_at_mut(nu + 1);

@@ -394,7 +394,11 @@ fn regular_step(src: &[Vec3A], dst: &mut [Vec3A], n: u32) {
         }
         // Odd child row 2b + 1: edges (a, b)-(a, b + 1) at even i', (a + 1, b)-(a, b + 1) at odd.
         let odd = &mut dst[(2 * b + 2) * w2 + 1..][..2 * len];
-        for ((o, m), h) in odd.chunks_exact_mut(2).zip(mid.windows(3)).zip(hi.windows(3)) {
+        for ((o, m), h) in odd
+            .chunks_exact_mut(2)
+            .zip(mid.windows(3))
+            .zip(hi.windows(3))
+        {
             o[0] = smooth_edge_point(m[1], h[1], h[0], m[2]);
             o[1] = smooth_edge_point(m[2], h[1], m[1], h[2]);
         }

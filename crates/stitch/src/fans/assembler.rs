@@ -10,9 +10,9 @@ use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, PatchGrids, PatchSet};
 
 use super::edges::{Frame, halfedge_sides};
 use super::geometry::{AdaptiveFrame, UpdateParts, lap};
-use crate::slots::Slots;
 use super::index::{Chunk, FanMethod};
 use crate::AssemblyError;
+use crate::slots::Slots;
 
 /// The deepest face depth the assembler accepts: one below [`MAX_DEPTH`], since a patch next to a
 /// deeper one is computed one level deeper for its fan centres and subdivided edges.
@@ -242,7 +242,14 @@ impl Assembler {
         let relink = !changed.is_empty() || out.surface.num_vertices() == 0;
         self.dirty.clear();
         out.surface.write_triangles(VertexScalar::Depth, |b| {
-            self.write_frame(mesh, &depth, active, relink.then_some(&changed), b, &mut stitch)
+            self.write_frame(
+                mesh,
+                &depth,
+                active,
+                relink.then_some(&changed),
+                b,
+                &mut stitch,
+            )
         })??;
         let buffers = lap(&mut t) - stitch;
         out.set_bookkeeping(self.version, (changed.len(), points), &depth, active);
@@ -375,11 +382,7 @@ impl Assembler {
 
     /// Recomputes the blocks that are too coarse for `required`; returns which (ascending),
     /// and their points.
-    fn recompute_blocks(
-        &mut self,
-        mesh: &Mesh,
-        required: &[Option<Depth>],
-    ) -> (Vec<usize>, usize) {
+    fn recompute_blocks(&mut self, mesh: &Mesh, required: &[Option<Depth>]) -> (Vec<usize>, usize) {
         let todo: Vec<usize> = (0..required.len())
             .filter(|&i| required[i] > self.blocks[i].depth)
             .collect();
@@ -521,7 +524,8 @@ mod tests {
             let nf = mesh.num_faces();
             let mut asm = Assembler::new(&mesh, 4).unwrap();
             let mut g = AdaptiveFrame::default();
-            asm.frame(&mesh, &vec![1; nf], &vec![true; nf], &mut g).unwrap();
+            asm.frame(&mesh, &vec![1; nf], &vec![true; nf], &mut g)
+                .unwrap();
             let all = 0..g.surface().num_vertices() as u32;
             assert_eq!(g.dirty_vertices().to_vec(), vec![all]);
             for round in 0..40 {

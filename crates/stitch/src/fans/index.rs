@@ -57,7 +57,9 @@ impl UvSink for PatchUvs<'_> {
     const WANTED: bool = true;
     #[inline(always)]
     fn put(&mut self, c: &Corner) {
-        let v = self.uvs.value_at(self.p.level, self.p.sub, self.face, c.i, c.j, c.e);
+        let v = self
+            .uvs
+            .value_at(self.p.level, self.p.sub, self.face, c.i, c.j, c.e);
         self.out.push(v);
     }
 }
@@ -281,9 +283,8 @@ impl Frame<'_> {
                     let [a, b, c, e] = quad.map(|k| g[k].0);
                     let ids = [a, b, c, e];
                     let [o0, o1, o2, o3, o4, o5] = order;
-                    ch.tris.extend_from_slice(&[
-                        ids[o0], ids[o1], ids[o2], ids[o3], ids[o4], ids[o5],
-                    ]);
+                    ch.tris
+                        .extend_from_slice(&[ids[o0], ids[o1], ids[o2], ids[o3], ids[o4], ids[o5]]);
                     continue;
                 }
                 let at = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];

@@ -14,6 +14,5 @@ pub use mesh::RenderMesh;
 pub use options::{RenderOptions, Shading};
 pub(crate) use pack::{
     Layout, VERTEX_STRIDE, line_push_constants, mesh_push_constants, overlay_push_constants, pack,
-    pack_vertices,
-    pack_from, scalar_range,
+    pack_from, pack_vertices, scalar_range,
 };

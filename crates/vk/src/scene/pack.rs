@@ -155,7 +155,11 @@ fn scalar(mesh: &RenderMesh<'_>, i: usize) -> f32 {
 
 /// The packed shared vertices `range` of `mesh` (the bytes of [`pack`]'s vertex section at
 /// offset `range.start * VERTEX_STRIDE`), into `out` (cleared first).
-pub(crate) fn pack_vertices(mesh: &RenderMesh<'_>, range: std::ops::Range<usize>, out: &mut Vec<u8>) {
+pub(crate) fn pack_vertices(
+    mesh: &RenderMesh<'_>,
+    range: std::ops::Range<usize>,
+    out: &mut Vec<u8>,
+) {
     out.clear();
     out.reserve(range.len() * VERTEX_STRIDE as usize);
     for i in range {

@@ -46,7 +46,11 @@ impl HudState {
             .map_or_else(|| String::from("-"), |d| d.to_string());
         let target = if self.control.is_on() {
             let t = self.target_fps;
-            format!("{} control, target {t:.0} fps {:.1} ms", self.control.name(), 1e3 / t)
+            format!(
+                "{} control, target {t:.0} fps {:.1} ms",
+                self.control.name(),
+                1e3 / t
+            )
         } else {
             String::from("control off")
         };
