@@ -61,10 +61,37 @@ pub const HOLD: f64 = 0.03;
 pub const SILHOUETTE_PX: f32 = 0.25;
 
 /// Whether face `f` may hold an outline on screen: a silhouette face (its vertex normals turn
-/// from facing the eye to facing away), or one at the boundary or a hole of an open surface
-/// (whose own edge is an outline from any side).
-fn holds_contour(errors: &PatchErrors, a: &Assignment, f: usize) -> bool {
-    a.class[f] == Class::Silhouette || errors.faces[f].outline
+/// from facing the eye to facing away), one at the boundary or a hole of an open surface
+/// (whose own edge is an outline from any side), or a back face whose limit normals are not
+/// all provably turned away ([`crate::PatchError::faces_away`]): on a coarse cage the vertex classes
+/// call a face back whose limit surface still turns to the eye and draws part of the outline.
+fn holds_contour(
+    camera: &Camera,
+    errors: &PatchErrors,
+    spheres: &[Sphere],
+    a: &Assignment,
+    f: usize,
+) -> bool {
+    match a.class[f] {
+        Class::Silhouette => true,
+        _ if errors.faces[f].outline => true,
+        Class::Back => !errors.faces[f].faces_away(camera, &spheres[f]),
+        Class::Front => false,
+    }
+}
+
+/// Per face: whether the predictive control keeps it at or below its geometric depth: the back
+/// faces ([`Class::Back`]) whose limit normals all provably face away from the eye. The other
+/// back faces may hold part of the outline ([`holds_contour`]) and are raised like any face.
+pub fn capped_back_faces(
+    camera: &Camera,
+    errors: &PatchErrors,
+    spheres: &[Sphere],
+    a: &Assignment,
+) -> Vec<bool> {
+    (0..a.class.len())
+        .map(|f| a.class[f] == Class::Back && !holds_contour(camera, errors, spheres, a, f))
+        .collect()
 }
 
 /// Per face: the least depth whose chord error is within [`SILHOUETTE_PX`] on screen, for the
@@ -79,8 +106,17 @@ pub fn silhouette_depths(
 ) -> Vec<Depth> {
     (0..a.class.len())
         .map(|f| {
-            if a.active[f] && holds_contour(errors, a, f) && !outside_view(camera, &spheres[f]) {
-                pixel_error_depth(camera, &spheres[f], &errors.faces[f], SILHOUETTE_PX, max_depth)
+            if a.active[f]
+                && holds_contour(camera, errors, spheres, a, f)
+                && !outside_view(camera, &spheres[f])
+            {
+                pixel_error_depth(
+                    camera,
+                    &spheres[f],
+                    &errors.faces[f],
+                    SILHOUETTE_PX,
+                    max_depth,
+                )
             } else {
                 0
             }
@@ -101,7 +137,7 @@ pub fn face_errors(
     let levels = max_depth as usize + 1;
     let contour: Vec<f32> = (0..a.class.len())
         .map(|f| {
-            if holds_contour(errors, a, f) {
+            if holds_contour(camera, errors, spheres, a, f) {
                 contour_pixels(a.radius[f])
             } else {
                 0.0
@@ -207,8 +243,11 @@ pub struct Choice<'a> {
     /// Per face: its cost ([`FaceCost`]).
     pub costs: &'a [FaceCost],
     /// The frame's classification and geometric depths ([`crate::assign`]): inactive faces are
-    /// not drawn, back faces are never raised above their depth there.
+    /// not drawn.
     pub assignment: &'a Assignment,
+    /// Per face: never raised above its depth in `assignment` (the back faces turned away from
+    /// the eye, [`capped_back_faces`]).
+    pub capped: &'a [bool],
     /// Per face: its least depth.
     pub min_depth: &'a [Depth],
     /// Per face: the depth it is raised to first, as far as the budget allows
@@ -228,7 +267,7 @@ impl Choice<'_> {
     /// The least and the greatest depth face `f` may take.
     fn range(&self, f: usize) -> (Depth, Depth) {
         let lo = self.min_depth[f].min(self.max_depth);
-        let hi = if self.assignment.class[f] == Class::Back {
+        let hi = if self.capped[f] {
             self.assignment.depth[f].clamp(lo, self.max_depth)
         } else {
             self.max_depth
@@ -313,8 +352,7 @@ impl BudgetController {
 
     /// Feeds the last frame's measured and predicted times (seconds).
     pub fn observe(&mut self, measured: f64, predicted: f64) {
-        if !(measured.is_finite() && measured > 0.0 && predicted.is_finite() && predicted > 0.0)
-        {
+        if !(measured.is_finite() && measured > 0.0 && predicted.is_finite() && predicted > 0.0) {
             return;
         }
         if self.seen == WINDOW {
@@ -339,27 +377,42 @@ impl BudgetController {
 
     /// Chooses this frame's depths into `depth` (one per face) and returns the chosen work
     /// (fixed part included) as the model predicts it.
-    pub fn choose(&mut self, c: &Choice<'_>, model: &FrameTimeModel, depth: &mut [Depth]) -> FrameWork {
+    pub fn choose(
+        &mut self,
+        c: &Choice<'_>,
+        model: &FrameTimeModel,
+        depth: &mut [Depth],
+    ) -> FrameWork {
         let n = depth.len();
         let budget = self.budget();
         for (f, d) in depth.iter_mut().enumerate() {
             *d = c.range(f).0;
         }
         let (mut time, _) = c.evaluate(model, depth);
-        // The silhouettes first, cheapest first, as far as they fit.
-        let mut first: Vec<(f64, usize, Depth)> = (0..n.min(c.first.len()))
-            .filter(|&f| c.assignment.active[f])
-            .filter_map(|f| {
+        // The outlines first, one level at a time for all of them together, as far as the
+        // whole level fits: raised face by face instead, the budget would go to a few outline
+        // faces drawn finely while the rest of the outline stays at its least depth.
+        let goal: Vec<Depth> = (0..n)
+            .map(|f| {
                 let (lo, hi) = c.range(f);
-                let to = c.first[f].clamp(lo, hi);
-                (to > depth[f]).then(|| (c.cost(model, f, to) - c.cost(model, f, depth[f]), f, to))
+                match c.first.get(f) {
+                    Some(&to) if c.assignment.active[f] => to.clamp(lo, hi),
+                    _ => lo,
+                }
             })
             .collect();
-        first.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-        for (step, f, to) in first {
-            if time + step <= budget {
-                time += step;
-                depth[f] = to;
+        loop {
+            let step: Vec<usize> = (0..n).filter(|&f| depth[f] < goal[f]).collect();
+            let cost: f64 = step
+                .iter()
+                .map(|&f| c.cost(model, f, depth[f] + 1) - c.cost(model, f, depth[f]))
+                .sum();
+            if step.is_empty() || time + cost > budget {
+                break;
+            }
+            time += cost;
+            for f in step {
+                depth[f] += 1;
             }
         }
         let mut heap: BinaryHeap<Raise> = (0..n)
@@ -393,11 +446,7 @@ impl BudgetController {
                 })
                 .collect();
             let (t_prev, e_prev) = c.evaluate(model, &prev);
-            let (_t_new, e_new) = c.evaluate(model, depth);
-            #[cfg(test)]
-            if std::env::var_os("BUDGET_DEBUG").is_some() {
-                eprintln!("hold? t_prev {t_prev} budget {budget} e_prev {e_prev} e_new {e_new} t_new {_t_new}");
-            }
+            let (_, e_new) = c.evaluate(model, depth);
             if t_prev <= budget * (1.0 + HOLD) && e_prev <= e_new * (1.0 + HOLD) + 1e-6 {
                 depth.copy_from_slice(&prev);
             }

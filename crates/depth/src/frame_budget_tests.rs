@@ -42,7 +42,9 @@ fn scene(n: usize, rng: &mut Rng) -> Scene {
             errors[f * levels + d] = start / fall.powi(d as i32);
         }
     }
-    let weight = (0..n).map(|f| if f % 17 == 0 { 1.25 } else { 1.0 }).collect();
+    let weight = (0..n)
+        .map(|f| if f % 17 == 0 { 1.25 } else { 1.0 })
+        .collect();
     Scene {
         a,
         errors,
@@ -82,10 +84,12 @@ fn run(
                 cached: cached[f],
             })
             .collect();
+        let capped: Vec<bool> = s.a.class.iter().map(|&c| c == Class::Back).collect();
         let choice = Choice {
             errors: &s.errors,
             costs: &costs,
             assignment: &s.a,
+            capped: &capped,
             min_depth: &s.min_depth,
             first: &[],
             max_depth: s.max_depth,
@@ -118,7 +122,10 @@ fn run(
 /// Share of `times` within ±10 % of `1 / fps`.
 fn within(times: &[(f64, Vec<Depth>)], fps: f32) -> f64 {
     let t = 1.0 / f64::from(fps);
-    let ok = times.iter().filter(|(m, _)| (m / t - 1.0).abs() <= 0.1).count();
+    let ok = times
+        .iter()
+        .filter(|(m, _)| (m / t - 1.0).abs() <= 0.1)
+        .count();
     ok as f64 / times.len().max(1) as f64
 }
 
@@ -131,7 +138,10 @@ fn control_converges_and_holds_the_band() {
         let share = within(&frames[30..], 20.0);
         // The machine's own ceiling: about 97 % of its frames lie within ±10 % of their median
         // (one in 50 is a hiccup); control must keep at least 0.9 of that.
-        assert!(share >= 0.9 * 0.97, "seed {seed}: share within ±10 %: {share}");
+        assert!(
+            share >= 0.9 * 0.97,
+            "seed {seed}: share within ±10 %: {share}"
+        );
     }
 }
 
@@ -150,9 +160,15 @@ fn a_change_of_target_is_met_within_ten_frames() {
             .iter()
             .position(|(m, _)| (m / t - 1.0).abs() <= 0.1)
             .expect("reaches the new target");
-        assert!(first < 10, "seed {seed}, {from} -> {to} fps: first in the band after {first}");
+        assert!(
+            first < 10,
+            "seed {seed}, {from} -> {to} fps: first in the band after {first}"
+        );
         let share = within(&frames[switch + 10..], to);
-        assert!(share >= 0.85, "seed {seed}, {from} -> {to} fps: share {share}");
+        assert!(
+            share >= 0.85,
+            "seed {seed}, {from} -> {to} fps: share {share}"
+        );
     }
 }
 
@@ -185,7 +201,9 @@ fn still(seed: u64) {
     let settled = &frames[60..];
     for (i, w) in settled.windows(2).enumerate() {
         if w[0].1 != w[1].1 && std::env::var_os("BUDGET_DEBUG").is_some() {
-            let moved = (0..w[0].1.len()).filter(|&f| w[0].1[f] != w[1].1[f]).count();
+            let moved = (0..w[0].1.len())
+                .filter(|&f| w[0].1[f] != w[1].1[f])
+                .count();
             eprintln!("frame {}: {moved} faces moved", i + 61);
         }
     }
@@ -224,25 +242,52 @@ fn face_errors_fall_with_depth_and_vanish_where_nothing_is_seen() {
         ..crate::DepthParams::default()
     };
     let vd = VertexData::compute(&mesh, Scheme::CatmullClark, p.cone_aperture_deg, max_depth);
-    let camera = Camera::new(Vec3::new(1.6, 1.3, 2.5), Vec3::splat(0.5), Vec3::Y, 45.0, 320, 240);
+    let camera = Camera::new(
+        Vec3::new(1.6, 1.3, 2.5),
+        Vec3::splat(0.5),
+        Vec3::Y,
+        45.0,
+        320,
+        240,
+    );
     let mut a = assign(&mesh, &vd, &spheres, None, &camera, &p);
     let levels = max_depth as usize + 1;
     let e = face_errors(&camera, &errors, &spheres, &a, max_depth);
     assert_eq!(e.len(), 6 * levels);
+    let capped = crate::capped_back_faces(&camera, &errors, &spheres, &a);
     let mut seen = 0;
     for f in 0..6 {
         let row = &e[f * levels..(f + 1) * levels];
-        if a.class[f] == Class::Back {
-            // A closed cube hides its back faces: nothing of them is shown wrong.
+        if capped[f] {
+            // A closed cube hides the faces turned away from the eye: nothing of them shows.
             assert!(row.iter().all(|&x| x == 0.0), "face {f}: {row:?}");
             continue;
         }
         seen += 1;
-        // A visible face shows errors at depth 0 that the deepest depth all but removes.
+        // A visible face, or a back face whose limit surface may still turn to the eye (it may
+        // hold the outline), shows errors at depth 0 that the deepest depth all but removes.
         assert!(row[0] > 0.0, "face {f}: {row:?}");
         assert!(row[levels - 1] < 0.25 * row[0], "face {f}: {row:?}");
     }
     assert!(seen >= 3, "a corner view sees three faces");
+    // Head-on from far away, the face opposite the eye is provably turned away.
+    let far = Camera::new(
+        Vec3::new(0.5, 0.5, 40.0),
+        Vec3::splat(0.5),
+        Vec3::Y,
+        10.0,
+        320,
+        240,
+    );
+    let a_far = assign(&mesh, &vd, &spheres, None, &far, &p);
+    let capped_far = crate::capped_back_faces(&far, &errors, &spheres, &a_far);
+    let e_far = face_errors(&far, &errors, &spheres, &a_far, max_depth);
+    let hidden: Vec<usize> = (0..6).filter(|&f| capped_far[f]).collect();
+    assert!(!hidden.is_empty(), "{:?}", a_far.class);
+    for f in hidden {
+        assert_eq!(a_far.class[f], Class::Back);
+        assert!(e_far[f * levels..(f + 1) * levels].iter().all(|&x| x == 0.0));
+    }
     // An inactive face has no error at any depth.
     let f = (0..6).find(|&f| a.class[f] != Class::Back).unwrap();
     a.active[f] = false;

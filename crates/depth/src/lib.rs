@@ -38,9 +38,9 @@ mod assign;
 pub mod contour;
 mod controller;
 mod curvature;
+mod doi;
 mod frame_budget;
 mod frame_model;
-mod doi;
 mod patch_error;
 mod patch_error_tri;
 pub mod pixel_error;
@@ -54,13 +54,13 @@ pub use assign::{
     projected_radius,
 };
 pub use controller::FrameRateController;
-pub use frame_budget::{
-    BIAS_BAND, BudgetController, Choice, FaceCost, HOLD, SILHOUETTE_PX, face_errors,
-    silhouette_depths,
-};
-pub use frame_model::{FrameTimeModel, FrameWork};
 pub use curvature::VertexData;
 pub use doi::depths_from_face_values;
+pub use frame_budget::{
+    BIAS_BAND, BudgetController, Choice, FaceCost, HOLD, SILHOUETTE_PX, capped_back_faces,
+    face_errors, silhouette_depths,
+};
+pub use frame_model::{FrameTimeModel, FrameWork};
 pub use patch_error::{SAMPLE_LEVELS, patch_errors};
 pub use patch_error_tri::patch_errors_tri;
 pub use pixel_error::{

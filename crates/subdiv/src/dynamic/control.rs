@@ -3,7 +3,7 @@
 
 use subdiv_depth::{
     Assignment, BudgetController, Choice, Class, FaceCost, FrameRateController, FrameTimeModel,
-    FrameWork, PatchErrors, Sphere, face_errors, silhouette_depths,
+    FrameWork, PatchErrors, Sphere, capped_back_faces, face_errors, silhouette_depths,
 };
 use subdiv_mesh::Camera;
 use subdiv_slate::Depth;
@@ -157,10 +157,12 @@ pub(super) fn choose_budget(
         a,
         inputs.max_depth,
     );
+    let capped = capped_back_faces(inputs.camera, inputs.errors, inputs.spheres, a);
     let choice = Choice {
         errors: &errors,
         costs: &costs,
         assignment: a,
+        capped: &capped,
         min_depth,
         first: &first,
         max_depth: inputs.max_depth,
