@@ -392,7 +392,8 @@ impl DynamicSubdivision {
                 (Controller::Budget(_), _)
                     if !self.model_given && self.model.frames() < WARMUP_FRAMES =>
                 {
-                    if self.model.frames() == 1 {
+                    let second_frame = self.model.frames() == 1;
+                    if second_frame {
                         for (u, d) in a.depth.iter_mut().enumerate() {
                             *d = d.saturating_sub(1).max(self.assembler.min_depth(u));
                         }
