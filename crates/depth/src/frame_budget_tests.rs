@@ -286,7 +286,11 @@ fn face_errors_fall_with_depth_and_vanish_where_nothing_is_seen() {
     assert!(!hidden.is_empty(), "{:?}", a_far.class);
     for f in hidden {
         assert_eq!(a_far.class[f], Class::Back);
-        assert!(e_far[f * levels..(f + 1) * levels].iter().all(|&x| x == 0.0));
+        assert!(
+            e_far[f * levels..(f + 1) * levels]
+                .iter()
+                .all(|&x| x == 0.0)
+        );
     }
     // An inactive face has no error at any depth.
     let f = (0..6).find(|&f| a.class[f] != Class::Back).unwrap();

@@ -95,7 +95,14 @@ fn versioned_renders_write_only_the_dirty_vertices_and_match_fresh_ones() {
         .unwrap();
     assert_eq!(v1, fresh_flat);
     let v2 = r
-        .render_versioned(&mesh(&lifted), &view, size, &options, 2, std::slice::from_ref(&rows))
+        .render_versioned(
+            &mesh(&lifted),
+            &view,
+            size,
+            &options,
+            2,
+            std::slice::from_ref(&rows),
+        )
         .unwrap();
     assert_eq!(v2, fresh_lifted);
     // The same version again with nothing dirty keeps everything.
