@@ -36,6 +36,8 @@
 #include <string>
 #include <vector>
 
+#include "obj_cage.h"
+
 using namespace OpenSubdiv;
 
 struct Vec3 {
@@ -48,105 +50,33 @@ struct Vec3 {
     }
 };
 
+// The cage as the benchmarks use it: float positions beside the parsed OBJ (`obj_cage.h`, the
+// reader every harness shares). UVs are dropped: the timed refinement is of positions only.
 struct Cage {
     std::vector<Vec3> positions;
-    std::vector<int> vertsPerFace;
-    std::vector<int> faceVerts;
-    std::vector<int> creasePairs;
-    std::vector<float> creaseWeights;
-    std::vector<int> corners;
-    std::vector<float> cornerWeights;
-    Sdc::Options options;
+    objcage::Cage obj;
     Sdc::SchemeType scheme = Sdc::SCHEME_CATMARK;
 };
 
-static void fail(std::string const &what) {
-    std::fprintf(stderr, "bench_osd: %s\n", what.c_str());
-    std::exit(1);
-}
+static void fail(std::string const &what) { objcage::fail("bench_osd", what); }
 
 // OBJ with OpenSubdiv's tags (fixtures/reference/OSD_REFERENCE_FORMAT.md).
 static Cage readObj(char const *path) {
-    std::ifstream in(path);
-    if (!in) fail(std::string("cannot open ") + path);
     Cage c;
-    c.options.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-    c.options.SetCreasingMethod(Sdc::Options::CREASE_UNIFORM);
-    std::string line;
-    while (std::getline(in, line)) {
-        std::istringstream ss(line);
-        std::string kw;
-        if (!(ss >> kw)) continue;
-        if (kw == "v") {
-            Vec3 p;
-            ss >> p.x >> p.y >> p.z;
-            c.positions.push_back(p);
-        } else if (kw == "f") {
-            std::string tok;
-            int n = 0;
-            while (ss >> tok) {
-                int i = std::atoi(tok.c_str());
-                if (i < 0) i += (int)c.positions.size() + 1;
-                c.faceVerts.push_back(i - 1);
-                ++n;
-            }
-            c.vertsPerFace.push_back(n);
-        } else if (kw == "t") {
-            std::string name, counts;
-            ss >> name >> counts;
-            int ni = 0, nf = 0, ns = 0;
-            std::sscanf(counts.c_str(), "%d/%d/%d", &ni, &nf, &ns);
-            std::vector<int> ints(ni);
-            std::vector<float> floats(nf);
-            std::vector<std::string> strs(ns);
-            for (int &i : ints) ss >> i;
-            for (float &f : floats) ss >> f;
-            for (std::string &s : strs) ss >> s;
-            if (name == "crease") {
-                for (int k = 0; k + 1 < ni; ++k) {
-                    c.creasePairs.push_back(ints[k]);
-                    c.creasePairs.push_back(ints[k + 1]);
-                    c.creaseWeights.push_back(nf == 1 ? floats[0] : floats[k]);
-                }
-            } else if (name == "corner") {
-                for (int k = 0; k < ni; ++k) {
-                    c.corners.push_back(ints[k]);
-                    c.cornerWeights.push_back(nf == 1 ? floats[0] : floats[k]);
-                }
-            } else if (name == "interpolateboundary" && ni == 1) {
-                c.options.SetVtxBoundaryInterpolation(
-                    ints[0] == 0   ? Sdc::Options::VTX_BOUNDARY_NONE
-                    : ints[0] == 1 ? Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
-                                   : Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-            } else if (name == "creasemethod" && ns == 1) {
-                c.options.SetCreasingMethod(strs[0] == "chaikin" ? Sdc::Options::CREASE_CHAIKIN
-                                                                 : Sdc::Options::CREASE_UNIFORM);
-            } else if (name == "hole") {
-                fail("hole tags are not supported by bench_osd");
-            }
-        }
+    c.obj = objcage::readObj(path, "bench_osd");
+    if (!c.obj.holes.empty()) fail("hole tags are not supported by bench_osd");
+    c.obj.uvs.clear();
+    c.obj.faceUvs.clear();
+    c.positions.resize(c.obj.numVertices());
+    for (int v = 0; v < c.obj.numVertices(); ++v) {
+        double const *p = &c.obj.positions[3 * v];
+        c.positions[v] = Vec3{(float)p[0], (float)p[1], (float)p[2]};
     }
-    if (c.vertsPerFace.empty()) fail(std::string("no faces in ") + path);
     return c;
 }
 
 static Far::TopologyRefiner *createRefiner(Cage const &c) {
-    typedef Far::TopologyDescriptor Descriptor;
-    Descriptor d;
-    d.numVertices = (int)c.positions.size();
-    d.numFaces = (int)c.vertsPerFace.size();
-    d.numVertsPerFace = c.vertsPerFace.data();
-    d.vertIndicesPerFace = c.faceVerts.data();
-    d.numCreases = (int)c.creaseWeights.size();
-    d.creaseVertexIndexPairs = c.creasePairs.data();
-    d.creaseWeights = c.creaseWeights.data();
-    d.numCorners = (int)c.cornerWeights.size();
-    d.cornerVertexIndices = c.corners.data();
-    d.cornerWeights = c.cornerWeights.data();
-    Far::TopologyRefiner *r = Far::TopologyRefinerFactory<Descriptor>::Create(
-        d, Far::TopologyRefinerFactory<Descriptor>::Options(c.scheme, c.options));
-    if (!r) fail("TopologyRefinerFactory::Create failed");
-    return r;
+    return objcage::createRefiner(c.obj, c.scheme, "bench_osd");
 }
 
 static inline Vec3 unitCross(Vec3 const &a, Vec3 const &b) {

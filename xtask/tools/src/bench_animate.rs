@@ -9,10 +9,10 @@
 //! into kept indices). Each figure is the median over [`ROUNDS`] interleaved rounds of each
 //! program's median frame; both sides must update the same number of points.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 
 use crate::bench_osd::{HARNESS_FLAGS, field, fields, median, output};
 
@@ -37,30 +37,6 @@ const FRAMES: u32 = 48;
 /// Interleaved rounds per cage and depth.
 const ROUNDS: usize = 3;
 
-/// Compiles the C++ program unless the binary is newer than its sources.
-fn build_program(root: &Path, target: &Path) -> Result<PathBuf> {
-    let src = root.join("xtask/osd/bench_animate.cpp");
-    let included = root.join("xtask/osd/bench_osd.cpp");
-    let exe = target.join("osd/bench_animate-O3-native");
-    let modified = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
-    let newest = modified(&src).max(modified(&included));
-    if modified(&exe).is_some_and(|e| newest.is_some_and(|s| e >= s)) {
-        return Ok(exe);
-    }
-    std::fs::create_dir_all(exe.parent().expect("has a parent"))?;
-    println!("bench-osd: compiling {}", src.display());
-    output(
-        Command::new("g++")
-            .args(HARNESS_FLAGS)
-            .arg("-o")
-            .arg(&exe)
-            .arg(&src)
-            .arg("-losdCPU"),
-    )
-    .context("compiling the OpenSubdiv animation benchmark")?;
-    Ok(exe)
-}
-
 /// One row: a cage at a depth.
 struct Row {
     cage: String,
@@ -76,8 +52,9 @@ struct Row {
 
 /// Measures every cage and depth (each program's output appended to `raw`) and returns the
 /// rows as a Markdown table.
-pub fn rows(root: &Path, target: &Path, subdiv: &Path, raw: &mut String) -> Result<String> {
-    let osd = build_program(root, target)?;
+pub fn rows(root: &Path, subdiv: &Path, raw: &mut String) -> Result<String> {
+    let osd =
+        crate::fuzz_osd::build_harness_with(root, "bench_animate", HARNESS_FLAGS, "-O3-native")?;
     raw.push_str(&format!(
         "# moving cage: g++ {} xtask/osd/bench_animate.cpp -losdCPU; {FRAMES} frames; rounds: \
          {ROUNDS}, interleaved: bench_animate, then subdiv bench animate --threads 1\n",

@@ -13,7 +13,7 @@
 //! Without libosd-dev it fails naming the install command; `--install` installs it with apt
 //! when running as root.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 use anyhow::{Context, Result, bail};
@@ -81,29 +81,6 @@ pub(crate) fn field(f: &[(String, f64)], key: &str) -> Result<f64> {
         .find(|(k, _)| k == key)
         .map(|(_, v)| *v)
         .with_context(|| format!("no {key}= field"))
-}
-
-/// Compiles the C++ benchmark unless the binary is newer than its source.
-fn build_program(root: &Path, target: &Path) -> Result<PathBuf> {
-    let src = root.join("xtask/osd/bench_osd.cpp");
-    // Named by its flags, so a binary built with other flags is never reused.
-    let exe = target.join("osd/bench_osd-O3-native");
-    let modified = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
-    if modified(&exe).is_some_and(|e| modified(&src).is_some_and(|s| e >= s)) {
-        return Ok(exe);
-    }
-    std::fs::create_dir_all(exe.parent().expect("has a parent"))?;
-    println!("bench-osd: compiling {}", src.display());
-    output(
-        Command::new("g++")
-            .args(HARNESS_FLAGS)
-            .arg("-o")
-            .arg(&exe)
-            .arg(&src)
-            .arg("-losdCPU"),
-    )
-    .context("compiling the OpenSubdiv benchmark (is g++ installed? apt-get install -y g++)")?;
-    Ok(exe)
 }
 
 /// The subdiv configurations timed beside OpenSubdiv: (label, threads, extra arguments). The
@@ -203,7 +180,7 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
         }
     }
     let target = xtask::target_dir();
-    let osd = build_program(root, &target)?;
+    let osd = crate::fuzz_osd::build_harness_with(root, "bench_osd", HARNESS_FLAGS, "-O3-native")?;
     xtask::run({
         let mut c = xtask::cargo();
         c.args(["build", "--release", "-p", "subdiv-cli"]);
@@ -234,7 +211,7 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
         }
     }
     // The moving-cage rows (bench_animate.rs).
-    let moving = crate::bench_animate::rows(root, &target, &subdiv, &mut raw)?;
+    let moving = crate::bench_animate::rows(root, &subdiv, &mut raw)?;
     raw.push_str(&format!("# load average at end: {}\n", load_average()));
     let table = table(&rows) + &moving;
     println!("{table}");

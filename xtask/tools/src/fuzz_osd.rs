@@ -179,8 +179,9 @@ pub fn short_round(root: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Compiles `xtask/osd/<name>.cpp` unless the binary is newer than its source and the
-/// shared header `xtask/osd/obj_cage.h`.
+/// Compiles `xtask/osd/<name>.cpp` unless the binary is newer than every file in `xtask/osd`
+/// (its source, the shared header `obj_cage.h`, and the sources one harness includes from
+/// another, as `bench_animate.cpp` includes `bench_osd.cpp`).
 pub(crate) fn build_harness(root: &Path, name: &str) -> Result<PathBuf> {
     build_harness_with(root, name, &["-O2", "-std=c++14"], "")
 }
@@ -194,15 +195,17 @@ pub(crate) fn build_harness_with(
     suffix: &str,
 ) -> Result<PathBuf> {
     let src = root.join(format!("xtask/osd/{name}.cpp"));
-    let header = root.join("xtask/osd/obj_cage.h");
     let exe = xtask::target_dir().join(format!("osd/{name}{suffix}"));
     let modified = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
-    let newest = modified(&src).max(modified(&header));
+    let newest = std::fs::read_dir(root.join("xtask/osd"))?
+        .filter_map(|e| e.ok())
+        .filter_map(|e| modified(&e.path()))
+        .max();
     if modified(&exe).is_some_and(|e| newest.is_some_and(|s| e >= s)) {
         return Ok(exe);
     }
     std::fs::create_dir_all(exe.parent().expect("has a parent"))?;
-    println!("fuzz-osd: compiling {}", src.display());
+    println!("xtask: compiling {}", src.display());
     crate::bench_osd::output(
         Command::new("g++")
             .args(flags)
