@@ -6,20 +6,23 @@
 //! - **Benefit** ([`face_errors`]): per face and depth, the pixels the frame would show wrong —
 //!   the visible pixels whose drawn normal turns beyond the shading tolerance
 //!   ([`OutlierTable`], the pixel-error mode's measurement) and, on the faces that may hold an
-//!   outline (silhouette faces, faces at a boundary or hole), the pixels between the drawn and
-//!   the true outline (its length on screen times the chord error projected to pixels).
+//!   outline (silhouette faces, faces at a boundary or hole, back faces not provably turned
+//!   away), the pixels between the drawn and the true outline (its length on screen times the
+//!   chord error projected to pixels).
 //! - **Cost** ([`FaceCost`]): per face and depth, its triangles, and the limit points its block
 //!   needs tessellated (and uploaded) when the cached block is coarser, priced by the
 //!   [`FrameTimeModel`] fitted to the machine.
 //! - **Choice** ([`BudgetController::choose`]): every face starts at its least depth; first the
-//!   outlines: each face that may hold one is raised, cheapest first, to the least depth whose chord
-//!   error stays within [`SILHOUETTE_PX`] on screen ([`silhouette_depths`]), as far as the
-//!   budget allows (a wrong silhouette is the error a viewer sees first, and it takes few
-//!   faces); then raises are taken greedily by error removed per predicted second (looking
-//!   ahead over every deeper depth, so a step whose first level buys little but second a lot
-//!   is seen), while the predicted frame time fits the budget. Back faces are never raised above their geometric
-//!   depth; a frame's tessellation is part of its own cost, so a large raise spreads over a
-//!   few frames instead of one slow one.
+//!   outlines: the faces that may hold one rise together, one level at a time while the whole
+//!   level fits the budget, towards the least depth whose chord error stays within
+//!   [`SILHOUETTE_PX`] on screen ([`silhouette_depths`]) (a wrong silhouette is the error a
+//!   viewer sees first; raised face by face, a short budget would go to a few faces drawn finely
+//!   while the rest of the outline stays coarse); then raises are taken greedily by error removed
+//!   per predicted second (looking ahead over every deeper depth, so a step whose first level
+//!   buys little but second a lot is seen), while the predicted frame time fits the budget.
+//!   Back faces provably turned away ([`capped_back_faces`]) are never raised above their
+//!   geometric depth; a frame's tessellation is part of its own cost, so a large raise spreads
+//!   over a few frames instead of one slow one.
 //! - **Feedback** ([`BudgetController::observe`]): the budget is the target shrunk by the
 //!   model's recent bias, the median of the last [`WINDOW`] measured-over-predicted ratios,
 //!   followed only as far as it strays beyond [`BIAS_BAND`]: one noisy frame moves no depth.
