@@ -18,7 +18,8 @@
 //! bit: after welding identical coordinates every inner edge has two triangles. Where a
 //! point's side of a crease has its own normal (a sharp edge, or a vertex with sharpness),
 //! the other faces' corners there carry their side's one-sided normal
-//! ([`LimitMesh::corner_normals`]).
+//! ([`LimitMesh::corner_normals`]); inside a semi-sharp crease's span whose band is finer than
+//! the tessellation, that is the normal just beyond the band on each side (`semi_sharp_offset`).
 
 use glam::{DVec3, Vec3};
 use subdiv_mesh::{EdgeId, FaceId, HalfedgeId, Mesh, VertexId};
@@ -92,6 +93,28 @@ struct Builder<'a> {
 struct Side {
     points: Vec<u32>,
     sided: Vec<Option<Query>>,
+}
+
+/// How far into its face (in the face's parameter) the one-sided normal of a point inside a
+/// semi-sharp crease's span is taken: just beyond the crease's band, `2 · 2^-s` for sharpness
+/// `s` (the crease rule holds for `s` levels, then smooth rules round it off over about one
+/// level's cells), when that band is narrower than half the spacing `1 / rate` of the points
+/// next to it; 0 otherwise. The exact limit normal on a semi-sharp crease is the smooth one, yet
+/// the surface turns within the band: a band finer than the tessellation would be drawn as a
+/// wide blend of normals across each triangle, where the surface shows a crease. Infinitely
+/// sharp creases (0 here) get their one-sided normal from the face itself; bands the
+/// tessellation resolves keep the exact normals.
+fn semi_sharp_offset(sharpness: f32, rate: u32) -> f64 {
+    if !(sharpness > 0.0 && sharpness < subdiv_mesh::SHARPNESS_INFINITE) {
+        return 0.0;
+    }
+    let band = 2.0 * (-f64::from(sharpness)).exp2();
+    let spacing = 1.0 / f64::from(rate.max(1));
+    if band < spacing {
+        band.min(0.5 * spacing)
+    } else {
+        0.0
+    }
 }
 
 impl<'a> Builder<'a> {
@@ -195,7 +218,9 @@ impl<'a> Builder<'a> {
     ) -> Side {
         let r = self.rate[h.edge().idx()];
         let points: Vec<u32> = (a..=b).map(|m| self.edge_point(h, m)).collect();
-        let sharp_edge = self.mesh.edge_sharpness(h.edge()) > 0.0;
+        let sharpness = self.mesh.edge_sharpness(h.edge());
+        let sharp_edge = sharpness > 0.0;
+        let inward = semi_sharp_offset(sharpness, r);
         let ends = [self.mesh.from(h), self.mesh.to(h)];
         let sided = (a..=b)
             .map(|m| {
@@ -209,7 +234,17 @@ impl<'a> Builder<'a> {
                 let sharp = sharp_edge || corner.is_some_and(|v| self.sharp_vertex(v));
                 sharp.then(|| {
                     let [u, v] = domain.edge_point(k, f64::from(m) / f64::from(r));
-                    Query::new(f.0, u, v)
+                    match (corner, domain) {
+                        // Inside a semi-sharp crease's span: the normal just beyond its band,
+                        // towards the face's centre.
+                        (None, Domain::Quad | Domain::Triangle) if inward > 0.0 => {
+                            let [cu, cv] = domain.centre();
+                            let (du, dv) = (cu - u, cv - v);
+                            let len = du.hypot(dv).max(1e-12);
+                            Query::new(f.0, u + inward * du / len, v + inward * dv / len)
+                        }
+                        _ => Query::new(f.0, u, v),
+                    }
                 })
             })
             .collect();

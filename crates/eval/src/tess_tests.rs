@@ -146,3 +146,49 @@ fn counts_of_a_lone_quad_and_triangle() {
         (28, 36)
     );
 }
+
+/// A cube with every edge semi-sharp (sharpness 5: a band of `2 · 2^-5` of a face): coarse
+/// rates draw each crease with one-sided normals taken just beyond the band, so the two faces
+/// at an edge point carry normals far apart; rates that resolve the band keep the exact
+/// (smooth) normal there, one per point.
+#[test]
+fn semi_sharp_creases_are_one_sided_below_the_tessellation() {
+    let mut obj = String::from(
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+         f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n",
+    );
+    for (a, b) in [
+        (0, 1),
+        (1, 2),
+        (2, 3),
+        (3, 0),
+        (4, 5),
+        (5, 6),
+        (6, 7),
+        (7, 4),
+        (0, 4),
+        (1, 5),
+        (2, 6),
+        (3, 7),
+    ] {
+        obj.push_str(&format!("t crease 2/1/0 {a} {b} 5\n"));
+    }
+    let cube = Mesh::from_soup(&subdiv_mesh::parse_obj(&obj).unwrap()).unwrap();
+    let eval = Evaluator::new(&cube, Scheme::CatmullClark).unwrap();
+    let turned = |rate: u32| {
+        let t = tessellate_rates(&eval, &EdgeRates::uniform(&cube, rate)).unwrap();
+        let (normals, tris) = (t.surface.normals(), t.surface.triangles());
+        t.surface
+            .corner_normals()
+            .iter()
+            .filter(|(corner, n)| {
+                let shared = Vec3::from(normals[tris[*corner as usize] as usize]);
+                Vec3::from(*n).angle_between(shared).to_degrees() > 20.0
+            })
+            .count()
+    };
+    // Rate 4: 3 inner points on each of 12 edges, both faces turned away from the blend.
+    assert!(turned(4) >= 2 * 12 * 3, "{}", turned(4));
+    // Rate 32 resolves the band (spacing 1/32 < 1/16): no one-sided normals inside the spans.
+    assert_eq!(turned(32), 0);
+}
