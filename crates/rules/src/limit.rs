@@ -11,13 +11,13 @@ use crate::{Depth, RulesError, Scheme};
 mod bilinear;
 mod channel;
 mod mesh;
+mod params;
 mod split;
 mod topology;
 pub use bilinear::{bilinear_patches, inside_one_patch};
 pub use channel::LimitChannel;
-pub use mesh::{
-    KeyedWrite, LimitMesh, LimitMeshError, TriangleBuffers, VertexParams, VertexScalar,
-};
+pub use mesh::{KeyedWrite, LimitMesh, LimitMeshError, TriangleBuffers, VertexScalar};
+pub use params::VertexParams;
 pub use topology::TopologyKey;
 use topology::TopologyStamp;
 

@@ -4,6 +4,7 @@
 use glam::Vec3;
 use subdiv_mesh::ObjData;
 
+use super::params::VertexParams;
 use super::topology::{TopologyKey, TopologyStamp};
 use crate::OutOfMemory;
 use crate::budget::{try_reserve, try_resize};
@@ -112,34 +113,6 @@ impl PartialEq for LimitMesh {
             && *scalar == o.scalar
             && *channels == o.channels
             && *params == o.params
-    }
-}
-
-/// Where each vertex of a surface is on the limit surface: the cage face and the `(u, v)` in
-/// that face's parameter domain (OpenSubdiv's `Bfr` parameterisation, `subdiv_eval::Domain`),
-/// for ptex-style textures and displacement.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct VertexParams {
-    /// The cage face of each vertex.
-    pub face: Vec<u32>,
-    /// The `(u, v)` of each vertex in its face.
-    pub uv: Vec<[f32; 2]>,
-}
-
-impl VertexParams {
-    /// An empty set with room for `n` vertices.
-    pub fn with_capacity(n: usize) -> VertexParams {
-        VertexParams {
-            face: Vec::with_capacity(n),
-            uv: Vec::with_capacity(n),
-        }
-    }
-
-    /// Appends vertex `i` of `src`.
-    #[inline]
-    pub(super) fn push_from(&mut self, src: &VertexParams, i: usize) {
-        self.face.push(src.face[i]);
-        self.uv.push(src.uv[i]);
     }
 }
 
@@ -323,26 +296,6 @@ impl LimitMesh {
     /// Drops the per-vertex scalar.
     pub fn clear_scalar(&mut self) {
         self.scalar = None;
-    }
-
-    /// Each vertex's parameter point, when set.
-    #[inline]
-    pub fn params(&self) -> Option<&VertexParams> {
-        self.params.as_ref()
-    }
-
-    /// Sets each vertex's parameter point (checked: one per position).
-    pub fn set_params(&mut self, params: VertexParams) -> Result<(), LimitMeshError> {
-        let n = self.positions.len();
-        if params.face.len() != n || params.uv.len() != n {
-            return Err(LimitMeshError(format!(
-                "{} parameter faces and {} (u, v) for {n} positions",
-                params.face.len(),
-                params.uv.len()
-            )));
-        }
-        self.params = Some(params);
-        Ok(())
     }
 
     /// Sets the one-sided corner normals (checked: ascending, each naming a corner).

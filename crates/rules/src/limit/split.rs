@@ -4,7 +4,7 @@
 
 use std::collections::HashMap;
 
-use super::mesh::VertexParams;
+use super::params::VertexParams;
 use super::{LimitChannel, LimitMesh};
 
 /// What makes a vertex of the split form: the vertex, its one-sided normal (bits), its UV

@@ -1,0 +1,54 @@
+//! [`VertexParams`]: where each vertex of a [`LimitMesh`] lies on the limit surface, for
+//! ptex-style textures and displacement (the exact tessellations write them).
+
+use super::{LimitMesh, LimitMeshError};
+
+/// Where each vertex of a surface is on the limit surface: the cage face and the `(u, v)` in
+/// that face's parameter domain (OpenSubdiv's `Bfr` parameterisation, `subdiv_eval::Domain`),
+/// for ptex-style textures and displacement.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct VertexParams {
+    /// The cage face of each vertex.
+    pub face: Vec<u32>,
+    /// The `(u, v)` of each vertex in its face.
+    pub uv: Vec<[f32; 2]>,
+}
+
+impl VertexParams {
+    /// An empty set with room for `n` vertices.
+    pub fn with_capacity(n: usize) -> VertexParams {
+        VertexParams {
+            face: Vec::with_capacity(n),
+            uv: Vec::with_capacity(n),
+        }
+    }
+
+    /// Appends vertex `i` of `src`.
+    #[inline]
+    pub(super) fn push_from(&mut self, src: &VertexParams, i: usize) {
+        self.face.push(src.face[i]);
+        self.uv.push(src.uv[i]);
+    }
+}
+
+impl LimitMesh {
+    /// Each vertex's parameter point, when set.
+    #[inline]
+    pub fn params(&self) -> Option<&VertexParams> {
+        self.params.as_ref()
+    }
+
+    /// Sets each vertex's parameter point (checked: one per position).
+    pub fn set_params(&mut self, params: VertexParams) -> Result<(), LimitMeshError> {
+        let n = self.positions.len();
+        if params.face.len() != n || params.uv.len() != n {
+            return Err(LimitMeshError(format!(
+                "{} parameter faces and {} (u, v) for {n} positions",
+                params.face.len(),
+                params.uv.len()
+            )));
+        }
+        self.params = Some(params);
+        Ok(())
+    }
+}
