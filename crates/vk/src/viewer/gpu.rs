@@ -9,10 +9,11 @@ use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
 use winit::window::Window;
 
 use super::SwapchainFault;
+use super::slot::{Slot, begin_commands, create_slot};
 use super::swapchain::{Swapchain, record_blit};
 use crate::context::{Context, ContextOptions};
 use crate::error::{Result, VkError, VkResultExt};
-use crate::frame::{self, FrameInputs, MeshBuffer, Readback, Target};
+use crate::frame::{self, FrameInputs, Readback, Target};
 use crate::overlay::Overlay;
 use crate::pipeline::Pipelines;
 use crate::samples;
@@ -24,19 +25,6 @@ const FRAMES_IN_FLIGHT: usize = 2;
 /// Surface losses in a row (no frame presented in between) that are recovered from by
 /// creating the surface again; one more ends the viewer with [`VkError::SurfaceLost`].
 const SURFACE_RETRIES: u32 = 3;
-
-struct Slot {
-    cmd: vk::CommandBuffer,
-    fence: vk::Fence,
-    acquired: vk::Semaphore,
-    target: Option<Target>,
-    /// Vertex + index buffer of this slot: indices rebuilt per frame,
-    /// double-buffered across slots so the CPU never overwrites what the GPU
-    /// still reads.
-    mesh: MeshBuffer,
-    /// [`super::SourceFrame::vertex_version`] of the vertices in `mesh`.
-    vertex_version: Option<u64>,
-}
 
 pub(super) struct Gpu {
     pub(super) ctx: Context,
@@ -504,69 +492,6 @@ pub(super) fn unless_lost<T>(
         Ok(v) => Ok(Some(v)),
         Err(vk::Result::ERROR_SURFACE_LOST_KHR) => Ok(None),
         Err(result) => Err(VkError::Vulkan { call, result }),
-    }
-}
-
-/// Resets the slot's fence and command buffer and begins recording.
-fn begin_commands(device: &ash::Device, fence: vk::Fence, cmd: vk::CommandBuffer) -> Result<()> {
-    // SAFETY: the slot's previous submission completed (`draw` waited on its
-    // fence), so the fence may be reset and the GPU no longer reads its command
-    // buffer, target or mesh buffer; `cmd` comes from a pool created with
-    // RESET_COMMAND_BUFFER.
-    unsafe {
-        device.reset_fences(&[fence]).call("vkResetFences")?;
-        device
-            .reset_command_buffer(cmd, vk::CommandBufferResetFlags::empty())
-            .call("vkResetCommandBuffer")?;
-        device
-            .begin_command_buffer(
-                cmd,
-                &vk::CommandBufferBeginInfo::default()
-                    .flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT),
-            )
-            .call("vkBeginCommandBuffer")?;
-    }
-    Ok(())
-}
-
-/// A command buffer, a signalled fence and a semaphore for one frame in flight.
-fn create_slot(device: &ash::Device, pool: vk::CommandPool) -> Result<Slot> {
-    let alloc = vk::CommandBufferAllocateInfo::default()
-        .command_pool(pool)
-        .level(vk::CommandBufferLevel::PRIMARY)
-        .command_buffer_count(1);
-    // SAFETY: `pool` was created from `device` and is used by this thread only;
-    // the create infos live through the calls. If the semaphore fails, the fence
-    // made just before is destroyed here (never used); the command buffer is
-    // freed with the pool by `Drop for Gpu`.
-    unsafe {
-        let cmd = device
-            .allocate_command_buffers(&alloc)
-            .call("vkAllocateCommandBuffers")?;
-        let fence = device
-            .create_fence(
-                &vk::FenceCreateInfo::default().flags(vk::FenceCreateFlags::SIGNALED),
-                None,
-            )
-            .call("vkCreateFence")?;
-        let acquired = match device.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) {
-            Ok(s) => s,
-            Err(result) => {
-                device.destroy_fence(fence, None);
-                return Err(VkError::Vulkan {
-                    call: "vkCreateSemaphore",
-                    result,
-                });
-            }
-        };
-        Ok(Slot {
-            cmd: cmd.first().copied().unwrap_or_default(),
-            fence,
-            acquired,
-            target: None,
-            mesh: MeshBuffer::default(),
-            vertex_version: None,
-        })
     }
 }
 

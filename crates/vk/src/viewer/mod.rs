@@ -18,6 +18,7 @@ mod gpu;
 mod hud;
 mod input;
 mod playback;
+mod slot;
 mod swapchain;
 
 use std::path::PathBuf;
