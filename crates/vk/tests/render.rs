@@ -4,109 +4,10 @@
 //! fails on any validation message. Without any Vulkan driver the tests print
 //! a note and pass, unless `SUBDIV_VK_REQUIRE_DRIVER=1` is set.
 
-use std::process::Command;
+mod common;
 
-use subdiv_vk::glam::Vec3;
-use subdiv_vk::{
-    ContextOptions, OrbitCamera, RenderMesh, RenderOptions, Renderer, Shading, Validation, View,
-    VkError,
-};
-
-/// A renderer with validation when available; `None` (test skipped) without a driver.
-fn renderer() -> Option<Renderer> {
-    let options = ContextOptions {
-        validation: Validation::IfAvailable,
-        ..Default::default()
-    };
-    match Renderer::with_options(&options) {
-        Ok(r) => {
-            let layer = "/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json";
-            if std::path::Path::new(layer).exists() {
-                assert!(
-                    r.validation_enabled(),
-                    "validation layer installed but not enabled"
-                );
-            }
-            Some(r)
-        }
-        Err(e @ (VkError::LoaderMissing { .. } | VkError::NoDriver { .. }))
-            if std::env::var("SUBDIV_VK_REQUIRE_DRIVER").as_deref() != Ok("1") =>
-        {
-            eprintln!("skipping: {e}");
-            None
-        }
-        Err(e) => panic!("cannot create renderer: {e}"),
-    }
-}
-
-/// Drops the renderer and fails on any validation message, teardown included.
-fn finish(renderer: Renderer) {
-    let log = renderer.validation_log();
-    drop(renderer);
-    let messages = log.take();
-    assert!(
-        messages.is_empty(),
-        "validation messages:\n{}",
-        messages.join("\n")
-    );
-}
-
-/// A 2x2 square in the z = 0 plane, as two triangles, with its 4 outline edges.
-struct Square {
-    positions: Vec<[f32; 3]>,
-    normals: Vec<[f32; 3]>,
-    triangles: Vec<u32>,
-    edges: Vec<[u32; 2]>,
-    scalars: Vec<f32>,
-}
-
-fn square(scalar: f32) -> Square {
-    Square {
-        positions: vec![
-            [-1.0, -1.0, 0.0],
-            [1.0, -1.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [-1.0, 1.0, 0.0],
-        ],
-        normals: vec![[0.0, 0.0, 1.0]; 4],
-        triangles: vec![0, 1, 2, 0, 2, 3],
-        edges: vec![[0, 1], [1, 2], [2, 3], [3, 0]],
-        scalars: vec![scalar; 4],
-    }
-}
-
-impl Square {
-    fn mesh(&self) -> RenderMesh<'_> {
-        RenderMesh {
-            positions: &self.positions,
-            normals: &self.normals,
-            triangles: &self.triangles,
-            edges: Some(&self.edges),
-            scalars: Some(&self.scalars),
-            lines: None,
-        }
-    }
-}
-
-/// Looking straight at the square from z = 4; it fills the middle of the image.
-fn front_view(aspect: f32) -> View {
-    View::look_at(
-        Vec3::new(0.0, 0.0, 4.0),
-        Vec3::ZERO,
-        Vec3::Y,
-        0.6,
-        aspect,
-        0.1,
-        100.0,
-    )
-}
-
-const SIZE: [u32; 2] = [64, 48];
-const WHITE: [u8; 4] = [255, 255, 255, 255];
-
-fn px(image: &subdiv_vk::image::RgbaImage, x: u32, y: u32) -> [u8; 4] {
-    image.get_pixel(x, y).0
-}
+use common::{SIZE, WHITE, finish, front_view, px, renderer, square, tilted_square};
+use subdiv_vk::{OrbitCamera, RenderMesh, RenderOptions, Shading, VkError};
 
 #[test]
 fn smooth_square_centre_is_shaded_corners_are_background() {
@@ -136,15 +37,6 @@ fn smooth_square_centre_is_shaded_corners_are_background() {
 }
 
 /// The square turned by 30 degrees about the view axis: edges that cross the pixel grid.
-fn tilted_square() -> Square {
-    let mut sq = square(0.0);
-    let (s, c) = 30f32.to_radians().sin_cos();
-    for p in &mut sq.positions {
-        *p = [c * p[0] - s * p[1], s * p[0] + c * p[1], p[2]];
-    }
-    sq
-}
-
 #[test]
 fn multisampling_smooths_edges_and_leaves_aux_images_point_sampled() {
     let Some(mut r) = renderer() else { return };
@@ -513,97 +405,4 @@ fn parallel_renderers_in_threads() {
     for h in handles {
         h.join().expect("render thread panicked");
     }
-}
-
-#[test]
-fn bad_input_is_an_error_not_a_panic() {
-    let Some(mut r) = renderer() else { return };
-    let sq = square(0.0);
-    let view = front_view(1.0);
-    let bad = RenderMesh {
-        triangles: &[0, 1, 9],
-        ..sq.mesh()
-    };
-    assert!(matches!(
-        r.render(&bad, &view, [16, 16], &RenderOptions::default()),
-        Err(VkError::InvalidMesh(_))
-    ));
-    assert!(matches!(
-        r.render(&sq.mesh(), &view, [0, 16], &RenderOptions::default()),
-        Err(VkError::InvalidSize { .. })
-    ));
-    assert!(matches!(
-        r.render(&sq.mesh(), &view, [1 << 20, 16], &RenderOptions::default()),
-        Err(VkError::InvalidSize { .. })
-    ));
-    // An empty mesh is just background, and the renderer still works afterwards.
-    let empty = r
-        .render(
-            &RenderMesh::default(),
-            &view,
-            [16, 16],
-            &RenderOptions::default(),
-        )
-        .unwrap();
-    assert!(empty.pixels().all(|p| p.0 == WHITE));
-    assert!(
-        r.render(&sq.mesh(), &view, [16, 16], &RenderOptions::default())
-            .is_ok()
-    );
-    finish(r);
-}
-
-#[test]
-fn missing_loader_library_names_the_package() {
-    let options = ContextOptions {
-        validation: Validation::Off,
-        library_path: Some("/nonexistent/libvulkan.so.1".into()),
-    };
-    let err = Renderer::with_options(&options).err().expect("must fail");
-    assert!(matches!(err, VkError::LoaderMissing { .. }), "{err:?}");
-    assert!(err.to_string().contains("mesa-vulkan-drivers"), "{err}");
-}
-
-/// Runs in a child process with no driver visible to the loader.
-#[test]
-fn missing_driver_names_the_package() {
-    const CHILD: &str = "SUBDIV_VK_TEST_NO_DRIVER_CHILD";
-    if std::env::var_os(CHILD).is_some() {
-        let err = Renderer::with_options(&ContextOptions {
-            validation: Validation::Off,
-            ..Default::default()
-        })
-        .err()
-        .expect("no driver: must fail");
-        assert!(
-            matches!(
-                err,
-                VkError::NoDriver { .. } | VkError::LoaderMissing { .. }
-            ),
-            "{err:?}"
-        );
-        assert!(err.to_string().contains("mesa-vulkan-drivers"), "{err}");
-        return;
-    }
-    let exe = std::env::current_exe().unwrap();
-    let out = Command::new(exe)
-        .args([
-            "--exact",
-            "missing_driver_names_the_package",
-            "--nocapture",
-            "--test-threads=1",
-        ])
-        .env(CHILD, "1")
-        .env("VK_DRIVER_FILES", "/nonexistent/icd.json")
-        .env("VK_ICD_FILENAMES", "/nonexistent/icd.json")
-        .env_remove("VK_ADD_DRIVER_FILES")
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "child failed:\n{}\n{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert!(String::from_utf8_lossy(&out.stdout).contains("1 passed"));
 }
