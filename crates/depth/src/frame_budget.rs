@@ -30,7 +30,6 @@
 //!   [`HOLD`]) and their estimated error is within [`HOLD`] of the new choice's: a still camera
 //!   gives a still picture.
 
-use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
 use subdiv_mesh::Camera;
@@ -40,7 +39,7 @@ use crate::assign::{Assignment, Class};
 use crate::contour::contour_pixels;
 use crate::frame_model::{FrameTimeModel, FrameWork};
 use crate::pixel_error::{PatchErrors, outside_view, pixel_error_depth, screen_scale};
-use crate::shading::OutlierTable;
+use crate::shading::{OutlierTable, Raise};
 use crate::sphere::Sphere;
 
 /// Frame times per bias estimate: the median of 9 cannot be moved by four outliers, and has a
@@ -209,34 +208,6 @@ pub struct BudgetController {
     bias: f64,
     /// The previous frame's choice.
     previous: Vec<Depth>,
-}
-
-/// A raise of one face: error removed per predicted second.
-struct Raise {
-    ratio: f64,
-    face: usize,
-    from: Depth,
-    to: Depth,
-}
-
-impl PartialEq for Raise {
-    fn eq(&self, o: &Self) -> bool {
-        self.cmp(o) == Ordering::Equal
-    }
-}
-impl Eq for Raise {}
-impl PartialOrd for Raise {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
-    }
-}
-impl Ord for Raise {
-    fn cmp(&self, o: &Self) -> Ordering {
-        // Ties go to the lower face index: the choice is deterministic.
-        self.ratio
-            .total_cmp(&o.ratio)
-            .then_with(|| o.face.cmp(&self.face))
-    }
 }
 
 /// One frame's choice problem.

@@ -245,12 +245,14 @@ struct Splat {
     density: f32,
 }
 
-/// One candidate raise of a face: its gain per added triangle.
-struct Raise {
-    ratio: f32,
-    face: usize,
-    from: Depth,
-    to: Depth,
+/// One candidate raise of a face, ordered by its gain per unit of cost (outlier pixels per
+/// added triangle here, estimated error per predicted second in [`crate::frame_budget`]); ties
+/// go to the lower face index, so the choice is deterministic.
+pub(crate) struct Raise {
+    pub(crate) ratio: f64,
+    pub(crate) face: usize,
+    pub(crate) from: Depth,
+    pub(crate) to: Depth,
 }
 
 impl PartialEq for Raise {
@@ -282,7 +284,7 @@ fn best_raise(f: usize, d: Depth, outliers: &[f32], e: &ShadingError, max: Depth
             let gain = now - outliers[to as usize];
             let cost = e.triangles(to as usize) - e.triangles(d as usize);
             (gain > 0.0).then(|| Raise {
-                ratio: gain / cost.max(f32::MIN_POSITIVE),
+                ratio: f64::from(gain / cost.max(f32::MIN_POSITIVE)),
                 face: f,
                 from: d,
                 to,
