@@ -334,7 +334,12 @@ fn draw_triangles(
     unsafe {
         device.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::GRAPHICS, pipeline);
         device.cmd_push_constants(cmd, p.layout, stages, 0, &push);
-        device.cmd_bind_vertex_buffers(cmd, 0, &[f.mesh_buffer], &[l.tri_vertices]);
+        device.cmd_bind_vertex_buffers(
+            cmd,
+            0,
+            &[f.mesh_buffer, f.mesh_buffer],
+            &[l.tri_vertices, l.tri_colors],
+        );
         if l.tri_indexed {
             device.cmd_bind_index_buffer(cmd, f.mesh_buffer, l.tri_indices, vk::IndexType::UINT32);
             device.cmd_draw_indexed(cmd, l.tri_count * 3, 1, 0, 0, 0);

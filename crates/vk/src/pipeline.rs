@@ -6,7 +6,7 @@ use ash::vk;
 use crate::context::Context;
 use crate::error::{Result, VkError, VkResultExt};
 use crate::samples;
-use crate::scene::VERTEX_STRIDE;
+use crate::scene::{COLOR_STRIDE, VERTEX_STRIDE};
 use crate::shaders;
 
 /// Format of the colour target.
@@ -250,28 +250,38 @@ impl Pipelines {
                 .module(frag)
                 .name(c"main"),
         ];
-        let bindings = [vk::VertexInputBindingDescription {
-            binding: 0,
-            stride: VERTEX_STRIDE as u32,
-            input_rate: vk::VertexInputRate::VERTEX,
-        }];
-        let attr = |location, format, offset| vk::VertexInputAttributeDescription {
+        // Binding 0: the packed vertices; binding 1 (triangles only): their colours.
+        let bindings = [
+            vk::VertexInputBindingDescription {
+                binding: 0,
+                stride: VERTEX_STRIDE as u32,
+                input_rate: vk::VertexInputRate::VERTEX,
+            },
+            vk::VertexInputBindingDescription {
+                binding: 1,
+                stride: COLOR_STRIDE as u32,
+                input_rate: vk::VertexInputRate::VERTEX,
+            },
+        ];
+        let attr = |location, binding, format, offset| vk::VertexInputAttributeDescription {
             location,
-            binding: 0,
+            binding,
             format,
             offset,
         };
         let mesh_attrs = [
-            attr(0, vk::Format::R32G32B32_SFLOAT, 0),
-            attr(1, vk::Format::R32G32B32_SFLOAT, 12),
-            attr(2, vk::Format::R32_SFLOAT, 24),
+            attr(0, 0, vk::Format::R32G32B32_SFLOAT, 0),
+            attr(1, 0, vk::Format::R32G32B32_SFLOAT, 12),
+            attr(2, 0, vk::Format::R32_SFLOAT, 24),
+            attr(3, 1, vk::Format::R32G32B32_SFLOAT, 0),
         ];
-        let attrs: &[vk::VertexInputAttributeDescription] = match kind {
-            Kind::Fill | Kind::Overlay => &mesh_attrs,
-            Kind::Line => &mesh_attrs[..1],
+        let (bindings, attrs): (&[_], &[_]) = match kind {
+            Kind::Fill => (&bindings, &mesh_attrs),
+            Kind::Overlay => (&bindings[..1], &mesh_attrs[..3]),
+            Kind::Line => (&bindings[..1], &mesh_attrs[..1]),
         };
         let vertex_input = vk::PipelineVertexInputStateCreateInfo::default()
-            .vertex_binding_descriptions(&bindings)
+            .vertex_binding_descriptions(bindings)
             .vertex_attribute_descriptions(attrs);
         let topology = match kind {
             Kind::Fill | Kind::Overlay => vk::PrimitiveTopology::TRIANGLE_LIST,

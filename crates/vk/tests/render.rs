@@ -210,6 +210,45 @@ fn depth_mode_uses_the_palette_and_doi_the_heat_map() {
     finish(r);
 }
 
+/// Colour shading draws each vertex's colour, lit; without colours it is the smooth grey.
+#[test]
+fn color_mode_draws_the_vertex_colours() {
+    let Some(mut r) = renderer() else { return };
+    let view = front_view(64.0 / 48.0);
+    let sq = square(0.0);
+    let options = RenderOptions {
+        shading: Shading::Color,
+        ..Default::default()
+    };
+    // Red on the left edge, blue on the right: the left of the image red, the right blue.
+    let colors = [
+        [1.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, 1.0],
+        [1.0, 0.0, 0.0],
+    ];
+    let mesh = RenderMesh {
+        colors: Some(&colors),
+        ..sq.mesh()
+    };
+    let img = r.render(&mesh, &view, SIZE, &options).unwrap();
+    let (left, right) = (px(&img, 20, 24), px(&img, 44, 24));
+    assert!(
+        left[0] > 100 && left[1] < 40 && left[2] < 100,
+        "left should be red, got {left:?}"
+    );
+    assert!(
+        right[2] > 100 && right[1] < 40 && right[0] < 100,
+        "right should be blue, got {right:?}"
+    );
+    let grey = r.render(&sq.mesh(), &view, SIZE, &options).unwrap();
+    let smooth = r
+        .render(&sq.mesh(), &view, SIZE, &RenderOptions::default())
+        .unwrap();
+    assert_eq!(px(&grey, 32, 24), px(&smooth, 32, 24));
+    finish(r);
+}
+
 /// The legend is drawn into the colour image only, in the top-right corner, in the palette's
 /// colour; depth, normals and scalars read back are those of the render without it.
 #[test]

@@ -23,6 +23,7 @@ fn shape() -> RenderMesh<'static> {
         triangles: &TRIANGLES,
         edges: None,
         scalars: Some(&SCALARS),
+        colors: None,
         lines: Some(&LINE),
     }
 }

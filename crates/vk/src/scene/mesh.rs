@@ -22,6 +22,9 @@ pub struct RenderMesh<'a> {
     /// [`Shading::Depth`](super::Shading::Depth), degree of interest (any range)
     /// for [`Shading::Doi`](super::Shading::Doi). `None` reads as zero.
     pub scalars: Option<&'a [f32]>,
+    /// One colour per vertex (linear RGB, 0..1) for [`Shading::Color`](super::Shading::Color);
+    /// `None` reads as the grey of [`Shading::Smooth`](super::Shading::Smooth).
+    pub colors: Option<&'a [[f32; 3]]>,
     /// Extra line segments drawn on top (e.g. silhouette polylines), as pairs of
     /// endpoints: `lines[2 * i]` to `lines[2 * i + 1]`.
     pub lines: Option<&'a [[f32; 3]]>,
@@ -66,6 +69,14 @@ impl RenderMesh<'_> {
             return Err(VkError::InvalidMesh(format!(
                 "{} scalars for {n} positions",
                 s.len()
+            )));
+        }
+        if let Some(c) = self.colors
+            && c.len() != n
+        {
+            return Err(VkError::InvalidMesh(format!(
+                "{} colours for {n} positions",
+                c.len()
             )));
         }
         if let Some(lines) = self.lines
@@ -128,6 +139,11 @@ mod tests {
             ..good
         };
         assert!(bad_scalars.validate().is_err());
+        let bad_colors = RenderMesh {
+            colors: Some(&[[1.0, 0.0, 0.0]]),
+            ..good
+        };
+        assert!(bad_colors.validate().is_err());
         let bad_edges = RenderMesh {
             edges: Some(&[[0, 7]]),
             ..good

@@ -14,19 +14,23 @@ pub enum Shading {
     Depth,
     /// Per-vertex scalar (degree of interest) as a heat map.
     Doi,
+    /// Per-vertex colours ([`RenderMesh::colors`](super::RenderMesh::colors), linear RGB in
+    /// 0..1, clamped), lit as [`Shading::Smooth`] lights its grey.
+    Color,
 }
 
 impl Shading {
     /// All modes with their command-line names.
-    pub const ALL: [(Shading, &'static str); 5] = [
+    pub const ALL: [(Shading, &'static str); 6] = [
         (Shading::Smooth, "smooth"),
         (Shading::Flat, "flat"),
         (Shading::Wire, "wire"),
         (Shading::Depth, "depth"),
         (Shading::Doi, "doi"),
+        (Shading::Color, "color"),
     ];
 
-    /// The command-line name (`smooth`, `flat`, `wire`, `depth`, `doi`).
+    /// The command-line name (`smooth`, `flat`, `wire`, `depth`, `doi`, `color`).
     pub fn name(self) -> &'static str {
         Self::ALL
             .iter()
@@ -43,6 +47,7 @@ impl Shading {
         match self {
             Shading::Depth => 2.0,
             Shading::Doi => 3.0,
+            Shading::Color => 4.0,
             _ => 0.0,
         }
     }

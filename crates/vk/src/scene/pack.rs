@@ -10,6 +10,16 @@ use crate::overlay::Overlay;
 /// Bytes per packed vertex: position (3 f32), normal (3 f32), scalar (1 f32).
 pub(crate) const VERTEX_STRIDE: u64 = 28;
 
+/// Bytes per colour of the triangles' second vertex stream (3 f32).
+pub(crate) const COLOR_STRIDE: u64 = 12;
+
+// Where no colours are drawn the colour stream reads the vertex section: no further than it.
+const _: () = assert!(COLOR_STRIDE <= VERTEX_STRIDE);
+
+/// The colour of a vertex without one under [`Shading::Color`]: the grey of
+/// [`Shading::Smooth`].
+const GREY: [f32; 3] = [0.8; 3];
+
 /// Where the parts of a packed mesh lie in the upload buffer, and their counts.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Layout {
@@ -20,6 +30,10 @@ pub(crate) struct Layout {
     pub tri_indexed: bool,
     pub tri_indices: u64,
     pub tri_count: u32,
+    /// The triangles' second vertex stream, one colour (3 f32) per vertex: the colour section
+    /// with [`Shading::Color`]; otherwise `tri_vertices` (the shaders read no colour then, and
+    /// those bytes are at least as many as the stream would read).
+    pub tri_colors: u64,
     pub edge_indices: u64,
     pub edge_count: u32,
     pub line_vertices: u64,
@@ -105,6 +119,17 @@ pub(crate) fn pack_from(
         layout.tri_indices = at(&out);
         for i in mesh.triangles {
             out.extend_from_slice(&i.to_le_bytes());
+        }
+        pad(&mut out);
+    }
+    layout.tri_colors = layout.tri_vertices;
+    if options.shading == Shading::Color {
+        layout.tri_colors = at(&out);
+        for i in 0..mesh.positions.len() {
+            let c = mesh.colors.map_or(GREY, |c| c[i]);
+            for v in c {
+                out.extend_from_slice(&v.to_le_bytes());
+            }
         }
         pad(&mut out);
     }
@@ -331,7 +356,7 @@ mod tests {
             lines: Some(&P[..2]),
             ..Default::default()
         };
-        for shading in [Shading::Smooth, Shading::Flat] {
+        for shading in [Shading::Smooth, Shading::Flat, Shading::Color] {
             let options = RenderOptions {
                 shading,
                 wire_overlay: true,
@@ -350,5 +375,42 @@ mod tests {
             assert_eq!(&full[offset as usize..], &tail[..]);
             assert_eq!(format!("{layout:?}"), format!("{tail_layout:?}"));
         }
+    }
+
+    #[test]
+    fn colours_are_a_stream_of_their_own_under_color_shading() {
+        let colors = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let mesh = RenderMesh {
+            positions: &P,
+            normals: &N,
+            triangles: &[0, 1, 2],
+            colors: Some(&colors),
+            ..Default::default()
+        };
+        let color = RenderOptions {
+            shading: Shading::Color,
+            ..Default::default()
+        };
+        let (bytes, layout) = pack(&mesh, &color, &Overlay::default()).unwrap();
+        assert_ne!(layout.tri_colors, layout.tri_vertices);
+        assert_eq!(layout.tri_colors % 16, 0);
+        let at = layout.tri_colors as usize;
+        let read =
+            |k: usize| f32::from_le_bytes(bytes[at + 4 * k..at + 4 * k + 4].try_into().unwrap());
+        let stream: Vec<f32> = (0..9).map(read).collect();
+        assert_eq!(stream, colors.concat());
+        // Without colours the stream is grey; other shadings read the vertex section instead.
+        let grey = RenderMesh {
+            colors: None,
+            ..mesh
+        };
+        let (bytes, layout) = pack(&grey, &color, &Overlay::default()).unwrap();
+        let at = layout.tri_colors as usize;
+        assert_eq!(
+            f32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()),
+            GREY[0]
+        );
+        let (_, smooth) = pack(&mesh, &RenderOptions::default(), &Overlay::default()).unwrap();
+        assert_eq!(smooth.tri_colors, smooth.tri_vertices);
     }
 }

@@ -23,6 +23,7 @@ layout(location = 0) smooth centroid in vec3 v_normal;
 layout(location = 1) in vec3 v_world;
 layout(location = 2) smooth centroid in float v_scalar;
 layout(location = 3) flat in float v_scalar_flat;
+layout(location = 4) smooth centroid in vec3 v_color;
 
 layout(location = 0) out vec4 o_color;
 #ifndef COLOR_ONLY
@@ -76,6 +77,8 @@ void main() {
     } else if (mode == 3) {
         float t = clamp((v_scalar - pc.params.x) * pc.params.y, 0.0, 1.0);
         base = heat_colour(t);
+    } else if (mode == 4) {
+        base = clamp(v_color, vec3(0.0), vec3(1.0));
     }
     o_color = vec4(clamp(base * lit, vec3(0.0), vec3(1.0)), 1.0);
 #ifndef COLOR_ONLY

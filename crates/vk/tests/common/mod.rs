@@ -76,6 +76,7 @@ impl Square {
             triangles: &self.triangles,
             edges: Some(&self.edges),
             scalars: Some(&self.scalars),
+            colors: None,
             lines: None,
         }
     }
