@@ -138,6 +138,7 @@ mod frame;
 mod frame_sources;
 mod refine;
 mod scene;
+mod scene_primvar;
 
 pub use animated_source::{AnimatedSource, stage_playback};
 pub use builtin::{BuiltinError, BuiltinScene, GRID_COLUMNS, helmet, helmet40, instance_grid};
@@ -151,6 +152,7 @@ pub use frame::depth_histogram;
 pub use frame_sources::{AdaptiveSource, DoiSource, UniformSource};
 pub use refine::{Balance, RefineError, RefineOptions, Refined, Refiner, refine_adaptive};
 pub use scene::{Scene, SceneError, uniform_limit};
+pub use scene_primvar::PrimvarDisplay;
 pub use subdiv_rules::{LimitMesh, VertexScalar};
 
 pub use subdiv_depth as depth;

@@ -25,6 +25,14 @@ pub enum SceneError {
     /// The tessellation has no faces (e.g. every face of the cage is a hole).
     #[error("the limit surface has no faces to draw")]
     Empty,
+    /// The primvar asked to be shown is not on the surface.
+    #[error("no primvar '{name}' on the surface (it carries: {carried})")]
+    NoPrimvar {
+        /// The name asked for.
+        name: String,
+        /// The names it carries, comma-separated (`none` without any).
+        carried: String,
+    },
 }
 
 /// The uniform limit tessellation of `mesh` at `depth` on the slate tessellators: quad slates
@@ -61,12 +69,18 @@ pub fn uniform_limit(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<LimitM
 /// every corner's normal on its triangle's side ([`LimitMesh::normals_facing_faces`]), the
 /// polygon edges for wireframes, what silhouette extraction needs, and the lines drawn on top.
 pub struct Scene {
-    /// The split surface; vertex `i` of the tessellation keeps index `i`.
-    surface: LimitMesh,
-    edges: Vec<[u32; 2]>,
-    silhouettes: Silhouettes,
-    faces: usize,
-    lines: Option<Vec<[f32; 3]>>,
+    /// The split surface; vertex `i` of the tessellation keeps index `i` (but where it is split
+    /// by a primvar's values per face corner: [`Scene::show_primvar`]).
+    pub(crate) surface: LimitMesh,
+    /// Polygon edges, as indices of `surface`.
+    pub(crate) edges: Vec<[u32; 2]>,
+    pub(crate) silhouettes: Silhouettes,
+    /// The positions `silhouettes` indexes, where they are not `surface`'s.
+    pub(crate) silhouette_positions: Option<Vec<[f32; 3]>>,
+    pub(crate) faces: usize,
+    pub(crate) lines: Option<Vec<[f32; 3]>>,
+    /// The primvar shown, one value per vertex of `surface`.
+    pub(crate) shown: Option<crate::scene_primvar::Shown>,
 }
 
 impl Scene {
@@ -96,8 +110,10 @@ impl Scene {
             surface: limit.split_sided(false).normals_facing_faces(),
             edges: limit.edges(),
             silhouettes: Silhouettes::new(limit),
+            silhouette_positions: None,
             faces: limit.num_faces(),
             lines: None,
+            shown: None,
         }
     }
 
@@ -129,18 +145,25 @@ impl Scene {
 
     /// The buffers the renderer uploads: triangles, normals, scalars, polygon edges, lines.
     pub fn render_mesh(&self) -> RenderMesh<'_> {
-        RenderMesh {
+        let mesh = RenderMesh {
             edges: Some(&self.edges),
             lines: self.lines.as_deref(),
             ..render_mesh(&self.surface)
+        };
+        match &self.shown {
+            Some(shown) => shown.apply(mesh),
+            None => mesh,
         }
     }
 
     /// The silhouette edges seen from `eye` as line segments (pairs of endpoints).
     pub fn silhouette_lines(&self, eye: Vec3) -> Vec<[f32; 3]> {
         let mut lines = Vec::new();
-        self.silhouettes
-            .lines_into(self.surface.positions(), eye, &mut lines);
+        let positions = self
+            .silhouette_positions
+            .as_deref()
+            .unwrap_or(self.surface.positions());
+        self.silhouettes.lines_into(positions, eye, &mut lines);
         lines
     }
 
@@ -159,6 +182,7 @@ pub(crate) fn render_mesh(s: &LimitMesh) -> RenderMesh<'_> {
         triangles: s.face_indices(),
         edges: None,
         scalars: s.scalar().map(|(_, v)| v),
+        colors: None,
         lines: None,
     }
 }

@@ -142,7 +142,8 @@ impl LimitMesh {
     /// This surface (one normal per vertex, no one-sided corner normals: the
     /// [`LimitMesh::split_sided`] form) with every face corner whose normal points away from its
     /// face given a vertex of its own with the normal reversed; the form the renderer draws.
-    /// Positions and scalars of the copies are those of the vertex, bit for bit; every other
+    /// Positions, scalars and per-vertex channel values of the copies are those of the vertex,
+    /// bit for bit; per-corner channels follow their corners; every other
     /// vertex keeps its index, the copies follow them.
     ///
     /// A limit normal can point against the faces around it: OpenSubdiv's normal is the cross
@@ -163,6 +164,8 @@ impl LimitMesh {
             corner_normals: self.corner_normals.clone(),
             uvs: self.uvs.clone(),
             uv_indices: self.uv_indices.clone(),
+            // Per-corner channels follow the corners; per-vertex ones gain the copies' values.
+            channels: self.channels.clone(),
             ..LimitMesh::default()
         };
         let mut reversed: HashMap<u32, u32> = HashMap::new();
@@ -188,6 +191,11 @@ impl LimitMesh {
                     out.normals.push([-n[0], -n[1], -n[2]]);
                     if let Some((_, s)) = out.scalar.as_mut() {
                         s.push(s[v as usize]);
+                    }
+                    for c in out.channels.iter_mut().filter(|c| c.per_vertex()) {
+                        let w = c.width;
+                        c.values
+                            .extend_from_within(v as usize * w..(v as usize + 1) * w);
                     }
                     out.positions.len() as u32 - 1
                 });
