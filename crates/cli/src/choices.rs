@@ -125,6 +125,38 @@ pub enum ShadingName {
     Doi,
 }
 
+/// `--shading`: one of the renderer's shadings, or `primvar:NAME` (a primvar of the cage drawn
+/// on the surface).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ShadingChoice {
+    /// A shading of the renderer.
+    Mode(ShadingName),
+    /// `primvar:NAME`.
+    Primvar(String),
+}
+
+/// Parses `--shading`: a [`ShadingName`] or `primvar:NAME`.
+pub fn parse_shading(s: &str) -> Result<ShadingChoice, String> {
+    if let Some(name) = s.strip_prefix("primvar:") {
+        if name.is_empty() {
+            return Err("primvar: needs a name (primvar:displayColor, primvar:st, ...)".into());
+        }
+        return Ok(ShadingChoice::Primvar(name.to_string()));
+    }
+    ShadingName::from_str(s, false)
+        .map(ShadingChoice::Mode)
+        .map_err(|_| {
+            let names: Vec<String> = ShadingName::value_variants()
+                .iter()
+                .map(value_name)
+                .collect();
+            format!(
+                "'{s}' is not a shading: give {} or primvar:NAME",
+                names.join(", ")
+            )
+        })
+}
+
 impl From<ShadingName> for Shading {
     fn from(s: ShadingName) -> Shading {
         match s {
@@ -165,5 +197,23 @@ mod tests {
         }
         assert_eq!(value_name(&SchemeName::CatmullClark), "catmull-clark");
         assert_eq!(value_name(&DoiName::ViewAngle), "view-angle");
+    }
+
+    #[test]
+    fn shading_is_a_mode_or_a_primvar() {
+        assert_eq!(
+            parse_shading("depth"),
+            Ok(ShadingChoice::Mode(ShadingName::Depth))
+        );
+        assert_eq!(
+            parse_shading("primvar:displayColor"),
+            Ok(ShadingChoice::Primvar("displayColor".into()))
+        );
+        assert!(parse_shading("primvar:").is_err());
+        let e = parse_shading("shiny").unwrap_err();
+        assert!(
+            e.contains("smooth, flat, wire, depth, doi or primvar:NAME"),
+            "{e}"
+        );
     }
 }

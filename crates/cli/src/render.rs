@@ -6,8 +6,8 @@ use std::time::Instant;
 
 use anyhow::{Context, bail};
 use subdiv::mesh::{Camera, Mesh};
-use subdiv::vk::{RenderOptions, Renderer, View};
-use subdiv::{Scene, depth_histogram, framing_box, view_for};
+use subdiv::vk::{RenderOptions, Renderer, Shading, View};
+use subdiv::{PrimvarDisplay, Scene, depth_histogram, framing_box, view_for};
 
 use crate::camera_args::CameraArgs;
 use crate::choices::value_name;
@@ -43,6 +43,16 @@ struct Drawing<'a> {
 
 pub fn run(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     a.surface.check_doi_options()?;
+    if a.style.primvar().is_some()
+        && (a.surface.doi.kind().is_some()
+            || a.surface.dicing.dicing()?.is_some()
+            || a.surface.is_adaptive(&a.camera)?)
+    {
+        bail!(
+            "--shading {}: primvars are carried by the uniform tessellation (--depth N) only",
+            a.style.shading_name()
+        );
+    }
     if a.surface.doi.kind().is_some() {
         return run_doi(a);
     }
@@ -55,9 +65,12 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     if a.surface.is_adaptive(&a.camera)? {
         return run_adaptive(a);
     }
-    let options = a.style.render_options()?;
+    let mut options = a.style.render_options()?;
     let t0 = Instant::now();
-    let (mut scene, scheme, cage) = a.surface.uniform_scene()?;
+    let (mut scene, display, scheme, cage) = a.surface.uniform_scene_showing(a.style.primvar())?;
+    if display == Some(PrimvarDisplay::Heat) {
+        options.shading = Shading::Doi;
+    }
     let tessellate_ms = t0.elapsed().as_secs_f64() * 1e3;
     let note = format!(
         "{}, depth {}",
@@ -193,7 +206,7 @@ fn draw_and_report(a: &RenderArgs, d: &Drawing<'_>) -> anyhow::Result<ExitCode> 
         mesh.triangle_count(),
         line_note,
         d.note,
-        d.options.shading.name(),
+        a.style.shading_name(),
         size[0],
         size[1],
         renderer.device_name(),

@@ -8,11 +8,11 @@ use glam::Vec3;
 use subdiv::mesh::{Camera, Mesh};
 use subdiv::rules::{Depth, Request, Scheme};
 use subdiv::vk::{RenderOptions, Shading};
-use subdiv::{BuiltinScene, DynamicSubdivision, Scene};
+use subdiv::{BuiltinScene, DynamicSubdivision, PrimvarDisplay, Scene, uniform_limit};
 
 use crate::adaptive_args::AdaptiveArgs;
 use crate::camera_args::{CameraArgs, parse_vec3};
-use crate::choices::{SceneName, SchemeName, ShadingName, value_name};
+use crate::choices::{SceneName, SchemeName, ShadingChoice, parse_shading, value_name};
 use crate::dicing_args::DicingArgs;
 use crate::doi_args::DoiArgs;
 use crate::limit_args::LimitArgs;
@@ -139,15 +139,30 @@ impl SurfaceArgs {
     /// Loads the cage and tessellates it uniformly; returns the scene, its scheme and the cage
     /// (what its views are framed on: [`subdiv::framing_box`]).
     pub fn uniform_scene(&self) -> anyhow::Result<(Scene, SchemeName, Mesh)> {
+        let (scene, _, scheme, cage) = self.uniform_scene_showing(None)?;
+        Ok((scene, scheme, cage))
+    }
+
+    /// [`SurfaceArgs::uniform_scene`], showing the cage's primvar `primvar` when given (and how
+    /// it is shown).
+    pub fn uniform_scene_showing(
+        &self,
+        primvar: Option<&str>,
+    ) -> anyhow::Result<(Scene, Option<PrimvarDisplay>, SchemeName, Mesh)> {
         let (cage, scheme) = self.load_cage_scheme()?;
         let depth = self.uniform_depth();
         self.limit
             .check(&cage, Request::Uniform { scheme, depth }, &self.label())?;
         let spinner = crate::progress::spinner(format!("tessellating at depth {depth}"));
-        let scene = Scene::uniform(&cage, scheme, depth);
+        let scene = match primvar {
+            None => Scene::uniform(&cage, scheme, depth).map(|s| (s, None)),
+            Some(name) => uniform_limit(&cage, scheme, depth)
+                .and_then(|limit| Scene::show_primvar(limit, depth, name))
+                .map(|(s, d)| (s, Some(d))),
+        };
         spinner.finish_and_clear();
-        let scene = scene.map_err(|e| anyhow::anyhow!("{}: {e}", self.label()))?;
-        Ok((scene, scheme.into(), cage))
+        let (scene, display) = scene.map_err(|e| anyhow::anyhow!("{}: {e}", self.label()))?;
+        Ok((scene, display, scheme.into(), cage))
     }
 
     /// With `--dicing-rate`: the cage diced for the camera of `camera_args` (tessellated once,
@@ -298,9 +313,12 @@ fn parse_face_depths(spec: &str, max_depth: Depth) -> anyhow::Result<Vec<Depth>>
 #[derive(clap::Args, Debug, Clone)]
 pub struct StyleArgs {
     /// Surface shading: smooth (limit normals), flat (face normals), wire (hidden-line
-    /// wireframe), depth (subdivision depth colours), doi (degree-of-interest heat map).
-    #[arg(long, value_enum, default_value = "smooth")]
-    pub shading: ShadingName,
+    /// wireframe), depth (subdivision depth colours), doi (degree-of-interest heat map), or
+    /// primvar:NAME (`render` of the uniform tessellation, --depth N: the cage's primvar NAME
+    /// as colours, its first three floats as red, green and blue, or one float as the heat
+    /// map; `subdiv info` lists a cage's primvars).
+    #[arg(long, value_name = "SHADING", value_parser = parse_shading, default_value = "smooth")]
+    pub shading: ShadingChoice,
     /// Draw the tessellation's edges over the shaded surface.
     #[arg(long)]
     pub wire_overlay: bool,
@@ -332,8 +350,29 @@ pub fn parse_samples(s: &str) -> Result<u32, String> {
 
 impl StyleArgs {
     /// The renderer options these flags describe.
+    /// The primvar `--shading primvar:NAME` names.
+    pub fn primvar(&self) -> Option<&str> {
+        match &self.shading {
+            ShadingChoice::Primvar(name) => Some(name),
+            ShadingChoice::Mode(_) => None,
+        }
+    }
+
+    /// The name of the shading, as `--shading` takes it.
+    pub fn shading_name(&self) -> String {
+        match &self.shading {
+            ShadingChoice::Primvar(name) => format!("primvar:{name}"),
+            ShadingChoice::Mode(m) => value_name(m),
+        }
+    }
+
+    /// The renderer options these flags describe; with `--shading primvar:NAME` the shading
+    /// is [`Shading::Color`] (the caller shows a one-float primvar as [`Shading::Doi`]).
     pub fn render_options(&self) -> anyhow::Result<RenderOptions> {
-        let shading = Shading::from(self.shading);
+        let shading = match &self.shading {
+            ShadingChoice::Mode(m) => Shading::from(*m),
+            ShadingChoice::Primvar(_) => Shading::Color,
+        };
         if shading == Shading::Doi && !self.doi_values {
             bail!("--shading doi needs --doi NAME (degree-of-interest values to colour by)");
         }
@@ -354,11 +393,12 @@ impl StyleArgs {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::choices::ShadingName;
 
     #[test]
     fn doi_shading_is_refused_without_doi_values() {
         let mut style = StyleArgs {
-            shading: ShadingName::Doi,
+            shading: ShadingChoice::Mode(ShadingName::Doi),
             wire_overlay: false,
             silhouettes: false,
             legend: false,
@@ -370,7 +410,7 @@ mod tests {
         style.doi_values = true;
         assert_eq!(style.render_options().unwrap().shading, Shading::Doi);
         let style = StyleArgs {
-            shading: ShadingName::Depth,
+            shading: ShadingChoice::Mode(ShadingName::Depth),
             wire_overlay: true,
             silhouettes: true,
             legend: true,

@@ -132,6 +132,13 @@ fn run_doi(a: &ViewArgs) -> anyhow::Result<ExitCode> {
 
 pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     a.surface.check_doi_options()?;
+    if a.style.primvar().is_some() {
+        anyhow::bail!(
+            "subdiv view: --shading {} is drawn by `subdiv render` (the uniform tessellation, \
+             --depth N); the viewer shows no primvars",
+            a.style.shading_name()
+        );
+    }
     if a.surface.doi.kind().is_some() {
         return run_doi(a);
     }

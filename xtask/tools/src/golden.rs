@@ -71,6 +71,8 @@ pub const SCENES: &[Scene] = &[
     scene("single_crease_flat", "fixtures/reference/shapes/catmark_single_crease.obj", &["--eye-relative", "0.3,1.3,1.6", "--depth", "2", "--shading", "flat"]),
     // The embedded demo cage (Z up), smooth with silhouette lines.
     scene("pawn_silhouettes", "fixtures/reference/shapes/catmark_pawn.obj", &["--eye-relative", "1.5,-1.7,0.9", "--up", "0,0,1", "--depth", "3", "--silhouettes"]),
+    // A primvar drawn: the pawn's vertex colours (displayColor, from make_pawn_colors.py).
+    scene("pawn_display_color", "fixtures/scenes/pawn_colors.obj", &["--eye-relative", "1.5,-1.7,0.9", "--up", "0,0,1", "--depth", "3", "--shading", "primvar:displayColor"]),
     // Loop limit surfaces: a sphere-like icosahedron and the bunny.
     scene("loop_icosahedron", "fixtures/reference/shapes/loop_icosahedron.obj", &["--scheme", "loop", "--eye-relative", "0.8,0.6,1.8", "--wire-overlay", "--depth", "2"]),
     scene("loop_bunny", "fixtures/meshes/tri_bunny_3k.obj", &["--scheme", "loop", "--depth", "1", "--eye-relative", "0.3,0.4,2.1"]),
