@@ -16,8 +16,8 @@ cases=(
   "$s/catmark_helmet.obj catmull-clark 3 4 5"
   "$m/cc_3torus.obj catmull-clark 3 4 5"
   "$m/tri_bunny_3k.obj loop 3 4 5"
-  "$m/tri_armadillo_52k.obj loop 3"
-  "$m/tri_bunny_69k_holes.obj loop 3"
+  "../shared/meshes/tri_armadillo_52k.obj loop 3"
+  "../shared/meshes/tri_bunny_69k_holes.obj loop 3"
 )
 summary=()
 median() { sort -g | awk '{v[NR]=$1} END {print v[int((NR+1)/2)]}'; }
