@@ -74,9 +74,7 @@ struct VertexPass {
 
 impl VertexPass {
     fn new(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Result<VertexPass, SlateError> {
-        let mut base = mesh.clone();
-        base.clear_uv();
-        base.clear_primvars();
+        let base = stand_in_base(mesh);
         let moving = UniformTessellator::new(&base, scheme, depth)?;
         Ok(VertexPass {
             base,
@@ -87,39 +85,65 @@ impl VertexPass {
 
     /// The limit of `p` (one value per vertex) at every output point.
     fn channel(&mut self, p: &Primvar) -> Result<LimitChannel, SlateError> {
-        let w = p.width;
-        let mut values = Vec::new();
-        let mut stand_in = self.base.clone();
-        for chunk in 0..w.div_ceil(3) {
-            for (v, q) in stand_in.positions_mut().iter_mut().enumerate() {
-                let e = p.element(v);
-                let c = |k: usize| e.get(3 * chunk + k).copied().unwrap_or(0.0);
-                *q = Vec3::new(c(0), c(1), c(2));
-            }
-            let points = if self.depth == 0 {
+        let (base, depth) = (&self.base, self.depth);
+        let moving = &mut self.moving;
+        vertex_channel(base, p, |stand_in| {
+            Ok(if depth == 0 {
                 // The cage's own limit points; seams keyed by the cage's real positions.
-                let mut out = limit_surface(&stand_in, self.moving.scheme());
-                SeamCurves::new(&self.base).write_uniform(&stand_in, 0, 0, out.positions_mut());
+                let mut out = limit_surface(stand_in, moving.scheme());
+                SeamCurves::new(base).write_uniform(stand_in, 0, 0, out.positions_mut());
                 out.positions().to_vec()
             } else {
-                self.moving.update(&stand_in)?.positions().to_vec()
-            };
-            if values.is_empty() {
-                values = vec![0.0; points.len() * w];
-            }
-            for (i, q) in points.iter().enumerate() {
-                for k in 0..3.min(w - 3 * chunk) {
-                    values[i * w + 3 * chunk + k] = q[k];
-                }
-            }
-        }
-        Ok(LimitChannel {
-            name: p.name.clone(),
-            width: w,
-            values,
-            indices: Vec::new(),
+                moving.update(stand_in)?.positions().to_vec()
+            })
         })
     }
+}
+
+/// The cage whose positions a vertex primvar's values stand in for ([`vertex_channel`]): `mesh`
+/// without face-varying data or primvars (its seams and numbering are the surface's).
+pub fn stand_in_base(mesh: &Mesh) -> Mesh {
+    let mut base = mesh.clone();
+    base.clear_uv();
+    base.clear_primvars();
+    base
+}
+
+/// The channel of the vertex primvar `p` of a surface whose points `points(cage)` gives for a
+/// cage of `base`'s topology ([`stand_in_base`]): `p`'s values, three floats at a time, stand
+/// in for the positions, so every point gets their limit with the positions' masks (sharpness
+/// included), as OpenSubdiv's `Interpolate` then `Limit` give it. The uniform tessellations and
+/// the adaptive frames (`subdiv-stitch`) share it.
+pub fn vertex_channel<E>(
+    base: &Mesh,
+    p: &Primvar,
+    mut points: impl FnMut(&Mesh) -> Result<Vec<[f32; 3]>, E>,
+) -> Result<LimitChannel, E> {
+    let w = p.width;
+    let mut values = Vec::new();
+    let mut stand_in = base.clone();
+    for chunk in 0..w.div_ceil(3) {
+        for (v, q) in stand_in.positions_mut().iter_mut().enumerate() {
+            let e = p.element(v);
+            let c = |k: usize| e.get(3 * chunk + k).copied().unwrap_or(0.0);
+            *q = Vec3::new(c(0), c(1), c(2));
+        }
+        let points = points(&stand_in)?;
+        if values.is_empty() {
+            values = vec![0.0; points.len() * w];
+        }
+        for (i, q) in points.iter().enumerate() {
+            for k in 0..3.min(w - 3 * chunk) {
+                values[i * w + 3 * chunk + k] = q[k];
+            }
+        }
+    }
+    Ok(LimitChannel {
+        name: p.name.clone(),
+        width: w,
+        values,
+        indices: Vec::new(),
+    })
 }
 
 /// A varying, uniform or face-varying primvar two floats at a time as the texture coordinates
