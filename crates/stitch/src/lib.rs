@@ -18,10 +18,12 @@
 //! cage is never modified.
 
 pub mod fans;
+mod primvars;
 mod slots;
 pub mod tri;
 
 pub use fans::{AdaptiveFrame, Assembler, FanMethod, MAX_ADAPTIVE_DEPTH, UpdateParts};
+pub use primvars::frame_primvars;
 pub use tri::TriAssembler;
 
 /// Errors of the assembly ([`Assembler`], [`TriAssembler`]).

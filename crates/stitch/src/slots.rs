@@ -48,6 +48,25 @@ impl Slots {
         self.start[i] as usize..(self.start[i] + self.len[i]) as usize
     }
 
+    /// Whether block `i` holds points in the buffer.
+    #[inline]
+    pub(crate) fn holds(&self, i: usize) -> bool {
+        self.len[i] > 0
+    }
+
+    /// The vertex buffer of the last write with `block(i)` in place of each block's points:
+    /// every slot holding points gets as many of `block(i)` (which has at least that many),
+    /// the slots left behind zeros.
+    pub(crate) fn gather<'a>(&self, block: impl Fn(usize) -> &'a [[f32; 3]]) -> Vec<[f32; 3]> {
+        let mut out = vec![[0.0; 3]; self.end as usize];
+        for i in (0..self.start.len()).filter(|&i| self.holds(i)) {
+            let r = self.range(i);
+            let n = r.len();
+            out[r].copy_from_slice(&block(i)[..n]);
+        }
+        out
+    }
+
     /// The block holding vertex `v`, and `v`'s index in it.
     pub(crate) fn block_of(&self, v: u32) -> Option<(usize, u32)> {
         (0..self.start.len())

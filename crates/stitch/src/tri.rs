@@ -298,6 +298,26 @@ impl TriAssembler {
         (todo, points)
     }
 
+    /// The last frame's vertex buffer for the cage `stand_in` (this assembler's cage with other
+    /// positions), as [`Assembler::stand_in_points`](crate::Assembler::stand_in_points) gives
+    /// it for Catmull-Clark.
+    pub fn stand_in_points(&self, stand_in: &Mesh) -> Vec<[f32; 3]> {
+        let layout = &self.layout;
+        let blocks: Vec<Vec<[f32; 3]>> = (0..self.blocks.len())
+            .into_par_iter()
+            .map(|i| match self.blocks[i].depth {
+                Some(d) if self.slots.holds(i) => {
+                    let p = &layout.patches()[i];
+                    let mut b = TriBlock::default();
+                    tri_patch_lattice(stand_in, layout, p, d, &mut b.pos, &mut b.nrm, &mut b.sided);
+                    b.pos
+                }
+                _ => Vec::new(),
+            })
+            .collect();
+        self.slots.gather(|i| &blocks[i])
+    }
+
     /// Where frame vertex `index` comes from: (face, lattice depth, lattice index), for tests
     /// and tools that compare the frame with uniform tessellations.
     pub fn vertex_source(&self, index: u32) -> Option<(usize, Depth, u32)> {

@@ -18,7 +18,9 @@ use subdiv_depth::{
 use subdiv_mesh::{Camera, Mesh};
 use subdiv_rules::Scheme;
 use subdiv_slate::Depth;
-use subdiv_stitch::{AdaptiveFrame, Assembler, AssemblyError, FanMethod, TriAssembler};
+use subdiv_stitch::{
+    AdaptiveFrame, Assembler, AssemblyError, FanMethod, TriAssembler, frame_primvars,
+};
 
 /// Frames the predictive control draws at the geometric depths while the frame-time model
 /// learns the machine (the first frames' times, measured, fit it).
@@ -435,6 +437,25 @@ impl DynamicSubdivision {
         self.last.predicted = Some(self.model.predict(&work));
         self.assignment = a;
         Ok(&self.geometry)
+    }
+
+    /// Adds the cage's vertex and constant primvars to the last frame's surface (one channel
+    /// each, until the next [`update`](Self::update) writes a frame without them) and returns
+    /// the names of those not carried (varying, uniform and face-varying primvars;
+    /// [`subdiv_stitch::frame_primvars`]). Each three floats of a vertex primvar cost what
+    /// recomputing the frame's blocks costs, so a frame loop that draws no primvar leaves this
+    /// out.
+    pub fn carry_primvars(&mut self) -> Result<Vec<String>, AssemblyError> {
+        let mesh = &self.mesh;
+        let left = match &self.assembler {
+            Stitcher::Quads(a) => {
+                frame_primvars(mesh, |cage| a.stand_in_points(cage), &mut self.geometry)
+            }
+            Stitcher::Tris(a) => {
+                frame_primvars(mesh, |cage| a.stand_in_points(cage), &mut self.geometry)
+            }
+        }?;
+        Ok(left)
     }
 
     /// The last frame's quads per depth before gap prevention (Settgast et al. Fig. 6; see

@@ -79,6 +79,19 @@ impl Scene {
         depth: Depth,
         name: &str,
     ) -> Result<(Scene, PrimvarDisplay), SceneError> {
+        limit.set_scalar(
+            VertexScalar::Depth,
+            vec![depth as f32; limit.num_vertices()],
+        )?;
+        Scene::from_limit_showing(limit, name)
+    }
+
+    /// The scene of a tessellation `limit` (any: uniform, an adaptive frame's surface; its
+    /// scalar kept) showing its primvar `name`, as [`Scene::show_primvar`] shows it.
+    pub fn from_limit_showing(
+        mut limit: LimitMesh,
+        name: &str,
+    ) -> Result<(Scene, PrimvarDisplay), SceneError> {
         // The texture coordinates are the surface's UVs (`st`, as `subdiv info` lists them).
         if name == UV_NAME && limit.channel(name).is_none() && !limit.uv_indices().is_empty() {
             let uvs = LimitChannel {
@@ -106,12 +119,7 @@ impl Scene {
         if limit.num_faces() == 0 {
             return Err(SceneError::Empty);
         }
-        let per_vertex = channel.per_vertex();
-        limit.set_scalar(
-            VertexScalar::Depth,
-            vec![depth as f32; limit.num_vertices()],
-        )?;
-        let mut scene = if per_vertex {
+        let mut scene = if channel.per_vertex() {
             Scene::from_limit(&limit)
         } else {
             split_by_corner_values(&limit)
@@ -168,6 +176,8 @@ mod tests {
     use subdiv_mesh::{Mesh, parse_obj, read_obj};
     use subdiv_rules::Scheme;
 
+    use subdiv_test_support::colours_from_positions;
+
     use super::*;
     use crate::uniform_limit;
 
@@ -181,17 +191,7 @@ mod tests {
     #[test]
     fn a_vertex_primvar_is_drawn_with_the_positions_masks() {
         let path = subdiv_test_support::fixture("scenes/pawn_colors.obj");
-        let text: String = std::fs::read_to_string(path)
-            .unwrap()
-            .lines()
-            .map(|l| match l.strip_prefix("v ") {
-                Some(v) => {
-                    let xyz: Vec<&str> = v.split_whitespace().take(3).collect();
-                    format!("v {0} {0}\n", xyz.join(" "))
-                }
-                None => format!("{l}\n"),
-            })
-            .collect();
+        let text = colours_from_positions(&std::fs::read_to_string(path).unwrap());
         let cage = Mesh::from_soup(&parse_obj(&text).unwrap()).unwrap();
         assert_eq!(cage.primvars().len(), 1);
         for depth in [1, 3] {

@@ -136,6 +136,30 @@ pub fn height_grid(n: u32, triangles: bool, origin: f32, height: impl Fn(f32, f3
     })
 }
 
+/// `obj` (OBJ text) with every vertex line's position repeated as its colour (`v x y z x y z`,
+/// the vertex primvar `displayColor`): a primvar that the positions' masks must carry to
+/// exactly the surface's points. Colours already on the lines are replaced; other lines kept.
+pub fn colours_from_positions(obj: &str) -> String {
+    colours_from(obj, |p| p)
+}
+
+/// `obj` (OBJ text) with every vertex line's colour `f(position)` (the vertex primvar
+/// `displayColor`); other lines kept. With an affine `f` the primvar's limit is `f` of the
+/// surface's points (subdivision is affine invariant), with values unlike the positions.
+pub fn colours_from(obj: &str, f: impl Fn([f64; 3]) -> [f64; 3]) -> String {
+    obj.lines()
+        .map(|l| match l.strip_prefix("v ") {
+            Some(v) => {
+                let xyz: Vec<&str> = v.split_whitespace().take(3).collect();
+                let p = [0, 1, 2].map(|k| xyz[k].parse::<f64>().unwrap_or(0.0));
+                let [r, g, b] = f(p);
+                format!("v {} {r} {g} {b}\n", xyz.join(" "))
+            }
+            None => format!("{l}\n"),
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -14,7 +14,9 @@ mod hashes;
 mod rng;
 mod watertight;
 
-pub use cages::{Soup, cube, grid, grouped_cube_obj, height_grid, prism};
+pub use cages::{
+    Soup, colours_from, colours_from_positions, cube, grid, grouped_cube_obj, height_grid, prism,
+};
 pub use fixtures::{fixture, fixture_files, fixtures, root, shape};
 pub use hashes::{Fnv, check_recorded, trig_fingerprint};
 pub use rng::Rng;

@@ -418,6 +418,37 @@ impl Assembler {
         (todo, points)
     }
 
+    /// The last frame's vertex buffer for the cage `stand_in` (this assembler's cage with other
+    /// positions: a vertex primvar's values standing in for them, three floats at a time): each
+    /// block the frame draws recomputed at its depth from `stand_in`, point for point where the
+    /// frame holds its points. Linear data thereby gets the positions' limit masks
+    /// ([`crate::frame_primvars`]).
+    pub fn stand_in_points(&self, stand_in: &Mesh) -> Vec<[f32; 3]> {
+        let mut set = self.set.clone();
+        set.move_to(stand_in);
+        let set = &set;
+        let max_depth = self.max_depth + 1;
+        let blocks: Vec<Vec<[f32; 3]>> = (0..self.blocks.len())
+            .into_par_iter()
+            .map_init(
+                || PatchGrids::new(stand_in, set, max_depth),
+                |grids, i| match self.blocks[i].depth {
+                    Some(d) if self.slots.holds(i) => {
+                        let p = &set.patches()[i];
+                        let n = (1usize << d) + 1;
+                        let mut pos = vec![[0.0; 3]; n * n];
+                        let (mut nrm, mut sided) = (vec![[0.0; 3]; n * n], Vec::new());
+                        grids.grid(p, d, &mut pos, &mut nrm, &mut sided);
+                        set.write_seam_points(stand_in, p, d, &mut pos);
+                        pos
+                    }
+                    _ => Vec::new(),
+                },
+            )
+            .collect();
+        self.slots.gather(|i| &blocks[i])
+    }
+
     /// Depth per vertex (of the patch whose block holds it, at this frame's depth).
     fn fill_vertex_depth(&self, depth: &[Depth], b: &mut TriangleBuffers<'_>) {
         b.scalar.clear();
