@@ -130,7 +130,6 @@ impl AdaptiveArgs {
                  have one"
             );
         }
-        crate::load::warn_primvars_not_carried(&mesh, "the adaptive tessellation");
         let mut node = DynamicSubdivision::with_scheme(mesh, scheme, self.params()?)?;
         if self.simple_fans {
             node.set_fan_method(FanMethod::Simple);

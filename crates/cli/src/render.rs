@@ -44,12 +44,11 @@ struct Drawing<'a> {
 pub fn run(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     a.surface.check_doi_options()?;
     if a.style.primvar().is_some()
-        && (a.surface.doi.kind().is_some()
-            || a.surface.dicing.dicing()?.is_some()
-            || a.surface.is_adaptive(&a.camera)?)
+        && (a.surface.doi.kind().is_some() || a.surface.dicing.dicing()?.is_some())
     {
         bail!(
-            "--shading {}: primvars are carried by the uniform tessellation (--depth N) only",
+            "--shading {}: primvars are carried by the uniform (--depth N) and adaptive \
+             tessellations, not by DoI refinement or dicing",
             a.style.shading_name()
         );
     }
@@ -138,14 +137,29 @@ fn run_adaptive(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     let cull = a.surface.cull_camera(&a.camera, &camera, &cage);
     let mut node = a.surface.adaptive_node(cage, scheme)?;
     let spinner = crate::progress::spinner("adaptive tessellation");
-    let g = node.update(&cull, None);
+    let g = node.update(&cull, None).map(|_| ());
     spinner.finish_and_clear();
-    let g = g?;
+    g?;
+    if a.style.primvar().is_some() {
+        crate::load::carry_primvars(&mut node)?;
+    }
+    let g = node.geometry();
     if g.num_triangles() == 0 {
         bail!("{}: nothing to draw (every face culled)", a.surface.label());
     }
     let histogram = depth_histogram(g);
-    let mut scene = Scene::from_limit(&g.surface().referenced_only());
+    let surface = g.surface().referenced_only();
+    let mut scene = match a.style.primvar() {
+        None => Scene::from_limit(&surface),
+        Some(name) => {
+            let (scene, display) = Scene::from_limit_showing(surface, name)
+                .map_err(|e| anyhow::anyhow!("{}: {e}", a.surface.label()))?;
+            if display == PrimvarDisplay::Heat {
+                options.shading = Shading::Doi;
+            }
+            scene
+        }
+    };
     let tessellate_ms = t0.elapsed().as_secs_f64() * 1e3;
     let view = view_for(&camera, lo, hi);
     let mut lines = Vec::new();

@@ -239,9 +239,11 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh, scheme: Scheme) -> anyhow::Resul
         .with_context(|| input.clone())?;
     node.set_face_depths(doi_depths)?;
     let spinner = crate::progress::spinner("adaptive tessellation");
-    let g = node.update(&camera, None);
+    let g = node.update(&camera, None).map(|_| ());
     spinner.finish_and_clear();
-    let g = g?;
+    g?;
+    crate::load::carry_primvars(&mut node)?;
+    let g = node.geometry();
     let ms = t0.elapsed().as_secs_f64() * 1e3;
     // The referenced vertices, the triangles with their one-sided corner normals, and the
     // depth of each vertex's patch.

@@ -134,8 +134,8 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
     a.surface.check_doi_options()?;
     if a.style.primvar().is_some() {
         anyhow::bail!(
-            "subdiv view: --shading {} is drawn by `subdiv render` (the uniform tessellation, \
-             --depth N); the viewer shows no primvars",
+            "subdiv view: --shading {} is drawn by `subdiv render`; the viewer shows no \
+             primvars",
             a.style.shading_name()
         );
     }

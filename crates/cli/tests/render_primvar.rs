@@ -1,12 +1,13 @@
-//! `subdiv render --shading primvar:NAME`: a cage's primvar drawn on its uniform tessellation,
-//! and the modes that carry no primvars refusing it.
+//! A cage's primvars on its uniform and adaptive tessellations: `subdiv render --shading
+//! primvar:NAME`, the modes that carry no primvars refusing it, and the colours an adaptive
+//! `subdiv tessellate` writes.
 //!
 //! Without a Vulkan driver the render tests print a note and pass, unless
 //! `SUBDIV_VK_REQUIRE_DRIVER=1` (set by `cargo xtask test`).
 
 mod common;
 
-use common::{assert_fails, root, run_ok, tmp};
+use common::{assert_fails, root, run, run_ok, tmp};
 use subdiv_vk::read_png;
 
 fn pawn() -> String {
@@ -78,14 +79,14 @@ fn primvar_shading_is_refused_where_no_primvar_is_carried() {
         &[
             "render",
             &input,
-            "--pixel-error",
-            "1",
+            "--dicing-rate",
+            "2",
             "--shading",
             "primvar:displayColor",
             "-o",
             out,
         ],
-        "primvars are carried by the uniform tessellation (--depth N) only",
+        "not by DoI refinement or dicing",
     );
     assert_fails(
         &["render", &input, "--shading", "shiny", "-o", out],
@@ -95,4 +96,45 @@ fn primvar_shading_is_refused_where_no_primvar_is_carried() {
         &["view", &input, "--shading", "primvar:displayColor"],
         "the viewer shows no primvars",
     );
+}
+
+/// The pawn's colours are its positions mapped into the unit cube (`make_pawn_colors.py`, to
+/// 4 decimals): an affine map, so the limit colour of every point the adaptive tessellation
+/// writes is that map of the point.
+#[test]
+fn adaptive_tessellation_writes_the_vertex_colours() {
+    let out = tmp("pawn_adaptive.obj");
+    let input = pawn();
+    let args = [
+        "tessellate",
+        &input,
+        "--eye-relative",
+        "1.5,-1.7,0.9",
+        "--up",
+        "0,0,1",
+        "--pixel-error",
+        "1",
+        "--max-depth",
+        "4",
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    let (code, _, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("not carried"), "{err}");
+    let cage = subdiv_mesh::read_obj(root().join("fixtures/scenes/pawn_colors.obj")).unwrap();
+    let (lo, hi) = cage.bounds();
+    let surface = subdiv_mesh::read_obj(&out).unwrap();
+    let colours = surface.primvar("displayColor").unwrap();
+    assert!(surface.num_vertices() > 10 * cage.num_vertices());
+    for (v, p) in surface.positions().iter().enumerate() {
+        let want = (*p - lo) / (hi - lo);
+        let got = colours.element(v);
+        for k in 0..3 {
+            assert!(
+                (got[k] - want[k]).abs() < 2e-4,
+                "vertex {v}: {got:?} against {want}"
+            );
+        }
+    }
 }
