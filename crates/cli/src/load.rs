@@ -120,37 +120,17 @@ pub fn cage_scheme(path: &Path, cage: &Cage, requested: Option<Scheme>) -> anyho
 }
 
 /// Warns that the cage's primvars (but `st`) do not reach `what` (a surface other than the
-/// uniform tessellation, which carries them); nothing for a cage without.
+/// uniform and adaptive tessellations, which carry them); nothing for a cage without.
 pub fn warn_primvars_not_carried(mesh: &subdiv::mesh::Mesh, what: &str) {
-    let names: Vec<&str> = mesh.primvars().iter().map(|p| p.name.as_str()).collect();
-    warn_not_carried(
-        &names,
-        what,
-        "the uniform tessellation, --depth N, carries them",
-    );
-}
-
-/// Carries the cage's primvars onto the adaptive frame `node` last made
-/// ([`DynamicSubdivision::carry_primvars`]), warning about those it leaves out.
-pub fn carry_primvars(node: &mut subdiv::DynamicSubdivision) -> anyhow::Result<()> {
-    let left = node.carry_primvars()?;
-    let left: Vec<&str> = left.iter().map(String::as_str).collect();
-    warn_not_carried(
-        &left,
-        "the adaptive tessellation",
-        "it carries vertex and constant primvars; the uniform tessellation, --depth N, carries \
-         every kind",
-    );
-    Ok(())
-}
-
-fn warn_not_carried(names: &[&str], what: &str, note: &str) {
-    if !names.is_empty() {
-        log::warn!(
-            "primvars {} are not carried by {what} ({note})",
-            names.join(", ")
-        );
+    if mesh.primvars().is_empty() {
+        return;
     }
+    let names: Vec<&str> = mesh.primvars().iter().map(|p| p.name.as_str()).collect();
+    log::warn!(
+        "primvars {} are not carried by {what} (the uniform tessellation, --depth N, and the \
+         adaptive one carry them)",
+        names.join(", ")
+    );
 }
 
 /// Logs `FILE:LINE: tag 't NAME' ignored (why)` as a warning (printed `warning: ...`, silenced

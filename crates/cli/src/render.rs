@@ -141,7 +141,7 @@ fn run_adaptive(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     spinner.finish_and_clear();
     g?;
     if a.style.primvar().is_some() {
-        crate::load::carry_primvars(&mut node)?;
+        node.carry_primvars()?;
     }
     let g = node.geometry();
     if g.num_triangles() == 0 {

@@ -193,6 +193,7 @@ impl SurfaceArgs {
             );
         }
         let (cage, scheme) = self.load_cage_scheme()?;
+        crate::load::warn_primvars_not_carried(&cage, "dicing");
         let camera = camera_args.camera(&cage);
         let label = self.label();
         let eval = subdiv::eval::Evaluator::new(&cage, scheme)
@@ -316,8 +317,7 @@ pub struct StyleArgs {
     /// wireframe), depth (subdivision depth colours), doi (degree-of-interest heat map), or
     /// primvar:NAME (`render` of the uniform or adaptive tessellation: the cage's primvar NAME
     /// as colours, its first three floats as red, green and blue, or one float as the heat
-    /// map; the adaptive one carries vertex and constant primvars; `subdiv info` lists a
-    /// cage's primvars).
+    /// map; `subdiv info` lists a cage's primvars).
     #[arg(long, value_name = "SHADING", value_parser = parse_shading, default_value = "smooth")]
     pub shading: ShadingChoice,
     /// Draw the tessellation's edges over the shaded surface.

@@ -161,6 +161,7 @@ fn run_dicing(
             given.join(", ")
         );
     }
+    crate::load::warn_primvars_not_carried(mesh, "dicing");
     let t0 = Instant::now();
     let camera = a.camera.camera(mesh);
     let eval =
@@ -242,7 +243,7 @@ fn run_adaptive(a: &TessellateArgs, mesh: Mesh, scheme: Scheme) -> anyhow::Resul
     let g = node.update(&camera, None).map(|_| ());
     spinner.finish_and_clear();
     g?;
-    crate::load::carry_primvars(&mut node)?;
+    node.carry_primvars()?;
     let g = node.geometry();
     let ms = t0.elapsed().as_secs_f64() * 1e3;
     // The referenced vertices, the triangles with their one-sided corner normals, and the

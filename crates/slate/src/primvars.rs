@@ -52,12 +52,16 @@ pub fn tessellate_primvars(
                 };
                 pass.channel(p)?
             }
-            PrimvarInterpolation::Varying | PrimvarInterpolation::Uniform => {
-                face_varying_channel(mesh, scheme, depth, p, FVarLinearInterpolation::All)?
-            }
-            PrimvarInterpolation::FaceVarying => {
-                face_varying_channel(mesh, scheme, depth, p, mesh.options().fvar)?
-            }
+            PrimvarInterpolation::Varying
+            | PrimvarInterpolation::Uniform
+            | PrimvarInterpolation::FaceVarying => face_varying_channel(mesh, p, |stand_in| {
+                let out = match scheme {
+                    Scheme::CatmullClark => tessellate(stand_in, depth)?,
+                    Scheme::Loop => tessellate_tri(stand_in, depth)?,
+                    Scheme::Bilinear => tessellate_bilinear(stand_in, depth)?,
+                };
+                Ok::<_, SlateError>((out.uvs().to_vec(), out.uv_indices().to_vec()))
+            })?,
         };
         surface.push_channel(channel)?;
     }
@@ -146,15 +150,22 @@ pub fn vertex_channel<E>(
     })
 }
 
-/// A varying, uniform or face-varying primvar two floats at a time as the texture coordinates
-/// of the cage under `option`: one value per face corner.
-fn face_varying_channel(
+/// The channel of a varying, uniform or face-varying primvar `p` of `mesh` (one value per
+/// face corner of the surface): its values, two floats at a time, stand in for the cage's
+/// texture coordinates under the face-varying option its kind takes (face-varying: the cage's;
+/// varying and uniform: `All`, linear everywhere), and `pass(stand_in)` gives the surface's
+/// face-varying values and the value of every corner for that cage (the uniform tessellations'
+/// UVs, or an adaptive frame's, `subdiv-stitch`). Any other kind of primvar is read as a
+/// uniform one.
+pub fn face_varying_channel<E: From<subdiv_rules::RulesError>>(
     mesh: &Mesh,
-    scheme: Scheme,
-    depth: Depth,
     p: &Primvar,
-    option: FVarLinearInterpolation,
-) -> Result<LimitChannel, SlateError> {
+    mut pass: impl FnMut(&Mesh) -> Result<(Vec<[f32; 2]>, Vec<u32>), E>,
+) -> Result<LimitChannel, E> {
+    let option = match p.interpolation {
+        PrimvarInterpolation::FaceVarying => mesh.options().fvar,
+        _ => FVarLinearInterpolation::All,
+    };
     // The value of every corner: the corner's, the vertex's or the face's.
     let (offsets, verts) = mesh.face_lists();
     let corner_element: Vec<u32> = match p.interpolation {
@@ -187,12 +198,7 @@ fn face_varying_channel(
         stand_in
             .set_uv(Some(fv))
             .map_err(subdiv_rules::RulesError::Internal)?;
-        let out = match scheme {
-            Scheme::CatmullClark => tessellate(&stand_in, depth)?,
-            Scheme::Loop => tessellate_tri(&stand_in, depth)?,
-            Scheme::Bilinear => tessellate_bilinear(&stand_in, depth)?,
-        };
-        passes.push((out.uvs().to_vec(), out.uv_indices().to_vec()));
+        passes.push(pass(&stand_in)?);
     }
     // One value per distinct tuple of the passes' values at a corner.
     let corners = passes.first().map_or(0, |p| p.1.len());

@@ -30,6 +30,7 @@ mod index;
 #[cfg(test)]
 pub(crate) mod test_util;
 
+pub(crate) use assembler::check_corners;
 pub use assembler::{Assembler, MAX_ADAPTIVE_DEPTH};
 pub(crate) use geometry::lap;
 pub use geometry::{AdaptiveFrame, UpdateParts};

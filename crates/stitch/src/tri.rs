@@ -318,6 +318,40 @@ impl TriAssembler {
         self.slots.gather(|i| &blocks[i])
     }
 
+    /// The face-varying values of the last frame for the cage `stand_in`, as
+    /// [`Assembler::stand_in_corner_values`](crate::Assembler::stand_in_corner_values) gives
+    /// them for Catmull-Clark.
+    pub fn stand_in_corner_values(
+        &self,
+        stand_in: &Mesh,
+        frame: &AdaptiveFrame,
+    ) -> Result<(Vec<[f32; 2]>, Vec<u32>), AssemblyError> {
+        let (depth, active) = frame.drawn();
+        let deepest = (0..depth.len())
+            .filter(|&f| active[f])
+            .map(|f| depth[f])
+            .max();
+        // Every drawn point is a lattice point at most at the deepest drawn depth.
+        let Some(level) = deepest else {
+            return Ok((Vec::new(), Vec::new()));
+        };
+        let Some(uvs) = LevelUvs::new(stand_in, subdiv_rules::Scheme::Loop, level)? else {
+            return Ok((Vec::new(), Vec::new()));
+        };
+        let owners = emit::Owners::new(stand_in, &self.layout, &depth, &active);
+        let fr = TriFrame {
+            layout: &self.layout,
+            depth: &depth,
+            owners: &owners,
+            blocks: &self.blocks,
+            slots: &self.slots,
+        };
+        let (mut tris, mut sided, mut corners) = Default::default();
+        fr.emit_frame(&active, Some(&uvs), &mut tris, &mut sided, &mut corners);
+        crate::fans::check_corners(&tris, frame)?;
+        Ok((uvs.values, corners))
+    }
+
     /// Where frame vertex `index` comes from: (face, lattice depth, lattice index), for tests
     /// and tools that compare the frame with uniform tessellations.
     pub fn vertex_source(&self, index: u32) -> Option<(usize, Depth, u32)> {

@@ -439,23 +439,28 @@ impl DynamicSubdivision {
         Ok(&self.geometry)
     }
 
-    /// Adds the cage's vertex and constant primvars to the last frame's surface (one channel
-    /// each, until the next [`update`](Self::update) writes a frame without them) and returns
-    /// the names of those not carried (varying, uniform and face-varying primvars;
-    /// [`subdiv_stitch::frame_primvars`]). Each three floats of a vertex primvar cost what
-    /// recomputing the frame's blocks costs, so a frame loop that draws no primvar leaves this
-    /// out.
-    pub fn carry_primvars(&mut self) -> Result<Vec<String>, AssemblyError> {
+    /// Adds the cage's primvars to the last frame's surface (one channel each, until the next
+    /// [`update`](Self::update) writes a frame without them; [`subdiv_stitch::frame_primvars`]).
+    /// Each three floats of a vertex primvar cost what recomputing the frame's blocks costs, and
+    /// each two of a face-varying one a refinement of the cage's face-varying data to the
+    /// frame's deepest level, so a frame loop that draws no primvar leaves this out.
+    pub fn carry_primvars(&mut self) -> Result<(), AssemblyError> {
         let mesh = &self.mesh;
-        let left = match &self.assembler {
-            Stitcher::Quads(a) => {
-                frame_primvars(mesh, |cage| a.stand_in_points(cage), &mut self.geometry)
-            }
-            Stitcher::Tris(a) => {
-                frame_primvars(mesh, |cage| a.stand_in_points(cage), &mut self.geometry)
-            }
-        }?;
-        Ok(left)
+        let geometry = &mut self.geometry;
+        match &self.assembler {
+            Stitcher::Quads(a) => frame_primvars(
+                mesh,
+                |cage| a.stand_in_points(cage),
+                |cage, frame| a.stand_in_corner_values(cage, frame),
+                geometry,
+            ),
+            Stitcher::Tris(a) => frame_primvars(
+                mesh,
+                |cage| a.stand_in_points(cage),
+                |cage, frame| a.stand_in_corner_values(cage, frame),
+                geometry,
+            ),
+        }
     }
 
     /// The last frame's quads per depth before gap prevention (Settgast et al. Fig. 6; see

@@ -1,6 +1,7 @@
-//! Vertex and constant primvars on adaptive frames ([`DynamicSubdivision::carry_primvars`]),
-//! Catmull-Clark and Loop, measured against the surface itself: a vertex primvar equal to the
-//! positions must come out as the frame's points, bit for bit, at every drawn vertex.
+//! Primvars on adaptive frames ([`DynamicSubdivision::carry_primvars`]), Catmull-Clark and
+//! Loop, measured against the surface itself: a vertex primvar equal to the positions must come
+//! out as the frame's points, and a face-varying one equal to the texture coordinates as the
+//! frame's UVs, bit for bit; affine maps of them as those maps.
 
 use glam::Vec3;
 
@@ -64,7 +65,7 @@ fn colours_are_the_points(mesh: Mesh, scheme: Scheme, mixed: bool) {
             !mixed || depths.iter().min() < depths.iter().max(),
             "{depths:?}"
         );
-        assert!(node.carry_primvars().unwrap().is_empty());
+        node.carry_primvars().unwrap();
         let s = node.geometry().surface();
         let c = s.channel("displayColor").unwrap();
         assert_eq!((c.width, c.values.len()), (3, 3 * s.num_vertices()));
@@ -130,7 +131,7 @@ fn frames_carry_values_unlike_the_positions() {
         let mut node = DynamicSubdivision::with_scheme(mesh, scheme, params()).unwrap();
         let camera = Camera::eye_relative(lo, hi, Vec3::new(0.3, 0.2, 2.5), 45.0, 800, 600);
         node.update(&camera, None).unwrap();
-        assert!(node.carry_primvars().unwrap().is_empty());
+        node.carry_primvars().unwrap();
         let s = node.geometry().surface();
         let c = s.channel("displayColor").unwrap();
         for v in drawn(s) {
@@ -147,47 +148,142 @@ fn frames_carry_values_unlike_the_positions() {
     }
 }
 
-/// Every kind of primvar of a stage: vertex ones of any width (four floats: two passes) and
-/// constant ones are carried, the varying, uniform and face-varying ones named as left out;
-/// the next update writes a frame without channels.
-#[test]
-fn constant_and_wide_vertex_primvars_and_what_is_left() {
-    let text = r#"#usda 1.0
-def Mesh "Cube" {
-    int[] faceVertexCounts = [4, 4, 4, 4, 4, 4]
-    int[] faceVertexIndices = [0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5]
-    point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0), (0, 0, 1), (1, 0, 1), (0, 1, 1), (1, 1, 1)]
-    float4[] primvars:wide = [(0, 0, 0, 0), (1, 0, 0, 1), (0, 1, 0, 1), (1, 1, 0, 2), (0, 0, 1, 0), (1, 0, 1, 1), (0, 1, 1, 1), (1, 1, 1, 2)] (
+/// A stage with UVs (`st`) and every other kind of primvar: `st1` equal to `st`, `st2` an
+/// affine map of it, a uniform, a varying (equal everywhere), a wide vertex and a constant one.
+fn stage(scheme: &str) -> Mesh {
+    let (counts, indices, points, uv_idx) = if scheme == "loop" {
+        (
+            "3, 3, 3, 3, 3, 3, 3, 3",
+            "0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5",
+            "(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)",
+            "0, 1, 2, 1, 3, 2, 3, 4, 2, 4, 0, 2, 1, 0, 5, 3, 1, 5, 4, 3, 5, 0, 4, 5",
+        )
+    } else {
+        (
+            "4, 4, 4, 4, 4, 4",
+            "0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5",
+            "(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0), (0, 0, 1), (1, 0, 1), (0, 1, 1), (1, 1, 1)",
+            "0, 1, 2, 3, 1, 4, 5, 2, 4, 6, 7, 5, 6, 0, 3, 7, 3, 2, 5, 7, 0, 6, 4, 1",
+        )
+    };
+    let n_points = points.matches('(').count();
+    let n_faces = counts.split(',').count();
+    let uvs =
+        "(0, 0), (0.25, 0), (0.25, 0.5), (0, 0.5), (0.5, 0), (0.5, 0.5), (0.75, 0), (0.75, 0.5)";
+    let mapped =
+        "(1, -3), (1.5, -3), (1.5, -2.5), (1, -2.5), (2, -3), (2, -2.5), (2.5, -3), (2.5, -2.5)";
+    let opacity: Vec<String> = (0..n_faces).map(|f| format!("{}", f + 1)).collect();
+    let varying = vec!["7"; n_points].join(", ");
+    let wide: Vec<String> = points
+        .split("), (")
+        .map(|p| {
+            let c: Vec<f32> = p
+                .trim_matches(['(', ')'])
+                .split(',')
+                .map(|x| x.trim().parse().unwrap())
+                .collect();
+            format!("({}, {}, {}, {})", c[0], c[1], c[2], c[0] + c[1])
+        })
+        .collect();
+    let text = format!(
+        r#"#usda 1.0
+def Mesh "M" {{
+    uniform token subdivisionScheme = "{scheme}"
+    int[] faceVertexCounts = [{counts}]
+    int[] faceVertexIndices = [{indices}]
+    point3f[] points = [{points}]
+    texCoord2f[] primvars:st = [{uvs}] (
+        interpolation = "faceVarying"
+    )
+    int[] primvars:st:indices = [{uv_idx}]
+    texCoord2f[] primvars:st1 = [{uvs}] (
+        interpolation = "faceVarying"
+    )
+    int[] primvars:st1:indices = [{uv_idx}]
+    texCoord2f[] primvars:st2 = [{mapped}] (
+        interpolation = "faceVarying"
+    )
+    int[] primvars:st2:indices = [{uv_idx}]
+    float4[] primvars:wide = [{wide}] (
         interpolation = "vertex"
     )
     float[] primvars:weight = [0.5]
-    float[] primvars:opacity = [1, 2, 3, 4, 5, 6] (
+    float[] primvars:opacity = [{opacity}] (
         interpolation = "uniform"
     )
-    texCoord2f[] primvars:st1 = [(0, 0), (1, 0), (1, 1), (0, 1)] (
-        interpolation = "faceVarying"
+    float[] primvars:level = [{varying}] (
+        interpolation = "varying"
     )
-    int[] primvars:st1:indices = [0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3]
-}
-"#;
-    let path = temp_dir().join("cube.usda");
+}}
+"#,
+        wide = wide.join(", "),
+        opacity = opacity.join(", "),
+    );
+    let path = temp_dir().join(format!("every_kind_{scheme}.usda"));
     std::fs::write(&path, text).unwrap();
-    let mesh = read_usd(&path, &UsdReadOptions::default()).unwrap().mesh;
-    let (lo, hi) = mesh.bounds();
-    let mut node = DynamicSubdivision::new(mesh, params()).unwrap();
-    let camera = Camera::eye_relative(lo, hi, Vec3::new(0.3, 0.2, 1.5), 45.0, 800, 600);
-    node.update(&camera, None).unwrap();
-    assert_eq!(node.carry_primvars().unwrap(), ["opacity", "st1"]);
-    let s = node.geometry().surface();
-    let (wide, weight) = (s.channel("wide").unwrap(), s.channel("weight").unwrap());
-    assert_eq!(wide.width, 4);
-    for v in drawn(s) {
-        let (w, p) = (wide.value(v), s.positions()[v]);
-        // The first three floats are the cube's points; the fourth is x + y, linear in them.
-        assert_eq!(&w[..3], &p[..]);
-        assert!((w[3] - (p[0] + p[1])).abs() < 1e-5, "vertex {v}: {w:?}");
-        assert_eq!(weight.value(v), [0.5]);
+    read_usd(&path, &UsdReadOptions::default()).unwrap().mesh
+}
+
+/// Every kind of primvar on frames from two cameras (the second deeper, so the face-varying
+/// values are refined further), Catmull-Clark and Loop; the next update writes a frame
+/// without channels.
+#[test]
+fn every_kind_of_primvar_is_carried() {
+    for (name, scheme) in [
+        ("catmullClark", Scheme::CatmullClark),
+        ("loop", Scheme::Loop),
+    ] {
+        let mesh = stage(name);
+        assert_eq!(mesh.primvars().len(), 6, "{name}");
+        let faces = mesh.num_faces();
+        let (lo, hi) = mesh.bounds();
+        let mut node = DynamicSubdivision::with_scheme(mesh, scheme, params()).unwrap();
+        for eye in [Vec3::new(0.3, 0.2, 2.5), Vec3::new(0.3, 0.2, 1.1)] {
+            let camera = Camera::eye_relative(lo, hi, eye, 45.0, 800, 600);
+            node.update(&camera, None).unwrap();
+            node.carry_primvars().unwrap();
+            let s = node.geometry().surface();
+            let channel = |n: &str| s.channel(n).unwrap_or_else(|| panic!("{name}: no {n}"));
+            // st1 is st: its value at every corner is the frame's own texture coordinate.
+            let (st1, st2) = (channel("st1"), channel("st2"));
+            assert!(
+                !s.uv_indices().is_empty(),
+                "{name}: the frame has texture coordinates"
+            );
+            assert_eq!(st1.indices.len(), s.face_indices().len());
+            assert_eq!(s.uv_indices().len(), s.face_indices().len());
+            for (c, &t) in s.uv_indices().iter().enumerate() {
+                let uv = s.uvs()[t as usize];
+                assert_eq!(st1.value(st1.indices[c] as usize), uv, "{name} corner {c}");
+                let m = st2.value(st2.indices[c] as usize);
+                let want = [2.0 * uv[0] + 1.0, uv[1] - 3.0];
+                assert!(
+                    (m[0] - want[0]).abs() < 1e-5 && (m[1] - want[1]).abs() < 1e-5,
+                    "{m:?} {want:?}"
+                );
+            }
+            // Uniform: each face's value, every drawn face's; varying: the one value.
+            let opacity = channel("opacity");
+            let mut seen: Vec<u32> = opacity.values.iter().map(|v| *v as u32).collect();
+            seen.sort_unstable();
+            seen.dedup();
+            assert!(opacity.values.iter().all(|v| v.fract() == 0.0 && *v >= 1.0));
+            assert!(seen.len() > 1 && seen.len() <= faces, "{name}: {seen:?}");
+            assert!(channel("level").values.iter().all(|&v| v == 7.0));
+            let (wide, weight) = (channel("wide"), channel("weight"));
+            for v in drawn(s) {
+                let (w, p) = (wide.value(v), s.positions()[v]);
+                // The first three floats are the points; the fourth is x + y, linear in them.
+                assert_eq!(&w[..3], &p[..]);
+                assert!((w[3] - (p[0] + p[1])).abs() < 1e-5, "vertex {v}: {w:?}");
+                assert_eq!(weight.value(v), [0.5]);
+            }
+        }
+        node.update(
+            &Camera::eye_relative(lo, hi, Vec3::Z * 3.0, 45.0, 800, 600),
+            None,
+        )
+        .unwrap();
+        assert!(node.geometry().surface().channels().is_empty());
     }
-    node.update(&camera, None).unwrap();
-    assert!(node.geometry().surface().channels().is_empty());
 }

@@ -449,6 +449,52 @@ impl Assembler {
         self.slots.gather(|i| &blocks[i])
     }
 
+    /// The face-varying values of the last frame (`frame`, made by this assembler) for the cage
+    /// `stand_in` (this cage with other face-varying data: a face-varying primvar's values
+    /// standing in for its UVs): the values at the level the frame needs and the value of every
+    /// corner of the frame's triangles, looked up as the frame's own UVs are
+    /// ([`crate::frame_primvars`]).
+    pub fn stand_in_corner_values(
+        &self,
+        stand_in: &Mesh,
+        frame: &AdaptiveFrame,
+    ) -> Result<(Vec<[f32; 2]>, Vec<u32>), AssemblyError> {
+        let (depth, active) = frame.drawn();
+        let deepest = (0..depth.len())
+            .filter(|&u| active[u])
+            .map(|u| depth[u])
+            .max();
+        let Some(d) = deepest else {
+            return Ok((Vec::new(), Vec::new()));
+        };
+        // Every corner's point lies on a grid at most one level below the deepest unit.
+        let Some(uvs) = LevelUvs::new(stand_in, subdiv_rules::Scheme::CatmullClark, d + 1)? else {
+            return Ok((Vec::new(), Vec::new()));
+        };
+        let fr = Frame::new(
+            stand_in,
+            &self.set,
+            &self.units,
+            &self.side,
+            &depth,
+            &active,
+            &self.blocks,
+            &self.slots,
+        );
+        let (mut chunks, mut tris, mut sided, mut corners) = Default::default();
+        fr.emit_frame(
+            &active,
+            self.method,
+            Some(&uvs),
+            &mut chunks,
+            &mut tris,
+            &mut sided,
+            &mut corners,
+        );
+        check_corners(&tris, frame)?;
+        Ok((uvs.values, corners))
+    }
+
     /// Depth per vertex (of the patch whose block holds it, at this frame's depth).
     fn fill_vertex_depth(&self, depth: &[Depth], b: &mut TriangleBuffers<'_>) {
         b.scalar.clear();
@@ -458,6 +504,18 @@ impl Assembler {
             b.scalar[self.slots.range(i)].fill(d);
         }
     }
+}
+
+/// That `tris`, emitted again for other face-varying data, are `frame`'s triangles.
+pub(crate) fn check_corners(tris: &[u32], frame: &AdaptiveFrame) -> Result<(), AssemblyError> {
+    if tris != frame.surface.face_indices() {
+        return Err(AssemblyError::Length {
+            what: "face-varying corners of the frame emitted again",
+            got: tris.len(),
+            want: frame.surface.face_indices().len(),
+        });
+    }
+    Ok(())
 }
 
 #[cfg(test)]

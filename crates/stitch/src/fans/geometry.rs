@@ -139,6 +139,18 @@ impl AdaptiveFrame {
             .extend(drawn.map(|(&d, &a)| if a { d } else { u8::MAX }));
     }
 
+    /// The depth and whether it is drawn of every unit (0 for units not drawn), as the frame
+    /// was made with.
+    pub(crate) fn drawn(&self) -> (Vec<subdiv_slate::Depth>, Vec<bool>) {
+        let on = |d: u8| d != u8::MAX;
+        let depth = self
+            .unit_depth
+            .iter()
+            .map(|&d| if on(d) { d } else { 0 })
+            .collect();
+        (depth, self.unit_depth.iter().map(|&d| on(d)).collect())
+    }
+
     /// Number of units drawn at each depth (index = depth).
     pub fn units_per_depth(&self) -> Vec<usize> {
         let mut v = Vec::new();
