@@ -206,3 +206,31 @@ fn dicing_writes_each_vertex_parameter_point() {
         "no _FACE / _PATCH_UV in the glTF JSON"
     );
 }
+
+/// Under the bilinear scheme the surface is the cage itself (a cube, turned by 45 degrees
+/// about z), and the second derivatives along u and v vanish.
+#[test]
+fn bilinear_points_lie_on_the_cage() {
+    let cube = shape("catmark_cube.obj");
+    let args = [
+        "evaluate",
+        &cube,
+        "--scheme",
+        "bilinear",
+        "--uv",
+        "random:20:3",
+        "--second",
+    ];
+    let (code, out, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out.lines().count(), 20);
+    for line in out.lines() {
+        let f = fields(line);
+        let get = |k: &str| vec3(f.iter().find(|x| x.0 == k).unwrap().1);
+        // On the top or bottom (z = ±1) or on a side (|x| + |y| = 1.414214).
+        let p = get("p");
+        let side = (p[0].abs() + p[1].abs() - 1.414214).abs() < 1e-5;
+        assert!(side || (p[2].abs() - 1.0).abs() < 1e-6, "{line}");
+        assert_eq!((get("duu"), get("dvv")), ([0.0; 3], [0.0; 3]), "{line}");
+    }
+}

@@ -148,7 +148,9 @@ fn side_tangents(r: &Ring, f: usize, scheme: Scheme, p: DVec3, n: DVec3) -> (DVe
                 catmark::limit(r.center(), &e, &d, Rule::Smooth).1 / 12.0
             }
             Scheme::Loop => loop_scheme::limit(r.center(), &e, Rule::Smooth, false).1 / 3.0,
-            Scheme::Bilinear => unreachable!("Evaluator::new refuses the bilinear scheme"),
+            Scheme::Bilinear => {
+                unreachable!("bilinear faces are their corners' patches (FaceSurface::load)")
+            }
         }
     };
     let along = |i: usize| {

@@ -95,16 +95,22 @@ impl<'m> Evaluator<'m> {
     /// coordinates beyond `subdiv_rules::MAX_COORDINATE`. Builds the UV cage when the mesh has
     /// UVs.
     pub fn new(mesh: &'m Mesh, scheme: Scheme) -> Result<Evaluator<'m>, EvalError> {
-        if scheme == Scheme::Bilinear {
-            return Err(EvalError::Bilinear);
-        }
         check_coordinates(mesh)?;
         if scheme == Scheme::Loop {
             mesh.check_triangles().map_err(RulesError::from)?;
             check_doubled_triangles(mesh)?;
         }
-        let uv = uvs(mesh)?;
-        let plans = regular_plans(mesh, scheme);
+        // Bilinear: face-varying values are linear whatever the option, and no face is a
+        // B-spline patch.
+        let bilinear = scheme == Scheme::Bilinear;
+        let uv = match bilinear {
+            true => mesh.uv().map(|_| Uvs::Linear),
+            false => uvs(mesh)?,
+        };
+        let plans = match bilinear {
+            true => vec![None; mesh.num_faces()],
+            false => regular_plans(mesh, scheme),
+        };
         let uv_plans = match &uv {
             Some(Uvs::Cage(m)) => regular_plans(m, scheme),
             _ => Vec::new(),

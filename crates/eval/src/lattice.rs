@@ -14,10 +14,10 @@ fn mid(a: Param, b: Param) -> Param {
 
 /// Every face of the level-`depth` refinement, in `subdiv_rules::refine_uniform`'s order: the
 /// cage face it lies in and the `(u, v)` of its corners in that face's [`Domain`]. (A
-/// Catmull-Clark cage with a face that is not a quad is split whole at level 1, an n-gon into
+/// Catmull-Clark or bilinear cage with a face that is not a quad is split whole at level 1, an n-gon into
 /// its sub-faces; a Loop triangle's children are its three corners' and the middle one.)
 pub fn refined_faces(mesh: &Mesh, scheme: Scheme, depth: Depth) -> Vec<(u32, Vec<Param>)> {
-    let ngons = scheme == Scheme::CatmullClark && mesh.faces().any(|f| mesh.face_size(f) != 4);
+    let ngons = scheme != Scheme::Loop && mesh.faces().any(|f| mesh.face_size(f) != 4);
     let mut faces: Vec<(u32, Vec<Param>)> = Vec::with_capacity(mesh.num_faces());
     for f in mesh.faces() {
         let n = mesh.face_size(f);

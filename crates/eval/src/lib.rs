@@ -1,6 +1,6 @@
-//! `subdiv-eval`: the exact Catmull-Clark and Loop limit surface at any parameter point of any
-//! cage face — position, first and second derivatives, and UVs — one point at a time, a face
-//! at a time, or many points in parallel.
+//! `subdiv-eval`: the exact Catmull-Clark, Loop and bilinear limit surface at any parameter
+//! point of any cage face — position, first and second derivatives, and UVs — one point at a
+//! time, a face at a time, or many points in parallel.
 //!
 //! # Parameterisation
 //! A point is `(face, u, v)`: the cage face (0-based, in file order) and `(u, v)` in its
@@ -11,7 +11,9 @@
 //! with respect to these `(u, v)`.
 //!
 //! # Method
-//! Exact means the limit surface itself, not an approximating patch. A face's surface
+//! The bilinear scheme's surface is the cage's own bilinear patches (a quad's; any other
+//! face's sub-faces, its level-1 quads), its UVs linear (`bilinear` module). For the others:
+//! exact means the limit surface itself, not an approximating patch. A face's surface
 //! ([`FaceSurface`]) starts from the rings of its corners (`subdiv_rules::Ring`: each corner
 //! with its whole neighbourhood, creases, Chaikin information and non-manifold copies) and is
 //! refined locally, only where a point falls, until the point's sub-patch is regular: then it
@@ -54,6 +56,7 @@
 //! ```
 
 mod basis;
+mod bilinear;
 mod corner;
 mod dice;
 mod domain;
@@ -103,12 +106,6 @@ pub enum EvalError {
         /// The domain, in words.
         domain: String,
     },
-    /// The bilinear scheme: its limit surface is the cage's bilinear patches, which uniform
-    /// tessellation (`--depth`) draws exactly; this evaluator covers Catmull-Clark and Loop.
-    #[error(
-        "the bilinear scheme is not evaluated at (face, u, v) points: its limit surface is the cage's bilinear patches, which `--depth` tessellates exactly"
-    )]
-    Bilinear,
     /// The cage cannot be refined under the scheme (Loop needs triangles, no doubled
     /// triangles; coordinates within `subdiv_rules::MAX_COORDINATE`).
     #[error(transparent)]
@@ -121,5 +118,7 @@ pub enum EvalError {
     UvCage(subdiv_mesh::MeshError),
 }
 
+#[cfg(test)]
+mod bilinear_tests;
 #[cfg(test)]
 mod tests;

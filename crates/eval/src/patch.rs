@@ -148,7 +148,9 @@ pub(crate) fn refine(
         match scheme {
             Scheme::CatmullClark => quad_side_ring(&rings[j], f[j], &rings[k], f[k], method),
             Scheme::Loop => tri_side_ring(&rings[j], f[j], &rings[k], f[k], method),
-            Scheme::Bilinear => unreachable!("Evaluator::new refuses the bilinear scheme"),
+            Scheme::Bilinear => {
+                unreachable!("bilinear faces are their corners' patches (FaceSurface::load)")
+            }
         }
     };
     let sides: Vec<Ring> = (0..n).map(|j| side(rings, j)).collect();
@@ -181,7 +183,9 @@ pub(crate) fn refine(
             }
             plans.push(vec![(n + 1, 1), (n + 2, 1), (n, 1)]);
         }
-        Scheme::Bilinear => unreachable!("Evaluator::new refuses the bilinear scheme"),
+        Scheme::Bilinear => {
+            unreachable!("bilinear faces are their corners' patches (FaceSurface::load)")
+        }
     }
     let classes: Vec<Option<RegularPatch>> = plans
         .iter()
@@ -253,7 +257,9 @@ pub(crate) fn corner_kind(r: &Ring, f: usize, scheme: Scheme) -> Option<CornerKi
     let (regular, half) = match scheme {
         Scheme::CatmullClark => (4, 2),
         Scheme::Loop => (6, 3),
-        Scheme::Bilinear => unreachable!("Evaluator::new refuses the bilinear scheme"),
+        Scheme::Bilinear => {
+            unreachable!("bilinear faces are their corners' patches (FaceSurface::load)")
+        }
     };
     let (n, nf) = (r.valence(), r.face_count());
     let kind = |next, prev, line| Some(CornerKind { next, prev, line });
@@ -370,7 +376,9 @@ impl RegularPatch {
                 };
                 Some(Self::triangle(rings, faces, mask))
             }
-            Scheme::Bilinear => unreachable!("Evaluator::new refuses the bilinear scheme"),
+            Scheme::Bilinear => {
+                unreachable!("bilinear faces are their corners' patches (FaceSurface::load)")
+            }
         }
     }
 

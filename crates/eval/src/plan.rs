@@ -16,7 +16,9 @@ fn plan(mesh: &Mesh, scheme: Scheme, f: FaceId) -> Option<[u32; 16]> {
     let (n, valence) = match scheme {
         Scheme::CatmullClark => (4, 4),
         Scheme::Loop => (3, 6),
-        Scheme::Bilinear => unreachable!("Evaluator::new refuses the bilinear scheme"),
+        Scheme::Bilinear => {
+            unreachable!("bilinear faces are their corners' patches (FaceSurface::load)")
+        }
     };
     if mesh.face_size(f) != n || mesh.is_hole(f) {
         return None;
@@ -66,7 +68,9 @@ fn plan(mesh: &Mesh, scheme: Scheme, f: FaceId) -> Option<[u32; 16]> {
                     out[AT[k][d - 2]] = mesh.to(out_d(d)).0;
                 }
             }
-            Scheme::Bilinear => unreachable!("Evaluator::new refuses the bilinear scheme"),
+            Scheme::Bilinear => {
+                unreachable!("bilinear faces are their corners' patches (FaceSurface::load)")
+            }
         }
         h = mesh.next(h);
     }

@@ -48,6 +48,9 @@ pub struct FaceSurface {
     /// The root's corner rings, reused between faces.
     root: Corners,
     halfedges: Vec<HalfedgeId>,
+    /// The bilinear scheme: the face's corner positions (its surface is their bilinear patch,
+    /// [`crate::bilinear`]).
+    corners: Vec<DVec3>,
 }
 
 impl FaceSurface {
@@ -85,6 +88,15 @@ impl FaceSurface {
         self.nodes.clear();
         self.patches.clear();
         self.pending.clear();
+        self.corners.clear();
+        if scheme == Scheme::Bilinear {
+            let corners = mesh
+                .face_vertices(f)
+                .iter()
+                .map(|&v| mesh.position(v).as_dvec3());
+            self.corners.extend(corners);
+            return;
+        }
         if let Some(plan) = plan {
             let mut points = [DVec3::ZERO; 16];
             for (p, &v) in points.iter_mut().zip(plan) {
@@ -165,6 +177,20 @@ impl FaceSurface {
 
     /// Evaluates at `(sub, s, t)` of the domain's [`Domain::locate`].
     pub(crate) fn eval_located(&mut self, sub: usize, s: f64, t: f64, d: Derivatives) -> Sample {
+        if self.scheme == Scheme::Bilinear {
+            let n = self.corners.len();
+            let [p, ds, dt, dst] =
+                crate::bilinear::over_face(|k| self.corners[k], n, false, sub, s, t);
+            let local = Local {
+                p,
+                ds,
+                dt,
+                dst,
+                ..Local::default()
+            };
+            let scale = self.domain().derivative_scale();
+            return Sample::from_local(&local, scale, d == Derivatives::Second);
+        }
         let tri = self.scheme == Scheme::Loop;
         let corner_at: &[(f64, f64)] = if tri {
             &[(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)]

@@ -121,7 +121,9 @@ impl<'a> Builder<'a> {
     fn new(mesh: &'a Mesh, scheme: Scheme, rates: &EdgeRates) -> Builder<'a> {
         let mut rate: Vec<u32> = rates.as_slice().to_vec();
         rate.resize(mesh.num_edges(), 1);
-        if scheme == Scheme::CatmullClark {
+        // Sub-face tiles (Catmull-Clark and bilinear faces that are not quads) meet at the
+        // edges' midpoints.
+        if scheme != Scheme::Loop {
             for e in mesh.edges() {
                 let ngon = [e.halfedge(0), e.halfedge(1)].iter().any(|&h| {
                     let f = mesh.face(h);
@@ -159,10 +161,12 @@ impl<'a> Builder<'a> {
         }
     }
 
-    /// Whether a point's normal may differ between the faces around it.
+    /// Whether a point's normal may differ between the faces around it (at every vertex of a
+    /// bilinear cage: its patches meet with a crease at every edge).
     fn sharp_vertex(&self, v: VertexId) -> bool {
         let m = self.mesh;
-        m.vertex_sharpness(v) > 0.0
+        self.scheme == Scheme::Bilinear
+            || m.vertex_sharpness(v) > 0.0
             || m.whole_vertex_edges(v).is_some()
             || m.crease_ends(v).is_some()
             || m.outgoing(v).any(|h| m.edge_sharpness(h.edge()) > 0.0)
@@ -218,9 +222,15 @@ impl<'a> Builder<'a> {
     ) -> Side {
         let r = self.rate[h.edge().idx()];
         let points: Vec<u32> = (a..=b).map(|m| self.edge_point(h, m)).collect();
+        // Bilinear patches meet with a crease at every edge: every edge point is one-sided.
+        let bilinear = self.scheme == Scheme::Bilinear;
         let sharpness = self.mesh.edge_sharpness(h.edge());
-        let sharp_edge = sharpness > 0.0;
-        let inward = semi_sharp_offset(sharpness, r);
+        let sharp_edge = bilinear || sharpness > 0.0;
+        let inward = if bilinear {
+            0.0
+        } else {
+            semi_sharp_offset(sharpness, r)
+        };
         let ends = [self.mesh.from(h), self.mesh.to(h)];
         let sided = (a..=b)
             .map(|m| {

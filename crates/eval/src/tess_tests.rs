@@ -192,3 +192,44 @@ fn semi_sharp_creases_are_one_sided_below_the_tessellation() {
     // Rate 32 resolves the band (spacing 1/32 < 1/16): no one-sided normals inside the spans.
     assert_eq!(turned(32), 0);
 }
+
+/// The bilinear scheme at random rates: watertight to the bit like the others, and its patches
+/// meet with a crease at every cage edge, so every corner (on an edge or not) carries its own
+/// face's normal: on the planar faces of the cube, the normal of its triangle.
+#[test]
+fn bilinear_dicing_is_watertight_with_each_face_its_own_normal() {
+    let mut rng = Rng::splitmix(5);
+    for name in ["catmark_cube", "catmark_nonquads"] {
+        let mesh = read_obj(subdiv_test_support::shape(&format!("{name}.obj"))).unwrap();
+        let eval = Evaluator::new(&mesh, Scheme::Bilinear).unwrap();
+        for _ in 0..3 {
+            let t = tessellate_rates(&eval, &random_rates(&mesh, &mut rng)).unwrap();
+            let (s, tris) = (&t.surface, t.surface.triangles());
+            // Open only along the cage's boundary, one edge per step of its rate.
+            let boundary: u32 = mesh
+                .edges()
+                .filter(|&e| mesh.is_boundary_edge(e))
+                .map(|e| t.rates[e.idx()])
+                .sum();
+            assert_eq!(
+                open_edges(name, s.positions(), &tris) as u32,
+                boundary,
+                "{name}"
+            );
+            if name != "catmark_cube" {
+                continue;
+            }
+            for (k, tri) in tris.chunks(3).enumerate() {
+                let p = [0, 1, 2].map(|c| Vec3::from(s.positions()[tri[c] as usize]));
+                let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize();
+                for c in 0..3 {
+                    let drawn = Vec3::from(s.corner_normal(3 * k + c)).normalize();
+                    assert!(
+                        drawn.dot(n) > 0.9999,
+                        "{name} triangle {k} corner {c}: {drawn} vs {n}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -72,29 +72,8 @@ pub(crate) fn linear_uv(
     };
     let (offsets, _) = mesh.face_lists();
     let n = mesh.face_size(f);
-    let c = |k: usize| fv.corner(offsets[f.idx()] as usize + k % n).as_dvec2();
-    if scheme == Scheme::Loop {
-        let (a, b, d) = (c(0), c(1), c(2));
-        return [a + (b - a) * s + (d - a) * t, b - a, d - a];
-    }
-    let q = if n == 4 {
-        [c(0), c(1), c(2), c(3)]
-    } else {
-        let centre = (0..n).map(c).sum::<DVec2>() / n as f64;
-        let k = sub;
-        [
-            c(k),
-            (c(k) + c(k + 1)) * 0.5,
-            centre,
-            (c(k + n - 1) + c(k)) * 0.5,
-        ]
-    };
-    let p = q[0] * ((1.0 - s) * (1.0 - t))
-        + q[1] * (s * (1.0 - t))
-        + q[2] * (s * t)
-        + q[3] * ((1.0 - s) * t);
-    let du = (q[1] - q[0]) * (1.0 - t) + (q[2] - q[3]) * t;
-    let dv = (q[3] - q[0]) * (1.0 - s) + (q[2] - q[1]) * s;
+    let c = |k: usize| fv.corner(offsets[f.idx()] as usize + k).as_dvec2();
+    let [p, du, dv, _] = crate::bilinear::over_face(c, n, scheme == Scheme::Loop, sub, s, t);
     [p, du, dv]
 }
 
