@@ -229,7 +229,7 @@ fn bilinear_points_lie_on_the_cage() {
         let get = |k: &str| vec3(f.iter().find(|x| x.0 == k).unwrap().1);
         // On the top or bottom (z = ±1) or on a side (|x| + |y| = 1.414214).
         let p = get("p");
-        let side = (p[0].abs() + p[1].abs() - 1.414214).abs() < 1e-5;
+        let side = (p[0].abs() + p[1].abs() - std::f64::consts::SQRT_2).abs() < 1e-5;
         assert!(side || (p[2].abs() - 1.0).abs() < 1e-6, "{line}");
         assert_eq!((get("duu"), get("dvv")), ([0.0; 3], [0.0; 3]), "{line}");
     }
