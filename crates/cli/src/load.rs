@@ -119,16 +119,16 @@ pub fn cage_scheme(path: &Path, cage: &Cage, requested: Option<Scheme>) -> anyho
     }
 }
 
-/// Warns that the cage's primvars (but `st`) do not reach `what` (a surface other than the
-/// uniform and adaptive tessellations, which carry them); nothing for a cage without.
+/// Warns that the cage's primvars (but `st`) do not reach `what` (dicing: the uniform and
+/// adaptive tessellations and DoI refinement carry them); nothing for a cage without.
 pub fn warn_primvars_not_carried(mesh: &subdiv::mesh::Mesh, what: &str) {
     if mesh.primvars().is_empty() {
         return;
     }
     let names: Vec<&str> = mesh.primvars().iter().map(|p| p.name.as_str()).collect();
     log::warn!(
-        "primvars {} are not carried by {what} (the uniform tessellation, --depth N, and the \
-         adaptive one carry them)",
+        "primvars {} are not carried by {what} (the uniform and adaptive tessellations and DoI \
+         refinement carry them)",
         names.join(", ")
     );
 }

@@ -30,10 +30,11 @@ pub struct RefineArgs {
     pub doi: DoiArgs,
     #[command(flatten)]
     pub camera: CameraArgs,
-    /// Output file, its format by extension: .obj (the refined mesh with its tags and UVs),
-    /// .gltf (+ .bin) or .glb (glTF 2.0), .ply (binary); glTF and PLY hold the refined triangles
-    /// with vertex normals, the cage's refined UVs when it has them (TEXCOORD_0, s t) and each
-    /// vertex's largest DoI over its faces (_DOI, doi).
+    /// Output file, its format by extension: .obj (the refined mesh with its tags, UVs and
+    /// vertex colours), .gltf (+ .bin) or .glb (glTF 2.0), .ply (binary); glTF and PLY hold the
+    /// refined triangles with vertex normals, the cage's refined UVs when it has them
+    /// (TEXCOORD_0, s t), its refined primvars (as `tessellate` writes them) and each vertex's
+    /// largest DoI over its faces (_DOI, doi).
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
     /// Give each extra fan of faces at a non-manifold vertex its own vertex (the surface opens
@@ -48,7 +49,9 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
     let input = a.input.display().to_string();
     let format = OutputFormat::from_path(&a.output)?;
     let cage = crate::load::load_cage(&a.input, a.split_nonmanifold, a.prim.as_deref(), a.time)?;
-    crate::load::warn_primvars_not_carried(&cage.mesh, "DoI-driven refinement");
+    if format == OutputFormat::Obj {
+        warn_primvars_beyond_obj(&cage.mesh, &a.output);
+    }
     let setup = a.doi.setup(cage.mesh, &input)?;
     let steps = a.doi.steps;
     a.limit.check(
@@ -103,6 +106,30 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<ExitCode> {
         );
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Warns that the OBJ cage written to `out` holds no primvar of `mesh` but its vertex colours
+/// (a vertex `displayColor` of 3 floats).
+fn warn_primvars_beyond_obj(mesh: &subdiv::mesh::Mesh, out: &std::path::Path) {
+    let vertex_colour = |p: &subdiv::mesh::Primvar| {
+        p.name == "displayColor"
+            && p.width == 3
+            && p.interpolation == subdiv::mesh::PrimvarInterpolation::Vertex
+    };
+    let left: Vec<&str> = mesh
+        .primvars()
+        .iter()
+        .filter(|p| !vertex_colour(p))
+        .map(|p| p.name.as_str())
+        .collect();
+    if !left.is_empty() {
+        log::warn!(
+            "{}: primvars {} are not written to an OBJ cage (it holds vertex colours only; \
+             glTF and PLY hold every primvar)",
+            out.display(),
+            left.join(", ")
+        );
+    }
 }
 
 #[cfg(test)]

@@ -43,12 +43,10 @@ struct Drawing<'a> {
 
 pub fn run(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     a.surface.check_doi_options()?;
-    if a.style.primvar().is_some()
-        && (a.surface.doi.kind().is_some() || a.surface.dicing.dicing()?.is_some())
-    {
+    if a.style.primvar().is_some() && a.surface.dicing.dicing()?.is_some() {
         bail!(
-            "--shading {}: primvars are carried by the uniform (--depth N) and adaptive \
-             tessellations, not by DoI refinement or dicing",
+            "--shading {}: primvars are carried by the uniform and adaptive tessellations and \
+             DoI refinement, not by dicing",
             a.style.shading_name()
         );
     }
@@ -112,13 +110,21 @@ fn draw_seen_from(
 fn run_doi(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     let mut style = a.style.clone();
     style.doi_values = true;
-    let options = style.render_options()?;
+    let mut options = style.render_options()?;
     let t0 = Instant::now();
     let label = a.surface.label();
     let setup = a.surface.doi_setup()?;
     let camera = a.camera.camera(&setup.cage);
     let spinner = crate::progress::spinner(format!("refining ({} steps)", a.surface.doi.steps));
-    let scene = setup.scene(&camera);
+    let scene = match a.style.primvar() {
+        None => setup.scene(&camera),
+        Some(name) => setup.scene_showing(&camera, name).map(|(scene, display)| {
+            if display == PrimvarDisplay::Heat {
+                options.shading = Shading::Doi;
+            }
+            scene
+        }),
+    };
     spinner.finish_and_clear();
     let mut scene = scene.with_context(|| label.clone())?;
     let note = setup.summary(scene.faces());

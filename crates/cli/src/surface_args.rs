@@ -315,7 +315,7 @@ fn parse_face_depths(spec: &str, max_depth: Depth) -> anyhow::Result<Vec<Depth>>
 pub struct StyleArgs {
     /// Surface shading: smooth (limit normals), flat (face normals), wire (hidden-line
     /// wireframe), depth (subdivision depth colours), doi (degree-of-interest heat map), or
-    /// primvar:NAME (`render` of the uniform or adaptive tessellation: the cage's primvar NAME
+    /// primvar:NAME (`render`, but with --dicing-rate: the cage's primvar NAME
     /// as colours, its first three floats as red, green and blue, or one float as the heat
     /// map; `subdiv info` lists a cage's primvars).
     #[arg(long, value_name = "SHADING", value_parser = parse_shading, default_value = "smooth")]

@@ -8,7 +8,7 @@ use std::ops::{AddAssign, Sub};
 
 use glam::{DVec3, Vec3};
 
-use crate::{Mesh, MeshError, PolygonSoup, VertexId};
+use crate::{Mesh, MeshError, PolygonSoup, Primvar, PrimvarInterpolation, VertexId};
 
 /// A 3-vector type the polygon helpers work on (`Vec3` and `DVec3`).
 pub trait Vector3: Copy + Default + Sub<Output = Self> + AddAssign {
@@ -187,7 +187,8 @@ impl Mesh {
 /// Splits every face of `mesh` into triangles: quads along their shorter diagonal, larger
 /// polygons as a fan from their first vertex. Triangles stay as they are. Groups, holes, edge
 /// and vertex sharpness, the scheme options and the UVs (each triangle corner keeps its face
-/// corner's value) carry over; the new diagonals are smooth.
+/// corner's value) and the primvars (each triangle its face's uniform value and its corners'
+/// face-varying ones) carry over; the new diagonals are smooth.
 ///
 /// ```
 /// use subdiv_mesh::{parse_obj, triangulate, Mesh};
@@ -209,6 +210,19 @@ pub fn triangulate(mesh: &Mesh) -> Result<Mesh, MeshError> {
     if let Some(fv) = mesh.uv() {
         soup.uvs = fv.values.clone();
     }
+    // Primvars: per vertex and constant ones as they are; per face and per corner ones follow
+    // their faces and corners (filled below).
+    soup.primvars = mesh
+        .primvars()
+        .iter()
+        .map(|p| match p.interpolation {
+            PrimvarInterpolation::Uniform | PrimvarInterpolation::FaceVarying => Primvar {
+                indices: Vec::new(),
+                ..p.clone()
+            },
+            _ => p.clone(),
+        })
+        .collect();
     for f in mesh.faces() {
         let v: Vec<i64> = mesh.face_vertices(f).iter().map(|x| x.0 as i64).collect();
         // Triangles as corners of the face.
@@ -226,10 +240,19 @@ pub fn triangulate(mesh: &Mesh) -> Result<Mesh, MeshError> {
         };
         for t in tris {
             soup.push_face(t.map(|k| v[k]));
+            let c = offsets[f.idx()] as usize;
             if let Some(fv) = mesh.uv() {
-                let c = offsets[f.idx()] as usize;
                 soup.uv_indices
                     .extend(t.map(|k| i64::from(fv.indices[c + k])));
+            }
+            for (q, p) in soup.primvars.iter_mut().zip(mesh.primvars()) {
+                match p.interpolation {
+                    PrimvarInterpolation::Uniform => q.indices.push(p.indices[f.idx()]),
+                    PrimvarInterpolation::FaceVarying => {
+                        q.indices.extend(t.map(|k| p.indices[c + k]));
+                    }
+                    _ => {}
+                }
             }
             soup.face_groups.push(mesh.face_group(f));
             holes.push(mesh.is_hole(f));

@@ -390,12 +390,25 @@ fn write_text(path: &Path, text: &str) -> Result<(), ObjError> {
     f.flush().map_err(io)
 }
 
-/// Formats a mesh as an OBJ cage, with groups and OpenSubdiv tags, so that reading it back gives
-/// the same mesh.
+/// Formats a mesh as an OBJ cage, with groups, OpenSubdiv tags, UVs and vertex colours (a
+/// vertex `displayColor` of 3 floats), so that reading it back gives the same mesh (but for its
+/// other primvars, which OBJ cannot hold).
 pub fn format_mesh_obj(mesh: &Mesh) -> String {
     let mut s = String::new();
-    for p in mesh.positions() {
-        let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);
+    // OBJ's vertex colours: a display colour of 3 floats a vertex.
+    let colour = mesh
+        .primvar("displayColor")
+        .filter(|p| p.interpolation == crate::PrimvarInterpolation::Vertex && p.width == 3);
+    for (v, p) in mesh.positions().iter().enumerate() {
+        match colour {
+            Some(c) => {
+                let [r, g, b] = [0, 1, 2].map(|k| c.element(v)[k]);
+                let _ = writeln!(s, "v {} {} {} {r} {g} {b}", p.x, p.y, p.z);
+            }
+            None => {
+                let _ = writeln!(s, "v {} {} {}", p.x, p.y, p.z);
+            }
+        }
     }
     if let Some(fv) = mesh.uv() {
         for t in &fv.values {

@@ -78,6 +78,13 @@ pub enum RedGreenError {
         /// The corner's vertex in the refined mesh.
         vertex: u32,
     },
+    /// The pairs of floats of a face-varying primvar refined to different corners (a bug:
+    /// every pair shares the primvar's seams and the pass's topology).
+    #[error("internal error: primvar '{name}': its floats refined to different corners")]
+    PrimvarCorners {
+        /// The primvar.
+        name: String,
+    },
     /// A refined mesh failed validation (a bug: the closure keeps the mesh valid).
     #[error("internal error: the refined mesh is invalid: {0}")]
     Internal(subdiv_mesh::MeshError),

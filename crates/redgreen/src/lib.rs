@@ -21,6 +21,9 @@
 //!   closure by `subdiv-rules`' face-varying rules ([`subdiv_rules::refine_face_varying_part`]):
 //!   with every face selected the channel is `refine_uniform`'s exactly; values are continuous
 //!   across every edge off a seam, and seams stay seams.
+//! - A mesh's primvars ([`subdiv_mesh::Mesh::primvars`]) are refined in the same passes: vertex
+//!   ones by the positions' rules, face-varying ones by the UVs', varying ones linearly, uniform
+//!   ones per face (`primvars.rs`); a vertex primvar equal to the positions stays equal to them.
 //!
 //! ```
 //! use subdiv_redgreen::{loop_step, AdaptiveMesh};
@@ -41,6 +44,9 @@
 mod error;
 mod fvar;
 mod pass;
+mod primvars;
+#[cfg(test)]
+mod primvars_tests;
 pub mod red_green;
 mod step;
 

@@ -36,11 +36,21 @@ pub(crate) fn vertex_levels(mesh: &Mesh, level: &[u8]) -> Vec<u8> {
 /// Every vertex at level `l`: its current position when its level is `l` or less, the previous
 /// one when it is one level ahead.
 pub(crate) fn level_positions(a: &AdaptiveMesh, l: u8) -> Vec<Vec3> {
+    level_values(a, l, a.mesh.positions(), &a.previous)
+}
+
+/// [`level_positions`] of any per-vertex field (`values` now, `previous` one level before: the
+/// positions, or a vertex primvar's values standing in for them).
+pub(crate) fn level_values(
+    a: &AdaptiveMesh,
+    l: u8,
+    values: &[Vec3],
+    previous: &[Vec3],
+) -> Vec<Vec3> {
     let top = vertex_levels(&a.mesh, &a.level);
-    a.mesh
-        .positions()
+    values
         .iter()
-        .zip(&a.previous)
+        .zip(previous)
         .zip(&top)
         .map(|((&p, &q), &t)| if t > l { q } else { p })
         .collect()
@@ -83,6 +93,60 @@ pub(crate) fn inside_family(mesh: &Mesh, green: &GreenState, h: HalfedgeId) -> b
     })
 }
 
+/// A pass's points of one per-vertex field (`values` now and `previous` one level before: the
+/// positions, or a vertex primvar's values standing in for them), read by `kernel` (made on the
+/// mesh with the field's values at the pass's level, `kpos`): moved vertices take the
+/// vertex rule (the ends of split edges are ruled too, for their child sharpness), split edges
+/// get their edge points after the existing vertices, in edge order. Returns the new values and
+/// their previous ones.
+pub(crate) fn field_points(
+    (kernel, kpos): (&mut RefineKernel<'_>, &[Vec3]),
+    cur: &AdaptiveMesh,
+    closure: &Closure,
+    by_level: bool,
+    values: &[Vec3],
+    previous: &[Vec3],
+) -> (Vec<Vec3>, Vec<Vec3>) {
+    let mesh = &cur.mesh;
+    // Vertex rules for moved vertices and for the ends of split edges (their child edge
+    // sharpness gives the crease weight of the edge point); only moved vertices move.
+    let mut need = closure.moves.clone();
+    for e in mesh.edges() {
+        if closure.split_edge[e.idx()] {
+            let [a, b] = mesh.edge_vertices(e);
+            need[a.idx()] = true;
+            need[b.idx()] = true;
+        }
+    }
+    let mut out: Vec<Vec3> = Vec::with_capacity(mesh.num_vertices() + closure.num_split_edges());
+    out.extend_from_slice(values);
+    let mut prev = Vec::with_capacity(out.capacity());
+    prev.extend_from_slice(previous);
+    for v in mesh.vertices() {
+        if need[v.idx()] {
+            let skip = |h| by_level && inside_family(mesh, &cur.green, h);
+            let mut p = kernel.vertex_point_without(v, &[], skip);
+            if let Some(ends) = mesh.crease_ends(v) {
+                // A copy lacking the crease's edges: the crease rule over them (its own rules
+                // still gave its edges' child sharpness).
+                p = kernel.crease_copy_point(v, ends);
+            }
+            if closure.moves[v.idx()] {
+                prev[v.idx()] = out[v.idx()];
+                out[v.idx()] = p;
+            }
+        }
+    }
+    for e in mesh.edges() {
+        if closure.split_edge[e.idx()] {
+            let p = kernel.edge_point(e, |h| kpos[opposite(cur, &closure.merged, h).idx()]);
+            out.push(p);
+            prev.push(p);
+        }
+    }
+    (out, prev)
+}
+
 /// Applies `closure` to `cur`: vertex and edge points (and UVs, `crate::fvar`) read at
 /// `level` (every vertex at that level, and rings without green-internal edges; `None`: the
 /// current positions and rings, the paper's plain closure), moved vertices and new midpoints
@@ -109,46 +173,23 @@ pub(crate) fn pass(
     };
     let kpos = kmesh.positions();
 
-    // Vertex rules for moved vertices and for the ends of split edges (their child edge
-    // sharpness gives the crease weight of the edge point); only moved vertices move.
-    let mut need = closure.moves.clone();
-    for e in mesh.edges() {
-        if closure.split_edge[e.idx()] {
-            let [a, b] = mesh.edge_vertices(e);
-            need[a.idx()] = true;
-            need[b.idx()] = true;
-        }
-    }
     let mut kernel = RefineKernel::new(kmesh, Scheme::Loop);
-    let mut positions: Vec<Vec3> =
-        Vec::with_capacity(mesh.num_vertices() + closure.num_split_edges());
-    positions.extend_from_slice(mesh.positions());
-    let mut previous = Vec::with_capacity(positions.capacity());
-    previous.extend_from_slice(&cur.previous);
-    for v in mesh.vertices() {
-        if need[v.idx()] {
-            let skip = |h| by_level && inside_family(mesh, &cur.green, h);
-            let mut p = kernel.vertex_point_without(v, &[], skip);
-            if let Some(ends) = mesh.crease_ends(v) {
-                // A copy lacking the crease's edges: the crease rule over them (its own rules
-                // still gave its edges' child sharpness).
-                p = kernel.crease_copy_point(v, ends);
-            }
-            if closure.moves[v.idx()] {
-                previous[v.idx()] = positions[v.idx()];
-                positions[v.idx()] = p;
-            }
-        }
-    }
+    let (positions, previous) = field_points(
+        (&mut kernel, kpos),
+        cur,
+        closure,
+        by_level,
+        mesh.positions(),
+        &cur.previous,
+    );
 
     // Edge points, numbered in edge order after the existing vertices.
     let mut edge_mid = vec![VertexId::NONE; mesh.num_edges()];
+    let mut next = mesh.num_vertices() as u32;
     for e in mesh.edges() {
         if closure.split_edge[e.idx()] {
-            edge_mid[e.idx()] = VertexId(positions.len() as u32);
-            let p = kernel.edge_point(e, |h| kpos[opposite(cur, &closure.merged, h).idx()]);
-            positions.push(p);
-            previous.push(p);
+            edge_mid[e.idx()] = VertexId(next);
+            next += 1;
         }
     }
 
@@ -161,9 +202,12 @@ pub(crate) fn pass(
         });
     }
     let uvs = crate::fvar::pass_uvs(&mut kernel, cur, closure, level, &edge_mid, &asm)?;
+    let primvars =
+        crate::primvars::pass_primvars(&mut kernel, cur, closure, level, &edge_mid, &asm)?;
     let mut soup = PolygonSoup {
         positions,
         options: mesh.options(),
+        primvars: primvars.primvars,
         ..Default::default()
     };
     let mut previous_uv = Vec::new();
@@ -212,6 +256,7 @@ pub(crate) fn pass(
             level,
             previous,
             previous_uv,
+            previous_primvars: primvars.previous,
             cage_angle: cur.cage_angle,
         },
         asm.source_face,

@@ -81,6 +81,10 @@ pub struct AdaptiveMesh {
     /// its vertex's current one, as [`AdaptiveMesh::previous`] for positions; the value itself
     /// for a value that has not moved since it was made.
     pub previous_uv: Vec<Vec2>,
+    /// Per primvar of the mesh ([`Mesh::primvars`]), as [`AdaptiveMesh::previous`] for
+    /// positions: a vertex primvar's value one level before at every vertex, a face-varying
+    /// one's per value (`width` floats each); empty for the others (`crate::primvars`).
+    pub previous_primvars: Vec<Vec<f32>>,
     /// The cage's smallest angle (radians). A balanced step refines red a triangle whose green
     /// bisection would cut an angle too small for it ([`red_green::balance`]); 0 allows every
     /// bisection.
@@ -95,6 +99,7 @@ impl AdaptiveMesh {
         let level = vec![0; mesh.num_faces()];
         let previous = mesh.positions().to_vec();
         let previous_uv = mesh.uv().map(|fv| fv.values.clone()).unwrap_or_default();
+        let previous_primvars = crate::primvars::initial_previous(&mesh);
         let cage_angle = mesh
             .faces()
             .map(|f| {
@@ -109,6 +114,7 @@ impl AdaptiveMesh {
             level,
             previous,
             previous_uv,
+            previous_primvars,
             cage_angle,
         })
     }
@@ -195,6 +201,11 @@ pub fn loop_step_with(
         "previous UVs",
         cur.previous_uv.len(),
         mesh.uv().map_or(0, |fv| fv.values.len()),
+    )?;
+    check_len(
+        "previous primvar values",
+        cur.previous_primvars.len(),
+        mesh.primvars().len(),
     )?;
     let count = |s: &[bool]| s.iter().filter(|&&x| x).count();
     let selected_n = count(selected);

@@ -7,8 +7,8 @@ use subdiv_doi::{
     Aggregate, Curvature, Dihedral, Doi, DoiContext, DoiError, DoiKind, Focus, FocusSpec, Haptic,
     HapticPoint, Silhouette, ViewAngle, closest_surface_point, read_skeleton,
 };
-use subdiv_mesh::{Camera, Mesh, MeshError, triangulate};
-use subdiv_rules::{Depth, LimitMesh, LimitMeshError, VertexScalar};
+use subdiv_mesh::{Camera, Mesh, MeshError, PrimvarInterpolation, triangulate};
+use subdiv_rules::{Depth, LimitChannel, LimitMesh, LimitMeshError, VertexScalar};
 
 use crate::{Balance, RefineError, RefineOptions, Refined, Scene, refine_adaptive};
 
@@ -50,6 +50,9 @@ pub enum DoiSetupError {
     /// The refined surface broke an invariant of its output type.
     #[error(transparent)]
     Output(#[from] LimitMeshError),
+    /// The scene could not show what was asked (a primvar the surface does not carry).
+    #[error(transparent)]
+    Scene(crate::SceneError),
 }
 
 /// A DoI choice and its options.
@@ -263,6 +266,17 @@ impl DoiSetup {
         Ok(Scene::from_limit(&limit))
     }
 
+    /// [`DoiSetup::scene`] showing the refined primvar `name` ([`Scene::from_limit_showing`]).
+    pub fn scene_showing(
+        &self,
+        camera: &Camera,
+        name: &str,
+    ) -> Result<(Scene, crate::PrimvarDisplay), DoiSetupError> {
+        let r = self.run(*camera).map_err(DoiSetupError::Refine)?;
+        let limit = self.refined_surface(&r, camera)?;
+        Scene::from_limit_showing(limit, name).map_err(DoiSetupError::Scene)
+    }
+
     /// A refinement of this set-up for `camera` as a surface to draw or write: the refined mesh
     /// (not pushed to the limit) with vertex normals, one-sided normals along sharp edges, its
     /// refined UVs when the cage has UVs, and each vertex's largest DoI over its faces as its
@@ -307,6 +321,47 @@ impl DoiSetup {
         limit.set_corner_normals(subdiv_mesh::sector_corner_normals(m, &normals))?;
         limit.set_uvs(uvs, uv_indices)?;
         limit.set_scalar(VertexScalar::Doi, scalar)?;
+        // The refined primvars (refined values, as the UVs): per vertex, or per face corner.
+        let corner_face: Vec<usize> = (0..offsets.len() - 1)
+            .flat_map(|f| std::iter::repeat_n(f, (offsets[f + 1] - offsets[f]) as usize))
+            .collect();
+        for p in m.primvars() {
+            let indices: Vec<u32> = match p.interpolation {
+                PrimvarInterpolation::Constant => vec![0; m.num_vertices()],
+                PrimvarInterpolation::Vertex
+                | PrimvarInterpolation::Varying
+                | PrimvarInterpolation::FaceVarying => p.indices.clone(),
+                PrimvarInterpolation::Uniform => {
+                    corner_face.iter().map(|&f| p.indices[f]).collect()
+                }
+            };
+            let per_vertex = matches!(
+                p.interpolation,
+                PrimvarInterpolation::Constant
+                    | PrimvarInterpolation::Vertex
+                    | PrimvarInterpolation::Varying
+            );
+            let channel = if per_vertex {
+                let values = indices.iter().flat_map(|&i| {
+                    let at = i as usize * p.width;
+                    p.values[at..at + p.width].to_vec()
+                });
+                LimitChannel {
+                    name: p.name.clone(),
+                    width: p.width,
+                    values: values.collect(),
+                    indices: Vec::new(),
+                }
+            } else {
+                LimitChannel {
+                    name: p.name.clone(),
+                    width: p.width,
+                    values: p.values.clone(),
+                    indices,
+                }
+            };
+            limit.push_channel(channel)?;
+        }
         Ok(limit)
     }
 

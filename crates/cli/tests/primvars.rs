@@ -86,7 +86,7 @@ fn primvar_shading_is_refused_where_no_primvar_is_carried() {
             "-o",
             out,
         ],
-        "not by DoI refinement or dicing",
+        "not by dicing",
     );
     assert_fails(
         &["render", &input, "--shading", "shiny", "-o", out],
@@ -128,6 +128,47 @@ fn adaptive_tessellation_writes_the_vertex_colours() {
     let colours = surface.primvar("displayColor").unwrap();
     assert!(surface.num_vertices() > 10 * cage.num_vertices());
     for (v, p) in surface.positions().iter().enumerate() {
+        let want = (*p - lo) / (hi - lo);
+        let got = colours.element(v);
+        for k in 0..3 {
+            assert!(
+                (got[k] - want[k]).abs() < 2e-4,
+                "vertex {v}: {got:?} against {want}"
+            );
+        }
+    }
+}
+
+/// DoI-driven refinement carries the colours: the refined OBJ cage keeps them as vertex colours,
+/// each the map of its refined position (refined values of an affine map of the positions).
+#[test]
+fn refinement_writes_the_vertex_colours() {
+    let out = tmp("pawn_refined.obj");
+    let input = pawn();
+    let args = [
+        "refine",
+        &input,
+        "--triangulate",
+        "--doi",
+        "view-angle",
+        "--eye-relative",
+        "1.5,-1.7,0.9",
+        "--up",
+        "0,0,1",
+        "--steps",
+        "2",
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    let (code, _, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("primvars"), "{err}");
+    let cage = subdiv_mesh::read_obj(root().join("fixtures/scenes/pawn_colors.obj")).unwrap();
+    let (lo, hi) = cage.bounds();
+    let refined = subdiv_mesh::read_obj(&out).unwrap();
+    assert!(refined.num_faces() > 4 * cage.num_faces());
+    let colours = refined.primvar("displayColor").unwrap();
+    for (v, p) in refined.positions().iter().enumerate() {
         let want = (*p - lo) / (hi - lo);
         let got = colours.element(v);
         for k in 0..3 {
