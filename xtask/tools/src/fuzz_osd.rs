@@ -276,7 +276,10 @@ impl Harness {
         let Some(exe) = &self.fvar_exe else {
             return Ok(());
         };
-        let soup = subdiv_mesh::parse_obj(&uv_text).map_err(|e| e.to_string())?;
+        let mut soup = subdiv_mesh::parse_obj(&uv_text).map_err(|e| e.to_string())?;
+        // As subdiv reads the cage (non-manifold cages refined as OpenSubdiv refines them).
+        soup.split_nonmanifold().map_err(|e| e.to_string())?;
+        let soup = soup;
         let run = |limit: bool| -> Result<Vec<Vec<f64>>, String> {
             let mut cmd = Command::new(exe);
             cmd.arg(&uv_path)
