@@ -30,6 +30,11 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+/// mimalloc: the exact evaluator and the adaptive frames allocate many small buffers, which
+/// glibc's allocator serves several times slower (docs/performance.md).
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// Adaptive, crack-free tessellation of subdivision surfaces.
 #[derive(Parser, Debug)]
 #[command(name = "subdiv", version, about)]
