@@ -202,8 +202,16 @@ pub(crate) fn pass(
         });
     }
     let uvs = crate::fvar::pass_uvs(&mut kernel, cur, closure, level, &edge_mid, &asm)?;
-    let primvars =
-        crate::primvars::pass_primvars(&mut kernel, cur, closure, level, &edge_mid, &asm)?;
+    let primvars = crate::primvars::pass_primvars(
+        &mut kernel,
+        &crate::primvars::Pass {
+            cur,
+            closure,
+            level,
+            edge_mid: &edge_mid,
+            asm: &asm,
+        },
+    )?;
     let mut soup = PolygonSoup {
         positions,
         options: mesh.options(),

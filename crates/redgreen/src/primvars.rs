@@ -55,18 +55,23 @@ pub(crate) struct PassPrimvars {
     pub previous: Vec<Vec<f32>>,
 }
 
-/// Refines the primvars of `cur` in the pass of `closure` read at `level` (`None`: the current
-/// values): `kernel` has computed the pass's vertex points of the positions (for the
-/// face-varying rules' child sharpness); `edge_mid` and `asm` are the pass's midpoints and
-/// triangles.
+/// One pass as the primvars read it: `cur` refined by `closure` read at `level` (`None`: the
+/// current values), with the pass's midpoints `edge_mid` and triangles `asm`.
+pub(crate) struct Pass<'a> {
+    pub cur: &'a AdaptiveMesh,
+    pub closure: &'a Closure,
+    pub level: Option<u8>,
+    pub edge_mid: &'a [VertexId],
+    pub asm: &'a Assembly,
+}
+
+/// Refines the primvars of the pass's mesh: `kernel` has computed the pass's vertex points of
+/// the positions (for the face-varying rules' child sharpness).
 pub(crate) fn pass_primvars(
     kernel: &mut RefineKernel<'_>,
-    cur: &AdaptiveMesh,
-    closure: &Closure,
-    level: Option<u8>,
-    edge_mid: &[VertexId],
-    asm: &Assembly,
+    pass: &Pass<'_>,
 ) -> Result<PassPrimvars, RedGreenError> {
+    let (cur, closure, level, asm) = (pass.cur, pass.closure, pass.level, pass.asm);
     let mesh = &cur.mesh;
     let mut out = PassPrimvars {
         primvars: Vec::with_capacity(mesh.primvars().len()),
@@ -102,9 +107,7 @@ pub(crate) fn pass_primvars(
                 let n = values.len() / p.width;
                 (values, (0..n as u32).collect(), prev)
             }
-            PrimvarInterpolation::FaceVarying => {
-                face_varying_pass(kernel, cur, closure, level, edge_mid, asm, p, previous)?
-            }
+            PrimvarInterpolation::FaceVarying => face_varying_pass(kernel, pass, p, previous)?,
         };
         out.primvars.push(Primvar {
             name: p.name.clone(),
@@ -175,17 +178,19 @@ fn vertex_pass(
 /// A face-varying primvar through the pass, two floats at a time standing in for the UVs:
 /// its values, the value of every corner of the child's triangles and the values' previous
 /// ones.
-#[allow(clippy::too_many_arguments)]
 fn face_varying_pass(
     kernel: &mut RefineKernel<'_>,
-    cur: &AdaptiveMesh,
-    closure: &Closure,
-    level: Option<u8>,
-    edge_mid: &[VertexId],
-    asm: &Assembly,
+    pass: &Pass<'_>,
     p: &Primvar,
     previous: &[f32],
 ) -> Result<Refined, RedGreenError> {
+    let Pass {
+        cur,
+        closure,
+        level,
+        edge_mid,
+        asm,
+    } = *pass;
     let w = p.width;
     let two = |values: &[f32], at: usize| -> Vec<Vec2> {
         values

@@ -326,16 +326,8 @@ impl TriAssembler {
         stand_in: &Mesh,
         frame: &AdaptiveFrame,
     ) -> Result<(Vec<[f32; 2]>, Vec<u32>), AssemblyError> {
-        let (depth, active) = frame.drawn();
-        let deepest = (0..depth.len())
-            .filter(|&f| active[f])
-            .map(|f| depth[f])
-            .max();
         // Every drawn point is a lattice point at most at the deepest drawn depth.
-        let Some(level) = deepest else {
-            return Ok((Vec::new(), Vec::new()));
-        };
-        let Some(uvs) = LevelUvs::new(stand_in, subdiv_rules::Scheme::Loop, level)? else {
+        let Some((depth, active, uvs)) = frame.stand_in_uvs(stand_in, Scheme::Loop, 0)? else {
             return Ok((Vec::new(), Vec::new()));
         };
         let owners = emit::Owners::new(stand_in, &self.layout, &depth, &active);

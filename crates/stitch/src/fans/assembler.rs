@@ -459,16 +459,9 @@ impl Assembler {
         stand_in: &Mesh,
         frame: &AdaptiveFrame,
     ) -> Result<(Vec<[f32; 2]>, Vec<u32>), AssemblyError> {
-        let (depth, active) = frame.drawn();
-        let deepest = (0..depth.len())
-            .filter(|&u| active[u])
-            .map(|u| depth[u])
-            .max();
-        let Some(d) = deepest else {
-            return Ok((Vec::new(), Vec::new()));
-        };
         // Every corner's point lies on a grid at most one level below the deepest unit.
-        let Some(uvs) = LevelUvs::new(stand_in, subdiv_rules::Scheme::CatmullClark, d + 1)? else {
+        let Some((depth, active, uvs)) = frame.stand_in_uvs(stand_in, Scheme::CatmullClark, 1)?
+        else {
             return Ok((Vec::new(), Vec::new()));
         };
         let fr = Frame::new(

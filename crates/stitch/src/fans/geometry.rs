@@ -27,6 +27,10 @@ pub struct AdaptiveFrame {
     pub(crate) dirty: Vec<Range<u32>>,
 }
 
+/// A frame's depths, drawn flags and a stand-in's face-varying values
+/// ([`AdaptiveFrame::stand_in_uvs`]).
+pub(crate) type StandInUvs = (Vec<subdiv_slate::Depth>, Vec<bool>, subdiv_slate::LevelUvs);
+
 /// Where one frame's update spent its time, in seconds of wall clock.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct UpdateParts {
@@ -149,6 +153,33 @@ impl AdaptiveFrame {
             .map(|&d| if on(d) { d } else { 0 })
             .collect();
         (depth, self.unit_depth.iter().map(|&d| on(d)).collect())
+    }
+
+    /// For face-varying values of `stand_in` (this frame's cage with other face-varying data)
+    /// at this frame's corners: the depths and drawn flags the frame was made with, and the
+    /// values of `stand_in` under `scheme` down to the deepest drawn depth plus `below` (the
+    /// levels the frame's corners lie on); `None` when nothing is drawn or `stand_in` has no
+    /// face-varying data.
+    pub(crate) fn stand_in_uvs(
+        &self,
+        stand_in: &subdiv_mesh::Mesh,
+        scheme: subdiv_rules::Scheme,
+        below: subdiv_slate::Depth,
+    ) -> Result<Option<StandInUvs>, crate::AssemblyError> {
+        let deepest = self
+            .unit_depth
+            .iter()
+            .copied()
+            .filter(|&d| d != u8::MAX)
+            .max();
+        let Some(d) = deepest else {
+            return Ok(None);
+        };
+        let Some(uvs) = subdiv_slate::LevelUvs::new(stand_in, scheme, d + below)? else {
+            return Ok(None);
+        };
+        let (depth, active) = self.drawn();
+        Ok(Some((depth, active, uvs)))
     }
 
     /// Number of units drawn at each depth (index = depth).
