@@ -28,7 +28,8 @@
 //!   refinement ([`DoiOptions`], [`DoiSetup`], [`doi_face_depths`]);
 //! - `scene.rs`: the uniform tessellation ([`uniform_limit`]) and [`Scene`], the drawing helper
 //!   that holds a [`LimitMesh`] in the form the renderer draws (split at one-sided normals) with
-//!   its edges, silhouettes and lines;
+//!   its edges, silhouettes and lines; `scene_primvar.rs`: a scene showing a primvar
+//!   ([`Scene::show_primvar`], [`PrimvarDisplay`]);
 //! - `frame.rs`: summaries of adaptive frames ([`depth_histogram`]);
 //! - `camera.rs`: the framing rule ([`framing_box`]: the cage's bounding box, in every mode),
 //!   [`Camera`](mesh::Camera) to and from the renderer's [`View`](vk::View) and
