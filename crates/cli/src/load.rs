@@ -119,18 +119,25 @@ pub fn cage_scheme(path: &Path, cage: &Cage, requested: Option<Scheme>) -> anyho
     }
 }
 
-/// Warns that the cage's primvars (but `st`) do not reach `what` (dicing: the uniform and
-/// adaptive tessellations and DoI refinement carry them); nothing for a cage without.
-pub fn warn_primvars_not_carried(mesh: &subdiv::mesh::Mesh, what: &str) {
-    if mesh.primvars().is_empty() {
-        return;
+/// Carries the vertex and constant primvars of `mesh` onto the diced `t`
+/// ([`subdiv::eval::tessellation_primvars`]), warning about the others (dicing holds one
+/// parameter point per vertex, and they need one per face corner).
+pub fn dice_primvars(
+    mesh: &subdiv::mesh::Mesh,
+    scheme: subdiv::rules::Scheme,
+    t: &mut subdiv::eval::Tessellation,
+    label: &str,
+) -> anyhow::Result<()> {
+    let left = subdiv::eval::tessellation_primvars(mesh, scheme, t)
+        .map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+    if !left.is_empty() {
+        log::warn!(
+            "primvars {} are not carried by dicing (it carries vertex and constant ones; the \
+             uniform and adaptive tessellations and DoI refinement carry every kind)",
+            left.join(", ")
+        );
     }
-    let names: Vec<&str> = mesh.primvars().iter().map(|p| p.name.as_str()).collect();
-    log::warn!(
-        "primvars {} are not carried by {what} (the uniform and adaptive tessellations and DoI \
-         refinement carry them)",
-        names.join(", ")
-    );
+    Ok(())
 }
 
 /// Logs `FILE:LINE: tag 't NAME' ignored (why)` as a warning (printed `warning: ...`, silenced

@@ -43,19 +43,15 @@ struct Drawing<'a> {
 
 pub fn run(a: &RenderArgs) -> anyhow::Result<ExitCode> {
     a.surface.check_doi_options()?;
-    if a.style.primvar().is_some() && a.surface.dicing.dicing()?.is_some() {
-        bail!(
-            "--shading {}: primvars are carried by the uniform and adaptive tessellations and \
-             DoI refinement, not by dicing",
-            a.style.shading_name()
-        );
-    }
     if a.surface.doi.kind().is_some() {
         return run_doi(a);
     }
     let t0 = Instant::now();
-    if let Some(mut d) = a.surface.dicing_scene(&a.camera)? {
-        let options = a.style.render_options()?;
+    if let Some(mut d) = a.surface.dicing_scene(&a.camera, a.style.primvar())? {
+        let mut options = a.style.render_options()?;
+        if d.display == Some(PrimvarDisplay::Heat) {
+            options.shading = Shading::Doi;
+        }
         let ms = t0.elapsed().as_secs_f64() * 1e3;
         return draw_seen_from(a, &mut d.scene, &d.cage, &options, &d.note, ms);
     }

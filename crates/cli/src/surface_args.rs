@@ -168,7 +168,12 @@ impl SurfaceArgs {
     /// With `--dicing-rate`: the cage diced for the camera of `camera_args` (tessellated once,
     /// for that camera); `None` without it. Flags that choose another tessellation are refused
     /// next to it.
-    pub fn dicing_scene(&self, camera_args: &CameraArgs) -> anyhow::Result<Option<Diced>> {
+    /// With `primvar`, the scene shows that primvar of the cage ([`Scene::from_limit_showing`]).
+    pub fn dicing_scene(
+        &self,
+        camera_args: &CameraArgs,
+        primvar: Option<&str>,
+    ) -> anyhow::Result<Option<Diced>> {
         let Some(d) = self.dicing.dicing()? else {
             return Ok(None);
         };
@@ -193,20 +198,29 @@ impl SurfaceArgs {
             );
         }
         let (cage, scheme) = self.load_cage_scheme()?;
-        crate::load::warn_primvars_not_carried(&cage, "dicing");
         let camera = camera_args.camera(&cage);
         let label = self.label();
         let eval = subdiv::eval::Evaluator::new(&cage, scheme)
             .map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
-        let t =
+        let mut t =
             subdiv::eval::dice(&eval, &camera, &d).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+        if primvar.is_some() {
+            crate::load::dice_primvars(&cage, scheme, &mut t, &label)?;
+        }
         let note = format!(
             "{}, dicing rate {} px",
             value_name(&SchemeName::from(scheme)),
             d.rate_px
         );
+        let (scene, display) = match primvar {
+            None => (Scene::from_limit(&t.surface), None),
+            Some(name) => Scene::from_limit_showing(t.surface, name)
+                .map(|(s, d)| (s, Some(d)))
+                .map_err(|e| anyhow::anyhow!("{label}: {e}"))?,
+        };
         Ok(Some(Diced {
-            scene: Scene::from_limit(&t.surface),
+            scene,
+            display,
             cage,
             note,
         }))
@@ -273,6 +287,8 @@ impl SurfaceArgs {
 pub struct Diced {
     /// The surface.
     pub scene: Scene,
+    /// How the primvar asked for is shown, if one was.
+    pub display: Option<PrimvarDisplay>,
     /// The cage it was diced from (the camera flags frame it).
     pub cage: Mesh,
     /// Scheme and dicing rate, for the report.
@@ -315,7 +331,7 @@ fn parse_face_depths(spec: &str, max_depth: Depth) -> anyhow::Result<Vec<Depth>>
 pub struct StyleArgs {
     /// Surface shading: smooth (limit normals), flat (face normals), wire (hidden-line
     /// wireframe), depth (subdivision depth colours), doi (degree-of-interest heat map), or
-    /// primvar:NAME (`render`, but with --dicing-rate: the cage's primvar NAME
+    /// primvar:NAME (`render`: the cage's primvar NAME
     /// as colours, its first three floats as red, green and blue, or one float as the heat
     /// map; `subdiv info` lists a cage's primvars).
     #[arg(long, value_name = "SHADING", value_parser = parse_shading, default_value = "smooth")]

@@ -161,12 +161,13 @@ fn run_dicing(
             given.join(", ")
         );
     }
-    crate::load::warn_primvars_not_carried(mesh, "dicing");
     let t0 = Instant::now();
     let camera = a.camera.camera(mesh);
     let eval =
         subdiv::eval::Evaluator::new(mesh, scheme).map_err(|e| anyhow::anyhow!("{input}: {e}"))?;
-    let t = subdiv::eval::dice(&eval, &camera, &d).map_err(|e| anyhow::anyhow!("{input}: {e}"))?;
+    let mut t =
+        subdiv::eval::dice(&eval, &camera, &d).map_err(|e| anyhow::anyhow!("{input}: {e}"))?;
+    crate::load::dice_primvars(mesh, scheme, &mut t, &input)?;
     let ms = t0.elapsed().as_secs_f64() * 1e3;
     write_surface(&a.output, &t.surface)?;
     let tris = t.surface.num_faces();

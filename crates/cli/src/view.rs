@@ -151,7 +151,7 @@ pub fn run(a: &ViewArgs) -> anyhow::Result<ExitCode> {
         }
         return run_animated(a, stage, playback);
     }
-    let diced = a.surface.dicing_scene(&a.camera)?;
+    let diced = a.surface.dicing_scene(&a.camera, None)?;
     if diced.is_none() && a.surface.is_adaptive(&a.camera)? {
         return run_adaptive(a);
     }

@@ -67,26 +67,13 @@ fn vertex_colours_reach_the_image() {
 }
 
 #[test]
-fn primvar_shading_is_refused_where_no_primvar_is_carried() {
+fn primvar_shading_names_what_is_carried() {
     let input = pawn();
     let out = tmp("refused.png");
     let out = out.to_str().unwrap();
     assert_fails(
         &["render", &input, "--shading", "primvar:st1", "-o", out],
         "no primvar 'st1' on the surface (it carries: displayColor)",
-    );
-    assert_fails(
-        &[
-            "render",
-            &input,
-            "--dicing-rate",
-            "2",
-            "--shading",
-            "primvar:displayColor",
-            "-o",
-            out,
-        ],
-        "not by dicing",
     );
     assert_fails(
         &["render", &input, "--shading", "shiny", "-o", out],
@@ -175,4 +162,29 @@ fn refinement_writes_the_vertex_colours() {
     assert!(!err.contains("primvars"), "{err}");
     let (cage, refined) = colours_are_the_bounding_box_map(&out);
     assert!(refined.num_faces() > 4 * cage.num_faces());
+}
+
+/// Dicing carries vertex primvars: each point's colour is evaluated at its parameter point, so
+/// it is the map of the point into the pawn's bounding box.
+#[test]
+fn dicing_writes_the_vertex_colours() {
+    let out = tmp("pawn_diced.obj");
+    let input = pawn();
+    let args = [
+        "tessellate",
+        &input,
+        "--eye-relative",
+        "1.5,-1.7,0.9",
+        "--up",
+        "0,0,1",
+        "--dicing-rate",
+        "4",
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    let (code, _, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("primvars"), "{err}");
+    let (cage, surface) = colours_are_the_bounding_box_map(&out);
+    assert!(surface.num_vertices() > cage.num_vertices());
 }

@@ -64,6 +64,7 @@ mod evaluator;
 mod lattice;
 mod patch;
 mod plan;
+mod primvars;
 mod surface;
 mod tess;
 mod uv;
@@ -72,6 +73,7 @@ pub use dice::{CURVE_SEGMENTS, DEFAULT_OFFSCREEN_DICING_SCALE, Dicing, dice, dic
 pub use domain::Domain;
 pub use evaluator::{Derivatives, Evaluator, Query, Sample, UvSample, random_queries};
 pub use lattice::refined_faces;
+pub use primvars::tessellation_primvars;
 pub use surface::FaceSurface;
 pub use tess::{EdgeRates, MAX_RATE, Tessellation, tessellate_rates};
 

@@ -4,7 +4,7 @@
 //!
 //! - **vertex**: linear data refined with the positions' rules, so its values at the frame's
 //!   points are what the frame's blocks give when the primvar's values, three floats at a time,
-//!   stand in for the cage's positions ([`subdiv_slate::vertex_channel`]): the same patches at
+//!   stand in for the cage's positions ([`subdiv_rules::vertex_channel`]): the same patches at
 //!   the same depths, written into the same slots;
 //! - **face-varying, varying, uniform**: two floats at a time stand in for the cage's texture
 //!   coordinates ([`subdiv_slate::face_varying_channel`]), and every frame corner takes its
@@ -14,8 +14,8 @@
 use std::convert::Infallible;
 
 use subdiv_mesh::{Mesh, PrimvarInterpolation};
-use subdiv_rules::LimitChannel;
-use subdiv_slate::{face_varying_channel, stand_in_base, vertex_channel};
+use subdiv_rules::{LimitChannel, stand_in_base, vertex_channel};
+use subdiv_slate::face_varying_channel;
 
 use crate::{AdaptiveFrame, AssemblyError};
 

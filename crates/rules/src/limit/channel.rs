@@ -1,5 +1,9 @@
-//! [`LimitChannel`]: a primvar evaluated on a tessellated surface, and the [`LimitMesh`]
-//! methods that hold them.
+//! [`LimitChannel`]: a primvar evaluated on a tessellated surface, the [`LimitMesh`] methods
+//! that hold them, and the stand-in pass every tessellator carries vertex primvars with
+//! ([`vertex_channel`]).
+
+use glam::Vec3;
+use subdiv_mesh::{Mesh, Primvar};
 
 use super::{LimitMesh, LimitMeshError};
 
@@ -94,6 +98,52 @@ impl LimitMesh {
     pub fn clear_channels(&mut self) {
         self.channels.clear();
     }
+}
+
+/// The cage whose positions a vertex primvar's values stand in for ([`vertex_channel`]): `mesh`
+/// without face-varying data or primvars (its seams and numbering are the surface's).
+pub fn stand_in_base(mesh: &Mesh) -> Mesh {
+    let mut base = mesh.clone();
+    base.clear_uv();
+    base.clear_primvars();
+    base
+}
+
+/// The channel of the vertex primvar `p` of a surface whose points `points(cage)` gives for a
+/// cage of `base`'s topology ([`stand_in_base`]): `p`'s values, three floats at a time, stand
+/// in for the positions, so every point gets their limit with the positions' masks (sharpness
+/// included), as OpenSubdiv's `Interpolate` then `Limit` give it. The uniform tessellations and
+/// the adaptive frames (`subdiv-stitch`) share it.
+pub fn vertex_channel<E>(
+    base: &Mesh,
+    p: &Primvar,
+    mut points: impl FnMut(&Mesh) -> Result<Vec<[f32; 3]>, E>,
+) -> Result<LimitChannel, E> {
+    let w = p.width;
+    let mut values = Vec::new();
+    let mut stand_in = base.clone();
+    for chunk in 0..w.div_ceil(3) {
+        for (v, q) in stand_in.positions_mut().iter_mut().enumerate() {
+            let e = p.element(v);
+            let c = |k: usize| e.get(3 * chunk + k).copied().unwrap_or(0.0);
+            *q = Vec3::new(c(0), c(1), c(2));
+        }
+        let points = points(&stand_in)?;
+        if values.is_empty() {
+            values = vec![0.0; points.len() * w];
+        }
+        for (i, q) in points.iter().enumerate() {
+            for k in 0..3.min(w - 3 * chunk) {
+                values[i * w + 3 * chunk + k] = q[k];
+            }
+        }
+    }
+    Ok(LimitChannel {
+        name: p.name.clone(),
+        width: w,
+        values,
+        indices: Vec::new(),
+    })
 }
 
 #[cfg(test)]
