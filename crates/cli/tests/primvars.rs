@@ -85,43 +85,33 @@ fn primvar_shading_names_what_is_carried() {
     );
 }
 
-/// The pawn's colours are its positions mapped into the unit cube (`make_pawn_colors.py`, to
-/// 4 decimals): an affine map, so the limit colour of every point the adaptive tessellation
-/// writes is that map of the point.
-#[test]
-fn adaptive_tessellation_writes_the_vertex_colours() {
-    let out = tmp("pawn_adaptive.obj");
+/// Runs `subdiv COMMAND PAWN --eye-relative 1.5,-1.7,0.9 --up 0,0,1 FLAGS -o OUT.obj` and
+/// checks that it warns of no primvar and that every vertex colour of its output is the vertex's
+/// position mapped into the pawn's bounding box: the pawn's colours are its positions mapped
+/// into the unit cube (`make_pawn_colors.py`, to 4 decimals), an affine map, so the colour of
+/// every limit or refined point is that map of the point. Returns the pawn and the output.
+fn colours_follow_the_points(
+    command: &str,
+    flags: &[&str],
+) -> (subdiv_mesh::Mesh, subdiv_mesh::Mesh) {
+    let out = tmp(&format!("pawn_{command}_{}.obj", flags.join("_")));
     let input = pawn();
-    let args = [
-        "tessellate",
+    let mut args = vec![
+        command,
         &input,
         "--eye-relative",
         "1.5,-1.7,0.9",
         "--up",
         "0,0,1",
-        "--pixel-error",
-        "1",
-        "--max-depth",
-        "4",
-        "-o",
-        out.to_str().unwrap(),
     ];
+    args.extend(flags);
+    args.extend(["-o", out.to_str().unwrap()]);
     let (code, _, err) = run(&args);
     assert_eq!(code, 0, "{err}");
-    assert!(!err.contains("not carried"), "{err}");
-    let (cage, surface) = colours_are_the_bounding_box_map(&out);
-    assert!(surface.num_vertices() > 10 * cage.num_vertices());
-}
-
-/// Reads the OBJ at `out` (made from the pawn) and checks that every vertex colour is its
-/// position mapped into the pawn's bounding box (to the fixture's 4 decimals); returns the
-/// pawn and the surface.
-fn colours_are_the_bounding_box_map(
-    out: &std::path::Path,
-) -> (subdiv_mesh::Mesh, subdiv_mesh::Mesh) {
+    assert!(!err.contains("primvars"), "{err}");
     let cage = subdiv_mesh::read_obj(root().join("fixtures/scenes/pawn_colors.obj")).unwrap();
     let (lo, hi) = cage.bounds();
-    let surface = subdiv_mesh::read_obj(out).unwrap();
+    let surface = subdiv_mesh::read_obj(&out).unwrap();
     let colours = surface.primvar("displayColor").unwrap();
     for (v, p) in surface.positions().iter().enumerate() {
         let want = (*p - lo) / (hi - lo);
@@ -136,55 +126,26 @@ fn colours_are_the_bounding_box_map(
     (cage, surface)
 }
 
-/// DoI-driven refinement carries the colours: the refined OBJ cage keeps them as vertex colours,
-/// each the map of its refined position (refined values of an affine map of the positions).
+/// The adaptive tessellation carries the colours.
+#[test]
+fn adaptive_tessellation_writes_the_vertex_colours() {
+    let flags = ["--pixel-error", "1", "--max-depth", "4"];
+    let (cage, surface) = colours_follow_the_points("tessellate", &flags);
+    assert!(surface.num_vertices() > 10 * cage.num_vertices());
+}
+
+/// DoI-driven refinement carries the colours: the refined OBJ cage keeps them as vertex
+/// colours, refined as its points are.
 #[test]
 fn refinement_writes_the_vertex_colours() {
-    let out = tmp("pawn_refined.obj");
-    let input = pawn();
-    let args = [
-        "refine",
-        &input,
-        "--triangulate",
-        "--doi",
-        "view-angle",
-        "--eye-relative",
-        "1.5,-1.7,0.9",
-        "--up",
-        "0,0,1",
-        "--steps",
-        "2",
-        "-o",
-        out.to_str().unwrap(),
-    ];
-    let (code, _, err) = run(&args);
-    assert_eq!(code, 0, "{err}");
-    assert!(!err.contains("primvars"), "{err}");
-    let (cage, refined) = colours_are_the_bounding_box_map(&out);
+    let flags = ["--triangulate", "--doi", "view-angle", "--steps", "2"];
+    let (cage, refined) = colours_follow_the_points("refine", &flags);
     assert!(refined.num_faces() > 4 * cage.num_faces());
 }
 
-/// Dicing carries vertex primvars: each point's colour is evaluated at its parameter point, so
-/// it is the map of the point into the pawn's bounding box.
+/// Dicing carries vertex primvars: each point's colour is evaluated at its parameter point.
 #[test]
 fn dicing_writes_the_vertex_colours() {
-    let out = tmp("pawn_diced.obj");
-    let input = pawn();
-    let args = [
-        "tessellate",
-        &input,
-        "--eye-relative",
-        "1.5,-1.7,0.9",
-        "--up",
-        "0,0,1",
-        "--dicing-rate",
-        "4",
-        "-o",
-        out.to_str().unwrap(),
-    ];
-    let (code, _, err) = run(&args);
-    assert_eq!(code, 0, "{err}");
-    assert!(!err.contains("primvars"), "{err}");
-    let (cage, surface) = colours_are_the_bounding_box_map(&out);
+    let (cage, surface) = colours_follow_the_points("tessellate", &["--dicing-rate", "4"]);
     assert!(surface.num_vertices() > cage.num_vertices());
 }
