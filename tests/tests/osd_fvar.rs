@@ -1,5 +1,6 @@
 //! Face-varying refinement (UVs) against OpenSubdiv 3.5: for every cage in
-//! `fixtures/meshes/fvar` (UV seams, darts, junctions, a semi-sharp crease away from the seams),
+//! `fixtures/meshes/fvar` (UV seams, darts, junctions, semi-sharp creases and vertices on and
+//! beside the seams, dependent sharpness),
 //! every face-varying linear interpolation option and levels 1-3, uniform Catmull-Clark and
 //! Loop refinement give the values of `PrimvarRefiner::InterpolateFaceVarying` at every corner
 //! of every refined face, within 1e-5. References: `fixtures/reference/fvar/
@@ -50,8 +51,8 @@ fn face_varying_refinement_matches_opensubdiv() {
     let files = fixture_files("reference/fvar", "txt");
     assert_eq!(
         files.len(),
-        90,
-        "5 shape/scheme pairs x 6 options x 3 levels"
+        126,
+        "7 shape/scheme pairs x 6 options x 3 levels"
     );
     let mut failures = Vec::new();
     let mut corners = 0;
@@ -76,8 +77,8 @@ fn face_varying_limit_matches_opensubdiv() {
     let files = fixture_files("reference/fvar_limit", "txt");
     assert_eq!(
         files.len(),
-        60,
-        "5 shape/scheme pairs x 6 options x 2 levels"
+        84,
+        "7 shape/scheme pairs x 6 options x 2 levels"
     );
     let mut failures = Vec::new();
     let mut corners = 0;

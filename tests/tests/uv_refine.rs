@@ -21,7 +21,14 @@ use subdiv_tests::{PointGrid, fixtures};
 /// refinement: every refined face names the cage face it lies in).
 fn cages() -> Vec<(String, Mesh)> {
     let mut out = Vec::new();
-    for shape in ["tri_seam", "cube_uv", "grid_seam", "grid_seam_crease"] {
+    for shape in [
+        "tri_seam",
+        "cube_uv",
+        "grid_seam",
+        "grid_seam_crease",
+        "grid_seam_semi",
+        "grid_seam_decay",
+    ] {
         let text =
             std::fs::read_to_string(fixtures().join(format!("meshes/fvar/{shape}.obj"))).unwrap();
         for option in FVarLinearInterpolation::ALL {

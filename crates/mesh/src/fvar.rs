@@ -16,6 +16,26 @@ pub struct FaceVarying {
     pub values: Vec<Vec2>,
     /// The value of every face corner.
     pub indices: Vec<u32>,
+    /// Per value, its [`Dependence`] at this level of refinement. Empty for a cage's own
+    /// channel, where it follows from the cage's topology; refinement fills it, since from
+    /// then on it depends on the levels before.
+    pub dependence: Vec<Dependence>,
+}
+
+/// Whether a face-varying value is held as a corner by OpenSubdiv's *dependent sharpness*
+/// (`Vtr::FVarLevel::ValueTag::_depSharp`). With `cornersPlus1` or `cornersPlus2`, where two
+/// values meet at a vertex and only one of their spans of faces has semi-sharp edges, the
+/// other value is held in place with it while that sharpness lasts, and one level more where
+/// the vertex keeps other semi-sharp edges.
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Default)]
+pub enum Dependence {
+    /// Refined by its own span's rules.
+    #[default]
+    Free,
+    /// Held while the other value's span stays semi-sharp.
+    Held,
+    /// Held for this last level after the other value's span ran out; a crease from the next.
+    Released,
 }
 
 impl FaceVarying {

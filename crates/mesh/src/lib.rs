@@ -63,7 +63,7 @@ mod usd;
 pub use cage::{Cage, CageError, CageOptions, read_cage};
 pub use camera::Camera;
 pub use error::{MeshError, ObjError, UsdError};
-pub use fvar::{FVarLinearInterpolation, FaceVarying};
+pub use fvar::{Dependence, FVarLinearInterpolation, FaceVarying};
 pub use geometry::{
     Vector3, closest_point_on_triangle, face_normals, newell_area, newell_normal, point_bounds,
     sway, triangulate, vertex_normals,

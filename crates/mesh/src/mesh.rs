@@ -298,8 +298,40 @@ impl Mesh {
                     msg: format!("index {i} is outside the {} values", fv.values.len()),
                 });
             }
+            if !fv.dependence.is_empty() && fv.dependence.len() != fv.values.len() {
+                return Err(MeshError::Primvar {
+                    name: "st".into(),
+                    msg: format!(
+                        "{} dependence tags for {} values",
+                        fv.dependence.len(),
+                        fv.values.len()
+                    ),
+                });
+            }
         }
         self.uv = uv;
+        Ok(())
+    }
+    /// Sets the face-varying channel's [`crate::Dependence`] (one per value; empty: a cage's,
+    /// from its topology). Does nothing without a channel.
+    pub fn set_uv_dependence(
+        &mut self,
+        dependence: Vec<crate::Dependence>,
+    ) -> Result<(), MeshError> {
+        let Some(fv) = &mut self.uv else {
+            return Ok(());
+        };
+        if !dependence.is_empty() && dependence.len() != fv.values.len() {
+            return Err(MeshError::Primvar {
+                name: "st".into(),
+                msg: format!(
+                    "{} dependence tags for {} values",
+                    dependence.len(),
+                    fv.values.len()
+                ),
+            });
+        }
+        fv.dependence = dependence;
         Ok(())
     }
     /// The primvars other than the positions and the texture coordinates ([`Mesh::uv`]).

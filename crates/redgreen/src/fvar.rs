@@ -14,7 +14,7 @@
 //! continuous across every edge that is not a seam.
 
 use glam::Vec2;
-use subdiv_mesh::{EdgeId, FaceId, FaceVarying, HalfedgeId, Mesh, VertexId};
+use subdiv_mesh::{Dependence, EdgeId, FaceId, FaceVarying, HalfedgeId, Mesh, VertexId};
 use subdiv_rules::{FVarChildren, FVarRegion, RefineKernel, refine_face_varying_part};
 
 use crate::RedGreenError;
@@ -76,6 +76,8 @@ pub(crate) struct PassUvs {
     pub indices: Vec<i64>,
     /// Per value: its value one level before ([`AdaptiveMesh::previous_uv`]).
     pub previous: Vec<Vec2>,
+    /// Per value: its [`Dependence`] ([`FaceVarying::dependence`]).
+    pub dependence: Vec<Dependence>,
 }
 
 /// The channel `fv` of `a` with every value at level `l`: the previous value for values of
@@ -121,7 +123,7 @@ pub(crate) fn pass_uvs(
     };
     let at = level.map(|l| level_uvs(cur, fv, l));
     let mut values = fv.values.clone();
-    let children =
+    let mut children =
         refine_face_varying_part(kernel, at.as_ref().unwrap_or(fv), &region, &mut values);
 
     // Previous values: a refined vertex's new value was its corner's value; an edge value
@@ -160,7 +162,8 @@ pub(crate) fn pass_uvs(
             indices.push(i64::from(i));
         }
     }
-    Ok(Some(compact(values, indices, previous)))
+    let dependence = std::mem::take(&mut children.dependence);
+    Ok(Some(compact(values, indices, previous, dependence)))
 }
 
 /// The child value of the corner at `x` of a triangle made from `faces` (one face, or the
@@ -191,17 +194,23 @@ fn corner_value(
 }
 
 /// Drops the values no corner uses, keeping the order of the others.
-fn compact(values: Vec<Vec2>, mut indices: Vec<i64>, previous: Vec<Vec2>) -> PassUvs {
+fn compact(
+    values: Vec<Vec2>,
+    mut indices: Vec<i64>,
+    previous: Vec<Vec2>,
+    dependence: Vec<Dependence>,
+) -> PassUvs {
     let mut map = vec![i64::MAX; values.len()];
     for &i in &indices {
         map[i as usize] = 0;
     }
-    let (mut kept, mut prev) = (Vec::new(), Vec::new());
+    let (mut kept, mut prev, mut dep) = (Vec::new(), Vec::new(), Vec::new());
     for (k, m) in map.iter_mut().enumerate() {
         if *m == 0 {
             *m = kept.len() as i64;
             kept.push(values[k]);
             prev.push(previous[k]);
+            dep.push(dependence.get(k).copied().unwrap_or_default());
         }
     }
     for i in &mut indices {
@@ -211,5 +220,6 @@ fn compact(values: Vec<Vec2>, mut indices: Vec<i64>, previous: Vec<Vec2>) -> Pas
         values: kept,
         indices,
         previous: prev,
+        dependence: dep,
     }
 }

@@ -218,9 +218,10 @@ pub(crate) fn pass(
         primvars: primvars.primvars,
         ..Default::default()
     };
-    let mut previous_uv = Vec::new();
+    let (mut previous_uv, mut uv_dependence) = (Vec::new(), Vec::new());
     if let Some(u) = uvs {
-        (soup.uvs, soup.uv_indices, previous_uv) = (u.values, u.indices, u.previous);
+        (soup.uvs, soup.uv_indices) = (u.values, u.indices);
+        (previous_uv, uv_dependence) = (u.previous, u.dependence);
     }
     soup.face_offsets.reserve(asm.triangles.len() + 1);
     soup.face_indices.reserve(asm.triangles.len() * 3);
@@ -230,6 +231,9 @@ pub(crate) fn pass(
         soup.face_offsets.push(soup.face_indices.len() as u32);
     }
     let mut child = Mesh::from_soup(&soup).map_err(RedGreenError::Internal)?;
+    child
+        .set_uv_dependence(uv_dependence)
+        .map_err(RedGreenError::Internal)?;
     child.set_holes(
         asm.source_face
             .iter()
@@ -265,6 +269,7 @@ pub(crate) fn pass(
             previous,
             previous_uv,
             previous_primvars: primvars.previous,
+            primvar_dependence: primvars.dependence,
             cage_angle: cur.cage_angle,
         },
         asm.source_face,

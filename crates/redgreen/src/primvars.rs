@@ -15,7 +15,7 @@
 //! primvar equal to the positions stays equal to them, bit for bit).
 
 use glam::{Vec2, Vec3};
-use subdiv_mesh::{FaceVarying, Mesh, Primvar, PrimvarInterpolation, VertexId};
+use subdiv_mesh::{Dependence, FaceVarying, Mesh, Primvar, PrimvarInterpolation, VertexId};
 use subdiv_rules::{RefineKernel, Scheme};
 
 use crate::RedGreenError;
@@ -53,6 +53,8 @@ type Refined = (Vec<f32>, Vec<u32>, Vec<f32>);
 pub(crate) struct PassPrimvars {
     pub primvars: Vec<Primvar>,
     pub previous: Vec<Vec<f32>>,
+    /// Per primvar, its values' [`Dependence`] ([`AdaptiveMesh::primvar_dependence`]).
+    pub dependence: Vec<Vec<Dependence>>,
 }
 
 /// One pass as the primvars read it: `cur` refined by `closure` read at `level` (`None`: the
@@ -76,9 +78,11 @@ pub(crate) fn pass_primvars(
     let mut out = PassPrimvars {
         primvars: Vec::with_capacity(mesh.primvars().len()),
         previous: Vec::with_capacity(mesh.primvars().len()),
+        dependence: Vec::with_capacity(mesh.primvars().len()),
     };
     for (k, p) in mesh.primvars().iter().enumerate() {
         let previous = &cur.previous_primvars[k];
+        let mut dependence = Vec::new();
         let (values, indices, prev) = match p.interpolation {
             PrimvarInterpolation::Constant => (p.values.clone(), p.indices.clone(), Vec::new()),
             PrimvarInterpolation::Uniform => {
@@ -107,7 +111,12 @@ pub(crate) fn pass_primvars(
                 let n = values.len() / p.width;
                 (values, (0..n as u32).collect(), prev)
             }
-            PrimvarInterpolation::FaceVarying => face_varying_pass(kernel, pass, p, previous)?,
+            PrimvarInterpolation::FaceVarying => {
+                let dep = cur.primvar_dependence.get(k).map_or(&[][..], Vec::as_slice);
+                let (refined, child) = face_varying_pass(kernel, pass, p, (previous, dep))?;
+                dependence = child;
+                refined
+            }
         };
         out.primvars.push(Primvar {
             name: p.name.clone(),
@@ -117,6 +126,7 @@ pub(crate) fn pass_primvars(
             indices,
         });
         out.previous.push(prev);
+        out.dependence.push(dependence);
     }
     Ok(out)
 }
@@ -175,15 +185,16 @@ fn vertex_pass(
     (values, prev)
 }
 
-/// A face-varying primvar through the pass, two floats at a time standing in for the UVs:
-/// its values, the value of every corner of the child's triangles and the values' previous
-/// ones.
+/// A face-varying primvar through the pass, two floats at a time standing in for the UVs
+/// (`previous` and `dependence`: its values' previous ones and their [`Dependence`]): its
+/// values, the value of every corner of the child's triangles and the values' previous ones,
+/// and the child values' dependence (the same for every pair of floats: it follows the seams).
 fn face_varying_pass(
     kernel: &mut RefineKernel<'_>,
     pass: &Pass<'_>,
     p: &Primvar,
-    previous: &[f32],
-) -> Result<Refined, RedGreenError> {
+    (previous, dependence): (&[f32], &[Dependence]),
+) -> Result<(Refined, Vec<Dependence>), RedGreenError> {
     let Pass {
         cur,
         closure,
@@ -200,10 +211,12 @@ fn face_varying_pass(
     };
     let mut stand_in = cur.clone();
     let (mut values, mut indices, mut prev) = (Vec::new(), Vec::new(), Vec::new());
+    let mut child = Vec::new();
     for at in (0..w).step_by(2) {
         let fv = FaceVarying {
             values: two(&p.values, at),
             indices: p.indices.clone(),
+            dependence: dependence.to_vec(),
         };
         stand_in
             .mesh
@@ -217,6 +230,7 @@ fn face_varying_pass(
         if values.is_empty() {
             (values, prev) = (vec![0.0; u.values.len() * w], vec![0.0; u.values.len() * w]);
             indices = corners;
+            child = u.dependence.clone();
         } else if corners != indices || values.len() != u.values.len() * w {
             return Err(RedGreenError::PrimvarCorners {
                 name: p.name.clone(),
@@ -229,5 +243,5 @@ fn face_varying_pass(
             }
         }
     }
-    Ok((values, indices, prev))
+    Ok(((values, indices, prev), child))
 }

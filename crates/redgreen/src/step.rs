@@ -85,6 +85,10 @@ pub struct AdaptiveMesh {
     /// positions: a vertex primvar's value one level before at every vertex, a face-varying
     /// one's per value (`width` floats each); empty for the others (`crate::primvars`).
     pub previous_primvars: Vec<Vec<f32>>,
+    /// Per primvar of the mesh: a face-varying one's [`subdiv_mesh::Dependence`] per value as
+    /// [`subdiv_mesh::FaceVarying::dependence`] for the UVs (empty on the cage, where it
+    /// follows from the topology, and for the other kinds).
+    pub primvar_dependence: Vec<Vec<subdiv_mesh::Dependence>>,
     /// The cage's smallest angle (radians). A balanced step refines red a triangle whose green
     /// bisection would cut an angle too small for it ([`red_green::balance`]); 0 allows every
     /// bisection.
@@ -100,6 +104,7 @@ impl AdaptiveMesh {
         let previous = mesh.positions().to_vec();
         let previous_uv = mesh.uv().map(|fv| fv.values.clone()).unwrap_or_default();
         let previous_primvars = crate::primvars::initial_previous(&mesh);
+        let primvar_dependence = vec![Vec::new(); mesh.primvars().len()];
         let cage_angle = mesh
             .faces()
             .map(|f| {
@@ -115,6 +120,7 @@ impl AdaptiveMesh {
             previous,
             previous_uv,
             previous_primvars,
+            primvar_dependence,
             cage_angle,
         })
     }

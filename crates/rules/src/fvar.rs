@@ -16,12 +16,15 @@
 //! topology, which for infinitely sharp seams gives OpenSubdiv's inherited tags.
 //! A crease sibling whose span (or vertex) is semi-sharp stays put while the child is still
 //! semi-sharp there and blends crease and corner by the fractional weight in the step where it
-//! runs out, as OpenSubdiv does. Not modelled: OpenSubdiv's *dependent* sharpness
-//! (`cornersPlus1`/`cornersPlus2` at a vertex with two siblings of which only one is
-//! semi-sharp, where the other follows it); that sibling is refined as a plain crease.
+//! runs out, as OpenSubdiv does. With `cornersPlus1`/`cornersPlus2`, of two siblings at a
+//! vertex where only one span is semi-sharp the other is *held* with it
+//! ([`Dependence`], OpenSubdiv's dependent sharpness); that tag depends on the levels before,
+//! so refinement carries it in the child channel ([`FaceVarying::dependence`]).
 
 use glam::{Vec2, Vec3};
-use subdiv_mesh::{FVarLinearInterpolation, FaceId, FaceVarying, HalfedgeId, Mesh, VertexId};
+use subdiv_mesh::{
+    Dependence, FVarLinearInterpolation, FaceId, FaceVarying, HalfedgeId, Mesh, VertexId,
+};
 
 use crate::Scheme;
 use crate::crease::{decrement, fractional_weight, is_infinite, is_semi_sharp};
@@ -181,31 +184,52 @@ fn push_value(values: &mut Vec<Vec2>, p: Vec3) -> u32 {
     (values.len() - 1) as u32
 }
 
-/// The value of a crease sibling at `v` (OpenSubdiv's `PrimvarRefiner::interpFVarFromVerts`):
-/// `3/4` itself and `1/8` each of the values that end its span. A sibling whose span (or
-/// vertex) is still semi-sharp in the child stays put; one whose semi-sharpness runs out in
-/// this step blends the two by the fractional weight of the span's edges.
+/// The value of crease sibling `s` at `v` (OpenSubdiv's `PrimvarRefiner::interpFVarFromVerts`)
+/// and its [`Dependence`] in the child: `3/4` itself and `1/8` each of the values that end its
+/// span (`sp[s]`). A sibling whose span (or vertex) is still semi-sharp in the child stays put;
+/// one whose semi-sharpness runs out in this step blends the two by the fractional weight of
+/// the span's edges. A held sibling (`dep`) follows the other sibling's span instead, and stays
+/// put one step longer while the vertex keeps other semi-sharp edges.
 fn crease_value(
     ch: &Channel<'_>,
     kernel: &RefineKernel<'_>,
     v: VertexId,
     hs: &[HalfedgeId],
-    span: Span,
+    (sp, s): (&[Span], usize),
+    dep: Dependence,
     centre: Vec3,
-) -> Vec3 {
+) -> (Vec3, Dependence) {
     let mesh = ch.mesh;
     let n = hs.len();
-    let ends = limit::span_ends(ch, hs, span);
+    let ends = limit::span_ends(ch, hs, sp[s]);
+    let held = dep == Dependence::Held && sp.len() == 2;
+    let sharp = if held { sp[1 - s] } else { sp[s] };
     let vs = mesh.vertex_sharpness(v);
     let mut w_corner = 0.0f32;
-    if span.semi > 0 || is_semi_sharp(vs) {
+    if sharp.semi > 0 || is_semi_sharp(vs) {
         // Edges inside the span: edge `i` lies between faces `i - 1` and `i`.
-        let inner = (1..span.size).map(|j| hs[(span.start + j) % n]);
-        if inner
-            .clone()
-            .any(|h| is_semi_sharp(kernel.child_sharpness(h)))
+        let inner = (1..sharp.size).map(|j| hs[(sharp.start + j) % n]);
+        // Still a corner in the child while the vertex itself stays semi-sharp there
+        // (`Vtr::FVarRefinement::reclassifySemisharpValues` leaves every value of such a
+        // vertex as it was) or an edge inside the span does.
+        if is_semi_sharp(decrement(vs))
+            || inner
+                .clone()
+                .any(|h| is_semi_sharp(kernel.child_sharpness(h)))
         {
-            return centre;
+            let child = if held {
+                Dependence::Held
+            } else {
+                Dependence::Free
+            };
+            return (centre, child);
+        }
+        if held
+            && mesh
+                .outgoing(v)
+                .any(|h| is_semi_sharp(kernel.child_sharpness(h)))
+        {
+            return (centre, Dependence::Released);
         }
         let parent: Vec<f32> = inner
             .clone()
@@ -215,7 +239,76 @@ fn crease_value(
         w_corner = fractional_weight(mesh.options().crease, vs, decrement(vs), &parent, &child);
     }
     let w_crease = 1.0 - w_corner;
-    centre * (w_crease * 0.75 + w_corner) + ends * (w_crease * 0.125)
+    let p = centre * (w_crease * 0.75 + w_corner) + ends * (w_crease * 0.125);
+    (p, Dependence::Free)
+}
+
+/// The [`Dependence`] of each sibling around `v` (`uniq`: their values, `sp`: their spans):
+/// the channel's own where refinement carried it; on a cage's channel OpenSubdiv's first tags
+/// (`Vtr::FVarLevel::completeTopologyFromFaceValues`): with `cornersPlus1` or `cornersPlus2`,
+/// of two siblings at a vertex that is not semi-sharp itself, the one whose span has no
+/// semi-sharp edge is held where the other's has some.
+fn dependence(ch: &Channel<'_>, v: VertexId, uniq: &[u32], sp: &[Span]) -> Vec<Dependence> {
+    let carried = &ch.fv.dependence;
+    if !carried.is_empty() {
+        return uniq
+            .iter()
+            .map(|&i| carried.get(i as usize).copied().unwrap_or_default())
+            .collect();
+    }
+    let mut dep = vec![Dependence::Free; uniq.len()];
+    if ch.flags.dependent
+        && uniq.len() == 2
+        && sp.len() == 2
+        && !is_semi_sharp(ch.mesh.vertex_sharpness(v))
+        && (sp[0].semi > 0) != (sp[1].semi > 0)
+    {
+        dep[usize::from(sp[0].semi > 0)] = Dependence::Held;
+    }
+    dep
+}
+
+/// The out half-edges of `v` with a face, in `hs`, as OpenSubdiv walks them: an interior
+/// vertex's from its lowest-numbered face. False where `v` has no face.
+fn face_ring(mesh: &Mesh, v: VertexId, hs: &mut Vec<HalfedgeId>) -> bool {
+    hs.clear();
+    hs.extend(mesh.outgoing(v).filter(|&h| mesh.face(h).is_some()));
+    if !mesh.is_boundary_vertex(v)
+        && let Some(k) = (0..hs.len()).min_by_key(|&k| mesh.face(hs[k]).0)
+    {
+        hs.rotate_left(k);
+    }
+    !hs.is_empty()
+}
+
+/// The [`Dependence`] of the first `len` values of the channel: its own where refinement
+/// carried it, else [`dependence`] at every vertex of the cage.
+fn value_dependence(ch: &Channel<'_>, len: usize) -> Vec<Dependence> {
+    let mut out = ch.fv.dependence.clone();
+    if out.is_empty() && ch.flags.dependent {
+        out.resize(len, Dependence::Free);
+        let mesh = ch.mesh;
+        let (mut hs, mut sib, mut uniq) = (Vec::new(), Vec::new(), Vec::new());
+        for v in mesh.vertices() {
+            if !face_ring(mesh, v, &mut hs) {
+                continue;
+            }
+            siblings(ch, &hs, &mut sib, &mut uniq);
+            if uniq.len() != 2 || !vertex_mismatch(ch, v, hs.len()) {
+                continue;
+            }
+            let sp = spans(ch, &hs, &sib, uniq.len());
+            for (s, d) in dependence(ch, v, &uniq, &sp).into_iter().enumerate() {
+                if d != Dependence::Free
+                    && let Some(t) = out.get_mut(uniq[s] as usize)
+                {
+                    *t = d;
+                }
+            }
+        }
+    }
+    out.resize(len, Dependence::Free);
+    out
 }
 
 /// The sibling of each face around a vertex (`hs`: its out half-edges with a face, in order),

@@ -82,12 +82,12 @@ pub fn refine_uniform(mesh: &Mesh, scheme: Scheme) -> Result<Mesh, RulesError> {
             }
         }
     }
-    if let Some(fv) = mesh.uv() {
-        let child_fv = crate::fvar::refine_face_varying(&mut kernel, fv);
-        soup.uvs = child_fv.values;
-        soup.uv_indices = child_fv.indices.iter().map(|&i| i64::from(i)).collect();
-    }
+    let child_fv = mesh
+        .uv()
+        .map(|fv| crate::fvar::refine_face_varying(&mut kernel, fv));
     let mut child = Mesh::from_soup(&soup).map_err(RulesError::Internal)?;
+    // Set apart from the soup: the child channel carries its values' dependence.
+    child.set_uv(child_fv).map_err(RulesError::Internal)?;
     child.set_holes(holes);
     child.set_groups(mesh.groups().to_vec(), groups);
     kernel.transfer_sharpness(&mut child, |e| Some(VertexId(edge_base + e.0)), |_| true);

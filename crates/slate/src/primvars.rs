@@ -151,6 +151,7 @@ pub fn face_varying_channel<E: From<subdiv_rules::RulesError>>(
         let fv = FaceVarying {
             values,
             indices: indices.clone(),
+            dependence: Vec::new(),
         };
         stand_in
             .set_uv(Some(fv))

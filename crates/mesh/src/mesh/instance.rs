@@ -102,6 +102,7 @@ impl Mesh {
             let mut out = crate::FaceVarying {
                 values: uv.values.repeat(n),
                 indices: Vec::with_capacity(n * uv.indices.len()),
+                dependence: uv.dependence.repeat(n),
             };
             for k in 0..n {
                 let base = (k * uv_values) as u32;

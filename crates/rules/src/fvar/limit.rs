@@ -6,15 +6,18 @@
 //! smooth mask, crease the crease mask, corner the value itself) and applied to the values of
 //! its ring. At a vertex with siblings (a seam, or a boundary made linear) each sibling is a
 //! corner (its value) or a crease (`2/3` itself and `1/6` each of the values ending its span).
-//! Siblings whose span is still semi-sharp are corners too (OpenSubdiv's semi-sharp value tag),
-//! and `all` (bilinear) keeps every value. Like OpenSubdiv, the smooth mask takes the corner
+//! Siblings whose span is still semi-sharp, or that are held by another's
+//! ([`subdiv_mesh::Dependence`]), are corners too (OpenSubdiv's semi-sharp value tag), and
+//! `all` (bilinear) keeps every value. Like OpenSubdiv, the smooth mask takes the corner
 //! two steps round each face as its diagonal, so the values are the true limit on all-quad
 //! (Catmull-Clark level ≥ 1) and all-triangle meshes.
 
 use glam::{DVec3, Vec2};
 use subdiv_mesh::{FaceVarying, HalfedgeId, Mesh, VertexId};
 
-use super::{Channel, Span, sibling_corners, siblings, spans, vertex_mismatch};
+use super::{
+    Channel, Span, dependence, face_ring, sibling_corners, siblings, spans, vertex_mismatch,
+};
 use crate::crease::{is_semi_sharp, rule_with_whole};
 use crate::{Depth, MAX_DEPTH, RulesError, Scheme, catmark, loop_scheme};
 
@@ -28,22 +31,16 @@ pub fn limit_face_varying(mesh: &Mesh, scheme: Scheme) -> Option<FaceVarying> {
     let mut out = FaceVarying {
         values: Vec::with_capacity(mesh.num_vertices()),
         indices: vec![0; fv.indices.len()],
+        dependence: Vec::new(),
     };
     let mut hs = Vec::new();
     let mut sib = Vec::new();
     let mut uniq = Vec::new();
     let mut ring = RingValues::default();
     for v in mesh.vertices() {
-        hs.clear();
-        hs.extend(mesh.outgoing(v).filter(|&h| mesh.face(h).is_some()));
-        if hs.is_empty() {
-            continue;
-        }
         // The same walk as refinement, so siblings are numbered alike.
-        if !mesh.is_boundary_vertex(v)
-            && let Some(k) = (0..hs.len()).min_by_key(|&k| mesh.face(hs[k]).0)
-        {
-            hs.rotate_left(k);
+        if !face_ring(mesh, v, &mut hs) {
+            continue;
         }
         if !vertex_mismatch(&ch, v, hs.len()) {
             let centre = ch.value(hs[0]).as_dvec3();
@@ -62,12 +59,14 @@ pub fn limit_face_varying(mesh: &Mesh, scheme: Scheme) -> Option<FaceVarying> {
         let corners = sibling_corners(&ch, v, &hs, &sib, uniq.len());
         let sp = spans(&ch, &hs, &sib, uniq.len());
         let semi_vertex = is_semi_sharp(mesh.vertex_sharpness(v));
+        let dep = dependence(&ch, v, &uniq, &sp);
         let base = out.values.len() as u32;
         for (s, &is_corner) in corners.iter().enumerate() {
             let first = sib.iter().position(|&x| x == s).unwrap_or(0);
             let centre = ch.value(hs[first]).as_dvec3();
             let span = sp[s];
-            let p = if is_corner || ch.flags.linear_all || span.semi > 0 || semi_vertex {
+            let held = dep[s] != subdiv_mesh::Dependence::Free;
+            let p = if is_corner || ch.flags.linear_all || span.semi > 0 || semi_vertex || held {
                 centre
             } else {
                 centre * (2.0 / 3.0) + span_ends(&ch, &hs, span).as_dvec3() * (1.0 / 6.0)

@@ -3,9 +3,12 @@
 //! (`subdiv-redgreen`), with the rules of the parent module.
 
 use glam::{Vec2, Vec3};
-use subdiv_mesh::{EdgeId, FaceVarying, HalfedgeId, Mesh, VertexId};
+use subdiv_mesh::{Dependence, EdgeId, FaceVarying, HalfedgeId, Mesh, VertexId};
 
-use super::{Channel, crease_value, push_value, sibling_corners, siblings, spans, vertex_mismatch};
+use super::{
+    Channel, crease_value, dependence, push_value, sibling_corners, siblings, spans,
+    vertex_mismatch,
+};
 use crate::Scheme;
 use crate::refine::RefineKernel;
 
@@ -60,6 +63,9 @@ pub struct FVarChildren {
     /// Per half-edge with a face whose edge is split: the value of the edge's midpoint on that
     /// face's side; `u32::MAX` elsewhere.
     pub edge_child: Vec<u32>,
+    /// The [`Dependence`] of every value the step leaves in `values`: the input's own (carried,
+    /// or on a cage's channel computed from its topology), then the new values'.
+    pub dependence: Vec<Dependence>,
 }
 
 /// One uniform refinement step of `fv` on the kernel's mesh, whose vertex points the kernel has
@@ -69,8 +75,10 @@ pub(crate) fn refine_face_varying(kernel: &mut RefineKernel<'_>, fv: &FaceVaryin
     let mesh = kernel.mesh();
     let scheme = kernel.scheme();
     let mut out = FaceVarying::default();
-    let (children, face_value) = refine_values(kernel, fv, &Whole(mesh), &mut out.values);
+    let (mut children, face_value) = refine_values(kernel, fv, &Whole(mesh), &mut out.values);
+    out.dependence = std::mem::take(&mut children.dependence);
     child_corners(mesh, scheme, face_value, &children, &mut out);
+    out.dependence.resize(out.values.len(), Dependence::Free);
     out
 }
 
@@ -124,10 +132,16 @@ fn refine_values(
     let mut out = FVarChildren {
         vertex_child: vec![u32::MAX; mesh.num_halfedges()],
         edge_child: vec![u32::MAX; mesh.num_halfedges()],
+        dependence: Vec::new(),
     };
     let mut hs = Vec::new();
     let mut sib = Vec::new();
     let mut uniq = Vec::new();
+    let mut tags = if values.is_empty() {
+        Vec::new()
+    } else {
+        super::value_dependence(&ch, values.len())
+    };
     for v in mesh.vertices() {
         if !region.refines_vertex(v) {
             for h in mesh.outgoing(v).filter(|&h| mesh.face(h).is_some()) {
@@ -150,7 +164,7 @@ fn refine_values(
             v,
             &face_value,
             (&mut hs, &mut sib, &mut uniq),
-            values,
+            (values, &mut tags),
             &mut out.vertex_child,
         );
         // A skipped half-edge's face stands with the face across it.
@@ -175,6 +189,8 @@ fn refine_values(
         values,
         &mut out.edge_child,
     );
+    tags.resize(values.len(), Dependence::Free);
+    out.dependence = tags;
     (out, face_value)
 }
 
@@ -188,7 +204,7 @@ fn vertex_values(
     v: VertexId,
     face_value: &[Vec3],
     ring: (&mut Vec<HalfedgeId>, &mut Vec<usize>, &mut Vec<u32>),
-    values: &mut Vec<Vec2>,
+    (values, tags): (&mut Vec<Vec2>, &mut Vec<Dependence>),
     vertex_child: &mut [u32],
 ) {
     let mesh = ch.mesh;
@@ -214,23 +230,26 @@ fn vertex_values(
             )
         };
         let i = push_value(values, p);
+        tags.push(Dependence::Free);
         for &h in hs.iter() {
             vertex_child[h.idx()] = i;
         }
         return;
     }
     let corners = sibling_corners(ch, v, hs, sib, uniq.len());
+    let sp = spans(ch, hs, sib, uniq.len());
+    let dep = dependence(ch, v, uniq, &sp);
     let base = values.len() as u32;
     for (s, &is_corner) in corners.iter().enumerate() {
         let first = sib.iter().position(|&x| x == s).unwrap_or(0);
         let centre = ch.value(hs[first]);
-        let p = if is_corner || ch.flags.linear_all {
-            centre
+        let (p, child) = if is_corner || ch.flags.linear_all {
+            (centre, Dependence::Free)
         } else {
-            let span = spans(ch, hs, sib, uniq.len())[s];
-            crease_value(ch, kernel, v, hs, span, centre)
+            crease_value(ch, kernel, v, hs, (&sp, s), dep[s], centre)
         };
         push_value(values, p);
+        tags.push(child);
     }
     for (k, &h) in hs.iter().enumerate() {
         vertex_child[h.idx()] = base + sib[k] as u32;

@@ -138,5 +138,6 @@ pub(super) fn face_varying(soup: &PolygonSoup) -> Result<Option<crate::FaceVaryi
     Ok(Some(crate::FaceVarying {
         values: soup.uvs.clone(),
         indices,
+        dependence: Vec::new(),
     }))
 }
