@@ -23,8 +23,9 @@
 //!
 //! Its faces are the cage's faces in the same order and corner order, so a face's `(u, v)`
 //! names the same point on both, and [`FaceSurface`](crate::FaceSurface) evaluates it exactly
-//! like the positions. Not modelled, as in the rest of `subdiv-rules`: OpenSubdiv's
-//! *dependent* sharpness of `cornersPlus1`/`cornersPlus2` at a vertex with one semi-sharp value.
+//! like the positions. OpenSubdiv's *dependent* sharpness of `cornersPlus1`/`cornersPlus2` (a
+//! value held by the other value's semi-sharp fan) is a corner tag of the held value
+//! (`held_sharpness`), exact under uniform decay.
 
 use std::collections::HashMap;
 
@@ -144,6 +145,7 @@ fn uv_cage(mesh: &Mesh) -> Result<Option<Mesh>, EvalError> {
     }
     let (values_at, one_face_at) = count_values(&vertex_of, &uv_index, mesh.num_vertices());
     let linear = opts.fvar;
+    let held = held_sharpness(mesh, &soup.creases, &vertex_of);
     for (i, v) in vertex_of.iter().enumerate() {
         let s = mesh.vertex_sharpness(*v);
         let (values, one_face) = (values_at[v.idx()], one_face_at[v.idx()]);
@@ -154,7 +156,17 @@ fn uv_cage(mesh: &Mesh) -> Result<Option<Mesh>, EvalError> {
             }
             _ => false,
         };
-        let sharpness = if extra { SHARPNESS_INFINITE } else { s };
+        let dependent = matches!(
+            linear,
+            FVarLinearInterpolation::CornersPlus1 | FVarLinearInterpolation::CornersPlus2
+        );
+        let sharpness = if extra {
+            SHARPNESS_INFINITE
+        } else if dependent && values == 2 && held[i] > 0.0 {
+            held[i]
+        } else {
+            s
+        };
         if sharpness > 0.0 {
             soup.corners.push(CornerTag {
                 v: i as i64,
@@ -178,6 +190,45 @@ fn uv_cage(mesh: &Mesh) -> Result<Option<Mesh>, EvalError> {
         }
     }
     Ok(Some(cage))
+}
+
+/// Per UV-cage vertex, the corner sharpness that reproduces OpenSubdiv's *dependent
+/// sharpness* (`cornersPlus1`/`cornersPlus2`; `subdiv_mesh::Dependence`), 0 where none: of the
+/// two values at a vertex that is not semi-sharp itself, the one whose fan has no semi-sharp
+/// edge is held in place while the other's fan has one. Under uniform decay that is a corner
+/// of the other fan's greatest semi-sharpness `s` (held while it lasts, blended by its last
+/// fraction), or of `ceil(s)` where another edge of the vertex outlasts it (held one level
+/// more, then a plain crease). Chaikin decay of those edges is not followed.
+fn held_sharpness(mesh: &Mesh, creases: &[CreaseTag], vertex_of: &[VertexId]) -> Vec<f32> {
+    let semi = |s: f32| s > 0.0 && s < SHARPNESS_INFINITE;
+    let mut fan = vec![0.0f32; vertex_of.len()];
+    for c in creases.iter().filter(|c| semi(c.sharpness)) {
+        for end in [c.a, c.b] {
+            if let Some(m) = usize::try_from(end).ok().and_then(|i| fan.get_mut(i)) {
+                *m = m.max(c.sharpness);
+            }
+        }
+    }
+    let mut values: HashMap<u32, Vec<usize>> = HashMap::new();
+    for (i, v) in vertex_of.iter().enumerate() {
+        values.entry(v.0).or_default().push(i);
+    }
+    let mut held = vec![0.0f32; vertex_of.len()];
+    for (&v, ids) in &values {
+        let v = VertexId(v);
+        let [a, b] = ids[..] else { continue };
+        if semi(mesh.vertex_sharpness(v)) || (fan[a] > 0.0) == (fan[b] > 0.0) {
+            continue;
+        }
+        let (free, other) = if fan[a] > 0.0 { (b, a) } else { (a, b) };
+        let s = fan[other];
+        let outlasted = mesh
+            .outgoing(v)
+            .map(|h| mesh.edge_sharpness(h.edge()))
+            .any(|e| semi(e) && e > s.ceil());
+        held[free] = if outlasted { s.ceil() } else { s };
+    }
+    held
 }
 
 /// How many values each cage vertex has, and whether one of them spans a single face.
