@@ -18,8 +18,15 @@ pub fn parse_fvar(text: &str) -> Vec<Vec<f64>> {
         .collect()
 }
 
+/// How far a value may be from OpenSubdiv's `w`: 1e-5, or 1e-6 of `w`'s magnitude where that
+/// is larger (both refine in `f32`, in different orders: a few units in the last place of a
+/// large value).
+pub fn value_tolerance(w: f64) -> f64 {
+    1e-5f64.max(1e-6 * w.abs())
+}
+
 /// Compares the UVs of `refined` (the level-`level` uniform refinement of `cage`) with
-/// OpenSubdiv's `faces`, within 1e-5; returns the number of corners compared.
+/// OpenSubdiv's `faces`, within [`value_tolerance`]; returns the number of corners compared.
 pub fn compare_fvar(
     cage: &Mesh,
     scheme: Scheme,
@@ -77,15 +84,22 @@ fn compare_corner_values(
             faces.len()
         ));
     }
-    let same = |g: &[glam::Vec2], w: &[f64], r: usize| {
+    // The largest coordinate difference of `g` rotated by `r` from `w`, in units of
+    // `VALUE_TOLERANCE`.
+    let apart = |g: &[glam::Vec2], w: &[f64], r: usize| {
         let n = g.len();
-        w.len() == 2 * n
-            && (0..n).all(|k| {
+        if w.len() != 2 * n {
+            return f64::INFINITY;
+        }
+        (0..n)
+            .flat_map(|k| {
                 let uv = g[(k + r) % n];
-                (f64::from(uv.x) - w[2 * k]).abs() <= 1e-5
-                    && (f64::from(uv.y) - w[2 * k + 1]).abs() <= 1e-5
+                [(uv.x, w[2 * k]), (uv.y, w[2 * k + 1])]
             })
+            .map(|(a, b)| (f64::from(a) - b).abs() / value_tolerance(b))
+            .fold(0.0, f64::max)
     };
+    let same = |g: &[glam::Vec2], w: &[f64], r: usize| apart(g, w, r) <= 1.0;
     let per = 4usize.pow(u32::from(level) - 1);
     let mut start = 0;
     let mut corners = 0;
@@ -101,8 +115,13 @@ fn compare_corner_values(
             match hit {
                 Some(j) => used[j] = true,
                 None => {
+                    let nearest = (0..block)
+                        .flat_map(|j| (0..g.len()).map(move |r| (j, r)))
+                        .map(|(j, r)| apart(g, &faces[start + j], r))
+                        .fold(f64::INFINITY, f64::min);
                     return Err(format!(
-                        "face {}: {g:?} is not among OpenSubdiv's faces of cage face {}",
+                        "face {}: {g:?} is not among OpenSubdiv's faces of cage face {} \
+                         (the nearest is {nearest:.1} tolerances away)",
                         start + i,
                         f.0
                     ));

@@ -28,6 +28,7 @@ fn cages() -> Vec<(String, Mesh)> {
         "grid_seam_crease",
         "grid_seam_semi",
         "grid_seam_decay",
+        "fan_inf_span",
     ] {
         let text =
             std::fs::read_to_string(fixtures().join(format!("meshes/fvar/{shape}.obj"))).unwrap();

@@ -60,7 +60,9 @@ fn bilinear_uvs_are_the_refined_values() {
         let text = std::fs::read_to_string(&path).unwrap();
         for option in 0..6 {
             let text = format!("{text}\nt facevaryinginterpolateboundary 1/0/0 {option}\n");
-            let mesh = Mesh::from_soup(&parse_obj(&text).unwrap()).unwrap();
+            let mut soup = parse_obj(&text).unwrap();
+            soup.split_nonmanifold().unwrap();
+            let mesh = Mesh::from_soup(&soup).unwrap();
             let eval = Evaluator::new(&mesh, Scheme::Bilinear).unwrap();
             let refined = refine_uniform_levels(&mesh, Scheme::Bilinear, 2).unwrap();
             let fv = refined.uv().unwrap();

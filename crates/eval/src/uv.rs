@@ -24,8 +24,9 @@
 //! Its faces are the cage's faces in the same order and corner order, so a face's `(u, v)`
 //! names the same point on both, and [`FaceSurface`](crate::FaceSurface) evaluates it exactly
 //! like the positions. OpenSubdiv's *dependent* sharpness of `cornersPlus1`/`cornersPlus2` (a
-//! value held by the other value's semi-sharp fan) is a corner tag of the held value
-//! (`held_sharpness`), exact under uniform decay.
+//! value held by the other value's semi-sharp fan, or made a corner by an infinitely sharp
+//! edge in the other's fan) is a corner tag of that value (`dependent_sharpness`), exact under
+//! uniform decay.
 
 use std::collections::HashMap;
 
@@ -145,7 +146,7 @@ fn uv_cage(mesh: &Mesh) -> Result<Option<Mesh>, EvalError> {
     }
     let (values_at, one_face_at) = count_values(&vertex_of, &uv_index, mesh.num_vertices());
     let linear = opts.fvar;
-    let held = held_sharpness(mesh, &soup.creases, &vertex_of);
+    let dependent_sharp = dependent_sharpness(mesh, &soup.creases, &vertex_of);
     for (i, v) in vertex_of.iter().enumerate() {
         let s = mesh.vertex_sharpness(*v);
         let (values, one_face) = (values_at[v.idx()], one_face_at[v.idx()]);
@@ -160,10 +161,10 @@ fn uv_cage(mesh: &Mesh) -> Result<Option<Mesh>, EvalError> {
             linear,
             FVarLinearInterpolation::CornersPlus1 | FVarLinearInterpolation::CornersPlus2
         );
-        let sharpness = if extra {
+        let sharpness = if extra || mesh.is_fvar_corner(*v) {
             SHARPNESS_INFINITE
-        } else if dependent && values == 2 && held[i] > 0.0 {
-            held[i]
+        } else if dependent && values == 2 && dependent_sharp[i] > 0.0 {
+            dependent_sharp[i]
         } else {
             s
         };
@@ -192,20 +193,30 @@ fn uv_cage(mesh: &Mesh) -> Result<Option<Mesh>, EvalError> {
     Ok(Some(cage))
 }
 
-/// Per UV-cage vertex, the corner sharpness that reproduces OpenSubdiv's *dependent
-/// sharpness* (`cornersPlus1`/`cornersPlus2`; `subdiv_mesh::Dependence`), 0 where none: of the
-/// two values at a vertex that is not semi-sharp itself, the one whose fan has no semi-sharp
-/// edge is held in place while the other's fan has one. Under uniform decay that is a corner
-/// of the other fan's greatest semi-sharpness `s` (held while it lasts, blended by its last
-/// fraction), or of `ceil(s)` where another edge of the vertex outlasts it (held one level
-/// more, then a plain crease). Chaikin decay of those edges is not followed.
-fn held_sharpness(mesh: &Mesh, creases: &[CreaseTag], vertex_of: &[VertexId]) -> Vec<f32> {
+/// Per UV-cage vertex, the corner sharpness that reproduces OpenSubdiv's sharpening of one of
+/// a vertex's two values by the other (`cornersPlus1`/`cornersPlus2`), 0 where none:
+/// - an infinitely sharp edge inside either fan makes both values corners;
+/// - *dependent sharpness* (`subdiv_mesh::Dependence`): of the two values at a vertex that is
+///   not semi-sharp itself, the one whose fan has no semi-sharp edge is held in place while
+///   the other's fan has one. Under uniform decay that is a corner of the other fan's greatest
+///   semi-sharpness `s` (held while it lasts, blended by its last fraction), or of `ceil(s)`
+///   where another edge of the vertex outlasts it (held one level more, then a plain crease).
+///   Chaikin decay of those edges is not followed.
+fn dependent_sharpness(mesh: &Mesh, creases: &[CreaseTag], vertex_of: &[VertexId]) -> Vec<f32> {
     let semi = |s: f32| s > 0.0 && s < SHARPNESS_INFINITE;
+    // Per UV vertex: the greatest semi-sharpness of the uncut edges of its fan, and whether
+    // one of them is infinitely sharp.
     let mut fan = vec![0.0f32; vertex_of.len()];
-    for c in creases.iter().filter(|c| semi(c.sharpness)) {
+    let mut inf = vec![false; vertex_of.len()];
+    for c in creases {
         for end in [c.a, c.b] {
-            if let Some(m) = usize::try_from(end).ok().and_then(|i| fan.get_mut(i)) {
-                *m = m.max(c.sharpness);
+            let Some(i) = usize::try_from(end).ok().filter(|&i| i < fan.len()) else {
+                continue;
+            };
+            if semi(c.sharpness) {
+                fan[i] = fan[i].max(c.sharpness);
+            } else if c.sharpness >= SHARPNESS_INFINITE {
+                inf[i] = true;
             }
         }
     }
@@ -213,10 +224,14 @@ fn held_sharpness(mesh: &Mesh, creases: &[CreaseTag], vertex_of: &[VertexId]) ->
     for (i, v) in vertex_of.iter().enumerate() {
         values.entry(v.0).or_default().push(i);
     }
-    let mut held = vec![0.0f32; vertex_of.len()];
+    let mut out = vec![0.0f32; vertex_of.len()];
     for (&v, ids) in &values {
         let v = VertexId(v);
         let [a, b] = ids[..] else { continue };
+        if inf[a] || inf[b] {
+            (out[a], out[b]) = (SHARPNESS_INFINITE, SHARPNESS_INFINITE);
+            continue;
+        }
         if semi(mesh.vertex_sharpness(v)) || (fan[a] > 0.0) == (fan[b] > 0.0) {
             continue;
         }
@@ -226,9 +241,9 @@ fn held_sharpness(mesh: &Mesh, creases: &[CreaseTag], vertex_of: &[VertexId]) ->
             .outgoing(v)
             .map(|h| mesh.edge_sharpness(h.edge()))
             .any(|e| semi(e) && e > s.ceil());
-        held[free] = if outlasted { s.ceil() } else { s };
+        out[free] = if outlasted { s.ceil() } else { s };
     }
-    held
+    out
 }
 
 /// How many values each cage vertex has, and whether one of them spans a single face.

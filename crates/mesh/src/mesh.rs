@@ -62,6 +62,8 @@ pub struct Mesh {
     whole_edges: std::collections::BTreeMap<u32, Vec<f32>>,
     /// [`Mesh::crease_ends`], by vertex.
     crease_ends: std::collections::BTreeMap<u32, [HalfedgeId; 2]>,
+    /// [`Mesh::is_fvar_corner`]: sorted vertices; empty for almost every mesh.
+    fvar_corners: Vec<u32>,
 }
 
 impl Mesh {
@@ -143,6 +145,7 @@ impl Mesh {
             primvars: _,
             whole_edges,
             crease_ends,
+            fvar_corners,
         } = self;
         self.positions.len() == other.positions.len()
             && *face_offsets == other.face_offsets
@@ -162,6 +165,7 @@ impl Mesh {
             && *uv == other.uv
             && *whole_edges == other.whole_edges
             && *crease_ends == other.crease_ends
+            && *fvar_corners == other.fvar_corners
     }
     /// Position of `v`.
     #[inline]
@@ -240,6 +244,25 @@ impl Mesh {
     /// Every `(copy, crease ends)` of [`Mesh::crease_ends`], in vertex order.
     pub fn crease_ends_all(&self) -> impl Iterator<Item = (VertexId, [HalfedgeId; 2])> + '_ {
         self.crease_ends.iter().map(|(&v, &h)| (VertexId(v), h))
+    }
+    /// Whether `v` is a copy of a non-manifold vertex whose face-varying values differ, which
+    /// OpenSubdiv keeps in place at every level: every value there is a corner
+    /// ([`PolygonSoup::split_nonmanifold`](crate::PolygonSoup::split_nonmanifold)). Refinement
+    /// keeps the set (a vertex's child has its number).
+    #[inline]
+    pub fn is_fvar_corner(&self, v: VertexId) -> bool {
+        !self.fvar_corners.is_empty() && self.fvar_corners.binary_search(&v.0).is_ok()
+    }
+    /// The vertices of [`Mesh::is_fvar_corner`], sorted.
+    pub fn fvar_corners(&self) -> &[u32] {
+        &self.fvar_corners
+    }
+    /// Sets the vertices of [`Mesh::is_fvar_corner`] (those out of range are dropped).
+    pub fn set_fvar_corners(&mut self, vertices: &[u32]) {
+        let n = self.num_vertices() as u32;
+        self.fvar_corners = vertices.iter().copied().filter(|&v| v < n).collect();
+        self.fvar_corners.sort_unstable();
+        self.fvar_corners.dedup();
     }
     /// Sets [`Mesh::crease_ends`] of `v` (`None` removes it).
     pub fn set_crease_ends(&mut self, v: VertexId, ends: Option<[HalfedgeId; 2]>) {

@@ -83,6 +83,10 @@ pub struct PolygonSoup {
     /// [`PolygonSoup::split_nonmanifold`]
     /// ([`Mesh::crease_ends`](crate::Mesh::crease_ends)).
     pub crease_copies: Vec<(i64, [(i64, i64); 2])>,
+    /// Copies of non-manifold vertices whose face-varying values OpenSubdiv keeps in place,
+    /// set by [`PolygonSoup::split_nonmanifold`]
+    /// ([`Mesh::is_fvar_corner`](crate::Mesh::is_fvar_corner)).
+    pub fvar_corners: Vec<i64>,
     /// Face-varying values (OBJ `vt`); see [`PolygonSoup::uv_indices`].
     pub uvs: Vec<glam::Vec2>,
     /// The value of every face corner (aligned with `face_indices`, 0-based, signed so that bad
@@ -325,6 +329,8 @@ impl PolygonSoup {
                     .iter()
                     .map(|(v, s)| (v + bv, s.clone())),
             );
+            out.fvar_corners
+                .extend(self.fvar_corners.iter().map(|v| v + bv));
         }
         out
     }

@@ -234,6 +234,8 @@ pub(crate) fn pass(
     child
         .set_uv_dependence(uv_dependence)
         .map_err(RedGreenError::Internal)?;
+    // The old vertices keep their numbers.
+    child.set_fvar_corners(mesh.fvar_corners());
     child.set_holes(
         asm.source_face
             .iter()

@@ -79,9 +79,21 @@ impl Flags {
 struct Span {
     size: usize,
     start: usize,
+    /// Seams inside the span, or runs of faces beyond the first (a value met again).
     disjoint: i32,
+    /// Infinitely sharp edges inside the span.
+    inf: u32,
     /// Semi-sharp edges inside the span.
     semi: u32,
+}
+
+impl Span {
+    /// Whether the span makes its value a corner whatever the options: disjoint, or cut by an
+    /// infinitely sharp edge.
+    #[inline]
+    fn sharp(&self) -> bool {
+        self.disjoint != 0 || self.inf > 0
+    }
 }
 
 /// The channel and the topology it needs: the corner of every half-edge with a face and which
@@ -345,11 +357,12 @@ fn siblings(ch: &Channel<'_>, hs: &[HalfedgeId], sib: &mut Vec<usize>, uniq: &mu
 }
 
 /// Whether the values at `v` (with `faces` faces in its ring) are refined apart from the vertex
-/// rules: a seam ends at `v`, or a boundary vertex is made linear (linear boundaries, or a
-/// one-face corner made sharp).
+/// rules: a seam ends at `v`, a boundary vertex is made linear (linear boundaries, or a
+/// one-face corner made sharp), or `v` is a copy of a non-manifold vertex whose values differ
+/// ([`Mesh::is_fvar_corner`], every value a corner).
 fn vertex_mismatch(ch: &Channel<'_>, v: VertexId, faces: usize) -> bool {
     let mesh = ch.mesh;
-    if mesh.outgoing(v).any(|h| ch.seam[h.edge().idx()]) {
+    if mesh.is_fvar_corner(v) || mesh.outgoing(v).any(|h| ch.seam[h.edge().idx()]) {
         return true;
     }
     if !mesh.is_boundary_vertex(v) {
@@ -367,45 +380,44 @@ fn spans(ch: &Channel<'_>, hs: &[HalfedgeId], sib: &[usize], count: usize) -> Ve
     let boundary = mesh.is_boundary_vertex(v);
     let sharp = |h: HalfedgeId| is_infinite(mesh.edge_sharpness(h.edge()));
     let semi = |h: HalfedgeId| is_semi_sharp(mesh.edge_sharpness(h.edge()));
+    // An edge inside a span: a seam there makes it disjoint, else its sharpness counts.
+    let inside = |sp: &mut Span, h: HalfedgeId| {
+        if ch.seam[h.edge().idx()] {
+            sp.disjoint += 1;
+        } else if sharp(h) {
+            sp.inf += 1;
+        } else if semi(h) {
+            sp.semi += 1;
+        }
+    };
     let mut sp = vec![Span::default(); count];
-    if count == 1 {
-        // Every edge, the boundary's last one included.
+    if count == 1 && !boundary {
+        // An interior dart: disjoint with a second seam.
         for h in mesh.outgoing(v) {
-            let i = hs.iter().position(|&x| x == h).unwrap_or(n);
             if ch.seam[h.edge().idx()] {
                 if sp[0].size > 0 {
                     sp[0].disjoint = 1;
                     break;
                 }
                 sp[0].size = n;
-                sp[0].start = i % n;
+                sp[0].start = hs.iter().position(|&x| x == h).unwrap_or(0);
             } else if sharp(h) {
-                sp[0].disjoint = 1;
-                break;
+                sp[0].inf += 1;
             } else if semi(h) {
                 sp[0].semi += 1;
             }
         }
+        sp[0].size = n;
         return sp;
     }
     sp[0].size = 1;
     if !boundary && sib[n - 1] == 0 {
-        if ch.seam[hs[0].edge().idx()] || sharp(hs[0]) {
-            sp[0].disjoint = 1;
-        } else if semi(hs[0]) {
-            sp[0].semi += 1;
-        }
+        inside(&mut sp[0], hs[0]);
     }
     for i in 1..n {
         let s = sib[i];
         if s == sib[i - 1] {
-            if ch.seam[hs[i].edge().idx()] {
-                sp[s].disjoint += 1;
-            } else if sharp(hs[i]) {
-                sp[s].disjoint = 1;
-            } else if semi(hs[i]) {
-                sp[s].semi += 1;
-            }
+            inside(&mut sp[s], hs[i]);
         } else {
             if sp[s].size > 0 {
                 sp[s].disjoint += 1;
@@ -414,6 +426,7 @@ fn spans(ch: &Channel<'_>, hs: &[HalfedgeId], sib: &[usize], count: usize) -> Ve
         }
         sp[s].size += 1;
     }
+    // Span 0 wrapping round counted its second run as disjoint.
     if sib[n - 1] == 0 && !boundary {
         sp[0].disjoint -= 1;
     }
@@ -434,6 +447,7 @@ fn sibling_corners(
     let boundary = mesh.is_boundary_vertex(v);
     let all = fl.linear_boundaries
         || is_infinite(mesh.vertex_sharpness(v))
+        || mesh.is_fvar_corner(v)
         || (fl.dependent && count > 2)
         || (fl.darts && count == 1 && !boundary);
     if all {
@@ -441,7 +455,7 @@ fn sibling_corners(
     }
     let sp = spans(ch, hs, sib, count);
     if fl.dependent && count == 2 {
-        let mut all = sp[0].disjoint != 0 || sp[1].disjoint != 0;
+        let mut all = sp[0].sharp() || sp[1].sharp();
         if fl.both_if_one_corner {
             all |= sp[0].size == 1 || sp[1].size == 1;
         }
@@ -450,7 +464,7 @@ fn sibling_corners(
         }
     }
     sp.iter()
-        .map(|s| s.disjoint != 0 || (s.size == 1 && fl.corners_sharp))
+        .map(|s| s.sharp() || (s.size == 1 && fl.corners_sharp))
         .collect()
 }
 

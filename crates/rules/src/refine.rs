@@ -88,6 +88,8 @@ pub fn refine_uniform(mesh: &Mesh, scheme: Scheme) -> Result<Mesh, RulesError> {
     let mut child = Mesh::from_soup(&soup).map_err(RulesError::Internal)?;
     // Set apart from the soup: the child channel carries its values' dependence.
     child.set_uv(child_fv).map_err(RulesError::Internal)?;
+    // A vertex's child has its number.
+    child.set_fvar_corners(mesh.fvar_corners());
     child.set_holes(holes);
     child.set_groups(mesh.groups().to_vec(), groups);
     kernel.transfer_sharpness(&mut child, |e| Some(VertexId(edge_base + e.0)), |_| true);

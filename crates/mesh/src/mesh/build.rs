@@ -135,5 +135,6 @@ fn assemble(
         primvars: Vec::new(),
         whole_edges: Default::default(),
         crease_ends: Default::default(),
+        fvar_corners: Vec::new(),
     }
 }

@@ -74,6 +74,7 @@ impl Mesh {
             primvars: Vec::new(),
             whole_edges: Default::default(),
             crease_ends: Default::default(),
+            fvar_corners: Vec::new(),
         };
         m.face_offsets.push(0);
         for (k, off) in offsets.iter().enumerate() {
@@ -97,6 +98,8 @@ impl Mesh {
                 m.crease_ends
                     .insert(vx + repeat(k) as u32, ends.map(|x| h(k, x)));
             }
+            m.fvar_corners
+                .extend(self.fvar_corners.iter().map(|&vx| vx + repeat(k) as u32));
         }
         if let Some(uv) = &self.uv {
             let mut out = crate::FaceVarying {

@@ -152,6 +152,7 @@ impl PolygonSoup {
             BoundaryInterpolation::EdgeAndCorner => self.tag_one_face_corners(),
             BoundaryInterpolation::EdgeOnly => {}
         }
+        let fvar_corners = self.fvar_mismatched(&uses, &found);
         let marks = self.nonmanifold_corners(&uses, &nm_edges, &found, &nm_count, &mut parent)?;
         let (remap, created) = self.copy_extra_fans(&mut parent);
         self.retag_copies(&remap, &created);
@@ -193,9 +194,70 @@ impl PolygonSoup {
                 });
             }
         }
+        for &v in &fvar_corners {
+            for w in std::iter::once(v).chain(created.iter().filter(|c| c.0 == v).map(|c| c.1)) {
+                self.fvar_corners.push(i64::from(w));
+            }
+        }
         self.face_indices = remap;
         found.copies = created;
         Ok(found)
+    }
+
+    /// The non-manifold vertices whose face-varying values OpenSubdiv keeps in place at every
+    /// level (`Vtr::FVarLevel::completeTopologyFromFaceValues` makes every value of a
+    /// non-manifold vertex with mismatched values a corner): those whose faces name more than
+    /// one value, or at an end of an edge whose faces disagree at either end.
+    fn fvar_mismatched(
+        &self,
+        uses: &HashMap<(i64, i64), Vec<EdgeUse>>,
+        found: &NonManifold,
+    ) -> Vec<u32> {
+        if self.uv_indices.len() != self.face_indices.len() {
+            return Vec::new();
+        }
+        let nonmanifold: HashMap<i64, ()> = found
+            .vertices
+            .iter()
+            .map(|&(v, _)| (i64::from(v), ()))
+            .collect();
+        let mut out: HashMap<i64, ()> = HashMap::new();
+        let mut first: HashMap<i64, i64> = HashMap::new();
+        for (c, v) in self.face_indices.iter().enumerate() {
+            if nonmanifold.contains_key(v) {
+                let value = *first.entry(*v).or_insert(self.uv_indices[c]);
+                if value != self.uv_indices[c] {
+                    out.insert(*v, ());
+                }
+            }
+        }
+        for (&(a, b), u) in uses {
+            let ends = [a, b].map(|x| nonmanifold.contains_key(&x));
+            if u.len() < 2 || ends == [false, false] {
+                continue;
+            }
+            let at = |e: &EdgeUse, x: i64| {
+                let c = if self.face_indices[e.corner] == x {
+                    e.corner
+                } else {
+                    e.next
+                };
+                self.uv_indices[c]
+            };
+            let differs = [a, b]
+                .iter()
+                .any(|&x| u.iter().any(|e| at(e, x) != at(&u[0], x)));
+            if differs {
+                for (x, nm) in [a, b].into_iter().zip(ends) {
+                    if nm {
+                        out.insert(x, ());
+                    }
+                }
+            }
+        }
+        let mut out: Vec<u32> = out.into_keys().map(|v| v as u32).collect();
+        out.sort_unstable();
+        out
     }
 
     /// `interpolateboundary none` as OpenSubdiv 3.5 applies it to the whole cage

@@ -72,6 +72,16 @@ fn apply_whole_vertex_edges(mesh: &mut Mesh, soup: &PolygonSoup) -> Result<(), M
         }
         mesh.set_crease_ends(VertexId(*v as u32), Some(hs));
     }
+    if let Some(&v) = soup.fvar_corners.iter().find(|&&v| v < 0 || v >= nv as i64) {
+        return Err(MeshError::TagMissingVertex {
+            tag: "face-varying corner",
+            vertex: v,
+            count: nv,
+            line: None,
+        });
+    }
+    let corners: Vec<u32> = soup.fvar_corners.iter().map(|&v| v as u32).collect();
+    mesh.set_fvar_corners(&corners);
     Ok(())
 }
 

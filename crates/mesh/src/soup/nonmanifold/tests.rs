@@ -229,3 +229,49 @@ fn a_crease_needs_more_faces_than_edges() {
     soup.split_nonmanifold().unwrap();
     assert!(!soup.corners.iter().any(|c| c.v == 1));
 }
+
+/// `FINS` with texture coordinates: every face's corners name the values of chart `chart(f)`
+/// (one value per vertex and chart).
+fn fins_with_charts(chart: impl Fn(usize) -> usize) -> String {
+    let (head, faces) = FINS.split_at(FINS.find("f ").unwrap());
+    let mut text = head.to_string();
+    for c in 0..2 {
+        for v in 0..12 {
+            text += &format!("vt {} {}\n", v + 20 * c, v);
+        }
+    }
+    for (f, line) in faces.lines().enumerate() {
+        let corners: Vec<String> = line[2..]
+            .split(' ')
+            .map(|v| format!("{v}/{}", v.parse::<usize>().unwrap() + 12 * chart(f)))
+            .collect();
+        text += &format!("f {}\n", corners.join(" "));
+    }
+    text
+}
+
+#[test]
+fn copies_of_a_nonmanifold_vertex_whose_values_differ_keep_them() {
+    // Every fin in one chart: the values agree, nothing is kept.
+    let same = split(&fins_with_charts(|_| 0)).unwrap();
+    assert!(same.fvar_corners().is_empty());
+    // The third fin on each edge in another chart: the values differ at the non-manifold
+    // vertices 0, 1 and 2 (0-based, at y = z = 0), so every copy of them is kept, and no
+    // other vertex (the fins' far vertices are manifold).
+    let mesh = split(&fins_with_charts(|f| usize::from(f >= 4))).unwrap();
+    let on_edges = |v: VertexId| {
+        let p = mesh.position(v);
+        p.y == 0.0 && p.z == 0.0
+    };
+    let copies: Vec<u32> = mesh
+        .vertices()
+        .filter(|&v| on_edges(v))
+        .map(|v| v.0)
+        .collect();
+    assert!(copies.len() > 3, "{copies:?}");
+    assert_eq!(mesh.fvar_corners(), copies.as_slice());
+    assert!(
+        mesh.vertices()
+            .all(|v| mesh.is_fvar_corner(v) == on_edges(v))
+    );
+}
