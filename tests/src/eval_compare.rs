@@ -69,6 +69,29 @@ pub fn parse_bfr(line: &str) -> Result<Option<BfrValue>, String> {
     }))
 }
 
+/// The corners of the level-[`DYADIC_LEVEL`] lattice cell around each of `queries` (its
+/// vertices in the query's face, every combination of rounding `u` and `v` down and up),
+/// without repeats: where a random point finds a difference near a feature, one of them is
+/// nearer to it than the point's snapped one of [`bfr_points`] may be.
+pub fn lattice_cell_corners(eval: &Evaluator<'_>, queries: &[Query]) -> Vec<Query> {
+    let m = f64::from(1u32 << DYADIC_LEVEL);
+    let mut out: Vec<Query> = Vec::new();
+    for p in queries {
+        let Ok(domain) = eval.domain(p.face) else {
+            continue;
+        };
+        for u in [(p.u * m).floor() / m, (p.u * m).ceil() / m] {
+            for v in [(p.v * m).floor() / m, (p.v * m).ceil() / m] {
+                let q = Query::new(p.face, u, v);
+                if domain.locate(u, v).is_some() && !out.contains(&q) {
+                    out.push(q);
+                }
+            }
+        }
+    }
+    out
+}
+
 /// The points a comparison draws: `n` uniform ones ([`random_queries`] from `seed`), then each
 /// of them snapped to the nearest vertex of the level-[`DYADIC_LEVEL`] mesh in its face (where
 /// [`DeepLimits`] is the truth: wherever the random points find a difference, a dyadic point
