@@ -433,15 +433,10 @@ fn spans(ch: &Channel<'_>, hs: &[HalfedgeId], sib: &[usize], count: usize) -> Ve
     sp
 }
 
-/// Which siblings around `v` are corners (kept) rather than creases, by the options
-/// (`Vtr::FVarLevel::completeTopologyFromFaceValues`).
-fn sibling_corners(
-    ch: &Channel<'_>,
-    v: VertexId,
-    hs: &[HalfedgeId],
-    sib: &[usize],
-    count: usize,
-) -> Vec<bool> {
+/// Which siblings around `v` (with spans `sp`) are corners (kept) rather than creases, by the
+/// options (`Vtr::FVarLevel::completeTopologyFromFaceValues`).
+fn sibling_corners(ch: &Channel<'_>, v: VertexId, sp: &[Span]) -> Vec<bool> {
+    let count = sp.len();
     let mesh = ch.mesh;
     let fl = ch.flags;
     let boundary = mesh.is_boundary_vertex(v);
@@ -453,7 +448,6 @@ fn sibling_corners(
     if all {
         return vec![true; count];
     }
-    let sp = spans(ch, hs, sib, count);
     if fl.dependent && count == 2 {
         let mut all = sp[0].sharp() || sp[1].sharp();
         if fl.both_if_one_corner {

@@ -56,8 +56,8 @@ pub fn limit_face_varying(mesh: &Mesh, scheme: Scheme) -> Option<FaceVarying> {
             continue;
         }
         siblings(&ch, &hs, &mut sib, &mut uniq);
-        let corners = sibling_corners(&ch, v, &hs, &sib, uniq.len());
         let sp = spans(&ch, &hs, &sib, uniq.len());
+        let corners = sibling_corners(&ch, v, &sp);
         let semi_vertex = is_semi_sharp(mesh.vertex_sharpness(v));
         let dep = dependence(&ch, v, &uniq, &sp);
         let base = out.values.len() as u32;

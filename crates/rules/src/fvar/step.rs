@@ -236,8 +236,8 @@ fn vertex_values(
         }
         return;
     }
-    let corners = sibling_corners(ch, v, hs, sib, uniq.len());
     let sp = spans(ch, hs, sib, uniq.len());
+    let corners = sibling_corners(ch, v, &sp);
     let dep = dependence(ch, v, uniq, &sp);
     let base = values.len() as u32;
     for (s, &is_corner) in corners.iter().enumerate() {
