@@ -1,6 +1,6 @@
 //! Adaptive watertightness on random cages: the random cages of
-//! `cargo xtask fuzz-osd` (`subdiv_tests::osd_gen`, read as Catmull-Clark cages, and the Loop
-//! ones as adaptive Loop too) under random
+//! `cargo xtask fuzz-osd` (`subdiv_tests::osd_gen`, read as Catmull-Clark and as bilinear
+//! cages, and the Loop ones as adaptive Loop too) under random
 //! cameras, through `subdiv::DynamicSubdivision` in curvature mode (with and without the
 //! projected-size rule, sometimes culling back faces) and in pixel-error mode. After welding
 //! identical coordinates, every edge of the frame's triangles is used by exactly two triangles,
@@ -231,9 +231,9 @@ fn check_cage(obj: &str, seed: u64, index: u64, failures: &mut Vec<String>) -> u
     let (on, count) = nonmanifold_edges(obj, &mesh);
     let mut rng = Rng::for_case(seed ^ 0xCA3E, index);
     let schemes: &[Scheme] = if loop_scheme {
-        &[Scheme::CatmullClark, Scheme::Loop]
+        &[Scheme::CatmullClark, Scheme::Loop, Scheme::Bilinear]
     } else {
-        &[Scheme::CatmullClark]
+        &[Scheme::CatmullClark, Scheme::Bilinear]
     };
     let mut frames = 0;
     for (&scheme, pixel) in schemes.iter().flat_map(|s| [(s, false), (s, true)]) {

@@ -273,8 +273,7 @@ fn bench_follows_or_refuses_the_stage_scheme() {
 }
 
 /// A stage naming `subdivisionScheme = "bilinear"` is tessellated with the bilinear scheme (as
-/// `--scheme bilinear` does for the same cage as OBJ); bilinear has no adaptive tessellation,
-/// and says so.
+/// `--scheme bilinear` does for the same cage as OBJ), uniformly and adaptively.
 #[test]
 fn a_bilinear_stage_is_tessellated_bilinear() {
     let stage = tmp("bilinear_tri_quad.usda");
@@ -316,16 +315,26 @@ fn a_bilinear_stage_is_tessellated_bilinear() {
     ]);
     assert_eq!(code, 0, "{err}");
     assert!(std::fs::read(&a).unwrap() == std::fs::read(&b).unwrap());
-    let o = tmp("never.ply");
-    assert_fails(
-        &[
+    // Adaptive too: the stage and the OBJ give the same frame.
+    let (c, d) = (
+        tmp("bilinear-usd-adaptive.ply"),
+        tmp("bilinear-obj-adaptive.ply"),
+    );
+    for (input, out, scheme) in [(&stage, &c, None), (&obj, &d, Some("bilinear"))] {
+        let mut args = vec![
             "tessellate",
-            stage.to_str().unwrap(),
+            input.to_str().unwrap(),
             "--eye-relative",
             "0.8,0.5,2.2",
             "-o",
-            o.to_str().unwrap(),
-        ],
-        "the bilinear scheme has no adaptive tessellation",
-    );
+            out.to_str().unwrap(),
+        ];
+        if let Some(s) = scheme {
+            args.extend(["--scheme", s]);
+        }
+        let (code, stdout, err) = run(&args);
+        assert_eq!(code, 0, "{err}");
+        assert!(stdout.contains("(adaptive, max depth"), "{stdout}");
+    }
+    assert!(std::fs::read(&c).unwrap() == std::fs::read(&d).unwrap());
 }

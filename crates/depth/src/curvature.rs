@@ -36,6 +36,9 @@ impl VertexData {
     /// # Ok::<(), subdiv_mesh::MeshError>(())
     /// ```
     pub fn compute(mesh: &Mesh, scheme: Scheme, aperture_deg: f32, max_depth: Depth) -> VertexData {
+        if scheme == Scheme::Bilinear {
+            return bilinear_vertex_data(mesh, aperture_deg, max_depth);
+        }
         let cos_a = (aperture_deg.to_radians() as f64).cos();
         let per: Vec<(Vec3, Vec3, Depth)> = (0..mesh.num_vertices() as u32)
             .into_par_iter()
@@ -58,6 +61,70 @@ impl VertexData {
             normal: per.iter().map(|x| x.1).collect(),
             depth: per.iter().map(|x| x.2).collect(),
         }
+    }
+}
+
+/// [`VertexData`] of the bilinear surface, whose limit points are the cage's own and whose
+/// patches meet with a crease at every edge, so no cone around a vertex ever narrows: a vertex's
+/// normal is the mean of its patches' unit normals there, and its depth the deepest its faces
+/// need for the normals across each of their level-`l` sub-patches to fit the cone. A bilinear
+/// patch's normal varies about linearly over it, so a patch whose corner normals spread by `s`
+/// needs `ceil(log2(s / alpha))` levels.
+fn bilinear_vertex_data(mesh: &Mesh, aperture_deg: f32, max_depth: Depth) -> VertexData {
+    let alpha = aperture_deg.to_radians().max(f32::MIN_POSITIVE);
+    let mut normal = vec![Vec3::ZERO; mesh.num_vertices()];
+    let mut depth: Vec<Depth> = vec![0; mesh.num_vertices()];
+    for f in mesh.faces().filter(|&f| !mesh.is_hole(f)) {
+        let vs = mesh.face_vertices(f);
+        let at = |k: usize| mesh.position(vs[k % vs.len()]);
+        // The face's bilinear patches: the quad, or an n-gon's level-1 quads.
+        let m = vs.len();
+        let patches: Vec<[Vec3; 4]> = if m == 4 {
+            vec![[at(0), at(1), at(2), at(3)]]
+        } else {
+            let centroid = (0..m).map(at).sum::<Vec3>() / m as f32;
+            (0..m)
+                .map(|k| {
+                    let v = at(k);
+                    [
+                        v,
+                        (v + at(k + 1)) * 0.5,
+                        centroid,
+                        (v + at(k + m - 1)) * 0.5,
+                    ]
+                })
+                .collect()
+        };
+        let mut spread = 0.0f32;
+        for (k, q) in patches.iter().enumerate() {
+            let corner = |c: usize| (q[(c + 1) % 4] - q[c]).cross(q[(c + 3) % 4] - q[c]);
+            let n: [Vec3; 4] = [0, 1, 2, 3].map(|c| corner(c).normalize_or_zero());
+            for a in 0..4 {
+                for b in a + 1..4 {
+                    if n[a] != Vec3::ZERO && n[b] != Vec3::ZERO {
+                        spread = spread.max(n[a].dot(n[b]).clamp(-1.0, 1.0).acos());
+                    }
+                }
+            }
+            // Corner 0 of patch k is the face's vertex k (of a quad: every corner is one).
+            let corners = if m == 4 { 4 } else { 1 };
+            for c in 0..corners {
+                normal[vs[(k + c) % m].idx()] += n[c];
+            }
+        }
+        let d = if spread > alpha {
+            ((spread / alpha).log2().ceil() as Depth).min(max_depth)
+        } else {
+            0
+        };
+        for v in vs {
+            depth[v.idx()] = depth[v.idx()].max(d);
+        }
+    }
+    VertexData {
+        limit: mesh.positions().to_vec(),
+        normal: normal.into_iter().map(Vec3::normalize_or_zero).collect(),
+        depth,
     }
 }
 
@@ -174,5 +241,44 @@ mod tests {
             6,
         );
         assert!(wide.depth.iter().zip(&bump.depth).all(|(w, n)| w <= n));
+    }
+
+    /// Bilinear: a cage of planar quads needs no depth however it bends at its edges (its
+    /// patches are flat); a twisted quad needs `ceil(log2(spread / aperture))` levels, its
+    /// spread the largest angle between its corner normals.
+    #[test]
+    fn bilinear_depth_follows_the_twist_of_each_patch() {
+        let folded = grid(4, |x, _| (x * 0.9).round().abs());
+        let v = VertexData::compute(&folded, Scheme::Bilinear, 5.0, 6);
+        assert!(v.depth.iter().all(|&d| d == 0), "{:?}", v.depth);
+        assert_eq!(v.limit, folded.positions());
+        // One quad twisted by lifting a corner: its corner normals spread by `s`.
+        let h = 0.5f32;
+        let soup = PolygonSoup::from_faces(
+            vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, h), Vec3::Y],
+            &[vec![0, 1, 2, 3]],
+        );
+        let quad = Mesh::from_soup(&soup).unwrap();
+        // Corner normals: (0,0,1) at 0, (-h,0,1) at 1 and (0,-h,1) at 3 (normalised), so the
+        // largest angle lies between corners 1 and 3.
+        let (n1, n3) = (
+            Vec3::new(-h, 0.0, 1.0).normalize(),
+            Vec3::new(0.0, -h, 1.0).normalize(),
+        );
+        let s = n1.dot(n3).acos();
+        for aperture in [2.0f32, 5.0, 10.0, 40.0] {
+            let v = VertexData::compute(&quad, Scheme::Bilinear, aperture, 6);
+            let want = (s / aperture.to_radians()).log2().ceil().max(0.0) as Depth;
+            assert!(
+                v.depth.iter().all(|&d| d == want),
+                "{aperture}: {:?} {want}",
+                v.depth
+            );
+            assert!(
+                v.normal
+                    .iter()
+                    .all(|n| n.z > 0.8 && (n.length() - 1.0).abs() < 1e-6)
+            );
+        }
     }
 }

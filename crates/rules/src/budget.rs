@@ -469,7 +469,7 @@ fn adaptive(mesh: &Mesh, scheme: Scheme, max_depth: Depth) -> OutputSize {
     let c = CageCounts::of(mesh);
     let d = u32::from(max_depth);
     let (vertices, triangles) = match scheme {
-        // (Bilinear has no adaptive tessellation; bounded as Catmull-Clark.)
+        // Bilinear units are Catmull-Clark's (a quad one patch, other faces level-1 quads).
         Scheme::CatmullClark | Scheme::Bilinear => {
             // Level-1 patches at one level less; a depth-0 face is still its level-1 quads.
             let p = d.saturating_sub(1);

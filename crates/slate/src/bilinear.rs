@@ -15,6 +15,7 @@ use glam::{Vec2, Vec3};
 use subdiv_mesh::{FaceId, HalfedgeId, Mesh};
 use subdiv_rules::{Depth, LimitMesh, MAX_DEPTH, Scheme, TopologyKey};
 
+use crate::patches::PatchRef;
 use crate::size::check_uniform_size;
 use crate::tessellate::SlateError;
 
@@ -156,6 +157,81 @@ impl Corners {
                 + t[2] * (u * v)
                 + t[3] * ((1.0 - u) * v),
         )
+    }
+}
+
+/// The grid of bilinear patch `p` of the cage `mesh` at `depth`, as
+/// [`crate::PatchGrids::grid`] writes a patch's grid: points and normals row by row (`i` along
+/// the patch's first edge, `j` along its last edge reversed), and every border point's normal in
+/// `sided` too (bilinear patches meet with a crease at every edge). Points are
+/// [`tessellate_bilinear`]'s: on a cage edge `a (1 - t) + b t` of its ends (the same bits from
+/// either face), on a level-1 edge inside an n-gon the same of its midpoint and the centroid.
+pub(crate) fn patch_grid_sided(
+    mesh: &Mesh,
+    p: &PatchRef,
+    depth: Depth,
+    pos: &mut [[f32; 3]],
+    nrm: &mut [[f32; 3]],
+    sided: &mut Vec<(u32, [f32; 3])>,
+) {
+    let vs = mesh.face_vertices(p.src_face);
+    let at = |k: usize| mesh.position(vs[k % vs.len()]);
+    let n = 1u32 << depth;
+    let s = n as f32;
+    // The four sides' points at `t` along each side, as `(start, end, t scale)`: a cage edge
+    // from the corner (scale 1/2 on an n-gon's level-1 quad), or a level-1 edge to the centroid.
+    let (corners, sides) = if p.level == 0 {
+        let c = [0, 1, 2, 3].map(at);
+        (
+            c,
+            [
+                (c[0], c[1], 1.0),
+                (c[1], c[2], 1.0),
+                (c[3], c[2], 1.0),
+                (c[0], c[3], 1.0),
+            ],
+        )
+    } else {
+        let (k, m) = (p.sub as usize, vs.len());
+        let centroid = (0..m).map(at).sum::<Vec3>() / m as f32;
+        let (vk, next, prev) = (at(k), at(k + 1), at(k + m - 1));
+        let (mid_next, mid_prev) = (lerp(vk, next, 0.5), lerp(vk, prev, 0.5));
+        let c = [vk, mid_next, centroid, mid_prev];
+        let sides = [
+            (vk, next, 0.5),
+            (mid_next, centroid, 1.0),
+            (mid_prev, centroid, 1.0),
+            (vk, prev, 0.5),
+        ];
+        (c, sides)
+    };
+    let c = Corners {
+        p: corners,
+        uv: None,
+    };
+    let side = |k: usize, t: f32| {
+        let (a, b, scale) = sides[k];
+        lerp(a, b, t * scale)
+    };
+    sided.clear();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (u, v) = (i as f32 / s, j as f32 / s);
+            let k = (j * (n + 1) + i) as usize;
+            let point = match (i, j) {
+                (_, 0) => side(0, u),
+                (_, j) if j == n => side(2, u),
+                (0, _) => side(3, v),
+                (i, _) if i == n => side(1, v),
+                _ => c.at(u, v),
+            };
+            let normal = c.normal(u, v).to_array();
+            pos[k] = point.to_array();
+            nrm[k] = normal;
+            if i == 0 || j == 0 || i == n || j == n {
+                sided.push((k as u32, normal));
+            }
+        }
     }
 }
 

@@ -196,7 +196,8 @@ pub struct PatchRef {
     pub sub: u32,
     /// 0: gathered from the cage; 1: from the level-1 mesh.
     pub level: u8,
-    /// The face it is gathered from, in the cage or in the level-1 mesh.
+    /// The face it is gathered from, in the cage or in the level-1 mesh (a bilinear set has no
+    /// level-1 mesh: its level-1 patches name their cage face, and `sub` the quad within it).
     pub src_face: FaceId,
 }
 
@@ -210,6 +211,8 @@ pub struct PatchSet {
     max_valence: usize,
     /// The cage's seams (copies of non-manifold edges; [`PatchSet::write_seam_points`]).
     seams: SeamCurves,
+    /// Catmull-Clark, or bilinear (each patch the bilinear patch of its source face).
+    scheme: Scheme,
 }
 
 impl PatchSet {
@@ -226,8 +229,27 @@ impl PatchSet {
     /// # Ok::<(), subdiv_mesh::MeshError>(())
     /// ```
     pub fn new(mesh: &Mesh) -> Result<PatchSet, RulesError> {
-        let irregular = irregular_faces(mesh);
-        let (level1, first_child, level1_source) = if irregular.iter().any(|&x| x) {
+        PatchSet::with_scheme(mesh, Scheme::CatmullClark)
+    }
+
+    /// [`PatchSet::new`] for the bilinear surface: the same units and patches, each the bilinear
+    /// patch of a cage quad or of a level-1 quad of the bilinear refinement (a corner, two edge
+    /// midpoints and the face's centroid), which [`PatchGrids`](crate::PatchGrids) tessellates
+    /// from the cage as [`crate::tessellate_bilinear`] does.
+    pub fn bilinear(mesh: &Mesh) -> Result<PatchSet, RulesError> {
+        PatchSet::with_scheme(mesh, Scheme::Bilinear)
+    }
+
+    /// `scheme` is Catmull-Clark or bilinear (Loop has its own layout, [`crate::TriLayout`]).
+    fn with_scheme(mesh: &Mesh, scheme: Scheme) -> Result<PatchSet, RulesError> {
+        let bilinear = scheme == Scheme::Bilinear;
+        // A bilinear quad is one patch whatever its neighbours; other faces are level-1 quads.
+        let irregular = if bilinear {
+            mesh.faces().map(|f| mesh.face_size(f) != 4).collect()
+        } else {
+            irregular_faces(mesh)
+        };
+        let (level1, first_child, level1_source) = if !bilinear && irregular.iter().any(|&x| x) {
             let (m, fc, source) = local_level1(mesh, &irregular, 4)?;
             (Some(m), fc, Some(source))
         } else {
@@ -246,11 +268,16 @@ impl PatchSet {
                     irregular: true,
                 });
                 for k in 0..n {
+                    let src_face = if bilinear {
+                        f
+                    } else {
+                        FaceId(first_child[f.idx()] + k)
+                    };
                     patches.push(PatchRef {
                         unit: u,
                         sub: k,
                         level: 1,
-                        src_face: FaceId(first_child[f.idx()] + k),
+                        src_face,
                     });
                 }
             } else {
@@ -276,7 +303,13 @@ impl PatchSet {
             patches,
             max_valence: mesh.max_valence().max(face_max),
             seams: SeamCurves::new(mesh),
+            scheme,
         })
+    }
+
+    /// The scheme of the patches: Catmull-Clark or bilinear.
+    pub fn scheme(&self) -> Scheme {
+        self.scheme
     }
 
     /// After the cage's positions moved (its topology the same as when the set was made):
@@ -319,7 +352,8 @@ impl PatchSet {
     /// changes for a cage without seams.
     pub fn write_seam_points(&self, mesh: &Mesh, p: &PatchRef, depth: Depth, pos: &mut [[f32; 3]]) {
         let seams = &self.seams;
-        if seams.is_empty() {
+        // Bilinear seam points are the same `a (1 - t) + b t` in every copy already.
+        if seams.is_empty() || self.scheme == Scheme::Bilinear {
             return;
         }
         let n = 1u32 << depth;

@@ -2,7 +2,7 @@
 //! [`PatchGrids`], the public way to tessellate single patches with it.
 
 use subdiv_mesh::Mesh;
-use subdiv_rules::Depth;
+use subdiv_rules::{Depth, Scheme};
 
 use crate::patches::{PatchRef, PatchSet};
 use crate::worker::Worker;
@@ -120,6 +120,9 @@ impl<'a> PatchGrids<'a> {
     /// `subdiv_rules::Ring::limit_sided`; `nrm` holds the averaged normal there). Points on the
     /// cage's seams are the slate's own; [`PatchSet::write_seam_points`] replaces them.
     ///
+    /// A bilinear set's patches meet with a crease at every edge: every border point is
+    /// one-sided, and `nrm` holds this patch's own normal there too.
+    ///
     /// # Panics
     /// If `pos` or `nrm` is shorter than the grid or `depth` exceeds the slates' depth.
     pub fn grid(
@@ -130,9 +133,13 @@ impl<'a> PatchGrids<'a> {
         nrm: &mut [[f32; 3]],
         sided: &mut Vec<(u32, [f32; 3])>,
     ) {
-        let source = self.set.source(self.mesh, p);
-        self.worker
-            .patch_grid_sided(source, p.src_face, depth, pos, nrm, sided);
+        if self.set.scheme() == Scheme::Bilinear {
+            crate::bilinear::patch_grid_sided(self.mesh, p, depth, pos, nrm, sided);
+        } else {
+            let source = self.set.source(self.mesh, p);
+            self.worker
+                .patch_grid_sided(source, p.src_face, depth, pos, nrm, sided);
+        }
     }
 }
 

@@ -28,6 +28,8 @@ mod grid;
 mod index;
 
 #[cfg(test)]
+mod bilinear_tests;
+#[cfg(test)]
 pub(crate) mod test_util;
 
 pub(crate) use assembler::check_corners;

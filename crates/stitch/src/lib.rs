@@ -8,6 +8,8 @@
 //! [`Assembler`] keeps each patch's tessellation between frames and recomputes only patches whose
 //! depth rose. Loop's triangular patches are joined the same way by [`TriAssembler`] (module
 //! [`tri`]): fans from the coarser patch's lattice points through the finer side's points.
+//! Bilinear patches (`Assembler::bilinear`) are the Catmull-Clark units' faces with bilinear
+//! points, joined as those are, every cage edge a crease.
 //! Both write an [`AdaptiveFrame`]: the frame's surface as a triangle-list
 //! [`LimitMesh`](subdiv_rules::LimitMesh) (the output type of every tessellator, its scalar the
 //! depth of each vertex's patch) and the depth of each cage face.
@@ -64,16 +66,6 @@ pub enum AssemblyError {
     NonFinite {
         /// The vertex.
         vertex: u32,
-    },
-    /// The scheme has no adaptive tessellation (bilinear: its patches are tessellated
-    /// uniformly).
-    #[error(
-        "the {scheme} scheme has no adaptive tessellation (catmull-clark and loop have); \
-         tessellate it uniformly (--depth N)"
-    )]
-    NotAdaptive {
-        /// The scheme's name.
-        scheme: &'static str,
     },
     /// A per-unit array has the wrong length.
     #[error("{what} has {got} entries, the mesh has {want} faces")]

@@ -29,7 +29,7 @@ const WARMUP_FRAMES: u64 = 3;
 /// The patch assembly of the node's scheme.
 #[derive(Debug)]
 enum Stitcher {
-    /// Catmull-Clark units and quad fans (boxed: the Catmull-Clark patch set is large).
+    /// Catmull-Clark (or bilinear) units and quad fans (boxed: the patch set is large).
     Quads(Box<Assembler>),
     /// Loop triangles and triangle fans (boxed: with its cached UVs it is large too).
     Tris(Box<TriAssembler>),
@@ -40,7 +40,7 @@ impl Stitcher {
         Ok(match scheme {
             Scheme::CatmullClark => Stitcher::Quads(Box::new(Assembler::new(mesh, max_depth)?)),
             Scheme::Loop => Stitcher::Tris(Box::new(TriAssembler::new(mesh, max_depth)?)),
-            Scheme::Bilinear => return Err(AssemblyError::NotAdaptive { scheme: "bilinear" }),
+            Scheme::Bilinear => Stitcher::Quads(Box::new(Assembler::bilinear(mesh, max_depth)?)),
         })
     }
 
@@ -61,8 +61,8 @@ impl Stitcher {
     }
 }
 
-/// View-dependent adaptive Catmull-Clark (or, with [`DynamicSubdivision::with_scheme`], Loop)
-/// tessellation with crack-free stitching.
+/// View-dependent adaptive Catmull-Clark (or, with [`DynamicSubdivision::with_scheme`], Loop or
+/// bilinear) tessellation with crack-free stitching.
 ///
 /// ```
 /// use subdiv_mesh::{read_obj, Camera, glam::Vec3};

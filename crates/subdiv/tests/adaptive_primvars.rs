@@ -19,8 +19,12 @@ fn coloured(path: std::path::PathBuf) -> Mesh {
 
 /// The cage at `path` with the colours `colour(obj text)` writes.
 fn with_colours(path: std::path::PathBuf, colour: impl Fn(&str) -> String) -> Mesh {
+    // One file per call: the tests run in parallel and may colour one cage differently.
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let text = colour(&std::fs::read_to_string(&path).unwrap());
-    let out = temp_dir().join(path.file_name().unwrap());
+    let name = path.file_name().unwrap().to_string_lossy();
+    let out = temp_dir().join(format!("{call}-{name}"));
     std::fs::write(&out, text).unwrap();
     read_obj(&out).unwrap()
 }
@@ -94,6 +98,22 @@ fn catmull_clark_frames_carry_vertex_primvars_exactly() {
 }
 
 #[test]
+fn bilinear_frames_carry_vertex_primvars_exactly() {
+    // The helmet's twisted quads get deeper than its flat ones; the pawn's and the n-gons'
+    // nearly flat patches need no depth at 2 px, so their blocks are depth 0 and level 1.
+    colours_are_the_points(
+        coloured(shape("catmark_helmet.obj")),
+        Scheme::Bilinear,
+        true,
+    );
+    for cage in ["catmark_pawn.obj", "catmark_nonquads.obj"] {
+        colours_are_the_points(coloured(shape(cage)), Scheme::Bilinear, false);
+    }
+    let cubes = fixture("nonmanifold/cubes_edge.obj");
+    colours_are_the_points(coloured(cubes), Scheme::Bilinear, false);
+}
+
+#[test]
 fn loop_frames_carry_vertex_primvars_exactly() {
     colours_are_the_points(
         coloured(shape("loop_cubes_semisharp.obj")),
@@ -122,6 +142,7 @@ fn frames_carry_values_unlike_the_positions() {
         (shape("catmark_nonquads.obj"), Scheme::CatmullClark),
         (shape("catmark_pawn.obj"), Scheme::CatmullClark),
         (fixture("nonmanifold/cubes_edge.obj"), Scheme::CatmullClark),
+        (shape("catmark_nonquads.obj"), Scheme::Bilinear),
         (shape("loop_cubes_semisharp.obj"), Scheme::Loop),
         (fixture("nonmanifold/fin3_tris_loop.obj"), Scheme::Loop),
     ] {

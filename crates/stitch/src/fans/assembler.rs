@@ -79,6 +79,8 @@ pub struct Assembler {
     method: FanMethod,
     /// The cage's face-varying limit values, at the deepest level a frame has needed so far.
     uvs: Option<LevelUvs>,
+    /// Catmull-Clark, or bilinear (the patch set's).
+    scheme: Scheme,
 }
 
 impl Assembler {
@@ -99,6 +101,23 @@ impl Assembler {
         max_depth: Depth,
         budget: &Budget,
     ) -> Result<Assembler, AssemblyError> {
+        Assembler::with_scheme(mesh, Scheme::CatmullClark, max_depth, budget)
+    }
+
+    /// [`Assembler::new`] for the bilinear surface of `mesh`: its patches
+    /// ([`PatchSet::bilinear`]) meet with a crease at every edge, so every fan corner on a patch
+    /// border takes its own patch's normal.
+    pub fn bilinear(mesh: &Mesh, max_depth: Depth) -> Result<Assembler, AssemblyError> {
+        Assembler::with_scheme(mesh, Scheme::Bilinear, max_depth, &Budget::machine())
+    }
+
+    /// `scheme` is Catmull-Clark or bilinear (Loop has [`crate::TriAssembler`]).
+    fn with_scheme(
+        mesh: &Mesh,
+        scheme: Scheme,
+        max_depth: Depth,
+        budget: &Budget,
+    ) -> Result<Assembler, AssemblyError> {
         if max_depth > MAX_ADAPTIVE_DEPTH {
             return Err(AssemblyError::TooDeep {
                 depth: max_depth,
@@ -106,14 +125,11 @@ impl Assembler {
             });
         }
         // Refuse before allocating: every face at the maximum depth beyond the budget.
-        budget.check(
-            mesh,
-            Request::Adaptive {
-                scheme: Scheme::CatmullClark,
-                max_depth,
-            },
-        )?;
-        let set = PatchSet::new(mesh)?;
+        budget.check(mesh, Request::Adaptive { scheme, max_depth })?;
+        let set = match scheme {
+            Scheme::Bilinear => PatchSet::bilinear(mesh)?,
+            _ => PatchSet::new(mesh)?,
+        };
         let units: Vec<UnitTopo> = set
             .units()
             .iter()
@@ -149,6 +165,7 @@ impl Assembler {
             max_depth,
             method: FanMethod::Subdivided,
             uvs: None,
+            scheme,
         })
     }
 
@@ -291,7 +308,7 @@ impl Assembler {
         if let (true, Some(d)) = (mesh.uv().is_some(), deepest) {
             let level = d + 1;
             if self.uvs.as_ref().is_none_or(|u| u.level() < level) {
-                self.uvs = LevelUvs::new(mesh, subdiv_rules::Scheme::CatmullClark, level)?;
+                self.uvs = LevelUvs::new(mesh, self.scheme, level)?;
                 b.uvs.clear();
             }
             if b.uvs.is_empty() {
@@ -333,8 +350,8 @@ impl Assembler {
 
     /// Required depth per patch: its own, plus one where it must fan towards a deeper side
     /// (`None` for inactive patches). A side fanned towards a deeper unit across a sharp cage
-    /// edge needs the deeper side's resolution: the fans there use this patch's own one-sided
-    /// normals at the deeper points of the crease.
+    /// edge (every edge of a bilinear cage) needs the deeper side's resolution: the fans there
+    /// use this patch's own one-sided normals at the deeper points of the crease.
     fn required_depths(&self, mesh: &Mesh, depth: &[Depth], active: &[bool]) -> Vec<Option<Depth>> {
         let fr = Frame::new(
             mesh,
@@ -346,6 +363,7 @@ impl Assembler {
             &self.blocks,
             &self.slots,
         );
+        let bilinear = self.scheme == Scheme::Bilinear;
         self.set
             .patches()
             .iter()
@@ -356,7 +374,7 @@ impl Assembler {
                     let crease = (0..4)
                         .filter(|&k| fans[k])
                         .filter_map(|k| fr.side_edge(p, k))
-                        .filter(|e| mesh.edge_sharpness(*e) > 0.0)
+                        .filter(|e| bilinear || mesh.edge_sharpness(*e) > 0.0)
                         .map(|e| fr.edge_res[e.idx()] - p.level)
                         .max()
                         .unwrap_or(0);
@@ -460,8 +478,7 @@ impl Assembler {
         frame: &AdaptiveFrame,
     ) -> Result<(Vec<[f32; 2]>, Vec<u32>), AssemblyError> {
         // Every corner's point lies on a grid at most one level below the deepest unit.
-        let Some((depth, active, uvs)) = frame.stand_in_uvs(stand_in, Scheme::CatmullClark, 1)?
-        else {
+        let Some((depth, active, uvs)) = frame.stand_in_uvs(stand_in, self.scheme, 1)? else {
             return Ok((Vec::new(), Vec::new()));
         };
         let fr = Frame::new(
