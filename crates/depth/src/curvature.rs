@@ -67,57 +67,14 @@ impl VertexData {
 /// [`VertexData`] of the bilinear surface, whose limit points are the cage's own and whose
 /// patches meet with a crease at every edge, so no cone around a vertex ever narrows: a vertex's
 /// normal is the mean of its patches' unit normals there, and its depth the deepest its faces
-/// need for the normals across each of their level-`l` sub-patches to fit the cone. A bilinear
-/// patch's normal varies about linearly over it, so a patch whose corner normals spread by `s`
-/// needs `ceil(log2(s / alpha))` levels.
+/// need ([`bilinear_face_depths`]).
 fn bilinear_vertex_data(mesh: &Mesh, aperture_deg: f32, max_depth: Depth) -> VertexData {
-    let alpha = aperture_deg.to_radians().max(f32::MIN_POSITIVE);
     let mut normal = vec![Vec3::ZERO; mesh.num_vertices()];
     let mut depth: Vec<Depth> = vec![0; mesh.num_vertices()];
     for f in mesh.faces().filter(|&f| !mesh.is_hole(f)) {
-        let vs = mesh.face_vertices(f);
-        let at = |k: usize| mesh.position(vs[k % vs.len()]);
-        // The face's bilinear patches: the quad, or an n-gon's level-1 quads.
-        let m = vs.len();
-        let patches: Vec<[Vec3; 4]> = if m == 4 {
-            vec![[at(0), at(1), at(2), at(3)]]
-        } else {
-            let centroid = (0..m).map(at).sum::<Vec3>() / m as f32;
-            (0..m)
-                .map(|k| {
-                    let v = at(k);
-                    [
-                        v,
-                        (v + at(k + 1)) * 0.5,
-                        centroid,
-                        (v + at(k + m - 1)) * 0.5,
-                    ]
-                })
-                .collect()
-        };
-        let mut spread = 0.0f32;
-        for (k, q) in patches.iter().enumerate() {
-            let corner = |c: usize| (q[(c + 1) % 4] - q[c]).cross(q[(c + 3) % 4] - q[c]);
-            let n: [Vec3; 4] = [0, 1, 2, 3].map(|c| corner(c).normalize_or_zero());
-            for a in 0..4 {
-                for b in a + 1..4 {
-                    if n[a] != Vec3::ZERO && n[b] != Vec3::ZERO {
-                        spread = spread.max(n[a].dot(n[b]).clamp(-1.0, 1.0).acos());
-                    }
-                }
-            }
-            // Corner 0 of patch k is the face's vertex k (of a quad: every corner is one).
-            let corners = if m == 4 { 4 } else { 1 };
-            for c in 0..corners {
-                normal[vs[(k + c) % m].idx()] += n[c];
-            }
-        }
-        let d = if spread > alpha {
-            ((spread / alpha).log2().ceil() as Depth).min(max_depth)
-        } else {
-            0
-        };
-        for v in vs {
+        let (d, corners) = bilinear_face(mesh, f, aperture_deg, max_depth);
+        for (v, n) in mesh.face_vertices(f).iter().zip(corners) {
+            normal[v.idx()] += n;
             depth[v.idx()] = depth[v.idx()].max(d);
         }
     }
@@ -126,6 +83,72 @@ fn bilinear_vertex_data(mesh: &Mesh, aperture_deg: f32, max_depth: Depth) -> Ver
         normal: normal.into_iter().map(Vec3::normalize_or_zero).collect(),
         depth,
     }
+}
+
+/// Per cage face of the bilinear surface, the depth at which the normals across each of its
+/// sub-patches fit the cone of aperture `aperture_deg` (at most `max_depth`; holes 0). A
+/// bilinear patch's normal varies about linearly over it, so a patch whose corner normals
+/// spread by `s` needs `ceil(log2(s / alpha))` levels; beyond that its sub-patches are flat to
+/// the cone and a deeper level draws the same picture.
+pub fn bilinear_face_depths(mesh: &Mesh, aperture_deg: f32, max_depth: Depth) -> Vec<Depth> {
+    mesh.faces()
+        .map(|f| match mesh.is_hole(f) {
+            true => 0,
+            false => bilinear_face(mesh, f, aperture_deg, max_depth).0,
+        })
+        .collect()
+}
+
+/// Face `f`'s depth ([`bilinear_face_depths`]) and its patches' unit normals at its corners.
+fn bilinear_face(
+    mesh: &Mesh,
+    f: subdiv_mesh::FaceId,
+    aperture_deg: f32,
+    max_depth: Depth,
+) -> (Depth, Vec<Vec3>) {
+    let alpha = aperture_deg.to_radians().max(f32::MIN_POSITIVE);
+    let vs = mesh.face_vertices(f);
+    let m = vs.len();
+    let at = |k: usize| mesh.position(vs[k % m]);
+    // The face's bilinear patches: the quad, or an n-gon's level-1 quads (patch k's corner 0
+    // at the face's vertex k).
+    let patches: Vec<[Vec3; 4]> = if m == 4 {
+        vec![[at(0), at(1), at(2), at(3)]]
+    } else {
+        let centroid = (0..m).map(at).sum::<Vec3>() / m as f32;
+        (0..m)
+            .map(|k| {
+                let v = at(k);
+                [
+                    v,
+                    (v + at(k + 1)) * 0.5,
+                    centroid,
+                    (v + at(k + m - 1)) * 0.5,
+                ]
+            })
+            .collect()
+    };
+    let mut spread = 0.0f32;
+    let mut corners = Vec::with_capacity(m);
+    for q in &patches {
+        let corner = |c: usize| (q[(c + 1) % 4] - q[c]).cross(q[(c + 3) % 4] - q[c]);
+        let n: [Vec3; 4] = [0, 1, 2, 3].map(|c| corner(c).normalize_or_zero());
+        for a in 0..4 {
+            for b in a + 1..4 {
+                if n[a] != Vec3::ZERO && n[b] != Vec3::ZERO {
+                    spread = spread.max(n[a].dot(n[b]).clamp(-1.0, 1.0).acos());
+                }
+            }
+        }
+        // A quad's corners are all the face's; an n-gon's patch has one.
+        corners.extend_from_slice(&n[..if m == 4 { 4 } else { 1 }]);
+    }
+    let d = if spread > alpha {
+        ((spread / alpha).log2().ceil() as Depth).min(max_depth)
+    } else {
+        0
+    };
+    (d, corners)
 }
 
 /// The smallest level at which all face normals around the ring's centre are within the cone.

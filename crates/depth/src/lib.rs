@@ -54,7 +54,7 @@ pub use assign::{
     projected_radius,
 };
 pub use controller::FrameRateController;
-pub use curvature::VertexData;
+pub use curvature::{VertexData, bilinear_face_depths};
 pub use doi::depths_from_face_values;
 pub use frame_budget::{
     BIAS_BAND, BudgetController, Choice, FaceCost, HOLD, SILHOUETTE_PX, capped_back_faces,

@@ -26,6 +26,12 @@ use subdiv_stitch::{
 /// learns the machine (the first frames' times, measured, fit it).
 const WARMUP_FRAMES: u64 = 3;
 
+/// [`DynamicSubdivision::flat_depth`] for `scheme`.
+fn flat_depths(mesh: &Mesh, scheme: Scheme, p: &DepthParams) -> Option<Vec<Depth>> {
+    (scheme == Scheme::Bilinear)
+        .then(|| subdiv_depth::bilinear_face_depths(mesh, p.cone_aperture_deg, p.max_depth))
+}
+
 /// The patch assembly of the node's scheme.
 #[derive(Debug)]
 enum Stitcher {
@@ -96,6 +102,11 @@ pub struct DynamicSubdivision {
     assignment: Assignment,
     geometry: AdaptiveFrame,
     seams: Seams,
+    /// Bilinear only, per face: the deepest level its patches' normals need
+    /// ([`subdiv_depth::bilinear_face_depths`]). The curvature mode and the paper's controller
+    /// draw no face deeper: past it a patch is flat to the cone, however large on screen or
+    /// near the silhouette, and deeper levels draw the same picture.
+    flat_depth: Option<Vec<Depth>>,
 }
 
 impl DynamicSubdivision {
@@ -116,6 +127,7 @@ impl DynamicSubdivision {
         let vertex = VertexData::compute(&mesh, scheme, params.cone_aperture_deg, params.max_depth);
         let spheres = face_spheres(&mesh, scheme);
         let seams = Seams::new(&mesh);
+        let flat_depth = flat_depths(&mesh, scheme, &params);
         Ok(DynamicSubdivision {
             mesh,
             scheme,
@@ -132,6 +144,7 @@ impl DynamicSubdivision {
             assignment: Assignment::default(),
             geometry: AdaptiveFrame::default(),
             seams,
+            flat_depth,
         })
     }
 
@@ -161,6 +174,7 @@ impl DynamicSubdivision {
             self.vertex =
                 VertexData::compute(&self.mesh, self.scheme, p.cone_aperture_deg, p.max_depth);
             self.spheres = face_spheres(&self.mesh, self.scheme);
+            self.flat_depth = flat_depths(&self.mesh, self.scheme, &self.params);
         }
         if let Some(fps) = self.controller.target_fps() {
             self.controller = Controller::new(self.controller.mode(), fps, p.max_depth);
@@ -188,6 +202,7 @@ impl DynamicSubdivision {
             self.params.max_depth,
         );
         self.spheres = face_spheres(&self.mesh, self.scheme);
+        self.flat_depth = flat_depths(&self.mesh, self.scheme, &self.params);
         self.seams = Seams::new(&self.mesh);
         self.errors = None;
         match &mut self.assembler {
@@ -382,11 +397,24 @@ impl DynamicSubdivision {
                 a.active[f.idx()] = false;
             }
         }
+        let curvature_mode = self.params.pixel_error.is_none() && !budget;
+        let flat = self.flat_depth.as_deref();
+        let cap = |a: &mut Assignment| {
+            for (d, &most) in a.depth.iter_mut().zip(flat.unwrap_or_default()) {
+                *d = (*d).min(most);
+            }
+        };
+        if curvature_mode && self.fixed_depths.is_none() {
+            cap(&mut a);
+        }
         let px = pixels(&a, camera);
         self.last.planned = None;
         if self.fixed_depths.is_none() {
             match (&mut self.controller, self.errors.as_ref()) {
-                (Controller::Paper(c), _) => c.apply(&mut a),
+                (Controller::Paper(c), _) => {
+                    c.apply(&mut a);
+                    cap(&mut a);
+                }
                 // Until the model has seen a few frames of this machine, the geometric depths
                 // (a sensible picture at a moderate cost) rather than a choice priced by the
                 // prior alone; one of those frames a level shallower, so that the fit sees two
