@@ -119,25 +119,15 @@ pub fn cage_scheme(path: &Path, cage: &Cage, requested: Option<Scheme>) -> anyho
     }
 }
 
-/// Carries the vertex and constant primvars of `mesh` onto the diced `t`
-/// ([`subdiv::eval::tessellation_primvars`]), warning about the others (dicing holds one
-/// parameter point per vertex, and they need one per face corner).
+/// Carries the primvars of `mesh` onto the diced `t` ([`subdiv::eval::tessellation_primvars`]).
 pub fn dice_primvars(
     mesh: &subdiv::mesh::Mesh,
     scheme: subdiv::rules::Scheme,
     t: &mut subdiv::eval::Tessellation,
     label: &str,
 ) -> anyhow::Result<()> {
-    let left = subdiv::eval::tessellation_primvars(mesh, scheme, t)
-        .map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
-    if !left.is_empty() {
-        log::warn!(
-            "primvars {} are not carried by dicing (it carries vertex and constant ones; the \
-             uniform and adaptive tessellations and DoI refinement carry every kind)",
-            left.join(", ")
-        );
-    }
-    Ok(())
+    subdiv::eval::tessellation_primvars(mesh, scheme, t)
+        .map_err(|e| anyhow::anyhow!("{label}: {e}"))
 }
 
 /// Logs `FILE:LINE: tag 't NAME' ignored (why)` as a warning (printed `warning: ...`, silenced

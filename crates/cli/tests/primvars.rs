@@ -149,3 +149,34 @@ fn dicing_writes_the_vertex_colours() {
     let (cage, surface) = colours_follow_the_points("tessellate", &["--dicing-rate", "4"]);
     assert!(surface.num_vertices() > cage.num_vertices());
 }
+
+/// Dicing carries the UVs, seams included: the cube's cross unwrap comes out with more UV values
+/// than points (each side of a seam its own), no triangle spanning a seam, and no warning.
+#[test]
+fn dicing_writes_the_uvs_with_their_seams() {
+    let out = tmp("cube_uv_diced.obj");
+    let input = root().join("fixtures/usd/cube_uv.usda");
+    let args = [
+        "tessellate",
+        input.to_str().unwrap(),
+        "--dicing-rate",
+        "8",
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    let (code, _, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("primvars"), "{err}");
+    let surface = subdiv_mesh::read_obj(&out).unwrap();
+    let uv = surface.uv().expect("UVs written");
+    assert!(uv.values.len() > surface.num_vertices(), "{}", uv.values.len());
+    let (offsets, _) = surface.face_lists();
+    for f in 0..surface.num_faces() {
+        let corners = offsets[f] as usize..offsets[f + 1] as usize;
+        let t: Vec<_> = corners.map(|c| uv.corner(c)).collect();
+        let longest = (0..t.len())
+            .map(|i| t[i].distance(t[(i + 1) % t.len()]))
+            .fold(0.0, f32::max);
+        assert!(longest < 0.15, "face {f}: {t:?}");
+    }
+}

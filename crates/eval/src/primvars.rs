@@ -1,28 +1,31 @@
-//! A cage's primvars on a tessellation at any rate ([`tessellation_primvars`]): each vertex
-//! primvar's three floats at a time stand in for the cage's positions and are evaluated at
-//! every output point's parameter point, so they get the positions' exact limit
-//! (`subdiv_rules::vertex_channel`, as the uniform and adaptive tessellations carry them);
-//! constant ones are copied. Face-varying, varying and uniform primvars need a value per face
-//! corner, where the tessellation holds one parameter point per vertex: they are not carried,
-//! and their names are returned.
+//! A cage's primvars on a tessellation at any rate ([`tessellation_primvars`]), as the uniform
+//! and adaptive tessellations carry them:
+//! - **vertex**: three floats at a time stand in for the cage's positions and are evaluated at
+//!   every output point's parameter point, so they get the positions' exact limit
+//!   (`subdiv_rules::vertex_channel`);
+//! - **face-varying, varying, uniform**: two floats at a time stand in for the cage's texture
+//!   coordinates (`subdiv_rules::face_varying_channel`: the cage's face-varying option, or
+//!   linear for varying and uniform ones) and are evaluated at every triangle corner's own
+//!   parameter point ([`Tessellation::corner_param`]), so a seam keeps each face's value;
+//! - **constant**: the one value at every point.
 
 use subdiv_mesh::{Mesh, PrimvarInterpolation};
-use subdiv_rules::{LimitChannel, Scheme, stand_in_base, vertex_channel};
+use subdiv_rules::{LimitChannel, Scheme, face_varying_channel, stand_in_base, vertex_channel};
 
+use crate::tess::corner_values;
 use crate::{Derivatives, EvalError, Evaluator, Query, Sample, Tessellation};
 
 /// Adds to `t` (a tessellation of `mesh` under `scheme`, [`crate::tessellate_rates`] or
-/// [`crate::dice`]) one channel per vertex and constant primvar of `mesh`; returns the names
-/// of the primvars not carried.
+/// [`crate::dice`]) one channel per primvar of `mesh`.
 pub fn tessellation_primvars(
     mesh: &Mesh,
     scheme: Scheme,
     t: &mut Tessellation,
-) -> Result<Vec<String>, EvalError> {
-    let mut left = Vec::new();
+) -> Result<(), EvalError> {
     if mesh.primvars().is_empty() {
-        return Ok(left);
+        return Ok(());
     }
+    let corners = t.corner_queries();
     let base = stand_in_base(mesh);
     let queries: Vec<Query> = t
         .params
@@ -49,10 +52,11 @@ pub fn tessellation_primvars(
                         .collect(),
                 )
             })?,
-            _ => {
-                left.push(p.name.clone());
-                continue;
-            }
+            _ => face_varying_channel(mesh, p, |cage| {
+                let eval = Evaluator::new(cage, scheme)?;
+                corner_values(&eval, &corners)?
+                    .ok_or_else(|| EvalError::Internal("a stand-in cage without values".into()))
+            })?,
         });
     }
     for c in channels {
@@ -60,7 +64,7 @@ pub fn tessellation_primvars(
             .push_channel(c)
             .map_err(|e| EvalError::Internal(e.to_string()))?;
     }
-    Ok(left)
+    Ok(())
 }
 
 #[cfg(test)]
@@ -72,7 +76,7 @@ mod tests {
     use crate::{EdgeRates, tessellate_rates};
 
     /// `name`'s cage with `p` = its positions and `q` an affine map of them (4 floats), and a
-    /// uniform primvar, which is not carried.
+    /// uniform primvar.
     fn cage(name: &str) -> Mesh {
         let mut soup = read_obj_soup(shape(name)).unwrap();
         let n = soup.positions.len();
@@ -121,12 +125,19 @@ mod tests {
                 .map(|_| 1 + rng.below(6) as u32)
                 .collect();
             let mut t = tessellate_rates(&eval, &EdgeRates::from_rates(rates)).unwrap();
-            assert_eq!(
-                tessellation_primvars(&mesh, scheme, &mut t).unwrap(),
-                ["id"]
-            );
+            tessellation_primvars(&mesh, scheme, &mut t).unwrap();
             let s = &t.surface;
             let (p, q) = (s.channel("p").unwrap(), s.channel("q").unwrap());
+            // The uniform primvar: each corner its own face's value.
+            let id = s.channel("id").unwrap();
+            for c in 0..s.face_indices().len() {
+                let face = t.corner_param(c).0 as f32;
+                assert_eq!(
+                    id.at_corner(c, s.face_indices()),
+                    [face],
+                    "{name}: corner {c}"
+                );
+            }
             for (v, x) in s.positions().iter().enumerate() {
                 assert_eq!(p.value(v), x, "{name}: vertex {v}");
                 let want = [2.0 * x[1] + 1.0, x[2] - x[0], 0.5 * x[0], x[0] + x[1]];

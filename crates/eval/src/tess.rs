@@ -59,8 +59,8 @@ impl EdgeRates {
     }
 }
 
-/// A tessellation: its surface (triangles with limit normals), each vertex's parameter point
-/// and the edge rates it used.
+/// A tessellation: its surface (triangles with limit normals, and the cage's UVs at every
+/// corner's own parameter point), each vertex's parameter point and the edge rates it used.
 #[derive(Clone, Debug)]
 pub struct Tessellation {
     /// The triangles, positions and limit normals (one-sided ones at creases).
@@ -69,6 +69,10 @@ pub struct Tessellation {
     pub params: Vec<(u32, [f64; 2])>,
     /// The rate each cage edge was split at (made even next to a non-quad face).
     pub rates: Vec<u32>,
+    /// `(triangle corner, (face, [u, v]))`, ascending, for every corner whose vertex another
+    /// face owns (on a shared cage edge or vertex): the corner's parameter point in its own
+    /// face, where face-varying data takes its value ([`Tessellation::corner_param`]).
+    pub corner_params: Vec<(u32, (u32, [f64; 2]))>,
 }
 
 /// Builds the point and triangle lists.
@@ -523,9 +527,17 @@ pub fn tessellate_rates(
         let domain = Domain::of(eval.scheme(), mesh.face_size(f));
         b.own(f, &domain);
     }
+    let mut face_corners = Vec::with_capacity(faces.len() + 1);
     for &f in &faces {
+        face_corners.push(b.tris.len() as u32);
         b.face(f);
     }
+    face_corners.push(b.tris.len() as u32);
+    let corner_params = b
+        .foreign_corners(&faces, &face_corners)
+        .into_iter()
+        .map(|(c, q)| (c, (q.face, [q.u, q.v])))
+        .collect();
     let mut samples = vec![Sample::default(); b.points.len()];
     eval.evaluate_many(&b.points, Derivatives::First, &mut samples)?;
     let sided_q: Vec<Query> = b.sided.iter().map(|s| s.1).collect();
@@ -565,12 +577,20 @@ pub fn tessellate_rates(
     surface
         .set_params(vertex_params)
         .map_err(|e| EvalError::Internal(e.to_string()))?;
-    Ok(Tessellation {
+    let mut t = Tessellation {
         surface,
         params,
         rates: b.rate,
-    })
+        corner_params,
+    };
+    if eval.has_uvs() {
+        corners::write_uvs(eval, &t.corner_queries(), &mut t.surface)?;
+    }
+    Ok(t)
 }
+
+mod corners;
+pub(crate) use corners::corner_values;
 
 #[cfg(test)]
 #[path = "tess_tests.rs"]

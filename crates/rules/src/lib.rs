@@ -46,8 +46,8 @@ pub use fvar::{
 };
 pub use limit::{
     KeyedWrite, LimitChannel, LimitMesh, LimitMeshError, TopologyKey, TriangleBuffers,
-    VertexParams, VertexScalar, bilinear_patches, inside_one_patch, limit_surface, stand_in_base,
-    tessellate_uniform, vertex_channel,
+    VertexParams, VertexScalar, bilinear_patches, face_varying_channel, inside_one_patch,
+    limit_surface, stand_in_base, tessellate_uniform, vertex_channel,
 };
 pub use point::{Point, centroid};
 pub use refine::{

@@ -15,7 +15,7 @@ mod params;
 mod split;
 mod topology;
 pub use bilinear::{bilinear_patches, inside_one_patch};
-pub use channel::{LimitChannel, stand_in_base, vertex_channel};
+pub use channel::{LimitChannel, face_varying_channel, stand_in_base, vertex_channel};
 pub use mesh::{KeyedWrite, LimitMesh, LimitMeshError, TriangleBuffers, VertexScalar};
 pub use params::VertexParams;
 pub use topology::TopologyKey;

@@ -92,7 +92,7 @@ pub use layout::PatchLayout;
 pub use moving::UniformTessellator;
 pub use patches::{PatchRef, PatchSet, Unit};
 pub use pool::PatchGrids;
-pub use primvars::{face_varying_channel, tessellate_primvars};
+pub use primvars::tessellate_primvars;
 pub use subdiv_rules::{Depth, MAX_DEPTH};
 pub use tessellate::{
     DEFAULT_MAX_DEPTH, MAX_POINTS, SlateError, slate_bytes_per_thread, tessellate,

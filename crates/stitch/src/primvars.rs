@@ -7,15 +7,14 @@
 //!   stand in for the cage's positions ([`subdiv_rules::vertex_channel`]): the same patches at
 //!   the same depths, written into the same slots;
 //! - **face-varying, varying, uniform**: two floats at a time stand in for the cage's texture
-//!   coordinates ([`subdiv_slate::face_varying_channel`]), and every frame corner takes its
+//!   coordinates ([`subdiv_rules::face_varying_channel`]), and every frame corner takes its
 //!   value as the frame's own UVs do (the same triangles emitted again with those values);
 //! - **constant**: the one value at every point.
 
 use std::convert::Infallible;
 
 use subdiv_mesh::{Mesh, PrimvarInterpolation};
-use subdiv_rules::{LimitChannel, stand_in_base, vertex_channel};
-use subdiv_slate::face_varying_channel;
+use subdiv_rules::{LimitChannel, face_varying_channel, stand_in_base, vertex_channel};
 
 use crate::{AdaptiveFrame, AssemblyError};
 

@@ -399,12 +399,25 @@ fn bilinear_curvature_mode_refines_twisted_patches_only() {
     };
     assert!(p.projected_size.is_some());
     let most = subdiv_depth::bilinear_face_depths(&saddle, p.cone_aperture_deg, p.max_depth);
-    assert!(most.iter().any(|&d| d > 0) && most.iter().all(|&d| d < 5), "{most:?}");
+    assert!(
+        most.iter().any(|&d| d > 0) && most.iter().all(|&d| d < 5),
+        "{most:?}"
+    );
     let mut node = DynamicSubdivision::with_scheme(saddle, Scheme::Bilinear, p).unwrap();
     for dist in [2.0f32, 6.0, 40.0] {
-        let cam = Camera::new(Vec3::new(0.5, -1.0, dist), Vec3::ZERO, Vec3::Y, 45.0, 800, 600);
+        let cam = Camera::new(
+            Vec3::new(0.5, -1.0, dist),
+            Vec3::ZERO,
+            Vec3::Y,
+            45.0,
+            800,
+            600,
+        );
         let depths = node.update(&cam, None).unwrap().unit_depth().to_vec();
-        assert!(depths.iter().zip(&most).all(|(d, m)| d <= m), "{dist}: {depths:?}");
+        assert!(
+            depths.iter().zip(&most).all(|(d, m)| d <= m),
+            "{dist}: {depths:?}"
+        );
         if dist == 2.0 {
             assert_eq!(depths, most, "close up, every face as deep as it needs");
         }
@@ -413,7 +426,11 @@ fn bilinear_curvature_mode_refines_twisted_patches_only() {
     for eye in [Vec3::new(0.5, 0.5, 3.0), Vec3::new(2.0, 1.5, 2.0)] {
         let cam = Camera::new(eye, Vec3::splat(0.5), Vec3::Y, 45.0, 800, 600);
         let g = node.update(&cam, None).unwrap();
-        assert!(g.unit_depth().iter().all(|&d| d == 0), "{:?}", g.unit_depth());
+        assert!(
+            g.unit_depth().iter().all(|&d| d == 0),
+            "{:?}",
+            g.unit_depth()
+        );
         assert_closed(g);
     }
 }
