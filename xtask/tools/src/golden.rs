@@ -95,6 +95,9 @@ pub const SCENES: &[Scene] = &[
     // 3 x 3 grid (fixed per-face depths), simple fans against fans with the subdivided edge.
     scene("grid_fans_simple", "fixtures/scenes/grid_3x3_bump.obj", &["--eye-relative", "0.1,0.75,0.4", "--face-depths", "3,3,3,3,1,3,3,3,3", "--shading", "depth", "--wire-overlay", "--simple-fans"]),
     scene("grid_fans_subdivided", "fixtures/scenes/grid_3x3_bump.obj", &["--eye-relative", "0.1,0.75,0.4", "--face-depths", "3,3,3,3,1,3,3,3,3", "--shading", "depth", "--wire-overlay"]),
+    // The bilinear scheme adaptively: twisted patches (and n-gons' level-1 quads) refined until
+    // their own normals fit the cone, flat ones drawn as themselves, fans between depths.
+    scene("nonquads_bilinear_adaptive", "fixtures/reference/shapes/catmark_nonquads.obj", &["--scheme", "bilinear", "--eye-relative", "0.4,1.4,1.4", "--max-depth", "4", "--shading", "depth", "--wire-overlay"]),
     // Fig. 8: the back-face heuristic seen from a second camera: depths (and culling) chosen for
     // a camera below the pawn, the image taken from the side.
     scene("pawn_backface_second_camera", "fixtures/reference/shapes/catmark_pawn.obj", &["--eye-relative", "1.5,-1.7,0.9", "--up", "0,0,1", "--max-depth", "4", "--shading", "depth", "--wire-overlay", "--cull-camera-eye-relative", "-2.5,0.5,0.3"]),
