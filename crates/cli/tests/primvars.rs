@@ -169,7 +169,11 @@ fn dicing_writes_the_uvs_with_their_seams() {
     assert!(!err.contains("primvars"), "{err}");
     let surface = subdiv_mesh::read_obj(&out).unwrap();
     let uv = surface.uv().expect("UVs written");
-    assert!(uv.values.len() > surface.num_vertices(), "{}", uv.values.len());
+    assert!(
+        uv.values.len() > surface.num_vertices(),
+        "{}",
+        uv.values.len()
+    );
     let (offsets, _) = surface.face_lists();
     for f in 0..surface.num_faces() {
         let corners = offsets[f] as usize..offsets[f + 1] as usize;

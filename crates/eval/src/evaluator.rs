@@ -219,6 +219,18 @@ impl<'m> Evaluator<'m> {
         d: Derivatives,
         out: &mut [Sample],
     ) -> Result<(), EvalError> {
+        self.evaluate_many_as(queries, d, out, |s| s)
+    }
+
+    /// [`Evaluator::evaluate_many`] keeping `conv` of each sample: what a caller keeps of many
+    /// points (a position and a normal in `f32`) without a full [`Sample`] apiece.
+    pub(crate) fn evaluate_many_as<T: Clone + Default + Send>(
+        &self,
+        queries: &[Query],
+        d: Derivatives,
+        out: &mut [T],
+        conv: impl Fn(Sample) -> T + Sync,
+    ) -> Result<(), EvalError> {
         assert_eq!(
             queries.len(),
             out.len(),
@@ -228,10 +240,10 @@ impl<'m> Evaluator<'m> {
         batch(
             (self.mesh, &self.plans),
             self.scheme,
-            queries,
-            &located,
+            (queries, &located),
             d,
             out,
+            conv,
         );
         Ok(())
     }
@@ -258,18 +270,14 @@ impl<'m> Evaluator<'m> {
             }
             Some(Uvs::Cage(uv)) => uv,
         };
-        let mut samples = vec![Sample::default(); queries.len()];
         batch(
             (uv, &self.uv_plans),
             self.scheme,
-            queries,
-            &located,
+            (queries, &located),
             Derivatives::First,
-            &mut samples,
+            out,
+            UvSample::from,
         );
-        for (o, s) in out.iter_mut().zip(samples) {
-            *o = UvSample::from(s);
-        }
         Ok(true)
     }
 
@@ -345,13 +353,13 @@ impl FaceSurface {
 }
 
 /// Evaluates located queries of `mesh` in parallel, one task per face's run of queries.
-fn batch(
+fn batch<T: Clone + Default + Send>(
     (mesh, plans): (&Mesh, &[Option<[u32; 16]>]),
     scheme: Scheme,
-    queries: &[Query],
-    located: &[(usize, f64, f64)],
+    (queries, located): (&[Query], &[(usize, f64, f64)]),
     d: Derivatives,
-    out: &mut [Sample],
+    out: &mut [T],
+    conv: impl Fn(Sample) -> T + Sync,
 ) {
     let sorted = queries.windows(2).all(|w| w[0].face <= w[1].face);
     let order: Vec<u32> = if sorted {
@@ -374,9 +382,9 @@ fn batch(
     let mut tmp = if sorted {
         Vec::new()
     } else {
-        vec![Sample::default(); queries.len()]
+        vec![T::default(); queries.len()]
     };
-    let target: &mut [Sample] = if sorted { out } else { &mut tmp };
+    let target: &mut [T] = if sorted { out } else { &mut tmp };
     let mut slices = Vec::with_capacity(runs.len());
     let mut rest = target;
     for r in &runs {
@@ -391,7 +399,7 @@ fn batch(
             surface.load(mesh, scheme, FaceId(face), plans[face as usize].as_ref());
             for (o, i) in slice.iter_mut().zip(range) {
                 let (sub, s, t) = located[at(i)];
-                *o = surface.eval_located(sub, s, t, d);
+                *o = conv(surface.eval_located(sub, s, t, d));
             }
         });
     if !sorted {

@@ -75,7 +75,7 @@ pub use evaluator::{Derivatives, Evaluator, Query, Sample, UvSample, random_quer
 pub use lattice::refined_faces;
 pub use primvars::tessellation_primvars;
 pub use surface::FaceSurface;
-pub use tess::{EdgeRates, MAX_RATE, Tessellation, tessellate_rates};
+pub use tess::{EdgeRates, ForeignCorner, MAX_RATE, OnCage, Tessellation, tessellate_rates};
 
 use thiserror::Error;
 

@@ -25,7 +25,6 @@ pub fn tessellation_primvars(
     if mesh.primvars().is_empty() {
         return Ok(());
     }
-    let corners = t.corner_queries();
     let base = stand_in_base(mesh);
     let queries: Vec<Query> = t
         .params
@@ -54,7 +53,7 @@ pub fn tessellation_primvars(
             })?,
             _ => face_varying_channel(mesh, p, |cage| {
                 let eval = Evaluator::new(cage, scheme)?;
-                corner_values(&eval, &corners)?
+                corner_values(&eval, t)?
                     .ok_or_else(|| EvalError::Internal("a stand-in cage without values".into()))
             })?,
         });

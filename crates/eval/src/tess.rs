@@ -69,10 +69,10 @@ pub struct Tessellation {
     pub params: Vec<(u32, [f64; 2])>,
     /// The rate each cage edge was split at (made even next to a non-quad face).
     pub rates: Vec<u32>,
-    /// `(triangle corner, (face, [u, v]))`, ascending, for every corner whose vertex another
-    /// face owns (on a shared cage edge or vertex): the corner's parameter point in its own
-    /// face, where face-varying data takes its value ([`Tessellation::corner_param`]).
-    pub corner_params: Vec<(u32, (u32, [f64; 2]))>,
+    /// Every triangle corner whose vertex another face owns (on a shared cage edge or vertex),
+    /// by corner: its parameter point in its own face, where face-varying data takes its value
+    /// on a seam ([`Tessellation::corner_param`]).
+    pub corner_params: Vec<ForeignCorner>,
 }
 
 /// Builds the point and triangle lists.
@@ -533,27 +533,24 @@ pub fn tessellate_rates(
         b.face(f);
     }
     face_corners.push(b.tris.len() as u32);
-    let corner_params = b
-        .foreign_corners(&faces, &face_corners)
-        .into_iter()
-        .map(|(c, q)| (c, (q.face, [q.u, q.v])))
-        .collect();
-    let mut samples = vec![Sample::default(); b.points.len()];
-    eval.evaluate_many(&b.points, Derivatives::First, &mut samples)?;
+    let corner_params = b.foreign_corners(&faces, &face_corners);
+    // Each point's position and unit normal, in `f32` (what the surface keeps).
+    let keep = |s: Sample| {
+        let n = unit_normal(&s).as_vec3().to_array();
+        (s.position.as_vec3().to_array(), n)
+    };
+    let mut points = vec![([0.0f32; 3], [0.0f32; 3]); b.points.len()];
+    eval.evaluate_many_as(&b.points, Derivatives::First, &mut points, keep)?;
     let sided_q: Vec<Query> = b.sided.iter().map(|s| s.1).collect();
-    let mut sided_s = vec![Sample::default(); sided_q.len()];
-    eval.evaluate_many(&sided_q, Derivatives::First, &mut sided_s)?;
-    let positions: Vec<[f32; 3]> = samples
-        .iter()
-        .map(|s| s.position.as_vec3().to_array())
-        .collect();
-    let normals: Vec<[f32; 3]> = samples
-        .iter()
-        .map(|s| unit_normal(s).as_vec3().to_array())
-        .collect();
+    let mut sided_n = vec![DVec3::ZERO; sided_q.len()];
+    eval.evaluate_many_as(&sided_q, Derivatives::First, &mut sided_n, |s| {
+        unit_normal(&s)
+    })?;
+    let positions: Vec<[f32; 3]> = points.iter().map(|p| p.0).collect();
+    let normals: Vec<[f32; 3]> = points.iter().map(|p| p.1).collect();
+    drop(points);
     let mut corner_normals: Vec<(u32, [f32; 3])> = Vec::new();
-    for (&(corner, _), s) in b.sided.iter().zip(&sided_s) {
-        let own = unit_normal(s);
+    for (&(corner, _), &own) in b.sided.iter().zip(&sided_n) {
         let shared = Vec3::from(normals[b.tris[corner as usize] as usize]).as_dvec3();
         if own != DVec3::ZERO && own.angle_between(shared) > 1e-6 {
             corner_normals.push((corner, own.as_vec3().to_array()));
@@ -583,14 +580,13 @@ pub fn tessellate_rates(
         rates: b.rate,
         corner_params,
     };
-    if eval.has_uvs() {
-        corners::write_uvs(eval, &t.corner_queries(), &mut t.surface)?;
-    }
+    corners::write_uvs(eval, &mut t)?;
     Ok(t)
 }
 
 mod corners;
 pub(crate) use corners::corner_values;
+pub use corners::{ForeignCorner, OnCage};
 
 #[cfg(test)]
 #[path = "tess_tests.rs"]
