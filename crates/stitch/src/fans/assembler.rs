@@ -3,6 +3,8 @@
 //! above `c` the block is reused (sampled with stride `2^(c - d)`), and only the index buffer is
 //! rebuilt.
 
+use std::collections::HashMap;
+
 use rayon::prelude::*;
 use subdiv_mesh::{HalfedgeId, Mesh};
 use subdiv_rules::{Budget, Request, Scheme, TriangleBuffers, VertexScalar};
@@ -44,20 +46,46 @@ impl Block {
 #[derive(Clone, Debug)]
 pub(super) struct UnitTopo {
     pub(super) hs: Vec<HalfedgeId>,
-    /// Per corner `k` (the start of `hs[k]`): the cage vertex there is interior with valence 2,
-    /// so the face across side `k` is also the face across side `k - 1` and the two faces'
-    /// corner quads share all three of their border points at that corner.
+    /// Per corner `k` (the start of `hs[k]`): another face has a corner between the same two
+    /// edges, so the two faces' corner quads share all three of their border points there
+    /// ([`pinched_corners`]).
     pub(super) pinched: Vec<bool>,
 }
 
-/// Whether the corner at the start of `hs[k]` is an interior cage vertex of valence 2: the
-/// neighbour across `hs[k]` continues, around that vertex, straight into the twin of the
-/// previous half-edge `hs[k - 1]`. (A lone boundary corner, whose twins are both boundary
-/// half-edges, is not pinched: nothing lies across it.)
-fn pinched(mesh: &Mesh, hs: &[HalfedgeId], k: usize) -> bool {
-    let across = hs[k].twin();
-    let prev = hs[(k + hs.len() - 1) % hs.len()];
-    mesh.face(across).is_some() && mesh.next(across) == prev.twin()
+/// Per unit (its half-edges `units[u]`) and corner `k` (the start of `hs[k]`): whether another
+/// face has a corner between the same two edges. On a manifold cage that is an interior vertex
+/// of valence 2 (the face across side `k` is also the face across side `k - 1`); on a
+/// non-manifold one also a face of another piece whose sides there are copies of the same two
+/// non-manifold edges (`SeamCurves::groups`), whose points are the same bits. A lone boundary
+/// corner is not pinched: nothing lies across it.
+fn pinched_corners(mesh: &Mesh, set: &PatchSet, units: &[Vec<HalfedgeId>]) -> Vec<Vec<bool>> {
+    let ne = mesh.num_edges() as u32;
+    // Each edge's class: itself, or its seam (all copies of one non-manifold edge).
+    let mut class: Vec<u32> = (0..ne).collect();
+    for (g, copies) in set.seams().groups().iter().enumerate() {
+        for e in copies {
+            class[e.idx()] = ne + g as u32;
+        }
+    }
+    let key = |hs: &[HalfedgeId], k: usize| {
+        let a = class[hs[(k + hs.len() - 1) % hs.len()].edge().idx()];
+        let b = class[hs[k].edge().idx()];
+        (a.min(b), a.max(b))
+    };
+    let mut count: HashMap<(u32, u32), u32> = HashMap::new();
+    for hs in units {
+        for k in 0..hs.len() {
+            *count.entry(key(hs, k)).or_default() += 1;
+        }
+    }
+    units
+        .iter()
+        .map(|hs| {
+            (0..hs.len())
+                .map(|k| count.get(&key(hs, k)).is_some_and(|&c| c > 1))
+                .collect()
+        })
+        .collect()
 }
 
 /// The adaptive assembler: per-mesh patch structure plus the per-patch block cache.
@@ -130,7 +158,7 @@ impl Assembler {
             Scheme::Bilinear => PatchSet::bilinear(mesh)?,
             _ => PatchSet::new(mesh)?,
         };
-        let units: Vec<UnitTopo> = set
+        let halfedges: Vec<Vec<HalfedgeId>> = set
             .units()
             .iter()
             .map(|u| {
@@ -141,9 +169,14 @@ impl Assembler {
                     hs.push(h);
                     h = mesh.next(h);
                 }
-                let pinched = (0..hs.len()).map(|k| pinched(mesh, &hs, k)).collect();
-                UnitTopo { hs, pinched }
+                hs
             })
+            .collect();
+        let pinched = pinched_corners(mesh, &set, &halfedges);
+        let units: Vec<UnitTopo> = halfedges
+            .into_iter()
+            .zip(pinched)
+            .map(|(hs, pinched)| UnitTopo { hs, pinched })
             .collect();
         let n = set.patches().len();
         let side = halfedge_sides(mesh, &units);

@@ -2,11 +2,13 @@
 //! triangle fans around the limit point of the quad's next-level face point.
 //!
 //! A plain quad is split along the diagonal from its corner `(i, j)` to `(i + 1, j + 1)`, except
-//! a quad at a *pinched* patch corner (an interior cage vertex of valence 2, where the two faces
-//! around the vertex share both of its edges): both faces' corner quads there have the same three
-//! border points, the vertex and its two edge neighbours, so if both were split along the chord
-//! between the two edge neighbours that chord would carry four triangles. Such a quad is split
-//! through the vertex instead, whichever corner of the patch it is.
+//! a quad at a *pinched* patch corner (two faces with a corner between the same two edges: an
+//! interior cage vertex of valence 2, or faces of different pieces of a non-manifold cage whose
+//! sides there are copies of the same two non-manifold edges): both faces' corner quads there
+//! have the same three border points, the vertex and its two edge neighbours, so if both were
+//! split along the chord between the two edge neighbours that chord would carry four
+//! triangles. Such a quad is split through the vertex instead, whichever corner of the patch it
+//! is.
 
 use rayon::prelude::*;
 use subdiv_slate::{LevelUvs, PatchRef};
