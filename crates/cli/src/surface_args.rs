@@ -83,6 +83,17 @@ impl SurfaceArgs {
     /// machine's memory (every face refined at every step).
     pub fn doi_setup(&self) -> anyhow::Result<subdiv::DoiSetup> {
         let label = self.label();
+        // The DoI-driven mesh is Loop's red-green refinement (Isenberg et al. 2003): another
+        // scheme asked for by name would silently be drawn as Loop.
+        if let Some(s) = self.scheme.filter(|&s| Scheme::from(s) != Scheme::Loop) {
+            bail!(
+                "--doi draws the DoI-driven adaptive Loop mesh (Isenberg et al. 2003): --scheme {} \
+                 cannot go with it (pass --scheme loop, or a camera and no --doi for the {} \
+                 adaptive tessellation)",
+                value_name(&s),
+                value_name(&s)
+            );
+        }
         let setup = self.doi.setup(self.load_cage()?, &label)?;
         let steps = self.doi.steps;
         self.limit

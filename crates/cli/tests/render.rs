@@ -318,8 +318,26 @@ fn doi_meshes_render_with_doi_shading() {
 }
 
 /// `render` refuses the DoI options (haptic interaction point, aggregation, skeleton) without
-/// the DoI that uses them.
+/// the DoI that uses them, and a scheme other than Loop's with a DoI.
 fn doi_options_without_their_doi_are_refused(bunny: &str, out: &Path) {
+    // The DoI-driven mesh is Loop's: another scheme named with it is refused, not drawn as Loop.
+    for scheme in ["catmull-clark", "bilinear"] {
+        let o = subdiv()
+            .args([
+                "render",
+                bunny,
+                "--scheme",
+                scheme,
+                "--doi",
+                "view-angle",
+                "-o",
+            ])
+            .arg(out)
+            .output()
+            .unwrap();
+        let want = format!("--scheme {scheme} cannot go with it");
+        assert_clean_failure(&o, &want);
+    }
     // The options without their DoI are refused.
     let o = subdiv()
         .args(["render", bunny, "--scheme", "loop", "--hip", "0,0,0", "-o"])
