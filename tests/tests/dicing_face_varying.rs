@@ -3,7 +3,8 @@
 //! OpenSubdiv's `LimitFaceVarying`, `tests/tests/osd_fvar.rs`): at the uniform rate `2^d` the
 //! points are the depth-`d` lattice, and every triangle corner's UV must be the uniform
 //! tessellation's at that point *in the corner's own face*, so UV seams keep each side's value.
-//! Primvars: a face-varying one equal to the UVs gives the UVs, a uniform one its face's value.
+//! A face-varying primvar equal to the UVs gives the UVs (the uniform ones: `subdiv-eval`'s
+//! `primvars` tests).
 
 use glam::Vec2;
 use subdiv::eval::{Domain, EdgeRates, Evaluator, tessellate_rates, tessellation_primvars};
@@ -140,26 +141,16 @@ fn uvs_at_uniform_rates_are_the_uniform_uvs_in_each_corners_face() {
 }
 
 #[test]
-fn face_varying_and_uniform_primvars_follow_each_corners_face() {
+fn a_face_varying_primvar_follows_each_corners_face() {
     for (rel, scheme) in CAGES {
         let mut soup = subdiv_mesh::read_obj_soup(fixtures().join(rel)).unwrap();
-        let faces = soup.face_offsets.len() - 1;
-        soup.primvars = vec![
-            Primvar {
-                name: "st".into(),
-                interpolation: PrimvarInterpolation::FaceVarying,
-                width: 2,
-                values: soup.uvs.iter().flat_map(|t| t.to_array()).collect(),
-                indices: soup.uv_indices.iter().map(|&i| i as u32).collect(),
-            },
-            Primvar {
-                name: "id".into(),
-                interpolation: PrimvarInterpolation::Uniform,
-                width: 1,
-                values: (0..faces).map(|f| f as f32).collect(),
-                indices: (0..faces as u32).collect(),
-            },
-        ];
+        soup.primvars = vec![Primvar {
+            name: "st".into(),
+            interpolation: PrimvarInterpolation::FaceVarying,
+            width: 2,
+            values: soup.uvs.iter().flat_map(|t| t.to_array()).collect(),
+            indices: soup.uv_indices.iter().map(|&i| i as u32).collect(),
+        }];
         soup.split_nonmanifold().unwrap();
         let mesh = Mesh::from_soup(&soup).unwrap();
         let eval = Evaluator::new(&mesh, scheme).unwrap();
@@ -184,16 +175,10 @@ fn face_varying_and_uniform_primvars_follow_each_corners_face() {
                 assert!(longest < 0.15, "{rel} triangle {k} {tri:?}: UVs {uv:?}");
             }
         }
-        let (st, id) = (s.channel("st").unwrap(), s.channel("id").unwrap());
+        let st = s.channel("st").unwrap();
         for c in 0..s.face_indices().len() {
             let uv = s.uvs()[s.uv_indices()[c] as usize];
             assert_eq!(st.at_corner(c, s.face_indices()), uv, "{rel} corner {c}");
-            let face = t.corner_param(c).0 as f32;
-            assert_eq!(
-                id.at_corner(c, s.face_indices()),
-                [face],
-                "{rel} corner {c}"
-            );
         }
     }
 }
