@@ -7,6 +7,7 @@ use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 use subdiv_mesh::{Mesh, VertexId};
 use subdiv_rules::{Depth, Ring, Scheme};
+use subdiv_slate::bilinear_patch_corners;
 
 /// Limit point, limit normal and curvature depth of every cage vertex.
 #[derive(Clone, Debug, Default)]
@@ -107,25 +108,14 @@ fn bilinear_face(
     max_depth: Depth,
 ) -> (Depth, Vec<Vec3>) {
     let alpha = aperture_deg.to_radians().max(f32::MIN_POSITIVE);
-    let vs = mesh.face_vertices(f);
-    let m = vs.len();
-    let at = |k: usize| mesh.position(vs[k % m]);
+    let m = mesh.face_size(f);
     // The face's bilinear patches: the quad, or an n-gon's level-1 quads (patch k's corner 0
     // at the face's vertex k).
     let patches: Vec<[Vec3; 4]> = if m == 4 {
-        vec![[at(0), at(1), at(2), at(3)]]
+        vec![bilinear_patch_corners(mesh, f, None)]
     } else {
-        let centroid = (0..m).map(at).sum::<Vec3>() / m as f32;
         (0..m)
-            .map(|k| {
-                let v = at(k);
-                [
-                    v,
-                    (v + at(k + 1)) * 0.5,
-                    centroid,
-                    (v + at(k + m - 1)) * 0.5,
-                ]
-            })
+            .map(|k| bilinear_patch_corners(mesh, f, Some(k)))
             .collect()
     };
     let mut spread = 0.0f32;

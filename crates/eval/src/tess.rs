@@ -270,16 +270,7 @@ impl<'a> Builder<'a> {
         let mesh = self.mesh;
         let n = mesh.face_size(f);
         let domain = Domain::of(self.scheme, n);
-        let hs: Vec<HalfedgeId> = {
-            let mut h = mesh.face_halfedge(f);
-            (0..n)
-                .map(|_| {
-                    let g = h;
-                    h = mesh.next(h);
-                    g
-                })
-                .collect()
-        };
+        let hs: Vec<HalfedgeId> = mesh.face_halfedges(f).collect();
         match domain {
             Domain::Quad | Domain::Triangle => {
                 let sides: Vec<Side> = (0..n)

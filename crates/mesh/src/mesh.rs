@@ -418,6 +418,12 @@ impl Mesh {
     pub fn face_halfedge(&self, f: FaceId) -> HalfedgeId {
         self.face_he[f.idx()]
     }
+    /// The half-edges of face `f` in order, from its first ([`Mesh::face_halfedge`]): side `k`
+    /// starts at the face's corner `k`.
+    pub fn face_halfedges(&self, f: FaceId) -> impl Iterator<Item = HalfedgeId> + '_ {
+        let first = self.face_halfedge(f);
+        std::iter::successors(Some(first), move |&h| Some(self.next(h))).take(self.face_size(f))
+    }
     /// Iterator over all face handles.
     pub fn faces(&self) -> impl ExactSizeIterator<Item = FaceId> + use<> {
         (0..self.num_faces() as u32).map(FaceId)

@@ -160,6 +160,29 @@ impl Corners {
     }
 }
 
+/// The corners of a bilinear patch of face `f`, counter-clockwise from its parameter origin:
+/// the quad's own (`sub` `None`), or those of the face's level-1 quad `sub` (its corner `sub`,
+/// the midpoint of the edge after it, the face's centroid, the midpoint of the edge before it;
+/// each midpoint `a (1 - t) + b t` at `t = 1/2`, the same bits from either face).
+pub fn bilinear_patch_corners(mesh: &Mesh, f: FaceId, sub: Option<usize>) -> [Vec3; 4] {
+    let vs = mesh.face_vertices(f);
+    let m = vs.len();
+    let at = |k: usize| mesh.position(vs[k % m]);
+    match sub {
+        None => [0, 1, 2, 3].map(at),
+        Some(k) => {
+            let centroid = (0..m).map(at).sum::<Vec3>() / m as f32;
+            let v = at(k);
+            [
+                v,
+                lerp(v, at(k + 1), 0.5),
+                centroid,
+                lerp(v, at(k + m - 1), 0.5),
+            ]
+        }
+    }
+}
+
 /// The grid of bilinear patch `p` of the cage `mesh` at `depth`, as
 /// [`crate::PatchGrids::grid`] writes a patch's grid: points and normals row by row (`i` along
 /// the patch's first edge, `j` along its last edge reversed), and every border point's normal in
@@ -180,30 +203,25 @@ pub(crate) fn patch_grid_sided(
     let s = n as f32;
     // The four sides' points at `t` along each side, as `(start, end, t scale)`: a cage edge
     // from the corner (scale 1/2 on an n-gon's level-1 quad), or a level-1 edge to the centroid.
-    let (corners, sides) = if p.level == 0 {
-        let c = [0, 1, 2, 3].map(at);
-        (
-            c,
+    let sub = (p.level != 0).then_some(p.sub as usize);
+    let corners = bilinear_patch_corners(mesh, p.src_face, sub);
+    let c = corners;
+    let sides = match sub {
+        None => [
+            (c[0], c[1], 1.0),
+            (c[1], c[2], 1.0),
+            (c[3], c[2], 1.0),
+            (c[0], c[3], 1.0),
+        ],
+        Some(k) => {
+            let (next, prev) = (at(k + 1), at(k + vs.len() - 1));
             [
-                (c[0], c[1], 1.0),
+                (c[0], next, 0.5),
                 (c[1], c[2], 1.0),
                 (c[3], c[2], 1.0),
-                (c[0], c[3], 1.0),
-            ],
-        )
-    } else {
-        let (k, m) = (p.sub as usize, vs.len());
-        let centroid = (0..m).map(at).sum::<Vec3>() / m as f32;
-        let (vk, next, prev) = (at(k), at(k + 1), at(k + m - 1));
-        let (mid_next, mid_prev) = (lerp(vk, next, 0.5), lerp(vk, prev, 0.5));
-        let c = [vk, mid_next, centroid, mid_prev];
-        let sides = [
-            (vk, next, 0.5),
-            (mid_next, centroid, 1.0),
-            (mid_prev, centroid, 1.0),
-            (vk, prev, 0.5),
-        ];
-        (c, sides)
+                (c[0], prev, 0.5),
+            ]
+        }
     };
     let c = Corners {
         p: corners,
@@ -302,15 +320,7 @@ pub fn tessellate_bilinear_into(
     for patch in &layout.patches {
         let f = patch.face;
         hs.clear();
-        let h0 = mesh.face_halfedge(f);
-        let mut h = h0;
-        loop {
-            hs.push(h);
-            h = mesh.next(h);
-            if h == h0 {
-                break;
-            }
-        }
+        hs.extend(mesh.face_halfedges(f));
         let PatchGrid { c, side, ids } = patch_grid(mesh, layout, patch, &hs, pos);
         let s = side as f32;
         for j in 0..=side {
@@ -396,7 +406,7 @@ fn patch_grid<'a>(
         (0..n).map(|k| fv.corner(first + k)).collect::<Vec<Vec2>>()
     });
     if patch.sub == u32::MAX {
-        let p = [0, 1, 2, 3].map(|k| mesh.position(mesh.from(hs[k])));
+        let p = bilinear_patch_corners(mesh, f, None);
         let t = face_uv.as_ref().map(|t| [t[0], t[1], t[2], t[3]]);
         let (lh, hs4) = (layout, [hs[0], hs[1], hs[2], hs[3]]);
         let corner_ids = [0, 1, 2, 3].map(vid);
@@ -419,14 +429,9 @@ fn patch_grid<'a>(
     } else {
         let k = patch.sub as usize;
         let m1 = m / 2;
-        let centroid = hs
-            .iter()
-            .map(|&h| mesh.position(mesh.from(h)))
-            .sum::<Vec3>()
-            / n as f32;
-        let mid = |h: HalfedgeId| lerp(mesh.position(mesh.from(h)), mesh.position(mesh.to(h)), 0.5);
         let (hk, hp) = (hs[k], hs[(k + n - 1) % n]);
-        let p = [mesh.position(mesh.from(hk)), mid(hk), centroid, mid(hp)];
+        let p = bilinear_patch_corners(mesh, f, Some(k));
+        let centroid = p[2];
         let t = face_uv.as_ref().map(|t| {
             let c = t.iter().copied().sum::<Vec2>() / n as f32;
             let (a, b, z) = (t[k], t[(k + 1) % n], t[(k + n - 1) % n]);

@@ -148,16 +148,7 @@ impl PatchLayout {
 
         let mut patches = Vec::new();
         for f in mesh.faces() {
-            let hs: Vec<HalfedgeId> = {
-                let h0 = mesh.face_halfedge(f);
-                let mut v = vec![h0];
-                let mut h = mesh.next(h0);
-                while h != h0 {
-                    v.push(h);
-                    h = mesh.next(h);
-                }
-                v
-            };
+            let hs: Vec<HalfedgeId> = mesh.face_halfedges(f).collect();
             if !irregular[f.idx()] {
                 patches.push(numbering.cage_patch(f, &hs, &mut next));
             } else {

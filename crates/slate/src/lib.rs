@@ -86,7 +86,9 @@ mod uv;
 mod wide;
 mod worker;
 
-pub use bilinear::{BilinearLayout, tessellate_bilinear, tessellate_bilinear_into};
+pub use bilinear::{
+    BilinearLayout, bilinear_patch_corners, tessellate_bilinear, tessellate_bilinear_into,
+};
 pub use grid::side_point;
 pub use layout::PatchLayout;
 pub use moving::UniformTessellator;

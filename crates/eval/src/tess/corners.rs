@@ -37,18 +37,6 @@ pub struct ForeignCorner {
     pub on: OnCage,
 }
 
-/// The half-edges of face `f`, from its first.
-fn face_halfedges(mesh: &Mesh, f: FaceId) -> Vec<subdiv_mesh::HalfedgeId> {
-    let mut h = mesh.face_halfedge(f);
-    (0..mesh.face_size(f))
-        .map(|_| {
-            let g = h;
-            h = mesh.next(h);
-            g
-        })
-        .collect()
-}
-
 impl Builder<'_> {
     /// Every corner of face `faces[i]`'s triangles (corners `corners[i]..corners[i + 1]`)
     /// whose point another face owns, ascending.
@@ -67,7 +55,7 @@ impl Builder<'_> {
         let mut out = Vec::new();
         for (i, &f) in faces.iter().enumerate() {
             let domain = Domain::of(self.scheme, mesh.face_size(f));
-            let hs = face_halfedges(mesh, f);
+            let hs: Vec<_> = mesh.face_halfedges(f).collect();
             for c in corners[i]..corners[i + 1] {
                 let p = self.tris[c as usize] as usize;
                 if self.points[p].face == f.0 {

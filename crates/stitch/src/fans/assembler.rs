@@ -161,16 +161,7 @@ impl Assembler {
         let halfedges: Vec<Vec<HalfedgeId>> = set
             .units()
             .iter()
-            .map(|u| {
-                let h0 = mesh.face_halfedge(u.face);
-                let mut hs = vec![h0];
-                let mut h = mesh.next(h0);
-                while h != h0 {
-                    hs.push(h);
-                    h = mesh.next(h);
-                }
-                hs
-            })
+            .map(|u| mesh.face_halfedges(u.face).collect())
             .collect();
         let pinched = pinched_corners(mesh, &set, &halfedges);
         let units: Vec<UnitTopo> = halfedges
