@@ -84,17 +84,23 @@ impl SurfaceArgs {
     pub fn doi_setup(&self) -> anyhow::Result<subdiv::DoiSetup> {
         let label = self.label();
         // The DoI-driven mesh is Loop's red-green refinement (Isenberg et al. 2003): another
-        // scheme asked for by name would silently be drawn as Loop.
-        if let Some(s) = self.scheme.filter(|&s| Scheme::from(s) != Scheme::Loop) {
+        // scheme asked for by name, or declared by a USD stage, would silently be drawn as Loop.
+        let (cage, declared) = self.load_cage_declared()?;
+        if let Some(s) = declared.filter(|&s| s != Scheme::Loop) {
+            let name = SchemeName::from(s);
+            let how = if self.scheme.is_some() {
+                format!("--scheme {}", value_name(&name))
+            } else {
+                format!("the stage's subdivisionScheme ({})", value_name(&name))
+            };
             bail!(
-                "--doi draws the DoI-driven adaptive Loop mesh (Isenberg et al. 2003): --scheme {} \
-                 cannot go with it (pass --scheme loop, or a camera and no --doi for the {} \
-                 adaptive tessellation)",
-                value_name(&s),
-                value_name(&s)
+                "{label}: --doi draws the DoI-driven adaptive Loop mesh (Isenberg et al. 2003): \
+                 {how} cannot go with it (pass --scheme loop, or a camera and no --doi for the \
+                 {} adaptive tessellation)",
+                value_name(&name)
             );
         }
-        let setup = self.doi.setup(self.load_cage()?, &label)?;
+        let setup = self.doi.setup(cage, &label)?;
         let steps = self.doi.steps;
         self.limit
             .check(&setup.cage, Request::Refine { steps }, &label)?;
@@ -115,19 +121,11 @@ impl SurfaceArgs {
         }
     }
 
-    /// Reads the cage (or builds the built-in scene).
-    pub fn load_cage(&self) -> anyhow::Result<Mesh> {
-        Ok(self.load_cage_scheme()?.0)
-    }
-
-    /// Reads the cage (or builds the built-in scene) and the scheme to subdivide it with:
-    /// `--scheme`, else a USD stage's `subdivisionScheme`, else Catmull-Clark.
-    pub fn load_cage_scheme(&self) -> anyhow::Result<(Mesh, Scheme)> {
+    /// Reads the cage (or builds the built-in scene) and the scheme named for it: `--scheme`,
+    /// else a USD stage's `subdivisionScheme` (`None` where neither names one).
+    pub fn load_cage_declared(&self) -> anyhow::Result<(Mesh, Option<Scheme>)> {
         match (&self.scene, &self.input) {
-            (Some(s), _) => Ok((
-                BuiltinScene::from(*s).cage()?,
-                self.scheme.map_or(Scheme::CatmullClark, Into::into),
-            )),
+            (Some(s), _) => Ok((BuiltinScene::from(*s).cage()?, self.scheme.map(Into::into))),
             (None, Some(p)) => {
                 let cage = crate::load::load_cage(
                     p,
@@ -135,11 +133,25 @@ impl SurfaceArgs {
                     self.prim.as_deref(),
                     self.time,
                 )?;
-                let scheme = crate::load::cage_scheme(p, &cage, self.scheme.map(Into::into))?;
-                Ok((cage.mesh, scheme))
+                let declared = match (self.scheme, cage.scheme) {
+                    (None, None) => None,
+                    (requested, _) => Some(crate::load::cage_scheme(
+                        p,
+                        &cage,
+                        requested.map(Into::into),
+                    )?),
+                };
+                Ok((cage.mesh, declared))
             }
             (None, None) => bail!("give an input cage or --scene helmet40"),
         }
+    }
+
+    /// Reads the cage (or builds the built-in scene) and the scheme to subdivide it with:
+    /// `--scheme`, else a USD stage's `subdivisionScheme`, else Catmull-Clark.
+    pub fn load_cage_scheme(&self) -> anyhow::Result<(Mesh, Scheme)> {
+        let (cage, declared) = self.load_cage_declared()?;
+        Ok((cage, declared.unwrap_or(Scheme::CatmullClark)))
     }
 
     /// The uniform depth (`--depth`, else [`DEFAULT_DEPTH`]).

@@ -338,6 +338,26 @@ fn doi_options_without_their_doi_are_refused(bunny: &str, out: &Path) {
         let want = format!("--scheme {scheme} cannot go with it");
         assert_clean_failure(&o, &want);
     }
+    // As is a stage that declares another scheme; a stage that declares Loop is drawn.
+    let o = subdiv()
+        .arg("render")
+        .arg(root().join("fixtures/usd/cube_uv.usda"))
+        .args(["--doi", "view-angle", "-o"])
+        .arg(out)
+        .output()
+        .unwrap();
+    assert_clean_failure(
+        &o,
+        "the stage's subdivisionScheme (catmull-clark) cannot go with it",
+    );
+    let o = subdiv()
+        .arg("render")
+        .arg(root().join("fixtures/usd/tetra_loop.usda"))
+        .args(["--doi", "view-angle", "-o"])
+        .arg(out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     // The options without their DoI are refused.
     let o = subdiv()
         .args(["render", bunny, "--scheme", "loop", "--hip", "0,0,0", "-o"])
