@@ -43,9 +43,9 @@ impl DicingArgs {
             bail!("--max-dicing-rate must be 1..={MAX_RATE}, found {max_rate}");
         }
         Ok(Some(Dicing {
-            rate_px,
             offscreen_scale,
             max_rate,
+            ..Dicing::new(rate_px)
         }))
     }
 }

@@ -69,7 +69,10 @@ mod surface;
 mod tess;
 mod uv;
 
-pub use dice::{CURVE_SEGMENTS, DEFAULT_OFFSCREEN_DICING_SCALE, Dicing, dice, dicing_rates};
+pub use dice::{
+    CURVE_SEGMENTS, DEFAULT_DICING_FLATNESS, DEFAULT_OFFSCREEN_DICING_SCALE, Dicing, dice,
+    dicing_rates,
+};
 pub use domain::Domain;
 pub use evaluator::{Derivatives, Evaluator, Query, Sample, UvSample, random_queries};
 pub use lattice::refined_faces;
