@@ -18,8 +18,9 @@
 //! bit: after welding identical coordinates every inner edge has two triangles. Where a
 //! point's side of a crease has its own normal (a sharp edge, or a vertex with sharpness),
 //! the other faces' corners there carry their side's one-sided normal
-//! ([`LimitMesh::corner_normals`]); inside a semi-sharp crease's span whose band is finer than
-//! the tessellation, that is the normal just beyond the band on each side (`semi_sharp_offset`).
+//! ([`LimitMesh::corner_normals`]); on a semi-sharp crease whose band is finer than the
+//! tessellation (inside its spans and at its cage vertices), that is the normal just beyond the
+//! band on each side (`semi_sharp_offset`).
 
 use glam::{DVec3, Vec3};
 use subdiv_mesh::{EdgeId, FaceId, HalfedgeId, Mesh, VertexId};
@@ -92,35 +93,6 @@ struct Builder<'a> {
     sided: Vec<(u32, Query)>,
 }
 
-/// One unit's sides: point indices from each corner to the next, with the parameter of each
-/// point in the unit's face where its normal is to be taken on this side.
-struct Side {
-    points: Vec<u32>,
-    sided: Vec<Option<Query>>,
-}
-
-/// How far into its face (in the face's parameter) the one-sided normal of a point inside a
-/// semi-sharp crease's span is taken: just beyond the crease's band, `2 · 2^-s` for sharpness
-/// `s` (the crease rule holds for `s` levels, then smooth rules round it off over about one
-/// level's cells), when that band is narrower than half the spacing `1 / rate` of the points
-/// next to it; 0 otherwise. The exact limit normal on a semi-sharp crease is the smooth one, yet
-/// the surface turns within the band: a band finer than the tessellation would be drawn as a
-/// wide blend of normals across each triangle, where the surface shows a crease. Infinitely
-/// sharp creases (0 here) get their one-sided normal from the face itself; bands the
-/// tessellation resolves keep the exact normals.
-fn semi_sharp_offset(sharpness: f32, rate: u32) -> f64 {
-    if !(sharpness > 0.0 && sharpness < subdiv_mesh::SHARPNESS_INFINITE) {
-        return 0.0;
-    }
-    let band = 2.0 * (-f64::from(sharpness)).exp2();
-    let spacing = 1.0 / f64::from(rate.max(1));
-    if band < spacing {
-        band.min(0.5 * spacing)
-    } else {
-        0.0
-    }
-}
-
 impl<'a> Builder<'a> {
     fn new(mesh: &'a Mesh, scheme: Scheme, rates: &EdgeRates) -> Builder<'a> {
         let mut rate: Vec<u32> = rates.as_slice().to_vec();
@@ -165,17 +137,6 @@ impl<'a> Builder<'a> {
         }
     }
 
-    /// Whether a point's normal may differ between the faces around it (at every vertex of a
-    /// bilinear cage: its patches meet with a crease at every edge).
-    fn sharp_vertex(&self, v: VertexId) -> bool {
-        let m = self.mesh;
-        self.scheme == Scheme::Bilinear
-            || m.vertex_sharpness(v) > 0.0
-            || m.whole_vertex_edges(v).is_some()
-            || m.crease_ends(v).is_some()
-            || m.outgoing(v).any(|h| m.edge_sharpness(h.edge()) > 0.0)
-    }
-
     /// Registers the owners of face `f`'s corners and edge points.
     fn own(&mut self, f: FaceId, domain: &Domain) {
         let mut h = self.mesh.face_halfedge(f);
@@ -213,56 +174,6 @@ impl<'a> Builder<'a> {
             m if m == r => self.vertex_point[self.mesh.to(he0).idx()],
             m => self.edge_first[e.idx()] + m - 1,
         }
-    }
-
-    /// The side along half-edge `k` of face `f` from step `a` to step `b` of its rate.
-    fn edge_side(
-        &self,
-        f: FaceId,
-        h: HalfedgeId,
-        k: usize,
-        domain: &Domain,
-        (a, b): (u32, u32),
-    ) -> Side {
-        let r = self.rate[h.edge().idx()];
-        let points: Vec<u32> = (a..=b).map(|m| self.edge_point(h, m)).collect();
-        // Bilinear patches meet with a crease at every edge: every edge point is one-sided.
-        let bilinear = self.scheme == Scheme::Bilinear;
-        let sharpness = self.mesh.edge_sharpness(h.edge());
-        let sharp_edge = bilinear || sharpness > 0.0;
-        let inward = if bilinear {
-            0.0
-        } else {
-            semi_sharp_offset(sharpness, r)
-        };
-        let ends = [self.mesh.from(h), self.mesh.to(h)];
-        let sided = (a..=b)
-            .map(|m| {
-                let corner = if m == 0 {
-                    Some(ends[0])
-                } else if m == r {
-                    Some(ends[1])
-                } else {
-                    None
-                };
-                let sharp = sharp_edge || corner.is_some_and(|v| self.sharp_vertex(v));
-                sharp.then(|| {
-                    let [u, v] = domain.edge_point(k, f64::from(m) / f64::from(r));
-                    match (corner, domain) {
-                        // Inside a semi-sharp crease's span: the normal just beyond its band,
-                        // towards the face's centre.
-                        (None, Domain::Quad | Domain::Triangle) if inward > 0.0 => {
-                            let [cu, cv] = domain.centre();
-                            let (du, dv) = (cu - u, cv - v);
-                            let len = du.hypot(dv).max(1e-12);
-                            Query::new(f.0, u + inward * du / len, v + inward * dv / len)
-                        }
-                        _ => Query::new(f.0, u, v),
-                    }
-                })
-            })
-            .collect();
-        Side { points, sided }
     }
 
     /// Tessellates face `f`.
@@ -576,8 +487,10 @@ pub fn tessellate_rates(
 }
 
 mod corners;
+mod sides;
 pub(crate) use corners::corner_values;
 pub use corners::{ForeignCorner, OnCage};
+use sides::Side;
 
 #[cfg(test)]
 #[path = "tess_tests.rs"]
