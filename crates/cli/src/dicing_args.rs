@@ -10,7 +10,8 @@ use subdiv::eval::{DEFAULT_OFFSCREEN_DICING_SCALE, Dicing, MAX_RATE};
 pub struct DicingArgs {
     /// Tessellate at any rate, each cage edge cut into pieces of about PX pixels on screen
     /// (the length of its limit curve seen by the camera over PX, rounded up; Cycles'
-    /// "dicing rate"); the points are exact limit points, watertight to the bit, and each
+    /// "dicing rate"; more where the curve bends on screen, so that its pieces stay within
+    /// PX/32 of it); the points are exact limit points, watertight to the bit, and each
     /// vertex carries its (face, u, v) (glTF _FACE and _PATCH_UV, PLY face u v).
     #[arg(long, value_name = "PX")]
     pub dicing_rate: Option<f32>,
