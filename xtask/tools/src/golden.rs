@@ -98,6 +98,9 @@ pub const SCENES: &[Scene] = &[
     // The bilinear scheme adaptively: twisted patches (and n-gons' level-1 quads) refined until
     // their own normals fit the cone, flat ones drawn as themselves, fans between depths.
     scene("nonquads_bilinear_adaptive", "fixtures/reference/shapes/catmark_nonquads.obj", &["--scheme", "bilinear", "--eye-relative", "0.4,1.4,1.4", "--max-depth", "4", "--shading", "depth", "--wire-overlay"]),
+    // Dicing by pixels: every cage edge at the rate its limit curve's length (and bend) on
+    // screen asks for at 12 px, semi-sharp creases drawn with each side's normal.
+    scene("helmet_dicing_12px", "fixtures/reference/shapes/catmark_helmet.obj", &["--eye-relative", "1.4,0.5,1.6", "--dicing-rate", "12", "--wire-overlay"]),
     // Fig. 8: the back-face heuristic seen from a second camera: depths (and culling) chosen for
     // a camera below the pawn, the image taken from the side.
     scene("pawn_backface_second_camera", "fixtures/reference/shapes/catmark_pawn.obj", &["--eye-relative", "1.5,-1.7,0.9", "--up", "0,0,1", "--max-depth", "4", "--shading", "depth", "--wire-overlay", "--cull-camera-eye-relative", "-2.5,0.5,0.3"]),
