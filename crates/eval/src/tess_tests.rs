@@ -149,8 +149,8 @@ fn counts_of_a_lone_quad_and_triangle() {
 
 /// A cube with every edge semi-sharp (sharpness 5: a band of `2 · 2^-5` of a face): coarse
 /// rates draw each crease with one-sided normals taken just beyond the band, so the faces at an
-/// edge point or a cage vertex carry normals far apart; rates that resolve the band keep the
-/// exact (smooth) normal there, one per point.
+/// edge point or a cage vertex carry normals far apart; rates that resolve the band (two steps
+/// across it) keep the exact (smooth) normal there, one per point.
 #[test]
 fn semi_sharp_creases_are_one_sided_below_the_tessellation() {
     let mut obj = String::from(
@@ -203,7 +203,10 @@ fn semi_sharp_creases_are_one_sided_below_the_tessellation() {
     let (at_vertices, on_edges) = turned(4);
     assert!(on_edges >= 2 * 12 * 3, "{on_edges}");
     assert!(at_vertices >= 8 * 3, "{at_vertices}");
-    // Rate 32 resolves the band (spacing 1/32 < 1/16): the exact normals everywhere.
+    // Rate 16 has one step across the band (1/16): still one-sided, taken half a step in.
+    let (at_vertices, on_edges) = turned(16);
+    assert!(on_edges >= 2 * 12 * 15 && at_vertices >= 8 * 3, "{on_edges} {at_vertices}");
+    // Rate 32 resolves the band (two steps of 1/32 across it): the exact normals everywhere.
     assert_eq!(turned(32), (0, 0));
 }
 

@@ -14,22 +14,23 @@ pub(super) struct Side {
     pub(super) sided: Vec<Option<Query>>,
 }
 
-/// How far into its face (in the face's parameter) the one-sided normal of a point inside a
-/// semi-sharp crease's span is taken: just beyond the crease's band, `2 · 2^-s` for sharpness
-/// `s` (the crease rule holds for `s` levels, then smooth rules round it off over about one
-/// level's cells), when that band is narrower than half the spacing `1 / rate` of the points
-/// next to it; 0 otherwise. The exact limit normal on a semi-sharp crease is the smooth one, yet
-/// the surface turns within the band: a band finer than the tessellation would be drawn as a
-/// wide blend of normals across each triangle, where the surface shows a crease. Infinitely
-/// sharp creases (0 here) get their one-sided normal from the face itself; bands the
-/// tessellation resolves keep the exact normals.
+/// How far into its face (in the face's parameter) the one-sided normal of a point on a
+/// semi-sharp crease is taken: just beyond the crease's band, `2 · 2^-s` for sharpness `s`
+/// (the crease rule holds for `s` levels, then smooth rules round it off over about one
+/// level's cells), at most half the spacing `1 / rate` of the points next to it, unless the
+/// tessellation resolves the band (two steps or more across it: 0, the exact normals). The
+/// exact limit normal on a semi-sharp crease is the smooth one, yet the surface turns within
+/// the band: a band the tessellation does not resolve would be drawn as a wide blend of
+/// normals across each triangle, where the surface shows a crease, and one resolved by a single
+/// step puts points inside it where neither side's normal is right. Infinitely sharp creases
+/// (0 here) get their one-sided normal from the face itself.
 fn semi_sharp_offset(sharpness: f32, rate: u32) -> f64 {
     if !(sharpness > 0.0 && sharpness < subdiv_mesh::SHARPNESS_INFINITE) {
         return 0.0;
     }
     let band = 2.0 * (-f64::from(sharpness)).exp2();
     let spacing = 1.0 / f64::from(rate.max(1));
-    if band < spacing {
+    if band < 2.0 * spacing {
         band.min(0.5 * spacing)
     } else {
         0.0
