@@ -205,7 +205,10 @@ fn semi_sharp_creases_are_one_sided_below_the_tessellation() {
     assert!(at_vertices >= 8 * 3, "{at_vertices}");
     // Rate 16 has one step across the band (1/16): still one-sided, taken half a step in.
     let (at_vertices, on_edges) = turned(16);
-    assert!(on_edges >= 2 * 12 * 15 && at_vertices >= 8 * 3, "{on_edges} {at_vertices}");
+    assert!(
+        on_edges >= 2 * 12 * 15 && at_vertices >= 8 * 3,
+        "{on_edges} {at_vertices}"
+    );
     // Rate 32 resolves the band (two steps of 1/32 across it): the exact normals everywhere.
     assert_eq!(turned(32), (0, 0));
 }
