@@ -41,9 +41,10 @@ pub struct Dicing {
     pub max_rate: u32,
     /// Beyond Cycles' rule: an edge's steps are also made short enough that its limit curve
     /// strays from their chords on screen by at most `flatness × rate_px` pixels (estimated as
-    /// the curve's distance from its whole chord over the square of the rate). Length alone
-    /// leaves a curve seen end-on at a silhouette, which is short on screen, in few steps that
-    /// cut the outline. 0: the length rule alone.
+    /// the curve's distance from its whole chord over the square of the rate; a curve wholly
+    /// off screen at `offscreen_scale` times that). Length alone leaves a curve seen end-on at
+    /// a silhouette, which is short on screen, in few steps that cut the outline. 0: the length
+    /// rule alone.
     pub flatness: f32,
 }
 
@@ -112,6 +113,28 @@ fn screen_bulge(camera: &Camera, points: &[DVec3]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// The rate of a curve `on` pixels long on screen and `off` pixels off it, straying `bulge`
+/// pixels from its chord: the larger of Cycles' rule and the flatness rule (halving a curve's
+/// steps quarters its deviation from their chords), a curve wholly off screen held to the
+/// off-screen rate by both.
+fn curve_rate(on: f64, off: f64, bulge: f64, d: &Dicing) -> u32 {
+    let rate_px = f64::from(d.rate_px.max(1e-3));
+    let scale = f64::from(d.offscreen_scale.max(1.0));
+    let max = d.max_rate.clamp(1, MAX_RATE);
+    let flat = if d.flatness > 0.0 {
+        let tolerance = rate_px * f64::from(d.flatness) * if on > 0.0 { 1.0 } else { scale };
+        (bulge / tolerance).sqrt()
+    } else {
+        0.0
+    };
+    let r = (on / rate_px + off / (rate_px * scale)).max(flat).ceil();
+    if r.is_finite() {
+        (r as u32).clamp(1, max)
+    } else {
+        max
+    }
+}
+
 /// The rate of every cage edge for `camera` ([module docs](self)).
 pub fn dicing_rates(
     eval: &Evaluator<'_>,
@@ -143,9 +166,6 @@ pub fn dicing_rates(
     let mut samples = vec![Sample::default(); queries.len()];
     eval.evaluate_many(&queries, Derivatives::First, &mut samples)?;
     let mut curves = samples.chunks(k + 1);
-    let rate_px = f64::from(d.rate_px.max(1e-3));
-    let scale = f64::from(d.offscreen_scale.max(1.0));
-    let max = d.max_rate.clamp(1, MAX_RATE);
     let rates = owner
         .iter()
         .map(|o| {
@@ -154,19 +174,7 @@ pub fn dicing_rates(
             };
             let points: Vec<DVec3> = curve.iter().map(|s| s.position).collect();
             let (on, off) = screen_length(camera, &points);
-            // Halving a curve's steps quarters its deviation from their chords.
-            let bulge = screen_bulge(camera, &points);
-            let flat = if d.flatness > 0.0 {
-                (bulge / (rate_px * f64::from(d.flatness))).sqrt()
-            } else {
-                0.0
-            };
-            let r = (on / rate_px + off / (rate_px * scale)).max(flat).ceil();
-            if r.is_finite() {
-                (r as u32).clamp(1, max)
-            } else {
-                max
-            }
+            curve_rate(on, off, screen_bulge(camera, &points), d)
         })
         .collect();
     Ok(EdgeRates::from_rates(rates))
@@ -226,9 +234,9 @@ mod tests {
     /// Where a curve bends on screen, in the worst place: across a silhouette, seen end-on. A
     /// half-cylinder (radius 1, its axis along y, 12 cells around) seen from the side: the
     /// edges around it near the contour are short on screen. Measured on the limit curves
-    /// themselves (65 points each), the diced steps stray from them by at most about the
-    /// flatness times the rate; with the length rule alone they stray more than four times as
-    /// far (here 0.066 px against 0.49 px).
+    /// themselves (65 points each; the curves wholly on screen), the diced steps stray from
+    /// them by at most about the flatness times the rate; with the length rule alone they stray
+    /// more than four times as far (here 0.051 px against 0.61 px).
     #[test]
     fn steps_across_a_silhouette_stay_near_the_curve() {
         let g = subdiv_test_support::grid(12, 4, false, |i, j| {
@@ -241,7 +249,7 @@ mod tests {
             Vec3::new(6.0, 0.3, 0.2),
             Vec3::new(0.0, 0.0, 0.6),
             Vec3::Y,
-            40.0,
+            50.0,
             400,
             400,
         );
@@ -260,6 +268,11 @@ mod tests {
                         .unwrap();
                     camera.project(p.position.as_vec3()).unwrap()
                 };
+                // Curves on screen only (those off screen are held to the off-screen rate).
+                let inside = |p: Vec2| p.x >= 0.0 && p.y >= 0.0 && p.x <= 400.0 && p.y <= 400.0;
+                if !(0..=64).all(|k| inside(at(f64::from(k) / 64.0))) {
+                    continue;
+                }
                 let steps: Vec<Vec2> = (0..=r).map(|m| at(f64::from(m) / f64::from(r))).collect();
                 for k in 0..=64 {
                     let t = f64::from(k) / 64.0;
@@ -283,5 +296,19 @@ mod tests {
         let bound = f64::from(d.flatness * d.rate_px);
         assert!(flat <= 1.5 * bound, "{flat} px against {bound} px");
         assert!(length_only > 4.0 * bound, "{length_only} px");
+    }
+
+    /// A curve's rate: Cycles' rule or the flatness rule, whichever asks for more, each held
+    /// to the off-screen rate where the curve lies wholly off screen.
+    #[test]
+    fn curve_rates_take_the_larger_rule_off_screen_coarser() {
+        let d = Dicing::new(2.0); // flatness 1/32: a tolerance of 1/16 px on screen
+        assert_eq!(curve_rate(10.0, 0.0, 0.0, &d), 5); // 10 px / 2
+        assert_eq!(curve_rate(2.0, 0.0, 1.0, &d), 4); // sqrt(1 / (1/16))
+        assert_eq!(curve_rate(0.0, 40.0, 0.0, &d), 5); // 40 px / (2 x 4)
+        assert_eq!(curve_rate(0.0, 2.0, 1.0, &d), 2); // sqrt(1 / (4/16))
+        let length_only = Dicing { flatness: 0.0, ..d };
+        assert_eq!(curve_rate(2.0, 0.0, 1.0, &length_only), 1);
+        assert_eq!(curve_rate(f64::INFINITY, 0.0, 0.0, &d), d.max_rate);
     }
 }
