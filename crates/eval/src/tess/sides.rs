@@ -88,37 +88,38 @@ impl Builder<'_> {
             semi_sharp_offset(sharpness, r)
         };
         let ends = [self.mesh.from(h), self.mesh.to(h)];
+        // At a cage vertex on a semi-sharp crease: beyond the band of each of the face's two
+        // sides there, along the diagonal into the face.
+        let corner_inward = if bilinear {
+            [0.0; 2]
+        } else {
+            ends.map(|v| self.vertex_offset(v, r) * std::f64::consts::SQRT_2)
+        };
         let sided = (a..=b)
             .map(|m| {
-                let corner = if m == 0 {
-                    Some(ends[0])
+                let (corner, offset) = if m == 0 {
+                    (Some(ends[0]), corner_inward[0])
                 } else if m == r {
-                    Some(ends[1])
+                    (Some(ends[1]), corner_inward[1])
                 } else {
-                    None
+                    (None, inward)
                 };
                 let sharp = sharp_edge || corner.is_some_and(|v| self.sharp_vertex(v));
                 sharp.then(|| {
                     let [u, v] = domain.edge_point(k, f64::from(m) / f64::from(r));
-                    match (corner, domain) {
-                        // Inside a semi-sharp crease's span: the normal just beyond its band,
-                        // towards the face's centre.
-                        (None, Domain::Quad | Domain::Triangle) if inward > 0.0 => {
+                    match domain {
+                        // On a semi-sharp crease whose band the steps do not resolve: the
+                        // normal just beyond the band, towards the face's centre (from a
+                        // corner, at most half way there).
+                        Domain::Quad | Domain::Triangle if offset > 0.0 => {
                             let [cu, cv] = domain.centre();
                             let (du, dv) = (cu - u, cv - v);
                             let len = du.hypot(dv).max(1e-12);
-                            Query::new(f.0, u + inward * du / len, v + inward * dv / len)
-                        }
-                        // A cage vertex on a semi-sharp crease: beyond the band of each of
-                        // the face's two sides there, along the diagonal into the face.
-                        (Some(c), Domain::Quad | Domain::Triangle)
-                            if !bilinear && self.vertex_offset(c, r) > 0.0 =>
-                        {
-                            let [cu, cv] = domain.centre();
-                            let (du, dv) = (cu - u, cv - v);
-                            let len = du.hypot(dv).max(1e-12);
-                            let t = (self.vertex_offset(c, r) * std::f64::consts::SQRT_2)
-                                .min(0.5 * len);
+                            let t = if corner.is_some() {
+                                offset.min(0.5 * len)
+                            } else {
+                                offset
+                            };
                             Query::new(f.0, u + t * du / len, v + t * dv / len)
                         }
                         _ => Query::new(f.0, u, v),
