@@ -61,6 +61,15 @@ pub struct BenchFramerateArgs {
     /// Deepest depth for the adaptive mode (the paper uses 0-4).
     #[arg(long, default_value_t = 4)]
     pub max_depth: Depth,
+    /// Normal-cone aperture in degrees for the curvature depth [default: 10].
+    #[arg(long, conflicts_with = "depth")]
+    pub cone_aperture: Option<f32>,
+    /// Vertex classifier epsilon (back / front / silhouette) [default: 0.1].
+    #[arg(long, conflicts_with = "depth")]
+    pub classifier: Option<f32>,
+    /// Projected sub-patch radius bounds in pixels [default: 1,4].
+    #[arg(long, value_parser = crate::adaptive_args::parse_pair, conflicts_with = "depth")]
+    pub projected_size: Option<(f32, f32)>,
     /// Viewport size.
     #[arg(long, value_parser = parse_size, default_value = "640x480")]
     pub size: (u32, u32),
@@ -171,6 +180,16 @@ fn check(a: &BenchFramerateArgs) -> anyhow::Result<()> {
         && d > a.max_depth
     {
         bail!("--depth {d} exceeds --max-depth {}", a.max_depth);
+    }
+    if let Some(c) = a.cone_aperture
+        && !(c > 0.0 && c < 180.0)
+    {
+        bail!("--cone-aperture {c}: need an angle in (0, 180) degrees");
+    }
+    if let Some(e) = a.classifier
+        && !(0.0..1.0).contains(&e)
+    {
+        bail!("--classifier {e}: need an epsilon in [0, 1)");
     }
     if a.error_every == Some(0) {
         bail!("--error-every must be at least 1");
@@ -309,9 +328,13 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
     }
     let nf = cage.num_faces();
     let bounds = framing_box(&cage);
+    let d = DepthParams::default();
     let params = DepthParams {
         max_depth: a.max_depth,
-        ..Default::default()
+        cone_aperture_deg: a.cone_aperture.unwrap_or(d.cone_aperture_deg),
+        classifier_eps: a.classifier.unwrap_or(d.classifier_eps),
+        projected_size: a.projected_size.or(d.projected_size),
+        ..d
     };
     let mut node = DynamicSubdivision::with_scheme(cage.clone(), scheme, params)?;
     let control = a.control.map_or(Control::Budget, Into::into);

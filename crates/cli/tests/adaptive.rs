@@ -114,6 +114,53 @@ fn bench_framerate_prints_one_line_per_frame() {
     }
 }
 
+/// The paper's parameters reach `bench framerate`: a finer projected-size band draws more of the
+/// far helmets, the default band given explicitly draws what no flag draws, and bad values are
+/// refused by name.
+#[test]
+fn bench_framerate_takes_the_paper_modes_parameters() {
+    let triangles = |extra: &[&str]| -> u64 {
+        let mut args = vec![
+            "bench",
+            "framerate",
+            "--no-render",
+            "--frames",
+            "1",
+            "--size",
+            "320x240",
+        ];
+        args.extend(extra);
+        let (code, stdout, err) = run(&args);
+        assert_eq!(code, 0, "{err}");
+        let tris = stdout
+            .split_whitespace()
+            .find_map(|w| w.strip_prefix("triangles="))
+            .unwrap_or_else(|| panic!("no triangles= in {stdout}"));
+        tris.parse().unwrap()
+    };
+    let default = triangles(&[]);
+    let (lo, hi) = subdiv::depth::DEFAULT_PROJECTED_SIZE;
+    let band = format!("{lo},{hi}");
+    assert_eq!(triangles(&["--projected-size", &band]), default);
+    let finer = triangles(&["--projected-size", "0.25,4"]);
+    assert!(finer > default, "{finer} <= {default}");
+    let coarser = triangles(&["--cone-aperture", "60", "--projected-size", "4,16"]);
+    assert!(coarser < default, "{coarser} >= {default}");
+    assert_fails(
+        &["bench", "framerate", "--cone-aperture", "0"],
+        "--cone-aperture",
+    );
+    assert_fails(&["bench", "framerate", "--classifier", "1.5"], "--classifier");
+    assert_fails(
+        &["bench", "framerate", "--projected-size", "4,1"],
+        "MIN <= MAX",
+    );
+    assert_fails(
+        &["bench", "framerate", "--depth", "2", "--classifier", "0.2"],
+        "--classifier",
+    );
+}
+
 #[test]
 fn bench_framerate_measures_image_error_every_kth_frame() {
     let run = |depth: &str| {
