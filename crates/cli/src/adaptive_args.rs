@@ -21,7 +21,7 @@ pub struct AdaptiveArgs {
     /// Vertex classifier epsilon (back / front / silhouette) [default: 0.1].
     #[arg(long)]
     pub classifier: Option<f32>,
-    /// Projected sub-patch radius bounds in pixels [default: 1,4].
+    /// Projected sub-patch radius bounds in pixels [default: 0.9,4].
     #[arg(long, value_parser = parse_pair)]
     pub projected_size: Option<(f32, f32)>,
     /// Choose the least depth whose chord error is at most PX pixels on screen.

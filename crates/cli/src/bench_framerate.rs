@@ -67,7 +67,7 @@ pub struct BenchFramerateArgs {
     /// Vertex classifier epsilon (back / front / silhouette) [default: 0.1].
     #[arg(long, conflicts_with = "depth")]
     pub classifier: Option<f32>,
-    /// Projected sub-patch radius bounds in pixels [default: 1,4].
+    /// Projected sub-patch radius bounds in pixels [default: 0.9,4].
     #[arg(long, value_parser = crate::adaptive_args::parse_pair, conflicts_with = "depth")]
     pub projected_size: Option<(f32, f32)>,
     /// Viewport size.

@@ -150,7 +150,10 @@ fn bench_framerate_takes_the_paper_modes_parameters() {
         &["bench", "framerate", "--cone-aperture", "0"],
         "--cone-aperture",
     );
-    assert_fails(&["bench", "framerate", "--classifier", "1.5"], "--classifier");
+    assert_fails(
+        &["bench", "framerate", "--classifier", "1.5"],
+        "--classifier",
+    );
     assert_fails(
         &["bench", "framerate", "--projected-size", "4,1"],
         "MIN <= MAX",
