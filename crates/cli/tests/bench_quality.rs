@@ -43,6 +43,25 @@ fn fields(line: &str) -> Vec<(String, f64)> {
     out
 }
 
+/// The output of `bench quality ARGS` at maximum depth 4 against uniform depth 5, one timing
+/// run (`None`: no Vulkan driver, and none required).
+fn depth4_run(args: &[&str]) -> Option<String> {
+    let mut all = vec!["bench", "quality"];
+    all.extend(args);
+    all.extend(["--max-depth", "4", "--reference-depth", "5", "--runs", "1"]);
+    run_ok(&all).map(|o| String::from_utf8_lossy(&o.stdout).into_owned())
+}
+
+/// The fields of the last `config=NAME` line of a run's output.
+fn config_fields(stdout: &str, name: &str) -> Vec<(String, f64)> {
+    let line = stdout
+        .lines()
+        .rev()
+        .find(|l| l.starts_with(&format!("config={name} ")))
+        .unwrap_or_else(|| panic!("no {name} in {stdout}"));
+    fields(line)
+}
+
 #[test]
 fn tiny_run_prints_one_line_per_configuration_last() {
     let input = cube();
@@ -187,18 +206,10 @@ fn bad_curvature_parameters_are_refused() {
 #[test]
 fn dicing_beats_the_pixel_error_mode_on_the_helmet() {
     let input = shape("catmark_helmet.obj").to_string_lossy().into_owned();
-    let Some(o) = run_ok(&[
-        "bench",
-        "quality",
+    let Some(stdout) = depth4_run(&[
         &input,
         "--size",
         "320x240",
-        "--max-depth",
-        "4",
-        "--reference-depth",
-        "5",
-        "--runs",
-        "1",
         "--configs",
         "pixel-error,dicing",
         "--dicing-rates",
@@ -206,18 +217,38 @@ fn dicing_beats_the_pixel_error_mode_on_the_helmet() {
     ]) else {
         return;
     };
-    let stdout = String::from_utf8_lossy(&o.stdout);
-    let config = |name: &str| {
-        let line = stdout
-            .lines()
-            .rev()
-            .find(|l| l.starts_with(&format!("config={name} ")))
-            .unwrap_or_else(|| panic!("no {name} in {stdout}"));
-        fields(line)
-    };
+    let config = |name: &str| config_fields(&stdout, name);
     let (pixel, dicing) = (config("pixel-error-1"), config("dicing-4"));
     // Fields: triangles 1, silhouette max 2, shading p99 4.
     assert!(dicing[1].1 <= 0.6 * pixel[1].1, "{stdout}");
     assert!(dicing[2].1 <= pixel[2].1, "{stdout}");
     assert!(dicing[4].1 <= pixel[4].1, "{stdout}");
+}
+
+/// The paper's mode with its defaults on the paper's scene (helmet40 from `bench framerate`'s
+/// first camera, 640×480, maximum depth 4): a picture no worse than uniform depth 3's, at most
+/// half of uniform depth 4's triangles. With a projected-size bound of 1 px the far helmets are
+/// coarsened until their shading is worse than uniform depth 3's, with more triangles.
+#[test]
+fn the_paper_mode_beats_uniform_depth_3_on_helmet40_at_half_of_depth_4() {
+    let Some(stdout) = depth4_run(&[
+        "--scene",
+        "helmet40",
+        "--size",
+        "640x480",
+        "--configs",
+        "uniform,curvature",
+    ]) else {
+        return;
+    };
+    let config = |name: &str| config_fields(&stdout, name);
+    let (paper, u3, u4) = (
+        config("curvature"),
+        config("uniform-3"),
+        config("uniform-4"),
+    );
+    // Fields: triangles 1, silhouette max 2, shading p99 4.
+    assert!(paper[2].1 <= u3[2].1, "{stdout}");
+    assert!(paper[4].1 <= u3[4].1, "{stdout}");
+    assert!(paper[1].1 <= 0.5 * u4[1].1, "{stdout}");
 }
