@@ -55,10 +55,11 @@ pub const DEFAULT_CLASSIFIER_EPS: f32 = 0.1;
 /// shading p99: `R_min` 1 px 325 k / 13.99° (worse than uniform depth 3 with more triangles),
 /// 0.9 px 383 k / 12.37°, 0.85 px 417 k / 11.70°, 0.75 px 498 k / 10.03°, 0.6 px 666 k / 7.74°,
 /// 0.5 px 799 k / 6.51°; silhouettes exact in every case (raw output:
-/// docs/bench/paper-mode-rmin-*.txt). 0.9 px is the largest swept value whose picture beats
-/// uniform depth 3's, at a third of uniform depth 4's triangles, and at `bench quality`'s
-/// helmet40 camera (800×600) it draws 48 % of uniform depth 4's triangles for 11.2° against
-/// uniform depth 3's 16.2°. On scenes whose patches are large on screen (the pawn, the
+/// docs/bench/paper-mode-helmet40-*.txt). 0.9 px is the largest swept value whose picture
+/// beats uniform depth 3's, at a third of uniform depth 4's triangles; at `bench quality`'s
+/// helmet40 camera (800×600, maximum depth 4) it draws 48 % of uniform depth 4's triangles for
+/// 11.2° against uniform depth 3's 16.2° (maximum depth 5: 52 %, 1 px 44 %; both near the line
+/// between the uniform depths, docs/performance.md). On scenes whose patches are large on screen (the pawn, the
 /// 3-torus, a helmet, a creased torus, the teapot filling the view) `R_min` below 1 px changes
 /// at most a few per cent of the triangles. The paper gives no values.
 pub const DEFAULT_PROJECTED_SIZE: (f32, f32) = (0.9, 4.0);
