@@ -12,7 +12,7 @@ use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, PatchGrids, PatchSet};
 
 use super::edges::{Frame, halfedge_sides};
 use super::geometry::{AdaptiveFrame, UpdateParts, lap};
-use super::index::{Chunk, FanMethod};
+use super::index::{Chunk, FanMethod, chunk_dependencies};
 use crate::AssemblyError;
 use crate::slots::Slots;
 
@@ -30,6 +30,9 @@ pub(super) struct Block {
     /// The patch's own one-sided limit normals at its border points on creases and corners:
     /// (index in `pos`, normal), ascending (`PatchGrids::grid`).
     pub(super) sided: Vec<(u32, [f32; 3])>,
+    /// Which computation this is: unique among the assembler's blocks (0: none yet), so that
+    /// a run of patches' triangles can tell whether a block they read was replaced.
+    pub(super) stamp: u64,
 }
 
 impl Block {
@@ -97,6 +100,12 @@ pub struct Assembler {
     side: Vec<u8>,
     /// The index emission's per-run buffers, kept between frames.
     chunks: Vec<Chunk>,
+    /// Per run of patches: the units its triangles read ([`chunk_dependencies`]).
+    deps: Vec<Vec<u32>>,
+    /// The last block stamp handed out.
+    stamps: u64,
+    /// Runs of the last frame that kept their triangles.
+    pub(super) runs_kept: usize,
     blocks: Vec<Block>,
     /// Where each block's points live in the frame's vertex buffer.
     slots: Slots,
@@ -171,11 +180,15 @@ impl Assembler {
             .collect();
         let n = set.patches().len();
         let side = halfedge_sides(mesh, &units);
+        let deps = chunk_dependencies(mesh, &set);
         Ok(Assembler {
             set,
             units,
             side,
             chunks: Vec::new(),
+            deps,
+            stamps: 0,
+            runs_kept: 0,
             blocks: vec![
                 Block {
                     depth: None,
@@ -359,10 +372,11 @@ impl Assembler {
         );
         // Index buffer: each patch's triangles, in parallel, then concatenated in patch order.
         let t = std::time::Instant::now();
-        fr.emit_frame(
+        self.runs_kept = fr.emit_frame(
             active,
             self.method,
             uvs,
+            Some(&self.deps),
             &mut self.chunks,
             b.triangles,
             b.corner_normals,
@@ -444,6 +458,7 @@ impl Assembler {
                         pos: vec![[0.0; 3]; n * n],
                         nrm: vec![[0.0; 3]; n * n],
                         sided: Vec::new(),
+                        stamp: 0,
                     };
                     grids.grid(p, d, &mut b.pos, &mut b.nrm, &mut b.sided);
                     // Seam points from their chains: the copies of a non-manifold edge, in
@@ -454,7 +469,9 @@ impl Assembler {
             )
             .collect();
         let points = fresh.iter().map(|(_, b)| b.pos.len()).sum();
-        for (i, b) in fresh.drain(..) {
+        for (i, mut b) in fresh.drain(..) {
+            self.stamps += 1;
+            b.stamp = self.stamps;
             self.blocks[i] = b;
         }
         (todo, points)
@@ -520,6 +537,7 @@ impl Assembler {
             &active,
             self.method,
             Some(&uvs),
+            None,
             &mut chunks,
             &mut tris,
             &mut sided,
@@ -550,31 +568,6 @@ pub(crate) fn check_corners(tris: &[u32], frame: &AdaptiveFrame) -> Result<(), A
         });
     }
     Ok(())
-}
-
-#[cfg(test)]
-impl Assembler {
-    /// Test access: the frame data (edge resolutions, owners, point ids) for `depth` and
-    /// `active`, over the blocks as currently cached.
-    pub(super) fn with_frame<R>(
-        &self,
-        mesh: &Mesh,
-        depth: &[Depth],
-        active: &[bool],
-        f: impl FnOnce(&Frame) -> R,
-    ) -> R {
-        let fr = Frame::new(
-            mesh,
-            &self.set,
-            &self.units,
-            &self.side,
-            depth,
-            active,
-            &self.blocks,
-            &self.slots,
-        );
-        f(&fr)
-    }
 }
 
 #[cfg(test)]

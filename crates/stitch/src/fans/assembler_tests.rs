@@ -3,6 +3,63 @@
 use super::super::test_util::{cube, grid, open_edges, prism, split_cube};
 use super::*;
 
+/// A frame's triangles, one-sided corner normals and face-varying corner values.
+type Emitted = (Vec<u32>, Vec<(u32, [f32; 3])>, Vec<u32>);
+
+/// Test access to an assembler's frame data.
+impl Assembler {
+    /// Test access: the last frame's triangles, one-sided corner normals and face-varying
+    /// corner values emitted afresh (every run, nothing kept) over the blocks as cached.
+    pub(in crate::fans) fn emitted_afresh(
+        &self,
+        mesh: &Mesh,
+        depth: &[Depth],
+        active: &[bool],
+    ) -> Emitted {
+        let depth: Vec<Depth> = (0..depth.len())
+            .map(|u| depth[u].clamp(self.min_depth(u), self.max_depth))
+            .collect();
+        let drawn = active.iter().any(|&a| a);
+        let uvs = self.uvs.as_ref().filter(|_| mesh.uv().is_some() && drawn);
+        let (mut chunks, mut tris, mut sided, mut corners) = Default::default();
+        self.with_frame(mesh, &depth, active, |fr| {
+            fr.emit_frame(
+                active,
+                self.method,
+                uvs,
+                None,
+                &mut chunks,
+                &mut tris,
+                &mut sided,
+                &mut corners,
+            )
+        });
+        (tris, sided, corners)
+    }
+
+    /// Test access: the frame data (edge resolutions, owners, point ids) for `depth` and
+    /// `active`, over the blocks as currently cached.
+    pub(in crate::fans) fn with_frame<R>(
+        &self,
+        mesh: &Mesh,
+        depth: &[Depth],
+        active: &[bool],
+        f: impl FnOnce(&Frame) -> R,
+    ) -> R {
+        let fr = Frame::new(
+            mesh,
+            &self.set,
+            &self.units,
+            &self.side,
+            depth,
+            active,
+            &self.blocks,
+            &self.slots,
+        );
+        f(&fr)
+    }
+}
+
 #[test]
 fn quads_per_depth_counts_grid_quads_of_drawn_units() {
     // Split cube: face 0 a regular patch, faces 1 and 2 triangles (3 level-1 quads each),
@@ -201,4 +258,123 @@ fn frames_too_large_for_memory_are_refused_before_any_work() {
     asm.frame(&mesh, &[1; 36], &[true; 36], &mut g).unwrap();
     assert_eq!(g.patches_recomputed, 36);
     assert_eq!(open_edges(&g), 24 * 2);
+}
+
+/// A `k x k` grid of quads over a bump, with a UV per vertex, its corner quad split into two
+/// triangles (level-1 units around it), and with `crease` an infinitely sharp crease across it.
+fn uv_grid(k: usize, crease: bool) -> Mesh {
+    let mut obj = String::new();
+    for j in 0..=k {
+        for i in 0..=k {
+            let (x, y) = (i as f32 / k as f32, j as f32 / k as f32);
+            let z = 0.3 * (x * 3.0).sin() * (y * 2.0).cos();
+            obj += &format!("v {x} {y} {z}\nvt {x} {y}\n");
+        }
+    }
+    let id = |i: usize, j: usize| j * (k + 1) + i + 1;
+    for j in 0..k {
+        for i in 0..k {
+            let [a, b, c, d] = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+            if i == 0 && j == 0 {
+                obj += &format!("f {a}/{a} {b}/{b} {c}/{c}\nf {a}/{a} {c}/{c} {d}/{d}\n");
+            } else {
+                obj += &format!("f {a}/{a} {b}/{b} {c}/{c} {d}/{d}\n");
+            }
+        }
+    }
+    let m = k / 2;
+    for i in (0..k).filter(|_| crease) {
+        obj += &format!("t crease 2/1/0 {} {} 10\n", id(i, m) - 1, id(i + 1, m) - 1);
+    }
+    Mesh::from_soup(&subdiv_mesh::parse_obj(&obj).unwrap()).unwrap()
+}
+
+#[test]
+fn runs_kept_from_the_last_frame_are_what_emitting_them_again_gives() {
+    // A moving camera changes a few depths a frame: the runs of patches whose state stayed
+    // keep their triangles, and the frame is bit for bit the one emitted afresh.
+    let pawn = subdiv_mesh::read_obj(subdiv_test_support::shape("catmark_pawn.obj")).unwrap();
+    let mut rng = super::super::test_util::Rng::xorshift(0x6b65_7074);
+    for (name, mut mesh) in [("pawn", pawn), ("uv grid", uv_grid(14, true))] {
+        let nf = mesh.num_faces();
+        let mut asm = Assembler::new(&mesh, 4).unwrap();
+        let mut g = AdaptiveFrame::default();
+        let (mut depth, mut active) = (vec![1u8; nf], vec![true; nf]);
+        let mut kept = 0;
+        for frame in 0..80 {
+            for _ in 0..rng.below(4) {
+                let u = rng.below(nf);
+                depth[u] = rng.below(5) as u8;
+                if rng.chance(15) {
+                    active[u] = !active[u];
+                }
+            }
+            // The cage moves: every block is computed again, with other one-sided normals.
+            if frame == 50 {
+                for p in mesh.positions_mut() {
+                    p.z += 0.2 * p.x * p.y;
+                }
+                asm.move_to(&mesh);
+            }
+            asm.frame(&mesh, &depth, &active, &mut g).unwrap();
+            kept += asm.runs_kept;
+            let (tris, sided, uv) = asm.emitted_afresh(&mesh, &depth, &active);
+            let s = g.surface();
+            assert!(s.face_indices() == tris, "{name} frame {frame}: triangles");
+            assert!(s.corner_normals() == sided, "{name} frame {frame}: normals");
+            assert!(s.uv_indices() == uv, "{name} frame {frame}: face-varying");
+        }
+        assert!(kept > 80, "{name}: {kept} runs kept");
+        if name == "uv grid" {
+            assert!(
+                !g.surface().uv_indices().is_empty() && !g.surface().corner_normals().is_empty()
+            );
+        }
+    }
+}
+
+#[test]
+fn a_moved_cage_gives_its_runs_their_new_one_sided_normals() {
+    // The blocks are computed again into the slots they had, with other normals at the
+    // crease: no run keeps the last frame's.
+    let mut mesh = uv_grid(14, true);
+    let nf = mesh.num_faces();
+    let mut asm = Assembler::new(&mesh, 3).unwrap();
+    let mut g = AdaptiveFrame::default();
+    let (depth, active) = (vec![2u8; nf], vec![true; nf]);
+    asm.frame(&mesh, &depth, &active, &mut g).unwrap();
+    let before = g.surface().corner_normals().to_vec();
+    for p in mesh.positions_mut() {
+        p.z += 0.2 * p.x * p.y;
+    }
+    asm.move_to(&mesh);
+    asm.frame(&mesh, &depth, &active, &mut g).unwrap();
+    let (tris, sided, _) = asm.emitted_afresh(&mesh, &depth, &active);
+    assert!(g.surface().face_indices() == tris);
+    assert!(g.surface().corner_normals() == sided);
+    assert!(
+        sided.len() > 50 && sided != before,
+        "the crease's normals moved"
+    );
+    assert_eq!(asm.runs_kept, 0);
+}
+
+#[test]
+fn a_deeper_face_varying_level_leaves_every_run_its_values() {
+    // One face drawn deeper than any before: the face-varying values are made again at a
+    // deeper level; the runs far from the face, kept or not, name the same values.
+    let mesh = uv_grid(14, false);
+    let nf = mesh.num_faces();
+    let mut asm = Assembler::new(&mesh, 4).unwrap();
+    let mut g = AdaptiveFrame::default();
+    let (mut depth, active) = (vec![1u8; nf], vec![true; nf]);
+    asm.frame(&mesh, &depth, &active, &mut g).unwrap();
+    let uvs_before = g.surface().uvs().len();
+    assert_eq!(asm.uvs.as_ref().map(|u| u.level()), Some(2));
+    depth[nf - 1] = 3;
+    asm.frame(&mesh, &depth, &active, &mut g).unwrap();
+    let (_, _, uv) = asm.emitted_afresh(&mesh, &depth, &active);
+    assert!(g.surface().uv_indices() == uv);
+    assert_eq!(asm.uvs.as_ref().map(|u| u.level()), Some(4));
+    assert!(g.surface().uvs().len() > 10 * uvs_before);
 }

@@ -15,7 +15,7 @@ pub(super) struct Frame<'a> {
     pub(super) mesh: &'a Mesh,
     pub(super) set: &'a PatchSet,
     pub(super) units: &'a [UnitTopo],
-    depth: &'a [u8],
+    pub(super) depth: &'a [u8],
     /// Per edge: resolution (max depth of its active units) and owner unit.
     pub(super) edge_res: Vec<u8>,
     edge_owner: Vec<u32>,

@@ -11,7 +11,8 @@
 //! is.
 
 use rayon::prelude::*;
-use subdiv_slate::{LevelUvs, PatchRef};
+use subdiv_mesh::Mesh;
+use subdiv_slate::{LevelUvs, PatchRef, PatchSet};
 
 use super::edges::Frame;
 use super::grid::{side_of_on, side_point};
@@ -80,11 +81,50 @@ pub(super) struct Chunk {
     grid_sided: Vec<Option<[f32; 3]>>,
     /// The corners of the fan being emitted.
     poly: Vec<Corner>,
+    /// What `tris`, `sided` and `uv` were emitted from ([`Frame::chunk_key`]), valid if
+    /// `keyed`; and the scratch the next frame's key is written to.
+    key: Vec<u64>,
+    next_key: Vec<u64>,
+    keyed: bool,
 }
 
 /// Patches per [`Chunk`]: enough work per task to amortise the task, small enough that two
-/// threads share a frame of a few hundred patches evenly.
+/// threads share a frame of a few hundred patches evenly. (Runs of 8 or 16 patches keep no
+/// more of a moving camera's frame on helmet40: its changes spread over many runs.)
 const CHUNK_PATCHES: usize = 32;
+
+/// Per run of [`CHUNK_PATCHES`] patches of `set`, the units (ascending) whose state its
+/// triangles are a function of: the units of the faces around every corner of its patches'
+/// faces. A patch's triangles read its own unit's depth and blocks, the depth and activity of
+/// the faces across its sides (fans, edge owners) and those around its corners (vertex
+/// owners), and the blocks of the owners of its border points, all of them among these.
+pub(super) fn chunk_dependencies(mesh: &Mesh, set: &PatchSet) -> Vec<Vec<u32>> {
+    let units = set.units();
+    set.patches()
+        .chunks(CHUNK_PATCHES)
+        .map(|run| {
+            let mut deps: Vec<u32> = Vec::new();
+            let mut last = u32::MAX;
+            for p in run {
+                if p.unit == last {
+                    continue;
+                }
+                last = p.unit;
+                for h in mesh.face_halfedges(units[p.unit as usize].face) {
+                    for g in mesh.outgoing(mesh.from(h)) {
+                        let f = mesh.face(g);
+                        if f.is_some() {
+                            deps.push(f.0);
+                        }
+                    }
+                }
+            }
+            deps.sort_unstable();
+            deps.dedup();
+            deps
+        })
+        .collect()
+}
 
 impl Chunk {
     /// The corner at grid point `(i, j)` (storage index `k`) of the patch being emitted, at its
@@ -137,26 +177,41 @@ impl Frame<'_> {
     /// one-sided normal at the triangle corners on creases and corners of the limit surface.
     /// With `uvs`, the face-varying value of every triangle corner on its own patch's side goes
     /// to `uv_indices` (cleared first; parallel to `out`).
+    ///
+    /// With `deps` (per run, [`chunk_dependencies`]), a run whose state ([`Frame::chunk_key`])
+    /// is the one its kept triangles were emitted from keeps them: the same output as emitting
+    /// it again, without the work. Without, every run is emitted. Returns the runs kept.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn emit_frame(
         &self,
         active: &[bool],
         method: FanMethod,
         uvs: Option<&LevelUvs>,
+        deps: Option<&[Vec<u32>]>,
         chunks: &mut Vec<Chunk>,
         out: &mut Vec<u32>,
         corner_normals: &mut Vec<(u32, [f32; 3])>,
         uv_indices: &mut Vec<u32>,
-    ) {
+    ) -> usize {
         let patches = self.set.patches();
         let runs = patches.len().div_ceil(CHUNK_PATCHES);
         if chunks.len() < runs {
             chunks.resize_with(runs, Chunk::default);
         }
-        chunks[..runs]
+        let kept = chunks[..runs]
             .par_iter_mut()
             .enumerate()
-            .for_each(|(c, ch)| {
+            .map(|(c, ch)| {
+                if let Some(deps) = deps {
+                    let mut key = std::mem::take(&mut ch.next_key);
+                    self.chunk_key(&deps[c], active, method, uvs, &mut key);
+                    ch.next_key = key;
+                    if ch.keyed && ch.key == ch.next_key {
+                        return 1;
+                    }
+                    std::mem::swap(&mut ch.key, &mut ch.next_key);
+                }
+                ch.keyed = deps.is_some();
                 ch.tris.clear();
                 ch.sided.clear();
                 ch.uv.clear();
@@ -181,7 +236,9 @@ impl Frame<'_> {
                         None => self.emit_patch(p, method, ch, &mut ()),
                     }
                 }
-            });
+                0
+            })
+            .sum();
         out.clear();
         corner_normals.clear();
         uv_indices.clear();
@@ -194,6 +251,36 @@ impl Frame<'_> {
             corner_normals.extend(ch.sided.iter().map(|&(c, n)| (start + c, n)));
             out.extend_from_slice(&ch.tris);
             uv_indices.extend_from_slice(&ch.uv);
+        }
+        kept
+    }
+
+    /// The state a run's triangles are a function of, into `key` (cleared first): the fan
+    /// method, the face-varying level, and per unit of `deps` its activity and depth and, per
+    /// patch, where its block lies in the vertex buffer, how deep it is and which computation
+    /// it holds (its one-sided normals are copied into the output).
+    fn chunk_key(
+        &self,
+        deps: &[u32],
+        active: &[bool],
+        method: FanMethod,
+        uvs: Option<&LevelUvs>,
+        key: &mut Vec<u64>,
+    ) {
+        key.clear();
+        let level = uvs.map_or(0, |u| u64::from(u.level()) + 1);
+        key.push(((method as u64) << 32) | level);
+        let units = self.set.units();
+        for &u in deps {
+            let u = u as usize;
+            key.push((u64::from(self.depth[u]) << 1) | u64::from(active[u]));
+            let first = units[u].first_patch as usize;
+            for pi in first..first + units[u].patch_count as usize {
+                let b = &self.blocks[pi];
+                let depth = b.depth.map_or(0, |d| u64::from(d) + 1);
+                key.push((u64::from(self.slots.start(pi)) << 8) | depth);
+                key.push(b.stamp);
+            }
         }
     }
 
