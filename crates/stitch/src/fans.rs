@@ -14,7 +14,8 @@
 //!
 //! Caching (Section 4): each patch keeps its limit points in a block computed at some depth
 //! `c`; while the patch's depth does not rise above `c` the block is reused (sampled with
-//! stride `2^(c - d)`), and only the index buffer is rebuilt.
+//! stride `2^(c - d)`), and only the index buffer is rebuilt; in it, a run of patches whose
+//! state (the depths and blocks of the faces around them) stayed keeps its triangles.
 //!
 //! The pieces: [`Assembler`] (the per-mesh patch structure and block cache, `assembler`),
 //! [`AdaptiveFrame`] (what a frame produced: its surface and depths, `geometry`), per-edge resolution and owners and the
