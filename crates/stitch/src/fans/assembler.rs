@@ -101,7 +101,7 @@ pub struct Assembler {
     /// The index emission's per-run buffers, kept between frames.
     chunks: Vec<Chunk>,
     /// Per run of patches: the units its triangles read ([`chunk_dependencies`]).
-    deps: Vec<Vec<u32>>,
+    pub(super) deps: Vec<Vec<u32>>,
     /// The last block stamp handed out.
     stamps: u64,
     /// Runs of the last frame that kept their triangles.

@@ -336,7 +336,7 @@ fn runs_kept_from_the_last_frame_are_what_emitting_them_again_gives() {
 #[test]
 fn a_moved_cage_gives_its_runs_their_new_one_sided_normals() {
     // The blocks are computed again into the slots they had, with other normals at the
-    // crease: no run keeps the last frame's.
+    // crease: the runs with one-sided normals are emitted again.
     let mut mesh = uv_grid(14, true);
     let nf = mesh.num_faces();
     let mut asm = Assembler::new(&mesh, 3).unwrap();
@@ -356,7 +356,8 @@ fn a_moved_cage_gives_its_runs_their_new_one_sided_normals() {
         sided.len() > 50 && sided != before,
         "the crease's normals moved"
     );
-    assert_eq!(asm.runs_kept, 0);
+    // The runs away from the crease and the border keep their triangles.
+    assert!(asm.runs_kept > 0 && asm.runs_kept < asm.deps.len());
 }
 
 #[test]

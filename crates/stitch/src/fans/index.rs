@@ -202,11 +202,23 @@ impl Frame<'_> {
             .par_iter_mut()
             .enumerate()
             .map(|(c, ch)| {
+                let run = c * CHUNK_PATCHES..((c + 1) * CHUNK_PATCHES).min(patches.len());
                 if let Some(deps) = deps {
                     let mut key = std::mem::take(&mut ch.next_key);
-                    self.chunk_key(&deps[c], active, method, uvs, &mut key);
+                    let structure =
+                        self.chunk_key(&deps[c], run.clone(), active, method, uvs, &mut key);
                     ch.next_key = key;
-                    if ch.keyed && ch.key == ch.next_key {
+                    // Without one-sided normals, blocks computed again into the same slots at
+                    // the same depths (a moved cage) leave the run as it was.
+                    let n = if ch.sided.is_empty() {
+                        structure
+                    } else {
+                        ch.key.len()
+                    };
+                    if ch.keyed
+                        && ch.key.len() == ch.next_key.len()
+                        && ch.key[..n] == ch.next_key[..n]
+                    {
                         return 1;
                     }
                     std::mem::swap(&mut ch.key, &mut ch.next_key);
@@ -215,8 +227,7 @@ impl Frame<'_> {
                 ch.tris.clear();
                 ch.sided.clear();
                 ch.uv.clear();
-                let lo = c * CHUNK_PATCHES;
-                for p in &patches[lo..(lo + CHUNK_PATCHES).min(patches.len())] {
+                for p in &patches[run] {
                     let face = self.set.units()[p.unit as usize].face;
                     if !active[p.unit as usize] || self.mesh.is_hole(face) {
                         continue;
@@ -257,16 +268,19 @@ impl Frame<'_> {
 
     /// The state a run's triangles are a function of, into `key` (cleared first): the fan
     /// method, the face-varying level, and per unit of `deps` its activity and depth and, per
-    /// patch, where its block lies in the vertex buffer, how deep it is and which computation
-    /// it holds (its one-sided normals are copied into the output).
+    /// patch, where its block lies in the vertex buffer and how deep it is; then which
+    /// computation each of the run's own patches' blocks holds (`patches`), which only the
+    /// one-sided normals the run copies from them depend on (which points have one depends on
+    /// the topology alone). Returns the length of the first part.
     fn chunk_key(
         &self,
         deps: &[u32],
+        patches: std::ops::Range<usize>,
         active: &[bool],
         method: FanMethod,
         uvs: Option<&LevelUvs>,
         key: &mut Vec<u64>,
-    ) {
+    ) -> usize {
         key.clear();
         let level = uvs.map_or(0, |u| u64::from(u.level()) + 1);
         key.push(((method as u64) << 32) | level);
@@ -279,9 +293,11 @@ impl Frame<'_> {
                 let b = &self.blocks[pi];
                 let depth = b.depth.map_or(0, |d| u64::from(d) + 1);
                 key.push((u64::from(self.slots.start(pi)) << 8) | depth);
-                key.push(b.stamp);
             }
         }
+        let structure = key.len();
+        key.extend(patches.map(|pi| self.blocks[pi].stamp));
+        structure
     }
 
     /// Fills `ch.grid` with the shared id and own block point of every point of patch `p`'s
