@@ -68,6 +68,6 @@ pub use pixel_error::{
 };
 pub use seams::Seams;
 pub use shading::{AreaElement, OutlierTable, ScreenArea, ShadingError, raise_for_shading};
-pub use sphere::{SPHERE_FACE_BUDGET, SPHERE_LEVELS, Sphere, face_spheres};
+pub use sphere::{FaceSpheres, SPHERE_FACE_BUDGET, SPHERE_LEVELS, Sphere, face_spheres};
 pub use subdiv_rules::{Depth, MAX_DEPTH};
 pub use subdiv_slate::DEFAULT_MAX_DEPTH;

@@ -31,7 +31,7 @@
 
 use glam::Vec3;
 use subdiv_mesh::Mesh;
-use subdiv_rules::{Depth, Scheme, refine_uniform_levels};
+use subdiv_rules::{Depth, Scheme};
 
 /// A bounding sphere.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -52,21 +52,112 @@ pub const SPHERE_LEVELS: Depth = 2;
 pub const SPHERE_FACE_BUDGET: u64 = 1 << 24;
 
 /// A sphere per cage face that provably contains the face's limit patch of `scheme` (a Loop
-/// cage's triangles for [`Scheme::Loop`]; see the module documentation): the smallest sphere around the centre of the bounding box of the
-/// control points of the 1-neighbourhoods of the face's level-`k` descendants that contains
-/// them all, `k =` [`SPHERE_LEVELS`] (fewer for very large cages).
+/// cage's triangles for [`Scheme::Loop`]; see the module documentation): the smallest sphere
+/// around the centre of the bounding box of the control points of the 1-neighbourhoods of the
+/// face's level-`k` descendants that contains them all, `k =` [`SPHERE_LEVELS`] (fewer for very
+/// large cages). A cage that moves keeps a [`FaceSpheres`] instead.
 pub fn face_spheres(mesh: &Mesh, scheme: Scheme) -> Vec<Sphere> {
-    for k in (1..=SPHERE_LEVELS).rev() {
-        let faces = subdiv_rules::refined_face_count(mesh, scheme, k);
-        if faces > SPHERE_FACE_BUDGET {
-            continue;
-        }
-        if let Ok(fine) = refine_uniform_levels(mesh, scheme, k) {
-            return hull_spheres(&fine, &ancestors(mesh, k, scheme), mesh.num_faces());
+    FaceSpheres::new(mesh, scheme).spheres
+}
+
+/// [`face_spheres`] for a cage whose positions change while its topology stays (an animated
+/// character): the refinement's meshes and each face's set of hull points are kept, and
+/// [`FaceSpheres::move_to`] only refines the new positions through them and takes the
+/// spheres, the same bits as [`face_spheres`] of the moved cage.
+#[derive(Clone, Debug)]
+pub struct FaceSpheres {
+    scheme: Scheme,
+    /// Levels `1..=k` of the uniform refinement, with the last positions (empty: the cage's own
+    /// 1-neighbourhoods bound its faces).
+    levels: Vec<Mesh>,
+    /// Per cage face `a`, the finest level's vertices whose positions bound it:
+    /// `hull[hull_at[a]..hull_at[a + 1]]`, ascending.
+    hull_at: Vec<u32>,
+    hull: Vec<u32>,
+    spheres: Vec<Sphere>,
+}
+
+impl FaceSpheres {
+    /// The refinement of `mesh` behind its spheres, and the spheres.
+    pub fn new(mesh: &Mesh, scheme: Scheme) -> FaceSpheres {
+        let mut levels = Vec::new();
+        let k = (1..=SPHERE_LEVELS).rev().find(|&k| {
+            if subdiv_rules::refined_face_count(mesh, scheme, k) > SPHERE_FACE_BUDGET {
+                return false;
+            }
+            // `refine_uniform_levels`'s checks and refinement, keeping each level.
+            levels.clear();
+            let request = subdiv_rules::Request::Uniform { scheme, depth: k };
+            if subdiv_rules::check_coordinates(mesh).is_err()
+                || subdiv_rules::Budget::machine()
+                    .check(mesh, request)
+                    .is_err()
+            {
+                return false;
+            }
+            let mut m = mesh.clone();
+            for _ in 0..k {
+                match subdiv_rules::refine_uniform(&m, scheme) {
+                    Ok(fine) => m = fine,
+                    Err(_) => return false,
+                }
+                levels.push(m.clone());
+            }
+            true
+        });
+        let (hull_at, hull) = match k {
+            Some(k) => hull_sets(
+                &levels[levels.len() - 1],
+                &ancestors(mesh, k, scheme),
+                mesh.num_faces(),
+            ),
+            None => {
+                levels.clear();
+                let identity: Vec<u32> = (0..mesh.num_faces() as u32).collect();
+                hull_sets(mesh, &identity, mesh.num_faces())
+            }
+        };
+        let spheres = match levels.last() {
+            Some(fine) => spheres_of(fine.positions(), &hull_at, &hull),
+            None => spheres_of(mesh.positions(), &hull_at, &hull),
+        };
+        FaceSpheres {
+            scheme,
+            levels,
+            hull_at,
+            hull,
+            spheres,
         }
     }
-    let identity: Vec<u32> = (0..mesh.num_faces() as u32).collect();
-    hull_spheres(mesh, &identity, mesh.num_faces())
+
+    /// The spheres of the cage's last positions.
+    pub fn spheres(&self) -> &[Sphere] {
+        &self.spheres
+    }
+
+    /// The spheres of `mesh`, the cage with other positions (the same topology and tags as
+    /// the one this was made for). A cage beyond the coordinates the refinement takes is
+    /// bounded by its own 1-neighbourhoods, as [`face_spheres`] bounds it.
+    pub fn move_to(&mut self, mesh: &Mesh) -> &[Sphere] {
+        if self.levels.is_empty() || subdiv_rules::check_coordinates(mesh).is_err() {
+            *self = FaceSpheres::new(mesh, self.scheme);
+            return &self.spheres;
+        }
+        for i in 0..self.levels.len() {
+            let (coarser, finer) = self.levels.split_at_mut(i);
+            let coarse = coarser.last().unwrap_or(mesh);
+            let fp: Vec<Vec3> = if self.scheme.splits_to_quads() {
+                coarse.faces().map(|f| coarse.face_centroid(f)).collect()
+            } else {
+                Vec::new()
+            };
+            let points = subdiv_rules::RefineKernel::new(coarse, self.scheme).refine_points(&fp);
+            finer[0].positions_mut().copy_from_slice(&points);
+        }
+        let fine = &self.levels[self.levels.len() - 1];
+        self.spheres = spheres_of(fine.positions(), &self.hull_at, &self.hull);
+        &self.spheres
+    }
 }
 
 /// The cage face of every face of the level-`k` uniform refinement (`subdiv_rules::refine`
@@ -87,9 +178,10 @@ fn ancestors(mesh: &Mesh, k: Depth, scheme: Scheme) -> Vec<u32> {
     anc
 }
 
-/// Spheres around, per ancestor, all control points of the fine faces that share a vertex with
-/// one of its descendants (`ancestor[g]` is the cage face of fine face `g`).
-fn hull_spheres(fine: &Mesh, ancestor: &[u32], n: usize) -> Vec<Sphere> {
+/// Per ancestor, all vertices of the fine faces that share a vertex with one of its
+/// descendants (`ancestor[g]` is the cage face of fine face `g`): each descendant's
+/// 1-neighbourhood, as offsets into a list of vertices (ascending per ancestor).
+fn hull_sets(fine: &Mesh, ancestor: &[u32], n: usize) -> (Vec<u32>, Vec<u32>) {
     // Ancestors whose descendants touch each fine vertex.
     let mut touching: Vec<Vec<u32>> = vec![Vec::new(); fine.num_vertices()];
     for g in fine.faces() {
@@ -103,31 +195,45 @@ fn hull_spheres(fine: &Mesh, ancestor: &[u32], n: usize) -> Vec<Sphere> {
     }
     // Every fine face touching a descendant of `a` at a vertex is in that descendant's
     // 1-neighbourhood: its points are in `a`'s hull set.
-    let for_each = |visit: &mut dyn FnMut(usize, Vec3)| {
-        for g in fine.faces() {
-            let vs = fine.face_vertices(g);
-            for v in vs {
-                for &a in &touching[v.idx()] {
-                    for w in vs {
-                        visit(a as usize, fine.position(*w));
-                    }
-                }
+    let mut sets: Vec<Vec<u32>> = vec![Vec::new(); n];
+    for g in fine.faces() {
+        let vs = fine.face_vertices(g);
+        for v in vs {
+            for &a in &touching[v.idx()] {
+                sets[a as usize].extend(vs.iter().map(|w| w.0));
             }
         }
-    };
-    let mut lo = vec![Vec3::splat(f32::INFINITY); n];
-    let mut hi = vec![Vec3::splat(f32::NEG_INFINITY); n];
-    for_each(&mut |a, p| {
-        lo[a] = lo[a].min(p);
-        hi[a] = hi[a].max(p);
-    });
-    let centre: Vec<Vec3> = lo.iter().zip(&hi).map(|(l, h)| (*l + *h) * 0.5).collect();
-    let mut r2 = vec![0.0f32; n];
-    for_each(&mut |a, p| r2[a] = r2[a].max((p - centre[a]).length_squared()));
-    centre
-        .into_iter()
-        .zip(r2)
-        .map(|(c, r2)| {
+    }
+    let mut hull_at = Vec::with_capacity(n + 1);
+    let mut hull = Vec::new();
+    hull_at.push(0);
+    for mut set in sets {
+        set.sort_unstable();
+        set.dedup();
+        hull.extend_from_slice(&set);
+        hull_at.push(hull.len() as u32);
+    }
+    (hull_at, hull)
+}
+
+/// The sphere of each ancestor's hull set ([`hull_sets`]) at `positions`: around the centre of
+/// the set's bounding box, through its farthest point, with a rounding margin.
+fn spheres_of(positions: &[Vec3], hull_at: &[u32], hull: &[u32]) -> Vec<Sphere> {
+    hull_at
+        .windows(2)
+        .map(|w| {
+            let set = &hull[w[0] as usize..w[1] as usize];
+            let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+            for &v in set {
+                let p = positions[v as usize];
+                lo = lo.min(p);
+                hi = hi.max(p);
+            }
+            let c = (lo + hi) * 0.5;
+            let r2 = set
+                .iter()
+                .map(|&v| (positions[v as usize] - c).length_squared())
+                .fold(0.0f32, f32::max);
             let r = r2.sqrt();
             // Rounding: the refined points carry a few ulps of error per level.
             let margin = 16.0 * f32::EPSILON * (c.abs().max_element() + r);
@@ -210,9 +316,45 @@ mod tests {
         let cube =
             Mesh::from_soup(&parse_obj(&subdiv_test_support::cube().obj()).unwrap()).unwrap();
         let identity: Vec<u32> = (0..6).collect();
-        let coarse = hull_spheres(&cube, &identity, 6);
+        let (at, hull) = hull_sets(&cube, &identity, 6);
+        let coarse = spheres_of(cube.positions(), &at, &hull);
         assert_contains(&cube, &coarse, 4);
         let fine = face_spheres(&cube, Scheme::CatmullClark);
         assert!(coarse.iter().zip(&fine).all(|(c, f)| f.radius < c.radius));
+    }
+
+    #[test]
+    fn a_moved_cage_has_the_spheres_made_afresh_for_it() {
+        // Catmull-Clark and Loop fixtures (n-gons, creases, semi-sharp creases, boundaries),
+        // each moved three times: the kept refinement gives the bits of a fresh one.
+        let mut seen = 0;
+        for name in [
+            "catmark_pawn.obj",
+            "catmark_nonquads.obj",
+            "catmark_cube_creases1.obj",
+            "catmark_helmet.obj",
+            "catmark_chaikin0.obj",
+            "loop_cubes_semisharp.obj",
+            "loop_saddle_edgecorner.obj",
+        ] {
+            let scheme = match name.starts_with("loop") {
+                true => Scheme::Loop,
+                false => Scheme::CatmullClark,
+            };
+            let text = std::fs::read_to_string(subdiv_test_support::shape(name)).unwrap();
+            let mut m = Mesh::from_soup(&parse_obj(&text).unwrap()).unwrap();
+            let mut kept = FaceSpheres::new(&m, scheme);
+            assert!(!kept.levels.is_empty(), "{name}");
+            for step in 1..=3 {
+                for (i, p) in m.positions_mut().iter_mut().enumerate() {
+                    let t = step as f32 * 0.37 + i as f32 * 0.11;
+                    *p += Vec3::new(t.sin(), (1.3 * t).cos(), 0.5 * t.sin() * p.x) * 0.1;
+                }
+                let afresh = face_spheres(&m, scheme);
+                assert!(kept.move_to(&m) == afresh.as_slice(), "{name} step {step}");
+            }
+            seen += 1;
+        }
+        assert_eq!(seen, 7);
     }
 }

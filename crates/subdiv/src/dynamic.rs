@@ -12,8 +12,8 @@ pub use control::Control;
 
 use control::{BudgetInputs, Controller, LastFrame, choose_budget, frame_work, pixels};
 use subdiv_depth::{
-    Assignment, BudgetController, DepthParams, FrameRateController, FrameTimeModel, FrameWork,
-    PatchErrors, Seams, Sphere, VertexData, assign, face_spheres, patch_errors, patch_errors_tri,
+    Assignment, BudgetController, DepthParams, FaceSpheres, FrameRateController, FrameTimeModel,
+    FrameWork, PatchErrors, Seams, VertexData, assign, patch_errors, patch_errors_tri,
 };
 use subdiv_mesh::{Camera, Mesh};
 use subdiv_rules::Scheme;
@@ -89,7 +89,7 @@ pub struct DynamicSubdivision {
     scheme: Scheme,
     params: DepthParams,
     vertex: VertexData,
-    spheres: Vec<Sphere>,
+    spheres: FaceSpheres,
     errors: Option<PatchErrors>,
     assembler: Stitcher,
     controller: Controller,
@@ -125,7 +125,7 @@ impl DynamicSubdivision {
     ) -> Result<DynamicSubdivision, AssemblyError> {
         let assembler = Stitcher::new(&mesh, scheme, params.max_depth)?;
         let vertex = VertexData::compute(&mesh, scheme, params.cone_aperture_deg, params.max_depth);
-        let spheres = face_spheres(&mesh, scheme);
+        let spheres = FaceSpheres::new(&mesh, scheme);
         let seams = Seams::new(&mesh);
         let flat_depth = flat_depths(&mesh, scheme, &params);
         Ok(DynamicSubdivision {
@@ -173,7 +173,6 @@ impl DynamicSubdivision {
         if recompute {
             self.vertex =
                 VertexData::compute(&self.mesh, self.scheme, p.cone_aperture_deg, p.max_depth);
-            self.spheres = face_spheres(&self.mesh, self.scheme);
             self.flat_depth = flat_depths(&self.mesh, self.scheme, &self.params);
         }
         if let Some(fps) = self.controller.target_fps() {
@@ -201,7 +200,7 @@ impl DynamicSubdivision {
             self.params.cone_aperture_deg,
             self.params.max_depth,
         );
-        self.spheres = face_spheres(&self.mesh, self.scheme);
+        self.spheres.move_to(&self.mesh);
         self.flat_depth = flat_depths(&self.mesh, self.scheme, &self.params);
         self.seams = Seams::new(&self.mesh);
         self.errors = None;
@@ -375,7 +374,7 @@ impl DynamicSubdivision {
                 let mut a = assign(
                     &self.mesh,
                     &self.vertex,
-                    &self.spheres,
+                    self.spheres.spheres(),
                     None,
                     camera,
                     &self.params,
@@ -386,7 +385,7 @@ impl DynamicSubdivision {
             None => assign(
                 &self.mesh,
                 &self.vertex,
-                &self.spheres,
+                self.spheres.spheres(),
                 errors,
                 camera,
                 &self.params,
@@ -438,7 +437,7 @@ impl DynamicSubdivision {
                     let inputs = BudgetInputs {
                         camera,
                         errors,
-                        spheres: &self.spheres,
+                        spheres: self.spheres.spheres(),
                         max_depth: self.params.max_depth,
                         pixels: px,
                     };
