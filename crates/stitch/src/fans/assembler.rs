@@ -437,7 +437,7 @@ impl Assembler {
     }
 
     /// Recomputes the blocks that are too coarse for `required`; returns which (ascending),
-    /// and their points.
+    /// and their points. A recomputed block reuses the buffers of the block it replaces.
     fn recompute_blocks(&mut self, mesh: &Mesh, required: &[Option<Depth>]) -> (Vec<usize>, usize) {
         let todo: Vec<usize> = (0..required.len())
             .filter(|&i| required[i] > self.blocks[i].depth)
@@ -445,29 +445,27 @@ impl Assembler {
         let set = &self.set;
         let max_depth = self.max_depth + 1;
         let mut fresh: Vec<(usize, Block)> = todo
-            .par_iter()
-            .map_init(
-                || PatchGrids::new(mesh, set, max_depth),
-                |grids, &i| {
-                    let p = &set.patches()[i];
-                    // Only patches with a required depth are recomputed (`None` is below any).
-                    let d = required[i].unwrap_or_default();
-                    let n = (1usize << d) + 1;
-                    let mut b = Block {
-                        depth: Some(d),
-                        pos: vec![[0.0; 3]; n * n],
-                        nrm: vec![[0.0; 3]; n * n],
-                        sided: Vec::new(),
-                        stamp: 0,
-                    };
-                    grids.grid(p, d, &mut b.pos, &mut b.nrm, &mut b.sided);
-                    // Seam points from their chains: the copies of a non-manifold edge, in
-                    // different pieces and blocks, agree to the bit.
-                    set.write_seam_points(mesh, p, d, &mut b.pos);
-                    (i, b)
-                },
-            )
+            .iter()
+            .map(|&i| (i, std::mem::take(&mut self.blocks[i])))
             .collect();
+        fresh.par_iter_mut().for_each_init(
+            || PatchGrids::new(mesh, set, max_depth),
+            |grids, (i, b)| {
+                let p = &set.patches()[*i];
+                // Only patches with a required depth are recomputed (`None` is below any).
+                let d = required[*i].unwrap_or_default();
+                let n = (1usize << d) + 1;
+                b.depth = Some(d);
+                for v in [&mut b.pos, &mut b.nrm] {
+                    v.clear();
+                    v.resize(n * n, [0.0; 3]);
+                }
+                grids.grid(p, d, &mut b.pos, &mut b.nrm, &mut b.sided);
+                // Seam points from their chains: the copies of a non-manifold edge, in
+                // different pieces and blocks, agree to the bit.
+                set.write_seam_points(mesh, p, d, &mut b.pos);
+            },
+        );
         let points = fresh.iter().map(|(_, b)| b.pos.len()).sum();
         for (i, mut b) in fresh.drain(..) {
             self.stamps += 1;
