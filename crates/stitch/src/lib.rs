@@ -17,10 +17,13 @@
 //! **Invariants.** Watertight to the bit: every point shared by two patches is written by one
 //! owner (the deeper side) and referenced through it, so after assembly every interior edge has
 //! exactly two triangles and the only open edges are the cage's boundary (and its holes). The
-//! cage is never modified.
+//! cage is never modified. A frame's index buffer is emitted in runs of patches, and a run
+//! whose state stayed keeps its triangles from the last frame, bit for bit what emitting it
+//! again gives (module `runs`).
 
 pub mod fans;
 mod primvars;
+mod runs;
 mod slots;
 pub mod tri;
 

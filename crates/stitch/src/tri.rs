@@ -29,6 +29,7 @@ use subdiv_rules::{Budget, Request, Scheme, TriangleBuffers, VertexScalar};
 use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, TriLayout, tri_lattice_len, tri_patch_lattice};
 
 use crate::fans::lap;
+use crate::runs::RunOut;
 use crate::slots::Slots;
 use crate::{AdaptiveFrame, AssemblyError, UpdateParts};
 use emit::TriFrame;
@@ -42,6 +43,9 @@ pub(crate) struct TriBlock {
     pub(crate) nrm: Vec<[f32; 3]>,
     /// One-sided normals of this patch at its border points (lattice index, normal), ascending.
     pub(crate) sided: Vec<(u32, [f32; 3])>,
+    /// Which computation this is: unique among the assembler's lattices (0: none yet), so
+    /// that a run of faces' triangles can tell whether a lattice they read was replaced.
+    pub(crate) stamp: u64,
 }
 
 /// The adaptive assembler of Loop cages (triangles only): per-face patches, their lattice
@@ -58,6 +62,14 @@ pub struct TriAssembler {
     max_depth: Depth,
     /// The cage's face-varying limit values, kept while frames need no finer level.
     uvs: Option<LevelUvs>,
+    /// The index emission's runs, kept between frames, and per run the faces its triangles
+    /// read ([`emit::run_dependencies`]).
+    runs: Vec<RunOut>,
+    deps: Vec<Vec<u32>>,
+    /// The last lattice stamp handed out.
+    stamps: u64,
+    /// Runs of the last frame that kept their triangles.
+    pub(crate) runs_kept: usize,
 }
 
 impl TriAssembler {
@@ -91,6 +103,7 @@ impl TriAssembler {
         )?;
         let layout = TriLayout::new(mesh, 1)?;
         let n = layout.patches().len();
+        let deps = emit::run_dependencies(&layout, mesh);
         Ok(TriAssembler {
             layout,
             blocks: vec![TriBlock::default(); n],
@@ -99,6 +112,10 @@ impl TriAssembler {
             version: 0,
             max_depth,
             uvs: None,
+            runs: Vec::new(),
+            deps,
+            stamps: 0,
+            runs_kept: 0,
         })
     }
 
@@ -219,7 +236,15 @@ impl TriAssembler {
             slots: &self.slots,
         };
         let t = std::time::Instant::now();
-        fr.emit_frame(active, uvs, b.triangles, b.corner_normals, b.uv_indices);
+        self.runs_kept = fr.emit_frame(
+            active,
+            uvs,
+            Some(&self.deps),
+            &mut self.runs,
+            b.triangles,
+            b.corner_normals,
+            b.uv_indices,
+        );
         *stitch += t.elapsed().as_secs_f64();
         Ok(())
     }
@@ -272,27 +297,27 @@ impl TriAssembler {
         Ok(())
     }
 
-    /// Recomputes the lattices that are too coarse for `required`; returns how many.
+    /// Recomputes the lattices that are too coarse for `required`; returns which (ascending)
+    /// and their points. A recomputed lattice reuses the buffers of the one it replaces.
     fn recompute_blocks(&mut self, mesh: &Mesh, required: &[Option<Depth>]) -> (Vec<usize>, usize) {
         let todo: Vec<usize> = (0..required.len())
             .filter(|&i| required[i] > self.blocks[i].depth)
             .collect();
         let layout = &self.layout;
-        let fresh: Vec<(usize, TriBlock)> = todo
-            .par_iter()
-            .map(|&i| {
-                let d = required[i].unwrap_or_default();
-                let mut b = TriBlock {
-                    depth: Some(d),
-                    ..TriBlock::default()
-                };
-                let p = &layout.patches()[i];
-                tri_patch_lattice(mesh, layout, p, d, &mut b.pos, &mut b.nrm, &mut b.sided);
-                (i, b)
-            })
+        let mut fresh: Vec<(usize, TriBlock)> = todo
+            .iter()
+            .map(|&i| (i, std::mem::take(&mut self.blocks[i])))
             .collect();
+        fresh.par_iter_mut().for_each(|(i, b)| {
+            let d = required[*i].unwrap_or_default();
+            b.depth = Some(d);
+            let p = &layout.patches()[*i];
+            tri_patch_lattice(mesh, layout, p, d, &mut b.pos, &mut b.nrm, &mut b.sided);
+        });
         let points = fresh.iter().map(|(_, b)| b.pos.len()).sum();
-        for (i, b) in fresh {
+        for (i, mut b) in fresh {
+            self.stamps += 1;
+            b.stamp = self.stamps;
             self.blocks[i] = b;
         }
         (todo, points)
@@ -339,7 +364,16 @@ impl TriAssembler {
             slots: &self.slots,
         };
         let (mut tris, mut sided, mut corners) = Default::default();
-        fr.emit_frame(&active, Some(&uvs), &mut tris, &mut sided, &mut corners);
+        let mut runs = Vec::new();
+        fr.emit_frame(
+            &active,
+            Some(&uvs),
+            None,
+            &mut runs,
+            &mut tris,
+            &mut sided,
+            &mut corners,
+        );
         crate::fans::check_corners(&tris, frame)?;
         Ok((uvs.values, corners))
     }

@@ -12,7 +12,7 @@ use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, PatchGrids, PatchSet};
 
 use super::edges::{Frame, halfedge_sides};
 use super::geometry::{AdaptiveFrame, UpdateParts, lap};
-use super::index::{Chunk, FanMethod, chunk_dependencies};
+use super::index::{Chunk, FanMethod, run_dependencies};
 use crate::AssemblyError;
 use crate::slots::Slots;
 
@@ -100,7 +100,7 @@ pub struct Assembler {
     side: Vec<u8>,
     /// The index emission's per-run buffers, kept between frames.
     chunks: Vec<Chunk>,
-    /// Per run of patches: the units its triangles read ([`chunk_dependencies`]).
+    /// Per run of patches: the units its triangles read ([`run_dependencies`]).
     pub(super) deps: Vec<Vec<u32>>,
     /// The last block stamp handed out.
     stamps: u64,
@@ -180,7 +180,7 @@ impl Assembler {
             .collect();
         let n = set.patches().len();
         let side = halfedge_sides(mesh, &units);
-        let deps = chunk_dependencies(mesh, &set);
+        let deps = run_dependencies(mesh, &set);
         Ok(Assembler {
             set,
             units,

@@ -1,6 +1,6 @@
 //! Tests of `assembler.rs`.
 
-use super::super::test_util::{cube, grid, open_edges, prism, split_cube};
+use super::super::test_util::{cube, grid, open_edges, prism, split_cube, uv_grid};
 use super::*;
 
 /// A frame's triangles, one-sided corner normals and face-varying corner values.
@@ -260,42 +260,13 @@ fn frames_too_large_for_memory_are_refused_before_any_work() {
     assert_eq!(open_edges(&g), 24 * 2);
 }
 
-/// A `k x k` grid of quads over a bump, with a UV per vertex, its corner quad split into two
-/// triangles (level-1 units around it), and with `crease` an infinitely sharp crease across it.
-fn uv_grid(k: usize, crease: bool) -> Mesh {
-    let mut obj = String::new();
-    for j in 0..=k {
-        for i in 0..=k {
-            let (x, y) = (i as f32 / k as f32, j as f32 / k as f32);
-            let z = 0.3 * (x * 3.0).sin() * (y * 2.0).cos();
-            obj += &format!("v {x} {y} {z}\nvt {x} {y}\n");
-        }
-    }
-    let id = |i: usize, j: usize| j * (k + 1) + i + 1;
-    for j in 0..k {
-        for i in 0..k {
-            let [a, b, c, d] = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
-            if i == 0 && j == 0 {
-                obj += &format!("f {a}/{a} {b}/{b} {c}/{c}\nf {a}/{a} {c}/{c} {d}/{d}\n");
-            } else {
-                obj += &format!("f {a}/{a} {b}/{b} {c}/{c} {d}/{d}\n");
-            }
-        }
-    }
-    let m = k / 2;
-    for i in (0..k).filter(|_| crease) {
-        obj += &format!("t crease 2/1/0 {} {} 10\n", id(i, m) - 1, id(i + 1, m) - 1);
-    }
-    Mesh::from_soup(&subdiv_mesh::parse_obj(&obj).unwrap()).unwrap()
-}
-
 #[test]
 fn runs_kept_from_the_last_frame_are_what_emitting_them_again_gives() {
     // A moving camera changes a few depths a frame: the runs of patches whose state stayed
     // keep their triangles, and the frame is bit for bit the one emitted afresh.
     let pawn = subdiv_mesh::read_obj(subdiv_test_support::shape("catmark_pawn.obj")).unwrap();
     let mut rng = super::super::test_util::Rng::xorshift(0x6b65_7074);
-    for (name, mut mesh) in [("pawn", pawn), ("uv grid", uv_grid(14, true))] {
+    for (name, mut mesh) in [("pawn", pawn), ("uv grid", uv_grid(14, true, false))] {
         let nf = mesh.num_faces();
         let mut asm = Assembler::new(&mesh, 4).unwrap();
         let mut g = AdaptiveFrame::default();
@@ -337,7 +308,7 @@ fn runs_kept_from_the_last_frame_are_what_emitting_them_again_gives() {
 fn a_moved_cage_gives_its_runs_their_new_one_sided_normals() {
     // The blocks are computed again into the slots they had, with other normals at the
     // crease: the runs with one-sided normals are emitted again.
-    let mut mesh = uv_grid(14, true);
+    let mut mesh = uv_grid(14, true, false);
     let nf = mesh.num_faces();
     let mut asm = Assembler::new(&mesh, 3).unwrap();
     let mut g = AdaptiveFrame::default();
@@ -364,7 +335,7 @@ fn a_moved_cage_gives_its_runs_their_new_one_sided_normals() {
 fn a_deeper_face_varying_level_leaves_every_run_its_values() {
     // One face drawn deeper than any before: the face-varying values are made again at a
     // deeper level; the runs far from the face, kept or not, name the same values.
-    let mesh = uv_grid(14, false);
+    let mesh = uv_grid(14, false, false);
     let nf = mesh.num_faces();
     let mut asm = Assembler::new(&mesh, 4).unwrap();
     let mut g = AdaptiveFrame::default();

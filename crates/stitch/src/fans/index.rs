@@ -16,6 +16,7 @@ use subdiv_slate::{LevelUvs, PatchRef, PatchSet};
 
 use super::edges::Frame;
 use super::grid::{side_of_on, side_point};
+use crate::runs::{RUN_PATCHES, RunOut, concat, dependencies, faces_around};
 
 /// No block point of the patch's own (interior points, or a block too coarse).
 const NO_OWN: u32 = u32::MAX;
@@ -67,63 +68,26 @@ impl UvSink for PatchUvs<'_> {
     }
 }
 
-/// One contiguous run of patches' output, and the emission scratch of the thread writing it;
+/// One run of patches' output ([`RunOut`]) and the emission scratch of the thread writing it;
 /// kept between frames so that a frame allocates nothing once the buffers have grown.
 #[derive(Clone, Debug, Default)]
 pub(super) struct Chunk {
-    tris: Vec<u32>,
-    /// (corner index within `tris`, one-sided normal).
-    sided: Vec<(u32, [f32; 3])>,
-    uv: Vec<u32>,
+    run: RunOut,
     /// Per grid point of the patch being emitted: shared id and own block point.
     grid: Vec<(u32, u32)>,
     /// Per grid point: the patch's one-sided normal there, if any.
     grid_sided: Vec<Option<[f32; 3]>>,
     /// The corners of the fan being emitted.
     poly: Vec<Corner>,
-    /// What `tris`, `sided` and `uv` were emitted from ([`Frame::chunk_key`]), valid if
-    /// `keyed`; and the scratch the next frame's key is written to.
-    key: Vec<u64>,
-    next_key: Vec<u64>,
-    keyed: bool,
 }
 
-/// Patches per [`Chunk`]: enough work per task to amortise the task, small enough that two
-/// threads share a frame of a few hundred patches evenly. (Runs of 8 or 16 patches keep no
-/// more of a moving camera's frame on helmet40: its changes spread over many runs.)
-const CHUNK_PATCHES: usize = 32;
-
-/// Per run of [`CHUNK_PATCHES`] patches of `set`, the units (ascending) whose state its
-/// triangles are a function of: the units of the faces around every corner of its patches'
-/// faces. A patch's triangles read its own unit's depth and blocks, the depth and activity of
-/// the faces across its sides (fans, edge owners) and those around its corners (vertex
-/// owners), and the blocks of the owners of its border points, all of them among these.
-pub(super) fn chunk_dependencies(mesh: &Mesh, set: &PatchSet) -> Vec<Vec<u32>> {
-    let units = set.units();
-    set.patches()
-        .chunks(CHUNK_PATCHES)
-        .map(|run| {
-            let mut deps: Vec<u32> = Vec::new();
-            let mut last = u32::MAX;
-            for p in run {
-                if p.unit == last {
-                    continue;
-                }
-                last = p.unit;
-                for h in mesh.face_halfedges(units[p.unit as usize].face) {
-                    for g in mesh.outgoing(mesh.from(h)) {
-                        let f = mesh.face(g);
-                        if f.is_some() {
-                            deps.push(f.0);
-                        }
-                    }
-                }
-            }
-            deps.sort_unstable();
-            deps.dedup();
-            deps
-        })
-        .collect()
+/// Per run of [`RUN_PATCHES`] patches of `set`, the units (faces) its triangles read
+/// ([`faces_around`] their units' faces).
+pub(super) fn run_dependencies(mesh: &Mesh, set: &PatchSet) -> Vec<Vec<u32>> {
+    let (patches, units) = (set.patches(), set.units());
+    dependencies(patches.len(), |p, deps| {
+        faces_around(mesh, units[patches[p].unit as usize].face, deps)
+    })
 }
 
 impl Chunk {
@@ -146,9 +110,9 @@ impl Chunk {
 #[inline(always)]
 fn push(ch: &mut Chunk, uv: &mut impl UvSink, c: Corner) {
     if let Some(nrm) = c.sided {
-        ch.sided.push((ch.tris.len() as u32, nrm));
+        ch.run.sided.push((ch.run.tris.len() as u32, nrm));
     }
-    ch.tris.push(c.id);
+    ch.run.tris.push(c.id);
     uv.put(&c);
 }
 
@@ -171,16 +135,17 @@ pub enum FanMethod {
 
 impl Frame<'_> {
     /// The frame's index buffer: each active, non-hole patch's triangles, emitted in parallel
-    /// by runs of [`CHUNK_PATCHES`] patches into `chunks` (grown as needed, kept by the caller
+    /// by runs of [`RUN_PATCHES`] patches into `chunks` (grown as needed, kept by the caller
     /// between frames), then concatenated in patch order into `out` (cleared first); and in
     /// `corner_normals` (cleared first; corner index in `out`, ascending) each patch's own
     /// one-sided normal at the triangle corners on creases and corners of the limit surface.
     /// With `uvs`, the face-varying value of every triangle corner on its own patch's side goes
     /// to `uv_indices` (cleared first; parallel to `out`).
     ///
-    /// With `deps` (per run, [`chunk_dependencies`]), a run whose state ([`Frame::chunk_key`])
-    /// is the one its kept triangles were emitted from keeps them: the same output as emitting
-    /// it again, without the work. Without, every run is emitted. Returns the runs kept.
+    /// With `deps` (per run, [`run_dependencies`]), a run whose state ([`Frame::chunk_key`])
+    /// is the one its kept triangles were emitted from keeps them ([`RunOut::keep`]): the same
+    /// output as emitting it again, without the work. Without, every run is emitted. Returns
+    /// the runs kept.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn emit_frame(
         &self,
@@ -194,7 +159,7 @@ impl Frame<'_> {
         uv_indices: &mut Vec<u32>,
     ) -> usize {
         let patches = self.set.patches();
-        let runs = patches.len().div_ceil(CHUNK_PATCHES);
+        let runs = patches.len().div_ceil(RUN_PATCHES);
         if chunks.len() < runs {
             chunks.resize_with(runs, Chunk::default);
         }
@@ -202,31 +167,16 @@ impl Frame<'_> {
             .par_iter_mut()
             .enumerate()
             .map(|(c, ch)| {
-                let run = c * CHUNK_PATCHES..((c + 1) * CHUNK_PATCHES).min(patches.len());
-                if let Some(deps) = deps {
-                    let mut key = std::mem::take(&mut ch.next_key);
-                    let structure =
-                        self.chunk_key(&deps[c], run.clone(), active, method, uvs, &mut key);
-                    ch.next_key = key;
-                    // Without one-sided normals, blocks computed again into the same slots at
-                    // the same depths (a moved cage) leave the run as it was.
-                    let n = if ch.sided.is_empty() {
-                        structure
-                    } else {
-                        ch.key.len()
-                    };
-                    if ch.keyed
-                        && ch.key.len() == ch.next_key.len()
-                        && ch.key[..n] == ch.next_key[..n]
-                    {
-                        return 1;
+                let run = c * RUN_PATCHES..((c + 1) * RUN_PATCHES).min(patches.len());
+                let key = deps.map(|deps| {
+                    let run = run.clone();
+                    move |key: &mut Vec<u64>| {
+                        self.chunk_key(&deps[c], run, active, method, uvs, key)
                     }
-                    std::mem::swap(&mut ch.key, &mut ch.next_key);
+                });
+                if ch.run.keep(key) {
+                    return 1;
                 }
-                ch.keyed = deps.is_some();
-                ch.tris.clear();
-                ch.sided.clear();
-                ch.uv.clear();
                 for p in &patches[run] {
                     let face = self.set.units()[p.unit as usize].face;
                     if !active[p.unit as usize] || self.mesh.is_hole(face) {
@@ -234,7 +184,7 @@ impl Frame<'_> {
                     }
                     match uvs {
                         Some(uvs) => {
-                            let mut out = std::mem::take(&mut ch.uv);
+                            let mut out = std::mem::take(&mut ch.run.uv);
                             let mut sink = PatchUvs {
                                 uvs,
                                 p,
@@ -242,7 +192,7 @@ impl Frame<'_> {
                                 out: &mut out,
                             };
                             self.emit_patch(p, method, ch, &mut sink);
-                            ch.uv = out;
+                            ch.run.uv = out;
                         }
                         None => self.emit_patch(p, method, ch, &mut ()),
                     }
@@ -250,23 +200,16 @@ impl Frame<'_> {
                 0
             })
             .sum();
-        out.clear();
-        corner_normals.clear();
-        uv_indices.clear();
-        let done = &chunks[..runs];
-        out.reserve(done.iter().map(|c| c.tris.len()).sum());
-        corner_normals.reserve(done.iter().map(|c| c.sided.len()).sum());
-        uv_indices.reserve(done.iter().map(|c| c.uv.len()).sum());
-        for ch in done {
-            let start = out.len() as u32;
-            corner_normals.extend(ch.sided.iter().map(|&(c, n)| (start + c, n)));
-            out.extend_from_slice(&ch.tris);
-            uv_indices.extend_from_slice(&ch.uv);
-        }
+        concat(
+            chunks[..runs].iter().map(|c| &c.run),
+            out,
+            corner_normals,
+            uv_indices,
+        );
         kept
     }
 
-    /// The state a run's triangles are a function of, into `key` (cleared first): the fan
+    /// The state a run's triangles are a function of, into `key` (empty): the fan
     /// method, the face-varying level, and per unit of `deps` its activity and depth and, per
     /// patch, where its block lies in the vertex buffer and how deep it is; then which
     /// computation each of the run's own patches' blocks holds (`patches`), which only the
@@ -281,7 +224,6 @@ impl Frame<'_> {
         uvs: Option<&LevelUvs>,
         key: &mut Vec<u64>,
     ) -> usize {
-        key.clear();
         let level = uvs.map_or(0, |u| u64::from(u.level()) + 1);
         key.push(((method as u64) << 32) | level);
         let units = self.set.units();
@@ -344,8 +286,8 @@ impl Frame<'_> {
         }
     }
 
-    /// The triangles of one patch, appended to `ch.tris` with the patch's one-sided normals at
-    /// its border corners in `ch.sided`, and each corner's face-varying value in `uv`; quad by
+    /// The triangles of one patch, appended to `ch.run.tris` with the patch's one-sided normals
+    /// at its border corners in `ch.run.sided`, and each corner's face-varying value in `uv`; quad by
     /// quad, row by row.
     fn emit_patch<U: UvSink>(&self, p: &PatchRef, method: FanMethod, ch: &mut Chunk, uv: &mut U) {
         let pi = self.patch_index(p.unit as usize, p.sub as usize);
@@ -388,7 +330,8 @@ impl Frame<'_> {
                     let [a, b, c, e] = quad.map(|k| g[k].0);
                     let ids = [a, b, c, e];
                     let [o0, o1, o2, o3, o4, o5] = order;
-                    ch.tris
+                    ch.run
+                        .tris
                         .extend_from_slice(&[ids[o0], ids[o1], ids[o2], ids[o3], ids[o4], ids[o5]]);
                     continue;
                 }

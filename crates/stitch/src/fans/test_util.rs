@@ -81,3 +81,33 @@ pub(super) fn pillow() -> Mesh {
                f 8 10 2 1\nf 10 4 3 2\nf 6 5 4 10\nf 7 6 10 8\n";
     Mesh::from_soup(&parse_obj(obj).unwrap()).unwrap()
 }
+
+/// A `k x k` grid over a bump with a UV per vertex: quads with the corner one split into two
+/// triangles (level-1 units around it), or with `triangles` all split; with `crease` an
+/// infinitely sharp crease across it.
+pub(crate) fn uv_grid(k: usize, crease: bool, triangles: bool) -> Mesh {
+    let mut obj = String::new();
+    for j in 0..=k {
+        for i in 0..=k {
+            let (x, y) = (i as f32 / k as f32, j as f32 / k as f32);
+            let z = 0.3 * (x * 3.0).sin() * (y * 2.0).cos();
+            obj += &format!("v {x} {y} {z}\nvt {x} {y}\n");
+        }
+    }
+    let id = |i: usize, j: usize| j * (k + 1) + i + 1;
+    for j in 0..k {
+        for i in 0..k {
+            let [a, b, c, d] = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+            if triangles || (i == 0 && j == 0) {
+                obj += &format!("f {a}/{a} {b}/{b} {c}/{c}\nf {a}/{a} {c}/{c} {d}/{d}\n");
+            } else {
+                obj += &format!("f {a}/{a} {b}/{b} {c}/{c} {d}/{d}\n");
+            }
+        }
+    }
+    let m = k / 2;
+    for i in (0..k).filter(|_| crease) {
+        obj += &format!("t crease 2/1/0 {} {} 10\n", id(i, m) - 1, id(i + 1, m) - 1);
+    }
+    Mesh::from_soup(&parse_obj(&obj).unwrap()).unwrap()
+}

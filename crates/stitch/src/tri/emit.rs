@@ -6,6 +6,7 @@ use subdiv_mesh::{FaceId, Mesh};
 use subdiv_slate::{Depth, LevelUvs, TriLayout, tri_lattice_index};
 
 use super::TriBlock;
+use crate::runs::{RUN_PATCHES, RunOut, concat, dependencies};
 use crate::slots::Slots;
 
 /// One-sided normals of triangle corners: (corner index, normal), ascending.
@@ -89,6 +90,27 @@ impl Owners {
 /// same point, its index there (for the patch's one-sided normals), else `NONE`; and where it
 /// lies on the emitting patch: lattice point `(i, j)` at resolution `r` (for its UV on the
 /// patch's side of any seam).
+/// Per run of [`RUN_PATCHES`] faces of `layout`, the faces its triangles read: those sharing
+/// a corner or a side with its faces, among which [`Owners`] finds every owner they name.
+pub(crate) fn run_dependencies(layout: &TriLayout, mesh: &Mesh) -> Vec<Vec<u32>> {
+    let patches = layout.patches();
+    let mut at_vertex: Vec<Vec<u32>> = vec![Vec::new(); mesh.num_vertices()];
+    let mut at_edge: Vec<Vec<u32>> = vec![Vec::new(); mesh.num_edges()];
+    for (f, p) in patches.iter().enumerate() {
+        for k in 0..3 {
+            at_vertex[p.corners[k] as usize].push(f as u32);
+            at_edge[p.edges[k].idx()].push(f as u32);
+        }
+    }
+    dependencies(patches.len(), |f, deps| {
+        let p = &patches[f];
+        for k in 0..3 {
+            deps.extend_from_slice(&at_vertex[p.corners[k] as usize]);
+            deps.extend_from_slice(&at_edge[p.edges[k].idx()]);
+        }
+    })
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Pt {
     id: u32,
@@ -194,42 +216,78 @@ impl TriFrame<'_> {
     /// The index buffer of every active patch (in face order), the one-sided normals of its
     /// triangles' corners and, with `uvs`, the face-varying value of every corner on the
     /// emitting patch's side of any seam in `uv_indices` (parallel to `indices`; cleared
-    /// first).
+    /// first); emitted in runs of [`RUN_PATCHES`] faces into `runs` (grown as needed, kept by
+    /// the caller between frames). With `deps` (per run, [`run_dependencies`]), a run whose
+    /// state ([`TriFrame::run_key`]) stayed keeps its triangles; returns the runs kept.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn emit_frame(
         &self,
         active: &[bool],
         uvs: Option<&LevelUvs>,
+        deps: Option<&[Vec<u32>]>,
+        runs: &mut Vec<RunOut>,
         indices: &mut Vec<u32>,
         corner_normals: &mut SidedNormals,
         uv_indices: &mut Vec<u32>,
-    ) {
-        let per: Vec<(Vec<u32>, SidedNormals, Vec<u32>)> = (0..active.len())
-            .into_par_iter()
-            .with_min_len(64)
-            .map(|f| {
-                let mut out = Emit {
-                    indices: Vec::new(),
-                    sided: Vec::new(),
-                    uv: Vec::new(),
-                    block: &self.blocks[f],
-                    uvs,
-                    face: FaceId(f as u32),
-                };
-                if active[f] {
+    ) -> usize {
+        let n = active.len().div_ceil(RUN_PATCHES);
+        if runs.len() < n {
+            runs.resize_with(n, RunOut::default);
+        }
+        let kept = runs[..n]
+            .par_iter_mut()
+            .enumerate()
+            .map(|(c, run)| {
+                let faces = c * RUN_PATCHES..((c + 1) * RUN_PATCHES).min(active.len());
+                let key = deps.map(|deps| {
+                    let faces = faces.clone();
+                    move |key: &mut Vec<u64>| self.run_key(&deps[c], faces, active, uvs, key)
+                });
+                if run.keep(key) {
+                    return 1;
+                }
+                for f in faces.filter(|&f| active[f]) {
+                    let mut out = Emit {
+                        indices: &mut run.tris,
+                        sided: &mut run.sided,
+                        uv: &mut run.uv,
+                        block: &self.blocks[f],
+                        uvs,
+                        face: FaceId(f as u32),
+                    };
                     self.emit_patch(f, &mut out);
                 }
-                (out.indices, out.sided, out.uv)
+                0
             })
-            .collect();
-        indices.clear();
-        corner_normals.clear();
-        uv_indices.clear();
-        for (idx, sided, uv) in per {
-            let base = indices.len() as u32;
-            corner_normals.extend(sided.into_iter().map(|(k, n)| (base + k, n)));
-            indices.extend_from_slice(&idx);
-            uv_indices.extend_from_slice(&uv);
+            .sum();
+        concat(runs[..n].iter(), indices, corner_normals, uv_indices);
+        kept
+    }
+
+    /// The state a run's triangles are a function of, into `key` (empty): the face-varying
+    /// level, and per face of `deps` its activity and depth, where its lattice lies in the
+    /// vertex buffer and how deep it is; then which computation each of the run's own faces'
+    /// lattices holds (`faces`), which only the one-sided normals it copies from them depend
+    /// on. Returns the length of the first part.
+    fn run_key(
+        &self,
+        deps: &[u32],
+        faces: std::ops::Range<usize>,
+        active: &[bool],
+        uvs: Option<&LevelUvs>,
+        key: &mut Vec<u64>,
+    ) -> usize {
+        key.push(uvs.map_or(0, |u| u64::from(u.level()) + 1));
+        for &f in deps {
+            let f = f as usize;
+            let b = &self.blocks[f];
+            let depth = b.depth.map_or(0, |d| u64::from(d) + 1);
+            key.push((u64::from(self.depth[f]) << 1) | u64::from(active[f]));
+            key.push((u64::from(self.slots.start(f)) << 8) | depth);
         }
+        let structure = key.len();
+        key.extend(faces.map(|f| self.blocks[f].stamp));
+        structure
     }
 
     /// Patch `f`'s triangles: lattice triangles, with those on a finer side filled by
@@ -286,12 +344,12 @@ impl TriFrame<'_> {
     }
 }
 
-/// One patch's output.
+/// One patch's output, appended to its run's.
 struct Emit<'a> {
-    indices: Vec<u32>,
-    sided: SidedNormals,
+    indices: &'a mut Vec<u32>,
+    sided: &'a mut SidedNormals,
     /// The face-varying value of every corner (parallel to `indices`; empty without UVs).
-    uv: Vec<u32>,
+    uv: &'a mut Vec<u32>,
     /// The emitting patch's lattice (its one-sided normals).
     block: &'a TriBlock,
     /// The cage's face-varying limit values, `None` without UVs.
