@@ -14,6 +14,9 @@ use subdiv_mesh::{FaceId, Mesh};
 /// moving camera's frame on helmet40: its changes spread over many runs.)
 pub(crate) const RUN_PATCHES: usize = 32;
 
+/// A frame's (or a run's) triangles, one-sided corner normals and face-varying corner values.
+pub(crate) type Emitted = (Vec<u32>, Vec<(u32, [f32; 3])>, Vec<u32>);
+
 /// One run's triangles, one-sided corner normals (corner index within `tris`) and face-varying
 /// corner values, and the key they were emitted from; kept between frames so that a frame
 /// allocates nothing once the buffers have grown.

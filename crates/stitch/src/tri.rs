@@ -29,7 +29,7 @@ use subdiv_rules::{Budget, Request, Scheme, TriangleBuffers, VertexScalar};
 use subdiv_slate::{Depth, LevelUvs, MAX_DEPTH, TriLayout, tri_lattice_len, tri_patch_lattice};
 
 use crate::fans::lap;
-use crate::runs::RunOut;
+use crate::runs::{Emitted, RunOut};
 use crate::slots::Slots;
 use crate::{AdaptiveFrame, AssemblyError, UpdateParts};
 use emit::TriFrame;
@@ -355,27 +355,40 @@ impl TriAssembler {
         let Some((depth, active, uvs)) = frame.stand_in_uvs(stand_in, Scheme::Loop, 0)? else {
             return Ok((Vec::new(), Vec::new()));
         };
-        let owners = emit::Owners::new(stand_in, &self.layout, &depth, &active);
+        let (tris, _, corners) = self.emit_afresh(stand_in, &depth, &active, Some(&uvs));
+        crate::fans::check_corners(&tris, frame)?;
+        Ok((uvs.values, corners))
+    }
+
+    /// The triangles, one-sided corner normals and face-varying corner values of a frame of
+    /// `depth` and `active` (clamped and masked as [`TriAssembler::frame`] takes them) over the
+    /// lattices as cached, every run emitted.
+    fn emit_afresh(
+        &self,
+        mesh: &Mesh,
+        depth: &[Depth],
+        active: &[bool],
+        uvs: Option<&LevelUvs>,
+    ) -> Emitted {
+        let owners = emit::Owners::new(mesh, &self.layout, depth, active);
         let fr = TriFrame {
             layout: &self.layout,
-            depth: &depth,
+            depth,
             owners: &owners,
             blocks: &self.blocks,
             slots: &self.slots,
         };
-        let (mut tris, mut sided, mut corners) = Default::default();
-        let mut runs = Vec::new();
+        let (mut runs, mut tris, mut sided, mut corners) = Default::default();
         fr.emit_frame(
-            &active,
-            Some(&uvs),
+            active,
+            uvs,
             None,
             &mut runs,
             &mut tris,
             &mut sided,
             &mut corners,
         );
-        crate::fans::check_corners(&tris, frame)?;
-        Ok((uvs.values, corners))
+        (tris, sided, corners)
     }
 
     /// Where frame vertex `index` comes from: (face, lattice depth, lattice index), for tests

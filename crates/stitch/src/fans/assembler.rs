@@ -206,6 +206,26 @@ impl Assembler {
         })
     }
 
+    /// The frame data (edge resolutions, owners, point ids) of `depth` and `active` over the
+    /// blocks as cached.
+    pub(super) fn frame_data<'a>(
+        &'a self,
+        mesh: &'a Mesh,
+        depth: &'a [Depth],
+        active: &'a [bool],
+    ) -> Frame<'a> {
+        Frame::new(
+            mesh,
+            &self.set,
+            &self.units,
+            &self.side,
+            depth,
+            active,
+            &self.blocks,
+            &self.slots,
+        )
+    }
+
     /// Chooses the fan method.
     pub fn set_method(&mut self, m: FanMethod) {
         self.method = m;
@@ -360,28 +380,20 @@ impl Assembler {
             (true, Some(_)) => self.uvs.as_ref(),
             _ => None,
         };
-        let fr = Frame::new(
-            mesh,
-            &self.set,
-            &self.units,
-            &self.side,
-            depth,
-            active,
-            &self.blocks,
-            &self.slots,
-        );
         // Index buffer: each patch's triangles, in parallel, then concatenated in patch order.
         let t = std::time::Instant::now();
-        self.runs_kept = fr.emit_frame(
+        let mut chunks = std::mem::take(&mut self.chunks);
+        let kept = self.frame_data(mesh, depth, active).emit_frame(
             active,
             self.method,
             uvs,
             Some(&self.deps),
-            &mut self.chunks,
+            &mut chunks,
             b.triangles,
             b.corner_normals,
             b.uv_indices,
         );
+        (self.chunks, self.runs_kept) = (chunks, kept);
         *stitch += t.elapsed().as_secs_f64();
         Ok(())
     }
@@ -391,16 +403,7 @@ impl Assembler {
     /// edge (every edge of a bilinear cage) needs the deeper side's resolution: the fans there
     /// use this patch's own one-sided normals at the deeper points of the crease.
     fn required_depths(&self, mesh: &Mesh, depth: &[Depth], active: &[bool]) -> Vec<Option<Depth>> {
-        let fr = Frame::new(
-            mesh,
-            &self.set,
-            &self.units,
-            &self.side,
-            depth,
-            active,
-            &self.blocks,
-            &self.slots,
-        );
+        let fr = self.frame_data(mesh, depth, active);
         let bilinear = self.scheme == Scheme::Bilinear;
         self.set
             .patches()
@@ -520,16 +523,7 @@ impl Assembler {
         let Some((depth, active, uvs)) = frame.stand_in_uvs(stand_in, self.scheme, 1)? else {
             return Ok((Vec::new(), Vec::new()));
         };
-        let fr = Frame::new(
-            stand_in,
-            &self.set,
-            &self.units,
-            &self.side,
-            &depth,
-            &active,
-            &self.blocks,
-            &self.slots,
-        );
+        let fr = self.frame_data(stand_in, &depth, &active);
         let (mut chunks, mut tris, mut sided, mut corners) = Default::default();
         fr.emit_frame(
             &active,

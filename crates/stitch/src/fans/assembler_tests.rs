@@ -1,10 +1,10 @@
 //! Tests of `assembler.rs`.
 
-use super::super::test_util::{cube, grid, open_edges, prism, split_cube, uv_grid};
+use super::super::test_util::{
+    Emitted, Rng, assert_emitted, bent_once, cube, depth_walk, grid, open_edges, prism, split_cube,
+    uv_grid,
+};
 use super::*;
-
-/// A frame's triangles, one-sided corner normals and face-varying corner values.
-type Emitted = (Vec<u32>, Vec<(u32, [f32; 3])>, Vec<u32>);
 
 /// Test access to an assembler's frame data.
 impl Assembler {
@@ -46,16 +46,7 @@ impl Assembler {
         active: &[bool],
         f: impl FnOnce(&Frame) -> R,
     ) -> R {
-        let fr = Frame::new(
-            mesh,
-            &self.set,
-            &self.units,
-            &self.side,
-            depth,
-            active,
-            &self.blocks,
-            &self.slots,
-        );
+        let fr = self.frame_data(mesh, depth, active);
         f(&fr)
     }
 }
@@ -265,70 +256,41 @@ fn runs_kept_from_the_last_frame_are_what_emitting_them_again_gives() {
     // A moving camera changes a few depths a frame: the runs of patches whose state stayed
     // keep their triangles, and the frame is bit for bit the one emitted afresh.
     let pawn = subdiv_mesh::read_obj(subdiv_test_support::shape("catmark_pawn.obj")).unwrap();
-    let mut rng = super::super::test_util::Rng::xorshift(0x6b65_7074);
+    let mut rng = Rng::xorshift(0x6b65_7074);
     for (name, mut mesh) in [("pawn", pawn), ("uv grid", uv_grid(14, true, false))] {
-        let nf = mesh.num_faces();
         let mut asm = Assembler::new(&mesh, 4).unwrap();
         let mut g = AdaptiveFrame::default();
-        let (mut depth, mut active) = (vec![1u8; nf], vec![true; nf]);
-        let mut kept = 0;
-        for frame in 0..80 {
-            for _ in 0..rng.below(4) {
-                let u = rng.below(nf);
-                depth[u] = rng.below(5) as u8;
-                if rng.chance(15) {
-                    active[u] = !active[u];
-                }
+        let kept = depth_walk(&mut mesh, &mut rng, |mesh, depth, active, bent, i| {
+            if bent {
+                asm.move_to(mesh);
             }
-            // The cage moves: every block is computed again, with other one-sided normals.
-            if frame == 50 {
-                for p in mesh.positions_mut() {
-                    p.z += 0.2 * p.x * p.y;
-                }
-                asm.move_to(&mesh);
-            }
-            asm.frame(&mesh, &depth, &active, &mut g).unwrap();
-            kept += asm.runs_kept;
-            let (tris, sided, uv) = asm.emitted_afresh(&mesh, &depth, &active);
-            let s = g.surface();
-            assert!(s.face_indices() == tris, "{name} frame {frame}: triangles");
-            assert!(s.corner_normals() == sided, "{name} frame {frame}: normals");
-            assert!(s.uv_indices() == uv, "{name} frame {frame}: face-varying");
-        }
+            asm.frame(mesh, depth, active, &mut g).unwrap();
+            let afresh = asm.emitted_afresh(mesh, depth, active);
+            assert_emitted(&g, &afresh, &format!("{name} frame {i}"));
+            asm.runs_kept
+        });
         assert!(kept > 80, "{name}: {kept} runs kept");
         if name == "uv grid" {
-            assert!(
-                !g.surface().uv_indices().is_empty() && !g.surface().corner_normals().is_empty()
-            );
+            let s = g.surface();
+            assert!(!s.uv_indices().is_empty() && !s.corner_normals().is_empty());
         }
     }
 }
 
 #[test]
 fn a_moved_cage_gives_its_runs_their_new_one_sided_normals() {
-    // The blocks are computed again into the slots they had, with other normals at the
-    // crease: the runs with one-sided normals are emitted again.
-    let mut mesh = uv_grid(14, true, false);
-    let nf = mesh.num_faces();
+    let mesh = uv_grid(12, true, false);
     let mut asm = Assembler::new(&mesh, 3).unwrap();
     let mut g = AdaptiveFrame::default();
-    let (depth, active) = (vec![2u8; nf], vec![true; nf]);
-    asm.frame(&mesh, &depth, &active, &mut g).unwrap();
-    let before = g.surface().corner_normals().to_vec();
-    for p in mesh.positions_mut() {
-        p.z += 0.2 * p.x * p.y;
-    }
-    asm.move_to(&mesh);
-    asm.frame(&mesh, &depth, &active, &mut g).unwrap();
-    let (tris, sided, _) = asm.emitted_afresh(&mesh, &depth, &active);
-    assert!(g.surface().face_indices() == tris);
-    assert!(g.surface().corner_normals() == sided);
-    assert!(
-        sided.len() > 50 && sided != before,
-        "the crease's normals moved"
-    );
-    // The runs away from the crease and the border keep their triangles.
-    assert!(asm.runs_kept > 0 && asm.runs_kept < asm.deps.len());
+    bent_once(false, |mesh, depth, active, bent| {
+        if bent {
+            asm.move_to(mesh);
+        }
+        asm.frame(mesh, depth, active, &mut g).unwrap();
+        let afresh = asm.emitted_afresh(mesh, depth, active);
+        assert_emitted(&g, &afresh, "bent");
+        (afresh.1, asm.runs_kept, asm.deps.len())
+    });
 }
 
 #[test]

@@ -111,3 +111,72 @@ pub(crate) fn uv_grid(k: usize, crease: bool, triangles: bool) -> Mesh {
     }
     Mesh::from_soup(&parse_obj(&obj).unwrap()).unwrap()
 }
+
+pub(crate) use crate::runs::Emitted;
+
+/// Asserts that frame `g` has the triangles, one-sided corner normals and face-varying corner
+/// values `afresh` (a frame emitted again, nothing kept).
+pub(crate) fn assert_emitted(g: &AdaptiveFrame, afresh: &Emitted, what: &str) {
+    let s = g.surface();
+    assert!(s.face_indices() == afresh.0, "{what}: triangles");
+    assert!(s.corner_normals() == afresh.1, "{what}: one-sided normals");
+    assert!(s.uv_indices() == afresh.2, "{what}: face-varying values");
+}
+
+/// Moves the cage: `z += 0.2 x y` (other normals along a crease across a [`uv_grid`]).
+pub(crate) fn bend(mesh: &mut Mesh) {
+    for p in mesh.positions_mut() {
+        p.z += 0.2 * p.x * p.y;
+    }
+}
+
+/// A moving camera over a moving cage: 80 frames from depth 1 everywhere, each changing a few
+/// faces' depths (now and then their activity), the cage bent at frame 50.
+/// `frame(mesh, depth, active, bent, i)` builds frame `i` (`bent`: the cage moved since the
+/// last) and returns how many runs it kept; returns the sum.
+pub(crate) fn depth_walk(
+    mesh: &mut Mesh,
+    rng: &mut Rng,
+    mut frame: impl FnMut(&Mesh, &[u8], &[bool], bool, usize) -> usize,
+) -> usize {
+    let nf = mesh.num_faces();
+    let (mut depth, mut active) = (vec![1u8; nf], vec![true; nf]);
+    let mut kept = 0;
+    for i in 0..80 {
+        for _ in 0..rng.below(4) {
+            let f = rng.below(nf);
+            depth[f] = rng.below(5) as u8;
+            if rng.chance(15) {
+                active[f] = !active[f];
+            }
+        }
+        if i == 50 {
+            bend(mesh);
+        }
+        kept += frame(mesh, &depth, &active, i == 50, i);
+    }
+    kept
+}
+
+/// A still camera over a cage that moves once: two frames of [`uv_grid`] (`triangles` as
+/// there, with the crease) at depth 2 everywhere, the cage bent between them.
+/// `frame(mesh, depth, active, bent)` builds one, checks it against a frame emitted afresh and
+/// returns the frame's one-sided corner normals, the runs it kept and the runs in all.
+/// Asserts that the crease's normals moved and that the bent frame kept some runs, not all:
+/// blocks computed again into the slots they had leave the runs without one-sided normals.
+pub(crate) fn bent_once(
+    triangles: bool,
+    mut frame: impl FnMut(&Mesh, &[u8], &[bool], bool) -> (Vec<(u32, [f32; 3])>, usize, usize),
+) {
+    let mut mesh = uv_grid(12, true, triangles);
+    let nf = mesh.num_faces();
+    let (depth, active) = (vec![2u8; nf], vec![true; nf]);
+    let (before, _, _) = frame(&mesh, &depth, &active, false);
+    bend(&mut mesh);
+    let (after, kept, runs) = frame(&mesh, &depth, &active, true);
+    assert!(
+        after.len() > 50 && after != before,
+        "the crease's normals moved"
+    );
+    assert!(kept > 0 && kept < runs, "{kept} of {runs} runs kept");
+}

@@ -6,7 +6,9 @@ use subdiv_mesh::{Mesh, parse_obj};
 use subdiv_slate::{TriLayout, tessellate_tri};
 
 use super::*;
-use crate::fans::test_util::{Rng, open_edges, uv_grid};
+use crate::fans::test_util::{
+    Emitted, Rng, assert_emitted, bent_once, depth_walk, open_edges, uv_grid,
+};
 
 fn fixture(name: &str) -> Mesh {
     let path = subdiv_test_support::shape(&format!("{name}.obj"));
@@ -223,32 +225,11 @@ impl TriAssembler {
         let active: Vec<bool> = (0..active.len())
             .map(|f| active[f] && self.layout.patches()[f].visible)
             .collect();
-        let owners = emit::Owners::new(mesh, &self.layout, &depth, &active);
         let drawn = active.iter().any(|&a| a);
         let uvs = self.uvs.as_ref().filter(|_| mesh.uv().is_some() && drawn);
-        let fr = TriFrame {
-            layout: &self.layout,
-            depth: &depth,
-            owners: &owners,
-            blocks: &self.blocks,
-            slots: &self.slots,
-        };
-        let (mut runs, mut tris, mut sided, mut corners) = Default::default();
-        fr.emit_frame(
-            &active,
-            uvs,
-            None,
-            &mut runs,
-            &mut tris,
-            &mut sided,
-            &mut corners,
-        );
-        (tris, sided, corners)
+        self.emit_afresh(mesh, &depth, &active, uvs)
     }
 }
-
-/// A frame's triangles, one-sided corner normals and face-varying corner values.
-type Emitted = (Vec<u32>, Vec<(u32, [f32; 3])>, Vec<u32>);
 
 #[test]
 fn runs_kept_from_the_last_frame_are_what_emitting_them_again_gives() {
@@ -259,59 +240,33 @@ fn runs_kept_from_the_last_frame_are_what_emitting_them_again_gives() {
         ("uv grid", uv_grid(12, true, true)),
         ("semi-sharp cubes", fixture("loop_cubes_semisharp")),
     ] {
-        let nf = mesh.num_faces();
         let mut asm = TriAssembler::new(&mesh, 4).unwrap();
         let mut g = AdaptiveFrame::default();
-        let (mut depth, mut active) = (vec![1u8; nf], vec![true; nf]);
-        let mut kept = 0;
-        for frame in 0..80 {
-            for _ in 0..rng.below(4) {
-                let f = rng.below(nf);
-                depth[f] = rng.below(5) as u8;
-                if rng.chance(15) {
-                    active[f] = !active[f];
-                }
-            }
-            if frame == 50 {
-                for p in mesh.positions_mut() {
-                    p.z += 0.2 * p.x * p.y;
-                }
+        let kept = depth_walk(&mut mesh, &mut rng, |mesh, depth, active, bent, i| {
+            if bent {
                 asm.invalidate();
             }
-            asm.frame(&mesh, &depth, &active, &mut g).unwrap();
-            kept += asm.runs_kept;
-            let (tris, sided, uv) = asm.emitted_afresh(&mesh, &depth, &active);
-            let s = g.surface();
-            assert!(s.face_indices() == tris, "{name} frame {frame}: triangles");
-            assert!(s.corner_normals() == sided, "{name} frame {frame}: normals");
-            assert!(s.uv_indices() == uv, "{name} frame {frame}: face-varying");
-        }
+            asm.frame(mesh, depth, active, &mut g).unwrap();
+            let afresh = asm.emitted_afresh(mesh, depth, active);
+            assert_emitted(&g, &afresh, &format!("{name} frame {i}"));
+            asm.runs_kept
+        });
         assert!(kept > 40, "{name}: {kept} runs kept");
     }
 }
 
 #[test]
 fn a_moved_cage_gives_its_runs_their_new_one_sided_normals() {
-    // The lattices are computed again into the slots they had, with other normals at the
-    // crease: the runs with one-sided normals are emitted again, the others kept.
-    let mut mesh = uv_grid(12, true, true);
-    let nf = mesh.num_faces();
+    let mesh = uv_grid(12, true, true);
     let mut asm = TriAssembler::new(&mesh, 3).unwrap();
     let mut g = AdaptiveFrame::default();
-    let (depth, active) = (vec![2u8; nf], vec![true; nf]);
-    asm.frame(&mesh, &depth, &active, &mut g).unwrap();
-    let before = g.surface().corner_normals().to_vec();
-    for p in mesh.positions_mut() {
-        p.z += 0.2 * p.x * p.y;
-    }
-    asm.invalidate();
-    asm.frame(&mesh, &depth, &active, &mut g).unwrap();
-    let (tris, sided, _) = asm.emitted_afresh(&mesh, &depth, &active);
-    assert!(g.surface().face_indices() == tris);
-    assert!(g.surface().corner_normals() == sided);
-    assert!(
-        sided.len() > 50 && sided != before,
-        "the crease's normals moved"
-    );
-    assert!(asm.runs_kept > 0 && asm.runs_kept < asm.deps.len());
+    bent_once(true, |mesh, depth, active, bent| {
+        if bent {
+            asm.invalidate();
+        }
+        asm.frame(mesh, depth, active, &mut g).unwrap();
+        let afresh = asm.emitted_afresh(mesh, depth, active);
+        assert_emitted(&g, &afresh, "bent");
+        (afresh.1, asm.runs_kept, asm.deps.len())
+    });
 }
