@@ -95,13 +95,11 @@ impl FaceSpheres {
             {
                 return false;
             }
-            let mut m = mesh.clone();
             for _ in 0..k {
-                match subdiv_rules::refine_uniform(&m, scheme) {
-                    Ok(fine) => m = fine,
+                match subdiv_rules::refine_uniform(levels.last().unwrap_or(mesh), scheme) {
+                    Ok(fine) => levels.push(fine),
                     Err(_) => return false,
                 }
-                levels.push(m.clone());
             }
             true
         });
