@@ -183,7 +183,10 @@ fn test() -> Result<()> {
     let mut c = match &xvfb {
         Ok(()) => {
             let mut c = Command::new("xvfb-run");
-            c.args(["-a", "-s", "-screen 0 1280x1024x24", &cargo_exe]);
+            // `-noreset`: by default the X server resets whenever its last client leaves,
+            // and a window test connecting during that reset (test threads start and end
+            // viewers in parallel) is refused: "Failed to open connection to X server".
+            c.args(["-a", "-s", "-screen 0 1280x1024x24 -noreset", &cargo_exe]);
             c.env("SUBDIV_VK_REQUIRE_DISPLAY", "1");
             c
         }
