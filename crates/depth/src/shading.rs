@@ -38,11 +38,12 @@ use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
 use glam::{Mat4, Vec2, Vec3};
+use rayon::prelude::*;
 use subdiv_mesh::Camera;
 
 use crate::Depth;
 use crate::contour::contour_turns;
-use crate::pixel_error::PatchErrors;
+use crate::pixel_error::{PatchError, PatchErrors};
 
 /// The share of the visible pixels whose shading error may exceed the tolerance: 1 %, as the
 /// benchmark's 99th percentile.
@@ -195,7 +196,7 @@ impl ScreenArea {
     }
 
     /// [`Self::visible_density`] and [`Self::density`] of every element, as pairs (each splat
-    /// computed once).
+    /// computed once; splats and visible shares in parallel).
     pub fn densities<'a>(
         &self,
         elements: impl Iterator<Item = &'a AreaElement>,
@@ -203,10 +204,13 @@ impl ScreenArea {
     ) {
         let cols = (self.size.x / OCCLUSION_CELL).ceil().max(1.0) as usize;
         let rows = (self.size.y / OCCLUSION_CELL).ceil().max(1.0) as usize;
-        let mut nearest = vec![f32::INFINITY; cols * rows];
+        let elements: Vec<&AreaElement> = elements.collect();
         let splats: Vec<Option<(Splat, f32)>> = elements
+            .par_iter()
+            .with_min_len(PAR_ELEMENTS)
             .map(|e| self.splat(e).map(|s| (s, 2.0 * e.area.sqrt())))
             .collect();
+        let mut nearest = vec![f32::INFINITY; cols * rows];
         for (s, _) in splats.iter().flatten() {
             let (xs, ys, cols) = self.cells(s);
             for y in ys {
@@ -215,23 +219,32 @@ impl ScreenArea {
                 }
             }
         }
-        out.clear();
-        out.extend(splats.iter().map(|splat| {
-            let Some((s, slack)) = splat else {
-                return (0.0, 0.0);
-            };
-            let (xs, ys, cols) = self.cells(s);
-            let (mut seen, mut all) = (0usize, 0usize);
-            for y in ys {
-                for &z in &nearest[y * cols + xs.start..y * cols + xs.end] {
-                    all += 1;
-                    seen += usize::from(s.z <= z + slack);
+        splats
+            .par_iter()
+            .with_min_len(PAR_ELEMENTS)
+            .map(|splat| {
+                let Some((s, slack)) = splat else {
+                    return (0.0, 0.0);
+                };
+                let (xs, ys, cols) = self.cells(s);
+                let (mut seen, mut all) = (0usize, 0usize);
+                for y in ys {
+                    for &z in &nearest[y * cols + xs.start..y * cols + xs.end] {
+                        all += 1;
+                        seen += usize::from(s.z <= z + slack);
+                    }
                 }
-            }
-            (s.density * seen as f32 / all.max(1) as f32, s.density)
-        }));
+                (s.density * seen as f32 / all.max(1) as f32, s.density)
+            })
+            .collect_into_vec(out);
     }
 }
+
+/// Elements per parallel task of [`ScreenArea::densities`], and faces per task of
+/// [`OutlierTable::new`]'s rows (16 elements each): enough work per task to outweigh handing
+/// it out.
+const PAR_ELEMENTS: usize = 1024;
+const PAR_FACES: usize = 64;
 
 /// Cell size of the occlusion grid of [`ScreenArea::visible_density`], in pixels: elements are
 /// a few pixels wide where the shading bound matters.
@@ -341,52 +354,90 @@ impl OutlierTable {
                 .flat_map(|(_, p)| &p.shading.elements),
             &mut densities,
         );
-        let mut next = densities.iter();
-        let mut out = OutlierTable {
-            levels,
-            rows: vec![0.0f32; faces.len() * levels],
-            visible: 0.0,
-            face_visible: vec![0.0; faces.len()],
-        };
-        let mut turns = vec![0.0f32; levels];
-        let tolerance = errors.shading_tolerance;
+        // Where each active face's elements start among the densities.
+        let mut starts = vec![0usize; faces.len()];
+        let mut at = 0;
         for (f, p) in faces.iter().enumerate() {
-            if !is_active(f) {
-                continue;
+            starts[f] = at;
+            if is_active(f) {
+                at += p.shading.elements.len();
             }
-            let e = &p.shading;
-            let depths = e.depths();
-            let row = &mut out.rows[f * levels..(f + 1) * levels];
-            // Projected and visible pixels of the face, for the visible share of its contour.
-            let (mut projected, mut seen) = (0.0f32, 0.0f32);
-            for (k, el) in e.elements.iter().enumerate() {
-                let (density, raw) = next.next().copied().unwrap_or((0.0, 0.0));
-                if density == 0.0 {
-                    continue;
-                }
-                seen += el.area * density;
-                projected += el.area * raw;
-                out.visible += (el.area * density) as f64;
-                let s = e.scale(el, density);
-                let areas = &e.outlier_area[k * depths * e.scales..(k + 1) * depths * e.scales];
-                for (o, a) in row.iter_mut().zip(areas.chunks(e.scales)) {
-                    *o += a[s] * density;
-                }
-            }
-            out.face_visible[f] = seen;
-            let contour = contour_px.get(f).copied().unwrap_or(0.0);
-            if contour > 0.0 && seen > 0.0 && tolerance < std::f32::consts::PI {
-                let pixels = contour * (seen / projected.max(seen));
-                contour_turns(p, &mut turns);
-                for (o, &t) in row.iter_mut().zip(&turns) {
-                    if t > tolerance {
-                        *o += pixels;
+        }
+        let tolerance = errors.shading_tolerance;
+        let mut rows = vec![0.0f32; faces.len() * levels];
+        let mut face_visible = vec![0.0f32; faces.len()];
+        rows.par_chunks_mut(levels)
+            .zip(face_visible.par_iter_mut())
+            .enumerate()
+            .with_min_len(PAR_FACES)
+            .for_each_init(
+                || vec![0.0f32; levels],
+                |turns, (f, (row, seen))| {
+                    if is_active(f) {
+                        let p = &faces[f];
+                        let n = p.shading.elements.len();
+                        let d = densities.get(starts[f]..starts[f] + n).unwrap_or(&[]);
+                        let contour = contour_px.get(f).copied().unwrap_or(0.0);
+                        *seen = face_row(p, d, contour, tolerance, row, turns);
                     }
+                },
+            );
+        // Summed in face and element order, as the frame's visible pixels always are.
+        let mut visible = 0.0f64;
+        for (f, p) in faces.iter().enumerate().filter(|&(f, _)| is_active(f)) {
+            let d = densities.get(starts[f]..).unwrap_or(&[]);
+            for (el, &(density, _)) in p.shading.elements.iter().zip(d) {
+                if density != 0.0 {
+                    visible += (el.area * density) as f64;
                 }
             }
         }
-        out
+        OutlierTable {
+            levels,
+            rows,
+            visible,
+            face_visible,
+        }
     }
+}
+
+/// Face `p`'s outlier pixels at each depth into `row` (zeroed), from its elements' visible and
+/// projected densities `d` and its contour's length in pixels; returns its visible pixels.
+/// `turns`: scratch, one entry per depth.
+fn face_row(
+    p: &PatchError,
+    d: &[(f32, f32)],
+    contour: f32,
+    tolerance: f32,
+    row: &mut [f32],
+    turns: &mut [f32],
+) -> f32 {
+    let e = &p.shading;
+    let depths = e.depths();
+    // Projected and visible pixels of the face, for the visible share of its contour.
+    let (mut projected, mut seen) = (0.0f32, 0.0f32);
+    for (k, (el, &(density, raw))) in e.elements.iter().zip(d).enumerate() {
+        if density == 0.0 {
+            continue;
+        }
+        seen += el.area * density;
+        projected += el.area * raw;
+        let s = e.scale(el, density);
+        let areas = &e.outlier_area[k * depths * e.scales..(k + 1) * depths * e.scales];
+        for (o, a) in row.iter_mut().zip(areas.chunks(e.scales)) {
+            *o += a[s] * density;
+        }
+    }
+    if contour > 0.0 && seen > 0.0 && tolerance < std::f32::consts::PI {
+        let pixels = contour * (seen / projected.max(seen));
+        contour_turns(p, turns);
+        for (o, &t) in row.iter_mut().zip(turns.iter()) {
+            if t > tolerance {
+                *o += pixels;
+            }
+        }
+    }
+    seen
 }
 
 /// Raises `depth` (one entry per face, the silhouette depths) until the outlier pixels of the

@@ -174,3 +174,67 @@ fn raises_the_cheapest_outliers_until_the_budget_holds() {
     raise_for_shading(&c, &closed(faces), &active, &[], &mut depth, 2);
     assert!(depth.iter().all(|&d| d == 2));
 }
+
+#[test]
+fn the_outlier_table_does_not_depend_on_the_thread_count() {
+    // 3000 faces of 16 elements over each other (occlusion), with outliers at every depth and
+    // scale, contours, and inactive faces: enough for many parallel tasks.
+    let c = cam();
+    let mut faces = Vec::new();
+    for i in 0..3000u32 {
+        let t = i as f32 * 0.37;
+        let elements: Vec<AreaElement> = (0..16)
+            .map(|k| AreaElement {
+                centre: Vec3::new(
+                    t.sin() * 3.0 + k as f32 * 0.01,
+                    t.cos() * 2.0,
+                    (t * 1.3).sin(),
+                ),
+                normal: Vec3::new((t + k as f32).sin() * 0.3, 0.2, 1.0).normalize(),
+                // Areas over 13 orders of magnitude: their f64 sum rounds, so its order shows.
+                area: 1e-3 * (1.0 + (t * 0.7).sin().abs()) * 10f32.powi(-((i % 13) as i32)),
+                cell: 1e-3 * (1.0 + k as f32),
+            })
+            .collect();
+        let outlier_area = (0..16 * 4 * 3)
+            .map(|j| 1e-4 * ((j as f32 + t) * 0.9).sin().abs())
+            .collect();
+        let mut p = face(0.0, [0.0; 4]);
+        p.deviation = vec![0.02, 0.01, 1e-3, 0.0];
+        p.shading = ShadingError {
+            elements,
+            outlier_area,
+            scales: 3,
+            weight: 1.0,
+        };
+        faces.push(p);
+    }
+    let errors = PatchErrors {
+        faces,
+        closed: false,
+        shading_tolerance: 0.1,
+    };
+    let active: Vec<bool> = (0..3000).map(|f| f % 7 != 3).collect();
+    let contour: Vec<f32> = (0..3000)
+        .map(|f| if f % 5 == 0 { 4.0 } else { 0.0 })
+        .collect();
+    let table = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| OutlierTable::new(&c, &errors, &active, &contour, 3))
+    };
+    let one = table(1);
+    assert!(one.visible > 0.0 && one.rows.iter().any(|&o| o > 0.0));
+    for threads in [2, 5] {
+        let t = table(threads);
+        assert_eq!(
+            t.visible.to_bits(),
+            one.visible.to_bits(),
+            "{threads} threads"
+        );
+        assert_eq!(t.rows, one.rows, "{threads} threads");
+        assert_eq!(t.face_visible, one.face_visible, "{threads} threads");
+    }
+}
