@@ -153,6 +153,10 @@ impl ShadingTable {
         let per = (self.max_depth as usize + 1) * scales;
         let mut outlier = vec![0.0f32; elements.len() * per];
         let mut at_depth = vec![0.0f32; elements.len() * scales];
+        // What every depth compares with: the cells' areas and limit normal sums.
+        if self.tolerance < std::f32::consts::PI {
+            grid.cell_sums(scratch);
+        }
         for ld in 0..=self.max_depth {
             match shift_of(ld) {
                 Some(shift) => {
@@ -176,13 +180,17 @@ impl ShadingTable {
 /// Reused buffers of the outlier measure (`Grid::outlier_areas`, and the triangle lattice's in
 /// `patch_error_tri`): the interpolated normal per sample, and per cell of a square array of
 /// side `n` (row-major) the area-weighted sums of the limit and the interpolated normals and
-/// the cell's area (zero for cells a triangular lattice lacks).
+/// the cell's area (zero for cells a triangular lattice lacks). `cell_truth` and `cell_area`
+/// keep a patch's level-0 limit sums and areas for all its depths (`Grid::cell_sums`,
+/// `Lattice::cell_sums`).
 #[derive(Default)]
 pub(crate) struct Scratch {
     pub(crate) interp: Vec<Vec3>,
     pub(crate) truth: Vec<Vec3>,
     pub(crate) drawn: Vec<Vec3>,
     pub(crate) area: Vec<f32>,
+    pub(crate) cell_truth: Vec<Vec3>,
+    pub(crate) cell_area: Vec<f32>,
 }
 
 impl Scratch {
@@ -405,6 +413,31 @@ impl Grid<'_> {
             .collect()
     }
 
+    /// Per cell (row-major) its area and the sum of its corners' unit limit normals (from
+    /// `shade`) times that area, into `scratch.cell_area` and `scratch.cell_truth`: the
+    /// level 0 of [`Grid::outlier_areas`] that is the same at every depth.
+    fn cell_sums(&self, scratch: &mut Scratch) {
+        let w = self.n + 1;
+        let unit = &mut scratch.interp;
+        unit.clear();
+        unit.extend(
+            self.shade
+                .iter()
+                .map(|&q| Vec3::from(q).normalize_or_zero()),
+        );
+        scratch.cell_truth.clear();
+        scratch.cell_area.clear();
+        for j in 0..self.n {
+            for i in 0..self.n {
+                let a = self.cell_area(i, j);
+                let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+                let t: Vec3 = corners.iter().map(|&(x, y)| unit[y * w + x]).sum();
+                scratch.cell_truth.push(t * a);
+                scratch.cell_area.push(a);
+            }
+        }
+    }
+
     /// Per element and footprint scale (into `out`, `out[k * scales + s]`): the world area
     /// where the mean interpolated normal at `shift` turns further than `tolerance` (radians)
     /// from the mean limit normal (both from `shade`, so a crease's sides are compared with
@@ -426,24 +459,24 @@ impl Grid<'_> {
         let cos_tol = tolerance.cos();
         self.interpolated_normals(shift, &mut scratch.interp);
         let w = self.n + 1;
-        let truth = |i: usize, j: usize| Vec3::from(self.shade[j * w + i]).normalize_or_zero();
-        // Level 0: per cell, the area-weighted sums of both normals (corner means) and its area.
-        let (tr, dr, ar) = (&mut scratch.truth, &mut scratch.drawn, &mut scratch.area);
-        tr.clear();
+        // Level 0: per cell, the area-weighted sums of both normals (corner means) and its area
+        // (the limit's and the area from `cell_sums`).
+        let Scratch {
+            interp,
+            truth: tr,
+            drawn: dr,
+            area: ar,
+            cell_truth,
+            cell_area,
+        } = scratch;
+        tr.clone_from(cell_truth);
+        ar.clone_from(cell_area);
         dr.clear();
-        ar.clear();
         for j in 0..self.n {
             for i in 0..self.n {
-                let a = self.cell_area(i, j);
                 let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
-                let t: Vec3 = corners.iter().map(|&(x, y)| truth(x, y)).sum();
-                let m: Vec3 = corners
-                    .iter()
-                    .map(|&(x, y)| scratch.interp[y * w + x])
-                    .sum();
-                tr.push(t * a);
-                dr.push(m * a);
-                ar.push(a);
+                let m: Vec3 = corners.iter().map(|&(x, y)| interp[y * w + x]).sum();
+                dr.push(m * cell_area[j * self.n + i]);
             }
         }
         let per_side = self.elements_per_side();

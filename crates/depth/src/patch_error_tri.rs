@@ -62,6 +62,9 @@ pub fn patch_errors_tri(
                 let per = (max_depth as usize + 1) * scales;
                 let mut outlier_area = vec![0.0f32; elements.len() * per];
                 let mut at_depth = vec![0.0f32; elements.len() * scales];
+                if shading_tolerance < std::f32::consts::PI {
+                    lat.cell_sums(cells);
+                }
                 for l in levels.clone() {
                     lat.outlier_areas(fine - l, shading_tolerance, scales, cells, &mut at_depth);
                     for (k, e) in at_depth.chunks(scales).enumerate() {
@@ -230,6 +233,36 @@ impl Lattice<'_> {
             .collect()
     }
 
+    /// Per cell of [`Lattice::cell`] (an `n × n` array, row-major; zero where the lattice has
+    /// none) its area and the area-weighted sum of its triangles' unit limit normals (from
+    /// `shade`), into `c.cell_area` and `c.cell_truth`: what [`Lattice::outlier_areas`] needs
+    /// of the limit at every depth.
+    fn cell_sums(&self, c: &mut Scratch) {
+        let n = self.n as usize;
+        let unit = &mut c.interp;
+        unit.clear();
+        unit.extend(
+            self.shade
+                .iter()
+                .map(|&q| Vec3::from(q).normalize_or_zero()),
+        );
+        c.cell_truth.clear();
+        c.cell_truth.resize(n * n, Vec3::ZERO);
+        c.cell_area.clear();
+        c.cell_area.resize(n * n, 0.0);
+        for j in 0..self.n {
+            for i in 0..self.n - j {
+                let (up, down) = self.cell(i, j);
+                let at = j as usize * n + i as usize;
+                for t in std::iter::once(up).chain(down) {
+                    let a = self.area(t);
+                    c.cell_truth[at] += t.iter().map(|&s| unit[s]).sum::<Vec3>() * a;
+                    c.cell_area[at] += a;
+                }
+            }
+        }
+    }
+
     /// The outlier areas of the lattice's elements at `shift` (the quad grid's measure, over
     /// the cells of [`Lattice::cell`]): per cell the area-weighted sums of the limit normals
     /// (from `shade`) and of the normals interpolated across the drawn triangles, then
@@ -258,22 +291,17 @@ impl Lattice<'_> {
                 .sum();
             c.interp[k] = on.normalize_or_zero();
         });
-        let truth = |k: usize| Vec3::from(self.shade[k]).normalize_or_zero();
-        for v in [&mut c.truth, &mut c.drawn] {
-            v.clear();
-            v.resize(n * n, Vec3::ZERO);
-        }
-        c.area.clear();
-        c.area.resize(n * n, 0.0);
+        c.truth.clone_from(&c.cell_truth);
+        c.area.clone_from(&c.cell_area);
+        c.drawn.clear();
+        c.drawn.resize(n * n, Vec3::ZERO);
         for j in 0..self.n {
             for i in 0..self.n - j {
                 let (up, down) = self.cell(i, j);
                 let at = j as usize * n + i as usize;
                 for t in std::iter::once(up).chain(down) {
                     let a = self.area(t);
-                    c.truth[at] += t.iter().map(|&s| truth(s)).sum::<Vec3>() * a;
                     c.drawn[at] += t.iter().map(|&s| c.interp[s]).sum::<Vec3>() * a;
-                    c.area[at] += a;
                 }
             }
         }
