@@ -300,6 +300,8 @@ impl Grid<'_> {
     /// gap counts.
     fn triangle_deviation(&self, shift: Depth, outline: bool) -> f32 {
         let step = 1usize << shift;
+        // `x * inv` is `x / step` exactly: `step` is a power of two.
+        let inv = 1.0 / step as f32;
         let w = self.n + 1;
         let mut worst = 0.0f32;
         for j0 in (0..self.n).step_by(step) {
@@ -310,8 +312,8 @@ impl Grid<'_> {
                 let e = self.at(i0, j0 + step);
                 for j in j0..=j0 + step {
                     for i in i0..=i0 + step {
-                        let u = (i - i0) as f32 / step as f32;
-                        let v = (j - j0) as f32 / step as f32;
+                        let u = (i - i0) as f32 * inv;
+                        let v = (j - j0) as f32 * inv;
                         let on = if v <= u {
                             a * (1.0 - u) + b * (u - v) + c * v
                         } else {
@@ -336,6 +338,8 @@ impl Grid<'_> {
     /// `shade`, normalised: the renderer's smooth shading, into `out` (row-major).
     fn interpolated_normals(&self, shift: Depth, out: &mut Vec<Vec3>) {
         let step = 1usize << shift;
+        // `x * inv` is `x / step` exactly: `step` is a power of two.
+        let inv = 1.0 / step as f32;
         let w = self.n + 1;
         let nrm = |i: usize, j: usize| Vec3::from(self.shade[j * w + i]);
         out.clear();
@@ -348,8 +352,8 @@ impl Grid<'_> {
                 let b = nrm(i0 + step, j0);
                 let c = nrm(i0 + step, j0 + step);
                 let e = nrm(i0, j0 + step);
-                let u = (i - i0) as f32 / step as f32;
-                let v = (j - j0) as f32 / step as f32;
+                let u = (i - i0) as f32 * inv;
+                let v = (j - j0) as f32 * inv;
                 let on = if v <= u {
                     a * (1.0 - u) + b * (u - v) + c * v
                 } else {
