@@ -194,6 +194,13 @@ pub(crate) struct Scratch {
 }
 
 impl Scratch {
+    /// `shade`'s normals made unit length (zero where they vanish), into `interp`.
+    pub(crate) fn unit_normals(&mut self, shade: &[[f32; 3]]) {
+        self.interp.clear();
+        self.interp
+            .extend(shade.iter().map(|&q| Vec3::from(q).normalize_or_zero()));
+    }
+
     /// From the per-cell sums: per element and footprint scale (into `out`,
     /// `out[k * scales + s]`), the area of the aligned blocks of `2^s × 2^s` cells whose mean
     /// interpolated normal is further than `acos(cos_tol)` from their mean limit normal (what a
@@ -422,22 +429,22 @@ impl Grid<'_> {
     /// level 0 of [`Grid::outlier_areas`] that is the same at every depth.
     fn cell_sums(&self, scratch: &mut Scratch) {
         let w = self.n + 1;
-        let unit = &mut scratch.interp;
-        unit.clear();
-        unit.extend(
-            self.shade
-                .iter()
-                .map(|&q| Vec3::from(q).normalize_or_zero()),
-        );
-        scratch.cell_truth.clear();
-        scratch.cell_area.clear();
+        scratch.unit_normals(self.shade);
+        let Scratch {
+            interp: unit,
+            cell_truth,
+            cell_area,
+            ..
+        } = scratch;
+        cell_truth.clear();
+        cell_area.clear();
         for j in 0..self.n {
             for i in 0..self.n {
                 let a = self.cell_area(i, j);
                 let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
                 let t: Vec3 = corners.iter().map(|&(x, y)| unit[y * w + x]).sum();
-                scratch.cell_truth.push(t * a);
-                scratch.cell_area.push(a);
+                cell_truth.push(t * a);
+                cell_area.push(a);
             }
         }
     }

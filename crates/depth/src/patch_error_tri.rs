@@ -239,25 +239,33 @@ impl Lattice<'_> {
     /// of the limit at every depth.
     fn cell_sums(&self, c: &mut Scratch) {
         let n = self.n as usize;
-        let unit = &mut c.interp;
-        unit.clear();
-        unit.extend(
-            self.shade
-                .iter()
-                .map(|&q| Vec3::from(q).normalize_or_zero()),
-        );
+        c.unit_normals(self.shade);
         c.cell_truth.clear();
         c.cell_truth.resize(n * n, Vec3::ZERO);
         c.cell_area.clear();
         c.cell_area.resize(n * n, 0.0);
+        let Scratch {
+            interp: unit,
+            cell_truth,
+            cell_area,
+            ..
+        } = c;
+        self.cell_triangles(|at, t, a| {
+            cell_truth[at] += t.iter().map(|&s| unit[s]).sum::<Vec3>() * a;
+            cell_area[at] += a;
+        });
+    }
+
+    /// Every triangle `t` of every cell of [`Lattice::cell`] with the cell's index `at` in an
+    /// `n × n` array (row-major) and the triangle's area `a`, up before down.
+    fn cell_triangles(&self, mut f: impl FnMut(usize, [usize; 3], f32)) {
+        let n = self.n as usize;
         for j in 0..self.n {
             for i in 0..self.n - j {
                 let (up, down) = self.cell(i, j);
                 let at = j as usize * n + i as usize;
                 for t in std::iter::once(up).chain(down) {
-                    let a = self.area(t);
-                    c.cell_truth[at] += t.iter().map(|&s| unit[s]).sum::<Vec3>() * a;
-                    c.cell_area[at] += a;
+                    f(at, t, self.area(t));
                 }
             }
         }
@@ -295,16 +303,10 @@ impl Lattice<'_> {
         c.area.clone_from(&c.cell_area);
         c.drawn.clear();
         c.drawn.resize(n * n, Vec3::ZERO);
-        for j in 0..self.n {
-            for i in 0..self.n - j {
-                let (up, down) = self.cell(i, j);
-                let at = j as usize * n + i as usize;
-                for t in std::iter::once(up).chain(down) {
-                    let a = self.area(t);
-                    c.drawn[at] += t.iter().map(|&s| c.interp[s]).sum::<Vec3>() * a;
-                }
-            }
-        }
+        let (drawn, interp) = (&mut c.drawn, &c.interp);
+        self.cell_triangles(|at, t, a| {
+            drawn[at] += t.iter().map(|&s| interp[s]).sum::<Vec3>() * a;
+        });
         let per_side = self.elements_per_side() as usize;
         c.outliers_by_block(
             n,
