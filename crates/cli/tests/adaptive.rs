@@ -305,7 +305,7 @@ fn bad_adaptive_flag_values_fail_cleanly() {
     );
 }
 
-/// Issue 12 item 6: an adaptive flag means the same in `tessellate`, `render` and `view`: without
+/// An adaptive flag means the same in `tessellate`, `render` and `view`: without
 /// `--depth` it asks for the adaptive tessellation (with the default camera when no camera flag
 /// is given); next to `--depth` it is refused — never silently ignored; with Loop on a triangle
 /// cage it applies as with Catmull-Clark.
