@@ -7,6 +7,9 @@
 //! around its patches' corners, [`faces_around`]), and the blocks' computations where the run
 //! copies one-sided normals from them.
 
+use std::ops::Range;
+
+use rayon::prelude::*;
 use subdiv_mesh::{FaceId, Mesh};
 
 /// Patches per run: enough work per task to amortise the task, small enough that two threads
@@ -62,6 +65,46 @@ impl RunOut {
         self.uv.clear();
         false
     }
+}
+
+/// Emits `items` (patches or faces) in runs of [`RUN_PATCHES`] consecutive ones, in parallel,
+/// into `slots` (grown as needed and kept by the caller between frames; `run_of` gives each
+/// slot's [`RunOut`]). With `key` (`key(run, its items, key vector)`, as
+/// [`RunOut::keep`]'s writer), a run whose key stayed keeps its output; every other run is
+/// cleared and handed to `emit(its items, slot)`. Returns the runs used and the runs kept.
+pub(crate) fn emit_runs<T, K, E>(
+    slots: &mut Vec<T>,
+    items: usize,
+    run_of: impl Fn(&mut T) -> &mut RunOut + Sync,
+    key: Option<K>,
+    emit: E,
+) -> (usize, usize)
+where
+    T: Default + Send,
+    K: Fn(usize, Range<usize>, &mut Vec<u64>) -> usize + Sync,
+    E: Fn(Range<usize>, &mut T) + Sync,
+{
+    let n = items.div_ceil(RUN_PATCHES);
+    if slots.len() < n {
+        slots.resize_with(n, T::default);
+    }
+    let kept = slots[..n]
+        .par_iter_mut()
+        .enumerate()
+        .map(|(c, slot)| {
+            let range = c * RUN_PATCHES..((c + 1) * RUN_PATCHES).min(items);
+            let write = key.as_ref().map(|key| {
+                let range = range.clone();
+                move |v: &mut Vec<u64>| key(c, range, v)
+            });
+            if run_of(slot).keep(write) {
+                return 1;
+            }
+            emit(range, slot);
+            0
+        })
+        .sum();
+    (n, kept)
 }
 
 /// The runs' outputs in order into the frame's buffers (cleared first), the one-sided normals'

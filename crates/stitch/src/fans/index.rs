@@ -10,13 +10,14 @@
 //! triangles. Such a quad is split through the vertex instead, whichever corner of the patch it
 //! is.
 
-use rayon::prelude::*;
 use subdiv_mesh::Mesh;
 use subdiv_slate::{LevelUvs, PatchRef, PatchSet};
 
 use super::edges::Frame;
 use super::grid::{side_of_on, side_point};
-use crate::runs::{RUN_PATCHES, RunOut, concat, dependencies, faces_around};
+#[cfg(doc)]
+use crate::runs::RUN_PATCHES;
+use crate::runs::{RunOut, concat, dependencies, emit_runs, faces_around};
 
 /// No block point of the patch's own (interior points, or a block too coarse).
 const NO_OWN: u32 = u32::MAX;
@@ -159,24 +160,17 @@ impl Frame<'_> {
         uv_indices: &mut Vec<u32>,
     ) -> usize {
         let patches = self.set.patches();
-        let runs = patches.len().div_ceil(RUN_PATCHES);
-        if chunks.len() < runs {
-            chunks.resize_with(runs, Chunk::default);
-        }
-        let kept = chunks[..runs]
-            .par_iter_mut()
-            .enumerate()
-            .map(|(c, ch)| {
-                let run = c * RUN_PATCHES..((c + 1) * RUN_PATCHES).min(patches.len());
-                let key = deps.map(|deps| {
-                    let run = run.clone();
-                    move |key: &mut Vec<u64>| {
-                        self.chunk_key(&deps[c], run, active, method, uvs, key)
-                    }
-                });
-                if ch.run.keep(key) {
-                    return 1;
-                }
+        let key = deps.map(|deps| {
+            move |c: usize, run, key: &mut Vec<u64>| {
+                self.chunk_key(&deps[c], run, active, method, uvs, key)
+            }
+        });
+        let (runs, kept) = emit_runs(
+            chunks,
+            patches.len(),
+            |ch| &mut ch.run,
+            key,
+            |run, ch| {
                 for p in &patches[run] {
                     let face = self.set.units()[p.unit as usize].face;
                     if !active[p.unit as usize] || self.mesh.is_hole(face) {
@@ -197,9 +191,8 @@ impl Frame<'_> {
                         None => self.emit_patch(p, method, ch, &mut ()),
                     }
                 }
-                0
-            })
-            .sum();
+            },
+        );
         concat(
             chunks[..runs].iter().map(|c| &c.run),
             out,

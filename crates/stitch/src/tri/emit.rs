@@ -1,12 +1,13 @@
 //! Per-frame owners of the cage's edges and vertices, and the index buffer: lattice triangles
 //! inside, fans and strips along finer sides (Settgast et al. §3.3, adapted to triangles).
 
-use rayon::prelude::*;
 use subdiv_mesh::{FaceId, Mesh};
 use subdiv_slate::{Depth, LevelUvs, TriLayout, tri_lattice_index};
 
 use super::TriBlock;
-use crate::runs::{RUN_PATCHES, RunOut, concat, dependencies};
+#[cfg(doc)]
+use crate::runs::RUN_PATCHES;
+use crate::runs::{RunOut, concat, dependencies, emit_runs};
 use crate::slots::Slots;
 
 /// One-sided normals of triangle corners: (corner index, normal), ascending.
@@ -230,22 +231,17 @@ impl TriFrame<'_> {
         corner_normals: &mut SidedNormals,
         uv_indices: &mut Vec<u32>,
     ) -> usize {
-        let n = active.len().div_ceil(RUN_PATCHES);
-        if runs.len() < n {
-            runs.resize_with(n, RunOut::default);
-        }
-        let kept = runs[..n]
-            .par_iter_mut()
-            .enumerate()
-            .map(|(c, run)| {
-                let faces = c * RUN_PATCHES..((c + 1) * RUN_PATCHES).min(active.len());
-                let key = deps.map(|deps| {
-                    let faces = faces.clone();
-                    move |key: &mut Vec<u64>| self.run_key(&deps[c], faces, active, uvs, key)
-                });
-                if run.keep(key) {
-                    return 1;
-                }
+        let key = deps.map(|deps| {
+            move |c: usize, faces, key: &mut Vec<u64>| {
+                self.run_key(&deps[c], faces, active, uvs, key)
+            }
+        });
+        let (n, kept) = emit_runs(
+            runs,
+            active.len(),
+            |run| run,
+            key,
+            |faces, run| {
                 for f in faces.filter(|&f| active[f]) {
                     let mut out = Emit {
                         indices: &mut run.tris,
@@ -257,9 +253,8 @@ impl TriFrame<'_> {
                     };
                     self.emit_patch(f, &mut out);
                 }
-                0
-            })
-            .sum();
+            },
+        );
         concat(runs[..n].iter(), indices, corner_normals, uv_indices);
         kept
     }
