@@ -40,11 +40,7 @@ impl Domain {
             Scheme::CatmullClark | Scheme::Bilinear if corners == 4 => Domain::Quad,
             Scheme::CatmullClark | Scheme::Bilinear => {
                 let n = corners as u32;
-                let dim = if n < 10 {
-                    2 + u32::from(n > 4)
-                } else {
-                    1 + ((n - 1) as f32).sqrt() as u32
-                };
+                let dim = subdiv_rules::subface_tiles_per_row(n);
                 Domain::SubFaces { corners: n, dim }
             }
         }

@@ -47,7 +47,7 @@ pub use fvar::{
 pub use limit::{
     KeyedWrite, LimitChannel, LimitMesh, LimitMeshError, TopologyKey, TriangleBuffers,
     VertexParams, VertexScalar, bilinear_patches, face_varying_channel, inside_one_patch,
-    limit_surface, stand_in_base, tessellate_uniform, vertex_channel,
+    limit_surface, stand_in_base, subface_tiles_per_row, tessellate_uniform, vertex_channel,
 };
 pub use point::{Point, centroid};
 pub use refine::{

@@ -17,7 +17,7 @@ mod topology;
 pub use bilinear::{bilinear_patches, inside_one_patch};
 pub use channel::{LimitChannel, face_varying_channel, stand_in_base, vertex_channel};
 pub use mesh::{KeyedWrite, LimitMesh, LimitMeshError, TriangleBuffers, VertexScalar};
-pub use params::VertexParams;
+pub use params::{VertexParams, subface_tiles_per_row};
 pub use topology::TopologyKey;
 use topology::TopologyStamp;
 

@@ -399,6 +399,22 @@ impl Ring {
         finish_limit(&parts, self.center, &self.edges, nf)
     }
 
+    /// The exact limit position and the two limit tangents whose cross product, normalised, is
+    /// [`Ring::limit`]'s normal (where it is not degenerate), or `None` where the normal is not
+    /// that cross product (an interior crease, whose two sides' normals are averaged; a copy of
+    /// a non-manifold vertex). All three are linear in the ring's points: the refinement the
+    /// masks wait for depends on the sharpness and the faces alone. Refines the ring in place.
+    pub fn limit_tangents(&mut self) -> Option<(DVec3, DVec3, DVec3)> {
+        if self.own_normal || self.master.is_some() {
+            return None;
+        }
+        let parts = self.limit_parts();
+        if parts.other.is_some() {
+            return None;
+        }
+        Some((parts.pos, parts.t1, parts.t2))
+    }
+
     /// The limit position of the master ring (a crease copy's).
     fn master_limit(&mut self) -> DVec3 {
         self.master.as_mut().map_or(self.center, |m| m.limit().0)

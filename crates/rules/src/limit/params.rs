@@ -3,6 +3,17 @@
 
 use super::{LimitMesh, LimitMeshError};
 
+/// Tiles per row of the parameter domain of a Catmull-Clark face of `corners` corners (not
+/// four): OpenSubdiv's `Bfr` lays an n-gon's sub-faces out as unit tiles in rows of this many
+/// (`subdiv_eval::Domain::SubFaces`), tile `k` at `(k % dim, k / dim)`.
+pub fn subface_tiles_per_row(corners: u32) -> u32 {
+    if corners < 10 {
+        2 + u32::from(corners > 4)
+    } else {
+        1 + ((corners - 1) as f32).sqrt() as u32
+    }
+}
+
 /// Where each vertex of a surface is on the limit surface: the cage face and the `(u, v)` in
 /// that face's parameter domain (OpenSubdiv's `Bfr` parameterisation, `subdiv_eval::Domain`),
 /// for ptex-style textures and displacement.

@@ -56,6 +56,11 @@ impl TopologyStamp {
         self.key
     }
 
+    /// Marks keyed faces as kept by the last frame (unkeyed faces stay written).
+    pub(super) fn keep(&mut self) {
+        self.kept = self.key.is_some();
+    }
+
     /// Whether the last tessellation wrote the faces (`true` for unkeyed faces).
     pub(super) fn written(&self) -> bool {
         !self.kept
