@@ -72,6 +72,7 @@ mod grid;
 mod layout;
 mod limit;
 mod moving;
+mod params;
 mod patches;
 mod pool;
 mod primvars;

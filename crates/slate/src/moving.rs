@@ -9,7 +9,7 @@
 //! ([`LimitMesh::topology_written`] is false on a frame that kept it).
 
 use subdiv_mesh::Mesh;
-use subdiv_rules::{Depth, LimitMesh, Scheme};
+use subdiv_rules::{Depth, LimitMesh, Scheme, VertexParams};
 
 use crate::bilinear::{BilinearLayout, tessellate_bilinear, tessellate_bilinear_into};
 use crate::layout::PatchLayout;
@@ -102,6 +102,17 @@ impl UniformTessellator {
         &self.out
     }
 
+    /// The last frame's surface, for a caller that rewrites its points for a frame of the same
+    /// topology itself (`subdiv-stencil`); its faces are the layout's.
+    pub fn surface_mut(&mut self) -> &mut LimitMesh {
+        &mut self.out
+    }
+
+    /// Whether `mesh` has the topology the layout was made for ([`Mesh::same_topology`]).
+    pub fn same_topology(&self, mesh: &Mesh) -> bool {
+        self.cage.same_topology(mesh)
+    }
+
     /// The scheme.
     pub fn scheme(&self) -> Scheme {
         self.scheme
@@ -110,6 +121,19 @@ impl UniformTessellator {
     /// The depth.
     pub fn depth(&self) -> Depth {
         self.depth
+    }
+
+    /// The parameter point of every point of [`UniformTessellator::surface`] (index: vertex):
+    /// the cage face and the `(u, v)` in its domain (`subdiv_eval::Domain`), from the kept
+    /// layout ([`PatchLayout::point_params`], [`TriLayout::point_params`]). `None` for the
+    /// bilinear scheme and depth 0 (no slate layout), and where the layout gives none (holes,
+    /// seams, isolated vertices).
+    pub fn point_params(&self) -> Option<VertexParams> {
+        match &self.layout {
+            Layout::Quads(l) => l.point_params(&self.cage),
+            Layout::Tris(l) => l.point_params(&self.cage),
+            Layout::Bilinear(_) | Layout::Cage => None,
+        }
     }
 
     /// How many layouts were made: one, plus one per change of topology.
