@@ -8,7 +8,7 @@ use std::time::Instant;
 use anyhow::Context;
 use subdiv::mesh::{Mesh, UsdReadOptions, UsdStageReader, is_usd_path, sway};
 use subdiv::rules::{LimitMesh, Request, Scheme};
-use subdiv::slate::UniformTessellator;
+use subdiv::stencil::StencilTessellator;
 use subdiv::{DynamicSubdivision, mesh::glam::Vec3};
 
 use crate::adaptive_args::AdaptiveArgs;
@@ -91,7 +91,7 @@ impl Frames {
 
 /// The tessellation timed each frame.
 enum Tessellation {
-    Uniform(Box<UniformTessellator>),
+    Uniform(Box<StencilTessellator>),
     Adaptive(Box<DynamicSubdivision>, subdiv::mesh::Camera),
 }
 
@@ -159,16 +159,22 @@ fn animate(a: &BenchAnimateArgs, threads: usize) -> anyhow::Result<ExitCode> {
         let depth = a.depth.unwrap_or(3);
         a.limit
             .check(&mesh, Request::Uniform { scheme, depth }, &label)?;
-        let t = UniformTessellator::new(&mesh, scheme, depth).context(label.clone())?;
+        let t = StencilTessellator::new(&mesh, scheme, depth).context(label.clone())?;
         (Tessellation::Uniform(Box::new(t)), format!("depth={depth}"))
     };
     let setup = t0.elapsed().as_secs_f64();
+    // What computes a uniform frame: the stencil table, or the slates every frame.
+    let path = match &tess {
+        Tessellation::Uniform(t) if t.stencils().is_some() => " path=stencils",
+        Tessellation::Uniform(_) => " path=slates",
+        Tessellation::Adaptive(..) => "",
+    };
     let source = match &frames {
         Frames::Stage { .. } => "stage",
         Frames::Sway { .. } => "sway",
     };
     out!(
-        "input={label} scheme={} {what} threads={threads} frames={count} source={source} setup_ms={:.3}",
+        "input={label} scheme={} {what} threads={threads} frames={count} source={source} setup_ms={:.3}{path}",
         crate::choices::value_name(&SchemeName::from(scheme)),
         setup * 1e3
     );

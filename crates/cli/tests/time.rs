@@ -100,8 +100,8 @@ fn a_time_is_refused_for_obj_input_and_when_not_a_number() {
 }
 
 /// `bench animate`: one line a frame at the stage's time codes (played again from the start
-/// past its end), the index buffer kept on every frame of the uniform tessellation, and the
-/// summary line; a cage without animation is swayed.
+/// past its end), the index buffer kept on every frame of the uniform tessellation (points
+/// through the stencil table), and the summary line; a cage without animation is swayed.
 #[test]
 fn bench_animate_prints_a_line_a_frame_and_the_summary() {
     let (code, out, err) = run(&[
@@ -122,6 +122,8 @@ fn bench_animate_prints_a_line_a_frame_and_the_summary() {
         lines[0].contains("depth=1 threads=1 frames=50 source=stage"),
         "{out}"
     );
+    // The frames come from the limit stencil table.
+    assert!(lines[0].ends_with(" path=stencils"), "{out}");
     let counts = |l: &str| l.split_once(" points=").unwrap().1.to_string();
     for (i, l) in lines[1..51].iter().enumerate() {
         let t = 1 + i % 48;

@@ -1,13 +1,13 @@
 //! The viewer's source for an animated USD stage ([`AnimatedSource`]): each frame's time code
 //! ([`FrameRequest::time`]) reads the cage at that time, and the tessellation follows it the
 //! way a moving cage is tessellated frame by frame: the uniform layout kept
-//! ([`UniformTessellator`]), or the adaptive node's patches kept with its depths chosen again
+//! ([`StencilTessellator`]: the stencil table, or the slates), or the adaptive node's patches kept with its depths chosen again
 //! ([`DynamicSubdivision::set_positions`]); a time code whose topology differs lays the cage
 //! out again.
 
 use subdiv_mesh::UsdStageReader;
 use subdiv_rules::{Depth, Scheme};
-use subdiv_slate::UniformTessellator;
+use subdiv_stencil::StencilTessellator;
 use subdiv_vk::viewer::{FrameRequest, FrameSource, Playback, SourceFrame};
 
 use crate::{AdaptiveSource, DynamicSubdivision, Scene, SceneError, UniformSource};
@@ -18,7 +18,7 @@ type FrameError = Box<dyn std::error::Error + Send + Sync>;
 /// What follows the cage.
 enum Moving {
     Uniform {
-        tessellator: Box<UniformTessellator>,
+        tessellator: Box<StencilTessellator>,
         source: Box<UniformSource>,
     },
     Adaptive(Box<AdaptiveSource>),
@@ -43,7 +43,7 @@ impl AnimatedSource {
         time: f64,
     ) -> Result<AnimatedSource, FrameError> {
         let cage = stage.read_at(Some(time))?.mesh;
-        let tessellator = Box::new(UniformTessellator::new(&cage, scheme, depth)?);
+        let tessellator = Box::new(StencilTessellator::new(&cage, scheme, depth)?);
         let scene = Scene::from_uniform(tessellator.surface().clone(), depth)?;
         Ok(AnimatedSource {
             stage,
@@ -137,7 +137,8 @@ mod tests {
     use subdiv_mesh::{UsdReadOptions, read_obj};
 
     /// Moving to a time code tessellates the cage Pixar's USD reads at that time
-    /// (`fixtures/usd/make_animated.py`), as a fresh scene of it; the vertex version moves.
+    /// (`fixtures/usd/make_animated.py`), as a fresh scene of it does (the same faces; points
+    /// and normals through the stencil table, to rounding); the vertex version moves.
     #[test]
     fn a_new_time_code_shows_the_stage_at_that_time() {
         let dir = subdiv_test_support::fixture("usd");
@@ -154,8 +155,15 @@ mod tests {
             assert_eq!(source.time(), t);
             let cage = read_obj(dir.join(format!("pawn_bend_t{t}.obj"))).unwrap();
             let want = Scene::uniform(&cage, Scheme::CatmullClark, 2).unwrap();
-            let got = source.uniform_scene().unwrap();
-            assert!(got.surface() == want.surface(), "time {t}");
+            let (got, want) = (source.uniform_scene().unwrap().surface(), want.surface());
+            assert_eq!(got.face_indices(), want.face_indices(), "time {t}");
+            let (lo, hi) = cage.bounds();
+            let (d, a) = subdiv_test_support::max_deviation(
+                (got.positions(), got.normals()),
+                (want.positions(), want.normals()),
+                (hi - lo).length(),
+            );
+            assert!(d < 1e-6 && a < 1e-5, "time {t}: {d} {a}");
         }
         let stage =
             UsdStageReader::open(dir.join("scene.usda"), &UsdReadOptions::default()).unwrap();

@@ -163,5 +163,6 @@ pub use subdiv_mesh as mesh;
 pub use subdiv_redgreen as redgreen;
 pub use subdiv_rules as rules;
 pub use subdiv_slate as slate;
+pub use subdiv_stencil as stencil;
 pub use subdiv_stitch as stitch;
 pub use subdiv_vk as vk;

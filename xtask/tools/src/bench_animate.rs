@@ -5,8 +5,8 @@
 //! stencil locations it includes) builds the `LimitStencilTable` of every level-N vertex once,
 //! then each frame sways the cage and times `UpdateValues` + `UpdateDerivs` + the normals.
 //! subdiv: `subdiv bench animate CAGE --depth N --frames F --threads 1`, the same sway
-//! (`subdiv_mesh::sway`), each frame timed as `UniformTessellator::update` (points and normals
-//! into kept indices). Each figure is the median over [`ROUNDS`] interleaved rounds of each
+//! (`subdiv_mesh::sway`), each frame timed as `StencilTessellator::update` (points and normals
+//! into kept indices, from its stencil table or by the slates: the row names which). Each figure is the median over [`ROUNDS`] interleaved rounds of each
 //! program's median frame; both sides must update the same number of points.
 
 use std::path::Path;
@@ -45,6 +45,8 @@ struct Row {
     subdiv_pts: f64,
     subdiv_ms: f64,
     subdiv_setup_ms: f64,
+    /// What computed subdiv's frames (`path=` of its first line).
+    path: String,
     osd_pts: f64,
     osd_ms: f64,
     osd_setup_ms: f64,
@@ -83,6 +85,7 @@ fn measure(
     let osd_scheme = if scheme == "loop" { "loop" } else { "catmark" };
     let (d, f) = (depth.to_string(), FRAMES.to_string());
     let (mut osd_rounds, mut subdiv_rounds) = (Vec::new(), Vec::new());
+    let mut frames_by = String::new();
     for round in 0..ROUNDS {
         let o = output(Command::new(osd).arg(&path).args([&d, &f, osd_scheme]))?;
         raw.push_str(&format!(
@@ -109,6 +112,14 @@ fn measure(
             "$ subdiv bench animate {cage} {} (round {round})\n{s}",
             args.join(" ")
         ));
+        if round == 0 {
+            frames_by = s
+                .lines()
+                .find(|l| l.starts_with("input="))
+                .and_then(|l| l.split_whitespace().find_map(|kv| kv.strip_prefix("path=")))
+                .unwrap_or("?")
+                .to_string();
+        }
         let mut fs = fields(&s, "input=")?;
         fs.extend(fields(&s, "frames=")?);
         fs.extend(fields(&s, "frame=0 ")?);
@@ -143,6 +154,7 @@ fn measure(
         subdiv_pts: med(&subdiv_rounds, "points_per_s")?,
         subdiv_ms: med(&subdiv_rounds, "update_ms_median")?,
         subdiv_setup_ms: med(&subdiv_rounds, "setup_ms")?,
+        path: frames_by,
         osd_pts: med(&osd_rounds, "points_per_s")?,
         osd_ms: med(&osd_rounds, "update_ms_median")?,
         osd_setup_ms: med(&osd_rounds, "stencil_setup_ms")?,
@@ -154,20 +166,22 @@ fn table(rows: &[Row]) -> String {
     let mut t = String::from(
         "\nmoving cage, one thread: the median frame's update of a swayed cage, in limit points \
          (position + normal) per second, M = 1e6. subdiv: `subdiv bench animate --depth N` \
-         (layout kept, points and normals rewritten into kept indices); OSD: LimitStencilTable \
-         built once, UpdateValues + UpdateDerivs + normals per frame\n",
+         (layout kept, points and normals rewritten into kept indices: `stencils` from its limit \
+         stencil table, `slates` by the slates); setup: the layout and the table; OSD: \
+         LimitStencilTable built once, UpdateValues + UpdateDerivs + normals per frame\n",
     );
     t.push_str(
-        "| cage | N | points | subdiv update | OSD stencils | subdiv / OSD | subdiv ms | OSD ms | \
-         layout setup ms | OSD stencil setup ms |\n",
+        "| cage | N | points | subdiv path | subdiv update | OSD stencils | subdiv / OSD | subdiv ms | \
+         OSD ms | subdiv setup ms | OSD stencil setup ms |\n",
     );
-    t.push_str("|---|---|---|---|---|---|---|---|---|---|\n");
+    t.push_str("|---|---|---|---|---|---|---|---|---|---|---|\n");
     for r in rows {
         t.push_str(&format!(
-            "| {} | {} | {} | {} | {} | {:.2}x | {:.3} | {:.3} | {:.2} | {:.1} |\n",
+            "| {} | {} | {} | {} | {} | {} | {:.2}x | {:.3} | {:.3} | {:.2} | {:.1} |\n",
             r.cage,
             r.depth,
             r.points,
+            r.path,
             m(r.subdiv_pts),
             m(r.osd_pts),
             r.subdiv_pts / r.osd_pts,
