@@ -253,7 +253,8 @@ impl StencilTable {
         (sum - 1.0).abs() <= PARTITION_TOLERANCE
     }
 
-    /// The position and derivative sums of a lane for the cage points `points`, in `f64`.
+    /// The position and derivative sums of a lane for the cage points `points`, in `f64`,
+    /// about the face's first support vertex as [`StencilTable::apply`] takes them.
     pub(crate) fn lane_sums(
         &self,
         g: &Group,
@@ -263,14 +264,18 @@ impl StencilTable {
     ) -> [DVec3; 3] {
         let s = g.len as usize;
         let support = &self.support[g.support as usize..][..s];
+        let origin = support
+            .first()
+            .map_or(DVec3::ZERO, |&v| points[v as usize].as_dvec3());
         let mut sums = [DVec3::ZERO; 3];
         for (j, &v) in support.iter().enumerate() {
             let at = g.weights + (b * s + j) * BLOCK_FLOATS + l;
-            let p = points[v as usize].as_dvec3();
+            let p = points[v as usize].as_dvec3() - origin;
             for (k, sum) in sums.iter_mut().enumerate() {
                 *sum += p * f64::from(self.weights[at + k * LANES]);
             }
         }
+        sums[0] += origin;
         sums
     }
 
@@ -303,6 +308,16 @@ impl StencilTable {
                 if !close(sums, want.position, want.normal(), size) || !self.partition(g, b, l) {
                     let target = self.targets[g.first_block as usize * LANES + r];
                     let q = queries[first_point + r];
+                    eprintln!(
+                        "MISMATCH target {target} q {:?} close {} part {} pos {:?} want {:?} n {:?} wantn {:?}",
+                        (q.face, q.u, q.v),
+                        close(sums, want.position, want.normal(), size),
+                        self.partition(g, b, l),
+                        sums[0],
+                        want.position,
+                        sums[1].cross(sums[2]).normalize_or_zero(),
+                        want.normal()
+                    );
                     match cage_vertex(mesh, scheme, q) {
                         Some(vertex) => lanes.push(RingLane {
                             group: gi,

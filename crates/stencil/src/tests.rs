@@ -239,3 +239,21 @@ fn the_portable_kernel_is_the_fused_one_to_rounding() {
         assert_eq!(run(true), run(true));
     }
 }
+/// A table is made from any frame of a cage, not only a rest pose (a swayed pawn at depth 4:
+/// its checks sum each stencil about the face, as a frame does, where sums about the origin
+/// lose the small derivatives near its pole), and its frames are the fresh tessellations.
+#[test]
+fn a_table_is_made_from_any_frame() {
+    let mesh = load(shape("catmark_pawn.obj"));
+    let mut moved = Vec::new();
+    sway(mesh.positions(), 0, 48, &mut moved);
+    let mut frame = mesh.clone();
+    frame.positions_mut().copy_from_slice(&moved);
+    let mut t = StencilTessellator::new(&frame, Scheme::CatmullClark, 4).unwrap();
+    assert!(t.stencils().is_some());
+    sway(mesh.positions(), 5, 48, &mut moved);
+    frame.positions_mut().copy_from_slice(&moved);
+    let got = t.update(&frame).unwrap();
+    let (d, a) = compare(got, &fresh(&frame, Scheme::CatmullClark, 4), size(&mesh));
+    assert!(d < 1e-6 && a < 1e-5, "{d} {a}");
+}
