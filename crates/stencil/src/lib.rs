@@ -4,8 +4,8 @@
 //! The crate's job: where a cage moves and its topology stays (an animated character), the
 //! limit points and derivatives of a uniform tessellation are the same linear functions of the
 //! cage points every frame. [`StencilTable`] holds them: built once per topology from
-//! `subdiv-eval`'s exact limit (probed, see `table`), applied per frame eight points at a time
-//! (`apply`). [`StencilTessellator`] is the per-frame product path: the slates lay the cage out
+//! `subdiv-eval`'s exact limit (probed, see `table`) and, at cage vertices, from the vertex's
+//! ring as the slates take it (`ring`), applied per frame eight points at a time (`apply`). [`StencilTessellator`] is the per-frame product path: the slates lay the cage out
 //! and give the first frame's faces, UVs and numbering; the table rewrites points and normals
 //! in the same buffers each frame (OpenSubdiv's `LimitStencilTable` does the same, with
 //! weights per point where these are shared by a face's points in blocks).
@@ -17,7 +17,7 @@
 //!   written by one lane of one block, so shared points are written once and the surface is
 //!   watertight to the bit. Positions and normals agree with a fresh slate tessellation of the
 //!   same cage to rounding (the tests bound them on deformed cages at `1e-6` of the cage's
-//!   size and `1e-5` rad), not to the bit; the frame a layout is made with is the slates' own.
+//!   size and `1e-4` rad), not to the bit; the frame a layout is made with is the slates' own.
 //! - **Output identical for any thread count.** Every point is a sum over its face's support
 //!   in a fixed order; tasks only split the faces.
 //! - **Nothing allocated per frame** but a task's support buffer.

@@ -108,7 +108,8 @@ impl StencilTessellator {
         let Some(params) = self.slates.point_params() else {
             return Ok(());
         };
-        self.table = match StencilTable::new(mesh, self.slates.scheme(), &params) {
+        self.table = match StencilTable::new(mesh, self.slates.scheme(), &params, u32::from(depth))
+        {
             Ok(table) => Some(table),
             // A limit the table cannot hold, or a table too large: the slates compute every
             // frame.

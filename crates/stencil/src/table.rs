@@ -38,11 +38,13 @@ pub const MAX_TABLE_BYTES: usize = 64 << 20;
 const PARTITION_TOLERANCE: f64 = 1e-4;
 
 /// How far a point of the table may lie from the evaluator's on a moved cage, over the cage's
-/// size (both sums of `f32` weights are rounded at about `1e-7`).
-const POSITION_TOLERANCE: f64 = 1e-5;
+/// size (the table's sums of `f32` weights round at about `1e-7`).
+const POSITION_TOLERANCE: f64 = 1e-6;
 
-/// How far (radians) a normal of the table may turn from the evaluator's on a moved cage.
-const NORMAL_TOLERANCE: f64 = 1e-3;
+/// How far (radians) a normal of the table may turn from the evaluator's on a moved cage (the
+/// rounding of the `f32` weights turns it by a few `1e-7`; a limit the probes do not give
+/// linearly, by far more).
+const NORMAL_TOLERANCE: f64 = 1e-4;
 
 /// The points of one cage face: its support and its blocks of eight points.
 #[derive(Clone, Copy, Debug)]
@@ -82,12 +84,16 @@ pub struct StencilTable {
 impl StencilTable {
     /// The stencils of the points `params` (point `i` at cage face `params.face[i]`, `(u, v)`
     /// = `params.uv[i]` in the face's domain, as `subdiv_eval::Domain` defines it) on `mesh`'s
-    /// `scheme` limit surface. Errors name the point or face: a parameter point outside its
-    /// face or on a hole, a cage the scheme refuses, or a support the probes cannot separate.
+    /// `scheme` limit surface. At a cage vertex where the evaluator settles its limit
+    /// numerically, the table takes the vertex's ring refined `corner_level` times and its
+    /// masks, as a tessellation of that depth does (`ring.rs`). Errors name the point or face:
+    /// a parameter point outside its face or on a hole, a cage the scheme refuses, or a limit
+    /// the table cannot hold.
     pub fn new(
         mesh: &Mesh,
         scheme: Scheme,
         params: &VertexParams,
+        corner_level: u32,
     ) -> Result<StencilTable, StencilError> {
         let n = params.face.len();
         if params.uv.len() != n {
@@ -175,7 +181,7 @@ impl StencilTable {
         table.probe(mesh, scheme, &colours, &queries)?;
         let moved = moved_cage(mesh);
         let vertices = table.verify(mesh, &moved, scheme, &queries)?;
-        table.ring_lanes(&moved, scheme, &colours, vertices)?;
+        table.ring_lanes(&moved, scheme, &colours, vertices, corner_level)?;
         table.share();
         Ok(table)
     }
@@ -191,7 +197,7 @@ impl StencilTable {
     }
 
     /// Number of points at cage vertices whose stencil is the vertex's ring limit (see
-    /// `ring.rs`): where the evaluator refines until its limit settles.
+    /// `ring.rs`): every point at a cage vertex.
     pub fn ring_stencils(&self) -> usize {
         self.ring_stencils
     }
@@ -280,12 +286,11 @@ impl StencilTable {
     }
 
     /// The table against the evaluator on the `moved` cage: a point whose weights are not
-    /// affine or whose position or normal differs is not linear in the cage. That happens only
-    /// at a cage vertex where the evaluator refines its ring until the limit settles (a dart, a
-    /// smooth vertex of valence 2, a crease sector that is not a half-plane: the levels it takes
-    /// depend on the points, and its derivatives there are projected into the exact tangent
-    /// plane); those lanes are returned with their vertices for [`StencilTable::ring_lanes`].
-    /// Any other difference is an error.
+    /// affine or whose position or normal differs is not linear in the cage, an error. Points at
+    /// cage vertices are returned with their vertices for [`StencilTable::ring_lanes`]: there
+    /// the slates take the masks of the vertex's ring refined to the depth (OpenSubdiv's value
+    /// at that level, which is not the limit the evaluator gives at a dart or a vertex of
+    /// valence 2), and the evaluator settles some limits numerically, not linearly.
     fn verify(
         &self,
         mesh: &Mesh,
@@ -305,29 +310,20 @@ impl StencilTable {
                 let (b, l) = (r / LANES, r % LANES);
                 let sums = self.lane_sums(g, b, l, moved.positions());
                 let want = &samples[first_point + r];
-                if !close(sums, want.position, want.normal(), size) || !self.partition(g, b, l) {
-                    let target = self.targets[g.first_block as usize * LANES + r];
-                    let q = queries[first_point + r];
-                    eprintln!(
-                        "MISMATCH target {target} q {:?} close {} part {} pos {:?} want {:?} n {:?} wantn {:?}",
-                        (q.face, q.u, q.v),
-                        close(sums, want.position, want.normal(), size),
-                        self.partition(g, b, l),
-                        sums[0],
-                        want.position,
-                        sums[1].cross(sums[2]).normalize_or_zero(),
-                        want.normal()
-                    );
-                    match cage_vertex(mesh, scheme, q) {
-                        Some(vertex) => lanes.push(RingLane {
-                            group: gi,
-                            block: b,
-                            lane: l,
-                            target,
-                            vertex,
-                        }),
-                        None => return Err(StencilError::Support { point: target }),
-                    }
+                let target = self.targets[g.first_block as usize * LANES + r];
+                // Every cage vertex takes its ring's masks, as the slates' corners do.
+                if let Some(vertex) = cage_vertex(mesh, scheme, queries[first_point + r]) {
+                    lanes.push(RingLane {
+                        group: gi,
+                        block: b,
+                        lane: l,
+                        target,
+                        vertex,
+                    });
+                } else if !close(sums, want.position, want.normal(), size)
+                    || !self.partition(g, b, l)
+                {
+                    return Err(StencilError::Support { point: target });
                 }
             }
             first_point += g.points as usize;

@@ -80,12 +80,12 @@ fn every_frame_through_the_table_is_the_fresh_tessellation_to_rounding() {
                 let got = t.update(&frame).unwrap();
                 assert!(!got.topology_written(), "{name}");
                 let (d, a) = compare(got, &fresh(&frame, scheme, depth), s);
-                assert!(d < 1e-6 && a < 1e-5, "{name} frame {i}: {d} {a}");
+                assert!(d < 1e-6 && a < 1e-4, "{name} frame {i}: {d} {a}");
             }
             assert_eq!(t.layouts_built(), 1);
         }
     }
-    // The helmet's boundary vertices on its semi-sharp crease have ring stencils.
+    // Cage vertices take their rings' masks.
     assert!(ring_stencils > 0);
 }
 
@@ -123,7 +123,7 @@ fn a_new_topology_gets_a_new_table_and_a_bad_frame_keeps_the_last_surface() {
     assert_eq!(t.layouts_built(), 2);
     assert!(t.stencils().is_some());
     let (d, a) = compare(&got, &fresh(&sharp, Scheme::CatmullClark, 2), size(&mesh));
-    assert!(d < 1e-6 && a < 1e-5, "{d} {a}");
+    assert!(d < 1e-6 && a < 1e-4, "{d} {a}");
     let mut bad = sharp.clone();
     bad.positions_mut()[0].x = f32::INFINITY;
     assert!(t.update(&bad).is_err());
@@ -160,7 +160,7 @@ fn a_table_is_the_evaluators_limit_at_its_points() {
             face: queries.iter().map(|q| q.face).collect(),
             uv: queries.iter().map(|q| [q.u as f32, q.v as f32]).collect(),
         };
-        let table = StencilTable::new(&mesh, scheme, &params).unwrap();
+        let table = StencilTable::new(&mesh, scheme, &params, 0).unwrap();
         let mut moved = mesh.clone();
         for (i, p) in moved.positions_mut().iter_mut().enumerate() {
             let a = i as f32 * 0.7;
@@ -235,7 +235,7 @@ fn the_portable_kernel_is_the_fused_one_to_rounding() {
             s
         };
         let (d, a) = compare(&run(true), &run(false), size(&mesh));
-        assert!(d < 1e-6 && a < 1e-5, "{d} {a}");
+        assert!(d < 1e-6 && a < 1e-4, "{d} {a}");
         assert_eq!(run(true), run(true));
     }
 }
@@ -255,5 +255,48 @@ fn a_table_is_made_from_any_frame() {
     frame.positions_mut().copy_from_slice(&moved);
     let got = t.update(&frame).unwrap();
     let (d, a) = compare(got, &fresh(&frame, Scheme::CatmullClark, 4), size(&mesh));
-    assert!(d < 1e-6 && a < 1e-5, "{d} {a}");
+    assert!(d < 1e-6 && a < 1e-4, "{d} {a}");
+}
+
+/// Every cage of the reference shapes, the watertightness fuzz finds and the non-manifold
+/// fixtures, under each scheme that takes it, at depths 2 and 3: the tessellator makes a table
+/// or runs the slates, and its frames are the fresh tessellations (to rounding through a table,
+/// bit for bit without one).
+#[test]
+fn every_fixture_cage_moves_as_its_fresh_tessellations() {
+    use subdiv_test_support::fixture_files;
+    let mut files = fixture_files("reference/shapes", "obj");
+    files.extend(fixture_files("osd_watertight", "obj"));
+    files.extend(fixture_files("nonmanifold", "obj"));
+    let (mut tables, mut slates) = (0, 0);
+    for path in files {
+        let Ok(mesh) = read_obj(&path) else { continue };
+        for scheme in [Scheme::CatmullClark, Scheme::Loop] {
+            for depth in [2, 3] {
+                let Ok(mut t) = StencilTessellator::new(&mesh, scheme, depth) else {
+                    continue;
+                };
+                let name = format!("{} {scheme:?} depth {depth}", path.display());
+                let with_table = t.stencils().is_some();
+                let mut moved = Vec::new();
+                sway(mesh.positions(), 3, 8, &mut moved);
+                let mut frame = mesh.clone();
+                frame.positions_mut().copy_from_slice(&moved);
+                let got = t.update(&frame).unwrap().clone();
+                let want = fresh(&frame, scheme, depth);
+                if with_table {
+                    tables += 1;
+                    let (d, a) = compare(&got, &want, size(&mesh));
+                    assert!(d < 1e-6 && a < 1e-4, "{name}: {d} {a}");
+                } else {
+                    slates += 1;
+                    assert_eq!(got, want, "{name}");
+                }
+            }
+        }
+    }
+    assert!(
+        tables > 50 && slates > 0,
+        "{tables} tables, {slates} without"
+    );
 }
