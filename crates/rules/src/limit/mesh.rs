@@ -350,20 +350,6 @@ impl LimitMesh {
         &mut self.positions
     }
 
-    /// The positions and normals together, to rewrite a frame's points in place (the counts
-    /// stay; faces, corner normals and UVs are left as they are).
-    #[inline]
-    pub fn points_and_normals_mut(&mut self) -> (&mut [[f32; 3]], &mut [[f32; 3]]) {
-        (&mut self.positions, &mut self.normals)
-    }
-
-    /// Records that the last frame rewrote only points and normals of a surface whose faces a
-    /// keyed tessellator wrote: [`LimitMesh::topology_written`] is then `false` (a renderer
-    /// keeps its index buffer). Nothing changes for faces written without a layout key.
-    pub fn keep_faces(&mut self) {
-        self.topology.keep();
-    }
-
     /// Removes every face (and with them the corner normals and UV indices); capacity kept.
     /// The next keyed tessellation into the mesh writes its faces again.
     pub fn clear_faces(&mut self) {

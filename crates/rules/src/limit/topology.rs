@@ -67,6 +67,23 @@ impl TopologyStamp {
     }
 }
 
+/// A later frame of the same layout: its points rewritten in place, its faces kept.
+impl super::LimitMesh {
+    /// The positions and normals together, to rewrite a frame's points in place (the counts
+    /// stay; faces, corner normals and UVs are left as they are).
+    #[inline]
+    pub fn points_and_normals_mut(&mut self) -> (&mut [[f32; 3]], &mut [[f32; 3]]) {
+        (&mut self.positions, &mut self.normals)
+    }
+
+    /// Records that the last frame rewrote only points and normals of a surface whose faces a
+    /// keyed tessellator wrote: [`LimitMesh::topology_written`] is then `false` (a renderer
+    /// keeps its index buffer). Nothing changes for faces written without a layout key.
+    pub fn keep_faces(&mut self) {
+        self.topology.keep();
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::LimitMesh;
