@@ -158,6 +158,19 @@ pub enum RulesError {
         /// Its position.
         z: f32,
     },
+    /// A cage coordinate that is not a number or infinite (a cage whose positions were
+    /// rewritten after it was read: parsing refuses them).
+    #[error("vertex {vertex} has a coordinate that is not a finite number ({x}, {y}, {z})")]
+    NonFiniteCoordinate {
+        /// The vertex.
+        vertex: u32,
+        /// Its position.
+        x: f32,
+        /// Its position.
+        y: f32,
+        /// Its position.
+        z: f32,
+    },
     /// The output would not fit in this machine's memory (or a caller's triangle limit): refused
     /// before allocating, with the size asked for ([`budget`]).
     #[error(transparent)]

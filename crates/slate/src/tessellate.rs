@@ -486,6 +486,18 @@ mod tests {
             );
         }
         assert!(tessellate_layout(&mesh, &layout).is_err());
+        mesh.positions_mut()[4].x = f32::NAN;
+        for depth in [0, 2] {
+            let e = tessellate(&mesh, depth).unwrap_err();
+            assert!(
+                matches!(
+                    e,
+                    SlateError::Rules(RulesError::NonFiniteCoordinate { vertex: 4, .. })
+                ),
+                "{e:?}"
+            );
+        }
+        assert!(tessellate_layout(&mesh, &layout).is_err());
         mesh.positions_mut()[4].x = -subdiv_rules::MAX_COORDINATE;
         let t = tessellate(&mesh, 2).unwrap();
         assert!(

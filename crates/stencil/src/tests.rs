@@ -124,10 +124,13 @@ fn a_new_topology_gets_a_new_table_and_a_bad_frame_keeps_the_last_surface() {
     assert!(t.stencils().is_some());
     let (d, a) = compare(&got, &fresh(&sharp, Scheme::CatmullClark, 2), size(&mesh));
     assert!(d < 1e-6 && a < 1e-4, "{d} {a}");
-    let mut bad = sharp.clone();
-    bad.positions_mut()[0].x = f32::INFINITY;
-    assert!(t.update(&bad).is_err());
-    assert_eq!(*t.surface(), got);
+    for x in [f32::INFINITY, f32::NAN] {
+        let mut bad = sharp.clone();
+        bad.positions_mut()[7].y = x;
+        let e = t.update(&bad).unwrap_err();
+        assert!(e.to_string().contains("vertex 7"), "{e}");
+        assert_eq!(*t.surface(), got);
+    }
 }
 
 /// Where no table is made (deeper than the tables go, or one-sided normals at an infinitely

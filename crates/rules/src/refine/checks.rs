@@ -37,22 +37,27 @@ pub fn check_doubled_triangles(mesh: &Mesh) -> Result<(), RulesError> {
 /// infinity, while below this bound even a sum of a million weighted points stays finite.
 pub const MAX_COORDINATE: f32 = 1e30;
 
-/// Refuses the first vertex with a coordinate beyond [`MAX_COORDINATE`]. Checked on the cage by
+/// Refuses the first vertex with a coordinate beyond [`MAX_COORDINATE`]
+/// ([`RulesError::HugeCoordinate`]) or not finite ([`RulesError::NonFiniteCoordinate`]; a
+/// largest magnitude alone would pass NaN, which `max` ignores). Checked on the cage by
 /// [`refine_uniform_levels`] (and so [`tessellate_uniform`](crate::tessellate_uniform)) and
 /// the slate tessellator, not on refined meshes, whose points may exceed a cage at the bound by
 /// rounding.
+///
+/// [`refine_uniform_levels`]: crate::refine_uniform_levels
 pub fn check_coordinates(mesh: &Mesh) -> Result<(), RulesError> {
     let pos = mesh.positions();
-    match pos
+    let Some(v) = pos
         .iter()
-        .position(|p| p.abs().max_element() > MAX_COORDINATE)
-    {
-        Some(v) => Err(RulesError::HugeCoordinate {
-            vertex: v as u32,
-            x: pos[v].x,
-            y: pos[v].y,
-            z: pos[v].z,
-        }),
-        None => Ok(()),
-    }
+        .position(|p| !p.is_finite() || p.abs().max_element() > MAX_COORDINATE)
+    else {
+        return Ok(());
+    };
+    let (vertex, p) = (v as u32, pos[v]);
+    let (x, y, z) = (p.x, p.y, p.z);
+    Err(if p.is_finite() {
+        RulesError::HugeCoordinate { vertex, x, y, z }
+    } else {
+        RulesError::NonFiniteCoordinate { vertex, x, y, z }
+    })
 }

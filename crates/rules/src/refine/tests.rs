@@ -70,6 +70,22 @@ fn huge_coordinates_are_refused_and_the_bound_is_safe() {
             "{e}"
         );
     }
+    // Not a number and infinity: `max_element` ignores NaN, so it needs its own test.
+    for (x, bad) in [(f32::NAN, "NaN"), (f32::NEG_INFINITY, "-inf")] {
+        let mut m = Mesh::from_soup(&parse_obj(cube).unwrap()).unwrap();
+        m.positions_mut()[5].z = x;
+        let e = refine_uniform_levels(&m, Scheme::CatmullClark, 1).unwrap_err();
+        assert!(
+            matches!(e, RulesError::NonFiniteCoordinate { vertex: 5, .. }),
+            "{e:?}"
+        );
+        assert!(
+            e.to_string()
+                .starts_with("vertex 5 has a coordinate that is not a finite number")
+                && e.to_string().contains(bad),
+            "{e}"
+        );
+    }
     // At the bound (every vertex, either sign) the refinement and its limit are finite.
     let mut m = Mesh::from_soup(&parse_obj(cube).unwrap()).unwrap();
     for p in m.positions_mut() {
