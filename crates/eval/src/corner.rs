@@ -10,7 +10,7 @@
 //! rules it applies (a dart, a smooth vertex of valence 2, a crease or corner vertex whose
 //! sector is not a regular half-plane: Biermann et al.'s tangent masks are those of their
 //! modified rules), that is the limit of the level-by-level values, to rounding (the ring is
-//! refined about its own centre, so its relative precision holds at any depth).
+//! moved to its own centre after every level, so its relative precision holds at any depth).
 //!
 //! The parameterisation is singular there, so the derivatives are defined as: along the
 //! patch's two sides, the limit tangents of those sides (at a smooth vertex the tangent masks
@@ -42,13 +42,17 @@ fn sided(r: &mut Ring, f: usize, faces: &mut Vec<DVec3>) -> (DVec3, DVec3) {
 
 /// The limit at corner ring `ring` of a patch that is its face `f`.
 pub(crate) fn corner_limit(ring: &Ring, f: usize, scheme: Scheme) -> CornerLimit {
-    // Refined about its own centre, the ring keeps its relative precision at any depth.
+    // The ring is kept about its own centre, moved there after every level: its points
+    // converge on the limit position, not on the cage vertex, so a ring left about the cage
+    // vertex would lose its relative precision after some 50 levels (its spread below the
+    // rounding of its distance from there) and give degenerate tangents.
     let mut r = ring.clone();
-    let origin = r.center();
-    r.translate(-origin);
+    let mut origin = DVec3::ZERO;
+    recentre(&mut r, &mut origin);
     let mut levels = 0u32;
     while r.needs_refinement() && levels < MAX_LEVELS {
         r.refine();
+        recentre(&mut r, &mut origin);
         levels += 1;
     }
     let size = (0..r.valence())
@@ -68,9 +72,14 @@ pub(crate) fn corner_limit(ring: &Ring, f: usize, scheme: Scheme) -> CornerLimit
     while levels < MAX_LEVELS && sector.is_none() {
         let mut next = r.clone();
         next.refine();
+        let mut shift = DVec3::ZERO;
+        recentre(&mut next, &mut shift);
+        // `p` is about the next ring's centre, `position` about this one's.
         let (p, n) = sided(&mut next, f, &mut faces);
-        let settled = (p - position).length() <= 1e-14 * size && (n - normal).length() <= 1e-14;
+        let moved = (p + shift - position).length();
+        let settled = moved <= 1e-14 * size && (n - normal).length() <= 1e-14;
         (r, position, normal) = (next, p, n);
+        origin += shift;
         levels += 1;
         if settled {
             break;
@@ -84,6 +93,13 @@ pub(crate) fn corner_limit(ring: &Ring, f: usize, scheme: Scheme) -> CornerLimit
         next: next * level_scale,
         prev: prev * level_scale,
     }
+}
+
+/// Moves ring `r` to its own centre, adding what it moved by to `origin`.
+fn recentre(r: &mut Ring, origin: &mut DVec3) {
+    let c = r.center();
+    r.translate(-c);
+    *origin += c;
 }
 
 /// At a corner (the vertex stays, its sharp edges' crease curves start along those edges):

@@ -97,10 +97,16 @@ fn vertex_limit(
         (p, sided.get(fi).copied().unwrap_or(n))
     };
     let (mut p, mut n) = at(&mut ring);
+    // Moved to its own centre at every level (its points converge on the limit, and about
+    // another point they would lose their relative precision within some 50 levels).
+    let mut origin = origin;
     for _ in 0..120 {
         ring.refine();
+        let shift = ring.center();
+        ring.translate(-shift);
+        origin += shift;
         let (q, k) = at(&mut ring);
-        let still = (q - p).length() < 1e-15 && (k - n).length() < 1e-13;
+        let still = (q + shift - p).length() < 1e-15 && (k - n).length() < 1e-13;
         (p, n) = (q, k);
         if still {
             return (p + origin, (!copy).then_some(n));
