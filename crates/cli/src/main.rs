@@ -76,6 +76,8 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    // A CPU Vulkan driver (lavapipe) draws from the C heap: keep it between frames.
+    subdiv::vk::keep_freed_heap();
     let cli = Cli::parse();
     logger::init(cli.verbose, cli.quiet);
     progress::init(cli.quiet);

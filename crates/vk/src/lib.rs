@@ -27,7 +27,9 @@
 //!   Debian package to install. Set `SUBDIV_VK_VALIDATION=1` to enable the
 //!   Khronos validation layer.
 //! - **Nothing global.** Each [`Renderer`] and viewer owns its own instance,
-//!   device and allocator, so any number of them can run in parallel threads.
+//!   device and allocator, so any number of them can run in parallel threads. The one
+//!   process-wide setting, [`keep_freed_heap`] (the C heap a CPU driver draws from), is
+//!   the program's to call.
 //! - **One frame recipe.** The headless renderer and the viewer record frames
 //!   with the same code into the same offscreen targets; a viewer screenshot
 //!   equals a headless render of the same camera, size and options (legend
@@ -46,6 +48,7 @@
 mod context;
 mod error;
 mod frame;
+mod heap;
 mod image_io;
 mod memory;
 mod offscreen;
@@ -63,6 +66,7 @@ pub use context::{
     ContextOptions, DEVICE_ENV, REQUIRE_VALIDATION_ENV, VALIDATION_ENV, Validation, ValidationLog,
 };
 pub use error::{Result, VkError};
+pub use heap::keep_freed_heap;
 pub use image_io::{EXR_CHANNELS, ExrChannel, read_exr, read_png, write_exr, write_png};
 pub use offscreen::{AuxImage, Renderer};
 pub use samples::{DEFAULT_SAMPLES, SAMPLE_COUNTS};
