@@ -197,8 +197,10 @@ impl Renderer {
     /// frame (an adaptive frame): `version` identifies its vertex data, and `dirty` names the
     /// vertices that differ from version `version - 1`'s. When the renderer holds the previous
     /// (or this) version's vertices from the last call, it writes only the `dirty` ones and the
-    /// indices; otherwise everything. The caller guarantees that the vertices outside `dirty`
-    /// equal those of version `version - 1` (`subdiv_stitch::AdaptiveFrame::dirty_vertices`).
+    /// indices (vertices appended since must be among the `dirty` ones, and the buffer must have
+    /// room for them); otherwise everything. The caller guarantees that the vertices outside
+    /// `dirty` equal those of version `version - 1`
+    /// (`subdiv_stitch::AdaptiveFrame::dirty_vertices`).
     pub fn render_discard_versioned(
         &mut self,
         mesh: &RenderMesh<'_>,
@@ -235,8 +237,13 @@ impl Renderer {
         readback: Readback,
     ) -> Result<()> {
         let n = mesh.positions.len();
+        // Vertices appended since the held version (an adaptive frame's new blocks) must be
+        // among the dirty ones; the others kept their index and bits.
         let keep = match self.held {
-            Some((v, count)) => count == n && (v == version || v + 1 == version),
+            Some((v, count)) => {
+                (v == version || v + 1 == version)
+                    && (count >= n || covers(dirty, count as u32..n as u32))
+            }
             None => false,
         };
         // Overlays and legends are not kept: they are drawn after the shared vertices.
@@ -380,6 +387,23 @@ impl Renderer {
         }
         Ok(())
     }
+}
+
+/// Whether `ranges` (in any order) cover every index of `want`; an empty `want` is covered.
+fn covers(ranges: &[std::ops::Range<u32>], want: std::ops::Range<u32>) -> bool {
+    let mut inside: Vec<&std::ops::Range<u32>> = ranges
+        .iter()
+        .filter(|r| r.end > want.start && r.start < want.end)
+        .collect();
+    inside.sort_unstable_by_key(|r| r.start);
+    let mut next = want.start;
+    for r in inside {
+        if r.start > next {
+            break;
+        }
+        next = next.max(r.end);
+    }
+    next >= want.end
 }
 
 /// What a draw uploads of the mesh.

@@ -1,6 +1,7 @@
 //! Versioned renders keep the vertices the renderer already holds and write only the dirty
-//! ranges: the picture equals a fresh render of the same mesh, and a range left out of `dirty`
-//! really is not written (so the test can tell).
+//! ranges, vertices appended since the last version included: the picture equals a fresh
+//! render of the same mesh, and a range left out of `dirty` really is not written (so the test
+//! can tell).
 //!
 //! Without a Vulkan driver the test prints a note and passes, unless
 //! `SUBDIV_VK_REQUIRE_DRIVER=1` is set.
@@ -127,4 +128,44 @@ fn versioned_renders_write_only_the_dirty_vertices_and_match_fresh_ones() {
         .render_versioned(&mesh(&flat), &view, size, &options, 10, &[])
         .unwrap();
     assert_eq!(after, fresh_flat);
+
+    // Vertices appended (an adaptive frame's new blocks) are written when `dirty` covers them,
+    // and the rest is kept. `stack(parts, t)` lays grids one after the other and draws the
+    // triangles of part `t`.
+    let stack = |parts: &[&(Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<u32>)], t: usize| {
+        let n = flat.0.len() as u32;
+        let pos: Vec<[f32; 3]> = parts.iter().flat_map(|m| m.0.clone()).collect();
+        let nrm: Vec<[f32; 3]> = parts.iter().flat_map(|m| m.1.clone()).collect();
+        let tris: Vec<u32> = flat.2.iter().map(|&i| i + t as u32 * n).collect();
+        (pos, nrm, tris)
+    };
+    let n = flat.0.len() as u32;
+    // A big mesh first, so that the buffer has room for the stacks below (a buffer too small
+    // for a frame is written in full).
+    let big = stack(&[&flat, &flat, &flat, &lifted], 3);
+    r.render(&mesh(&big), &view, size, &options).unwrap();
+    let v20 = r
+        .render_versioned(&mesh(&flat), &view, size, &options, 20, &[0..n])
+        .unwrap();
+    assert!(v20 == fresh_flat);
+    let grown = stack(&[&flat, &lifted], 1);
+    let v21 = r
+        .render_versioned(&mesh(&grown), &view, size, &options, 21, &[n..2 * n])
+        .unwrap();
+    assert!(v21 == fresh_lifted, "appended vertices written");
+    // Grown again with only the new tail dirty: the first grid, rewritten but not marked,
+    // keeps version 21's flat vertices, so the picture is the flat one.
+    let tail = stack(&[&lifted, &lifted, &flat], 0);
+    let v22 = r
+        .render_versioned(&mesh(&tail), &view, size, &options, 22, &[2 * n..3 * n])
+        .unwrap();
+    assert!(
+        v22 == fresh_flat,
+        "the vertices before the appended ones kept"
+    );
+    // Grown with the new vertices not among the dirty ones: everything is written.
+    let v23 = r
+        .render_versioned(&mesh(&big), &view, size, &options, 23, &[0..n])
+        .unwrap();
+    assert!(v23 == fresh_lifted, "written in full");
 }
