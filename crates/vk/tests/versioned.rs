@@ -27,9 +27,12 @@ fn renderer() -> Option<Renderer> {
     }
 }
 
+/// Positions, normals and triangle indices.
+type Grid = (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<u32>);
+
 /// A `k × k` grid of quads in the z = 0 plane, vertices lifted by `bump(i, j)` along z, with
 /// normals tilted by the lift so the shading shows it.
-fn grid(k: u32, bump: impl Fn(u32, u32) -> f32) -> (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<u32>) {
+fn grid(k: u32, bump: impl Fn(u32, u32) -> f32) -> Grid {
     let mut pos = Vec::new();
     let mut nrm = Vec::new();
     for j in 0..=k {
@@ -132,7 +135,7 @@ fn versioned_renders_write_only_the_dirty_vertices_and_match_fresh_ones() {
     // Vertices appended (an adaptive frame's new blocks) are written when `dirty` covers them,
     // and the rest is kept. `stack(parts, t)` lays grids one after the other and draws the
     // triangles of part `t`.
-    let stack = |parts: &[&(Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<u32>)], t: usize| {
+    let stack = |parts: &[&Grid], t: usize| {
         let n = flat.0.len() as u32;
         let pos: Vec<[f32; 3]> = parts.iter().flat_map(|m| m.0.clone()).collect();
         let nrm: Vec<[f32; 3]> = parts.iter().flat_map(|m| m.1.clone()).collect();
@@ -145,19 +148,40 @@ fn versioned_renders_write_only_the_dirty_vertices_and_match_fresh_ones() {
     let big = stack(&[&flat, &flat, &flat, &lifted], 3);
     r.render(&mesh(&big), &view, size, &options).unwrap();
     let v20 = r
-        .render_versioned(&mesh(&flat), &view, size, &options, 20, &[0..n])
+        .render_versioned(
+            &mesh(&flat),
+            &view,
+            size,
+            &options,
+            20,
+            std::slice::from_ref(&(0..n)),
+        )
         .unwrap();
     assert!(v20 == fresh_flat);
     let grown = stack(&[&flat, &lifted], 1);
     let v21 = r
-        .render_versioned(&mesh(&grown), &view, size, &options, 21, &[n..2 * n])
+        .render_versioned(
+            &mesh(&grown),
+            &view,
+            size,
+            &options,
+            21,
+            std::slice::from_ref(&(n..2 * n)),
+        )
         .unwrap();
     assert!(v21 == fresh_lifted, "appended vertices written");
     // Grown again with only the new tail dirty: the first grid, rewritten but not marked,
     // keeps version 21's flat vertices, so the picture is the flat one.
     let tail = stack(&[&lifted, &lifted, &flat], 0);
     let v22 = r
-        .render_versioned(&mesh(&tail), &view, size, &options, 22, &[2 * n..3 * n])
+        .render_versioned(
+            &mesh(&tail),
+            &view,
+            size,
+            &options,
+            22,
+            std::slice::from_ref(&(2 * n..3 * n)),
+        )
         .unwrap();
     assert!(
         v22 == fresh_flat,
@@ -165,7 +189,14 @@ fn versioned_renders_write_only_the_dirty_vertices_and_match_fresh_ones() {
     );
     // Grown with the new vertices not among the dirty ones: everything is written.
     let v23 = r
-        .render_versioned(&mesh(&big), &view, size, &options, 23, &[0..n])
+        .render_versioned(
+            &mesh(&big),
+            &view,
+            size,
+            &options,
+            23,
+            std::slice::from_ref(&(0..n)),
+        )
         .unwrap();
     assert!(v23 == fresh_lifted, "written in full");
 }
