@@ -105,6 +105,7 @@ impl FrameSource for UniformSource {
             status: &self.status,
             // Positions, normals and depth scalars change with the scene only.
             vertex_version: Some(self.version),
+            dirty_vertices: None,
             depth_cap: self.depth,
             predicted_ms: None,
         })
@@ -194,6 +195,7 @@ impl FrameSource for AdaptiveSource {
             },
             status: &self.status,
             vertex_version: Some(g.vertex_version()),
+            dirty_vertices: Some(g.dirty_vertices()),
             depth_cap: Some(u32::from(cap)),
             predicted_ms: self.node.last_frame().map(|(_, p)| (p * 1e3) as f32),
         })
@@ -270,6 +272,7 @@ impl FrameSource for DoiSource {
             },
             status: &self.status,
             vertex_version: Some(self.version),
+            dirty_vertices: None,
             // DoI refinement is driven by the DoI and its steps, not by a depth cap.
             depth_cap: None,
             predicted_ms: None,

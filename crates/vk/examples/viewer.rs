@@ -52,6 +52,7 @@ impl FrameSource for Adaptive {
             },
             status: &self.status,
             vertex_version: None,
+            dirty_vertices: None,
             depth_cap: Some(self.level),
             predicted_ms: None,
         })

@@ -2,11 +2,9 @@
 //! both produce identical pixels), and the mesh upload buffer.
 
 use ash::vk;
-use gpu_allocator::MemoryLocation;
 
-use crate::context::Context;
-use crate::error::{Result, VkError};
-use crate::memory::{Buffer, subresource_range};
+use crate::error::Result;
+use crate::memory::subresource_range;
 use crate::pipeline::{PipelineSet, Pipelines};
 use crate::scene::{self, Layout, RenderOptions, View};
 pub(crate) use crate::target::{COLOR_BYTES, NORMAL_BYTES, Readback, Target};
@@ -508,71 +506,5 @@ fn copy_to_readback(device: &ash::Device, cmd: vk::CommandBuffer, f: &FrameInput
             cmd,
             &vk::DependencyInfo::default().buffer_memory_barriers(&to_host),
         );
-    }
-}
-
-/// A host-visible vertex + index buffer that grows as needed.
-#[derive(Default)]
-pub(crate) struct MeshBuffer {
-    buffer: Option<Buffer>,
-}
-
-impl MeshBuffer {
-    /// Copies `bytes` in (growing the buffer if needed) and returns the buffer.
-    /// The caller guarantees the GPU is done with the previous contents.
-    pub fn upload(&mut self, ctx: &mut Context, bytes: &[u8]) -> Result<vk::Buffer> {
-        let needed = (bytes.len() as u64).max(256);
-        if self.buffer.as_ref().is_none_or(|b| b.size < needed) {
-            if let Some(mut old) = self.buffer.take() {
-                old.destroy(ctx);
-            }
-            self.buffer = Some(Buffer::new(
-                ctx,
-                needed.next_power_of_two(),
-                vk::BufferUsageFlags::VERTEX_BUFFER | vk::BufferUsageFlags::INDEX_BUFFER,
-                MemoryLocation::CpuToGpu,
-                "mesh",
-            )?);
-        }
-        let buffer = self.buffer.as_mut().ok_or(VkError::Vulkan {
-            call: "create mesh buffer",
-            result: vk::Result::ERROR_UNKNOWN,
-        })?;
-        let mapped = buffer.mapped_mut()?;
-        if let Some(dst) = mapped.get_mut(..bytes.len()) {
-            dst.copy_from_slice(bytes);
-        }
-        Ok(buffer.raw)
-    }
-
-    /// Copies `bytes` to `offset`, keeping what lies before it, if the buffer
-    /// already holds at least `total` bytes; `None` (nothing written) otherwise.
-    pub fn upload_at(
-        &mut self,
-        bytes: &[u8],
-        offset: u64,
-        total: u64,
-    ) -> Result<Option<vk::Buffer>> {
-        let Some(buffer) = self.buffer.as_mut().filter(|b| b.size >= total) else {
-            return Ok(None);
-        };
-        let start = usize::try_from(offset).unwrap_or(usize::MAX);
-        let mapped = buffer.mapped_mut()?;
-        match start
-            .checked_add(bytes.len())
-            .and_then(|end| mapped.get_mut(start..end))
-        {
-            Some(dst) => {
-                dst.copy_from_slice(bytes);
-                Ok(Some(buffer.raw))
-            }
-            None => Ok(None),
-        }
-    }
-
-    pub fn destroy(&mut self, ctx: &mut Context) {
-        if let Some(mut b) = self.buffer.take() {
-            b.destroy(ctx);
-        }
     }
 }

@@ -51,6 +51,7 @@ mod frame;
 mod heap;
 mod image_io;
 mod memory;
+mod mesh_buffer;
 mod offscreen;
 pub mod overlay;
 mod pipeline;

@@ -6,7 +6,8 @@ use image::RgbaImage;
 
 use crate::context::{Context, ContextOptions, ValidationLog};
 use crate::error::{Result, VkResultExt};
-use crate::frame::{self, FrameInputs, MeshBuffer, Readback, Target};
+use crate::frame::{self, FrameInputs, Readback, Target};
+use crate::mesh_buffer::MeshBuffer;
 use crate::pipeline::Pipelines;
 use crate::samples;
 use crate::scene::{self, RenderMesh, RenderOptions, View};
@@ -242,7 +243,7 @@ impl Renderer {
         let keep = match self.held {
             Some((v, count)) => {
                 (v == version || v + 1 == version)
-                    && (count >= n || covers(dirty, count as u32..n as u32))
+                    && (count >= n || scene::covers(dirty, count as u32..n as u32))
             }
             None => false,
         };
@@ -313,14 +314,7 @@ impl Renderer {
         }
         let kept = match upload {
             Upload::Keep(dirty) => {
-                let mut vertices = Vec::new();
-                let mut ok = true;
-                for r in dirty {
-                    let range = r.start as usize..(r.end as usize).min(mesh.positions.len());
-                    scene::pack_vertices(mesh, range.clone(), &mut vertices);
-                    let at = range.start as u64 * scene::VERTEX_STRIDE;
-                    ok &= self.mesh.upload_at(&vertices, at, layout.total)?.is_some();
-                }
+                let ok = self.mesh.upload_vertices(mesh, dirty, layout.total)?;
                 match self.mesh.upload_at(&bytes, offset, layout.total)? {
                     Some(b) if ok => Some(b),
                     _ => None,
@@ -387,23 +381,6 @@ impl Renderer {
         }
         Ok(())
     }
-}
-
-/// Whether `ranges` (in any order) cover every index of `want`; an empty `want` is covered.
-fn covers(ranges: &[std::ops::Range<u32>], want: std::ops::Range<u32>) -> bool {
-    let mut inside: Vec<&std::ops::Range<u32>> = ranges
-        .iter()
-        .filter(|r| r.end > want.start && r.start < want.end)
-        .collect();
-    inside.sort_unstable_by_key(|r| r.start);
-    let mut next = want.start;
-    for r in inside {
-        if r.start > next {
-            break;
-        }
-        next = next.max(r.end);
-    }
-    next >= want.end
 }
 
 /// What a draw uploads of the mesh.

@@ -50,6 +50,7 @@ impl FrameSource for Counting {
             mesh: self.mesh,
             status: "test",
             vertex_version: Some(7),
+            dirty_vertices: None,
             depth_cap: Some(5),
             predicted_ms: None,
         })

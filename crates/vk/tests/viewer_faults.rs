@@ -97,6 +97,7 @@ impl FrameSource for Recording {
             mesh: self.mesh,
             status: "",
             vertex_version: Some(1),
+            dirty_vertices: None,
             depth_cap: None,
             predicted_ms: None,
         })

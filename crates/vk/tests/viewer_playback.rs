@@ -35,6 +35,7 @@ impl FrameSource for Timed {
             },
             status: "",
             vertex_version: None,
+            dirty_vertices: None,
             depth_cap: None,
             predicted_ms: None,
         })

@@ -13,6 +13,6 @@ pub use camera::{OrbitCamera, View};
 pub use mesh::RenderMesh;
 pub use options::{RenderOptions, Shading};
 pub(crate) use pack::{
-    COLOR_STRIDE, Layout, VERTEX_STRIDE, line_push_constants, mesh_push_constants,
+    COLOR_STRIDE, Layout, VERTEX_STRIDE, covers, line_push_constants, mesh_push_constants,
     overlay_push_constants, pack, pack_from, pack_vertices, scalar_range,
 };

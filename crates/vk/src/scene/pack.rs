@@ -304,6 +304,23 @@ fn to_bytes(floats: &[f32; 32]) -> [u8; 128] {
     out
 }
 
+/// Whether `ranges` (in any order) cover every index of `want`; an empty `want` is covered.
+pub(crate) fn covers(ranges: &[std::ops::Range<u32>], want: std::ops::Range<u32>) -> bool {
+    let mut inside: Vec<&std::ops::Range<u32>> = ranges
+        .iter()
+        .filter(|r| r.end > want.start && r.start < want.end)
+        .collect();
+    inside.sort_unstable_by_key(|r| r.start);
+    let mut next = want.start;
+    for r in inside {
+        if r.start > next {
+            break;
+        }
+        next = next.max(r.end);
+    }
+    next >= want.end
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

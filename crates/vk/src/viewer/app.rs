@@ -314,7 +314,7 @@ impl App<'_> {
             &request.view,
             &options,
             &overlay,
-            vertex_version,
+            (vertex_version, frame.dirty_vertices),
             shot,
         )?;
         let Drawn::Presented(image) = drawn else {

@@ -2,6 +2,7 @@
 //! and the drawing of one frame into the swapchain.
 
 use std::collections::VecDeque;
+use std::ops::Range;
 use std::time::Instant;
 
 use ash::{khr, vk};
@@ -11,6 +12,7 @@ use winit::window::Window;
 use super::SwapchainFault;
 use super::slot::{Slot, begin_commands, create_slot};
 use super::swapchain::{Swapchain, record_blit};
+use super::versions::{History, Write};
 use crate::context::{Context, ContextOptions};
 use crate::error::{Result, VkError, VkResultExt};
 use crate::frame::{self, FrameInputs, Readback, Target};
@@ -46,6 +48,8 @@ pub(super) struct Gpu {
     pub(super) extents: Vec<[u32; 2]>,
     /// Faults injected by tests ([`super::Fault`]).
     pub(super) injected: Injected,
+    /// The dirty vertex ranges of the source's last versions.
+    history: History,
 }
 
 /// Results the next swapchain calls are made to report ([`super::Fault`]).
@@ -77,13 +81,13 @@ struct Packed<'a> {
     mesh: &'a RenderMesh<'a>,
     options: &'a RenderOptions,
     overlay: &'a Overlay,
-    /// The packed bytes; without the vertices when `reuse`.
+    /// The packed bytes; without the vertices unless everything is written.
     bytes: Vec<u8>,
     layout: Layout,
     /// Where `bytes` belong in the buffer.
     offset: u64,
-    /// The slot's buffer already holds these vertices.
-    reuse: bool,
+    /// Which vertices the slot writes.
+    write: Write,
     vertex_version: Option<u64>,
 }
 
@@ -107,6 +111,7 @@ impl Gpu {
             pool: vk::CommandPool::null(),
             slots: Vec::new(),
             next: 0,
+            history: History::default(),
             swapchain: None,
             swapchain_dirty: true,
             format: vk::SurfaceFormatKHR::default(),
@@ -203,7 +208,7 @@ impl Gpu {
         view: &View,
         options: &RenderOptions,
         overlay: &Overlay,
-        vertex_version: Option<u64>,
+        (vertex_version, dirty): (Option<u64>, Option<&[Range<u32>]>),
         screenshot: bool,
     ) -> Result<Drawn> {
         let Some(extent) = self.swapchain.as_ref().map(|s| s.extent) else {
@@ -218,8 +223,14 @@ impl Gpu {
             self.ctx.device_name(),
         )?;
         self.pipelines.prepare(&self.ctx, samples)?;
-        let reuse = vertex_version.is_some() && self.slots[index].vertex_version == vertex_version;
-        let (bytes, layout, offset) = scene::pack_from(mesh, options, overlay, !reuse)?;
+        // Only the vertices that changed since the slot's version, when that is known.
+        self.history.record(vertex_version, dirty);
+        let n = mesh.positions.len();
+        let write = self
+            .history
+            .write(self.slots[index].vertices, vertex_version, n);
+        let (bytes, layout, offset) =
+            scene::pack_from(mesh, options, overlay, write == Write::All)?;
         let packed = Packed {
             mesh,
             options,
@@ -227,7 +238,7 @@ impl Gpu {
             bytes,
             layout,
             offset,
-            reuse,
+            write,
             vertex_version,
         };
         self.next = (self.next + 1) % FRAMES_IN_FLIGHT;
@@ -430,22 +441,30 @@ impl Gpu {
             }
             slot.target = Some(Target::new(&mut self.ctx, extent, samples)?);
         }
-        slot.vertex_version = None;
-        let kept = if packed.reuse {
-            slot.mesh
-                .upload_at(&packed.bytes, packed.offset, packed.layout.total)?
-        } else {
-            None
+        slot.vertices = None;
+        let total = packed.layout.total;
+        let kept = match &packed.write {
+            Write::Ranges(dirty) => {
+                let ok = slot.mesh.upload_vertices(packed.mesh, dirty, total)?;
+                match slot.mesh.upload_at(&packed.bytes, packed.offset, total)? {
+                    Some(buffer) if ok => Some(buffer),
+                    _ => None,
+                }
+            }
+            Write::All => None,
         };
+        let reuse = packed.write != Write::All;
         let mesh_buffer = match kept {
             Some(buffer) => buffer,
-            None if packed.reuse => {
+            None if reuse => {
                 let (all, _) = scene::pack(packed.mesh, packed.options, packed.overlay)?;
                 slot.mesh.upload(&mut self.ctx, &all)?
             }
             None => slot.mesh.upload(&mut self.ctx, &packed.bytes)?,
         };
-        slot.vertex_version = packed.vertex_version;
+        slot.vertices = packed
+            .vertex_version
+            .map(|v| (v, packed.mesh.positions.len()));
         Ok(mesh_buffer)
     }
 }

@@ -20,6 +20,7 @@ mod input;
 mod playback;
 mod slot;
 mod swapchain;
+mod versions;
 
 use std::path::PathBuf;
 use std::time::Duration;
@@ -120,6 +121,11 @@ pub struct SourceFrame<'a> {
     /// per-frame device buffers and uploads only indices and lines (e.g. limit
     /// points stay while subdivision depths do not rise). `None`: always upload.
     pub vertex_version: Option<u64>,
+    /// With a `vertex_version`: the vertices that differ from version `vertex_version - 1`'s
+    /// (appended ones included), every other vertex keeping its index and bits, so that the
+    /// viewer writes only these (`subdiv_stitch::AdaptiveFrame::dirty_vertices`). `None`: not
+    /// known, and a new version is written in full.
+    pub dirty_vertices: Option<&'a [std::ops::Range<u32>]>,
     /// The subdivision depth cap of this frame (the HUD's "depth cap"): the frame-rate
     /// controller's cap or the maximum depth; `None` where no cap applies.
     pub depth_cap: Option<u32>,
@@ -148,6 +154,7 @@ impl FrameSource for RenderMesh<'_> {
             mesh: *self,
             status: "",
             vertex_version: Some(0),
+            dirty_vertices: None,
             depth_cap: None,
             predicted_ms: None,
         })

@@ -4,7 +4,8 @@
 use ash::vk;
 
 use crate::error::{Result, VkError, VkResultExt};
-use crate::frame::{MeshBuffer, Target};
+use crate::frame::Target;
+use crate::mesh_buffer::MeshBuffer;
 
 /// A frame in flight.
 pub(super) struct Slot {
@@ -16,8 +17,8 @@ pub(super) struct Slot {
     /// double-buffered across slots so the CPU never overwrites what the GPU
     /// still reads.
     pub(super) mesh: MeshBuffer,
-    /// [`super::SourceFrame::vertex_version`] of the vertices in `mesh`.
-    pub(super) vertex_version: Option<u64>,
+    /// [`super::SourceFrame::vertex_version`] and count of the vertices in `mesh`.
+    pub(super) vertices: Option<(u64, usize)>,
 }
 
 /// Resets the slot's fence and command buffer and begins recording.
@@ -82,7 +83,7 @@ pub(super) fn create_slot(device: &ash::Device, pool: vk::CommandPool) -> Result
             acquired,
             target: None,
             mesh: MeshBuffer::default(),
-            vertex_version: None,
+            vertices: None,
         })
     }
 }
