@@ -6,33 +6,16 @@
 //! Without a Vulkan driver the test prints a note and passes, unless
 //! `SUBDIV_VK_REQUIRE_DRIVER=1` is set.
 
+mod common;
 mod grid;
 
 use grid::{Grid, grid};
 use subdiv_vk::glam::Vec3;
-use subdiv_vk::{ContextOptions, RenderMesh, RenderOptions, Renderer, Validation, View, VkError};
-
-/// A renderer with validation when available; `None` (test skipped) without a driver.
-fn renderer() -> Option<Renderer> {
-    let options = ContextOptions {
-        validation: Validation::IfAvailable,
-        ..Default::default()
-    };
-    match Renderer::with_options(&options) {
-        Ok(r) => Some(r),
-        Err(e @ (VkError::LoaderMissing { .. } | VkError::NoDriver { .. }))
-            if std::env::var("SUBDIV_VK_REQUIRE_DRIVER").as_deref() != Ok("1") =>
-        {
-            eprintln!("skipping: {e}");
-            None
-        }
-        Err(e) => panic!("cannot create renderer: {e}"),
-    }
-}
+use subdiv_vk::{RenderMesh, RenderOptions, View};
 
 #[test]
 fn versioned_renders_write_only_the_dirty_vertices_and_match_fresh_ones() {
-    let Some(mut r) = renderer() else {
+    let Some(mut r) = common::renderer() else {
         return;
     };
     let view = View::look_at(

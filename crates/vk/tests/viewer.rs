@@ -4,14 +4,13 @@
 //! Without `DISPLAY` (or without a Vulkan driver) it prints a note and passes,
 //! unless `SUBDIV_VK_REQUIRE_DISPLAY=1` is set.
 
+mod common;
 mod octahedron;
 
 use octahedron::{POSITIONS, SCALARS, TRIANGLES};
 use subdiv_vk::glam::Vec3;
-use subdiv_vk::viewer::{self, FrameRequest, FrameSource, SourceFrame, ViewerOptions};
-use subdiv_vk::{
-    ContextOptions, OrbitCamera, RenderMesh, RenderOptions, Renderer, Shading, Validation,
-};
+use subdiv_vk::viewer::{FrameRequest, FrameSource, SourceFrame};
+use subdiv_vk::{OrbitCamera, RenderMesh, RenderOptions, Shading};
 
 static LINE: [[f32; 3]; 2] = [[-1.2, 0.0, 0.0], [1.2, 0.0, 0.0]];
 
@@ -59,18 +58,7 @@ impl FrameSource for Counting {
 
 #[test]
 fn screenshot_after_n_frames_equals_headless_render() {
-    let require = std::env::var("SUBDIV_VK_REQUIRE_DISPLAY").as_deref() == Ok("1");
-    if std::env::var_os("DISPLAY").is_none() && !require {
-        eprintln!("skipping: no DISPLAY (run under xvfb-run)");
-        return;
-    }
-    let context = ContextOptions {
-        validation: Validation::IfAvailable,
-        ..Default::default()
-    };
-    let Ok(mut headless) = Renderer::with_options(&context) else {
-        assert!(!require, "no Vulkan driver");
-        eprintln!("skipping: no Vulkan driver");
+    let Some(mut headless) = common::display_and_renderer() else {
         return;
     };
     let camera = OrbitCamera::framing(Vec3::splat(-1.0), Vec3::splat(1.0));
@@ -79,38 +67,14 @@ fn screenshot_after_n_frames_equals_headless_render() {
         wire_overlay: true,
         ..Default::default()
     };
-    let dir = std::env::temp_dir().join(format!("subdiv-vk-viewer-{}", std::process::id()));
-    let path = dir.join("shot.png");
     let mut source = Counting {
         mesh: shape(),
         frames: 0,
     };
-    let report = viewer::run(
-        &mut source,
-        ViewerOptions {
-            size: [160, 120],
-            camera: Some(camera),
-            render,
-            screenshot_after: Some(5),
-            screenshot_path: path.clone(),
-            // No HUD: the screenshot must equal the headless render.
-            hud: false,
-            context,
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let (report, shot) = common::viewer_screenshot(&mut source, camera, render, 5, "viewer");
     assert_eq!(report.frames, 5);
     assert_eq!(source.frames, 5);
-    assert_eq!(report.screenshots, vec![path.clone()]);
     assert_eq!(report.validation_enabled, headless.validation_enabled());
-    assert!(
-        report.validation_messages.is_empty(),
-        "{:#?}",
-        report.validation_messages
-    );
-
-    let shot = subdiv_vk::read_png(&path).unwrap();
     let mesh = shape();
     let expected = headless
         .render(&mesh, &camera.view(160.0 / 120.0), [160, 120], &render)
@@ -122,5 +86,4 @@ fn screenshot_after_n_frames_equals_headless_render() {
     let log = headless.validation_log();
     drop(headless);
     assert!(log.take().is_empty());
-    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -7,14 +7,15 @@
 //! (or without a Vulkan driver) it prints a note and passes, unless
 //! `SUBDIV_VK_REQUIRE_DISPLAY=1` is set.
 
+mod common;
 mod grid;
 
 use std::ops::Range;
 
 use grid::{Grid, grid};
 use subdiv_vk::glam::Vec3;
-use subdiv_vk::viewer::{self, FrameRequest, FrameSource, SourceFrame, ViewerOptions};
-use subdiv_vk::{ContextOptions, OrbitCamera, RenderMesh, RenderOptions, Renderer, Validation};
+use subdiv_vk::viewer::{FrameRequest, FrameSource, SourceFrame};
+use subdiv_vk::{OrbitCamera, RenderMesh, RenderOptions};
 
 /// Grid side in quads.
 const K: u32 = 6;
@@ -92,47 +93,15 @@ impl FrameSource for Growing {
 
 #[test]
 fn appended_blocks_are_written_and_the_rest_is_kept() {
-    let require = std::env::var("SUBDIV_VK_REQUIRE_DISPLAY").as_deref() == Ok("1");
-    if std::env::var_os("DISPLAY").is_none() && !require {
-        eprintln!("skipping: no DISPLAY (run under xvfb-run)");
-        return;
-    }
-    let context = ContextOptions {
-        validation: Validation::IfAvailable,
-        ..Default::default()
-    };
-    let Ok(mut headless) = Renderer::with_options(&context) else {
-        assert!(!require, "no Vulkan driver");
-        eprintln!("skipping: no Vulkan driver");
+    let Some(mut headless) = common::display_and_renderer() else {
         return;
     };
     let camera = OrbitCamera::framing(Vec3::new(-1.0, -1.0, -0.5), Vec3::new(3.5, 1.0, 0.5));
     let render = RenderOptions::default();
-    let dir = std::env::temp_dir().join(format!("subdiv-vk-versions-{}", std::process::id()));
-    let path = dir.join("shot.png");
     let mut source = Growing::new();
     let frames = LAST as u32 + 3;
-    let report = viewer::run(
-        &mut source,
-        ViewerOptions {
-            size: [160, 120],
-            camera: Some(camera),
-            render,
-            screenshot_after: Some(frames),
-            screenshot_path: path.clone(),
-            hud: false,
-            context,
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let (report, shot) = common::viewer_screenshot(&mut source, camera, render, frames, "versions");
     assert_eq!(report.frames, u64::from(frames));
-    assert!(
-        report.validation_messages.is_empty(),
-        "{:#?}",
-        report.validation_messages
-    );
-    let shot = subdiv_vk::read_png(&path).unwrap();
     // What the viewer holds: the origin's grid flat (its lift was not marked dirty), the
     // newest block lifted beside it.
     let mut held = Growing::new();
@@ -166,5 +135,4 @@ fn appended_blocks_are_written_and_the_rest_is_kept() {
         shot == expected,
         "the viewer's frame is not the appended blocks over the vertices it held"
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -32,6 +32,69 @@ pub fn renderer() -> Option<Renderer> {
     }
 }
 
+/// For a window test: a headless renderer to compare with, `None` (test skipped) without
+/// `DISPLAY` or a driver, unless `SUBDIV_VK_REQUIRE_DISPLAY=1` is set.
+pub fn display_and_renderer() -> Option<Renderer> {
+    let require = std::env::var("SUBDIV_VK_REQUIRE_DISPLAY").as_deref() == Ok("1");
+    if std::env::var_os("DISPLAY").is_none() && !require {
+        eprintln!("skipping: no DISPLAY (run under xvfb-run)");
+        return None;
+    }
+    let context = ContextOptions {
+        validation: Validation::IfAvailable,
+        ..Default::default()
+    };
+    match Renderer::with_options(&context) {
+        Ok(r) => Some(r),
+        Err(e) => {
+            assert!(!require, "no Vulkan driver: {e}");
+            eprintln!("skipping: no Vulkan driver");
+            None
+        }
+    }
+}
+
+/// Runs the viewer on `source` at 160×120 with `camera` and `render`, no HUD, validation when
+/// available, for `frames` frames, and returns its report and the screenshot taken after the
+/// last one (`name`: a word for the temporary directory).
+pub fn viewer_screenshot(
+    source: &mut dyn subdiv_vk::viewer::FrameSource,
+    camera: subdiv_vk::OrbitCamera,
+    render: subdiv_vk::RenderOptions,
+    frames: u32,
+    name: &str,
+) -> (subdiv_vk::viewer::ViewerReport, subdiv_vk::image::RgbaImage) {
+    let dir = std::env::temp_dir().join(format!("subdiv-vk-{name}-{}", std::process::id()));
+    let path = dir.join("shot.png");
+    let report = subdiv_vk::viewer::run(
+        source,
+        subdiv_vk::viewer::ViewerOptions {
+            size: [160, 120],
+            camera: Some(camera),
+            render,
+            screenshot_after: Some(frames),
+            screenshot_path: path.clone(),
+            // No HUD: the screenshot can equal a headless render.
+            hud: false,
+            context: ContextOptions {
+                validation: Validation::IfAvailable,
+                ..Default::default()
+            },
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(report.screenshots, vec![path.clone()]);
+    assert!(
+        report.validation_messages.is_empty(),
+        "{:#?}",
+        report.validation_messages
+    );
+    let shot = subdiv_vk::read_png(&path).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    (report, shot)
+}
+
 /// Drops the renderer and fails on any validation message, teardown included.
 pub fn finish(renderer: Renderer) {
     let log = renderer.validation_log();
