@@ -3,10 +3,10 @@
 //! lavapipe (llvmpipe) runs inside the program and takes each draw's vertex and binning
 //! buffers from the C heap. glibc's `malloc` gives the free top of its heap back to the system
 //! whenever it exceeds `M_TRIM_THRESHOLD` (128 KiB unless set), so a frame loop whose draws
-//! free and allocate those buffers again got fresh pages every frame, which the kernel zeroes
-//! on first touch: helmet40 at uniform depth 2 (640×480, 400 frames) spent 4.3 s of 11.7 in
-//! the kernel, and ran at a median of 36 fps; with the heap kept, 0.2 s and 55 fps
-//! (docs/performance.md, "The C heap under lavapipe").
+//! free and allocate those buffers again gets fresh pages every frame, which the kernel zeroes
+//! on first touch. On helmet40 at uniform depth 2 (640×480, 300 frames) that is 3.1–3.4 s in the
+//! kernel and a median of 36–38 fps, against 0.1–0.2 s and 55–59 fps with the heap kept
+//! (docs/performance.md, "The rendered frame under lavapipe: heap and uploads").
 //!
 //! Process-wide, so the program decides: the renderer itself never calls it.
 
