@@ -338,10 +338,18 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
     };
     let mut node = DynamicSubdivision::with_scheme(cage.clone(), scheme, params)?;
     let control = a.control.map_or(Control::Budget, Into::into);
-    let mut renderer = if a.no_render && a.error_every.is_none() {
+    let mut renderer = if a.no_render {
         None
     } else {
         Some(Renderer::new()?)
+    };
+    // The image errors are rendered on a renderer of their own. On the frames' renderer each
+    // measurement would replace the vertex buffer the frames keep, so the frame after it would
+    // upload the whole mesh again: a time the controller would then answer, and one no viewer
+    // pays.
+    let mut error_renderer = match a.error_every {
+        Some(_) => Some(Renderer::new()?),
+        None => None,
     };
     if a.calibrate {
         calibrate(a, &mut node, &mut renderer, bounds)?;
@@ -357,7 +365,7 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
         }
         (None, None) => "adaptive, no frame-rate control".to_string(),
     };
-    let errors = match renderer.as_mut() {
+    let errors = match error_renderer.as_mut() {
         Some(r) => error_run(a, &cage, scheme, r)?,
         None => None,
     };
@@ -386,7 +394,7 @@ pub fn run(a: &BenchFramerateArgs) -> anyhow::Result<ExitCode> {
         fps_all.push(1.0 / f64::from(dt));
         let line = frame_line(a, &node, i, f64::from(dt), update);
         let mut line = line;
-        if let (Some(run), Some(r), Some(k)) = (&errors, renderer.as_mut(), a.error_every)
+        if let (Some(run), Some(r), Some(k)) = (&errors, error_renderer.as_mut(), a.error_every)
             && i % k == 0
         {
             let scene = Scene::from_limit(&node.geometry().surface().referenced_only());
