@@ -4,8 +4,8 @@
 //! predictive default, or `paper`). Each frame prints its rate, triangles, cap, patches and quads
 //! per depth, the paper controller's share (0 otherwise), its measured and predicted time and
 //! the update's parts; with `--error-every K` every K-th frame also its image error against the
-//! true surface (`subdiv_quality`, untimed). `--calibrate` first measures how steadily the
-//! machine holds a rate (uniform depth 2).
+//! true surface (`subdiv_quality`, untimed, on a renderer of its own). `--calibrate` first
+//! measures how steadily the machine holds a rate (uniform depth 2).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
